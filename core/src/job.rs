@@ -1,0 +1,315 @@
+//! The slot job: geometry, tool, cutting data and path choice, and its validation.
+//!
+//! Names follow Wagih et al. (2023): slot width B, tool diameter D (radius R = D/2),
+//! trochoidal radius a = (B − D)/2, aspect ratio r_e = b/a, step s, linear distance d,
+//! feed rate f_r (mm/min), spindle speed n (rpm), teeth z, axial depth a_p.
+//! Defaults are the paper's Table 1 conditions (a_p = 6 mm from its section 4) with r_e = 1
+//! and a 20 mm long slot.
+
+use crate::error::JobError;
+use serde::{Deserialize, Serialize};
+use std::f64::consts::TAU;
+
+/// Which tool-centre path to use (issue #2 path models).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PathKind {
+    /// True trochoid, paper eq. (1) with r_e = 1.
+    Circular,
+    /// Straight step s along the left extreme, then a full clockwise circle of radius a.
+    CircularType,
+    /// Paper eq. (1) with aspect ratio r_e = b/a.
+    Elliptical,
+    /// Paper section 3: +d along the left extreme, front half-ellipse, −d along the right
+    /// extreme, back half-ellipse.
+    LinearElliptical,
+}
+
+impl PathKind {
+    /// All kinds, in CLI order.
+    pub const ALL: [PathKind; 4] =
+        [PathKind::Circular, PathKind::CircularType, PathKind::Elliptical, PathKind::LinearElliptical];
+
+    /// The name used in job files and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            PathKind::Circular => "circular",
+            PathKind::CircularType => "circular-type",
+            PathKind::Elliptical => "elliptical",
+            PathKind::LinearElliptical => "linear-elliptical",
+        }
+    }
+
+    /// Parse a CLI / job-file name.
+    pub fn from_name(s: &str) -> Result<PathKind, JobError> {
+        PathKind::ALL.into_iter().find(|k| k.name() == s).ok_or_else(|| {
+            JobError::range("path", s, "one of circular, circular-type, elliptical, linear-elliptical")
+        })
+    }
+
+    /// Whether the aspect ratio r_e shapes this path.
+    pub fn uses_aspect_ratio(self) -> bool {
+        matches!(self, PathKind::Elliptical | PathKind::LinearElliptical)
+    }
+}
+
+/// A slot job as the user states it (job files and CLI flags use the kebab-case names).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case", default, deny_unknown_fields)]
+pub struct Job {
+    /// Path type.
+    pub path: PathKind,
+    /// Slot width B (mm).
+    pub slot_width: f64,
+    /// Slot length L (mm), along +y from the stock face y = 0.
+    pub slot_length: f64,
+    /// Slot depth = axial depth of cut a_p (mm).
+    pub depth: f64,
+    /// Tool diameter D (mm).
+    pub tool_diameter: f64,
+    /// Number of teeth z.
+    pub teeth: u32,
+    /// Tool-centre feed rate f_r (mm/min).
+    pub feed: f64,
+    /// Spindle speed n (rpm).
+    pub rpm: f64,
+    /// Trochoidal step s (mm per cycle).
+    pub step: f64,
+    /// Aspect ratio r_e = b/a (elliptical and linear-elliptical paths).
+    pub aspect_ratio: f64,
+    /// Linear distance d (mm, linear-elliptical path).
+    pub linear_distance: f64,
+}
+
+impl Default for Job {
+    /// Wagih et al. (2023) Table 1: f_r = 600 mm/min, s = 1 mm, n = 2000 rpm, D = 10 mm,
+    /// z = 4, B = 20 mm; a_p = 6 mm and L = 20 mm (section 4); r_e = 1.
+    fn default() -> Self {
+        Job {
+            path: PathKind::Circular,
+            slot_width: 20.0,
+            slot_length: 20.0,
+            depth: 6.0,
+            tool_diameter: 10.0,
+            teeth: 4,
+            feed: 600.0,
+            rpm: 2000.0,
+            step: 1.0,
+            aspect_ratio: 1.0,
+            linear_distance: 0.0,
+        }
+    }
+}
+
+/// Limits used by validation, stated once.
+pub mod limits {
+    /// Aspect ratio range r_e (the paper studies 0.5–1.2).
+    pub const ASPECT_RATIO: (f64, f64) = (0.2, 3.0);
+    /// Largest number of cycles in one slot.
+    pub const MAX_CYCLES: f64 = 1.0e6;
+    /// Largest dimension accepted (mm).
+    pub const MAX_SIZE_MM: f64 = 1.0e5;
+    /// Smallest feed per tooth (mm): keeps a cycle below ~10⁶ tooth positions.
+    pub const MIN_FZ: f64 = 1.0e-4;
+    /// Most teeth.
+    pub const MAX_TEETH: u32 = 64;
+}
+
+/// A job that passed validation; everything downstream takes this type.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ValidJob {
+    pub path: PathKind,
+    pub slot_width: f64,
+    pub slot_length: f64,
+    pub depth: f64,
+    pub tool_diameter: f64,
+    pub teeth: u32,
+    pub feed: f64,
+    pub rpm: f64,
+    pub step: f64,
+    /// Effective r_e (1 for circular and circular-type paths).
+    pub aspect_ratio: f64,
+    /// Effective d (0 unless linear-elliptical).
+    pub linear_distance: f64,
+}
+
+fn positive(name: &'static str, v: f64, max: f64) -> Result<f64, JobError> {
+    if v.is_finite() && v > 0.0 && v <= max {
+        Ok(v)
+    } else {
+        Err(JobError::range(name, v, format!("a finite number > 0 and ≤ {max}")))
+    }
+}
+
+impl Job {
+    /// Check every parameter once; the error names the first bad one, its value and range.
+    pub fn validate(&self) -> Result<ValidJob, JobError> {
+        use limits::*;
+        let b_w = positive("slot-width", self.slot_width, MAX_SIZE_MM)?;
+        let len = positive("slot-length", self.slot_length, MAX_SIZE_MM)?;
+        let depth = positive("depth", self.depth, MAX_SIZE_MM)?;
+        let d_t = positive("tool-diameter", self.tool_diameter, MAX_SIZE_MM)?;
+        if d_t >= b_w {
+            return Err(JobError::range(
+                "tool-diameter",
+                d_t,
+                format!("smaller than the slot width {b_w} mm"),
+            ));
+        }
+        if d_t < b_w / 2.0 {
+            return Err(JobError::range(
+                "tool-diameter",
+                d_t,
+                format!(
+                    "at least half the slot width ({} mm): with a = (B − D)/2 larger than the tool \
+                     radius each loop would leave an uncut island",
+                    b_w / 2.0
+                ),
+            ));
+        }
+        if self.teeth == 0 || self.teeth > MAX_TEETH {
+            return Err(JobError::range("teeth", self.teeth, format!("a whole number from 1 to {MAX_TEETH}")));
+        }
+        let feed = positive("feed", self.feed, 1.0e6)?;
+        let rpm = positive("rpm", self.rpm, 1.0e6)?;
+        let step = positive("step", self.step, MAX_SIZE_MM)?;
+        if step >= d_t {
+            return Err(JobError::range("step", step, format!("smaller than the tool diameter {d_t} mm")));
+        }
+        if len < step {
+            return Err(JobError::range("slot-length", len, format!("at least one step ({step} mm)")));
+        }
+        if len / step > MAX_CYCLES {
+            return Err(JobError::range(
+                "step",
+                step,
+                format!("at least slot-length / {MAX_CYCLES} = {} mm", len / MAX_CYCLES),
+            ));
+        }
+        let a = (b_w - d_t) / 2.0;
+        let r_e = if self.path.uses_aspect_ratio() {
+            let (lo, hi) = ASPECT_RATIO;
+            if !(self.aspect_ratio.is_finite() && self.aspect_ratio >= lo && self.aspect_ratio <= hi) {
+                return Err(JobError::range("aspect-ratio", self.aspect_ratio, format!("from {lo} to {hi}")));
+            }
+            self.aspect_ratio
+        } else {
+            1.0
+        };
+        // The loop must keep turning one way (b > s/2π), else eq. (1) has no loop.
+        let b = r_e * a;
+        if step >= 0.5 * TAU * b {
+            return Err(JobError::range(
+                "step",
+                step,
+                format!("smaller than π·b = {} mm (b = r_e·a), so that each cycle is a loop", 0.5 * TAU * b),
+            ));
+        }
+        let d = if self.path == PathKind::LinearElliptical {
+            let v = self.linear_distance;
+            if !(v.is_finite() && v >= 0.0 && v <= b_w) {
+                return Err(JobError::range("linear-distance", v, format!("from 0 to the slot width {b_w} mm")));
+            }
+            v
+        } else {
+            0.0
+        };
+        let f_z = feed / (rpm * f64::from(self.teeth));
+        if f_z < MIN_FZ || f_z > d_t / 8.0 {
+            return Err(JobError::range(
+                "feed",
+                feed,
+                format!(
+                    "such that the feed per tooth f_z = feed/(rpm·teeth) is from {MIN_FZ} to D/8 = {} mm \
+                     (now {f_z} mm)",
+                    d_t / 8.0
+                ),
+            ));
+        }
+        Ok(ValidJob {
+            path: self.path,
+            slot_width: b_w,
+            slot_length: len,
+            depth,
+            tool_diameter: d_t,
+            teeth: self.teeth,
+            feed,
+            rpm,
+            step,
+            aspect_ratio: r_e,
+            linear_distance: d,
+        })
+    }
+
+    /// Read a job from TOML text (missing keys take the defaults).
+    pub fn from_toml(text: &str) -> Result<Job, JobError> {
+        toml::from_str(text).map_err(|e| JobError::File(e.to_string()))
+    }
+
+    /// The job as TOML text.
+    pub fn to_toml(&self) -> String {
+        toml::to_string(self).unwrap_or_default()
+    }
+}
+
+impl ValidJob {
+    /// Tool radius R = D/2 (mm).
+    pub fn tool_radius(&self) -> f64 {
+        self.tool_diameter / 2.0
+    }
+    /// Trochoidal radius a = (B − D)/2 (mm).
+    pub fn trochoidal_radius(&self) -> f64 {
+        (self.slot_width - self.tool_diameter) / 2.0
+    }
+    /// b = r_e·a (mm), paper eq. (2).
+    pub fn b(&self) -> f64 {
+        self.aspect_ratio * self.trochoidal_radius()
+    }
+    /// Feed per tooth f_z = f_r/(n·z) (mm).
+    pub fn f_z(&self) -> f64 {
+        self.feed / (self.rpm * f64::from(self.teeth))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn default_is_valid_and_has_paper_feed_per_tooth() {
+        let v = Job::default().validate().expect("valid");
+        // f_z = 600 / (2000 · 4) = 0.075 mm
+        assert!((v.f_z() - 0.075).abs() < 1e-15);
+        assert_eq!(v.trochoidal_radius(), 5.0);
+    }
+
+    #[test]
+    fn errors_name_the_parameter() {
+        let cases: [(Job, &str); 9] = [
+            (Job { slot_width: -1.0, ..Job::default() }, "slot-width"),
+            (Job { tool_diameter: 25.0, ..Job::default() }, "tool-diameter"),
+            (Job { tool_diameter: 8.0, ..Job::default() }, "tool-diameter"),
+            (Job { teeth: 0, ..Job::default() }, "teeth"),
+            (Job { step: 10.0, ..Job::default() }, "step"),
+            (Job { step: f64::NAN, ..Job::default() }, "step"),
+            (Job { slot_length: 0.5, ..Job::default() }, "slot-length"),
+            (Job { path: PathKind::Elliptical, aspect_ratio: 0.0, ..Job::default() }, "aspect-ratio"),
+            (Job { feed: f64::INFINITY, ..Job::default() }, "feed"),
+        ];
+        for (job, name) in cases {
+            let err = job.validate().expect_err("must be rejected");
+            assert_eq!(err.parameter(), Some(name), "{err}");
+            assert!(err.to_string().contains(name), "{err}");
+        }
+    }
+
+    #[test]
+    fn toml_round_trip_uses_cli_names() {
+        let job = Job { path: PathKind::LinearElliptical, linear_distance: 0.75, ..Job::default() };
+        let text = job.to_toml();
+        assert!(text.contains("linear-distance = 0.75"), "{text}");
+        assert_eq!(Job::from_toml(&text).expect("parse"), job);
+        assert!(Job::from_toml("slot-width = \"wide\"").is_err());
+        assert!(Job::from_toml("nonsense = 1").is_err());
+    }
+}

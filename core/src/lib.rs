@@ -1,0 +1,29 @@
+//! # trochoplan-core
+//!
+//! The computing core of TrochoPlan: trochoidal slot tool paths as exact segments, and their
+//! analysis — path length, cycle time, MRR, local maximum chip thickness h per tooth, engagement
+//! angle, cooling time and wall waviness — after Wagih et al., "Analysis and development of
+//! elliptical tool path in trochoidal milling", CIRP JMST 47 (2023) ("the paper").
+//!
+//! Conventions: millimetres, seconds, mm/min, rpm; radians inside (degrees only in reports).
+//! The slot runs along +y from the stock face y = 0, centred on x = 0; the −x wall is the
+//! "left" wall. XY plane seen from +z, counter-clockwise positive.
+//!
+//! Modules:
+//! - [`job`]: the job and its validation ([`Job::validate`] → [`ValidJob`]).
+//! - [`geom`]: points, exact segments (line, arc, eq. (1) trochoid piece), numerics.
+//! - [`path`]: the four slot path types as one repeated cycle.
+//! - [`analysis`]: edge of previous cycles, per-tooth h and engagement, waviness, step limit.
+//! - [`plan`]: [`plan()`] — job in, [`Plan`] out; used by the GUI and the CLI.
+//! - [`error`]: [`JobError`].
+
+pub mod analysis;
+pub mod error;
+pub mod geom;
+pub mod job;
+pub mod path;
+pub mod plan;
+
+pub use error::JobError;
+pub use job::{Job, PathKind, ValidJob};
+pub use plan::{Metrics, Plan, plan};

@@ -1,0 +1,263 @@
+//! Slot tool-centre paths (Wagih et al. 2023, sections 2–3; domain-spec §2).
+//!
+//! The slot runs along +y, centred on x = 0, stock from y = 0 to y = L. A path is one *cycle*
+//! (a list of exact segments starting at the left extreme x = −a, y = 0 and ending at
+//! x = −a, y = s) repeated with a translation of s·ŷ. Trochoidal radius a = (B − D)/2,
+//! b = r_e·a. All loops follow the paper's eq. (1) orientation: they start at the left extreme
+//! moving +y and turn clockwise seen from +z.
+
+use crate::geom::{P2, Segment, SegmentPoint, p2};
+use crate::job::{PathKind, ValidJob};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::{PI, TAU};
+
+/// One cycle of a periodic path, relative to the cycle origin.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Cycle {
+    /// Exact segments, G1-continuous, start (−a, 0), end (−a, s).
+    pub segments: Vec<Segment>,
+    /// Advance per cycle along +y, s (mm).
+    pub step: f64,
+    /// Arc length of each segment (mm).
+    pub lengths: Vec<f64>,
+}
+
+/// A position on a cycle: segment index and local parameter.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CyclePos {
+    pub seg: usize,
+    pub t: f64,
+}
+
+impl Cycle {
+    fn new(segments: Vec<Segment>, step: f64) -> Cycle {
+        let lengths = segments.iter().map(Segment::length).collect();
+        Cycle { segments, step, lengths }
+    }
+
+    /// The cycle of the given path kind (paper eq. 1 and section 3; issue #2 path models).
+    pub fn for_job(job: &ValidJob) -> Cycle {
+        let (a, s) = (job.trochoidal_radius(), job.step);
+        let b = job.b();
+        let troch = |origin: P2, theta0: f64, theta1: f64| Segment::Trochoid { origin, a, b, step: s, theta0, theta1 };
+        let segments = match job.path {
+            PathKind::Circular | PathKind::Elliptical => vec![troch(P2::zeros(), 0.0, TAU)],
+            PathKind::LinearElliptical => {
+                let d = job.linear_distance;
+                let mut segs = Vec::with_capacity(4);
+                if d > 0.0 {
+                    segs.push(Segment::Line { start: p2(-a, 0.0), end: p2(-a, d) });
+                }
+                segs.push(troch(p2(0.0, d), 0.0, PI));
+                if d > 0.0 {
+                    segs.push(Segment::Line { start: p2(a, d + s / 2.0), end: p2(a, s / 2.0) });
+                }
+                segs.push(troch(P2::zeros(), PI, TAU));
+                segs
+            }
+            PathKind::CircularType => vec![
+                Segment::Line { start: p2(-a, 0.0), end: p2(-a, s) },
+                Segment::Arc { center: p2(0.0, s), radius: a, start_angle: PI, sweep: -TAU },
+            ],
+        };
+        Cycle::new(segments, s)
+    }
+
+    /// Path length of one cycle (mm).
+    pub fn length(&self) -> f64 {
+        self.lengths.iter().sum()
+    }
+
+    /// Position and derivatives at a cycle position.
+    #[inline]
+    pub fn eval(&self, pos: CyclePos) -> SegmentPoint {
+        self.segments[pos.seg].eval(pos.t)
+    }
+
+    /// The position `ds` (mm, ≥ 0) further along the cycle from `pos`, or `None` past the end.
+    pub fn advance(&self, mut pos: CyclePos, mut ds: f64) -> Option<CyclePos> {
+        loop {
+            let seg = &self.segments[pos.seg];
+            let rest = seg.length_between(pos.t, 1.0);
+            if ds <= rest {
+                return Some(CyclePos { seg: pos.seg, t: seg.param_after_length(pos.t, ds) });
+            }
+            ds -= rest;
+            pos = CyclePos { seg: pos.seg + 1, t: 0.0 };
+            if pos.seg >= self.segments.len() {
+                return None;
+            }
+        }
+    }
+
+    /// Positions spaced `spacing` mm along the cycle starting `offset` mm after its start,
+    /// as (arc length from cycle start, position).
+    pub fn positions(&self, offset: f64, spacing: f64) -> Vec<(f64, CyclePos)> {
+        let mut out = Vec::with_capacity((self.length() / spacing) as usize + 2);
+        let mut pos = self.advance(CyclePos { seg: 0, t: 0.0 }, offset);
+        let mut s = offset;
+        while let Some(p) = pos {
+            out.push((s, p));
+            s += spacing;
+            pos = self.advance(p, spacing);
+        }
+        out
+    }
+
+    /// `n` points per segment of the cycle shifted by `shift`, for plotting.
+    pub fn sample(&self, shift: P2, n: usize) -> Vec<P2> {
+        let mut pts = Vec::new();
+        for seg in &self.segments {
+            let s = seg.translated(shift).sample(n);
+            let skip = usize::from(!pts.is_empty());
+            pts.extend(s.into_iter().skip(skip));
+        }
+        pts
+    }
+
+    /// Extreme x over the cycle: (min x, max x), found by scanning and golden refinement.
+    pub fn x_extremes(&self) -> (f64, f64) {
+        let mut lo = f64::INFINITY;
+        let mut hi = f64::NEG_INFINITY;
+        for seg in &self.segments {
+            let n = 64;
+            for i in 0..n {
+                let (t0, t1) = (i as f64 / n as f64, (i + 1) as f64 / n as f64);
+                let (_, fmin) = crate::geom::golden_min(t0, t1, 1e-12, |t| seg.point(t).x);
+                let (_, fmax) = crate::geom::golden_min(t0, t1, 1e-12, |t| -seg.point(t).x);
+                lo = lo.min(fmin);
+                hi = hi.max(-fmax);
+            }
+        }
+        (lo, hi)
+    }
+}
+
+/// A complete slot path: the cycle repeated from outside the stock to beyond its end.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SlotPath {
+    pub kind: PathKind,
+    pub cycle: Cycle,
+    /// y of the first cycle origin (mm, negative: the tool starts outside the stock).
+    pub first_origin_y: f64,
+    /// Number of cycles.
+    pub cycles: usize,
+}
+
+impl SlotPath {
+    /// The slot path for a validated job.
+    ///
+    /// The first cycle is placed so that its swept region just reaches the stock face y = 0
+    /// (the tool starts outside the stock); cycles repeat until the left extreme of the last
+    /// one is at or beyond the slot end y = L, so both walls are cut over the full length.
+    pub fn for_job(job: &ValidJob) -> SlotPath {
+        let cycle = Cycle::for_job(job);
+        let reach = cycle
+            .segments
+            .iter()
+            .flat_map(|s| s.sample(64))
+            .map(|p| p.y)
+            .fold(f64::NEG_INFINITY, f64::max)
+            + job.tool_radius();
+        let first_origin_y = -reach;
+        let cycles = ((job.slot_length - first_origin_y) / job.step).ceil() as usize + 1;
+        SlotPath { kind: job.path, cycle, first_origin_y, cycles }
+    }
+
+    /// Origin of cycle `i`.
+    pub fn origin(&self, i: usize) -> P2 {
+        p2(0.0, self.first_origin_y + i as f64 * self.cycle.step)
+    }
+
+    /// Total path length (mm).
+    pub fn length(&self) -> f64 {
+        self.cycle.length() * self.cycles as f64
+    }
+
+    /// All segments of the path, in order.
+    pub fn segments(&self) -> impl Iterator<Item = Segment> + '_ {
+        (0..self.cycles).flat_map(move |i| self.cycle.segments.iter().map(move |s| s.translated(self.origin(i))))
+    }
+
+    /// Points of cycles `first..first+count` for plotting (`n` points per segment).
+    pub fn sample_cycles(&self, first: usize, count: usize, n: usize) -> Vec<P2> {
+        let mut pts = Vec::new();
+        for i in first..(first + count).min(self.cycles) {
+            let s = self.cycle.sample(self.origin(i), n);
+            let skip = usize::from(!pts.is_empty());
+            pts.extend(s.into_iter().skip(skip));
+        }
+        pts
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::job::Job;
+
+    fn cycle(path: PathKind, r_e: f64, d: f64) -> Cycle {
+        let job = Job { path, aspect_ratio: r_e, linear_distance: d, ..Job::default() };
+        Cycle::for_job(&job.validate().expect("valid"))
+    }
+
+    #[test]
+    fn every_cycle_starts_at_left_extreme_and_advances_one_step() {
+        for (kind, r_e, d) in [
+            (PathKind::Circular, 1.0, 0.0),
+            (PathKind::Elliptical, 0.6, 0.0),
+            (PathKind::LinearElliptical, 0.8, 0.75),
+            (PathKind::CircularType, 1.0, 0.0),
+        ] {
+            let c = cycle(kind, r_e, d);
+            let first = c.segments.first().expect("segments").start();
+            let last = c.segments.last().expect("segments").end();
+            assert!((first - p2(-5.0, 0.0)).norm() < 1e-12, "{kind:?} start {first}");
+            assert!((last - p2(-5.0, 1.0)).norm() < 1e-12, "{kind:?} end {last}");
+            for w in c.segments.windows(2) {
+                let (e0, e1) = (w[0].eval(1.0), w[1].eval(0.0));
+                assert!((e0.p - e1.p).norm() < 1e-12, "{kind:?} gap");
+                let turn = crate::geom::cross(e0.d1.normalize(), e1.d1.normalize());
+                assert!(turn.abs() < 1e-9 && e0.d1.dot(&e1.d1) > 0.0, "{kind:?} not tangent-continuous");
+            }
+        }
+    }
+
+    #[test]
+    fn linear_elliptical_adds_two_d_per_cycle() {
+        let base = cycle(PathKind::Elliptical, 0.8, 0.0).length();
+        let lin = cycle(PathKind::LinearElliptical, 0.8, 1.2).length();
+        assert!((lin - base - 2.4).abs() < 1e-9, "{lin} - {base}");
+        let zero = cycle(PathKind::LinearElliptical, 0.8, 0.0).length();
+        assert!((zero - base).abs() < 1e-9);
+    }
+
+    #[test]
+    fn circular_type_is_step_plus_full_circle() {
+        let c = cycle(PathKind::CircularType, 1.0, 0.0);
+        assert!((c.length() - (1.0 + TAU * 5.0)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn positions_are_spaced_by_arc_length() {
+        let c = cycle(PathKind::LinearElliptical, 0.7, 0.5);
+        let pos = c.positions(0.0, 0.075);
+        assert_eq!(pos.len(), (c.length() / 0.075).floor() as usize + 1);
+        for w in pos.windows(2) {
+            let (p0, p1) = (c.eval(w[0].1).p, c.eval(w[1].1).p);
+            let chord = (p1 - p0).norm();
+            assert!(chord <= 0.075 + 1e-12 && chord > 0.0749, "chord {chord}");
+        }
+    }
+
+    #[test]
+    fn slot_path_starts_outside_stock_and_ends_beyond_it() {
+        let job = Job::default().validate().expect("valid");
+        let path = SlotPath::for_job(&job);
+        let first = path.segments().next().expect("segment").start();
+        assert!(first.y + job.tool_radius() < 0.0, "tool starts outside the stock");
+        let last_origin = path.origin(path.cycles - 1);
+        assert!(last_origin.y >= job.slot_length);
+        assert!((path.length() - path.cycles as f64 * path.cycle.length()).abs() < 1e-9);
+    }
+}

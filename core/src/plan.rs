@@ -1,0 +1,126 @@
+//! One entry point for the GUI and the CLI: job in, plan out.
+
+use crate::analysis::{self, PreviousEdge, ToothSample, Wall, WallProfile, chip_timing, tooth_series, wall_profile};
+use crate::error::JobError;
+use crate::job::{Job, PathKind, ValidJob};
+use crate::path::SlotPath;
+use serde::Serialize;
+
+/// Grechishnikov et al. (2017): optimal engaged sector 46°.
+pub const ENGAGEMENT_LIMIT_DEG: f64 = 46.0;
+/// Grechishnikov et al. (2017): cutting depth ≤ 15 % of the tool diameter.
+pub const DEPTH_LIMIT_FRACTION: f64 = 0.15;
+
+/// Headline numbers of a plan. Field names are the CLI's JSON contract.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Metrics {
+    pub path: PathKind,
+    /// Path length of one cycle (mm).
+    pub cycle_length_mm: f64,
+    /// t_cycle = cycle length / f_r (s).
+    pub t_cycle_s: f64,
+    /// MRR = B·s·a_p / t_cycle (mm³/min).
+    pub mrr_mm3_per_min: f64,
+    /// f_z = f_r / (n·z) (mm).
+    pub f_z_mm: f64,
+    /// Largest local maximum chip thickness over a steady-state cycle (mm), eqs. 3–6.
+    pub h_max_mm: f64,
+    /// Time from the start of cutting to h_max (s).
+    pub t_hmax_s: f64,
+    /// Time per cycle in which no tooth cuts (s).
+    pub t_cooling_s: f64,
+    /// Largest engagement angle (degrees).
+    pub engagement_max_deg: f64,
+    /// Peak-to-valley height of the left (−x) wall (mm).
+    pub waviness_left_mm: f64,
+    /// Peak-to-valley height of the right (+x) wall (mm).
+    pub waviness_right_mm: f64,
+    /// Trochoidal radius a = (B − D)/2 (mm).
+    pub a_mm: f64,
+    /// b = r_e·a (mm).
+    pub b_mm: f64,
+    /// Effective aspect ratio r_e.
+    pub aspect_ratio: f64,
+    /// Effective linear distance d (mm).
+    pub linear_distance_mm: f64,
+    /// Trochoidal step s (mm).
+    pub step_mm: f64,
+    /// Number of cycles from outside the stock to beyond the slot end.
+    pub cycles: usize,
+    /// Whole path length (mm).
+    pub path_length_mm: f64,
+    /// Whole machining time at f_r (s).
+    pub machining_time_s: f64,
+    /// Tooth positions per cycle (cycle length / f_z).
+    pub teeth_per_cycle: f64,
+    /// Largest step keeping the engagement ≤ 46° (two-circle model, mm).
+    pub step_limit_46deg_mm: f64,
+    /// Largest step for a straight-cut-equivalent depth of 15 % of D (mm).
+    pub step_limit_15pct_depth_mm: f64,
+}
+
+/// A planned slot job: path, per-tooth series of a steady-state cycle, wall profiles, metrics.
+#[derive(Clone, Debug)]
+pub struct Plan {
+    pub job: ValidJob,
+    pub path: SlotPath,
+    pub metrics: Metrics,
+    /// One steady-state cycle, tooth by tooth (cycle origin at (0, 0)).
+    pub series: Vec<ToothSample>,
+    pub left_wall: WallProfile,
+    pub right_wall: WallProfile,
+}
+
+/// Validate `job`, build its path and analyse a steady-state cycle.
+pub fn plan(job: &Job) -> Result<Plan, JobError> {
+    let job = job.validate()?;
+    Ok(plan_valid(job))
+}
+
+/// [`plan`] for an already validated job.
+pub fn plan_valid(job: ValidJob) -> Plan {
+    let path = SlotPath::for_job(&job);
+    let r = job.tool_radius();
+    let f_z = job.f_z();
+    let feed_mm_per_s = job.feed / 60.0;
+    let edge = PreviousEdge::new(&path.cycle, r);
+    let series = tooth_series(&path.cycle, &edge, r, f_z, feed_mm_per_s);
+    let timing = chip_timing(&series, f_z / feed_mm_per_s);
+    let left_wall = wall_profile(&path.cycle, r, Wall::Left);
+    let right_wall = wall_profile(&path.cycle, r, Wall::Right);
+    let cycle_length = path.cycle.length();
+    let t_cycle = cycle_length / feed_mm_per_s;
+    let metrics = Metrics {
+        path: job.path,
+        cycle_length_mm: cycle_length,
+        t_cycle_s: t_cycle,
+        mrr_mm3_per_min: job.slot_width * job.step * job.depth / t_cycle * 60.0,
+        f_z_mm: f_z,
+        h_max_mm: timing.h_max_mm,
+        t_hmax_s: timing.t_hmax_s,
+        t_cooling_s: timing.t_cooling_s,
+        engagement_max_deg: timing.engagement_max_rad.to_degrees(),
+        waviness_left_mm: left_wall.waviness_mm,
+        waviness_right_mm: right_wall.waviness_mm,
+        a_mm: job.trochoidal_radius(),
+        b_mm: job.b(),
+        aspect_ratio: job.aspect_ratio,
+        linear_distance_mm: job.linear_distance,
+        step_mm: job.step,
+        cycles: path.cycles,
+        path_length_mm: path.length(),
+        machining_time_s: path.length() / feed_mm_per_s,
+        teeth_per_cycle: cycle_length / f_z,
+        step_limit_46deg_mm: analysis::step::step_for_engagement(
+            job.slot_width,
+            job.tool_diameter,
+            ENGAGEMENT_LIMIT_DEG.to_radians(),
+        ),
+        step_limit_15pct_depth_mm: analysis::step::step_for_depth(
+            job.slot_width,
+            job.tool_diameter,
+            DEPTH_LIMIT_FRACTION * job.tool_diameter,
+        ),
+    };
+    Plan { job, path, metrics, series, left_wall, right_wall }
+}

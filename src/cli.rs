@@ -1,0 +1,312 @@
+//! Headless command-line interface. The subcommand and flag names are a fixed contract that
+//! scripts rely on: `analyze`, `sweep`, and the job flags below (same names as job-file keys).
+
+use crate::files::write_atomic;
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use std::path::PathBuf;
+use std::process::ExitCode;
+use trochoplan_core::{Job, JobError, Metrics, PathKind, Plan, plan};
+
+#[derive(Parser)]
+#[command(name = "trochoplan", version, about = "Trochoidal milling planner (no subcommand: open the GUI)")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Analyse one job; print its metrics as one JSON object.
+    Analyze {
+        #[command(flatten)]
+        job: JobArgs,
+        /// Also write the per-tooth series of a steady-state cycle as CSV.
+        #[arg(long, value_name = "FILE.csv")]
+        series: Option<PathBuf>,
+    },
+    /// Vary one parameter; print a CSV table of the metrics, one row per value.
+    Sweep {
+        #[command(flatten)]
+        job: JobArgs,
+        /// The parameter to vary.
+        #[arg(long, value_enum)]
+        param: SweepParam,
+        /// First value.
+        #[arg(long, allow_hyphen_values = true)]
+        from: f64,
+        /// Last value.
+        #[arg(long, allow_hyphen_values = true)]
+        to: f64,
+        /// Number of values from `from` to `to`, both included.
+        #[arg(long)]
+        steps: usize,
+    },
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum SweepParam {
+    AspectRatio,
+    LinearDistance,
+    Step,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum PathArg {
+    Circular,
+    CircularType,
+    Elliptical,
+    LinearElliptical,
+}
+
+impl From<PathArg> for PathKind {
+    fn from(p: PathArg) -> PathKind {
+        match p {
+            PathArg::Circular => PathKind::Circular,
+            PathArg::CircularType => PathKind::CircularType,
+            PathArg::Elliptical => PathKind::Elliptical,
+            PathArg::LinearElliptical => PathKind::LinearElliptical,
+        }
+    }
+}
+
+/// Job flags: each overrides the job file, which overrides the defaults (paper Table 1).
+#[derive(Args)]
+pub struct JobArgs {
+    /// Job file (TOML, same key names as these flags).
+    #[arg(long, value_name = "FILE.toml")]
+    job: Option<PathBuf>,
+    /// Path type.
+    #[arg(long, value_enum)]
+    path: Option<PathArg>,
+    /// Slot width B (mm).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    slot_width: Option<f64>,
+    /// Slot length L (mm).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    slot_length: Option<f64>,
+    /// Slot depth a_p (mm).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    depth: Option<f64>,
+    /// Tool diameter D (mm).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    tool_diameter: Option<f64>,
+    /// Number of teeth z.
+    #[arg(long, value_name = "N")]
+    teeth: Option<u32>,
+    /// Tool-centre feed rate f_r (mm/min).
+    #[arg(long, value_name = "MM_PER_MIN", allow_hyphen_values = true)]
+    feed: Option<f64>,
+    /// Spindle speed n (rpm).
+    #[arg(long, value_name = "RPM", allow_hyphen_values = true)]
+    rpm: Option<f64>,
+    /// Trochoidal step s (mm).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    step: Option<f64>,
+    /// Aspect ratio r_e = b/a.
+    #[arg(long, value_name = "R", allow_hyphen_values = true)]
+    aspect_ratio: Option<f64>,
+    /// Linear distance d (mm).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    linear_distance: Option<f64>,
+}
+
+impl JobArgs {
+    /// Defaults, then the job file, then the flags.
+    pub fn job(&self) -> Result<Job, String> {
+        let mut job = match &self.job {
+            Some(p) => {
+                let text = std::fs::read_to_string(p).map_err(|e| format!("cannot read job file {}: {e}", p.display()))?;
+                Job::from_toml(&text).map_err(|e| format!("{}: {e}", p.display()))?
+            }
+            None => Job::default(),
+        };
+        if let Some(v) = self.path {
+            job.path = v.into();
+        }
+        let set = |dst: &mut f64, v: Option<f64>| {
+            if let Some(v) = v {
+                *dst = v;
+            }
+        };
+        set(&mut job.slot_width, self.slot_width);
+        set(&mut job.slot_length, self.slot_length);
+        set(&mut job.depth, self.depth);
+        set(&mut job.tool_diameter, self.tool_diameter);
+        set(&mut job.feed, self.feed);
+        set(&mut job.rpm, self.rpm);
+        set(&mut job.step, self.step);
+        set(&mut job.aspect_ratio, self.aspect_ratio);
+        set(&mut job.linear_distance, self.linear_distance);
+        if let Some(t) = self.teeth {
+            job.teeth = t;
+        }
+        Ok(job)
+    }
+}
+
+/// Run the CLI; errors go to stderr with a non-zero exit code.
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli.command) {
+        Ok(out) => {
+            print!("{out}");
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("trochoplan: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn run(cmd: Command) -> Result<String, String> {
+    match cmd {
+        Command::Analyze { job, series } => {
+            let p = plan(&job.job()?).map_err(|e| e.to_string())?;
+            if let Some(file) = series {
+                write_atomic(&file, series_csv(&p).as_bytes())?;
+            }
+            let mut text = serde_json::to_string_pretty(&p.metrics).map_err(|e| e.to_string())?;
+            text.push('\n');
+            Ok(text)
+        }
+        Command::Sweep { job, param, from, to, steps } => sweep(job.job()?, param, from, to, steps),
+    }
+}
+
+/// Per-tooth series of the steady-state cycle as CSV.
+fn series_csv(p: &Plan) -> String {
+    let mut s = String::from("time_s,h_mm,engagement_deg,cutting,s_mm,x_mm,y_mm\n");
+    for t in &p.series {
+        s.push_str(&format!(
+            "{:.6},{:.7},{:.4},{},{:.6},{:.6},{:.6}\n",
+            t.time_s,
+            t.h_mm,
+            t.engagement_rad.to_degrees(),
+            u8::from(t.cutting),
+            t.s_mm,
+            t.x_mm,
+            t.y_mm
+        ));
+    }
+    s
+}
+
+/// Metric columns of the sweep table (the `analyze` JSON names).
+const COLUMNS: [&str; 10] = [
+    "cycle_length_mm",
+    "t_cycle_s",
+    "mrr_mm3_per_min",
+    "f_z_mm",
+    "h_max_mm",
+    "t_hmax_s",
+    "t_cooling_s",
+    "engagement_max_deg",
+    "waviness_left_mm",
+    "waviness_right_mm",
+];
+
+fn row(m: &Metrics) -> [f64; 10] {
+    [
+        m.cycle_length_mm,
+        m.t_cycle_s,
+        m.mrr_mm3_per_min,
+        m.f_z_mm,
+        m.h_max_mm,
+        m.t_hmax_s,
+        m.t_cooling_s,
+        m.engagement_max_deg,
+        m.waviness_left_mm,
+        m.waviness_right_mm,
+    ]
+}
+
+fn sweep(mut job: Job, param: SweepParam, from: f64, to: f64, steps: usize) -> Result<String, String> {
+    if steps == 0 || steps > 10_000 {
+        return Err(JobError::range("steps", steps, "a whole number from 1 to 10000").to_string());
+    }
+    for (name, v) in [("from", from), ("to", to)] {
+        if !v.is_finite() {
+            return Err(JobError::range(name, v, "a finite number").to_string());
+        }
+    }
+    // Sweeping r_e or d only makes sense on a path that has it: the circular path is the
+    // elliptical one at r_e = 1, the elliptical one the linear-elliptical at d = 0.
+    let name = match param {
+        SweepParam::AspectRatio => {
+            if job.path == PathKind::Circular {
+                job.path = PathKind::Elliptical;
+            }
+            if !job.path.uses_aspect_ratio() {
+                return Err(format!("--param aspect-ratio needs an elliptical or linear-elliptical path, not {}", job.path.name()));
+            }
+            "aspect_ratio"
+        }
+        SweepParam::LinearDistance => {
+            if matches!(job.path, PathKind::Circular | PathKind::Elliptical) {
+                job.path = PathKind::LinearElliptical;
+            }
+            if job.path != PathKind::LinearElliptical {
+                return Err(format!("--param linear-distance needs a linear-elliptical path, not {}", job.path.name()));
+            }
+            "linear_distance_mm"
+        }
+        SweepParam::Step => "step_mm",
+    };
+    let mut out = format!("path,{name},{}\n", COLUMNS.join(","));
+    for i in 0..steps {
+        let v = if steps == 1 { from } else { from + (to - from) * i as f64 / (steps - 1) as f64 };
+        // Round away binary noise such as 0.7000000000000001 so the table reads as typed.
+        let v = (v * 1e9).round() / 1e9;
+        let mut j = job.clone();
+        match param {
+            SweepParam::AspectRatio => j.aspect_ratio = v,
+            SweepParam::LinearDistance => j.linear_distance = v,
+            SweepParam::Step => j.step = v,
+        }
+        let m = plan(&j).map_err(|e| e.to_string())?.metrics;
+        let cells: Vec<String> = row(&m).iter().map(|x| format!("{x:.6}")).collect();
+        out.push_str(&format!("{},{v},{}\n", j.path.name(), cells.join(",")));
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sweep_rejects_zero_steps_with_a_named_parameter() {
+        let err = sweep(Job::default(), SweepParam::Step, 0.5, 1.0, 0).expect_err("must fail");
+        assert!(err.contains("steps"), "{err}");
+    }
+
+    #[test]
+    fn sweep_of_aspect_ratio_on_circular_type_is_refused() {
+        let job = Job { path: PathKind::CircularType, ..Job::default() };
+        assert!(sweep(job, SweepParam::AspectRatio, 0.5, 1.0, 2).is_err());
+    }
+
+    #[test]
+    fn job_file_is_overridden_by_flags() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let f = dir.path().join("j.toml");
+        std::fs::write(&f, "step = 0.8\nteeth = 3\n").expect("write");
+        let args = JobArgs {
+            job: Some(f),
+            path: None,
+            slot_width: None,
+            slot_length: None,
+            depth: None,
+            tool_diameter: None,
+            teeth: Some(2),
+            feed: None,
+            rpm: None,
+            step: None,
+            aspect_ratio: None,
+            linear_distance: None,
+        };
+        let job = args.job().expect("job");
+        assert_eq!((job.step, job.teeth), (0.8, 2));
+    }
+}
