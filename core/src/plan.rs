@@ -83,11 +83,14 @@ pub fn plan_valid(job: ValidJob) -> Plan {
     let r = job.tool_radius();
     let f_z = job.f_z();
     let feed_mm_per_s = job.feed / 60.0;
-    let edge = PreviousEdge::new(&path.cycle, r);
-    let series = tooth_series(&path.cycle, &edge, r, f_z, feed_mm_per_s);
+    // The chip series and the two walls are independent: compute them side by side.
+    let (series, (left_wall, right_wall)) = rayon::join(
+        || tooth_series(&path.cycle, &PreviousEdge::new(&path.cycle, r), r, f_z, feed_mm_per_s),
+        || {
+            rayon::join(|| wall_profile(&path.cycle, r, Wall::Left), || wall_profile(&path.cycle, r, Wall::Right))
+        },
+    );
     let timing = chip_timing(&series, f_z / feed_mm_per_s);
-    let left_wall = wall_profile(&path.cycle, r, Wall::Left);
-    let right_wall = wall_profile(&path.cycle, r, Wall::Right);
     let cycle_length = path.cycle.length();
     let t_cycle = cycle_length / feed_mm_per_s;
     let metrics = Metrics {

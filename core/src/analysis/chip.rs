@@ -23,6 +23,7 @@
 use super::edge::PreviousEdge;
 use crate::geom::{P2, bracketed_root, golden_min, rot90};
 use crate::path::{Cycle, CyclePos};
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
@@ -104,6 +105,9 @@ impl Swept<'_> {
     }
 }
 
+/// Sample spacing of [`EarlySweep`] along the path (mm).
+const SPACING: f64 = 0.05;
+
 /// Region swept by the first quarter of a cycle: dense centre samples with exact refinement
 /// near the boundary (distance from the analytic segments to 1e-10 in the parameter).
 pub struct EarlySweep<'a> {
@@ -117,28 +121,55 @@ pub struct EarlySweep<'a> {
 impl<'a> EarlySweep<'a> {
     /// The first `fraction` of `cycle` (by arc length), moved by `shift`.
     pub fn new(cycle: &'a Cycle, shift: P2, r: f64, fraction: f64) -> EarlySweep<'a> {
-        let end = fraction * cycle.length();
-        let pts = cycle
-            .positions(0.0, 0.05)
-            .into_iter()
-            .take_while(|&(s, _)| s <= end)
-            .map(|(_, p)| (p.seg, p.t, cycle.eval(p).p + shift))
-            .collect();
+        let mut left = fraction * cycle.length();
+        let mut pts = Vec::new();
+        for (k, (seg, &len)) in cycle.segments.iter().zip(&cycle.lengths).enumerate() {
+            if left <= 0.0 {
+                break;
+            }
+            // Uniform steps in t whose arc length is ≤ SPACING: bound the speed by sampling it
+            // (speeds of our segments vary smoothly; 1.25 covers the sampling gap).
+            let vmax = (0..=32).map(|i| seg.speed(i as f64 / 32.0)).fold(0.0, f64::max) * 1.25;
+            let t_end = if left >= len { 1.0 } else { seg.param_after_length(0.0, left) };
+            let n = ((vmax * t_end / SPACING).ceil() as usize).max(1);
+            for i in 0..=n {
+                let t = t_end * i as f64 / n as f64;
+                pts.push((k, t, seg.point(t) + shift));
+            }
+            left -= len;
+        }
         EarlySweep { cycle, shift, r, pts }
     }
 
     /// Distance from `p` to the swept part's centre path minus R (≤ 0: swept).
     pub fn margin(&self, p: P2) -> f64 {
-        let mut best = (f64::INFINITY, 0);
-        for (i, &(_, _, c)) in self.pts.iter().enumerate() {
-            let d = (c - p).norm_squared();
-            if d < best.0 {
-                best = (d, i);
+        // Samples are at most SPACING apart along the path, so the distance from p changes by
+        // at most SPACING per sample. Scan every BLOCK-th sample, then scan in full only the
+        // blocks whose lower bound (coarse distance − BLOCK/2·SPACING) can beat the best.
+        const BLOCK: usize = 16;
+        let reach = (BLOCK / 2 + 1) as f64 * SPACING;
+        let n = self.pts.len();
+        let coarse: Vec<(usize, f64)> = (0..n)
+            .step_by(BLOCK)
+            .chain(n.checked_sub(1))
+            .map(|i| (i, (self.pts[i].2 - p).norm()))
+            .collect();
+        let mut best = coarse.iter().fold((f64::INFINITY, 0), |b, &(i, d)| if d < b.0 { (d, i) } else { b });
+        for &(i, d) in &coarse {
+            if d - reach >= best.0 {
+                continue;
+            }
+            let lo = i.saturating_sub(BLOCK / 2);
+            let hi = (i + BLOCK / 2 + 1).min(self.pts.len());
+            for k in lo..hi {
+                let dk = (self.pts[k].2 - p).norm();
+                if dk < best.0 {
+                    best = (dk, k);
+                }
             }
         }
-        let d = best.0.sqrt() - self.r;
-        // Samples are 0.05 mm apart: the sampled distance exceeds the exact one by < 1e-3 mm
-        // only near the boundary does that matter, so refine there.
+        let d = best.0 - self.r;
+        // The sampled distance exceeds the exact one by < SPACING²/(8R); refine near R only.
         if d.abs() > 2e-3 {
             return d;
         }
@@ -148,7 +179,7 @@ impl<'a> EarlySweep<'a> {
         let hi = if i + 1 < self.pts.len() && self.pts[i + 1].0 == seg { self.pts[i + 1].1 } else { t };
         let s = &self.cycle.segments[seg];
         let (_, d2) = golden_min(lo, hi.max(t), 1e-11, |u| (s.point(u) + self.shift - p).norm_squared());
-        d2.min(best.0).sqrt() - self.r
+        d2.sqrt().min(best.0) - self.r
     }
 }
 
@@ -232,11 +263,13 @@ pub fn tooth_series(cycle: &Cycle, edge: &PreviousEdge, r: f64, f_z: f64, feed_m
         let e = engagement(&swept(s, &early_prev), &f, r);
         (f, e)
     });
-    let mut out = Vec::with_capacity(positions.len());
-    for (s, pos) in positions {
-        let f = Frame::at(cycle, pos, P2::zeros());
-        let sw = swept(s, &early);
-        let e = engagement(&sw, &f, r);
+    // Engagement of each tooth is independent of the others: compute it in parallel; h needs
+    // the previous tooth's crossings and is a cheap sequential pass afterwards.
+    let frames: Vec<(f64, Frame)> = positions.into_iter().map(|(s, pos)| (s, Frame::at(cycle, pos, P2::zeros()))).collect();
+    let engaged: Vec<Engagement> = frames.par_iter().map(|(s, f)| engagement(&swept(*s, &early), f, r)).collect();
+    let mut out = Vec::with_capacity(frames.len());
+    for ((s, f), e) in frames.iter().zip(engaged) {
+        let (s, f) = (*s, *f);
         let mut h: f64 = 0.0;
         if e.angle > 0.0 {
             match &prev {
@@ -248,7 +281,7 @@ pub fn tooth_series(cycle: &Cycle, edge: &PreviousEdge, r: f64, f_z: f64, feed_m
                         h = h.max((f.c - pf.c).norm());
                     }
                 }
-                _ => h = first_tooth_thickness(&sw, &f, r, &e.intervals),
+                _ => h = first_tooth_thickness(&swept(s, &early), &f, r, &e.intervals),
             }
         }
         out.push(ToothSample {

@@ -16,6 +16,7 @@
 
 use crate::geom::{P2, cross, p2, rot90};
 use crate::path::Cycle;
+use rayon::prelude::*;
 use std::f64::consts::{PI, TAU};
 
 /// Exact offset samples per cycle.
@@ -75,20 +76,32 @@ impl PreviousEdge {
         let s = cycle.step;
         // Pole: centre of the bounding box of cycle −1, which lies inside its (convex) sweep.
         let pole = (lo + hi) / 2.0 - p2(0.0, s);
-        let mut edge = PreviousEdge { pole, radius: vec![0.0; BINS], cycles: 0 };
-        for j in 1..=MAX_PREVIOUS {
-            let shift = p2(0.0, -(j as f64) * s);
-            // Cycle −j counts only while its sweep contains the pole (star-shapedness); older
-            // cycles lie wholly behind the newer ones.
-            if !sweep_contains(&centre_pts, shift, r, pole) {
-                break;
-            }
-            for w in offset.windows(2) {
-                edge.add_chord(w[0] + shift, w[1] + shift);
-            }
-            edge.cycles = j;
-        }
-        edge
+        // Cycle −j counts only while its sweep contains the pole (star-shapedness); older
+        // cycles lie wholly behind the newer ones.
+        let cycles = (1..=MAX_PREVIOUS)
+            .take_while(|&j| sweep_contains(&centre_pts, p2(0.0, -(j as f64) * s), r, pole))
+            .count();
+        // Each previous cycle fills its own bins (in parallel); the union takes the largest.
+        let per_cycle: Vec<Vec<f64>> = (1..=cycles)
+            .into_par_iter()
+            .map(|j| {
+                let shift = p2(0.0, -(j as f64) * s);
+                let pts: Vec<(P2, f64)> = offset
+                    .iter()
+                    .map(|&o| {
+                        let v = o + shift - pole;
+                        (v, v.y.atan2(v.x))
+                    })
+                    .collect();
+                let mut bins = vec![0.0; BINS];
+                for w in pts.windows(2) {
+                    add_chord(&mut bins, w[0], w[1]);
+                }
+                bins
+            })
+            .collect();
+        let radius = (0..BINS).map(|i| per_cycle.iter().map(|b| b[i]).fold(0.0, f64::max)).collect();
+        PreviousEdge { pole, radius, cycles }
     }
 
     /// The pole q of the radius function.
@@ -98,33 +111,6 @@ impl PreviousEdge {
 
     fn bin_angle(i: usize) -> f64 {
         -PI + (i as f64 + 0.5) * TAU / BINS as f64
-    }
-
-    /// Raise the bins swept by the chord a–b to the chord's radius.
-    fn add_chord(&mut self, a: P2, b: P2) {
-        let (va, vb) = (a - self.pole, b - self.pole);
-        let (pa, pb) = (va.y.atan2(va.x), vb.y.atan2(vb.x));
-        let mut d = pb - pa;
-        if d > PI {
-            d -= TAU;
-        } else if d < -PI {
-            d += TAU;
-        }
-        let (start, end) = if d >= 0.0 { (pa, pa + d) } else { (pa + d, pa) };
-        let width = TAU / BINS as f64;
-        let first = ((start + PI) / width - 0.5).ceil() as i64;
-        let last = ((end + PI) / width - 0.5).floor() as i64;
-        let ab = b - a;
-        let dirs = bin_dirs();
-        for k in first..=last {
-            let i = k.rem_euclid(BINS as i64) as usize;
-            let e = dirs[i];
-            let denom = cross(e, ab);
-            let r = if denom.abs() < 1e-15 { va.norm().max(vb.norm()) } else { cross(va, ab) / denom };
-            if r > self.radius[i] {
-                self.radius[i] = r;
-            }
-        }
     }
 
     /// Edge radius r(ψ) about the pole (linear interpolation between bins).
@@ -144,6 +130,32 @@ impl PreviousEdge {
     pub fn margin(&self, p: P2) -> f64 {
         let v = p - self.pole;
         v.norm() - self.radius_at(v.y.atan2(v.x))
+    }
+}
+
+/// Raise the bins swept by the chord a–b (pole-relative points with their polar angles)
+/// to the chord's radius.
+fn add_chord(radius: &mut [f64], (va, pa): (P2, f64), (vb, pb): (P2, f64)) {
+    let mut d = pb - pa;
+    if d > PI {
+        d -= TAU;
+    } else if d < -PI {
+        d += TAU;
+    }
+    let (start, end) = if d >= 0.0 { (pa, pa + d) } else { (pa + d, pa) };
+    let width = TAU / BINS as f64;
+    let first = ((start + PI) / width - 0.5).ceil() as i64;
+    let last = ((end + PI) / width - 0.5).floor() as i64;
+    let ab = vb - va;
+    let dirs = bin_dirs();
+    for k in first..=last {
+        let i = k.rem_euclid(BINS as i64) as usize;
+        let e = dirs[i];
+        let denom = cross(e, ab);
+        let r = if denom.abs() < 1e-15 { va.norm().max(vb.norm()) } else { cross(va, ab) / denom };
+        if r > radius[i] {
+            radius[i] = r;
+        }
     }
 }
 

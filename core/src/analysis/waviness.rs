@@ -41,8 +41,6 @@ struct WallSampler<'a> {
     sign: f64,
     /// (segment, t, centre) of path points near the wall, pre-filtered.
     near: Vec<(usize, f64, P2)>,
-    /// y range of `near`.
-    y_range: (f64, f64),
 }
 
 impl WallSampler<'_> {
@@ -61,11 +59,10 @@ impl WallSampler<'_> {
         let s = self.cycle.step;
         let mut best = f64::INFINITY;
         let mut arg = None;
-        // Cycles whose near-wall points can reach height y.
-        let j0 = ((y - self.r - self.y_range.1) / s).floor() as i64;
-        let j1 = ((y + self.r - self.y_range.0) / s).ceil() as i64;
         for (i, &(seg, t, c)) in self.near.iter().enumerate() {
-            for j in j0..=j1 {
+            // Only passes within s/2 of y can shape the wall there (see `wall_profile`).
+            let j0 = ((y - c.y) / s).round() as i64;
+            for j in j0 - 1..=j0 + 1 {
                 let v = self.value(c + P2::new(0.0, j as f64 * s), y);
                 if v < best {
                     best = v;
@@ -103,17 +100,21 @@ pub fn wall_profile(cycle: &Cycle, r: f64, wall: Wall) -> WallProfile {
     };
     let seg = &cycle.segments[k];
     let (_, extreme) = golden_min((t - 0.01).max(0.0), (t + 0.01).min(1.0), 1e-13, |u| sign * seg.point(u).x);
-    // Path points that can shape the wall: within 2 s (and ≥ 0.1 R) of the extreme in x.
-    let band = (2.0 * cycle.step).max(0.1 * r);
-    let near: Vec<_> = all.into_iter().filter(|&(_, _, c)| sign * c.x <= extreme + band).collect();
+    // Which path points can shape the wall: two discs at consecutive extremes (s apart) alone
+    // leave a cusp W_bound = R − √(R² − (s/2)²), so W ≤ W_bound and the profile never lies
+    // more than W_bound inside the valley. A centre c contributes sign·c_x − √(R² − dy²);
+    // for that to be ≤ valley + W_bound it needs sign·c_x ≤ extreme + W_bound and
+    // |dy| ≤ s/2 (DERIVED: R² − dy² ≥ (R − W_bound)² ⇔ dy² ≤ (s/2)²).
+    let half = cycle.step / 2.0;
+    let w_bound = r - (r * r - half * half).sqrt();
+    let near: Vec<_> = all.into_iter().filter(|&(_, _, c)| sign * c.x <= extreme + w_bound + 1e-9).collect();
     let y_ext = near
         .iter()
         .filter(|&&(_, _, c)| sign * c.x <= extreme + 1e-9)
         .map(|&(_, _, c)| c.y)
         .next()
         .unwrap_or(0.0);
-    let y_range = near.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &(_, _, c)| (lo.min(c.y), hi.max(c.y)));
-    let sampler = WallSampler { cycle, r, sign, near, y_range };
+    let sampler = WallSampler { cycle, r, sign, near };
     let s = cycle.step;
     // Peak of the profile over one period: golden-section on the quasi-concave profile.
     let (_, neg_peak) = golden_min(y_ext, y_ext + s, 1e-10, |y| -sampler.profile(y));

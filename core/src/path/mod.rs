@@ -91,15 +91,21 @@ impl Cycle {
     }
 
     /// Positions spaced `spacing` mm along the cycle starting `offset` mm after its start,
-    /// as (arc length from cycle start, position).
+    /// as (arc length from cycle start, position). Marches segment by segment; each step
+    /// inverts the exact arc length over the step only.
     pub fn positions(&self, offset: f64, spacing: f64) -> Vec<(f64, CyclePos)> {
-        let mut out = Vec::with_capacity((self.length() / spacing) as usize + 2);
-        let mut pos = self.advance(CyclePos { seg: 0, t: 0.0 }, offset);
-        let mut s = offset;
-        while let Some(p) = pos {
-            out.push((s, p));
-            s += spacing;
-            pos = self.advance(p, spacing);
+        let mut out = Vec::with_capacity(((self.length() - offset).max(0.0) / spacing) as usize + 2);
+        let mut seg_start = 0.0; // arc length at the start of the current segment
+        let mut next = offset; // arc length of the next position
+        for (k, (seg, &len)) in self.segments.iter().zip(&self.lengths).enumerate() {
+            let (mut t, mut at) = (0.0, seg_start);
+            while next <= seg_start + len {
+                t = seg.param_after_length(t, next - at);
+                at = next;
+                out.push((next, CyclePos { seg: k, t }));
+                next += spacing;
+            }
+            seg_start += len;
         }
         out
     }
