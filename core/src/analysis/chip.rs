@@ -15,9 +15,10 @@
 //!   thickness of the chip disc(c_k) \ (disc(c_{k−1}) ∪ swept): it grows from 0 at the wall
 //!   contact towards B and falls to 0 beyond B. Two cases the paper's figure does not show are
 //!   handled the same way: if the engaged arc reaches −N (full slotting) the feed-direction
-//!   thickness |c_k − c_{k−1}| is a candidate too; for the first cutting tooth of a pass (the
-//!   previous tooth was not engaged) the chip is disc(c_k) minus swept material only, and h is
-//!   its largest radial thickness over nine rays across the engaged arc.
+//!   thickness |c_k − c_{k−1}| is a candidate too; where B does not exist (the first cutting
+//!   tooth of a pass, or a previous tooth touching material over less than 1°) h is the largest
+//!   radial thickness R − max(t₁, t_s) of the chip over the engaged arc, found by ray sampling
+//!   and golden-section refinement ([`ray_thickness`]).
 //! - A tooth **cuts** when h > [`H_CUT_MM`].
 
 use super::edge::PreviousEdge;
@@ -230,23 +231,40 @@ fn engagement(swept: &Swept, f: &Frame, r: f64) -> Engagement {
     Engagement { angle, ends, intervals, reaches_back }
 }
 
-/// Largest radial thickness of disc(c) minus swept material over nine rays per interval
-/// (first cutting tooth of a pass, where the previous tooth circle is wholly in swept space).
-fn first_tooth_thickness(edge: &Swept, f: &Frame, r: f64, intervals: &[(f64, f64)]) -> f64 {
+/// Largest radial thickness of the chip disc(c_k) \ (disc(c_{k−1}) ∪ swept) over the engaged
+/// intervals: T(u) = R − max(t₁(u), t_s(u)) with t₁ the exit of the ray from the previous
+/// tooth's disc and t_s its exit from swept material; nine rays per interval, then golden
+/// refinement around the best. Used where the paper's point B does not exist: the first
+/// cutting tooth of a pass, or a previous tooth whose engaged arc is degenerate.
+fn ray_thickness(swept: &Swept, f: &Frame, prev_c: Option<P2>, r: f64, intervals: &[(f64, f64)]) -> f64 {
+    let centre_swept = swept.margin(f.c) <= 0.0;
+    let thickness = |phi: f64| {
+        let u = f.dir(phi);
+        if swept.margin(f.c + u * r) <= 0.0 {
+            return 0.0;
+        }
+        let t_s = if centre_swept { bracketed_root(0.0, r, 1e-12, |t| swept.margin(f.c + u * t)) } else { 0.0 };
+        let t_1 = prev_c.map_or(0.0, |pc| {
+            let d = f.c - pc;
+            let b = d.dot(&u);
+            (-b + (b * b - d.norm_squared() + r * r).max(0.0).sqrt()).max(0.0)
+        });
+        r - t_s.max(t_1)
+    };
     let mut best: f64 = 0.0;
     for &(a, b) in intervals {
-        for i in 1..10 {
-            let u = f.dir(a + (b - a) * i as f64 / 10.0);
-            // The ray leaves swept space once; find where (margin changes sign).
-            if edge.margin(f.c + u * r) <= 0.0 || edge.margin(f.c) > 0.0 {
-                continue;
-            }
-            let t = bracketed_root(0.0, r, 1e-12, |t| edge.margin(f.c + u * t));
-            best = best.max(r - t);
-        }
+        let phis: Vec<f64> = (0..=10).map(|i| a + (b - a) * i as f64 / 10.0).collect();
+        let vals: Vec<f64> = phis.iter().map(|&p| thickness(p)).collect();
+        let (ib, vb) = vals.iter().enumerate().fold((0, 0.0), |m, (i, &v)| if v > m.1 { (i, v) } else { m });
+        let (lo, hi) = (phis[ib.saturating_sub(1)], phis[(ib + 1).min(10)]);
+        let (_, neg) = golden_min(lo, hi, 1e-9, |p| -thickness(p));
+        best = best.max(vb).max(-neg);
     }
     best
 }
+
+/// Engaged arcs shorter than this (rad) give no usable point B for the next tooth.
+const DEGENERATE_ARC: f64 = 1.0 * PI / 180.0;
 
 /// Per-tooth series of one steady-state cycle (tooth 0 at the cycle start).
 pub fn tooth_series(cycle: &Cycle, edge: &PreviousEdge, r: f64, f_z: f64, feed_mm_per_s: f64) -> Vec<ToothSample> {
@@ -273,7 +291,7 @@ pub fn tooth_series(cycle: &Cycle, edge: &PreviousEdge, r: f64, f_z: f64, feed_m
         let mut h: f64 = 0.0;
         if e.angle > 0.0 {
             match &prev {
-                Some((pf, pe)) if pe.angle > 0.0 => {
+                Some((pf, pe)) if pe.angle > DEGENERATE_ARC => {
                     for b in &pe.ends {
                         h = h.max(r - (f.c - b).norm());
                     }
@@ -281,7 +299,10 @@ pub fn tooth_series(cycle: &Cycle, edge: &PreviousEdge, r: f64, f_z: f64, feed_m
                         h = h.max((f.c - pf.c).norm());
                     }
                 }
-                _ => h = first_tooth_thickness(&swept(s, &early), &f, r, &e.intervals),
+                other => {
+                    let pc = other.as_ref().map(|(pf, _)| pf.c);
+                    h = ray_thickness(&swept(s, &early), &f, pc, r, &e.intervals);
+                }
             }
         }
         out.push(ToothSample {

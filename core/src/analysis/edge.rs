@@ -5,7 +5,7 @@
 //! The region swept in one cycle is the tool disc (radius R) moved along a clockwise, convex
 //! loop whose hole is covered (validation ensures a = (B − D)/2 ≤ R), i.e. a convex set whose
 //! boundary is the *left* (outer) offset of the loop at distance R (the paper's curve C₂,
-//! eq. 3). The union of convex sets that all contain one point q is star-shaped about q, so
+//! eq. 3) closed by the end caps (the tool discs at the cycle's first and last point). The union of convex sets that all contain one point q is star-shaped about q, so
 //! the edge is a radius function r(ψ) about the pole q: a point p is uncut material (with
 //! respect to previous cycles) exactly when |p − q| > r(ψ(p)).
 //!
@@ -63,10 +63,31 @@ pub fn outer_offset_points(cycle: &Cycle, r: f64, per_cycle: usize) -> Vec<P2> {
     pts
 }
 
+/// Points of the half circle of radius `r` about `c` from direction `from` turning by π
+/// clockwise (the end cap of a sweep seen from outside).
+fn cap_points(c: P2, from: P2, r: f64, n: usize) -> Vec<P2> {
+    (0..=n)
+        .map(|i| {
+            let (s, co) = (-PI * i as f64 / n as f64).sin_cos();
+            c + p2(from.x * co - from.y * s, from.x * s + from.y * co) * r
+        })
+        .collect()
+}
+
 impl PreviousEdge {
     /// Build the edge of cycles −1, −2, … for a tool of radius `r`.
     pub fn new(cycle: &Cycle, r: f64) -> PreviousEdge {
+        // Boundary of one cycle's sweep: the outer offset plus the two end caps (the discs at
+        // the first and last point; the caps' inner halves lie inside and do not count).
         let offset = outer_offset_points(cycle, r, SAMPLES_PER_CYCLE);
+        let first = cycle.segments.first().map(|sg| sg.eval(0.0));
+        let last = cycle.segments.last().map(|sg| sg.eval(1.0));
+        let mut pieces = vec![offset];
+        if let (Some(f), Some(l)) = (first, last) {
+            let (tf, tl) = (f.d1.normalize(), l.d1.normalize());
+            pieces.push(cap_points(f.p, -rot90(tf), r, 64)); // −N through −T to +N
+            pieces.push(cap_points(l.p, rot90(tl), r, 64)); // +N through T to −N
+        }
         let centre_pts = cycle.sample(P2::zeros(), 64);
         let (mut lo, mut hi) = (p2(f64::INFINITY, f64::INFINITY), p2(f64::NEG_INFINITY, f64::NEG_INFINITY));
         for p in &centre_pts {
@@ -86,16 +107,18 @@ impl PreviousEdge {
             .into_par_iter()
             .map(|j| {
                 let shift = p2(0.0, -(j as f64) * s);
-                let pts: Vec<(P2, f64)> = offset
-                    .iter()
-                    .map(|&o| {
-                        let v = o + shift - pole;
-                        (v, v.y.atan2(v.x))
-                    })
-                    .collect();
                 let mut bins = vec![0.0; BINS];
-                for w in pts.windows(2) {
-                    add_chord(&mut bins, w[0], w[1]);
+                for piece in &pieces {
+                    let pts: Vec<(P2, f64)> = piece
+                        .iter()
+                        .map(|&o| {
+                            let v = o + shift - pole;
+                            (v, v.y.atan2(v.x))
+                        })
+                        .collect();
+                    for w in pts.windows(2) {
+                        add_chord(&mut bins, w[0], w[1]);
+                    }
                 }
                 bins
             })
@@ -124,7 +147,8 @@ impl PreviousEdge {
         self.radius[i0] * (1.0 - w) + self.radius[i1] * w
     }
 
-    /// Signed distance-like margin of `p` beyond the edge along the ray from the pole:
+    /// Signed distance-like margin of `p` beyond the edge along the ray from the pole, valid for
+    /// points within reach (R) of the current cycle:
     /// > 0 where `p` is uncut material, ≤ 0 where previous cycles removed it (mm).
     #[inline]
     pub fn margin(&self, p: P2) -> f64 {
@@ -203,10 +227,15 @@ mod tests {
         ] {
             let c = cycle(kind, r_e, d);
             let edge = PreviousEdge::new(&c, 5.0);
+            let here = c.sample(P2::zeros(), 400);
             let mut checked = 0;
             for i in 0..60 {
                 for k in 0..40 {
                     let p = p2(-12.0 + 24.0 * i as f64 / 59.0, -4.0 + 16.0 * k as f64 / 39.0);
+                    // The edge's contract: points a tool of the current cycle can touch.
+                    if here.iter().all(|q| (q - p).norm() > 5.0) {
+                        continue;
+                    }
                     let m = edge.margin(p);
                     let bd = brute_distance(&c, p) - 5.0;
                     if bd.abs() < 2e-3 {
@@ -216,7 +245,7 @@ mod tests {
                     checked += 1;
                 }
             }
-            assert!(checked > 2000);
+            assert!(checked > 1000, "{checked}");
         }
     }
 

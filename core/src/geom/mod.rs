@@ -104,7 +104,8 @@ mod tests {
     #[test]
     fn golden_finds_parabola_minimum() {
         let (x, fx) = golden_min(-3.0, 5.0, 1e-10, |x| (x - 1.25) * (x - 1.25) + 2.0);
-        assert!((x - 1.25).abs() < 1e-8, "x = {x}");
+        // A minimum is only located to ~√ε·|x| (f is flat there): 1e-7 is the honest bound.
+        assert!((x - 1.25).abs() < 1e-7, "x = {x}");
         assert!((fx - 2.0).abs() < 1e-12);
     }
 
