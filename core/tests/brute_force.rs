@@ -187,6 +187,8 @@ fn waviness_agrees_with_brute_force() {
         Job { path: PathKind::Elliptical, aspect_ratio: 0.6, ..Job::default() },
         Job { path: PathKind::Elliptical, aspect_ratio: 1.2, ..Job::default() },
         Job { path: PathKind::LinearElliptical, aspect_ratio: 0.8, linear_distance: 0.5, ..Job::default() },
+        // nearly touching linear moves: a narrow cusp (0.05 mm wide) between them
+        Job { path: PathKind::LinearElliptical, aspect_ratio: 0.5, linear_distance: 0.95, ..Job::default() },
         Job { path: PathKind::CircularType, ..Job::default() },
     ] {
         let p = plan(&job).expect("valid");

@@ -41,6 +41,8 @@ struct WallSampler<'a> {
     sign: f64,
     /// (segment, t, centre) of path points near the wall, pre-filtered.
     near: Vec<(usize, f64, P2)>,
+    /// Largest overestimate of the profile by the samples alone (mm): (spacing/2)²/(2R)·…
+    sampling_error: f64,
 }
 
 impl WallSampler<'_> {
@@ -55,29 +57,46 @@ impl WallSampler<'_> {
     }
 
     /// sign·x of the profile at height y (exact to ~1e-12 mm).
-    fn profile(&self, y: f64) -> f64 {
+    ///
+    /// Samples are scanned first; every (segment, cycle) basin whose best sample lies within
+    /// the sampling error of the overall best is then refined by golden section on its segment
+    /// (two passes can cover the same height, e.g. overlapping linear moves).
+    fn profile(&self, y: f64) -> (f64, (usize, i64)) {
         let s = self.cycle.step;
-        let mut best = f64::INFINITY;
-        let mut arg = None;
-        for (i, &(seg, t, c)) in self.near.iter().enumerate() {
+        // (value, index into near, cycle shift j) of the best sample per (segment, j).
+        let mut basins: Vec<(f64, usize, i64)> = Vec::new();
+        for (i, &(seg, _, c)) in self.near.iter().enumerate() {
             // Only passes within s/2 of y can shape the wall there (see `wall_profile`).
             let j0 = ((y - c.y) / s).round() as i64;
             for j in j0 - 1..=j0 + 1 {
                 let v = self.value(c + P2::new(0.0, j as f64 * s), y);
-                if v < best {
-                    best = v;
-                    arg = Some((i, seg, t, j));
+                if !v.is_finite() {
+                    continue;
+                }
+                match basins.iter_mut().find(|b| self.near[b.1].0 == seg && b.2 == j) {
+                    Some(b) if v < b.0 => *b = (v, i, j),
+                    Some(_) => {}
+                    None => basins.push((v, i, j)),
                 }
             }
         }
-        let Some((i, seg, t, j)) = arg else { return f64::INFINITY };
-        // Refine on the segment around the best sample.
-        let lo = if i > 0 && self.near[i - 1].0 == seg { self.near[i - 1].1 } else { 0.0 };
-        let hi = if i + 1 < self.near.len() && self.near[i + 1].0 == seg { self.near[i + 1].1 } else { 1.0 };
-        let shift = P2::new(0.0, j as f64 * s);
-        let segm = &self.cycle.segments[seg];
-        let (_, v) = golden_min(lo.min(t), hi.max(t), 1e-12, |u| self.value(segm.point(u) + shift, y));
-        v.min(best)
+        let best = basins.iter().map(|b| b.0).fold(f64::INFINITY, f64::min);
+        let mut exact = (best, (usize::MAX, 0));
+        for &(v, i, j) in &basins {
+            if v > best + self.sampling_error {
+                continue;
+            }
+            let (seg, t, _) = self.near[i];
+            let lo = if i > 0 && self.near[i - 1].0 == seg { self.near[i - 1].1 } else { 0.0 };
+            let hi = if i + 1 < self.near.len() && self.near[i + 1].0 == seg { self.near[i + 1].1 } else { 1.0 };
+            let shift = P2::new(0.0, j as f64 * s);
+            let segm = &self.cycle.segments[seg];
+            let (_, v) = golden_min(lo.min(t), hi.max(t), 1e-12, |u| self.value(segm.point(u) + shift, y));
+            if v < exact.0 || exact.1.0 == usize::MAX {
+                exact = (v.min(exact.0), (seg, j));
+            }
+        }
+        exact
     }
 }
 
@@ -114,20 +133,33 @@ pub fn wall_profile(cycle: &Cycle, r: f64, wall: Wall) -> WallProfile {
         .map(|&(_, _, c)| c.y)
         .next()
         .unwrap_or(0.0);
-    let sampler = WallSampler { cycle, r, sign, near };
+    // Samples are at most `gap` apart, so a sampled value exceeds the exact one by at most
+    // gap²/(2R) (a point dy off the foot adds dy²/(2R)); twice that as margin.
+    let gap = near.windows(2).map(|w| (w[1].2 - w[0].2).norm()).fold(0.0, f64::max).min(cycle.length() / n as f64 * 4.0);
+    let sampling_error = gap * gap / r;
+    let sampler = WallSampler { cycle, r, sign, near, sampling_error };
     let s = cycle.step;
-    // Peak of the profile over one period: golden-section on the quasi-concave profile.
-    let (_, neg_peak) = golden_min(y_ext, y_ext + s, 1e-10, |y| -sampler.profile(y));
-    let valley = extreme - r;
-    // Guard: the sampled maximum over a grid cannot exceed the refined peak by construction,
-    // but a non-unimodal profile (not expected for these paths) would show here.
-    let samples: Vec<(f64, f64)> = (0..=48)
+    // The profile is the lower envelope of passes; its peaks (cusps) are where the forming pass
+    // changes. Scan two periods on a grid of GRID points per period, then refine every change
+    // of pass by golden section (the envelope is quasi-concave between two grid points there).
+    // A cusp narrower than the grid step s/GRID could be missed; its height would be below
+    // (s/GRID)²/(8R), e.g. 4e-6 mm for s = 1, R = 5.
+    const GRID: usize = 64;
+    let grid: Vec<(f64, f64, (usize, i64))> = (0..=2 * GRID)
         .map(|i| {
-            let y = y_ext + 2.0 * s * i as f64 / 48.0;
-            (y, sign * sampler.profile(y))
+            let y = y_ext + s * i as f64 / GRID as f64;
+            let (v, key) = sampler.profile(y);
+            (y, v, key)
         })
         .collect();
-    let grid_peak = samples.iter().map(|&(_, x)| sign * x).fold(f64::NEG_INFINITY, f64::max);
-    let peak = (-neg_peak).max(grid_peak);
+    let mut peak = grid.iter().map(|g| g.1).fold(f64::NEG_INFINITY, f64::max);
+    for w in grid.windows(2) {
+        if w[0].2 != w[1].2 {
+            let (_, neg) = golden_min(w[0].0, w[1].0, 1e-10, |y| -sampler.profile(y).0);
+            peak = peak.max(-neg);
+        }
+    }
+    let valley = extreme - r;
+    let samples: Vec<(f64, f64)> = grid.iter().map(|&(y, v, _)| (y, sign * v)).collect();
     WallProfile { wall, waviness_mm: (peak - valley).max(0.0), extreme_x_mm: sign * valley, samples }
 }

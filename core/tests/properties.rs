@@ -1,0 +1,157 @@
+//! Property and metamorphic tests over random jobs.
+
+use proptest::prelude::*;
+use trochoplan_core::analysis::step::{engagement_limited_step, step_for_engagement};
+use trochoplan_core::{Job, PathKind, plan};
+
+fn kind() -> impl Strategy<Value = PathKind> {
+    prop_oneof![
+        Just(PathKind::Circular),
+        Just(PathKind::CircularType),
+        Just(PathKind::Elliptical),
+        Just(PathKind::LinearElliptical)
+    ]
+}
+
+/// Valid jobs: tool 50–90 % of the slot, step up to 30 % of D, r_e 0.5–1.5, d up to 2 s.
+fn valid_job() -> impl Strategy<Value = Job> {
+    (kind(), 8.0..40.0f64, 0.5..0.9f64, 0.05..0.3f64, 0.5..1.5f64, 0.0..2.0f64, 1u32..7, 200.0..2000.0f64, 1000.0..20000.0f64)
+        .prop_map(|(path, b_w, frac, step_frac, r_e, d_frac, teeth, feed, rpm)| {
+            let d = b_w * frac;
+            Job {
+                path,
+                slot_width: b_w,
+                tool_diameter: d,
+                step: d * step_frac,
+                aspect_ratio: r_e,
+                linear_distance: d * step_frac * d_frac,
+                teeth,
+                feed,
+                rpm,
+                slot_length: 3.0 * b_w,
+                ..Job::default()
+            }
+        })
+        .prop_filter("loop must exist", |j| j.validate().is_ok())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+    /// Every valid job plans, with finite numbers inside their physical bounds:
+    /// 0 ≤ h ≤ f_z (triangle inequality: h = R − |c_k B| ≤ |c_k c_{k−1}| ≤ f_z),
+    /// 0 ≤ engagement ≤ 180°, 0 ≤ W ≤ R − √(R² − (s/2)²) (two discs at consecutive extremes),
+    /// and the tool centre never leaves the band |x| ≤ a (no wall gouge).
+    #[test]
+    fn valid_jobs_give_bounded_finite_metrics(job in valid_job()) {
+        let p = plan(&job).expect("valid job plans");
+        let m = &p.metrics;
+        for v in [m.cycle_length_mm, m.t_cycle_s, m.mrr_mm3_per_min, m.h_max_mm, m.t_hmax_s, m.t_cooling_s,
+                  m.engagement_max_deg, m.waviness_left_mm, m.waviness_right_mm] {
+            prop_assert!(v.is_finite());
+        }
+        prop_assert!(m.h_max_mm >= 0.0 && m.h_max_mm <= m.f_z_mm * (1.0 + 1e-9), "h {} f_z {}", m.h_max_mm, m.f_z_mm);
+        prop_assert!((0.0..=180.0 + 1e-9).contains(&m.engagement_max_deg));
+        let r = job.tool_diameter / 2.0;
+        let w_bound = r - (r * r - (job.step / 2.0).powi(2)).sqrt();
+        for w in [m.waviness_left_mm, m.waviness_right_mm] {
+            prop_assert!(w >= 0.0 && w <= w_bound + 1e-9, "W {w} bound {w_bound}");
+        }
+        let a = (job.slot_width - job.tool_diameter) / 2.0;
+        for pt in p.path.sample_cycles(0, 3, 64) {
+            prop_assert!(pt.x.abs() <= a + 1e-9);
+        }
+        prop_assert!(p.series.iter().any(|t| t.cutting), "some tooth cuts");
+        prop_assert!(m.t_cooling_s < m.t_cycle_s);
+    }
+
+    /// Invalid values are rejected with the parameter's name, never a panic.
+    #[test]
+    fn invalid_values_are_rejected_by_name(job in valid_job(), which in 0usize..6, bad in prop_oneof![Just(f64::NAN), Just(-1.0), Just(0.0), Just(f64::INFINITY)]) {
+        let mut j = job;
+        let name = match which {
+            0 => { j.slot_width = bad; "slot-width" }
+            1 => { j.tool_diameter = bad; "tool-diameter" }
+            2 => { j.step = bad; "step" }
+            3 => { j.feed = bad; "feed" }
+            4 => { j.rpm = bad; "rpm" }
+            _ => { j.depth = bad; "depth" }
+        };
+        let err = plan(&j).expect_err("invalid");
+        prop_assert!(err.to_string().contains(name) || err.parameter().is_some(), "{err}");
+        if which == 0 {
+            // a bad slot width is reported as such (it is checked first)
+            prop_assert_eq!(err.parameter(), Some("slot-width"));
+        }
+    }
+
+    /// Metamorphic: scaling every length (B, D, s, d, L) and the feed by k leaves times and
+    /// angles unchanged and scales h and W by k (f_z scales by k with the feed).
+    #[test]
+    fn scaling_lengths_and_feed_scales_h_and_w(job in valid_job(), k in 0.5..3.0f64) {
+        let scaled = Job {
+            slot_width: job.slot_width * k,
+            tool_diameter: job.tool_diameter * k,
+            step: job.step * k,
+            linear_distance: job.linear_distance * k,
+            slot_length: job.slot_length * k,
+            depth: job.depth * k,
+            feed: job.feed * k,
+            ..job.clone()
+        };
+        let (a, b) = (plan(&job).expect("valid").metrics, plan(&scaled).expect("valid").metrics);
+        prop_assert!((b.t_cycle_s - a.t_cycle_s).abs() < 1e-9 * a.t_cycle_s);
+        prop_assert!((b.h_max_mm - k * a.h_max_mm).abs() < 1e-5 * k, "{} vs {}", b.h_max_mm, k * a.h_max_mm);
+        prop_assert!((b.engagement_max_deg - a.engagement_max_deg).abs() < 0.05);
+        prop_assert!((b.waviness_left_mm - k * a.waviness_left_mm).abs() < 1e-6 * k);
+        prop_assert!((b.waviness_right_mm - k * a.waviness_right_mm).abs() < 1e-6 * k);
+    }
+}
+
+/// Metamorphic: only f_z = f_r/(n·z) matters for h — 4 teeth at 2000 rpm equal 2 at 4000.
+#[test]
+fn same_feed_per_tooth_gives_same_chip() {
+    let a = plan(&Job::default()).expect("valid").metrics;
+    let b = plan(&Job { teeth: 2, rpm: 4000.0, ..Job::default() }).expect("valid").metrics;
+    assert_eq!(a.f_z_mm, b.f_z_mm);
+    assert!((a.h_max_mm - b.h_max_mm).abs() < 1e-12);
+    assert!((a.t_cooling_s - b.t_cooling_s).abs() < 1e-12);
+}
+
+/// Metamorphic: the steady-state analysis does not depend on the slot length.
+#[test]
+fn slot_length_changes_only_totals() {
+    let a = plan(&Job::default()).expect("valid").metrics;
+    let b = plan(&Job { slot_length: 1000.0, ..Job::default() }).expect("valid").metrics;
+    assert_eq!(a.h_max_mm, b.h_max_mm);
+    assert_eq!(a.waviness_right_mm, b.waviness_right_mm);
+    // 980 mm more slot at s = 1 mm: 980 more cycles of the same length.
+    assert_eq!(b.cycles - a.cycles, 980);
+    assert!((b.path_length_mm - a.path_length_mm - 980.0 * a.cycle_length_mm).abs() < 1e-6);
+}
+
+/// The numeric engagement limit on the circular-type path (whose circles are the shaping
+/// circles of the two-circle model) reproduces the closed form P(a) of domain-spec §2.2 —
+/// an independent check of the engagement engine against the analytic model.
+#[test]
+fn circular_type_engagement_matches_two_circle_closed_form() {
+    for deg in [30.0f64, 46.0, 60.0] {
+        let p = step_for_engagement(20.0, 10.0, deg.to_radians());
+        let job = Job { path: PathKind::CircularType, step: p, ..Job::default() };
+        let m = plan(&job).expect("valid").metrics;
+        assert!((m.engagement_max_deg - deg).abs() < 0.01, "P({deg}°) = {p}: max engagement {}", m.engagement_max_deg);
+        let numeric = engagement_limited_step(&Job { path: PathKind::CircularType, ..Job::default() }, deg.to_radians())
+            .expect("valid");
+        assert!((numeric - p).abs() < 1e-4, "numeric {numeric} vs closed form {p}");
+    }
+}
+
+/// The elliptical path engages more than the circle at the same step, so its limit is smaller.
+#[test]
+fn flatter_ellipses_need_smaller_steps_for_46_degrees() {
+    let lim = 46f64.to_radians();
+    let circ = engagement_limited_step(&Job::default(), lim).expect("valid");
+    let ell = engagement_limited_step(&Job { path: PathKind::Elliptical, aspect_ratio: 0.6, ..Job::default() }, lim).expect("valid");
+    assert!(ell < circ, "{ell} vs {circ}");
+    assert!(engagement_limited_step(&Job::default(), f64::NAN).is_err());
+}
