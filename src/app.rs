@@ -25,7 +25,10 @@ impl eframe::App for App {
                 Ok(p) => {
                     let m = &p.metrics;
                     ui.label(format!("path: {}", m.path.name()));
-                    ui.label(format!("h_max = {:.4} mm, t_cycle = {:.3} s, MRR = {:.0} mm³/min", m.h_max_mm, m.t_cycle_s, m.mrr_mm3_per_min));
+                    ui.label(format!(
+                        "h_max = {:.4} mm, t_cycle = {:.3} s, MRR = {:.0} mm³/min",
+                        m.h_max_mm, m.t_cycle_s, m.mrr_mm3_per_min
+                    ));
                     ui.label(format!("W_l = {:.4} mm, W_r = {:.4} mm", m.waviness_left_mm, m.waviness_right_mm));
                 }
                 Err(e) => {

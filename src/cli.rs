@@ -5,6 +5,7 @@ use crate::files::write_atomic;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 use std::process::ExitCode;
+use trochoplan_core::analysis::step::engagement_limited_step;
 use trochoplan_core::{Job, JobError, Metrics, PathKind, Plan, plan};
 
 #[derive(Parser)]
@@ -23,6 +24,9 @@ enum Command {
         /// Also write the per-tooth series of a steady-state cycle as CSV.
         #[arg(long, value_name = "FILE.csv")]
         series: Option<PathBuf>,
+        /// Engagement limit (degrees) for the engagement-limited step of this path type.
+        #[arg(long, value_name = "DEG", default_value_t = 46.0, allow_hyphen_values = true)]
+        engagement_limit: f64,
     },
     /// Vary one parameter; print a CSV table of the metrics, one row per value.
     Sweep {
@@ -115,7 +119,8 @@ impl JobArgs {
     pub fn job(&self) -> Result<Job, String> {
         let mut job = match &self.job {
             Some(p) => {
-                let text = std::fs::read_to_string(p).map_err(|e| format!("cannot read job file {}: {e}", p.display()))?;
+                let text =
+                    std::fs::read_to_string(p).map_err(|e| format!("cannot read job file {}: {e}", p.display()))?;
                 Job::from_toml(&text).map_err(|e| format!("{}: {e}", p.display()))?
             }
             None => Job::default(),
@@ -161,12 +166,19 @@ pub fn main() -> ExitCode {
 
 fn run(cmd: Command) -> Result<String, String> {
     match cmd {
-        Command::Analyze { job, series } => {
-            let p = plan(&job.job()?).map_err(|e| e.to_string())?;
+        Command::Analyze { job, series, engagement_limit } => {
+            let job = job.job()?;
+            let p = plan(&job).map_err(|e| e.to_string())?;
+            let limited = engagement_limited_step(&job, engagement_limit.to_radians()).map_err(|e| e.to_string())?;
             if let Some(file) = series {
                 write_atomic(&file, series_csv(&p).as_bytes())?;
             }
-            let mut text = serde_json::to_string_pretty(&p.metrics).map_err(|e| e.to_string())?;
+            let mut value = serde_json::to_value(&p.metrics).map_err(|e| e.to_string())?;
+            if let Some(obj) = value.as_object_mut() {
+                obj.insert("engagement_limit_deg".into(), engagement_limit.into());
+                obj.insert("engagement_limited_step_mm".into(), limited.into());
+            }
+            let mut text = serde_json::to_string_pretty(&value).map_err(|e| e.to_string())?;
             text.push('\n');
             Ok(text)
         }
@@ -238,7 +250,10 @@ fn sweep(mut job: Job, param: SweepParam, from: f64, to: f64, steps: usize) -> R
                 job.path = PathKind::Elliptical;
             }
             if !job.path.uses_aspect_ratio() {
-                return Err(format!("--param aspect-ratio needs an elliptical or linear-elliptical path, not {}", job.path.name()));
+                return Err(format!(
+                    "--param aspect-ratio needs an elliptical or linear-elliptical path, not {}",
+                    job.path.name()
+                ));
             }
             "aspect_ratio"
         }
@@ -272,6 +287,7 @@ fn sweep(mut job: Job, param: SweepParam, from: f64, to: f64, steps: usize) -> R
 }
 
 #[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 mod tests {
     use super::*;
 

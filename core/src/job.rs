@@ -42,9 +42,10 @@ impl PathKind {
 
     /// Parse a CLI / job-file name.
     pub fn from_name(s: &str) -> Result<PathKind, JobError> {
-        PathKind::ALL.into_iter().find(|k| k.name() == s).ok_or_else(|| {
-            JobError::range("path", s, "one of circular, circular-type, elliptical, linear-elliptical")
-        })
+        PathKind::ALL
+            .into_iter()
+            .find(|k| k.name() == s)
+            .ok_or_else(|| JobError::range("path", s, "one of circular, circular-type, elliptical, linear-elliptical"))
     }
 
     /// Whether the aspect ratio r_e shapes this path.
@@ -150,11 +151,7 @@ impl Job {
         let depth = positive("depth", self.depth, MAX_SIZE_MM)?;
         let d_t = positive("tool-diameter", self.tool_diameter, MAX_SIZE_MM)?;
         if d_t >= b_w {
-            return Err(JobError::range(
-                "tool-diameter",
-                d_t,
-                format!("smaller than the slot width {b_w} mm"),
-            ));
+            return Err(JobError::range("tool-diameter", d_t, format!("smaller than the slot width {b_w} mm")));
         }
         if d_t < b_w / 2.0 {
             return Err(JobError::range(
@@ -272,6 +269,7 @@ impl ValidJob {
 }
 
 #[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 mod tests {
     use super::*;
 

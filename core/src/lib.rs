@@ -15,7 +15,7 @@
 //! - [`path`]: the four slot path types as one repeated cycle.
 //! - [`analysis`]: edge of previous cycles, per-tooth h and engagement, waviness, step limit.
 //! - [`plan`]: [`plan()`] — job in, [`Plan`] out; used by the GUI and the CLI.
-//! - [`error`]: [`JobError`].
+//! - [`error`]: the [`JobError`] type.
 
 pub mod analysis;
 pub mod error;

@@ -86,9 +86,7 @@ pub fn plan_valid(job: ValidJob) -> Plan {
     // The chip series and the two walls are independent: compute them side by side.
     let (series, (left_wall, right_wall)) = rayon::join(
         || tooth_series(&path.cycle, &PreviousEdge::new(&path.cycle, r), r, f_z, feed_mm_per_s),
-        || {
-            rayon::join(|| wall_profile(&path.cycle, r, Wall::Left), || wall_profile(&path.cycle, r, Wall::Right))
-        },
+        || rayon::join(|| wall_profile(&path.cycle, r, Wall::Left), || wall_profile(&path.cycle, r, Wall::Right)),
     );
     let timing = chip_timing(&series, f_z / feed_mm_per_s);
     let cycle_length = path.cycle.length();

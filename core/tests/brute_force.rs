@@ -4,6 +4,8 @@
 //! segments). Engagement by sampling the tool periphery at 0.1°, chip thickness by bisection
 //! along rays from the tool centre, wall profile by scanning heights.
 
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
 use trochoplan_core::geom::{P2, p2};
 use trochoplan_core::path::Cycle;
 use trochoplan_core::{Job, PathKind, Plan, plan};
@@ -146,9 +148,18 @@ fn check_job(job: Job) {
         let t = p.series[k];
         // The tooth positions themselves: arc length by the analysis vs chord sum here.
         let c = d.at(t.s_mm);
-        assert!((c - p2(t.x_mm, t.y_mm)).norm() < 1e-5, "{:?} tooth {k}: position {c:?} vs ({}, {})", job.path, t.x_mm, t.y_mm);
+        assert!(
+            (c - p2(t.x_mm, t.y_mm)).norm() < 1e-5,
+            "{:?} tooth {k}: position {c:?} vs ({}, {})",
+            job.path,
+            t.x_mm,
+            t.y_mm
+        );
         let (angle, h) = brute_tooth(&d, t.s_mm, f_z);
-        let tag = format!("{:?} r_e={} d={} tooth {k} (t={:.4} s)", job.path, job.aspect_ratio, job.linear_distance, t.time_s);
+        let tag = format!(
+            "{:?} r_e={} d={} tooth {k} (t={:.4} s)",
+            job.path, job.aspect_ratio, job.linear_distance, t.time_s
+        );
         assert!(
             (angle - t.engagement_rad).abs() <= 0.3f64.to_radians(),
             "{tag}: engagement brute {:.3}° vs {:.3}°",
@@ -208,7 +219,12 @@ fn waviness_agrees_with_brute_force() {
             let xs: Vec<f64> = ys.iter().map(|&y| profile(y)).collect();
             let (lo, hi) = xs.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
             let brute = hi - lo;
-            assert!((brute - w).abs() <= 1e-4, "{:?} r_e={} sign {sign}: W brute {brute:.6} vs {w:.6}", job.path, job.aspect_ratio);
+            assert!(
+                (brute - w).abs() <= 1e-4,
+                "{:?} r_e={} sign {sign}: W brute {brute:.6} vs {w:.6}",
+                job.path,
+                job.aspect_ratio
+            );
         }
     }
 }

@@ -1,6 +1,8 @@
 //! The paper's Table 2 and its stated trends (Wagih et al. 2023, section 2; conditions of its
 //! Table 1: f_r = 600 mm/min, s = 1 mm, n = 2000 rpm, D = 10 mm, z = 4, B = 20 mm; a_p = 6 mm).
 
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
 use trochoplan_core::{Job, Metrics, PathKind, plan};
 
 /// Table 2 rows: r_e, h_max (mm), t_cycle (s), t_hmax (s), t_cooling (s), MRR (mm³/min).

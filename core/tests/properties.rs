@@ -1,5 +1,7 @@
 //! Property and metamorphic tests over random jobs.
 
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
 use proptest::prelude::*;
 use trochoplan_core::analysis::step::{engagement_limited_step, step_for_engagement};
 use trochoplan_core::{Job, PathKind, plan};
@@ -15,7 +17,17 @@ fn kind() -> impl Strategy<Value = PathKind> {
 
 /// Valid jobs: tool 50–90 % of the slot, step up to 30 % of D, r_e 0.5–1.5, d up to 2 s.
 fn valid_job() -> impl Strategy<Value = Job> {
-    (kind(), 8.0..40.0f64, 0.5..0.9f64, 0.05..0.3f64, 0.5..1.5f64, 0.0..2.0f64, 1u32..7, 200.0..2000.0f64, 1000.0..20000.0f64)
+    (
+        kind(),
+        8.0..40.0f64,
+        0.5..0.9f64,
+        0.05..0.3f64,
+        0.5..1.5f64,
+        0.0..2.0f64,
+        1u32..7,
+        200.0..2000.0f64,
+        1000.0..20000.0f64,
+    )
         .prop_map(|(path, b_w, frac, step_frac, r_e, d_frac, teeth, feed, rpm)| {
             let d = b_w * frac;
             Job {
@@ -140,8 +152,9 @@ fn circular_type_engagement_matches_two_circle_closed_form() {
         let job = Job { path: PathKind::CircularType, step: p, ..Job::default() };
         let m = plan(&job).expect("valid").metrics;
         assert!((m.engagement_max_deg - deg).abs() < 0.01, "P({deg}°) = {p}: max engagement {}", m.engagement_max_deg);
-        let numeric = engagement_limited_step(&Job { path: PathKind::CircularType, ..Job::default() }, deg.to_radians())
-            .expect("valid");
+        let numeric =
+            engagement_limited_step(&Job { path: PathKind::CircularType, ..Job::default() }, deg.to_radians())
+                .expect("valid");
         assert!((numeric - p).abs() < 1e-4, "numeric {numeric} vs closed form {p}");
     }
 }
@@ -151,7 +164,8 @@ fn circular_type_engagement_matches_two_circle_closed_form() {
 fn flatter_ellipses_need_smaller_steps_for_46_degrees() {
     let lim = 46f64.to_radians();
     let circ = engagement_limited_step(&Job::default(), lim).expect("valid");
-    let ell = engagement_limited_step(&Job { path: PathKind::Elliptical, aspect_ratio: 0.6, ..Job::default() }, lim).expect("valid");
+    let ell = engagement_limited_step(&Job { path: PathKind::Elliptical, aspect_ratio: 0.6, ..Job::default() }, lim)
+        .expect("valid");
     assert!(ell < circ, "{ell} vs {circ}");
     assert!(engagement_limited_step(&Job::default(), f64::NAN).is_err());
 }

@@ -94,8 +94,8 @@ struct Swept<'a> {
 }
 
 impl Swept<'_> {
-    /// > 0 where `p` is uncut material, ≤ 0 where it was swept (mm-like; only the sign and
-    /// continuity matter).
+    /// Positive where `p` is uncut material, not positive where it was swept (mm-like; only
+    /// the sign and continuity matter).
     #[inline]
     fn margin(&self, p: P2) -> f64 {
         let m = self.edge.margin(p);
@@ -150,11 +150,8 @@ impl<'a> EarlySweep<'a> {
         const BLOCK: usize = 16;
         let reach = (BLOCK / 2 + 1) as f64 * SPACING;
         let n = self.pts.len();
-        let coarse: Vec<(usize, f64)> = (0..n)
-            .step_by(BLOCK)
-            .chain(n.checked_sub(1))
-            .map(|i| (i, (self.pts[i].2 - p).norm()))
-            .collect();
+        let coarse: Vec<(usize, f64)> =
+            (0..n).step_by(BLOCK).chain(n.checked_sub(1)).map(|i| (i, (self.pts[i].2 - p).norm())).collect();
         let mut best = coarse.iter().fold((f64::INFINITY, 0), |b, &(i, d)| if d < b.0 { (d, i) } else { b });
         for &(i, d) in &coarse {
             if d - reach >= best.0 {
@@ -195,7 +192,8 @@ fn engagement(swept: &Swept, f: &Frame, r: f64) -> Engagement {
     let mut phis = phis;
     // A small poke-out between coarse samples: refine the best sample's neighbourhood.
     if vals.iter().all(|&v| v <= 0.0) {
-        let (ibest, vbest) = vals.iter().enumerate().fold((0, f64::NEG_INFINITY), |b, (i, &v)| if v > b.1 { (i, v) } else { b });
+        let (ibest, vbest) =
+            vals.iter().enumerate().fold((0, f64::NEG_INFINITY), |b, (i, &v)| if v > b.1 { (i, v) } else { b });
         if vbest < NO_POKE_OUT_MM {
             return Engagement { angle: 0.0, ends: vec![], intervals: vec![], reaches_back: false };
         }
@@ -283,7 +281,8 @@ pub fn tooth_series(cycle: &Cycle, edge: &PreviousEdge, r: f64, f_z: f64, feed_m
     });
     // Engagement of each tooth is independent of the others: compute it in parallel; h needs
     // the previous tooth's crossings and is a cheap sequential pass afterwards.
-    let frames: Vec<(f64, Frame)> = positions.into_iter().map(|(s, pos)| (s, Frame::at(cycle, pos, P2::zeros()))).collect();
+    let frames: Vec<(f64, Frame)> =
+        positions.into_iter().map(|(s, pos)| (s, Frame::at(cycle, pos, P2::zeros()))).collect();
     let engaged: Vec<Engagement> = frames.par_iter().map(|(s, f)| engagement(&swept(*s, &early), f, r)).collect();
     let mut out = Vec::with_capacity(frames.len());
     for ((s, f), e) in frames.iter().zip(engaged) {

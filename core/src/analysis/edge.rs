@@ -99,9 +99,8 @@ impl PreviousEdge {
         let pole = (lo + hi) / 2.0 - p2(0.0, s);
         // Cycle −j counts only while its sweep contains the pole (star-shapedness); older
         // cycles lie wholly behind the newer ones.
-        let cycles = (1..=MAX_PREVIOUS)
-            .take_while(|&j| sweep_contains(&centre_pts, p2(0.0, -(j as f64) * s), r, pole))
-            .count();
+        let cycles =
+            (1..=MAX_PREVIOUS).take_while(|&j| sweep_contains(&centre_pts, p2(0.0, -(j as f64) * s), r, pole)).count();
         // Each previous cycle fills its own bins (in parallel); the union takes the largest.
         let per_cycle: Vec<Vec<f64>> = (1..=cycles)
             .into_par_iter()
@@ -198,6 +197,7 @@ fn sweep_contains(pts: &[P2], shift: P2, r: f64, q: P2) -> bool {
 }
 
 #[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 mod tests {
     use super::*;
     use crate::job::{Job, PathKind};

@@ -32,11 +32,7 @@ pub struct ChipTiming {
 /// Cooling time counts the teeth that do not cut, each worth `dt`.
 pub fn chip_timing(series: &[ToothSample], dt: f64) -> ChipTiming {
     let n = series.len();
-    let imax = series
-        .iter()
-        .enumerate()
-        .max_by(|a, b| a.1.h_mm.total_cmp(&b.1.h_mm))
-        .map_or(0, |(i, _)| i);
+    let imax = series.iter().enumerate().max_by(|a, b| a.1.h_mm.total_cmp(&b.1.h_mm)).map_or(0, |(i, _)| i);
     let mut back = 0;
     if n > 0 && series[imax].cutting {
         while back + 1 < n && series[(imax + n - back - 1) % n].cutting {

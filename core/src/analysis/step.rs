@@ -31,6 +31,7 @@ pub fn max_engagement_for_step(b_w: f64, d: f64, p: f64) -> f64 {
 }
 
 #[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 mod tests {
     use super::*;
 

@@ -127,15 +127,12 @@ pub fn wall_profile(cycle: &Cycle, r: f64, wall: Wall) -> WallProfile {
     let half = cycle.step / 2.0;
     let w_bound = r - (r * r - half * half).sqrt();
     let near: Vec<_> = all.into_iter().filter(|&(_, _, c)| sign * c.x <= extreme + w_bound + 1e-9).collect();
-    let y_ext = near
-        .iter()
-        .filter(|&&(_, _, c)| sign * c.x <= extreme + 1e-9)
-        .map(|&(_, _, c)| c.y)
-        .next()
-        .unwrap_or(0.0);
+    let y_ext =
+        near.iter().filter(|&&(_, _, c)| sign * c.x <= extreme + 1e-9).map(|&(_, _, c)| c.y).next().unwrap_or(0.0);
     // Samples are at most `gap` apart, so a sampled value exceeds the exact one by at most
     // gap²/(2R) (a point dy off the foot adds dy²/(2R)); twice that as margin.
-    let gap = near.windows(2).map(|w| (w[1].2 - w[0].2).norm()).fold(0.0, f64::max).min(cycle.length() / n as f64 * 4.0);
+    let gap =
+        near.windows(2).map(|w| (w[1].2 - w[0].2).norm()).fold(0.0, f64::max).min(cycle.length() / n as f64 * 4.0);
     let sampling_error = gap * gap / r;
     let sampler = WallSampler { cycle, r, sign, near, sampling_error };
     let s = cycle.step;

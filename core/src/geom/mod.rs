@@ -98,6 +98,7 @@ pub fn bracketed_root(mut lo: f64, mut hi: f64, tol: f64, f: impl Fn(f64) -> f64
 }
 
 #[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 mod tests {
     use super::*;
 

@@ -42,11 +42,9 @@ impl Segment {
     /// Position and derivatives at local parameter `t ∈ [0, 1]`.
     pub fn eval(&self, t: f64) -> SegmentPoint {
         match *self {
-            Segment::Line { start, end } => SegmentPoint {
-                p: start + (end - start) * t,
-                d1: end - start,
-                d2: P2::zeros(),
-            },
+            Segment::Line { start, end } => {
+                SegmentPoint { p: start + (end - start) * t, d1: end - start, d2: P2::zeros() }
+            }
             Segment::Arc { center, radius, start_angle, sweep } => {
                 let (s, c) = (start_angle + sweep * t).sin_cos();
                 SegmentPoint {
@@ -151,6 +149,7 @@ impl Segment {
 }
 
 #[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 mod tests {
     use super::*;
     use std::f64::consts::PI;

@@ -158,12 +158,7 @@ impl SlotPath {
     /// one is at or beyond the slot end y = L, so both walls are cut over the full length.
     pub fn for_job(job: &ValidJob) -> SlotPath {
         let cycle = Cycle::for_job(job);
-        let reach = cycle
-            .segments
-            .iter()
-            .flat_map(|s| s.sample(64))
-            .map(|p| p.y)
-            .fold(f64::NEG_INFINITY, f64::max)
+        let reach = cycle.segments.iter().flat_map(|s| s.sample(64)).map(|p| p.y).fold(f64::NEG_INFINITY, f64::max)
             + job.tool_radius();
         let first_origin_y = -reach;
         let cycles = ((job.slot_length - first_origin_y) / job.step).ceil() as usize + 1;
@@ -198,6 +193,7 @@ impl SlotPath {
 }
 
 #[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 mod tests {
     use super::*;
     use crate::job::Job;

@@ -1,0 +1,174 @@
+//! End-to-end tests of the headless CLI contract (`analyze`, `sweep`): names, output shape,
+//! errors and files. They run the real binary.
+
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use std::process::Command;
+
+fn run(args: &[&str]) -> (bool, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_trochoplan")).args(args).output().expect("binary runs");
+    (out.status.success(), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
+}
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let (ok, out, err) = run(args);
+    assert!(ok, "{args:?} failed: {err}");
+    serde_json::from_str(&out).expect("one JSON object")
+}
+
+const CONTRACT: [&str; 10] = [
+    "cycle_length_mm",
+    "t_cycle_s",
+    "mrr_mm3_per_min",
+    "f_z_mm",
+    "h_max_mm",
+    "t_hmax_s",
+    "t_cooling_s",
+    "engagement_max_deg",
+    "waviness_left_mm",
+    "waviness_right_mm",
+];
+
+#[test]
+fn analyze_prints_the_contract_fields_for_the_papers_default_job() {
+    let v = json(&["analyze"]);
+    for k in CONTRACT {
+        assert!(v[k].as_f64().is_some_and(f64::is_finite), "missing {k}: {v}");
+    }
+    // Defaults are the paper's Table 1: f_z = 600 / (2000 · 4) = 0.075 mm; circular path.
+    assert_eq!(v["f_z_mm"].as_f64(), Some(0.075));
+    assert_eq!(v["path"], "circular");
+    // Table 2, r_e = 1: h_max 0.059 mm (2 %).
+    assert!((v["h_max_mm"].as_f64().expect("h") - 0.059).abs() <= 0.02 * 0.059);
+    assert!(v["engagement_limited_step_mm"].as_f64().is_some_and(|s| s > 0.0 && s < 1.0));
+}
+
+#[test]
+fn every_job_flag_is_accepted_and_flags_override_the_job_file() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let job = dir.path().join("job.toml");
+    std::fs::write(&job, "path = \"elliptical\"\naspect-ratio = 0.6\nstep = 0.5\n").expect("write");
+    let v = json(&[
+        "analyze",
+        "--job",
+        job.to_str().expect("utf8"),
+        "--step",
+        "0.8",
+        "--slot-width",
+        "20",
+        "--slot-length",
+        "30",
+        "--depth",
+        "5",
+        "--tool-diameter",
+        "10",
+        "--teeth",
+        "3",
+        "--feed",
+        "500",
+        "--rpm",
+        "2500",
+        "--linear-distance",
+        "0",
+    ]);
+    assert_eq!(v["path"], "elliptical");
+    assert_eq!(v["aspect_ratio"].as_f64(), Some(0.6));
+    assert_eq!(v["step_mm"].as_f64(), Some(0.8));
+    let fz = 500.0 / (2500.0 * 3.0);
+    assert!((v["f_z_mm"].as_f64().expect("fz") - fz).abs() < 1e-15);
+    let lin = json(&["analyze", "--path", "linear-elliptical", "--aspect-ratio", "0.8", "--linear-distance", "1"]);
+    assert_eq!(lin["linear_distance_mm"].as_f64(), Some(1.0));
+}
+
+#[test]
+fn sweep_reproduces_table2_in_one_command() {
+    let (ok, out, err) = run(&["sweep", "--param", "aspect-ratio", "--from", "0.5", "--to", "1.2", "--steps", "8"]);
+    assert!(ok, "{err}");
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 9, "{out}");
+    let header: Vec<&str> = lines[0].split(',').collect();
+    for k in CONTRACT {
+        assert!(header.contains(&k), "header lacks {k}");
+    }
+    let col = |name: &str| header.iter().position(|h| *h == name).expect("column");
+    // Table 2 h_max column (Wagih et al. 2023), within 2 %.
+    let paper = [0.068, 0.062, 0.059, 0.057, 0.058, 0.059, 0.059, 0.060];
+    for (line, h) in lines[1..].iter().zip(paper) {
+        let cells: Vec<&str> = line.split(',').collect();
+        let ours: f64 = cells[col("h_max_mm")].parse().expect("number");
+        assert!((ours - h).abs() <= 0.02 * h, "{line}");
+        assert_eq!(cells[0], "elliptical");
+    }
+    assert_eq!(lines[3].split(',').nth(1), Some("0.7"), "values read as typed");
+}
+
+#[test]
+fn sweep_of_step_and_linear_distance_work() {
+    let (ok, out, _) = run(&["sweep", "--param", "step", "--from", "0.5", "--to", "1.5", "--steps", "3"]);
+    assert!(ok && out.lines().count() == 4, "{out}");
+    let (ok, out, _) = run(&[
+        "sweep",
+        "--param",
+        "linear-distance",
+        "--from",
+        "0",
+        "--to",
+        "1.2",
+        "--steps",
+        "4",
+        "--aspect-ratio",
+        "0.8",
+    ]);
+    assert!(ok && out.lines().count() == 5, "{out}");
+    assert!(out.lines().nth(1).is_some_and(|l| l.starts_with("linear-elliptical,0,")), "{out}");
+}
+
+#[test]
+fn bad_input_names_the_parameter_and_exits_non_zero() {
+    for (args, name) in [
+        (vec!["analyze", "--step", "-1"], "step"),
+        (vec!["analyze", "--tool-diameter", "25"], "tool-diameter"),
+        (vec!["analyze", "--slot-width", "nan"], "slot-width"),
+        (vec!["analyze", "--teeth", "0"], "teeth"),
+        (vec!["analyze", "--path", "elliptical", "--aspect-ratio", "0"], "aspect-ratio"),
+        (vec!["analyze", "--slot-length", "0.5"], "slot-length"),
+        (vec!["sweep", "--param", "step", "--from", "0.5", "--to", "20", "--steps", "3"], "step"),
+        (vec!["analyze", "--path", "spiral"], "path"),
+    ] {
+        let (ok, out, err) = run(&args);
+        assert!(!ok, "{args:?} must fail");
+        assert!(out.is_empty(), "{args:?} printed {out}");
+        assert!(err.contains(name), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+}
+
+#[test]
+fn corrupt_job_file_is_a_clear_error() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let job = dir.path().join("bad.toml");
+    std::fs::write(&job, "slot-width = [1, 2\n").expect("write");
+    let (ok, _, err) = run(&["analyze", "--job", job.to_str().expect("utf8")]);
+    assert!(!ok && err.contains("bad.toml"), "{err}");
+    let (ok, _, err) = run(&["analyze", "--job", "/nonexistent/job.toml"]);
+    assert!(!ok && err.contains("/nonexistent/job.toml"), "{err}");
+}
+
+#[test]
+fn series_csv_is_written_whole_or_not_at_all() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let csv = dir.path().join("series.csv");
+    let v = json(&["analyze", "--series", csv.to_str().expect("utf8")]);
+    let text = std::fs::read_to_string(&csv).expect("written");
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("time_s,h_mm,engagement_deg,cutting,s_mm,x_mm,y_mm"));
+    let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|c| c.parse().expect("number")).collect()).collect();
+    // One steady-state cycle of teeth spaced f_z: floor(cycle length / f_z) + 1 rows.
+    let expected = (v["cycle_length_mm"].as_f64().expect("len") / 0.075).floor() as usize + 1;
+    assert_eq!(rows.len(), expected);
+    let h_max = rows.iter().map(|r| r[1]).fold(0.0, f64::max);
+    assert!((h_max - v["h_max_mm"].as_f64().expect("h")).abs() < 1e-6);
+    // Unwritable path: error, exit non-zero, nothing left behind.
+    let (ok, _, err) = run(&["analyze", "--series", "/proc/not-writable/series.csv"]);
+    assert!(!ok && err.contains("series.csv"), "{err}");
+}
