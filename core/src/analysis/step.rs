@@ -30,30 +30,6 @@ pub fn max_engagement_for_step(b_w: f64, d: f64, p: f64) -> f64 {
     ((k * k - rho * rho - r * r) / (2.0 * rho * r)).clamp(-1.0, 1.0).acos()
 }
 
-#[cfg(test)]
-#[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
-mod tests {
-    use super::*;
-
-    // domain-spec §2.2 TEST values.
-    #[test]
-    fn spec_test_values() {
-        let deg = f64::to_radians;
-        assert!((step_for_engagement(20.0, 10.0, deg(30.0)) - 0.3407).abs() < 1e-4);
-        assert!((step_for_engagement(20.0, 10.0, deg(46.0)) - 0.7950).abs() < 1e-4);
-        assert!((step_for_engagement(20.0, 10.0, deg(60.0)) - 1.3397).abs() < 1e-4);
-        assert!((step_for_engagement(20.0, 12.0, deg(46.0)) - 0.7618).abs() < 1e-4);
-        assert!((step_for_depth(20.0, 10.0, 1.5) - 0.7805).abs() < 1e-4);
-        assert!((step_for_depth(20.0, 12.0, 1.8) - 0.7480).abs() < 1e-4);
-        assert_eq!(step_for_engagement(20.0, 10.0, 0.0), 0.0);
-        assert!((step_for_engagement(20.0, 10.0, std::f64::consts::PI) - 10.0).abs() < 1e-12);
-        // D = B/2 special case: P(a) = D(1 − cos(a/2)).
-        assert!((step_for_engagement(20.0, 10.0, deg(46.0)) - 10.0 * (1.0 - deg(23.0).cos())).abs() < 1e-12);
-        // 46° gives the spec's 51.684° at P = 1 the other way round (cos a = 31/50).
-        assert!((max_engagement_for_step(20.0, 10.0, 1.0) - (31.0f64 / 50.0).acos()).abs() < 1e-12);
-    }
-}
-
 /// Largest step s (mm) for which the job's own path keeps the maximum engagement over a
 /// steady-state cycle at or below `limit_rad`, by bisection on s with the full analysis
 /// (the engagement grows with s). Works for every path type; for the circular-type path it
@@ -80,4 +56,28 @@ pub fn engagement_limited_step(job: &crate::Job, limit_rad: f64) -> Result<f64, 
         if engagement(mid)? <= limit_rad { lo = mid } else { hi = mid }
     }
     Ok(lo)
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+mod tests {
+    use super::*;
+
+    // domain-spec §2.2 TEST values.
+    #[test]
+    fn spec_test_values() {
+        let deg = f64::to_radians;
+        assert!((step_for_engagement(20.0, 10.0, deg(30.0)) - 0.3407).abs() < 1e-4);
+        assert!((step_for_engagement(20.0, 10.0, deg(46.0)) - 0.7950).abs() < 1e-4);
+        assert!((step_for_engagement(20.0, 10.0, deg(60.0)) - 1.3397).abs() < 1e-4);
+        assert!((step_for_engagement(20.0, 12.0, deg(46.0)) - 0.7618).abs() < 1e-4);
+        assert!((step_for_depth(20.0, 10.0, 1.5) - 0.7805).abs() < 1e-4);
+        assert!((step_for_depth(20.0, 12.0, 1.8) - 0.7480).abs() < 1e-4);
+        assert_eq!(step_for_engagement(20.0, 10.0, 0.0), 0.0);
+        assert!((step_for_engagement(20.0, 10.0, std::f64::consts::PI) - 10.0).abs() < 1e-12);
+        // D = B/2 special case: P(a) = D(1 − cos(a/2)).
+        assert!((step_for_engagement(20.0, 10.0, deg(46.0)) - 10.0 * (1.0 - deg(23.0).cos())).abs() < 1e-12);
+        // 46° gives the spec's 51.684° at P = 1 the other way round (cos a = 31/50).
+        assert!((max_engagement_for_step(20.0, 10.0, 1.0) - (31.0f64 / 50.0).acos()).abs() < 1e-12);
+    }
 }
