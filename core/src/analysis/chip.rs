@@ -176,7 +176,7 @@ impl<'a> EarlySweep<'a> {
         let lo = if i > 0 && self.pts[i - 1].0 == seg { self.pts[i - 1].1 } else { 0.0 };
         let hi = if i + 1 < self.pts.len() && self.pts[i + 1].0 == seg { self.pts[i + 1].1 } else { t };
         let s = &self.cycle.segments[seg];
-        let (_, d2) = golden_min(lo, hi.max(t), 1e-11, |u| (s.point(u) + self.shift - p).norm_squared());
+        let (_, d2) = golden_min(lo, hi.max(t), 1e-8, |u| (s.point(u) + self.shift - p).norm_squared());
         d2.sqrt().min(best.0) - self.r
     }
 }
@@ -241,7 +241,7 @@ fn ray_thickness(swept: &Swept, f: &Frame, prev_c: Option<P2>, r: f64, intervals
         if swept.margin(f.c + u * r) <= 0.0 {
             return 0.0;
         }
-        let t_s = if centre_swept { bracketed_root(0.0, r, 1e-12, |t| swept.margin(f.c + u * t)) } else { 0.0 };
+        let t_s = if centre_swept { bracketed_root(0.0, r, 1e-10, |t| swept.margin(f.c + u * t)) } else { 0.0 };
         let t_1 = prev_c.map_or(0.0, |pc| {
             let d = f.c - pc;
             let b = d.dot(&u);
@@ -255,7 +255,7 @@ fn ray_thickness(swept: &Swept, f: &Frame, prev_c: Option<P2>, r: f64, intervals
         let vals: Vec<f64> = phis.iter().map(|&p| thickness(p)).collect();
         let (ib, vb) = vals.iter().enumerate().fold((0, 0.0), |m, (i, &v)| if v > m.1 { (i, v) } else { m });
         let (lo, hi) = (phis[ib.saturating_sub(1)], phis[(ib + 1).min(10)]);
-        let (_, neg) = golden_min(lo, hi, 1e-9, |p| -thickness(p));
+        let (_, neg) = golden_min(lo, hi, 1e-7, |p| -thickness(p));
         best = best.max(vb).max(-neg);
     }
     best

@@ -6,8 +6,9 @@
 //! profile is too (period s). The waviness W is its peak-to-valley height over one period:
 //! the valley is the extreme of the path (a + R from the axis), the peak is the cusp between
 //! two passes. Both are found by nested exact minimisation over the analytic path (scan of
-//! 1024 points per cycle, golden-section refinement to 1e-12 in the segment parameter and to
-//! 1e-10 mm in y), not from a sampled picture.
+//! 1024 points per cycle, golden-section refinement to 1e-8 in the segment parameter — the
+//! profile is quadratic at its minimum, so that is ~1e-14 mm — and to 1e-9 mm in y), not from
+//! a sampled picture.
 
 use crate::geom::{P2, golden_min};
 use crate::path::Cycle;
@@ -91,7 +92,7 @@ impl WallSampler<'_> {
             let hi = if i + 1 < self.near.len() && self.near[i + 1].0 == seg { self.near[i + 1].1 } else { 1.0 };
             let shift = P2::new(0.0, j as f64 * s);
             let segm = &self.cycle.segments[seg];
-            let (_, v) = golden_min(lo.min(t), hi.max(t), 1e-12, |u| self.value(segm.point(u) + shift, y));
+            let (_, v) = golden_min(lo.min(t), hi.max(t), 1e-8, |u| self.value(segm.point(u) + shift, y));
             if v < exact.0 || exact.1.0 == usize::MAX {
                 exact = (v.min(exact.0), (seg, j));
             }
@@ -137,12 +138,12 @@ pub fn wall_profile(cycle: &Cycle, r: f64, wall: Wall) -> WallProfile {
     let sampler = WallSampler { cycle, r, sign, near, sampling_error };
     let s = cycle.step;
     // The profile is the lower envelope of passes; its peaks (cusps) are where the forming pass
-    // changes. Scan two periods on a grid of GRID points per period, then refine every change
-    // of pass by golden section (the envelope is quasi-concave between two grid points there).
-    // A cusp narrower than the grid step s/GRID could be missed; its height would be below
-    // (s/GRID)²/(8R), e.g. 4e-6 mm for s = 1, R = 5.
-    const GRID: usize = 64;
-    let grid: Vec<(f64, f64, (usize, i64))> = (0..=2 * GRID)
+    // changes. Scan one period on a grid of GRID points, then refine every change of pass by
+    // golden section (the envelope is quasi-concave between two grid points there). A cusp
+    // narrower than the grid step s/GRID could be missed; its height would be below
+    // (s/GRID)²/(8R), e.g. 1e-5 mm for s = 1, R = 5.
+    const GRID: usize = 48;
+    let grid: Vec<(f64, f64, (usize, i64))> = (0..=GRID)
         .map(|i| {
             let y = y_ext + s * i as f64 / GRID as f64;
             let (v, key) = sampler.profile(y);
@@ -152,11 +153,16 @@ pub fn wall_profile(cycle: &Cycle, r: f64, wall: Wall) -> WallProfile {
     let mut peak = grid.iter().map(|g| g.1).fold(f64::NEG_INFINITY, f64::max);
     for w in grid.windows(2) {
         if w[0].2 != w[1].2 {
-            let (_, neg) = golden_min(w[0].0, w[1].0, 1e-10, |y| -sampler.profile(y).0);
+            let (_, neg) = golden_min(w[0].0, w[1].0, 1e-9, |y| -sampler.profile(y).0);
             peak = peak.max(-neg);
         }
     }
     let valley = extreme - r;
-    let samples: Vec<(f64, f64)> = grid.iter().map(|&(y, v, _)| (y, sign * v)).collect();
+    // The profile repeats every s: two periods for plots.
+    let samples: Vec<(f64, f64)> = grid
+        .iter()
+        .map(|&(y, v, _)| (y, sign * v))
+        .chain(grid.iter().skip(1).map(|&(y, v, _)| (y + s, sign * v)))
+        .collect();
     WallProfile { wall, waviness_mm: (peak - valley).max(0.0), extreme_x_mm: sign * valley, samples }
 }
