@@ -47,7 +47,9 @@ pub fn run(job: Job) -> eframe::Result<()> {
         Box::new(move |cc| {
             let stored = cc.storage.and_then(|s| eframe::get_value::<State>(s, STORAGE_KEY));
             let stored = stored.map(|s| if job == Job::default() { s } else { State { job: job.clone(), ..s } });
-            Ok(Box::new(App::new(job, stored, Box::new(NativeDialogs))))
+            let ctx = cc.egui_ctx.clone();
+            let planner = Planner::threaded(move || ctx.request_repaint());
+            Ok(Box::new(App::with_planner(job, stored, Box::new(NativeDialogs), planner)))
         }),
     )
 }
@@ -108,7 +110,53 @@ pub struct Planned {
     pub graphics: Graphics,
 }
 
+/// A request to the planning thread: generation, job, cycles drawn.
+type PlanRequest = (u64, Job, usize);
+/// Its answer: generation, plan (or error), time spent in the core and conversion (ms).
+type PlanAnswer = (u64, Result<Planned, JobError>, f64);
+
+/// Plan `job` and convert it for drawing.
+fn plan_and_draw(job: &Job, cycles_shown: usize) -> (Result<Planned, JobError>, f64) {
+    let t0 = Instant::now();
+    let planned = plan(job).map(|p| Planned { graphics: Graphics::new(&p, cycles_shown), plan: p });
+    (planned, t0.elapsed().as_secs_f64() * 1e3)
+}
+
+/// The planning thread of a [`Planner`]: takes the newest request, drops stale ones.
+struct PlanWorker {
+    tx: std::sync::mpsc::Sender<PlanRequest>,
+    rx: std::sync::mpsc::Receiver<PlanAnswer>,
+}
+
+impl PlanWorker {
+    fn spawn(repaint: impl Fn() + Send + 'static) -> Option<PlanWorker> {
+        let (tx, rx_req) = std::sync::mpsc::channel::<PlanRequest>();
+        let (tx_ans, rx) = std::sync::mpsc::channel::<PlanAnswer>();
+        std::thread::Builder::new()
+            .name("planner".into())
+            .spawn(move || {
+                while let Ok(mut req) = rx_req.recv() {
+                    while let Ok(newer) = rx_req.try_recv() {
+                        req = newer; // only the newest job matters
+                    }
+                    let (planned, ms) = plan_and_draw(&req.1, req.2);
+                    if tx_ans.send((req.0, planned, ms)).is_err() {
+                        break;
+                    }
+                    repaint();
+                }
+            })
+            .ok()?;
+        Some(PlanWorker { tx, rx })
+    }
+}
+
 /// The cache of the last plan: replans only when the job (or the drawn cycle count) changed.
+///
+/// Validation runs at once on the UI thread (the field is marked in the same frame); the plan
+/// itself runs inline ([`Planner::default`], used by the tests) or on a planning thread
+/// ([`Planner::threaded`], used by the window) so that a slow plan never stalls a frame: the
+/// plots show the previous plan until the new one arrives.
 #[derive(Default)]
 pub struct Planner {
     key: Option<(Job, usize)>,
@@ -116,30 +164,70 @@ pub struct Planner {
     pub last: Option<Planned>,
     /// Why the current job is invalid.
     pub error: Option<JobError>,
-    /// Number of times the core was called.
+    /// Number of plans requested from the core.
     pub replans: u64,
-    /// Duration of the last call (ms).
+    /// Duration of the last plan (ms).
     pub plan_ms: f64,
+    generation: u64,
+    applied: u64,
+    worker: Option<PlanWorker>,
 }
 
 impl Planner {
-    /// Replan if `job` differs from the last one; returns whether it did.
+    /// A planner computing on its own thread; `repaint` is called when a plan is ready.
+    pub fn threaded(repaint: impl Fn() + Send + 'static) -> Planner {
+        Planner { worker: PlanWorker::spawn(repaint), ..Planner::default() }
+    }
+
+    /// Whether a requested plan has not arrived yet.
+    pub fn pending(&self) -> bool {
+        self.applied < self.generation
+    }
+
+    fn apply(&mut self, generation: u64, planned: Result<Planned, JobError>, ms: f64) {
+        if generation < self.applied {
+            return;
+        }
+        self.applied = generation;
+        self.plan_ms = ms;
+        match planned {
+            Ok(p) => self.last = Some(p),
+            // Not expected (the job was validated before it was sent); keep the last plan.
+            Err(e) => self.error = Some(e),
+        }
+    }
+
+    /// Collect finished plans from the planning thread.
+    pub fn poll(&mut self) {
+        let answers: Vec<PlanAnswer> = self.worker.as_ref().map(|w| w.rx.try_iter().collect()).unwrap_or_default();
+        for (generation, planned, ms) in answers {
+            self.apply(generation, planned, ms);
+        }
+    }
+
+    /// Replan if `job` differs from the last one; returns whether a plan was requested.
     pub fn update(&mut self, job: &Job, cycles_shown: usize) -> bool {
+        self.poll();
         if self.key.as_ref().is_some_and(|(j, c)| j == job && *c == cycles_shown) {
             return false;
         }
-        let t0 = Instant::now();
-        match plan(job) {
-            Ok(p) => {
-                let graphics = Graphics::new(&p, cycles_shown);
-                self.last = Some(Planned { plan: p, graphics });
-                self.error = None;
-            }
-            Err(e) => self.error = Some(e),
-        }
-        self.plan_ms = t0.elapsed().as_secs_f64() * 1e3;
-        self.replans += 1;
         self.key = Some((job.clone(), cycles_shown));
+        if let Err(e) = job.validate() {
+            self.error = Some(e);
+            return false;
+        }
+        self.error = None;
+        self.generation += 1;
+        self.replans += 1;
+        let first = self.last.is_none();
+        if let Some(w) = &self.worker
+            && !first
+            && w.tx.send((self.generation, job.clone(), cycles_shown)).is_ok()
+        {
+            return true;
+        }
+        let (planned, ms) = plan_and_draw(job, cycles_shown);
+        self.apply(self.generation, planned, ms);
         true
     }
 }
@@ -197,12 +285,12 @@ struct FrameStats {
 }
 
 impl FrameStats {
-    fn record(&mut self, now: f64, dragging: bool, replanned: bool) {
+    fn record(&mut self, now: f64, dragging: bool, replanned: bool, plan_ms: f64) {
         if let Some(s) = self.cpu_s {
             let ms = s * 1e3;
             self.recent.push_back((now, ms));
             if self.log {
-                eprintln!("frame_ms={ms:.3} ui_ms={:.3} dragging={dragging} replanned={replanned}", self.ui_ms);
+                eprintln!("frame_ms={ms:.3} ui_ms={:.3} plan_ms={plan_ms:.3} dragging={dragging} replanned={replanned}", self.ui_ms);
             }
         }
         while self.recent.front().is_some_and(|&(t, _)| now - t > 2.0) {
@@ -231,12 +319,18 @@ pub struct App {
 }
 
 impl App {
-    /// The app on `job`, or on the restored `stored` state.
+    /// The app on `job`, or on the restored `stored` state, planning inline (headless tests).
+    #[cfg(test)]
     pub fn new(job: Job, stored: Option<State>, dialogs: Box<dyn FileDialogs>) -> App {
+        App::with_planner(job, stored, dialogs, Planner::default())
+    }
+
+    /// [`App::new`] with a given planner (the window uses [`Planner::threaded`]).
+    pub fn with_planner(job: Job, stored: Option<State>, dialogs: Box<dyn FileDialogs>, planner: Planner) -> App {
         let state = stored.unwrap_or_else(|| State { job, ..State::default() });
         let mut app = App {
             variants: Vec::new(),
-            planner: Planner::default(),
+            planner,
             undoer: Undoer::default(),
             anim: Animation::default(),
             sweep: None,
@@ -323,7 +417,7 @@ impl App {
         }
         self.frames.ui_ms = t0.elapsed().as_secs_f32() * 1e3;
         let dragging = ui.ctx().dragged_id().is_some();
-        self.frames.record(ui.input(|i| i.time), dragging, replanned);
+        self.frames.record(ui.input(|i| i.time), dragging, replanned, self.planner.plan_ms);
     }
 
     fn shortcuts(&self, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
@@ -394,7 +488,8 @@ impl App {
 
     fn status_bar(&self, ui: &mut egui::Ui) {
         ui.horizontal(|ui| {
-            ui.label(format!("plan {:.1} ms", self.planner.plan_ms))
+            let planning = if self.planner.pending() { " (planning…)" } else { "" };
+            ui.label(format!("plan {:.1} ms{planning}", self.planner.plan_ms))
                 .on_hover_text(format!("Time of the last core plan() call; {} calls so far.", self.planner.replans));
             ui.separator();
             match self.frames.summary() {
@@ -554,16 +649,23 @@ impl App {
     }
 }
 
-/// The plotted layers: the edited plan first, then (optionally) the pinned variants.
+/// The plotted layers: the edited plan (unless it is pinned) and, with `with_pins`, the pinned
+/// variants in their table colours. The layer of the edited plan is the primary one (cursor,
+/// cooling and h_max annotations), also when it is drawn as one of the pins.
 fn layers<'a>(planner: &'a Planner, variants: &'a [Variant], with_pins: bool) -> Vec<Layer<'a>> {
+    let current = planner.last.as_ref();
+    let is_current = |v: &Variant| current.is_some_and(|p| p.plan.job == v.planned.plan.job);
+    let pins: Vec<(usize, &Variant)> = if with_pins { variants.iter().enumerate().collect() } else { Vec::new() };
     let mut out = Vec::new();
-    if let Some(p) = &planner.last {
+    if let Some(p) = current
+        && !pins.iter().any(|(_, v)| is_current(v))
+    {
         out.push(Layer { name: "current", color: PALETTE[0], g: &p.graphics, w: w_of(&p.plan), primary: true });
     }
-    if with_pins {
-        for (i, v) in variants.iter().enumerate() {
-            out.push(Layer { name: &v.label, color: PALETTE[i + 1], g: &v.planned.graphics, w: w_of(&v.planned.plan), primary: false });
-        }
+    for (i, v) in pins {
+        let primary = is_current(v);
+        let layer = Layer { name: &v.label, color: PALETTE[i + 1], g: &v.planned.graphics, w: w_of(&v.planned.plan), primary };
+        if primary { out.insert(0, layer) } else { out.push(layer) }
     }
     out
 }

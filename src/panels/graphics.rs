@@ -37,6 +37,9 @@ pub struct Graphics {
     pub path_after: Vec<PlotPoint>,
     /// Edge of the tool during the previous cycle (curve C₂, eq. 3), absolute (mm).
     pub previous_edge: Vec<PlotPoint>,
+    /// Tool centres of the current cycle's teeth (absolute, mm) with their time (s), at most
+    /// [`MAX_SERIES_POINTS`] of them: the animation's trail.
+    pub teeth: Vec<(f64, PlotPoint)>,
     /// y range drawn in the path view (mm).
     pub y_range: (f64, f64),
     /// h over time, (t s, h mm), decimated.
@@ -82,6 +85,12 @@ impl Graphics {
         let y_range = (lo - r, hi + r);
 
         let series = &plan.series;
+        let stride = series.len().div_ceil(MAX_SERIES_POINTS).max(1);
+        let teeth = series
+            .iter()
+            .step_by(stride)
+            .map(|t| (t.time_s, PlotPoint::new(origin.x + t.x_mm, origin.y + t.y_mm)))
+            .collect();
         let h: Vec<[f64; 2]> = series.iter().map(|t| [t.time_s, t.h_mm]).collect();
         let eng: Vec<[f64; 2]> = series.iter().map(|t| [t.time_s, t.engagement_rad.to_degrees()]).collect();
         let mut cooling = Vec::new();
@@ -124,6 +133,7 @@ impl Graphics {
             path_current,
             path_after,
             previous_edge,
+            teeth,
             y_range,
             h: decimate(&h, MAX_SERIES_POINTS),
             engagement: decimate(&eng, MAX_SERIES_POINTS),

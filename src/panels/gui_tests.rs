@@ -196,3 +196,23 @@ fn persisted_state_round_trips() {
     let app = App::new(Job::default(), Some(back), Box::new(NativeDialogs));
     assert!((app.planner.last.as_ref().expect("plan").plan.metrics.step_mm - 0.6).abs() < 1e-12);
 }
+
+#[test]
+fn threaded_planner_delivers_the_newest_plan_and_validates_at_once() {
+    let mut p = Planner::threaded(|| {});
+    assert!(p.update(&Job::default(), 5));
+    assert!(p.last.is_some(), "the first plan is computed at once");
+    for step in [0.9, 0.8, 0.7] {
+        p.update(&Job { step, ..Job::default() }, 5);
+    }
+    let t0 = Instant::now();
+    while p.pending() && t0.elapsed().as_secs() < 30 {
+        std::thread::sleep(std::time::Duration::from_millis(2));
+        p.poll();
+    }
+    assert!(!p.pending());
+    assert!((p.last.as_ref().expect("plan").plan.metrics.step_mm - 0.7).abs() < 1e-12, "newest plan wins");
+    assert!(!p.update(&Job { tool_diameter: 25.0, ..Job::default() }, 5), "invalid: nothing planned");
+    assert_eq!(p.error.as_ref().and_then(JobError::parameter), Some("tool-diameter"));
+    assert!((p.last.as_ref().expect("plan").plan.metrics.step_mm - 0.7).abs() < 1e-12, "last valid plan kept");
+}

@@ -3,7 +3,7 @@
 
 use super::graphics::Graphics;
 use eframe::egui::{self, Color32, RichText, Stroke};
-use egui_plot::{Corner, HLine, Legend, Line, LineStyle, Plot, PlotPoint, PlotPoints, Points, Polygon, Span, Text, VLine};
+use egui_plot::{ColorConflictHandling, Corner, HLine, Legend, Line, LineStyle, Plot, PlotPoint, PlotPoints, Points, Polygon, Span, Text, VLine};
 use trochoplan_core::plan::ENGAGEMENT_LIMIT_DEG;
 
 /// One plan as drawn: its data, a name for the legend and a colour.
@@ -37,7 +37,7 @@ pub const PALETTE: [Color32; 5] = [
     Color32::from_rgb(200, 160, 0),
 ];
 
-const COOLING_FILL: Color32 = Color32::from_rgba_premultiplied(40, 120, 200, 40);
+const COOLING_FILL: Color32 = Color32::from_rgba_unmultiplied_const(40, 120, 200, 45);
 const CHIP_COLOR: Color32 = Color32::from_rgb(220, 30, 30);
 
 /// Explanations (teaching mode and hover): formula and source of each plot.
@@ -67,17 +67,28 @@ fn title(ui: &mut egui::Ui, text: &str, explanation: &str, teach: bool) {
         ui.label(RichText::new("(?)").weak()).on_hover_text(explanation);
     });
     if teach {
-        ui.label(RichText::new(explanation).small());
+        ui.add(egui::Label::new(RichText::new(explanation).weak()).wrap());
     }
 }
 
 /// A plot filling the rest of the cell the caller allocated.
 fn base_plot(ui: &egui::Ui, id: &str) -> Plot<'static> {
+    base_plot_at(ui, id, Corner::RightTop)
+}
+
+/// [`base_plot`] with the legend in `corner`.
+fn base_plot_at(ui: &egui::Ui, id: &str, corner: Corner) -> Plot<'static> {
     let size = ui.available_size();
     Plot::new(id)
         .width(size.x.max(120.0))
         .height(size.y.max(80.0))
-        .legend(Legend::default().position(Corner::RightTop).background_alpha(0.6))
+        .legend(
+            Legend::default()
+                .position(corner)
+                .background_alpha(0.75)
+                .text_style(egui::TextStyle::Small)
+                .color_conflict_handling(ColorConflictHandling::PickFirst),
+        )
         .allow_scroll(false)
 }
 
@@ -90,11 +101,17 @@ fn circle(c: [f64; 2], r: f64) -> Vec<[f64; 2]> {
         .collect()
 }
 
+/// Legend name of an item of layer `l`: with several layers, all items of a layer share its name
+/// (one legend entry per variant, toggling all of its items).
+fn named(layers: &[Layer], l: &Layer, what: &str) -> String {
+    if layers.len() > 1 { l.name.to_owned() } else { what.to_owned() }
+}
+
 /// Path view: tool-centre path over a few cycles, slot walls, previous cycle's edge and the tool
 /// at the cursor. Equal axis scale.
 pub fn path_view(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, teach: bool) {
     title(ui, "Path view (tool centre, slot walls, previous cycle's edge)", explain::PATH, teach);
-    base_plot(ui, "path_view").data_aspect(1.0).x_axis_label("x [mm]").y_axis_label("y [mm]").show(ui, |p| {
+    base_plot_at(ui, "path_view", Corner::LeftBottom).data_aspect(1.0).x_axis_label("x [mm]").y_axis_label("y [mm]").show(ui, |p| {
         for (k, l) in layers.iter().enumerate() {
             let g = l.g;
             if k == 0 {
@@ -113,10 +130,10 @@ pub fn path_view(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, te
                 }
             }
             let faint = l.color.gamma_multiply(0.45);
-            let label = |what: &str| if layers.len() > 1 { format!("{}: {what}", l.name) } else { what.to_owned() };
-            p.line(Line::new(label("tool-centre path"), PlotPoints::Borrowed(&g.path_before)).color(faint).width(1.0));
-            p.line(Line::new(label("tool-centre path"), PlotPoints::Borrowed(&g.path_after)).color(faint).width(1.0));
+            let label = |what: &str| named(layers, l, what);
             p.line(Line::new(label("current cycle"), PlotPoints::Borrowed(&g.path_current)).color(l.color).width(2.0));
+            p.line(Line::new(label("other cycles"), PlotPoints::Borrowed(&g.path_before)).color(faint).width(1.0));
+            p.line(Line::new(label("other cycles"), PlotPoints::Borrowed(&g.path_after)).color(faint).width(1.0));
             p.line(
                 Line::new(label("previous cycle's edge C₂"), PlotPoints::Borrowed(&g.previous_edge))
                     .color(l.color)
@@ -127,16 +144,19 @@ pub fn path_view(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, te
                 && let Some(c) = cursor
             {
                 let centre = [g.origin[0] + c.centre[0], g.origin[1] + c.centre[1]];
+                let mut trail: Vec<[f64; 2]> = g.teeth.iter().take_while(|(t, _)| *t <= c.t_s).map(|(_, p)| [p.x, p.y]).collect();
+                trail.push(centre);
+                p.line(Line::new("path so far this cycle", trail).color(CHIP_COLOR).width(3.0));
                 let (stroke, fill) = if c.cutting {
                     (Stroke::new(2.5, CHIP_COLOR), CHIP_COLOR.gamma_multiply(0.18))
                 } else {
                     (Stroke::new(2.0, Color32::DARK_GRAY), Color32::from_gray(128).gamma_multiply(0.12))
                 };
                 p.polygon(Polygon::new("tool at current tooth", circle(centre, g.tool_r)).stroke(stroke).fill_color(fill));
-                p.points(Points::new("tool centre", vec![centre]).radius(4.0).color(stroke.color));
+                p.points(Points::new("", vec![centre]).radius(4.0).color(stroke.color));
                 p.text(
                     Text::new(
-                        "tool label",
+                        "",
                         PlotPoint::new(centre[0], centre[1] + g.tool_r),
                         format!("h = {:.4} mm, {:.1}°", c.h_mm, c.engagement_deg),
                     )
@@ -156,25 +176,26 @@ pub fn h_plot(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, teach
             let g = l.g;
             if l.primary {
                 for (k, &(a, b)) in g.cooling.iter().enumerate() {
-                    let name = if k == 0 { "cooling (no tooth cuts)" } else { "cooling" };
+                    let name = if k == 0 { "cooling" } else { "" };
                     p.add(Span::new(name, a..=b).fill(COOLING_FILL).border_width(0.0));
                 }
             }
-            p.line(Line::new(format!("h {}", l.name), PlotPoints::Borrowed(&g.h)).color(l.color).width(1.5));
+            p.line(Line::new(named(layers, l, "h"), PlotPoints::Borrowed(&g.h)).color(l.color).width(1.5));
             let (t, h) = g.h_max_at;
-            p.points(Points::new(format!("h_max {}", l.name), vec![[t, h]]).radius(5.0).color(l.color));
+            p.points(Points::new("", vec![[t, h]]).radius(5.0).color(l.color));
             if l.primary {
                 p.hline(HLine::new("h_max", h).color(l.color.gamma_multiply(0.6)).style(LineStyle::dashed_dense()));
                 for &(a, b) in &g.t_hmax_spans {
-                    p.line(Line::new("t_hmax", vec![[a, h * 1.06], [b, h * 1.06]]).color(Color32::DARK_GREEN).width(3.0));
+                    p.line(Line::new("", vec![[a, h * 1.06], [b, h * 1.06]]).color(Color32::DARK_GREEN).width(3.0));
                 }
                 p.text(
-                    Text::new("h_max label", PlotPoint::new(t, h * 1.12), format!("h_max = {h:.4} mm"))
+                    Text::new("", PlotPoint::new(t, h * 1.12), format!("h_max = {h:.4} mm"))
                         .anchor(egui::Align2::CENTER_BOTTOM)
                         .color(l.color),
                 );
                 if let Some(c) = cursor {
                     p.vline(VLine::new("current tooth", c.t_s).color(CHIP_COLOR).width(1.5));
+                    p.points(Points::new("", vec![[c.t_s, c.h_mm]]).radius(5.0).color(CHIP_COLOR));
                 }
             }
         }
@@ -192,7 +213,7 @@ pub fn engagement_plot(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Curso
         );
         for l in layers {
             p.line(
-                Line::new(format!("engagement {}", l.name), PlotPoints::Borrowed(&l.g.engagement))
+                Line::new(named(layers, l, "engagement"), PlotPoints::Borrowed(&l.g.engagement))
                     .color(l.color)
                     .width(1.5),
             );
@@ -200,6 +221,7 @@ pub fn engagement_plot(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Curso
                 && let Some(c) = cursor
             {
                 p.vline(VLine::new("current tooth", c.t_s).color(CHIP_COLOR).width(1.5));
+                p.points(Points::new("", vec![[c.t_s, c.engagement_deg]]).radius(5.0).color(CHIP_COLOR));
             }
         }
     });
@@ -207,14 +229,14 @@ pub fn engagement_plot(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Curso
 
 /// Left and right wall deviation along y with W_l and W_r marked.
 pub fn wall_plot(ui: &mut egui::Ui, layers: &[Layer], teach: bool) {
-    title(ui, "Wall profiles: deviation from the deepest point (Figs. 8–9)", explain::WALLS, teach);
+    title(ui, "Wall profiles: left solid, right dashed (Figs. 8–9)", explain::WALLS, teach);
     base_plot(ui, "wall_plot").x_axis_label("y [mm]").y_axis_label("deviation [mm]").include_y(0.0).show(ui, |p| {
         for l in layers {
             let (w_l, w_r) = l.w;
             let right = l.color.gamma_multiply(0.55);
-            p.line(Line::new(format!("left wall {}", l.name), PlotPoints::Borrowed(&l.g.wall_left)).color(l.color).width(1.8));
+            p.line(Line::new(named(layers, l, "left wall"), PlotPoints::Borrowed(&l.g.wall_left)).color(l.color).width(1.8));
             p.line(
-                Line::new(format!("right wall {}", l.name), PlotPoints::Borrowed(&l.g.wall_right))
+                Line::new(named(layers, l, "right wall (dashed)"), PlotPoints::Borrowed(&l.g.wall_right))
                     .color(right)
                     .style(LineStyle::dashed_dense())
                     .width(1.8),

@@ -4,7 +4,7 @@
 
 use super::Command;
 use eframe::egui::{self, Color32, RichText};
-use egui_plot::{Corner, Legend, Line, Plot, Points, VLine};
+use egui_plot::{AxisHints, Corner, Legend, Line, Plot, Points, VLine};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -277,7 +277,7 @@ pub fn show(
                     .width(cell.x)
                     .height(cell.y)
                     .legend(Legend::default().position(Corner::RightTop))
-                    .x_axis_label(xlabel)
+                    .custom_x_axes(vec![AxisHints::new_x().label(xlabel).label_spacing(28.0..=44.0)])
                     .y_axis_label(*ylabel)
                     .allow_scroll(false)
                     .show(ui, |p| {

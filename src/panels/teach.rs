@@ -74,7 +74,8 @@ pub fn controls(ui: &mut egui::Ui, anim: &mut Animation, plan: &Plan) {
         }
         let mut t = anim.time(plan);
         let scrub = ui.label("t");
-        ui.spacing_mut().slider_width = (ui.available_width() - 420.0).clamp(100.0, 500.0);
+        // Leave room for the speed slider, the buttons and the readout on this row.
+        ui.spacing_mut().slider_width = (ui.available_width() - 640.0).clamp(80.0, 400.0);
         let r = ui
             .add(egui::Slider::new(&mut t, 0.0..=t_cycle).clamping(egui::SliderClamping::Never).suffix(" s").max_decimals(3))
             .labelled_by(scrub.id)
@@ -83,6 +84,7 @@ pub fn controls(ui: &mut egui::Ui, anim: &mut Animation, plan: &Plan) {
             anim.t_s = Some(t);
             anim.playing = false;
         }
+        ui.spacing_mut().slider_width = 80.0;
         let l = ui.label("speed");
         ui.add(egui::Slider::new(&mut anim.speed, 0.05..=2.0).logarithmic(true).suffix("×").max_decimals(2))
             .labelled_by(l.id)
