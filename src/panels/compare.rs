@@ -135,14 +135,14 @@ pub fn show(ui: &mut egui::Ui, variants: &[VariantView], can_pin: bool) -> Optio
             }
         });
     });
-    ui.label(
+    ui.add(egui::Label::new(
         RichText::new(
             "% change against variant #1. Green: better, red: worse (MRR and cooling time up, h_max, \
              engagement and waviness down). The paper ranks paths by PI = MRR/(F_R,max·R_a,max·W_max), \
              eq. (7); forces and roughness are not modelled here.",
         )
-        .small(),
-    );
+        .weak(),
+    ).wrap());
     cmd
 }
 

@@ -3,7 +3,7 @@
 
 use super::graphics::Graphics;
 use eframe::egui::{self, Color32, RichText, Stroke};
-use egui_plot::{ColorConflictHandling, Corner, HLine, Legend, Line, LineStyle, Plot, PlotPoint, PlotPoints, Points, Polygon, Span, Text, VLine};
+use egui_plot::{AxisHints, ColorConflictHandling, Corner, HLine, Legend, Line, LineStyle, Plot, PlotPoint, PlotPoints, Points, Polygon, Span, Text, VLine};
 use trochoplan_core::plan::ENGAGEMENT_LIMIT_DEG;
 
 /// One plan as drawn: its data, a name for the legend and a colour.
@@ -71,6 +71,12 @@ fn title(ui: &mut egui::Ui, text: &str, explanation: &str, teach: bool) {
     }
 }
 
+/// An x axis whose tick labels may sit closer than egui_plot's default (60 px), so that narrow
+/// plots still get several labels.
+fn x_axis(label: &str) -> Vec<AxisHints<'static>> {
+    vec![AxisHints::new_x().label(label.to_owned()).label_spacing(28.0..=44.0)]
+}
+
 /// A plot filling the rest of the cell the caller allocated.
 fn base_plot(ui: &egui::Ui, id: &str) -> Plot<'static> {
     base_plot_at(ui, id, Corner::RightTop)
@@ -111,7 +117,7 @@ fn named(layers: &[Layer], l: &Layer, what: &str) -> String {
 /// at the cursor. Equal axis scale.
 pub fn path_view(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, teach: bool) {
     title(ui, "Path view (tool centre, slot walls, previous cycle's edge)", explain::PATH, teach);
-    base_plot_at(ui, "path_view", Corner::LeftBottom).data_aspect(1.0).x_axis_label("x [mm]").y_axis_label("y [mm]").show(ui, |p| {
+    base_plot_at(ui, "path_view", Corner::LeftBottom).data_aspect(1.0).custom_x_axes(x_axis("x [mm]")).y_axis_label("y [mm]").show(ui, |p| {
         for (k, l) in layers.iter().enumerate() {
             let g = l.g;
             if k == 0 {
@@ -171,7 +177,7 @@ pub fn path_view(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, te
 /// h over one steady-state cycle with h_max, t_hmax and the cooling intervals.
 pub fn h_plot(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, teach: bool) {
     title(ui, "Chip thickness h over one steady-state cycle (Fig. 7)", explain::H, teach);
-    base_plot(ui, "h_plot").x_axis_label("t [s]").y_axis_label("h [mm]").include_y(0.0).show(ui, |p| {
+    base_plot(ui, "h_plot").custom_x_axes(x_axis("t [s]")).y_axis_label("h [mm]").include_y(0.0).show(ui, |p| {
         for l in layers {
             let g = l.g;
             if l.primary {
@@ -205,7 +211,7 @@ pub fn h_plot(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, teach
 /// Engagement angle over one steady-state cycle, with the 46° recommendation.
 pub fn engagement_plot(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, teach: bool) {
     title(ui, "Engagement angle over one cycle", explain::ENGAGEMENT, teach);
-    base_plot(ui, "engagement_plot").x_axis_label("t [s]").y_axis_label("engagement [°]").include_y(0.0).show(ui, |p| {
+    base_plot(ui, "engagement_plot").custom_x_axes(x_axis("t [s]")).y_axis_label("engagement [°]").include_y(0.0).show(ui, |p| {
         p.hline(
             HLine::new("46° recommended limit", ENGAGEMENT_LIMIT_DEG)
                 .color(Color32::from_rgb(200, 60, 60))
@@ -230,7 +236,7 @@ pub fn engagement_plot(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Curso
 /// Left and right wall deviation along y with W_l and W_r marked.
 pub fn wall_plot(ui: &mut egui::Ui, layers: &[Layer], teach: bool) {
     title(ui, "Wall profiles: left solid, right dashed (Figs. 8–9)", explain::WALLS, teach);
-    base_plot(ui, "wall_plot").x_axis_label("y [mm]").y_axis_label("deviation [mm]").include_y(0.0).show(ui, |p| {
+    base_plot(ui, "wall_plot").custom_x_axes(x_axis("y [mm]")).y_axis_label("deviation [mm]").include_y(0.0).show(ui, |p| {
         for l in layers {
             let (w_l, w_r) = l.w;
             let right = l.color.gamma_multiply(0.55);
