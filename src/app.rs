@@ -290,7 +290,10 @@ impl FrameStats {
             let ms = s * 1e3;
             self.recent.push_back((now, ms));
             if self.log {
-                eprintln!("frame_ms={ms:.3} ui_ms={:.3} plan_ms={plan_ms:.3} dragging={dragging} replanned={replanned}", self.ui_ms);
+                eprintln!(
+                    "frame_ms={ms:.3} ui_ms={:.3} plan_ms={plan_ms:.3} dragging={dragging} replanned={replanned}",
+                    self.ui_ms
+                );
             }
         }
         while self.recent.front().is_some_and(|&(t, _)| now - t > 2.0) {
@@ -387,7 +390,11 @@ impl App {
                     if ui.add_enabled(self.undoer.has_redo(&self.state.job), egui::Button::new("Redo")).clicked() {
                         cmds.push(Command::Redo);
                     }
-                    if ui.button("Reset to paper defaults").on_hover_text("Wagih et al. (2023) Table 1 conditions").clicked() {
+                    if ui
+                        .button("Reset to paper defaults")
+                        .on_hover_text("Wagih et al. (2023) Table 1 conditions")
+                        .clicked()
+                    {
                         cmds.push(Command::ResetJob);
                     }
                 });
@@ -461,10 +468,14 @@ impl App {
                 }
             });
             ui.menu_button("Edit", |ui| {
-                if ui.add_enabled(self.undoer.has_undo(&self.state.job), egui::Button::new("Undo  (Ctrl+Z)")).clicked() {
+                if ui.add_enabled(self.undoer.has_undo(&self.state.job), egui::Button::new("Undo  (Ctrl+Z)")).clicked()
+                {
                     cmds.push(Command::Undo);
                 }
-                if ui.add_enabled(self.undoer.has_redo(&self.state.job), egui::Button::new("Redo  (Ctrl+Shift+Z)")).clicked() {
+                if ui
+                    .add_enabled(self.undoer.has_redo(&self.state.job), egui::Button::new("Redo  (Ctrl+Shift+Z)"))
+                    .clicked()
+                {
                     cmds.push(Command::Redo);
                 }
             });
@@ -539,7 +550,11 @@ impl App {
                     .variants
                     .iter()
                     .enumerate()
-                    .map(|(i, v)| VariantView { label: &v.label, color: PALETTE[i + 1], metrics: &v.planned.plan.metrics })
+                    .map(|(i, v)| VariantView {
+                        label: &v.label,
+                        color: PALETTE[i + 1],
+                        metrics: &v.planned.plan.metrics,
+                    })
                     .collect();
                 let can_pin = self.planner.error.is_none();
                 if let Some(c) = compare::show(ui, &views, can_pin) {
@@ -626,7 +641,9 @@ impl App {
 
     /// Read a job file into the edited job (one undo step).
     pub fn open(&mut self, path: &Path) {
-        let read = std::fs::read_to_string(path).map_err(|e| e.to_string()).and_then(|text| Job::from_toml(&text).map_err(|e| e.to_string()));
+        let read = std::fs::read_to_string(path)
+            .map_err(|e| e.to_string())
+            .and_then(|text| Job::from_toml(&text).map_err(|e| e.to_string()));
         match read {
             Ok(job) => {
                 self.set_job(job);
@@ -664,7 +681,8 @@ fn layers<'a>(planner: &'a Planner, variants: &'a [Variant], with_pins: bool) ->
     }
     for (i, v) in pins {
         let primary = is_current(v);
-        let layer = Layer { name: &v.label, color: PALETTE[i + 1], g: &v.planned.graphics, w: w_of(&v.planned.plan), primary };
+        let layer =
+            Layer { name: &v.label, color: PALETTE[i + 1], g: &v.planned.graphics, w: w_of(&v.planned.plan), primary };
         if primary { out.insert(0, layer) } else { out.push(layer) }
     }
     out
@@ -703,7 +721,8 @@ impl eframe::App for App {
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
-        self.state.pinned = self.variants.iter().map(|v| PinnedJob { label: v.label.clone(), job: v.job.clone() }).collect();
+        self.state.pinned =
+            self.variants.iter().map(|v| PinnedJob { label: v.label.clone(), job: v.job.clone() }).collect();
         eframe::set_value(storage, STORAGE_KEY, &self.state);
     }
 }

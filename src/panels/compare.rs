@@ -27,13 +27,25 @@ struct Quantity {
 const QUANTITIES: [Quantity; 11] = [
     Quantity { name: "r_e", unit: "", value: |m| m.aspect_ratio, decimals: 2, higher_is_better: None },
     Quantity { name: "d", unit: "mm", value: |m| m.linear_distance_mm, decimals: 2, higher_is_better: None },
-    Quantity { name: "cycle length", unit: "mm", value: |m| m.cycle_length_mm, decimals: 2, higher_is_better: Some(false) },
+    Quantity {
+        name: "cycle length",
+        unit: "mm",
+        value: |m| m.cycle_length_mm,
+        decimals: 2,
+        higher_is_better: Some(false),
+    },
     Quantity { name: "t_cycle", unit: "s", value: |m| m.t_cycle_s, decimals: 3, higher_is_better: Some(false) },
     Quantity { name: "MRR", unit: "mm³/min", value: |m| m.mrr_mm3_per_min, decimals: 0, higher_is_better: Some(true) },
     Quantity { name: "h_max", unit: "mm", value: |m| m.h_max_mm, decimals: 4, higher_is_better: Some(false) },
     Quantity { name: "t_hmax", unit: "s", value: |m| m.t_hmax_s, decimals: 3, higher_is_better: None },
     Quantity { name: "t_cooling", unit: "s", value: |m| m.t_cooling_s, decimals: 3, higher_is_better: Some(true) },
-    Quantity { name: "max engagement", unit: "°", value: |m| m.engagement_max_deg, decimals: 1, higher_is_better: Some(false) },
+    Quantity {
+        name: "max engagement",
+        unit: "°",
+        value: |m| m.engagement_max_deg,
+        decimals: 1,
+        higher_is_better: Some(false),
+    },
     Quantity { name: "W_l", unit: "mm", value: |m| m.waviness_left_mm, decimals: 4, higher_is_better: Some(false) },
     Quantity { name: "W_r", unit: "mm", value: |m| m.waviness_right_mm, decimals: 4, higher_is_better: Some(false) },
 ];
@@ -90,7 +102,9 @@ pub fn show(ui: &mut egui::Ui, variants: &[VariantView], can_pin: bool) -> Optio
         }
     });
     if variants.is_empty() {
-        ui.label("No variants pinned. Pin the current job, change a parameter, pin again: every plot overlays the pins.");
+        ui.label(
+            "No variants pinned. Pin the current job, change a parameter, pin again: every plot overlays the pins.",
+        );
         return cmd;
     }
     ui.add_space(4.0);
@@ -125,7 +139,11 @@ pub fn show(ui: &mut egui::Ui, variants: &[VariantView], can_pin: bool) -> Optio
                             && let Some(up) = q.higher_is_better
                         {
                             let good = (p > 0.0) == up;
-                            color = Some(if good { Color32::from_rgb(30, 140, 60) } else { Color32::from_rgb(200, 50, 40) });
+                            color = Some(if good {
+                                Color32::from_rgb(30, 140, 60)
+                            } else {
+                                Color32::from_rgb(200, 50, 40)
+                            });
                         }
                     }
                     let rt = RichText::new(text).monospace();
@@ -135,14 +153,17 @@ pub fn show(ui: &mut egui::Ui, variants: &[VariantView], can_pin: bool) -> Optio
             }
         });
     });
-    ui.add(egui::Label::new(
-        RichText::new(
-            "% change against variant #1. Green: better, red: worse (MRR and cooling time up, h_max, \
+    ui.add(
+        egui::Label::new(
+            RichText::new(
+                "% change against variant #1. Green: better, red: worse (MRR and cooling time up, h_max, \
              engagement and waviness down). The paper ranks paths by PI = MRR/(F_R,max·R_a,max·W_max), \
              eq. (7); forces and roughness are not modelled here.",
+            )
+            .weak(),
         )
-        .weak(),
-    ).wrap());
+        .wrap(),
+    );
     cmd
 }
 

@@ -72,7 +72,8 @@ impl Graphics {
         let before = (cycles_shown - 2).min(current);
         let first = current - before;
         let origin = path.origin(current);
-        let to_pts = |v: Vec<trochoplan_core::geom::P2>| v.into_iter().map(|p| PlotPoint::new(p.x, p.y)).collect::<Vec<_>>();
+        let to_pts =
+            |v: Vec<trochoplan_core::geom::P2>| v.into_iter().map(|p| PlotPoint::new(p.x, p.y)).collect::<Vec<_>>();
         let path_before = to_pts(path.sample_cycles(first, before, POINTS_PER_SEGMENT));
         let path_current = to_pts(path.sample_cycles(current, 1, POINTS_PER_SEGMENT));
         let path_after = to_pts(path.sample_cycles(current + 1, 1, POINTS_PER_SEGMENT));
@@ -108,11 +109,7 @@ impl Graphics {
         if let Some(s0) = start {
             cooling.push((s0, m.t_cycle_s));
         }
-        let imax = series
-            .iter()
-            .enumerate()
-            .max_by(|a, b| a.1.h_mm.total_cmp(&b.1.h_mm))
-            .map_or(0, |(i, _)| i);
+        let imax = series.iter().enumerate().max_by(|a, b| a.1.h_mm.total_cmp(&b.1.h_mm)).map_or(0, |(i, _)| i);
         let h_max_at = series.get(imax).map_or((0.0, 0.0), |t| (t.time_s, t.h_mm));
         let t_start = h_max_at.0 - m.t_hmax_s;
         let t_hmax_spans = if t_start >= 0.0 {
@@ -173,7 +170,8 @@ mod tests {
 
     #[test]
     fn decimation_keeps_peaks_and_bounds_size() {
-        let pts: Vec<[f64; 2]> = (0..100_000).map(|i| [i as f64, if i == 54_321 { 9.0 } else { (i % 7) as f64 }]).collect();
+        let pts: Vec<[f64; 2]> =
+            (0..100_000).map(|i| [i as f64, if i == 54_321 { 9.0 } else { (i % 7) as f64 }]).collect();
         let d = decimate(&pts, 2000);
         assert!(d.len() <= 2000, "{}", d.len());
         assert!(d.iter().any(|p| p.y == 9.0), "peak kept");

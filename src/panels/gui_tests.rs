@@ -23,9 +23,8 @@ impl FileDialogs for FakeDialogs {
 }
 
 fn harness_with(app: App) -> Harness<'static, App> {
-    let mut h = Harness::builder()
-        .with_size(egui::vec2(1400.0, 900.0))
-        .build_ui_state(|ui, app: &mut App| app.show(ui), app);
+    let mut h =
+        Harness::builder().with_size(egui::vec2(1400.0, 900.0)).build_ui_state(|ui, app: &mut App| app.show(ui), app);
     h.run();
     h
 }
@@ -137,7 +136,8 @@ fn compare_mode_adds_variants_and_shows_percent_changes() {
 fn undo_redo_and_open_save_through_the_dialog_trait() {
     let dir = tempfile::tempdir().expect("tempdir");
     let file = dir.path().join("job.toml");
-    let app = App::new(Job::default(), None, Box::new(FakeDialogs { open: Some(file.clone()), save: Some(file.clone()) }));
+    let app =
+        App::new(Job::default(), None, Box::new(FakeDialogs { open: Some(file.clone()), save: Some(file.clone()) }));
     let mut h = harness_with(app);
     h.get_by_role_and_label(Role::Slider, label::STEP).set_value_accesskit(0.8);
     h.run();

@@ -34,16 +34,24 @@ pub fn path_label(kind: PathKind) -> &'static str {
 
 fn path_tooltip(kind: PathKind) -> &'static str {
     match kind {
-        PathKind::Circular => "True trochoid, Wagih et al. (2023) eq. (1) with r_e = 1: the usual \
-            trochoidal path. Waviness on both walls (Fig. 8a).",
-        PathKind::CircularType => "A straight step s along the left wall, then a full circle of \
-            radius a (Fig. 8b). Waviness only on the right wall; longer path, lower MRR.",
-        PathKind::Elliptical => "Eq. (1) with aspect ratio r_e = b/a (eq. 2). r_e < 1 shortens the \
+        PathKind::Circular => {
+            "True trochoid, Wagih et al. (2023) eq. (1) with r_e = 1: the usual \
+            trochoidal path. Waviness on both walls (Fig. 8a)."
+        }
+        PathKind::CircularType => {
+            "A straight step s along the left wall, then a full circle of \
+            radius a (Fig. 8b). Waviness only on the right wall; longer path, lower MRR."
+        }
+        PathKind::Elliptical => {
+            "Eq. (1) with aspect ratio r_e = b/a (eq. 2). r_e < 1 shortens the \
             path (up to 23 % at r_e = 0.5, Fig. 5) and raises MRR with h_max almost unchanged \
-            (Table 2), but raises the wall waviness (Fig. 9).",
-        PathKind::LinearElliptical => "Paper section 3: +d along the left wall, front \
+            (Table 2), but raises the wall waviness (Fig. 9)."
+        }
+        PathKind::LinearElliptical => {
+            "Paper section 3: +d along the left wall, front \
             half-ellipse, −d along the right wall, back half-ellipse. The straight pieces along the \
-            walls cut the waviness (d = 0.75·s: about three times less, Figs. 25–28).",
+            walls cut the waviness (d = 0.75·s: about three times less, Figs. 25–28)."
+        }
     }
 }
 
@@ -107,21 +115,42 @@ pub fn show(ui: &mut egui::Ui, job: &mut Job, error: Option<&JobError>) {
         };
         field(
             ui,
-            f(label::SLOT_WIDTH, "slot-width", "mm", "Slot width B (mm). With the tool diameter it sets the \
-                trochoidal radius a = (B − D)/2. Paper Table 1: 20 mm.", 2.0..=100.0, true),
+            f(
+                label::SLOT_WIDTH,
+                "slot-width",
+                "mm",
+                "Slot width B (mm). With the tool diameter it sets the \
+                trochoidal radius a = (B − D)/2. Paper Table 1: 20 mm.",
+                2.0..=100.0,
+                true,
+            ),
             &mut job.slot_width,
         );
         field(
             ui,
-            f(label::SLOT_LENGTH, "slot-length", "mm", "Slot length L (mm) along +y from the stock face. \
+            f(
+                label::SLOT_LENGTH,
+                "slot-length",
+                "mm",
+                "Slot length L (mm) along +y from the stock face. \
                 Sets the number of cycles and the machining time; does not change the per-cycle \
-                analysis. Paper: 20 mm.", 1.0..=2000.0, true),
+                analysis. Paper: 20 mm.",
+                1.0..=2000.0,
+                true,
+            ),
             &mut job.slot_length,
         );
         field(
             ui,
-            f(label::DEPTH, "depth", "mm", "Axial depth of cut a_p = slot depth in one pass (mm). \
-                MRR = B·s·a_p / t_cycle grows linearly with it. Paper section 4: 6 mm.", 0.1..=50.0, true),
+            f(
+                label::DEPTH,
+                "depth",
+                "mm",
+                "Axial depth of cut a_p = slot depth in one pass (mm). \
+                MRR = B·s·a_p / t_cycle grows linearly with it. Paper section 4: 6 mm.",
+                0.1..=50.0,
+                true,
+            ),
             &mut job.depth,
         );
     });
@@ -173,15 +202,29 @@ pub fn show(ui: &mut egui::Ui, job: &mut Job, error: Option<&JobError>) {
         };
         field(
             ui,
-            f(label::FEED, "feed", "mm/min", "Tool-centre feed rate f_r (mm/min). Sets the cycle time \
+            f(
+                label::FEED,
+                "feed",
+                "mm/min",
+                "Tool-centre feed rate f_r (mm/min). Sets the cycle time \
                 t_cycle = cycle length / f_r and the feed per tooth f_z = f_r/(n·z), to which h is \
-                proportional. Paper Table 1: 600 mm/min.", 10.0..=10000.0, 1),
+                proportional. Paper Table 1: 600 mm/min.",
+                10.0..=10000.0,
+                1,
+            ),
             &mut job.feed,
         );
         field(
             ui,
-            f(label::RPM, "rpm", "rpm", "Spindle speed n (rpm). Higher n: smaller f_z, thinner chips, \
-                same cycle time. Paper Table 1: 2000 rpm.", 100.0..=40000.0, 0),
+            f(
+                label::RPM,
+                "rpm",
+                "rpm",
+                "Spindle speed n (rpm). Higher n: smaller f_z, thinner chips, \
+                same cycle time. Paper Table 1: 2000 rpm.",
+                100.0..=40000.0,
+                0,
+            ),
             &mut job.rpm,
         );
     });

@@ -3,7 +3,10 @@
 
 use super::graphics::Graphics;
 use eframe::egui::{self, Color32, RichText, Stroke};
-use egui_plot::{AxisHints, ColorConflictHandling, Corner, HLine, Legend, Line, LineStyle, Plot, PlotPoint, PlotPoints, Points, Polygon, Span, Text, VLine};
+use egui_plot::{
+    AxisHints, ColorConflictHandling, Corner, HLine, Legend, Line, LineStyle, Plot, PlotPoint, PlotPoints, Points,
+    Polygon, Span, Text, VLine,
+};
 use trochoplan_core::plan::ENGAGEMENT_LIMIT_DEG;
 
 /// One plan as drawn: its data, a name for the legend and a colour.
@@ -117,61 +120,70 @@ fn named(layers: &[Layer], l: &Layer, what: &str) -> String {
 /// at the cursor. Equal axis scale.
 pub fn path_view(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, teach: bool) {
     title(ui, "Path view (tool centre, slot walls, previous cycle's edge)", explain::PATH, teach);
-    base_plot_at(ui, "path_view", Corner::LeftBottom).data_aspect(1.0).custom_x_axes(x_axis("x [mm]")).y_axis_label("y [mm]").show(ui, |p| {
-        for (k, l) in layers.iter().enumerate() {
-            let g = l.g;
-            if k == 0 {
-                let (y0, y1) = (g.y_range.0.max(0.0), g.y_range.1.min(g.slot_length));
-                let (y0, y1) = if y0 < y1 { (y0, y1) } else { g.y_range };
-                let wall = Stroke::new(2.0, Color32::GRAY);
-                for x in [-g.half_width, g.half_width] {
-                    p.line(Line::new("slot walls", vec![[x, y0], [x, y1]]).stroke(wall));
+    base_plot_at(ui, "path_view", Corner::LeftBottom)
+        .data_aspect(1.0)
+        .custom_x_axes(x_axis("x [mm]"))
+        .y_axis_label("y [mm]")
+        .show(ui, |p| {
+            for (k, l) in layers.iter().enumerate() {
+                let g = l.g;
+                if k == 0 {
+                    let (y0, y1) = (g.y_range.0.max(0.0), g.y_range.1.min(g.slot_length));
+                    let (y0, y1) = if y0 < y1 { (y0, y1) } else { g.y_range };
+                    let wall = Stroke::new(2.0, Color32::GRAY);
+                    for x in [-g.half_width, g.half_width] {
+                        p.line(Line::new("slot walls", vec![[x, y0], [x, y1]]).stroke(wall));
+                    }
+                    if g.y_range.0 < 0.0 && g.y_range.1 > 0.0 {
+                        p.line(
+                            Line::new("stock face y = 0", vec![[-g.half_width, 0.0], [g.half_width, 0.0]])
+                                .stroke(Stroke::new(1.0, Color32::GRAY))
+                                .style(LineStyle::dashed_dense()),
+                        );
+                    }
                 }
-                if g.y_range.0 < 0.0 && g.y_range.1 > 0.0 {
-                    p.line(
-                        Line::new("stock face y = 0", vec![[-g.half_width, 0.0], [g.half_width, 0.0]])
-                            .stroke(Stroke::new(1.0, Color32::GRAY))
-                            .style(LineStyle::dashed_dense()),
+                let faint = l.color.gamma_multiply(0.45);
+                let label = |what: &str| named(layers, l, what);
+                p.line(
+                    Line::new(label("current cycle"), PlotPoints::Borrowed(&g.path_current)).color(l.color).width(2.0),
+                );
+                p.line(Line::new(label("other cycles"), PlotPoints::Borrowed(&g.path_before)).color(faint).width(1.0));
+                p.line(Line::new(label("other cycles"), PlotPoints::Borrowed(&g.path_after)).color(faint).width(1.0));
+                p.line(
+                    Line::new(label("previous cycle's edge C₂"), PlotPoints::Borrowed(&g.previous_edge))
+                        .color(l.color)
+                        .style(LineStyle::dashed_loose())
+                        .width(1.2),
+                );
+                if l.primary
+                    && let Some(c) = cursor
+                {
+                    let centre = [g.origin[0] + c.centre[0], g.origin[1] + c.centre[1]];
+                    let mut trail: Vec<[f64; 2]> =
+                        g.teeth.iter().take_while(|(t, _)| *t <= c.t_s).map(|(_, p)| [p.x, p.y]).collect();
+                    trail.push(centre);
+                    p.line(Line::new("path so far this cycle", trail).color(CHIP_COLOR).width(3.0));
+                    let (stroke, fill) = if c.cutting {
+                        (Stroke::new(2.5, CHIP_COLOR), CHIP_COLOR.gamma_multiply(0.18))
+                    } else {
+                        (Stroke::new(2.0, Color32::DARK_GRAY), Color32::from_gray(128).gamma_multiply(0.12))
+                    };
+                    p.polygon(
+                        Polygon::new("tool at current tooth", circle(centre, g.tool_r)).stroke(stroke).fill_color(fill),
+                    );
+                    p.points(Points::new("", vec![centre]).radius(4.0).color(stroke.color));
+                    p.text(
+                        Text::new(
+                            "",
+                            PlotPoint::new(centre[0], centre[1] + g.tool_r),
+                            format!("h = {:.4} mm, {:.1}°", c.h_mm, c.engagement_deg),
+                        )
+                        .anchor(egui::Align2::CENTER_BOTTOM)
+                        .color(stroke.color),
                     );
                 }
             }
-            let faint = l.color.gamma_multiply(0.45);
-            let label = |what: &str| named(layers, l, what);
-            p.line(Line::new(label("current cycle"), PlotPoints::Borrowed(&g.path_current)).color(l.color).width(2.0));
-            p.line(Line::new(label("other cycles"), PlotPoints::Borrowed(&g.path_before)).color(faint).width(1.0));
-            p.line(Line::new(label("other cycles"), PlotPoints::Borrowed(&g.path_after)).color(faint).width(1.0));
-            p.line(
-                Line::new(label("previous cycle's edge C₂"), PlotPoints::Borrowed(&g.previous_edge))
-                    .color(l.color)
-                    .style(LineStyle::dashed_loose())
-                    .width(1.2),
-            );
-            if l.primary
-                && let Some(c) = cursor
-            {
-                let centre = [g.origin[0] + c.centre[0], g.origin[1] + c.centre[1]];
-                let mut trail: Vec<[f64; 2]> = g.teeth.iter().take_while(|(t, _)| *t <= c.t_s).map(|(_, p)| [p.x, p.y]).collect();
-                trail.push(centre);
-                p.line(Line::new("path so far this cycle", trail).color(CHIP_COLOR).width(3.0));
-                let (stroke, fill) = if c.cutting {
-                    (Stroke::new(2.5, CHIP_COLOR), CHIP_COLOR.gamma_multiply(0.18))
-                } else {
-                    (Stroke::new(2.0, Color32::DARK_GRAY), Color32::from_gray(128).gamma_multiply(0.12))
-                };
-                p.polygon(Polygon::new("tool at current tooth", circle(centre, g.tool_r)).stroke(stroke).fill_color(fill));
-                p.points(Points::new("", vec![centre]).radius(4.0).color(stroke.color));
-                p.text(
-                    Text::new(
-                        "",
-                        PlotPoint::new(centre[0], centre[1] + g.tool_r),
-                        format!("h = {:.4} mm, {:.1}°", c.h_mm, c.engagement_deg),
-                    )
-                    .anchor(egui::Align2::CENTER_BOTTOM)
-                    .color(stroke.color),
-                );
-            }
-        }
-    });
+        });
 }
 
 /// h over one steady-state cycle with h_max, t_hmax and the cooling intervals.
@@ -211,46 +223,60 @@ pub fn h_plot(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, teach
 /// Engagement angle over one steady-state cycle, with the 46° recommendation.
 pub fn engagement_plot(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, teach: bool) {
     title(ui, "Engagement angle over one cycle", explain::ENGAGEMENT, teach);
-    base_plot(ui, "engagement_plot").custom_x_axes(x_axis("t [s]")).y_axis_label("engagement [°]").include_y(0.0).show(ui, |p| {
-        p.hline(
-            HLine::new("46° recommended limit", ENGAGEMENT_LIMIT_DEG)
-                .color(Color32::from_rgb(200, 60, 60))
-                .style(LineStyle::dashed_dense()),
-        );
-        for l in layers {
-            p.line(
-                Line::new(named(layers, l, "engagement"), PlotPoints::Borrowed(&l.g.engagement))
-                    .color(l.color)
-                    .width(1.5),
+    base_plot(ui, "engagement_plot").custom_x_axes(x_axis("t [s]")).y_axis_label("engagement [°]").include_y(0.0).show(
+        ui,
+        |p| {
+            p.hline(
+                HLine::new("46° recommended limit", ENGAGEMENT_LIMIT_DEG)
+                    .color(Color32::from_rgb(200, 60, 60))
+                    .style(LineStyle::dashed_dense()),
             );
-            if l.primary
-                && let Some(c) = cursor
-            {
-                p.vline(VLine::new("current tooth", c.t_s).color(CHIP_COLOR).width(1.5));
-                p.points(Points::new("", vec![[c.t_s, c.engagement_deg]]).radius(5.0).color(CHIP_COLOR));
+            for l in layers {
+                p.line(
+                    Line::new(named(layers, l, "engagement"), PlotPoints::Borrowed(&l.g.engagement))
+                        .color(l.color)
+                        .width(1.5),
+                );
+                if l.primary
+                    && let Some(c) = cursor
+                {
+                    p.vline(VLine::new("current tooth", c.t_s).color(CHIP_COLOR).width(1.5));
+                    p.points(Points::new("", vec![[c.t_s, c.engagement_deg]]).radius(5.0).color(CHIP_COLOR));
+                }
             }
-        }
-    });
+        },
+    );
 }
 
 /// Left and right wall deviation along y with W_l and W_r marked.
 pub fn wall_plot(ui: &mut egui::Ui, layers: &[Layer], teach: bool) {
     title(ui, "Wall profiles: left solid, right dashed (Figs. 8–9)", explain::WALLS, teach);
-    base_plot(ui, "wall_plot").custom_x_axes(x_axis("y [mm]")).y_axis_label("deviation [mm]").include_y(0.0).show(ui, |p| {
-        for l in layers {
-            let (w_l, w_r) = l.w;
-            let right = l.color.gamma_multiply(0.55);
-            p.line(Line::new(named(layers, l, "left wall"), PlotPoints::Borrowed(&l.g.wall_left)).color(l.color).width(1.8));
-            p.line(
-                Line::new(named(layers, l, "right wall (dashed)"), PlotPoints::Borrowed(&l.g.wall_right))
-                    .color(right)
-                    .style(LineStyle::dashed_dense())
-                    .width(1.8),
-            );
-            if l.primary {
-                p.hline(HLine::new(format!("W_l = {w_l:.4} mm"), w_l).color(l.color).style(LineStyle::dotted_dense()));
-                p.hline(HLine::new(format!("W_r = {w_r:.4} mm"), w_r).color(right).style(LineStyle::dotted_loose()));
+    base_plot(ui, "wall_plot").custom_x_axes(x_axis("y [mm]")).y_axis_label("deviation [mm]").include_y(0.0).show(
+        ui,
+        |p| {
+            for l in layers {
+                let (w_l, w_r) = l.w;
+                let right = l.color.gamma_multiply(0.55);
+                p.line(
+                    Line::new(named(layers, l, "left wall"), PlotPoints::Borrowed(&l.g.wall_left))
+                        .color(l.color)
+                        .width(1.8),
+                );
+                p.line(
+                    Line::new(named(layers, l, "right wall (dashed)"), PlotPoints::Borrowed(&l.g.wall_right))
+                        .color(right)
+                        .style(LineStyle::dashed_dense())
+                        .width(1.8),
+                );
+                if l.primary {
+                    p.hline(
+                        HLine::new(format!("W_l = {w_l:.4} mm"), w_l).color(l.color).style(LineStyle::dotted_dense()),
+                    );
+                    p.hline(
+                        HLine::new(format!("W_r = {w_r:.4} mm"), w_r).color(right).style(LineStyle::dotted_loose()),
+                    );
+                }
             }
-        }
-    });
+        },
+    );
 }

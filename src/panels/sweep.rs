@@ -179,12 +179,7 @@ fn jobs_path(settings: &SweepSettings, base: &Job) -> PathKind {
 }
 
 /// Draw the sweep settings, progress and plots.
-pub fn show(
-    ui: &mut egui::Ui,
-    settings: &mut SweepSettings,
-    run: Option<&SweepRun>,
-    current: &Job,
-) -> Option<Command> {
+pub fn show(ui: &mut egui::Ui, settings: &mut SweepSettings, run: Option<&SweepRun>, current: &Job) -> Option<Command> {
     let mut cmd = None;
     let running = run.is_some_and(SweepRun::running);
     ui.horizontal_wrapped(|ui| {
@@ -240,7 +235,8 @@ pub fn show(
         }
         ui.label(format!("path: {}", run.base_path.name()));
     });
-    let ok: Vec<(f64, &Metrics)> = run.points.iter().filter_map(|p| p.result.as_ref().ok().map(|m| (p.value, m))).collect();
+    let ok: Vec<(f64, &Metrics)> =
+        run.points.iter().filter_map(|p| p.result.as_ref().ok().map(|m| (p.value, m))).collect();
     let marker = match run.settings.param {
         SweepParam::AspectRatio => current.path.uses_aspect_ratio().then_some(current.aspect_ratio),
         SweepParam::LinearDistance => (current.path == PathKind::LinearElliptical).then_some(current.linear_distance),
@@ -248,8 +244,16 @@ pub fn show(
     let xlabel = run.settings.param.label();
     type Series = (&'static str, fn(&Metrics) -> f64, Color32);
     let panels: [(&str, &str, Vec<Series>); 4] = [
-        ("h_max", "h_max [mm]", vec![("h_max", (|m: &Metrics| m.h_max_mm) as fn(&Metrics) -> f64, Color32::from_rgb(30, 110, 220))]),
-        ("mrr", "MRR [mm³/min]", vec![("MRR", (|m: &Metrics| m.mrr_mm3_per_min) as fn(&Metrics) -> f64, Color32::from_rgb(40, 160, 70))]),
+        (
+            "h_max",
+            "h_max [mm]",
+            vec![("h_max", (|m: &Metrics| m.h_max_mm) as fn(&Metrics) -> f64, Color32::from_rgb(30, 110, 220))],
+        ),
+        (
+            "mrr",
+            "MRR [mm³/min]",
+            vec![("MRR", (|m: &Metrics| m.mrr_mm3_per_min) as fn(&Metrics) -> f64, Color32::from_rgb(40, 160, 70))],
+        ),
         (
             "waviness",
             "waviness [mm]",
@@ -314,7 +318,12 @@ mod tests {
         }
         assert_eq!(run.points.len(), 5);
         assert!(run.points.iter().all(|p| p.result.is_ok()));
-        let mrr: Vec<f64> = run.points.iter().filter_map(|p| p.result.as_ref().ok()).map((|m: &Metrics| m.mrr_mm3_per_min) as fn(&Metrics) -> f64).collect();
+        let mrr: Vec<f64> = run
+            .points
+            .iter()
+            .filter_map(|p| p.result.as_ref().ok())
+            .map((|m: &Metrics| m.mrr_mm3_per_min) as fn(&Metrics) -> f64)
+            .collect();
         assert!(mrr.windows(2).all(|w| w[0] > w[1]), "MRR falls as r_e grows: {mrr:?}");
 
         let big = SweepSettings { steps: 400, ..SweepSettings::default() };

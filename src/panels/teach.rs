@@ -28,11 +28,7 @@ impl Animation {
         let t_cycle = plan.metrics.t_cycle_s;
         match self.t_s {
             Some(t) if t_cycle > 0.0 => t.rem_euclid(t_cycle),
-            _ => plan
-                .series
-                .iter()
-                .max_by(|a, b| a.h_mm.total_cmp(&b.h_mm))
-                .map_or(0.0, |t| t.time_s),
+            _ => plan.series.iter().max_by(|a, b| a.h_mm.total_cmp(&b.h_mm)).map_or(0.0, |t| t.time_s),
         }
     }
 
@@ -77,7 +73,12 @@ pub fn controls(ui: &mut egui::Ui, anim: &mut Animation, plan: &Plan) {
         // Leave room for the speed slider, the buttons and the readout on this row.
         ui.spacing_mut().slider_width = (ui.available_width() - 640.0).clamp(80.0, 400.0);
         let r = ui
-            .add(egui::Slider::new(&mut t, 0.0..=t_cycle).clamping(egui::SliderClamping::Never).suffix(" s").max_decimals(3))
+            .add(
+                egui::Slider::new(&mut t, 0.0..=t_cycle)
+                    .clamping(egui::SliderClamping::Never)
+                    .suffix(" s")
+                    .max_decimals(3),
+            )
             .labelled_by(scrub.id)
             .on_hover_text("Scrub through the cycle (time from the cycle start at the left extreme).");
         if r.changed() {
