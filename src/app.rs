@@ -403,7 +403,7 @@ impl App {
         let replanned = self.planner.update(&self.state.job, self.state.cycles_shown);
         self.undoer.feed_state(ui.input(|i| i.time), &self.state.job);
 
-        egui::Panel::right("derived").resizable(true).default_size(250.0).min_size(210.0).show(ui, |ui| {
+        egui::Panel::right("derived").resizable(true).default_size(265.0).min_size(210.0).show(ui, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| {
                 panels::metrics::show(ui, self.planner.last.as_ref().map(|p| &p.plan), self.planner.error.is_some());
             });
