@@ -319,6 +319,8 @@ pub struct App {
     /// Last message for the status bar: (text, is_error).
     pub status: Option<(String, bool)>,
     frames: FrameStats,
+    /// The job file shown in the window title.
+    titled: Option<Option<PathBuf>>,
 }
 
 impl App {
@@ -339,6 +341,7 @@ impl App {
             sweep: None,
             dialogs,
             status: None,
+            titled: None,
             frames: FrameStats { log: std::env::var_os(FRAME_LOG_ENV).is_some(), ..FrameStats::default() },
             state,
         };
@@ -421,6 +424,14 @@ impl App {
 
         for c in cmds {
             self.apply(c, ui.ctx());
+        }
+        if self.titled.as_ref() != Some(&self.state.file) {
+            let title = match self.state.file.as_ref().and_then(|f| f.file_name()) {
+                Some(name) => format!("TrochoPlan - {}", name.to_string_lossy()),
+                None => "TrochoPlan".to_owned(),
+            };
+            ui.ctx().send_viewport_cmd(egui::ViewportCommand::Title(title));
+            self.titled = Some(self.state.file.clone());
         }
         self.frames.ui_ms = t0.elapsed().as_secs_f32() * 1e3;
         let dragging = ui.ctx().dragged_id().is_some();

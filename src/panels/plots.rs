@@ -47,7 +47,7 @@ const CHIP_COLOR: Color32 = Color32::from_rgb(220, 30, 30);
 pub mod explain {
     pub const PATH: &str = "Tool-centre path C₁, Wagih et al. (2023) eq. (1): x = −a·cos θ, \
         y = b·sin θ + s·θ/2π, with a = (B − D)/2 and b = r_e·a (eq. 2). Dashed: the tool edge of the \
-        previous cycle C₂, the offset of C₁ by R (eq. 3). Circle: the tool C₃ (eq. 5) at the current \
+        previous cycle C₂, the offset of C₁ by R (eq. 3); shaded: the region that cycle swept. Circle: the tool C₃ (eq. 5) at the current \
         tooth, red while it cuts. Grey lines: the slot walls x = ±B/2. Equal axis scale.";
     pub const H: &str = "Local maximum chip thickness per tooth, h = |DB| (eq. 4): B is where the \
         previous tooth's circle meets the previous cycle's edge C₂ (eqs. 3, 5), D the point of the \
@@ -149,6 +149,15 @@ pub fn path_view(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, te
                 );
                 p.line(Line::new(label("other cycles"), PlotPoints::Borrowed(&g.path_before)).color(faint).width(1.0));
                 p.line(Line::new(label("other cycles"), PlotPoints::Borrowed(&g.path_after)).color(faint).width(1.0));
+                if l.primary {
+                    // The previous cycle's sweep is convex (core: analysis::edge), so its edge
+                    // closed by the step chord fills correctly as a convex polygon.
+                    p.polygon(
+                        Polygon::new("swept by the previous cycle", PlotPoints::Borrowed(&g.previous_edge))
+                            .fill_color(l.color.gamma_multiply(0.07))
+                            .stroke(Stroke::new(0.0, l.color)),
+                    );
+                }
                 p.line(
                     Line::new(label("previous cycle's edge C₂"), PlotPoints::Borrowed(&g.previous_edge))
                         .color(l.color)
