@@ -1,0 +1,180 @@
+//! Compare mode: pinned variants (up to four) and a table of their metrics with the % change
+//! against the first, as the paper reports them.
+
+use super::Command;
+use eframe::egui::{self, Color32, RichText};
+use trochoplan_core::{Job, Metrics, PathKind};
+
+/// Most pinned variants.
+pub const MAX_VARIANTS: usize = 4;
+
+/// What the compare panel needs of one pinned variant.
+pub struct VariantView<'a> {
+    pub label: &'a str,
+    pub color: Color32,
+    pub metrics: &'a Metrics,
+}
+
+/// A compared quantity: name, unit, value, decimals, and whether larger is better (for colour).
+struct Quantity {
+    name: &'static str,
+    unit: &'static str,
+    value: fn(&Metrics) -> f64,
+    decimals: usize,
+    higher_is_better: Option<bool>,
+}
+
+const QUANTITIES: [Quantity; 11] = [
+    Quantity { name: "r_e", unit: "", value: |m| m.aspect_ratio, decimals: 2, higher_is_better: None },
+    Quantity { name: "d", unit: "mm", value: |m| m.linear_distance_mm, decimals: 2, higher_is_better: None },
+    Quantity {
+        name: "cycle length",
+        unit: "mm",
+        value: |m| m.cycle_length_mm,
+        decimals: 2,
+        higher_is_better: Some(false),
+    },
+    Quantity { name: "t_cycle", unit: "s", value: |m| m.t_cycle_s, decimals: 3, higher_is_better: Some(false) },
+    Quantity { name: "MRR", unit: "mm³/min", value: |m| m.mrr_mm3_per_min, decimals: 0, higher_is_better: Some(true) },
+    Quantity { name: "h_max", unit: "mm", value: |m| m.h_max_mm, decimals: 4, higher_is_better: Some(false) },
+    Quantity { name: "t_hmax", unit: "s", value: |m| m.t_hmax_s, decimals: 3, higher_is_better: None },
+    Quantity { name: "t_cooling", unit: "s", value: |m| m.t_cooling_s, decimals: 3, higher_is_better: Some(true) },
+    Quantity {
+        name: "max engagement",
+        unit: "°",
+        value: |m| m.engagement_max_deg,
+        decimals: 1,
+        higher_is_better: Some(false),
+    },
+    Quantity { name: "W_l", unit: "mm", value: |m| m.waviness_left_mm, decimals: 4, higher_is_better: Some(false) },
+    Quantity { name: "W_r", unit: "mm", value: |m| m.waviness_right_mm, decimals: 4, higher_is_better: Some(false) },
+];
+
+/// Percentage change of `v` against `base` (None when the base is zero).
+pub fn percent_change(v: f64, base: f64) -> Option<f64> {
+    (base.abs() > 1e-12).then(|| (v - base) / base * 100.0)
+}
+
+/// A short label for a job, as the paper names its variants.
+pub fn variant_label(job: &Job) -> String {
+    match job.path {
+        PathKind::Circular => "circular".to_owned(),
+        PathKind::CircularType => "circular-type".to_owned(),
+        PathKind::Elliptical => format!("elliptical r_e = {}", job.aspect_ratio),
+        PathKind::LinearElliptical => {
+            format!("lin.-elliptical r_e = {}, d = {}", job.aspect_ratio, job.linear_distance)
+        }
+    }
+}
+
+/// The paper's comparison set built on `job`: circular (r_e = 1), elliptical r_e = 0.8 and
+/// linear-elliptical r_e = 0.8 with d = s.
+pub fn paper_set(job: &Job) -> Vec<Job> {
+    vec![
+        Job { path: PathKind::Circular, aspect_ratio: 1.0, ..job.clone() },
+        Job { path: PathKind::Elliptical, aspect_ratio: 0.8, ..job.clone() },
+        Job { path: PathKind::LinearElliptical, aspect_ratio: 0.8, linear_distance: job.step, ..job.clone() },
+    ]
+}
+
+/// Draw the pin list and the metrics table.
+pub fn show(ui: &mut egui::Ui, variants: &[VariantView], can_pin: bool) -> Option<Command> {
+    let mut cmd = None;
+    ui.horizontal_wrapped(|ui| {
+        let full = variants.len() >= MAX_VARIANTS;
+        if ui
+            .add_enabled(can_pin && !full, egui::Button::new("Pin current job"))
+            .on_hover_text("Add the current job as a variant (up to four); it is overlaid in every plot.")
+            .on_disabled_hover_text("Needs a valid job and fewer than four pinned variants.")
+            .clicked()
+        {
+            cmd = Some(Command::Pin);
+        }
+        if ui
+            .button("Pin the paper's set")
+            .on_hover_text("Replace the pins by: circular (r_e = 1), elliptical r_e = 0.8 and linear-elliptical r_e = 0.8 with d = s, all with the current slot, tool and cutting data.")
+            .clicked()
+        {
+            cmd = Some(Command::PinPaperSet);
+        }
+        if ui.add_enabled(!variants.is_empty(), egui::Button::new("Clear pins")).clicked() {
+            cmd = Some(Command::ClearPins);
+        }
+    });
+    if variants.is_empty() {
+        ui.label(
+            "No variants pinned. Pin the current job, change a parameter, pin again: every plot overlays the pins.",
+        );
+        return cmd;
+    }
+    ui.add_space(4.0);
+    egui::ScrollArea::horizontal().show(ui, |ui| {
+        egui::Grid::new("compare_table").striped(true).spacing([14.0, 4.0]).show(ui, |ui| {
+            ui.label(RichText::new("variant").strong());
+            for (i, v) in variants.iter().enumerate() {
+                ui.horizontal(|ui| {
+                    ui.label(RichText::new(format!("#{} {}", i + 1, v.label)).color(v.color).strong());
+                    if ui.small_button("load").on_hover_text("Make this the job being edited (undoable).").clicked() {
+                        cmd = Some(Command::LoadPinned(i));
+                    }
+                    if ui.small_button("unpin").on_hover_text("Unpin").clicked() {
+                        cmd = Some(Command::Unpin(i));
+                    }
+                });
+            }
+            ui.end_row();
+            for q in &QUANTITIES {
+                let unit = if q.unit.is_empty() { String::new() } else { format!(" [{}]", q.unit) };
+                ui.label(format!("{}{unit}", q.name));
+                let base = (q.value)(variants[0].metrics);
+                for (i, v) in variants.iter().enumerate() {
+                    let x = (q.value)(v.metrics);
+                    let mut text = format!("{x:.*}", q.decimals);
+                    let mut color = None;
+                    if i > 0
+                        && let Some(p) = percent_change(x, base)
+                    {
+                        text.push_str(&format!("  ({p:+.1} %)"));
+                        if p.abs() >= 0.05
+                            && let Some(up) = q.higher_is_better
+                        {
+                            let good = (p > 0.0) == up;
+                            color = Some(if good {
+                                Color32::from_rgb(30, 140, 60)
+                            } else {
+                                Color32::from_rgb(200, 50, 40)
+                            });
+                        }
+                    }
+                    let rt = RichText::new(text).monospace();
+                    ui.label(if let Some(c) = color { rt.color(c) } else { rt });
+                }
+                ui.end_row();
+            }
+        });
+    });
+    ui.add(
+        egui::Label::new(
+            RichText::new(
+                "% change against variant #1. Green: better, red: worse (MRR and cooling time up, h_max, \
+             engagement and waviness down). The paper ranks paths by PI = MRR/(F_R,max·R_a,max·W_max), \
+             eq. (7); forces and roughness are not modelled here.",
+            )
+            .weak(),
+        )
+        .wrap(),
+    );
+    cmd
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn percent_change_against_first() {
+        assert!((percent_change(110.0, 100.0).unwrap_or(0.0) - 10.0).abs() < 1e-12);
+        assert!((percent_change(90.0, 100.0).unwrap_or(0.0) + 10.0).abs() < 1e-12);
+        assert_eq!(percent_change(1.0, 0.0), None);
+    }
+}

@@ -1,0 +1,190 @@
+//! Plot-ready data of one plan: core results converted to point lists, computed once per plan
+//! (not per frame) and decimated so that drawing cost does not grow with the slot length or
+//! with the number of teeth per cycle.
+//!
+//! Nothing here computes geometry: the path and edge points come from the core's sampling
+//! functions (`SlotPath::sample_cycles`, `analysis::edge::outer_offset_points`), the curves
+//! from `Plan::series` and `Plan::{left,right}_wall`; the only arithmetic is unit conversion
+//! (rad  to  deg), shifting by a cycle origin and subtracting the wall's valley position.
+
+use egui_plot::PlotPoint;
+use trochoplan_core::Plan;
+use trochoplan_core::analysis::edge::outer_offset_points;
+
+/// Most points of a time series handed to egui_plot (min/max decimation above this).
+pub const MAX_SERIES_POINTS: usize = 2000;
+/// Points per path segment when sampling the tool-centre path for drawing.
+const POINTS_PER_SEGMENT: usize = 96;
+/// Points of the previous cycle's edge (whole cycle).
+const EDGE_POINTS: usize = 480;
+
+/// Everything the four plots draw for one plan.
+#[derive(Clone, Debug)]
+pub struct Graphics {
+    /// Tool radius R (mm).
+    pub tool_r: f64,
+    /// Slot half width B/2 (mm).
+    pub half_width: f64,
+    /// Slot length L (mm).
+    pub slot_length: f64,
+    /// Origin of the steady-state cycle shown as "current" in the path view (mm).
+    pub origin: [f64; 2],
+    /// Tool-centre path of the shown cycles before the current one (absolute, mm).
+    pub path_before: Vec<PlotPoint>,
+    /// Tool-centre path of the current cycle (absolute, mm).
+    pub path_current: Vec<PlotPoint>,
+    /// Tool-centre path after the current cycle (absolute, mm).
+    pub path_after: Vec<PlotPoint>,
+    /// Edge of the tool during the previous cycle (curve C₂, eq. 3), absolute (mm).
+    pub previous_edge: Vec<PlotPoint>,
+    /// Tool centres of the current cycle's teeth (absolute, mm) with their time (s), at most
+    /// [`MAX_SERIES_POINTS`] of them: the animation's trail.
+    pub teeth: Vec<(f64, PlotPoint)>,
+    /// y range drawn in the path view (mm).
+    pub y_range: (f64, f64),
+    /// h over time, (t s, h mm), decimated.
+    pub h: Vec<PlotPoint>,
+    /// Engagement over time, (t s, degrees), decimated.
+    pub engagement: Vec<PlotPoint>,
+    /// Intervals of the cycle in which no tooth cuts (s).
+    pub cooling: Vec<(f64, f64)>,
+    /// Time and value of h_max within the cycle (s, mm).
+    pub h_max_at: (f64, f64),
+    /// t_hmax drawn as intervals ending at h_max (wrapped at the cycle start), s.
+    pub t_hmax_spans: Vec<(f64, f64)>,
+    /// Left wall: (y mm, deviation from its valley into the slot, mm).
+    pub wall_left: Vec<PlotPoint>,
+    /// Right wall: (y mm, deviation from its valley into the slot, mm).
+    pub wall_right: Vec<PlotPoint>,
+}
+
+impl Graphics {
+    /// Plot data for `plan`, showing `cycles_shown` cycles around a steady-state cycle.
+    pub fn new(plan: &Plan, cycles_shown: usize) -> Graphics {
+        let path = &plan.path;
+        let m = &plan.metrics;
+        let r = plan.job.tool_radius();
+        let step = plan.job.step;
+        let cycles_shown = cycles_shown.clamp(2, 40);
+        // The current cycle: a few steps into the stock (steady state), never past the end.
+        let first_in_stock = (-path.first_origin_y / step).ceil().max(0.0) as usize;
+        let current = (first_in_stock + 2).min(path.cycles.saturating_sub(1));
+        let before = (cycles_shown - 2).min(current);
+        let first = current - before;
+        let origin = path.origin(current);
+        let to_pts =
+            |v: Vec<trochoplan_core::geom::P2>| v.into_iter().map(|p| PlotPoint::new(p.x, p.y)).collect::<Vec<_>>();
+        let path_before = to_pts(path.sample_cycles(first, before, POINTS_PER_SEGMENT));
+        let path_current = to_pts(path.sample_cycles(current, 1, POINTS_PER_SEGMENT));
+        let path_after = to_pts(path.sample_cycles(current + 1, 1, POINTS_PER_SEGMENT));
+        let previous_edge = outer_offset_points(&path.cycle, r, EDGE_POINTS)
+            .into_iter()
+            .map(|p| PlotPoint::new(p.x + origin.x, p.y + origin.y - step))
+            .collect();
+        let ys = path_before.iter().chain(&path_current).chain(&path_after).map(|p| p.y);
+        let (lo, hi) = ys.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), y| (lo.min(y), hi.max(y)));
+        let y_range = (lo - r, hi + r);
+
+        let series = &plan.series;
+        let stride = series.len().div_ceil(MAX_SERIES_POINTS).max(1);
+        let teeth = series
+            .iter()
+            .step_by(stride)
+            .map(|t| (t.time_s, PlotPoint::new(origin.x + t.x_mm, origin.y + t.y_mm)))
+            .collect();
+        let h: Vec<[f64; 2]> = series.iter().map(|t| [t.time_s, t.h_mm]).collect();
+        let eng: Vec<[f64; 2]> = series.iter().map(|t| [t.time_s, t.engagement_rad.to_degrees()]).collect();
+        let mut cooling = Vec::new();
+        let mut start = None;
+        for t in series {
+            match (t.cutting, start) {
+                (false, None) => start = Some(t.time_s),
+                (true, Some(s0)) => {
+                    cooling.push((s0, t.time_s));
+                    start = None;
+                }
+                _ => {}
+            }
+        }
+        if let Some(s0) = start {
+            cooling.push((s0, m.t_cycle_s));
+        }
+        let imax = series.iter().enumerate().max_by(|a, b| a.1.h_mm.total_cmp(&b.1.h_mm)).map_or(0, |(i, _)| i);
+        let h_max_at = series.get(imax).map_or((0.0, 0.0), |t| (t.time_s, t.h_mm));
+        let t_start = h_max_at.0 - m.t_hmax_s;
+        let t_hmax_spans = if t_start >= 0.0 {
+            vec![(t_start, h_max_at.0)]
+        } else {
+            vec![(0.0, h_max_at.0), (m.t_cycle_s + t_start, m.t_cycle_s)]
+        };
+
+        let dev = |w: &trochoplan_core::analysis::WallProfile| -> Vec<PlotPoint> {
+            w.samples.iter().map(|&(y, x)| PlotPoint::new(y, (x - w.extreme_x_mm).abs())).collect()
+        };
+        Graphics {
+            tool_r: r,
+            half_width: plan.job.slot_width / 2.0,
+            slot_length: plan.job.slot_length,
+            origin: [origin.x, origin.y],
+            path_before,
+            path_current,
+            path_after,
+            previous_edge,
+            teeth,
+            y_range,
+            h: decimate(&h, MAX_SERIES_POINTS),
+            engagement: decimate(&eng, MAX_SERIES_POINTS),
+            cooling,
+            h_max_at,
+            t_hmax_spans,
+            wall_left: dev(&plan.left_wall),
+            wall_right: dev(&plan.right_wall),
+        }
+    }
+}
+
+/// Min/max decimation of a curve sampled along x: at most `max` points (two per bucket), so
+/// that peaks survive. Returns the points unchanged when there are few enough.
+pub fn decimate(points: &[[f64; 2]], max: usize) -> Vec<PlotPoint> {
+    if points.len() <= max || max < 4 {
+        return points.iter().map(|&p| p.into()).collect();
+    }
+    let buckets = max / 2;
+    let per = points.len().div_ceil(buckets);
+    let mut out = Vec::with_capacity(max + 2);
+    for chunk in points.chunks(per) {
+        let lo = chunk.iter().enumerate().min_by(|a, b| a.1[1].total_cmp(&b.1[1])).map_or(0, |(i, _)| i);
+        let hi = chunk.iter().enumerate().max_by(|a, b| a.1[1].total_cmp(&b.1[1])).map_or(0, |(i, _)| i);
+        let (i, j) = if lo <= hi { (lo, hi) } else { (hi, lo) };
+        out.push(chunk[i].into());
+        if j != i {
+            out.push(chunk[j].into());
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn decimation_keeps_peaks_and_bounds_size() {
+        let pts: Vec<[f64; 2]> =
+            (0..100_000).map(|i| [i as f64, if i == 54_321 { 9.0 } else { (i % 7) as f64 }]).collect();
+        let d = decimate(&pts, 2000);
+        assert!(d.len() <= 2000, "{}", d.len());
+        assert!(d.iter().any(|p| p.y == 9.0), "peak kept");
+        assert!(d.windows(2).all(|w| w[0].x <= w[1].x), "order kept");
+    }
+
+    #[test]
+    fn long_slot_draws_a_bounded_number_of_points() {
+        let job = trochoplan_core::Job { slot_length: 1000.0, ..trochoplan_core::Job::default() };
+        let plan = trochoplan_core::plan(&job).expect("valid");
+        let g = Graphics::new(&plan, 5);
+        let n = g.path_before.len() + g.path_current.len() + g.path_after.len();
+        assert!(n < 1000, "{n} path points for a 1 m slot");
+        assert!(g.h.len() <= MAX_SERIES_POINTS);
+    }
+}

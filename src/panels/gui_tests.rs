@@ -1,0 +1,259 @@
+//! Headless GUI tests (egui_kittest, no display): drive the real window contents through the
+//! accessibility tree and check the plan and the shown values.
+
+use super::panels::params::label;
+use super::*;
+use egui::accesskit::Role;
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+
+/// Dialogs answering from fixed paths: tests never open a real dialog.
+struct FakeDialogs {
+    open: Option<PathBuf>,
+    save: Option<PathBuf>,
+}
+
+impl FileDialogs for FakeDialogs {
+    fn open_job(&mut self) -> Option<PathBuf> {
+        self.open.clone()
+    }
+    fn save_job(&mut self, _current: Option<&Path>) -> Option<PathBuf> {
+        self.save.clone()
+    }
+}
+
+fn harness_with(app: App) -> Harness<'static, App> {
+    let mut h =
+        Harness::builder().with_size(egui::vec2(1400.0, 900.0)).build_ui_state(|ui, app: &mut App| app.show(ui), app);
+    h.run();
+    h
+}
+
+fn harness() -> Harness<'static, App> {
+    harness_with(App::new(Job::default(), None, Box::new(FakeDialogs { open: None, save: None })))
+}
+
+fn metrics(h: &Harness<'_, App>) -> trochoplan_core::Metrics {
+    h.state().planner.last.as_ref().expect("a plan").plan.metrics.clone()
+}
+
+fn shows(h: &Harness<'_, App>, text: &str) -> bool {
+    h.query_all_by_label(text).next().is_some()
+}
+
+#[test]
+fn default_job_shows_its_metrics() {
+    let h = harness();
+    let m = metrics(&h);
+    assert!(shows(&h, &format!("{:.4} mm", m.h_max_mm)), "h_max shown");
+    assert!(shows(&h, &format!("{:.0} mm³/min", m.mrr_mm3_per_min)), "MRR shown");
+    assert!(h.state().planner.error.is_none());
+}
+
+#[test]
+fn changing_the_step_in_the_ui_replans_and_updates_the_shown_metrics() {
+    let mut h = harness();
+    let before = metrics(&h);
+    let replans = h.state().planner.replans;
+    h.get_by_role_and_label(Role::Slider, label::STEP).set_value_accesskit(0.7);
+    h.run();
+    let after = metrics(&h);
+    assert!((h.state().state.job.step - 0.7).abs() < 1e-9, "job step {}", h.state().state.job.step);
+    assert!((after.step_mm - 0.7).abs() < 1e-9, "plan step {}", after.step_mm);
+    assert!(h.state().planner.replans > replans, "replanned");
+    assert!(after.mrr_mm3_per_min < before.mrr_mm3_per_min, "smaller step, less MRR");
+    assert!(after.h_max_mm < before.h_max_mm, "smaller step, thinner chips");
+    assert!(shows(&h, &format!("{:.0} mm³/min", after.mrr_mm3_per_min)), "new MRR shown");
+    assert!(shows(&h, &format!("{:.4} mm", after.h_max_mm)), "new h_max shown");
+    assert!(!shows(&h, &format!("{:.0} mm³/min", before.mrr_mm3_per_min)), "old MRR gone");
+}
+
+#[test]
+fn lowering_the_aspect_ratio_moves_mrr_and_waviness_as_the_paper_describes() {
+    let mut h = harness();
+    h.get_by_label(panels::params::path_label(trochoplan_core::PathKind::Elliptical)).click();
+    h.run();
+    assert_eq!(h.state().state.job.path, trochoplan_core::PathKind::Elliptical);
+    let r1 = metrics(&h);
+    h.get_by_role_and_label(Role::Slider, label::ASPECT_RATIO).set_value_accesskit(0.5);
+    h.run();
+    let r05 = metrics(&h);
+    assert!((r05.aspect_ratio - 0.5).abs() < 1e-9);
+    // Table 2 / Fig. 9: MRR up ~22 %, waviness up.
+    assert!(r05.mrr_mm3_per_min > 1.15 * r1.mrr_mm3_per_min, "{} vs {}", r05.mrr_mm3_per_min, r1.mrr_mm3_per_min);
+    assert!(r05.waviness_left_mm > r1.waviness_left_mm);
+    assert!(r05.t_cooling_s < r1.t_cooling_s);
+}
+
+#[test]
+fn an_invalid_value_is_marked_at_the_field_and_the_last_plan_is_kept() {
+    let mut h = harness();
+    let before = metrics(&h);
+    h.get_by_role_and_label(Role::Slider, label::TOOL_DIAMETER).set_value_accesskit(25.0);
+    h.run();
+    let app = h.state();
+    assert_eq!(app.state.job.tool_diameter, 25.0);
+    let err = app.planner.error.clone().expect("invalid job");
+    assert_eq!(err.parameter(), Some("tool-diameter"));
+    assert!(shows(&h, &err.to_string()), "the core's message is shown");
+    assert!(shows(&h, "Job invalid: showing the last valid plan."));
+    assert_eq!(metrics(&h), before, "last valid plan kept");
+    // Still draws and recovers.
+    h.get_by_role_and_label(Role::Slider, label::TOOL_DIAMETER).set_value_accesskit(11.0);
+    h.run();
+    assert!(h.state().planner.error.is_none());
+    assert!((metrics(&h).a_mm - 4.5).abs() < 1e-12);
+}
+
+#[test]
+fn compare_mode_adds_variants_and_shows_percent_changes() {
+    let mut h = harness();
+    h.get_by_label("Compare").click();
+    h.run();
+    assert_eq!(h.state().state.tab, Tab::Compare);
+    h.get_by_label("Pin current job").click();
+    h.run();
+    assert_eq!(h.state().variants.len(), 1);
+    h.get_by_label(panels::params::path_label(trochoplan_core::PathKind::Elliptical)).click();
+    h.run();
+    h.get_by_role_and_label(Role::Slider, label::ASPECT_RATIO).set_value_accesskit(0.8);
+    h.run();
+    h.get_by_label("Pin current job").click();
+    h.run();
+    let app = h.state();
+    assert_eq!(app.variants.len(), 2);
+    assert!((app.variants[1].job.aspect_ratio - 0.8).abs() < 1e-9);
+    let (m0, m1) = (&app.variants[0].planned.plan.metrics, &app.variants[1].planned.plan.metrics);
+    let p = compare::percent_change(m1.mrr_mm3_per_min, m0.mrr_mm3_per_min).expect("percent");
+    let cell = format!("{:.0}  ({p:+.1} %)", m1.mrr_mm3_per_min);
+    assert!(shows(&h, &cell), "table shows {cell}");
+    h.get_by_label("Pin the paper's set").click();
+    h.run();
+    assert_eq!(h.state().variants.len(), 3);
+}
+
+#[test]
+fn undo_redo_and_open_save_through_the_dialog_trait() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let file = dir.path().join("job.toml");
+    let app =
+        App::new(Job::default(), None, Box::new(FakeDialogs { open: Some(file.clone()), save: Some(file.clone()) }));
+    let mut h = harness_with(app);
+    h.get_by_role_and_label(Role::Slider, label::STEP).set_value_accesskit(0.8);
+    h.run();
+    // Save as (fake dialog), edit, open again.
+    h.state_mut().apply(Command::SaveAs, &egui::Context::default());
+    let saved = std::fs::read_to_string(&file).expect("saved");
+    assert!(saved.contains("step = 0.8"), "{saved}");
+    h.get_by_role_and_label(Role::Slider, label::STEP).set_value_accesskit(0.5);
+    h.run();
+    h.state_mut().apply(Command::Open, &egui::Context::default());
+    h.run();
+    assert!((h.state().state.job.step - 0.8).abs() < 1e-12);
+    // Undo goes back to the edit before opening.
+    h.state_mut().apply(Command::Undo, &egui::Context::default());
+    h.run();
+    assert!((h.state().state.job.step - 0.5).abs() < 1e-12, "undo: {}", h.state().state.job.step);
+    h.state_mut().apply(Command::Redo, &egui::Context::default());
+    h.run();
+    assert!((h.state().state.job.step - 0.8).abs() < 1e-12, "redo");
+}
+
+#[test]
+fn sweep_tab_runs_in_the_background_and_teaching_animates() {
+    let mut h = harness();
+    h.get_by_label("Sweep").click();
+    h.run();
+    h.state_mut().state.sweep.steps = 6;
+    h.get_by_label("Run sweep").click();
+    h.run();
+    let t0 = Instant::now();
+    while h.state().sweep.as_ref().is_some_and(SweepRun::running) && t0.elapsed().as_secs() < 60 {
+        std::thread::sleep(std::time::Duration::from_millis(10));
+        h.step();
+    }
+    h.run();
+    let run = h.state().sweep.as_ref().expect("sweep");
+    assert_eq!(run.points.len(), 6);
+    assert!(run.points.iter().all(|p| p.result.is_ok()));
+
+    h.get_by_label("Plots").click();
+    h.run();
+    h.get_by_label("Play").click();
+    for _ in 0..5 {
+        h.step();
+    }
+    assert!(h.state().anim.playing);
+    assert!(h.state().anim.t_s.is_some());
+}
+
+#[test]
+fn persisted_state_round_trips() {
+    let state = State { job: Job { step: 0.6, ..Job::default() }, tab: Tab::Sweep, ..State::default() };
+    let text = serde_json::to_string(&state).expect("ser");
+    let back: State = serde_json::from_str(&text).expect("de");
+    assert_eq!(back, state);
+    let app = App::new(Job::default(), Some(back), Box::new(NativeDialogs));
+    assert!((app.planner.last.as_ref().expect("plan").plan.metrics.step_mm - 0.6).abs() < 1e-12);
+}
+
+#[test]
+fn threaded_planner_delivers_the_newest_plan_and_validates_at_once() {
+    let mut p = Planner::threaded(|| {});
+    assert!(p.update(&Job::default(), 5));
+    assert!(p.last.is_some(), "the first plan is computed at once");
+    for step in [0.9, 0.8, 0.7] {
+        p.update(&Job { step, ..Job::default() }, 5);
+    }
+    let t0 = Instant::now();
+    while p.pending() && t0.elapsed().as_secs() < 30 {
+        std::thread::sleep(std::time::Duration::from_millis(2));
+        p.poll();
+    }
+    assert!(!p.pending());
+    assert!((p.last.as_ref().expect("plan").plan.metrics.step_mm - 0.7).abs() < 1e-12, "newest plan wins");
+    assert!(!p.update(&Job { tool_diameter: 25.0, ..Job::default() }, 5), "invalid: nothing planned");
+    assert_eq!(p.error.as_ref().and_then(JobError::parameter), Some("tool-diameter"));
+    assert!((p.last.as_ref().expect("plan").plan.metrics.step_mm - 0.7).abs() < 1e-12, "last valid plan kept");
+}
+
+/// egui frame time (UI + tessellation, no rasteriser) while the step changes every frame as it
+/// does while a slider is dragged, at 60 frames per second with the planning thread running.
+/// Run: `cargo test --release -p trochoplan frame_time -- --ignored --nocapture`.
+#[test]
+#[ignore = "measurement, prints frame-time statistics"]
+fn frame_time_while_dragging_a_slider() {
+    let ctx = egui::Context::default();
+    let repaint = ctx.clone();
+    let dialogs = Box::new(FakeDialogs { open: None, save: None });
+    let mut app =
+        App::with_planner(Job::default(), None, dialogs, Planner::threaded(move || repaint.request_repaint()));
+    let mut ms = Vec::new();
+    for i in 0..300 {
+        app.state.job.step = 1.0 - 0.5 * f64::from(i % 150) / 150.0;
+        let input = egui::RawInput {
+            screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(1400.0, 900.0))),
+            time: Some(f64::from(i) / 60.0),
+            ..Default::default()
+        };
+        let t0 = Instant::now();
+        let out = ctx.run_ui(input, |ui| app.show(ui));
+        let meshes = ctx.tessellate(out.shapes, out.pixels_per_point);
+        ms.push(t0.elapsed().as_secs_f64() * 1e3);
+        assert!(!meshes.is_empty());
+        std::thread::sleep(std::time::Duration::from_millis(16));
+    }
+    let warm = &mut ms[30..];
+    warm.sort_by(f64::total_cmp);
+    let q = |p: f64| warm[((warm.len() - 1) as f64 * p) as usize];
+    println!(
+        "frame (UI + tessellation) over {} frames: median {:.2} ms, p90 {:.2} ms, p99 {:.2} ms, max {:.2} ms; last plan {:.2} ms",
+        warm.len(),
+        q(0.5),
+        q(0.9),
+        q(0.99),
+        q(1.0),
+        app.planner.plan_ms
+    );
+    assert!(app.planner.replans > 100, "replanned while dragging: {}", app.planner.replans);
+}

@@ -1,0 +1,291 @@
+//! The four plots of a plan (and of pinned variants, overlaid). Each function only converts
+//! cached [`Graphics`] into egui_plot items; no geometry is computed here.
+
+use super::graphics::Graphics;
+use eframe::egui::{self, Color32, RichText, Stroke};
+use egui_plot::{
+    AxisHints, ColorConflictHandling, Corner, HLine, Legend, Line, LineStyle, Plot, PlotPoint, PlotPoints, Points,
+    Polygon, Span, Text, VLine,
+};
+use trochoplan_core::plan::ENGAGEMENT_LIMIT_DEG;
+
+/// One plan as drawn: its data, a name for the legend and a colour.
+pub struct Layer<'a> {
+    pub name: &'a str,
+    pub color: Color32,
+    pub g: &'a Graphics,
+    /// Waviness (W_l, W_r) in mm, marked in the wall plot.
+    pub w: (f64, f64),
+    /// The plan being edited (drawn with markers, cursor and annotations).
+    pub primary: bool,
+}
+
+/// Where the animation is: time in the steady-state cycle and the tooth there.
+#[derive(Clone, Copy, Debug)]
+pub struct Cursor {
+    pub t_s: f64,
+    /// Tool centre at that tooth, relative to the cycle origin (mm).
+    pub centre: [f64; 2],
+    pub h_mm: f64,
+    pub engagement_deg: f64,
+    pub cutting: bool,
+}
+
+/// Colours of the variants: the edited plan first, pinned ones after.
+pub const PALETTE: [Color32; 5] = [
+    Color32::from_rgb(30, 110, 220),
+    Color32::from_rgb(220, 90, 30),
+    Color32::from_rgb(40, 160, 70),
+    Color32::from_rgb(170, 60, 190),
+    Color32::from_rgb(200, 160, 0),
+];
+
+const COOLING_FILL: Color32 = Color32::from_rgba_unmultiplied_const(40, 120, 200, 45);
+const CHIP_COLOR: Color32 = Color32::from_rgb(220, 30, 30);
+
+/// Explanations (teaching mode and hover): formula and source of each plot.
+pub mod explain {
+    pub const PATH: &str = "Tool-centre path C₁, Wagih et al. (2023) eq. (1): x = −a·cos θ, \
+        y = b·sin θ + s·θ/2π, with a = (B − D)/2 and b = r_e·a (eq. 2). Dashed: the tool edge of the \
+        previous cycle C₂, the offset of C₁ by R (eq. 3); shaded: the region that cycle swept. Circle: the tool C₃ (eq. 5) at the current \
+        tooth, red while it cuts. Grey lines: the slot walls x = ±B/2. Equal axis scale.";
+    pub const H: &str = "Local maximum chip thickness per tooth, h = |DB| (eq. 4): B is where the \
+        previous tooth's circle meets the previous cycle's edge C₂ (eqs. 3, 5), D the point of the \
+        current tool circle on the ray O_C-B (eq. 6). Teeth are f_z = f_r/(n·z) apart along the path. \
+        Shaded: no tooth cuts (cooling time). Bar: t_hmax, from the start of cutting to h_max \
+        (paper Fig. 7, Table 2).";
+    pub const ENGAGEMENT: &str = "Engagement angle: the arc of the tool edge in uncut material, \
+        bounded by the previous cycle's edge C₂ (eq. 3). Grechishnikov et al. (2017) recommend \
+        ≤ 46°; the step keeping the two-circle model (Wu et al. 2016, eqs. 2–6) at 46° is shown in \
+        the derived values.";
+    pub const WALLS: &str = "Wall profile left by the tool disc swept along the path, as deviation \
+        from the deepest point of each wall (paper section 2.3: eq. (3) evaluated at the walls; \
+        Figs. 8–9). Waviness W = peak-to-valley height; its spacing is the step s. Smaller r_e \
+        raises W (Fig. 9); a linear distance d along the walls lowers it (Figs. 12, 28).";
+}
+
+fn title(ui: &mut egui::Ui, text: &str, explanation: &str, teach: bool) {
+    ui.horizontal(|ui| {
+        ui.label(RichText::new(text).strong());
+        ui.label(RichText::new("(?)").weak()).on_hover_text(explanation);
+    });
+    if teach {
+        ui.add(egui::Label::new(RichText::new(explanation).weak()).wrap());
+    }
+}
+
+/// An x axis whose tick labels may sit closer than egui_plot's default (60 px), so that narrow
+/// plots still get several labels.
+fn x_axis(label: &str) -> Vec<AxisHints<'static>> {
+    vec![AxisHints::new_x().label(label.to_owned()).label_spacing(28.0..=44.0)]
+}
+
+/// A plot filling the rest of the cell the caller allocated.
+fn base_plot(ui: &egui::Ui, id: &str) -> Plot<'static> {
+    base_plot_at(ui, id, Corner::RightTop)
+}
+
+/// [`base_plot`] with the legend in `corner`.
+fn base_plot_at(ui: &egui::Ui, id: &str, corner: Corner) -> Plot<'static> {
+    let size = ui.available_size();
+    Plot::new(id)
+        .width(size.x.max(120.0))
+        .height(size.y.max(80.0))
+        .legend(
+            Legend::default()
+                .position(corner)
+                .background_alpha(0.75)
+                .text_style(egui::TextStyle::Small)
+                .color_conflict_handling(ColorConflictHandling::PickFirst),
+        )
+        .allow_scroll(false)
+}
+
+fn circle(c: [f64; 2], r: f64) -> Vec<[f64; 2]> {
+    (0..=72)
+        .map(|i| {
+            let a = i as f64 / 72.0 * std::f64::consts::TAU;
+            [c[0] + r * a.cos(), c[1] + r * a.sin()]
+        })
+        .collect()
+}
+
+/// Legend name of an item of layer `l`: with several layers, all items of a layer share its name
+/// (one legend entry per variant, toggling all of its items).
+fn named(layers: &[Layer], l: &Layer, what: &str) -> String {
+    if layers.len() > 1 { l.name.to_owned() } else { what.to_owned() }
+}
+
+/// Path view: tool-centre path over a few cycles, slot walls, previous cycle's edge and the tool
+/// at the cursor. Equal axis scale.
+pub fn path_view(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, teach: bool) {
+    title(ui, "Path view (tool centre, slot walls, previous cycle's edge)", explain::PATH, teach);
+    base_plot_at(ui, "path_view", Corner::LeftBottom)
+        .data_aspect(1.0)
+        .custom_x_axes(x_axis("x [mm]"))
+        .y_axis_label("y [mm]")
+        .show(ui, |p| {
+            for (k, l) in layers.iter().enumerate() {
+                let g = l.g;
+                if k == 0 {
+                    let (y0, y1) = (g.y_range.0.max(0.0), g.y_range.1.min(g.slot_length));
+                    let (y0, y1) = if y0 < y1 { (y0, y1) } else { g.y_range };
+                    let wall = Stroke::new(2.0, Color32::GRAY);
+                    for x in [-g.half_width, g.half_width] {
+                        p.line(Line::new("slot walls", vec![[x, y0], [x, y1]]).stroke(wall));
+                    }
+                    if g.y_range.0 < 0.0 && g.y_range.1 > 0.0 {
+                        p.line(
+                            Line::new("stock face y = 0", vec![[-g.half_width, 0.0], [g.half_width, 0.0]])
+                                .stroke(Stroke::new(1.0, Color32::GRAY))
+                                .style(LineStyle::dashed_dense()),
+                        );
+                    }
+                }
+                let faint = l.color.gamma_multiply(0.45);
+                let label = |what: &str| named(layers, l, what);
+                p.line(
+                    Line::new(label("current cycle"), PlotPoints::Borrowed(&g.path_current)).color(l.color).width(2.0),
+                );
+                p.line(Line::new(label("other cycles"), PlotPoints::Borrowed(&g.path_before)).color(faint).width(1.0));
+                p.line(Line::new(label("other cycles"), PlotPoints::Borrowed(&g.path_after)).color(faint).width(1.0));
+                if l.primary {
+                    // The previous cycle's sweep is convex (core: analysis::edge), so its edge
+                    // closed by the step chord fills correctly as a convex polygon.
+                    p.polygon(
+                        Polygon::new("swept by the previous cycle", PlotPoints::Borrowed(&g.previous_edge))
+                            .fill_color(l.color.gamma_multiply(0.07))
+                            .stroke(Stroke::new(0.0, l.color)),
+                    );
+                }
+                p.line(
+                    Line::new(label("previous cycle's edge C₂"), PlotPoints::Borrowed(&g.previous_edge))
+                        .color(l.color)
+                        .style(LineStyle::dashed_loose())
+                        .width(1.2),
+                );
+                if l.primary
+                    && let Some(c) = cursor
+                {
+                    let centre = [g.origin[0] + c.centre[0], g.origin[1] + c.centre[1]];
+                    let mut trail: Vec<[f64; 2]> =
+                        g.teeth.iter().take_while(|(t, _)| *t <= c.t_s).map(|(_, p)| [p.x, p.y]).collect();
+                    trail.push(centre);
+                    p.line(Line::new("path so far this cycle", trail).color(CHIP_COLOR).width(3.0));
+                    let (stroke, fill) = if c.cutting {
+                        (Stroke::new(2.5, CHIP_COLOR), CHIP_COLOR.gamma_multiply(0.18))
+                    } else {
+                        (Stroke::new(2.0, Color32::DARK_GRAY), Color32::from_gray(128).gamma_multiply(0.12))
+                    };
+                    p.polygon(
+                        Polygon::new("tool at current tooth", circle(centre, g.tool_r)).stroke(stroke).fill_color(fill),
+                    );
+                    p.points(Points::new("", vec![centre]).radius(4.0).color(stroke.color));
+                    p.text(
+                        Text::new(
+                            "",
+                            PlotPoint::new(centre[0], centre[1] + g.tool_r),
+                            format!("h = {:.4} mm, {:.1}°", c.h_mm, c.engagement_deg),
+                        )
+                        .anchor(egui::Align2::CENTER_BOTTOM)
+                        .color(stroke.color),
+                    );
+                }
+            }
+        });
+}
+
+/// h over one steady-state cycle with h_max, t_hmax and the cooling intervals.
+pub fn h_plot(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, teach: bool) {
+    title(ui, "Chip thickness h over one steady-state cycle (Fig. 7)", explain::H, teach);
+    base_plot(ui, "h_plot").custom_x_axes(x_axis("t [s]")).y_axis_label("h [mm]").include_y(0.0).show(ui, |p| {
+        for l in layers {
+            let g = l.g;
+            if l.primary {
+                for (k, &(a, b)) in g.cooling.iter().enumerate() {
+                    let name = if k == 0 { "cooling" } else { "" };
+                    p.add(Span::new(name, a..=b).fill(COOLING_FILL).border_width(0.0));
+                }
+            }
+            p.line(Line::new(named(layers, l, "h"), PlotPoints::Borrowed(&g.h)).color(l.color).width(1.5));
+            let (t, h) = g.h_max_at;
+            p.points(Points::new("", vec![[t, h]]).radius(5.0).color(l.color));
+            if l.primary {
+                p.hline(HLine::new("h_max", h).color(l.color.gamma_multiply(0.6)).style(LineStyle::dashed_dense()));
+                for &(a, b) in &g.t_hmax_spans {
+                    p.line(Line::new("", vec![[a, h * 1.06], [b, h * 1.06]]).color(Color32::DARK_GREEN).width(3.0));
+                }
+                p.text(
+                    Text::new("", PlotPoint::new(t, h * 1.12), format!("h_max = {h:.4} mm"))
+                        .anchor(egui::Align2::CENTER_BOTTOM)
+                        .color(l.color),
+                );
+                if let Some(c) = cursor {
+                    p.vline(VLine::new("current tooth", c.t_s).color(CHIP_COLOR).width(1.5));
+                    p.points(Points::new("", vec![[c.t_s, c.h_mm]]).radius(5.0).color(CHIP_COLOR));
+                }
+            }
+        }
+    });
+}
+
+/// Engagement angle over one steady-state cycle, with the 46° recommendation.
+pub fn engagement_plot(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, teach: bool) {
+    title(ui, "Engagement angle over one cycle", explain::ENGAGEMENT, teach);
+    base_plot(ui, "engagement_plot").custom_x_axes(x_axis("t [s]")).y_axis_label("engagement [°]").include_y(0.0).show(
+        ui,
+        |p| {
+            p.hline(
+                HLine::new("46° recommended limit", ENGAGEMENT_LIMIT_DEG)
+                    .color(Color32::from_rgb(200, 60, 60))
+                    .style(LineStyle::dashed_dense()),
+            );
+            for l in layers {
+                p.line(
+                    Line::new(named(layers, l, "engagement"), PlotPoints::Borrowed(&l.g.engagement))
+                        .color(l.color)
+                        .width(1.5),
+                );
+                if l.primary
+                    && let Some(c) = cursor
+                {
+                    p.vline(VLine::new("current tooth", c.t_s).color(CHIP_COLOR).width(1.5));
+                    p.points(Points::new("", vec![[c.t_s, c.engagement_deg]]).radius(5.0).color(CHIP_COLOR));
+                }
+            }
+        },
+    );
+}
+
+/// Left and right wall deviation along y with W_l and W_r marked.
+pub fn wall_plot(ui: &mut egui::Ui, layers: &[Layer], teach: bool) {
+    title(ui, "Wall profiles: left solid, right dashed (Figs. 8–9)", explain::WALLS, teach);
+    base_plot(ui, "wall_plot").custom_x_axes(x_axis("y [mm]")).y_axis_label("deviation [mm]").include_y(0.0).show(
+        ui,
+        |p| {
+            for l in layers {
+                let (w_l, w_r) = l.w;
+                let right = l.color.gamma_multiply(0.55);
+                p.line(
+                    Line::new(named(layers, l, "left wall"), PlotPoints::Borrowed(&l.g.wall_left))
+                        .color(l.color)
+                        .width(1.8),
+                );
+                p.line(
+                    Line::new(named(layers, l, "right wall (dashed)"), PlotPoints::Borrowed(&l.g.wall_right))
+                        .color(right)
+                        .style(LineStyle::dashed_dense())
+                        .width(1.8),
+                );
+                if l.primary {
+                    p.hline(
+                        HLine::new(format!("W_l = {w_l:.4} mm"), w_l).color(l.color).style(LineStyle::dotted_dense()),
+                    );
+                    p.hline(
+                        HLine::new(format!("W_r = {w_r:.4} mm"), w_r).color(right).style(LineStyle::dotted_loose()),
+                    );
+                }
+            }
+        },
+    );
+}

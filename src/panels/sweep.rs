@@ -1,0 +1,338 @@
+//! Sweeps: metrics against r_e (the paper's Figs. 5, 9, Table 2) or against d (Figs. 12, 28),
+//! computed by calling the core's `plan()` once per value on a worker thread, with progress and
+//! cancel; the window never waits for it.
+
+use super::Command;
+use eframe::egui::{self, Color32, RichText};
+use egui_plot::{AxisHints, Corner, Legend, Line, Plot, Points, VLine};
+use serde::{Deserialize, Serialize};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::mpsc::{Receiver, TryRecvError, channel};
+use trochoplan_core::{Job, Metrics, PathKind, plan};
+
+/// The swept parameter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum SweepParam {
+    /// Aspect ratio r_e (elliptical path; linear-elliptical keeps its d).
+    AspectRatio,
+    /// Linear distance d (linear-elliptical path).
+    LinearDistance,
+}
+
+impl SweepParam {
+    fn label(self) -> &'static str {
+        match self {
+            SweepParam::AspectRatio => "aspect ratio r_e",
+            SweepParam::LinearDistance => "linear distance d [mm]",
+        }
+    }
+}
+
+/// Persisted sweep settings.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SweepSettings {
+    pub param: SweepParam,
+    pub from: f64,
+    pub to: f64,
+    pub steps: usize,
+}
+
+impl Default for SweepSettings {
+    fn default() -> Self {
+        SweepSettings { param: SweepParam::AspectRatio, from: 0.5, to: 1.2, steps: 29 }
+    }
+}
+
+impl SweepSettings {
+    /// The paper's range for the parameter.
+    pub fn paper_range(param: SweepParam) -> (f64, f64) {
+        match param {
+            SweepParam::AspectRatio => (0.5, 1.2),
+            SweepParam::LinearDistance => (0.0, 1.5),
+        }
+    }
+
+    /// The jobs of the sweep, built on `base`: the path is switched to one that uses the
+    /// parameter (elliptical for r_e unless already linear-elliptical; linear-elliptical for d).
+    pub fn jobs(&self, base: &Job) -> Vec<(f64, Job)> {
+        let n = self.steps.max(2);
+        (0..n)
+            .map(|i| {
+                let v = self.from + (self.to - self.from) * i as f64 / (n - 1) as f64;
+                let job = match self.param {
+                    SweepParam::AspectRatio => Job {
+                        path: if base.path == PathKind::LinearElliptical { base.path } else { PathKind::Elliptical },
+                        aspect_ratio: v,
+                        ..base.clone()
+                    },
+                    SweepParam::LinearDistance => {
+                        Job { path: PathKind::LinearElliptical, linear_distance: v, ..base.clone() }
+                    }
+                };
+                (v, job)
+            })
+            .collect()
+    }
+}
+
+/// One computed point of a sweep.
+#[derive(Clone, Debug)]
+pub struct SweepPoint {
+    pub value: f64,
+    pub result: Result<Metrics, String>,
+}
+
+/// A running or finished sweep.
+pub struct SweepRun {
+    pub settings: SweepSettings,
+    pub base_path: PathKind,
+    pub total: usize,
+    pub points: Vec<SweepPoint>,
+    done: Arc<AtomicUsize>,
+    cancel: Arc<AtomicBool>,
+    rx: Option<Receiver<SweepPoint>>,
+    pub cancelled: bool,
+}
+
+impl SweepRun {
+    /// Start the sweep on a worker thread; `repaint` is called after each point.
+    pub fn start(settings: &SweepSettings, base: &Job, repaint: impl Fn() + Send + 'static) -> SweepRun {
+        let jobs = settings.jobs(base);
+        let total = jobs.len();
+        let (tx, rx) = channel();
+        let done = Arc::new(AtomicUsize::new(0));
+        let cancel = Arc::new(AtomicBool::new(false));
+        let (done2, cancel2) = (done.clone(), cancel.clone());
+        let spawned = std::thread::Builder::new().name("sweep".into()).spawn(move || {
+            for (value, job) in jobs {
+                if cancel2.load(Ordering::Relaxed) {
+                    break;
+                }
+                let result = plan(&job).map(|p| p.metrics).map_err(|e| e.to_string());
+                done2.fetch_add(1, Ordering::Relaxed);
+                if tx.send(SweepPoint { value, result }).is_err() {
+                    break;
+                }
+                repaint();
+            }
+            repaint();
+        });
+        let path = jobs_path(settings, base);
+        let mut run = SweepRun {
+            settings: settings.clone(),
+            base_path: path,
+            total,
+            points: Vec::with_capacity(total),
+            done,
+            cancel,
+            rx: Some(rx),
+            cancelled: false,
+        };
+        if spawned.is_err() {
+            run.rx = None;
+        }
+        run
+    }
+
+    /// Collect the points computed since the last call.
+    pub fn poll(&mut self) {
+        if let Some(rx) = &self.rx {
+            loop {
+                match rx.try_recv() {
+                    Ok(p) => self.points.push(p),
+                    Err(TryRecvError::Empty) => break,
+                    Err(TryRecvError::Disconnected) => {
+                        self.rx = None;
+                        break;
+                    }
+                }
+            }
+        }
+    }
+
+    /// Whether the worker is still computing.
+    pub fn running(&self) -> bool {
+        self.rx.is_some()
+    }
+
+    /// Fraction done, 0–1.
+    pub fn progress(&self) -> f32 {
+        self.done.load(Ordering::Relaxed) as f32 / self.total.max(1) as f32
+    }
+
+    /// Ask the worker to stop after the current point.
+    pub fn cancel(&mut self) {
+        self.cancel.store(true, Ordering::Relaxed);
+        self.cancelled = true;
+    }
+}
+
+impl Drop for SweepRun {
+    fn drop(&mut self) {
+        self.cancel.store(true, Ordering::Relaxed);
+    }
+}
+
+fn jobs_path(settings: &SweepSettings, base: &Job) -> PathKind {
+    settings.jobs(base).first().map_or(base.path, |(_, j)| j.path)
+}
+
+/// Draw the sweep settings, progress and plots.
+pub fn show(ui: &mut egui::Ui, settings: &mut SweepSettings, run: Option<&SweepRun>, current: &Job) -> Option<Command> {
+    let mut cmd = None;
+    let running = run.is_some_and(SweepRun::running);
+    ui.horizontal_wrapped(|ui| {
+        ui.label("Sweep parameter:");
+        let before = settings.param;
+        ui.add_enabled_ui(!running, |ui| {
+            ui.selectable_value(&mut settings.param, SweepParam::AspectRatio, "r_e (Figs. 5, 9, Table 2)");
+            ui.selectable_value(&mut settings.param, SweepParam::LinearDistance, "d (Figs. 12, 28)");
+        });
+        if settings.param != before {
+            (settings.from, settings.to) = SweepSettings::paper_range(settings.param);
+        }
+        let l = ui.label("from");
+        ui.add(egui::DragValue::new(&mut settings.from).speed(0.01).max_decimals(3)).labelled_by(l.id);
+        let l = ui.label("to");
+        ui.add(egui::DragValue::new(&mut settings.to).speed(0.01).max_decimals(3)).labelled_by(l.id);
+        let l = ui.label("values");
+        ui.add(egui::DragValue::new(&mut settings.steps).range(2..=400)).labelled_by(l.id);
+        if running {
+            if ui.button("Cancel").clicked() {
+                cmd = Some(Command::CancelSweep);
+            }
+        } else if ui
+            .button("Run sweep")
+            .on_hover_text("Plan the current job once per value on a background thread.")
+            .clicked()
+        {
+            cmd = Some(Command::StartSweep);
+        }
+    });
+    let Some(run) = run else {
+        ui.label(
+            "Runs the core planner for each value with the current slot, tool and cutting data; the r_e \
+             sweep uses the elliptical path (or keeps linear-elliptical), the d sweep the \
+             linear-elliptical path with the current r_e.",
+        );
+        return cmd;
+    };
+    ui.horizontal(|ui| {
+        let n = run.points.len();
+        let bar = egui::ProgressBar::new(run.progress()).desired_width(260.0).text(format!("{n} / {}", run.total));
+        ui.add(bar);
+        let failed = run.points.iter().filter(|p| p.result.is_err()).count();
+        if run.cancelled {
+            ui.label(RichText::new("cancelled").color(Color32::from_rgb(200, 120, 0)));
+        } else if !running {
+            ui.label("done");
+        }
+        if failed > 0 {
+            let first = run.points.iter().find_map(|p| p.result.as_ref().err()).cloned().unwrap_or_default();
+            ui.label(RichText::new(format!("{failed} values invalid")).color(Color32::from_rgb(200, 50, 40)))
+                .on_hover_text(first);
+        }
+        ui.label(format!("path: {}", run.base_path.name()));
+    });
+    let ok: Vec<(f64, &Metrics)> =
+        run.points.iter().filter_map(|p| p.result.as_ref().ok().map(|m| (p.value, m))).collect();
+    let marker = match run.settings.param {
+        SweepParam::AspectRatio => current.path.uses_aspect_ratio().then_some(current.aspect_ratio),
+        SweepParam::LinearDistance => (current.path == PathKind::LinearElliptical).then_some(current.linear_distance),
+    };
+    let xlabel = run.settings.param.label();
+    type Series = (&'static str, fn(&Metrics) -> f64, Color32);
+    let panels: [(&str, &str, Vec<Series>); 4] = [
+        (
+            "h_max",
+            "h_max [mm]",
+            vec![("h_max", (|m: &Metrics| m.h_max_mm) as fn(&Metrics) -> f64, Color32::from_rgb(30, 110, 220))],
+        ),
+        (
+            "mrr",
+            "MRR [mm³/min]",
+            vec![("MRR", (|m: &Metrics| m.mrr_mm3_per_min) as fn(&Metrics) -> f64, Color32::from_rgb(40, 160, 70))],
+        ),
+        (
+            "waviness",
+            "waviness [mm]",
+            vec![
+                ("W_l", (|m: &Metrics| m.waviness_left_mm) as fn(&Metrics) -> f64, Color32::from_rgb(220, 90, 30)),
+                ("W_r", (|m: &Metrics| m.waviness_right_mm) as fn(&Metrics) -> f64, Color32::from_rgb(170, 60, 190)),
+            ],
+        ),
+        (
+            "times",
+            "time [s]",
+            vec![
+                ("t_cooling", (|m: &Metrics| m.t_cooling_s) as fn(&Metrics) -> f64, Color32::from_rgb(30, 110, 220)),
+                ("t_hmax", (|m: &Metrics| m.t_hmax_s) as fn(&Metrics) -> f64, Color32::from_rgb(40, 160, 70)),
+                ("t_cycle", (|m: &Metrics| m.t_cycle_s) as fn(&Metrics) -> f64, Color32::from_rgb(120, 120, 120)),
+            ],
+        ),
+    ];
+    let avail = ui.available_size();
+    let cell = egui::vec2((avail.x - 12.0) / 2.0, (avail.y - 12.0) / 2.0);
+    egui::Grid::new("sweep_grid").num_columns(2).spacing([8.0, 8.0]).show(ui, |ui| {
+        for (k, (id, ylabel, series)) in panels.iter().enumerate() {
+            ui.allocate_ui(cell, |ui| {
+                Plot::new(format!("sweep_{id}"))
+                    .width(cell.x)
+                    .height(cell.y)
+                    .legend(Legend::default().position(Corner::RightTop))
+                    .custom_x_axes(vec![AxisHints::new_x().label(xlabel).label_spacing(28.0..=44.0)])
+                    .y_axis_label(*ylabel)
+                    .allow_scroll(false)
+                    .show(ui, |p| {
+                        for &(name, f, color) in series {
+                            let pts: Vec<[f64; 2]> = ok.iter().map(|&(v, m)| [v, f(m)]).collect();
+                            p.line(Line::new(name, pts.clone()).color(color).width(1.5));
+                            p.points(Points::new(name, pts).color(color).radius(2.5));
+                        }
+                        if let Some(x) = marker {
+                            p.vline(VLine::new("current job", x).color(Color32::from_rgb(220, 30, 30)));
+                        }
+                    });
+            });
+            if k % 2 == 1 {
+                ui.end_row();
+            }
+        }
+    });
+    cmd
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sweep_runs_in_background_and_can_be_cancelled() {
+        let settings = SweepSettings { steps: 5, ..SweepSettings::default() };
+        let mut run = SweepRun::start(&settings, &Job::default(), || {});
+        let t0 = std::time::Instant::now();
+        while run.running() && t0.elapsed().as_secs() < 60 {
+            run.poll();
+            std::thread::sleep(std::time::Duration::from_millis(5));
+        }
+        assert_eq!(run.points.len(), 5);
+        assert!(run.points.iter().all(|p| p.result.is_ok()));
+        let mrr: Vec<f64> = run
+            .points
+            .iter()
+            .filter_map(|p| p.result.as_ref().ok())
+            .map((|m: &Metrics| m.mrr_mm3_per_min) as fn(&Metrics) -> f64)
+            .collect();
+        assert!(mrr.windows(2).all(|w| w[0] > w[1]), "MRR falls as r_e grows: {mrr:?}");
+
+        let big = SweepSettings { steps: 400, ..SweepSettings::default() };
+        let mut run = SweepRun::start(&big, &Job::default(), || {});
+        run.cancel();
+        while run.running() {
+            run.poll();
+            std::thread::sleep(std::time::Duration::from_millis(5));
+        }
+        assert!(run.points.len() < 400, "cancel stops the worker");
+    }
+}
