@@ -109,11 +109,15 @@ pub fn planned_samples(plan: &Plan, h: f64) -> Vec<P2> {
     pts
 }
 
-fn dist_to_chord(a: P2, b: P2, p: P2) -> f64 {
-    let ab = b - a;
-    let l2 = ab.norm_squared();
-    let t = if l2 > 0.0 { ((p - a).dot(&ab) / l2).clamp(0.0, 1.0) } else { 0.0 };
-    (p - (a + ab * t)).norm()
+/// Distance from `p` to the chord `a`–`b` (plain arithmetic: this is the hot loop of the
+/// checks and runs unoptimised in tests).
+fn dist_to_chord(a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> f64 {
+    let (abx, aby) = (b[0] - a[0], b[1] - a[1]);
+    let (apx, apy) = (p[0] - a[0], p[1] - a[1]);
+    let l2 = abx * abx + aby * aby;
+    let t = if l2 > 0.0 { ((apx * abx + apy * aby) / l2).clamp(0.0, 1.0) } else { 0.0 };
+    let (dx, dy) = (apx - abx * t, apy - aby * t);
+    (dx * dx + dy * dy).sqrt()
 }
 
 /// Largest distance of the points `a` from the polyline `b`, matching in order: a cursor
@@ -121,15 +125,17 @@ fn dist_to_chord(a: P2, b: P2, p: P2) -> f64 {
 /// chords only. The loops of a trochoidal path overlap their neighbours, so an unordered
 /// nearest-point search would hide a skipped or repeated cycle; this one does not.
 pub fn ordered_deviation(a: &[P2], b: &[P2], window: usize) -> f64 {
-    let mut cursor = 0usize;
-    let mut worst: f64 = 0.0;
+    let b: Vec<[f64; 2]> = b.iter().map(|p| [p.x, p.y]).collect();
     if b.len() < 2 {
         return f64::INFINITY;
     }
+    let mut cursor = 0usize;
+    let mut worst: f64 = 0.0;
     for p in a {
+        let p = [p.x, p.y];
         let (mut best, mut arg) = (f64::INFINITY, cursor);
         for j in cursor..(cursor + window).min(b.len() - 1) {
-            let d = dist_to_chord(b[j], b[j + 1], *p);
+            let d = dist_to_chord(b[j], b[j + 1], p);
             if d < best {
                 (best, arg) = (d, j);
             }
@@ -146,8 +152,9 @@ pub fn deviation_from_plan(cut: &[Motion], plan: &Plan) -> f64 {
     const H: f64 = 0.02;
     let prog = sample(cut, H);
     let planned = planned_samples(plan, H);
-    // 2 mm of path either way is far more than any deviation we accept
-    let window = (2.0 / H) as usize;
+    // both are sampled at ≤ H, so the match moves a sample or two per step; 0.4 mm of path
+    // ahead is far more than that and than any deviation we accept
+    let window = (0.4 / H) as usize;
     ordered_deviation(&prog, &planned, window).max(ordered_deviation(&planned, &prog, window))
 }
 
@@ -185,17 +192,27 @@ pub fn check_cut(label: &str, cut: &[Motion], plan: &Plan, tol: f64, q: f64) -> 
     Ok(())
 }
 
-/// Motions of two programs agree block by block within `tol` (end points and centres).
+/// Point halfway along an arc motion (by angle; radius interpolated as the controller does).
+fn arc_midpoint(start: [f64; 3], end: [f64; 3], center: P2, turns: i32) -> P2 {
+    let (a0, sweep, r0, r1) = arc_sweep(xy(start), xy(end), center, turns);
+    let a = a0 + 0.5 * sweep;
+    center + p2(a.cos(), a.sin()) * (0.5 * (r0 + r1))
+}
+
+/// Motions of two programs agree block by block within `tol`: same kind and direction, end
+/// points and arc midpoints within `tol` (not the centres: for a shallow arc a centre moves
+/// far along the normal when an end point moves by a rounding step, while the arc does not).
 pub fn same_motion(a: &[Motion], b: &[Motion], tol: f64) -> Result<(), String> {
     if a.len() != b.len() {
         return Err(format!("{} vs {} motions", a.len(), b.len()));
     }
     for (k, (x, y)) in a.iter().zip(b).enumerate() {
         let close = |p: [f64; 3], q: [f64; 3]| (0..3).all(|i| (p[i] - q[i]).abs() <= tol);
-        let ok = match (x, y) {
-            (Motion::Arc { center: c0, turns: t0, .. }, Motion::Arc { center: c1, turns: t1, .. }) => {
-                t0 == t1 && (c0 - c1).norm() <= 2.0 * tol
-            }
+        let ok = match (*x, *y) {
+            (
+                Motion::Arc { start: s0, end: e0, center: c0, turns: t0 },
+                Motion::Arc { start: s1, end: e1, center: c1, turns: t1 },
+            ) => t0 == t1 && (arc_midpoint(s0, e0, c0, t0) - arc_midpoint(s1, e1, c1, t1)).norm() <= 2.0 * tol,
             (Motion::Line { .. }, Motion::Line { .. }) | (Motion::Rapid { .. }, Motion::Rapid { .. }) => true,
             _ => false,
         };
@@ -205,4 +222,3 @@ pub fn same_motion(a: &[Motion], b: &[Motion], tol: f64) -> Result<(), String> {
     }
     Ok(())
 }
-
