@@ -45,6 +45,13 @@ enum Command {
         #[arg(long)]
         steps: usize,
     },
+    /// Write the NC program of one job (LinuxCNC, Fanuc-style ISO, GRBL or Sinumerik).
+    Export {
+        #[command(flatten)]
+        job: JobArgs,
+        #[command(flatten)]
+        nc: crate::export::ExportArgs,
+    },
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -183,6 +190,7 @@ fn run(cmd: Command) -> Result<String, String> {
             Ok(text)
         }
         Command::Sweep { job, param, from, to, steps } => sweep(job.job()?, param, from, to, steps),
+        Command::Export { job, nc } => crate::export::run(&job.job()?, &nc),
     }
 }
 

@@ -1,8 +1,9 @@
 //! TrochoPlan: `trochoplan` with no subcommand opens the planner window on the built-in
-//! default job; subcommands (`analyze`, `sweep`) run headless and never touch a display.
+//! default job; subcommands (`analyze`, `sweep`, `export`) run headless and never touch a display.
 
 mod app;
 mod cli;
+mod export;
 mod files;
 
 use std::process::ExitCode;

@@ -14,6 +14,7 @@
 //! - [`geom`]: points, exact segments (line, arc, eq. (1) trochoid piece), numerics.
 //! - [`path`]: the four slot path types as one repeated cycle.
 //! - [`analysis`]: edge of previous cycles, per-tooth h and engagement, waviness, step limit.
+//! - [`nc`]: NC programs (LinuxCNC, Fanuc-style ISO, GRBL, Sinumerik), biarc output.
 //! - [`plan`]: [`plan()`] — job in, [`Plan`] out; used by the GUI and the CLI.
 //! - [`error`]: the [`JobError`] type.
 
@@ -21,6 +22,7 @@ pub mod analysis;
 pub mod error;
 pub mod geom;
 pub mod job;
+pub mod nc;
 pub mod path;
 pub mod plan;
 

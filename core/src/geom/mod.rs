@@ -3,9 +3,11 @@
 //! Conventions: millimetres, radians, right-handed XY plane seen from +Z, counter-clockwise
 //! positive. Points are `nalgebra::Vector2<f64>` (alias [`P2`]).
 
+mod biarc;
 mod quad;
 mod segment;
 
+pub use biarc::{FitPiece, biarc, distance_to_piece, fit_biarcs, polyline};
 pub use quad::gauss_legendre;
 pub use segment::{Segment, SegmentPoint};
 

@@ -1,0 +1,205 @@
+//! NC dialects as data: what differs between controllers is written down here, once; the
+//! emitter ([`super::writer`]) reads it (design.md "dialects as data").
+
+use crate::error::JobError;
+use std::f64::consts::{PI, TAU};
+
+/// Target controller family.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Dialect {
+    /// LinuxCNC RS274NGC (named parameters, O-word loops).
+    LinuxCnc,
+    /// Fanuc-style ISO: `%`, program number, I/J incremental, decimal points always written.
+    Fanuc,
+    /// GRBL 1.1: no O-words, no tool change, at most a half circle per arc block.
+    Grbl,
+    /// Siemens Sinumerik 840D: `;` comments, G71 metric, R-parameters, labels and GOTOB.
+    Sinumerik,
+}
+
+/// How comments are written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CommentStyle {
+    /// `(text)`: LinuxCNC, Fanuc, GRBL.
+    Parens,
+    /// `; text`: Sinumerik.
+    Semicolon,
+}
+
+/// How the tool is called.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ToolCall {
+    /// `T1 M6` then `G43 H1` (tool length offset).
+    ChangeAndLengthOffset,
+    /// `T1 D1` then `M6` (Sinumerik: D activates the tool offset).
+    SinumerikTD,
+    /// No tool words (GRBL has no tool changer support); the tool is named in a comment.
+    CommentOnly,
+}
+
+/// Compact (looped) program form a dialect supports.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LoopStyle {
+    /// LinuxCNC `o100 while [...]` … `o100 endwhile` with named parameters (domain-spec §5.2).
+    OWord,
+    /// Sinumerik R-parameters, a label and `IF … GOTOB` (Grechishnikov et al. 2017; §5.1).
+    RParameter,
+}
+
+/// Everything the emitter needs to know about a dialect.
+#[derive(Clone, Copy, Debug)]
+pub struct DialectSpec {
+    /// CLI name.
+    pub name: &'static str,
+    /// Decimals of coordinates (mm); the quantum is 10^-decimals.
+    pub decimals: u32,
+    pub comment: CommentStyle,
+    /// Lines before the header comment (tape start, program number).
+    pub program_start: &'static [&'static str],
+    /// The modal set-up block: plane, units, absolute, feed per minute, cancels.
+    pub setup: &'static str,
+    /// Path-blending word followed by the tolerance (LinuxCNC `G64 P…`: blend corners but stay
+    /// within the tolerance of the programmed path), if the dialect takes one.
+    pub blend_tolerance_word: Option<&'static str>,
+    pub tool_call: ToolCall,
+    /// Largest sweep of one arc block (rad).
+    pub max_arc_sweep: f64,
+    /// Largest start/end radius difference we allow in an arc block (mm), below what the
+    /// controller checks (LinuxCNC rejects ≥ 0.04 mm, see the e2e tests; GRBL 0.005 mm and
+    /// 0.1 %; Fanuc parameter 3410 and Sinumerik MD 21000 are machine settings, ~0.01 mm).
+    pub arc_radius_tolerance_mm: f64,
+    /// Lines after the last motion (program end).
+    pub program_end: &'static [&'static str],
+    /// The compact form, if the dialect has one.
+    pub loop_style: Option<LoopStyle>,
+}
+
+const LINUXCNC: DialectSpec = DialectSpec {
+    name: "linuxcnc",
+    decimals: 4,
+    comment: CommentStyle::Parens,
+    program_start: &[],
+    // G91.1: arc centres I/J incremental from the arc start (LinuxCNC default, stated anyway)
+    setup: "G17 G21 G40 G49 G80 G90 G91.1 G94",
+    blend_tolerance_word: Some("G64 P"),
+    tool_call: ToolCall::ChangeAndLengthOffset,
+    max_arc_sweep: TAU,
+    arc_radius_tolerance_mm: 0.01,
+    program_end: &["M30"],
+    loop_style: Some(LoopStyle::OWord),
+};
+
+const FANUC: DialectSpec = DialectSpec {
+    name: "fanuc",
+    decimals: 3,
+    comment: CommentStyle::Parens,
+    program_start: &["%", "O1000"],
+    setup: "G17 G21 G40 G49 G80 G90 G94",
+    blend_tolerance_word: None,
+    tool_call: ToolCall::ChangeAndLengthOffset,
+    max_arc_sweep: TAU,
+    arc_radius_tolerance_mm: 0.005,
+    program_end: &["M30", "%"],
+    loop_style: None,
+};
+
+const GRBL: DialectSpec = DialectSpec {
+    name: "grbl",
+    decimals: 3,
+    comment: CommentStyle::Parens,
+    program_start: &[],
+    setup: "G17 G21 G40 G90 G94",
+    blend_tolerance_word: None,
+    tool_call: ToolCall::CommentOnly,
+    max_arc_sweep: PI,
+    arc_radius_tolerance_mm: 0.005,
+    program_end: &["M30"],
+    loop_style: None,
+};
+
+const SINUMERIK: DialectSpec = DialectSpec {
+    name: "sinumerik",
+    decimals: 3,
+    comment: CommentStyle::Semicolon,
+    program_start: &[],
+    // G71: metric in Siemens mode (G21 is the ISO-dialect word)
+    setup: "G17 G40 G71 G90 G94",
+    blend_tolerance_word: None,
+    tool_call: ToolCall::SinumerikTD,
+    max_arc_sweep: TAU,
+    arc_radius_tolerance_mm: 0.01,
+    program_end: &["M30"],
+    loop_style: Some(LoopStyle::RParameter),
+};
+
+impl Dialect {
+    /// All dialects, in CLI order.
+    pub const ALL: [Dialect; 4] = [Dialect::LinuxCnc, Dialect::Fanuc, Dialect::Grbl, Dialect::Sinumerik];
+
+    /// The dialect's data.
+    pub fn spec(self) -> &'static DialectSpec {
+        match self {
+            Dialect::LinuxCnc => &LINUXCNC,
+            Dialect::Fanuc => &FANUC,
+            Dialect::Grbl => &GRBL,
+            Dialect::Sinumerik => &SINUMERIK,
+        }
+    }
+
+    /// CLI name.
+    pub fn name(self) -> &'static str {
+        self.spec().name
+    }
+
+    /// Parse a CLI name.
+    pub fn from_name(s: &str) -> Result<Dialect, JobError> {
+        Dialect::ALL
+            .into_iter()
+            .find(|d| d.name() == s)
+            .ok_or_else(|| JobError::range("dialect", s, "one of linuxcnc, fanuc, grbl, sinumerik"))
+    }
+}
+
+/// Text made safe for a comment of any dialect: one line, printable ASCII, no comment
+/// delimiters. `(`/`)` become `[`/`]` (LinuxCNC rejects a nested "(" and a ")" would end the
+/// comment early), `;` becomes `,`, `%` (Fanuc/LinuxCNC tape mark) becomes `_`, control
+/// characters and newlines become spaces, other characters `?`; at most 70 characters.
+pub fn sanitize_comment(text: &str) -> String {
+    let mapped: String = text
+        .chars()
+        .map(|c| match c {
+            '(' => '[',
+            ')' => ']',
+            ';' => ',',
+            '%' => '_',
+            c if c.is_ascii_control() => ' ',
+            c if c.is_ascii() => c,
+            _ => '?',
+        })
+        .collect();
+    let words: Vec<&str> = mapped.split_whitespace().collect();
+    words.join(" ").chars().take(70).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sanitized_comments_cannot_break_out() {
+        let evil = "a (nested) comment;\nG0 X0 ) % é\t(";
+        let s = sanitize_comment(evil);
+        assert_eq!(s, "a [nested] comment, G0 X0 ] _ ? [");
+        assert!(!s.contains(['(', ')', ';', '\n', '\r', '%']));
+        assert!(sanitize_comment(&"x".repeat(500)).len() <= 70);
+    }
+
+    #[test]
+    fn dialect_names_round_trip_and_errors_name_the_parameter() {
+        for d in Dialect::ALL {
+            assert_eq!(Dialect::from_name(d.name()), Ok(d));
+        }
+        let err = Dialect::from_name("heidenhain").expect_err("unknown");
+        assert_eq!(err.parameter(), Some("dialect"));
+    }
+}

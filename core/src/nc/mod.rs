@@ -1,0 +1,385 @@
+//! NC output (issue #4, domain-spec §5): one emitter ([`writer::Writer`]), dialects as data
+//! ([`Dialect`], [`DialectSpec`]).
+//!
+//! Coordinates: the slot starts at X0 Y0 and runs along +Y, top of stock at Z0, depth −a_p;
+//! units mm (G21; G71 on Sinumerik), XY plane (G17), absolute (G90), feed per minute (G94),
+//! work offset G54, spindle M3.
+//!
+//! Program: header comment with the job (deterministic: no dates), set-up block, tool and
+//! spindle, optional coolant, safe Z, rapid to the path start (outside the open slot end
+//! y = 0: the first cycle's swept disc stays at y < 0, see `SlotPath::for_job`), feed down to
+//! depth there, the cycles, retract, program end.
+//!
+//! Geometry: lines as G1, exact arcs (circular-type path) as G2/G3 with I/J, trochoid pieces
+//! (eq. 1, never a circular arc) as biarcs within the tolerance (§5.4), or, only when asked
+//! for, everything as G1 chords within the tolerance. The cycle is fitted once and translated
+//! (the fit is translation-invariant), so every cycle gets the same blocks.
+//!
+//! Compact forms ([`NcOptions::compact`]): LinuxCNC `while` loop (§5.2) and Sinumerik
+//! R-parameter loop (§5.1, Grechishnikov et al. 2017) with the same per-cycle blocks, written
+//! relative to the cycle origin (`Y[#<oy>+…]`, `Y=R10+…`).
+
+mod dialect;
+mod writer;
+
+pub use dialect::{CommentStyle, Dialect, DialectSpec, LoopStyle, ToolCall, sanitize_comment};
+pub use writer::{Writer, YForm};
+
+use crate::error::JobError;
+use crate::geom::{FitPiece, Segment, fit_biarcs, polyline};
+use crate::job::PathKind;
+use crate::plan::Plan;
+use std::f64::consts::TAU;
+
+/// Default chord/biarc tolerance (mm), domain-spec §5.4.
+pub const DEFAULT_TOLERANCE_MM: f64 = 0.005;
+/// Allowed tolerance range (mm): below 0.1 µm the fit only chases rounding, above 1 mm it is
+/// no longer the planned path.
+pub const TOLERANCE_RANGE_MM: (f64, f64) = (1e-4, 1.0);
+
+/// What to write and how.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NcOptions {
+    pub dialect: Dialect,
+    /// Largest distance of the written path from the planned one, before rounding (mm).
+    pub tolerance_mm: f64,
+    /// Write every curve (arcs too) as G1 chords instead of G2/G3.
+    pub linear_segments: bool,
+    /// Coolant on (M8) during the cut.
+    pub coolant: bool,
+    /// Feed for moves that cut nothing in the steady state (mm/min); `None`: cutting feed.
+    pub return_feed_mm_per_min: Option<f64>,
+    /// Loop form instead of one block list per cycle (LinuxCNC and Sinumerik).
+    pub compact: bool,
+    /// Safe height above the stock for rapid moves (mm).
+    pub safe_z_mm: f64,
+    /// Tool number.
+    pub tool_number: u32,
+    /// Free text for the header comment (sanitised).
+    pub title: String,
+}
+
+impl Default for NcOptions {
+    fn default() -> Self {
+        NcOptions {
+            dialect: Dialect::LinuxCnc,
+            tolerance_mm: DEFAULT_TOLERANCE_MM,
+            linear_segments: false,
+            coolant: false,
+            return_feed_mm_per_min: None,
+            compact: false,
+            safe_z_mm: 5.0,
+            tool_number: 1,
+            title: String::new(),
+        }
+    }
+}
+
+impl NcOptions {
+    /// Check the options; the error names the option, its value and the allowed range.
+    pub fn validate(&self) -> Result<(), JobError> {
+        let (lo, hi) = TOLERANCE_RANGE_MM;
+        let t = self.tolerance_mm;
+        if !(t.is_finite() && (lo..=hi).contains(&t)) {
+            return Err(JobError::range("tolerance", t, format!("from {lo} to {hi} mm")));
+        }
+        let z = self.safe_z_mm;
+        if !(z.is_finite() && z > 0.0 && z <= 1000.0) {
+            return Err(JobError::range("safe-z", z, "a finite number > 0 and ≤ 1000 mm"));
+        }
+        if let Some(f) = self.return_feed_mm_per_min
+            && !(f.is_finite() && f > 0.0 && f <= 1.0e6)
+        {
+            return Err(JobError::range("return-feed", f, "a finite number > 0 and ≤ 1000000 mm/min"));
+        }
+        if self.tool_number == 0 || self.tool_number > 9999 {
+            return Err(JobError::range("tool", self.tool_number, "a whole number from 1 to 9999"));
+        }
+        if self.compact && self.dialect.spec().loop_style.is_none() {
+            return Err(JobError::range(
+                "compact",
+                self.dialect.name(),
+                "a dialect with a loop form: linuxcnc or sinumerik",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// A written program.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NcProgram {
+    pub text: String,
+    /// Blocks (lines that are more than a comment).
+    pub blocks: usize,
+}
+
+/// One move of a cycle, relative to the cycle origin.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CycleMove {
+    /// A line or an arc.
+    pub seg: Segment,
+    pub feed_mm_per_min: f64,
+}
+
+/// The blocks of one cycle (relative to its origin) as lines and arcs with their feeds:
+/// biarcs or chords within the tolerance (module docs), the return feed on pieces that cut
+/// nothing (see [`cuts_nothing`]).
+pub fn cycle_moves(plan: &Plan, opts: &NcOptions) -> Vec<CycleMove> {
+    let cycle = &plan.path.cycle;
+    let cycle_len = cycle.length();
+    let mut moves = Vec::new();
+    let mut s_before = 0.0;
+    for (seg, len) in cycle.segments.iter().zip(&cycle.lengths) {
+        let pieces: Vec<FitPiece> =
+            if opts.linear_segments { polyline(seg, opts.tolerance_mm) } else { fit_biarcs(seg, opts.tolerance_mm) };
+        for p in pieces {
+            let feed = match opts.return_feed_mm_per_min {
+                Some(fast) => {
+                    let s0 = s_before + seg.length_between(0.0, p.t0);
+                    let s1 = s_before + seg.length_between(0.0, p.t1);
+                    if cuts_nothing(plan, cycle_len, s0, s1) { fast } else { plan.job.feed }
+                }
+                None => plan.job.feed,
+            };
+            moves.push(CycleMove { seg: p.seg, feed_mm_per_min: feed });
+        }
+        s_before += len;
+    }
+    moves
+}
+
+/// Whether no tooth cuts on the cycle stretch from arc length `s0` to `s1` in the steady
+/// state, with one tooth spacing f_z of margin at both ends (the tooth series is spaced f_z
+/// and periodic with the cycle length).
+///
+/// Sufficient for every cycle, the first ones too: cycle j < 0 would sweep only y < 0 (the
+/// first cycle is placed so), so material the steady state counts as removed by earlier cycles
+/// is, in the real first cycles, removed or never there.
+pub fn cuts_nothing(plan: &Plan, cycle_len: f64, s0: f64, s1: f64) -> bool {
+    let margin = plan.job.f_z();
+    let (lo, hi) = (s0 - margin, s1 + margin);
+    let mut seen = false;
+    for t in &plan.series {
+        // the sample or its periodic copies one cycle before or after
+        let inside = [t.s_mm - cycle_len, t.s_mm, t.s_mm + cycle_len].iter().any(|s| (lo..=hi).contains(s));
+        if inside {
+            seen = true;
+            if t.cutting {
+                return false;
+            }
+        }
+    }
+    seen
+}
+
+/// The NC program of a planned slot (module docs for its structure).
+pub fn program(plan: &Plan, opts: &NcOptions) -> Result<NcProgram, JobError> {
+    opts.validate()?;
+    let spec = opts.dialect.spec();
+    let moves = cycle_moves(plan, opts);
+    let mut w = Writer::new(spec);
+    preamble(&mut w, plan, opts);
+    let job = &plan.job;
+    let path = &plan.path;
+    let start = path.origin(0) + moves.first().map_or(path.cycle.segments[0].start(), |m| m.seg.start());
+    // approach outside the open slot end at safe Z, feed down to depth there
+    w.linear(None, None, Some(opts.safe_z_mm), None);
+    w.linear(Some(start.x), Some(start.y), None, None);
+    w.linear(None, None, Some(-job.depth), Some(job.feed));
+    match (opts.compact, spec.loop_style) {
+        (true, Some(LoopStyle::OWord)) => oword_loop(&mut w, plan, &moves),
+        (true, Some(LoopStyle::RParameter)) => {
+            if is_circle_cycle(plan, &moves) {
+                grechishnikov_loop(&mut w, plan, &moves)
+            } else {
+                r_parameter_loop(&mut w, plan, &moves)
+            }
+        }
+        _ => {
+            for i in 0..path.cycles {
+                let o = path.origin(i);
+                for m in &moves {
+                    w.segment(&m.seg.translated(o), m.feed_mm_per_min);
+                }
+            }
+        }
+    }
+    w.linear(None, None, Some(opts.safe_z_mm), None);
+    if opts.coolant {
+        w.raw("M9");
+    }
+    w.raw("M5");
+    for line in spec.program_end {
+        w.raw(line);
+    }
+    let (text, blocks) = w.finish()?;
+    Ok(NcProgram { text, blocks })
+}
+
+/// Header comment, set-up, tool, spindle and coolant.
+fn preamble(w: &mut Writer, plan: &Plan, opts: &NcOptions) {
+    let spec = opts.dialect.spec();
+    let (job, m) = (&plan.job, &plan.metrics);
+    for line in spec.program_start {
+        w.raw(line);
+    }
+    let title = if opts.title.trim().is_empty() { "TrochoPlan slot".to_string() } else { opts.title.clone() };
+    w.comment(&title);
+    w.comment(&format!("path {}, {} cycles, path length {:.3} mm", job.path.name(), m.cycles, m.path_length_mm));
+    w.comment(&format!("slot B {:.3} x L {:.3} mm, depth {:.3} mm", job.slot_width, job.slot_length, job.depth));
+    w.comment("slot from X0 Y0 along +Y, stock top Z0");
+    w.comment(&format!(
+        "tool T{} D {:.3} mm, {} teeth, {:.0} rpm, feed {:.1} mm/min",
+        opts.tool_number, job.tool_diameter, job.teeth, job.rpm, job.feed
+    ));
+    w.comment(&format!(
+        "step s {:.4} mm, r_e {:.4}, d {:.4} mm, a {:.4} mm",
+        job.step,
+        job.aspect_ratio,
+        job.linear_distance,
+        job.trochoidal_radius()
+    ));
+    let geometry = if opts.linear_segments { "G1 chords" } else { "arcs" };
+    w.comment(&format!("{}: {geometry} within {} mm{}", spec.name, opts.tolerance_mm, if opts.compact { ", loop" } else { "" }));
+    if let Some(f) = opts.return_feed_mm_per_min {
+        w.comment(&format!("return feed {f:.1} mm/min where no tooth cuts"));
+    }
+    w.raw(spec.setup);
+    if let Some(word) = spec.blend_tolerance_word {
+        let tol = w.format("tolerance", opts.tolerance_mm);
+        w.raw(&format!("{word}{tol}"));
+    }
+    w.raw("G54");
+    let t = opts.tool_number;
+    match spec.tool_call {
+        dialect::ToolCall::ChangeAndLengthOffset => {
+            w.raw(&format!("T{t} M6"));
+            w.raw(&format!("G43 H{t}"));
+        }
+        dialect::ToolCall::SinumerikTD => {
+            w.raw(&format!("T{t} D1"));
+            w.raw("M6");
+        }
+        dialect::ToolCall::CommentOnly => w.comment(&format!("load tool {t}: D {:.3} mm", job.tool_diameter)),
+    }
+    w.raw(&format!("S{:.0} M3", job.rpm));
+    if opts.coolant {
+        w.raw("M8");
+    }
+}
+
+/// Parameter values in loop set-up lines: six decimals (R-parameters and named parameters are
+/// doubles; the step must not be rounded to the coordinate quantum, or cycles would drift).
+fn param(v: f64) -> String {
+    let s = format!("{v:.6}");
+    if s.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') { "0.000000".into() } else { s }
+}
+
+/// Every iteration starts at the cycle start (relative to its origin): the end of the previous
+/// cycle is the start of the next one, one step further.
+fn body_start(w: &mut Writer, moves: &[CycleMove]) {
+    if let Some(m) = moves.first() {
+        let s = m.seg.start();
+        w.assume_position(s.x, s.y);
+    }
+}
+
+/// LinuxCNC `while` loop over the cycles (domain-spec §5.2, named parameters).
+fn oword_loop(w: &mut Writer, plan: &Plan, moves: &[CycleMove]) {
+    let path = &plan.path;
+    w.block(&[format!("#<y0>={}", param(path.origin(0).y))]);
+    w.comment("y0: Y of the first cycle origin");
+    w.block(&[format!("#<s>={}", param(path.cycle.step))]);
+    w.block(&[format!("#<n>={}", path.cycles)]);
+    w.block(&["#<k>=0".to_string()]);
+    w.raw("o100 while [#<k> LT #<n>]");
+    w.raw("#<oy>=[#<y0>+#<k>*#<s>]");
+    w.forget_modal();
+    w.set_y_form(YForm::Offset("#<oy>"));
+    body_start(w, moves);
+    for m in moves {
+        w.segment(&m.seg, m.feed_mm_per_min);
+    }
+    w.raw("#<k>=[#<k>+1]");
+    w.raw("o100 endwhile");
+    w.set_y_form(YForm::Plain);
+    w.forget_modal();
+}
+
+/// Sinumerik loop for any path: the cycle's blocks relative to R10, the Y of cycle R1's
+/// origin; R1 counts cycles, R2 = s, R5 = n·s, R51 = y of the first origin (the R names of
+/// domain-spec §5.1). R1 is whole, so `R1<R5/R2+0.5` is R1 ≤ n without float-equality traps.
+fn r_parameter_loop(w: &mut Writer, plan: &Plan, moves: &[CycleMove]) {
+    r_common(w, plan);
+    w.raw("LOOP:");
+    w.raw("R10=R51+(R1-1)*R2");
+    w.forget_modal();
+    w.set_y_form(YForm::Offset("R10"));
+    body_start(w, moves);
+    for m in moves {
+        w.segment(&m.seg, m.feed_mm_per_min);
+    }
+    w.raw("R1=R1+1");
+    w.raw("IF R1<R5/R2+0.5 GOTOB LOOP");
+    w.set_y_form(YForm::Plain);
+    w.forget_modal();
+}
+
+/// R1, R2, R5, R51 with comments.
+fn r_common(w: &mut Writer, plan: &Plan) {
+    let path = &plan.path;
+    let s = path.cycle.step;
+    w.block(&["R1=1".into()]);
+    w.comment("R1 cycle counter");
+    w.block(&[format!("R2={}", param(s))]);
+    w.comment("R2 step s mm");
+    w.block(&[format!("R5={}", param(s * path.cycles as f64))]);
+    w.comment(&format!("R5 centre travel = {} cycles x R2", path.cycles));
+    w.block(&[format!("R51={}", param(path.origin(0).y))]);
+    w.comment("R51 Y of the first cycle origin");
+}
+
+/// Whether the cycle is the circular-type one written as a line and one full circle (the
+/// shaping-circle form of Grechishnikov et al.).
+fn is_circle_cycle(plan: &Plan, moves: &[CycleMove]) -> bool {
+    plan.job.path == PathKind::CircularType
+        && matches!(moves, [CycleMove { seg: Segment::Line { .. }, .. }, CycleMove { seg: Segment::Arc { sweep, .. }, .. }] if sweep.abs() >= TAU - 1e-9)
+}
+
+/// The parametric program of Grechishnikov et al. (2017) (domain-spec §5.1) for the
+/// circular-type path: shaping circle k (R1 = k) has centre (R50, R51) + k·R2·(cos R3, sin R3);
+/// G1 to the circle start, given from centre k−1 by (R11, R12) = R2·u + a·n, then the full
+/// circle (G2, the clockwise loops of eq. 1) back to it, (R13, R14) = (R11, R12), centre by
+/// I=AC(…) J=AC(…). u = (cos R3, sin R3) = slot direction (+Y: R3 = 90°), n = its left normal.
+/// Consistency (§5.1): |(R11, R12) − R2·u| = a.
+fn grechishnikov_loop(w: &mut Writer, plan: &Plan, moves: &[CycleMove]) {
+    let path = &plan.path;
+    let a = plan.job.trochoidal_radius();
+    let s = path.cycle.step;
+    let (line_feed, arc_feed) = (moves[0].feed_mm_per_min, moves[1].feed_mm_per_min);
+    r_common(w, plan);
+    w.block(&["R3=90".into()]);
+    w.comment("R3 slot direction, degrees from +X");
+    w.block(&[format!("R4={}", param(arc_feed))]);
+    w.comment("R4 feed mm/min of the circle");
+    w.block(&[format!("R6={}", param(line_feed))]);
+    w.comment("R6 feed mm/min of the step move");
+    w.block(&[format!("R50={}", param(path.origin(0).x))]);
+    w.comment("R50 R51 centre of circle 0");
+    // (R11, R12) = R2·u + a·n with u = (0, 1), n = (−1, 0)
+    w.block(&[format!("R11={}", param(-a))]);
+    w.block(&[format!("R12={}", param(s))]);
+    w.block(&["R13=R11".into()]);
+    w.block(&["R14=R12".into()]);
+    w.comment("R11..R14 circle start and end from centre k-1");
+    w.raw("LOOP:");
+    w.raw("G1 X=R50+(R1-1)*R2*COS(R3)+R11 Y=R51+(R1-1)*R2*SIN(R3)+R12 F=R6");
+    w.raw("G2 X=R50+(R1-1)*R2*COS(R3)+R13 Y=R51+(R1-1)*R2*SIN(R3)+R14 I=AC(R50+R1*R2*COS(R3)) J=AC(R51+R1*R2*SIN(R3)) F=R4");
+    w.raw("R1=R1+1");
+    w.raw("IF R1<R5/R2+0.5 GOTOB LOOP");
+    w.forget_modal();
+}
+
+#[cfg(test)]
+mod tests;

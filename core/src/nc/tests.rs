@@ -1,0 +1,122 @@
+//! Unit tests of the program structure; motion is checked against the plan in
+//! `core/tests/nc_*.rs` and through LinuxCNC's interpreter in `tests/nc_rs274.rs`.
+
+use super::*;
+use crate::job::Job;
+use crate::plan::plan;
+use std::f64::consts::TAU;
+
+fn planned(path: PathKind) -> Plan {
+    let job = Job { path, aspect_ratio: if path.uses_aspect_ratio() { 0.8 } else { 1.0 }, linear_distance: 0.5, ..Job::default() };
+    plan(&job).expect("valid job")
+}
+
+fn opts(dialect: Dialect) -> NcOptions {
+    NcOptions { dialect, ..NcOptions::default() }
+}
+
+#[test]
+fn bad_options_name_the_option() {
+    let p = planned(PathKind::Circular);
+    let cases: Vec<(NcOptions, &str)> = vec![
+        (NcOptions { tolerance_mm: 0.0, ..NcOptions::default() }, "tolerance"),
+        (NcOptions { tolerance_mm: -0.01, ..NcOptions::default() }, "tolerance"),
+        (NcOptions { tolerance_mm: f64::NAN, ..NcOptions::default() }, "tolerance"),
+        (NcOptions { tolerance_mm: 5.0, ..NcOptions::default() }, "tolerance"),
+        (NcOptions { safe_z_mm: f64::INFINITY, ..NcOptions::default() }, "safe-z"),
+        (NcOptions { return_feed_mm_per_min: Some(-1.0), ..NcOptions::default() }, "return-feed"),
+        (NcOptions { tool_number: 0, ..NcOptions::default() }, "tool"),
+        (NcOptions { compact: true, ..opts(Dialect::Fanuc) }, "compact"),
+        (NcOptions { compact: true, ..opts(Dialect::Grbl) }, "compact"),
+    ];
+    for (o, name) in cases {
+        let err = program(&p, &o).expect_err("must be rejected");
+        assert_eq!(err.parameter(), Some(name), "{err}");
+        assert!(err.to_string().contains(name), "{err}");
+    }
+}
+
+#[test]
+fn programs_are_deterministic_and_numbers_are_clean() {
+    for kind in PathKind::ALL {
+        let p = planned(kind);
+        for d in Dialect::ALL {
+            for compact in [false, true] {
+                if compact && d.spec().loop_style.is_none() {
+                    continue;
+                }
+                let o = NcOptions { compact, coolant: true, ..opts(d) };
+                let a = program(&p, &o).expect("program");
+                assert_eq!(a, program(&p, &o).expect("program"), "deterministic");
+                for bad in ["NaN", "nan", "inf", "-0.000 ", "-0.0000 "] {
+                    assert!(!a.text.contains(bad), "{kind:?} {d:?}: contains {bad}");
+                }
+                assert!(a.text.contains("S2000 M3") && a.text.contains("M8") && a.text.contains("M9"));
+                assert!(a.blocks > 10);
+                if d == Dialect::Grbl {
+                    assert!(a.text.lines().all(|l| l.len() <= 80), "GRBL line buffer is 80 characters");
+                    assert!(!a.text.contains("M6") && !a.text.to_lowercase().contains(" o1"));
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn user_text_cannot_break_the_program() {
+    let p = planned(PathKind::Circular);
+    let title = "slot (left) ; G0 Z-50\nM30 )(".to_string();
+    for d in Dialect::ALL {
+        let prog = program(&p, &NcOptions { title: title.clone(), ..opts(d) }).expect("program");
+        let first_comment = prog.text.lines().find(|l| l.starts_with('(') || l.starts_with(';')).expect("comment");
+        match d.spec().comment {
+            CommentStyle::Parens => {
+                let inner = &first_comment[1..first_comment.len() - 1];
+                assert!(first_comment.ends_with(')') && !inner.contains(['(', ')']), "{first_comment}");
+            }
+            CommentStyle::Semicolon => assert!(!first_comment[1..].contains(';'), "{first_comment}"),
+        }
+        assert!(!prog.text.lines().any(|l| l.starts_with("M30 ")), "newline injected a block");
+    }
+}
+
+#[test]
+fn arcs_only_where_curves_are_and_chords_only_when_asked() {
+    let p = planned(PathKind::Elliptical);
+    let arcs = program(&p, &opts(Dialect::LinuxCnc)).expect("program");
+    let chords = program(&p, &NcOptions { linear_segments: true, ..opts(Dialect::LinuxCnc) }).expect("program");
+    let has_word = |text: &str, w: &str| text.split_whitespace().any(|t| t == w);
+    assert!(has_word(&arcs.text, "G2"), "biarcs are G2");
+    assert!(!has_word(&chords.text, "G2") && !has_word(&chords.text, "G3"));
+    assert!(chords.blocks > arcs.blocks, "{} chords vs {} arcs", chords.blocks, arcs.blocks);
+}
+
+#[test]
+fn return_feed_only_where_no_tooth_cuts() {
+    let p = planned(PathKind::Elliptical);
+    let o = NcOptions { return_feed_mm_per_min: Some(1800.0), ..opts(Dialect::LinuxCnc) };
+    let moves = cycle_moves(&p, &o);
+    let fast: Vec<&CycleMove> = moves.iter().filter(|m| m.feed_mm_per_min == 1800.0).collect();
+    assert!(!fast.is_empty() && fast.len() < moves.len(), "{} of {} fast", fast.len(), moves.len());
+    // independent check: on a fast piece the whole tool disc lies in material already removed,
+    // i.e. every point of its rim is within R of the previous cycle's path or of this cycle's
+    // (a front piece fails: its rim reaches uncut stock beyond every path)
+    let r = p.job.tool_radius();
+    let step = p.path.cycle.step;
+    let swept: Vec<crate::geom::P2> = [-step, 0.0]
+        .iter()
+        .flat_map(|dy| p.path.cycle.sample(crate::geom::p2(0.0, *dy), 2000))
+        .collect();
+    for m in fast {
+        for t in [0.0, 0.5, 1.0] {
+            let c = m.seg.point(t);
+            for k in 0..72 {
+                let a = k as f64 * TAU / 72.0;
+                let rim = c + crate::geom::p2(a.cos(), a.sin()) * r;
+                let d = swept.iter().map(|q| (q - rim).norm()).fold(f64::INFINITY, f64::min);
+                assert!(d <= r + 1e-3, "rim point {rim} of a fast piece at {c} is {d} from the swept paths");
+            }
+        }
+    }
+    assert!(program(&p, &o).expect("program").text.contains("F1800.0"));
+}

@@ -1,0 +1,383 @@
+//! The one emitter: a modal machine that writes blocks for any [`DialectSpec`].
+//!
+//! Positions are kept as whole multiples of the dialect's quantum q = 10^-decimals (i64), so
+//! "changed?" is exact, "-0.000" cannot occur and every number is finite (a non-finite or huge
+//! value turns into an error instead of text). Words are written only when they change
+//! (motion G-code, X, Y, Z, F), as svg2gcode's `Machine` does; arc blocks always carry X and Y
+//! (a full circle ends where it starts).
+//!
+//! Arc centres (domain-spec §5.3): controllers recompute the radius from the *written* start,
+//! end and I/J and reject a block whose two radii differ (see [`DialectSpec`]). So the centre
+//! written is the true centre moved onto the perpendicular bisector of the rounded start and
+//! end (equal radii before rounding I/J), then rounded: the radii differ by at most q·√2.
+
+use super::dialect::{CommentStyle, DialectSpec, sanitize_comment};
+use crate::error::JobError;
+use crate::geom::{P2, Segment, p2, rot90};
+use std::f64::consts::TAU;
+
+/// Largest coordinate written (mm); job validation keeps paths far below.
+const MAX_ABS_MM: f64 = 1.0e7;
+
+/// How the Y word of a block is written.
+#[derive(Clone, Debug)]
+pub enum YForm {
+    /// `Y12.345`: absolute number.
+    Plain,
+    /// Relative to a loop variable: `Y[#<oy>+12.3450]` (LinuxCNC) or `Y=R10+12.345`
+    /// (Sinumerik); the string is the variable, the dialect picks the brackets.
+    Offset(&'static str),
+}
+
+/// The modal machine writing one program.
+pub struct Writer {
+    spec: &'static DialectSpec,
+    scale: f64,
+    text: String,
+    blocks: usize,
+    motion: Option<&'static str>,
+    x: Option<i64>,
+    y: Option<i64>,
+    z: Option<i64>,
+    feed: Option<i64>,
+    y_form: YForm,
+    error: Option<JobError>,
+}
+
+impl Writer {
+    pub fn new(spec: &'static DialectSpec) -> Writer {
+        Writer {
+            spec,
+            scale: 10f64.powi(spec.decimals as i32),
+            text: String::new(),
+            blocks: 0,
+            motion: None,
+            x: None,
+            y: None,
+            z: None,
+            feed: None,
+            y_form: YForm::Plain,
+            error: None,
+        }
+    }
+
+    /// The program text and its number of blocks (lines that are not only a comment), or the
+    /// first number that could not be written.
+    pub fn finish(self) -> Result<(String, usize), JobError> {
+        match self.error {
+            Some(e) => Err(e),
+            None => Ok((self.text, self.blocks)),
+        }
+    }
+
+    /// The coordinate quantum q (mm).
+    pub fn quantum(&self) -> f64 {
+        1.0 / self.scale
+    }
+
+    /// `v` in quanta; records an error for a non-finite or huge value.
+    fn quantize(&mut self, what: &'static str, v: f64) -> i64 {
+        if v.is_finite() && v.abs() <= MAX_ABS_MM {
+            (v * self.scale).round() as i64
+        } else {
+            if self.error.is_none() {
+                self.error = Some(JobError::range(what, v, format!("a finite number of at most {MAX_ABS_MM} mm")));
+            }
+            0
+        }
+    }
+
+    /// A quantized number with the dialect's fixed decimals ("-0.000" cannot occur: 0 has no sign).
+    pub fn number(&self, n: i64) -> String {
+        let d = self.spec.decimals as usize;
+        let unit = 10i64.pow(self.spec.decimals);
+        let sign = if n < 0 { "-" } else { "" };
+        let a = n.unsigned_abs();
+        if d == 0 {
+            format!("{sign}{a}")
+        } else {
+            format!("{sign}{}.{:0d$}", a / unit as u64, a % unit as u64)
+        }
+    }
+
+    /// A value written with the dialect's decimals (for header parameters).
+    pub fn format(&mut self, what: &'static str, v: f64) -> String {
+        let n = self.quantize(what, v);
+        self.number(n)
+    }
+
+    /// Append one block (a line of words); empty word lists write nothing.
+    pub fn block(&mut self, words: &[String]) {
+        if words.is_empty() {
+            return;
+        }
+        self.text.push_str(&words.join(" "));
+        self.text.push('\n');
+        self.blocks += 1;
+    }
+
+    /// Append a line as it is (set-up words, loop control).
+    pub fn raw(&mut self, line: &str) {
+        self.block(&[line.to_string()]);
+    }
+
+    /// Append a comment line, sanitised.
+    pub fn comment(&mut self, text: &str) {
+        let t = sanitize_comment(text);
+        match self.spec.comment {
+            CommentStyle::Parens => self.text.push_str(&format!("({t})\n")),
+            CommentStyle::Semicolon => self.text.push_str(&format!("; {t}\n")),
+        }
+    }
+
+    /// Forget the modal state (start of a loop body, whose first block must stand alone).
+    pub fn forget_modal(&mut self) {
+        self.motion = None;
+        self.x = None;
+        self.y = None;
+        self.z = None;
+        self.feed = None;
+    }
+
+    /// Take (x, y) as the current position without writing a block (a loop body starts where
+    /// the previous iteration, or the approach, left the tool).
+    pub fn assume_position(&mut self, x: f64, y: f64) {
+        self.x = Some(self.quantize("x", x));
+        self.y = Some(self.quantize("y", y));
+    }
+
+    /// Write Y words relative to a loop variable from now on (or plainly again).
+    pub fn set_y_form(&mut self, form: YForm) {
+        self.y_form = form;
+        self.y = None;
+    }
+
+    fn y_word(&self, n: i64) -> String {
+        match self.y_form {
+            YForm::Plain => format!("Y{}", self.number(n)),
+            YForm::Offset(var) => {
+                let (sign, mag) = if n < 0 { ("-", -n) } else { ("+", n) };
+                let num = self.number(mag);
+                if var.starts_with('#') {
+                    format!("Y[{var}{sign}{num}]")
+                } else {
+                    format!("Y={var}{sign}{num}")
+                }
+            }
+        }
+    }
+
+    fn motion_word(&mut self, g: &'static str, words: &mut Vec<String>) {
+        if self.motion != Some(g) {
+            words.push(g.to_string());
+            self.motion = Some(g);
+        }
+    }
+
+    fn feed_word(&mut self, feed: f64, words: &mut Vec<String>) {
+        // feeds in 0.1 mm/min
+        let f = if feed.is_finite() && feed > 0.0 && feed <= 1e7 {
+            (feed * 10.0).round() as i64
+        } else {
+            if self.error.is_none() {
+                self.error = Some(JobError::range("feed", feed, "a finite number > 0"));
+            }
+            1
+        };
+        if self.feed != Some(f) {
+            words.push(format!("F{}.{}", f / 10, f % 10));
+            self.feed = Some(f);
+        }
+    }
+
+    /// A straight move (G0 when `feed` is `None`, else G1) to the given coordinates; axes left
+    /// `None` do not move. Unchanged coordinates are not written; a move to where the tool
+    /// already is writes nothing.
+    pub fn linear(&mut self, x: Option<f64>, y: Option<f64>, z: Option<f64>, feed: Option<f64>) {
+        let mut axes = Vec::new();
+        if let Some(x) = x {
+            let n = self.quantize("x", x);
+            if self.x != Some(n) {
+                axes.push(format!("X{}", self.number(n)));
+                self.x = Some(n);
+            }
+        }
+        if let Some(y) = y {
+            let n = self.quantize("y", y);
+            if self.y != Some(n) {
+                axes.push(self.y_word(n));
+                self.y = Some(n);
+            }
+        }
+        if let Some(z) = z {
+            let n = self.quantize("z", z);
+            if self.z != Some(n) {
+                axes.push(format!("Z{}", self.number(n)));
+                self.z = Some(n);
+            }
+        }
+        if axes.is_empty() {
+            return;
+        }
+        let mut words = Vec::new();
+        self.motion_word(if feed.is_some() { "G1" } else { "G0" }, &mut words);
+        words.extend(axes);
+        if let Some(f) = feed {
+            self.feed_word(f, &mut words);
+        }
+        self.block(&words);
+    }
+
+    /// Write a line or arc segment of the XY path at `feed`, starting from the current position
+    /// (the previous segment's end). Arcs longer than the dialect allows are split; an arc
+    /// whose sagitta is below q/2 is written as G1; an arc that rounds to zero length (and is
+    /// not a full circle) writes nothing.
+    pub fn segment(&mut self, seg: &Segment, feed: f64) {
+        match *seg {
+            Segment::Arc { center, radius, start_angle, sweep } => {
+                let parts = (sweep.abs() / self.spec.max_arc_sweep - 1e-9).ceil().max(1.0) as usize;
+                let part = sweep / parts as f64;
+                for k in 0..parts {
+                    let a0 = start_angle + part * k as f64;
+                    let a1 = a0 + part;
+                    let end = center + p2(a1.cos(), a1.sin()) * radius;
+                    let sagitta = radius * (1.0 - (0.5 * part).abs().min(0.5 * TAU).cos().min(1.0));
+                    if part.abs() < 0.5 * TAU && sagitta < 0.5 * self.quantum() {
+                        self.linear(Some(end.x), Some(end.y), None, Some(feed));
+                    } else {
+                        self.arc(end, center, part < 0.0, part.abs() >= TAU - 1e-9, feed);
+                    }
+                }
+            }
+            _ => {
+                let end = seg.end();
+                self.linear(Some(end.x), Some(end.y), None, Some(feed));
+            }
+        }
+    }
+
+    /// One arc block from the current position to `end` around `center` (see module docs).
+    fn arc(&mut self, end: P2, center: P2, clockwise: bool, full_circle: bool, feed: f64) {
+        let (Some(sx), Some(sy)) = (self.x, self.y) else {
+            if self.error.is_none() {
+                self.error = Some(JobError::range("path", "arc", "to start from a known position"));
+            }
+            return;
+        };
+        let (ex, ey) = (self.quantize("x", end.x), self.quantize("y", end.y));
+        if (ex, ey) == (sx, sy) && !full_circle {
+            return;
+        }
+        let q = self.quantum();
+        let s = p2(sx as f64 * q, sy as f64 * q);
+        let e = p2(ex as f64 * q, ey as f64 * q);
+        let chord = e - s;
+        let c = if chord.norm() > 0.0 {
+            let n = rot90(chord).normalize();
+            let m = (s + e) * 0.5;
+            m + n * (center - m).dot(&n)
+        } else {
+            center
+        };
+        let i = self.quantize("i", c.x - s.x);
+        let j = self.quantize("j", c.y - s.y);
+        let written_c = s + p2(i as f64 * q, j as f64 * q);
+        let mismatch = ((s - written_c).norm() - (e - written_c).norm()).abs();
+        if mismatch > self.spec.arc_radius_tolerance_mm && self.error.is_none() {
+            self.error = Some(JobError::range(
+                "tolerance",
+                format!("arc radius mismatch {mismatch:.6} mm"),
+                format!("at most {} mm for {}", self.spec.arc_radius_tolerance_mm, self.spec.name),
+            ));
+        }
+        let mut words = Vec::new();
+        self.motion_word(if clockwise { "G2" } else { "G3" }, &mut words);
+        words.push(format!("X{}", self.number(ex)));
+        words.push(self.y_word(ey));
+        words.push(format!("I{}", self.number(i)));
+        words.push(format!("J{}", self.number(j)));
+        self.x = Some(ex);
+        self.y = Some(ey);
+        self.feed_word(feed, &mut words);
+        self.block(&words);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::nc::Dialect;
+    use std::f64::consts::PI;
+
+    #[test]
+    fn numbers_have_fixed_decimals_and_no_negative_zero() {
+        let mut w = Writer::new(Dialect::Fanuc.spec());
+        assert_eq!(w.format("x", -0.0001), "0.000");
+        assert_eq!(w.format("x", -0.0006), "-0.001");
+        assert_eq!(w.format("x", 5.0), "5.000");
+        assert_eq!(w.format("x", -12.3456), "-12.346");
+        assert!(w.finish().is_ok());
+        let mut w = Writer::new(Dialect::LinuxCnc.spec());
+        assert_eq!(w.format("x", 0.00004), "0.0000");
+        w.format("x", f64::NAN);
+        assert_eq!(w.finish().expect_err("NaN is an error").parameter(), Some("x"));
+    }
+
+    #[test]
+    fn modal_words_are_written_only_on_change() {
+        let mut w = Writer::new(Dialect::LinuxCnc.spec());
+        w.linear(Some(1.0), Some(2.0), None, Some(600.0));
+        w.linear(Some(1.0), Some(3.0), None, Some(600.0));
+        w.linear(Some(1.0), Some(3.0), None, Some(600.0));
+        let (text, blocks) = w.finish().expect("ok");
+        assert_eq!(text, "G1 X1.0000 Y2.0000 F600.0\nY3.0000\n");
+        assert_eq!(blocks, 2);
+    }
+
+    #[test]
+    fn full_circle_in_grbl_is_split_into_half_circles() {
+        let mut w = Writer::new(Dialect::Grbl.spec());
+        w.linear(Some(-5.0), Some(1.0), None, Some(600.0));
+        w.segment(&Segment::Arc { center: p2(0.0, 1.0), radius: 5.0, start_angle: PI, sweep: -TAU }, 600.0);
+        let (text, _) = w.finish().expect("ok");
+        assert_eq!(text, "G1 X-5.000 Y1.000 F600.0\nG2 X5.000 Y1.000 I5.000 J0.000\nX-5.000 Y1.000 I-5.000 J0.000\n");
+        // the same circle is one block on LinuxCNC
+        let mut w = Writer::new(Dialect::LinuxCnc.spec());
+        w.linear(Some(-5.0), Some(1.0), None, Some(600.0));
+        w.segment(&Segment::Arc { center: p2(0.0, 1.0), radius: 5.0, start_angle: PI, sweep: -TAU }, 600.0);
+        assert!(w.finish().expect("ok").0.ends_with("G2 X-5.0000 Y1.0000 I5.0000 J0.0000\n"));
+    }
+
+    #[test]
+    fn rounded_arcs_keep_start_and_end_radius_equal() {
+        // An arc whose end points round badly: the written centre must give equal radii to q√2.
+        let mut w = Writer::new(Dialect::Fanuc.spec());
+        let center = p2(0.12345, 0.6789);
+        let r = 3.33333;
+        let start = center + p2(0.3f64.cos(), 0.3f64.sin()) * r;
+        w.linear(Some(start.x), Some(start.y), None, Some(100.0));
+        w.segment(&Segment::Arc { center, radius: r, start_angle: 0.3, sweep: 1.1 }, 100.0);
+        let (text, _) = w.finish().expect("ok");
+        let nums: Vec<f64> = text
+            .split_whitespace()
+            .filter_map(|t| t.get(1..).and_then(|v| v.parse().ok()).filter(|_| "XYIJ".contains(&t[..1])))
+            .collect();
+        let [sx, sy, ex, ey, i, j] = nums[..] else { panic!("{text}") };
+        let (cx, cy) = (sx + i, sy + j);
+        let r1 = ((sx - cx).powi(2) + (sy - cy).powi(2)).sqrt();
+        let r2 = ((ex - cx).powi(2) + (ey - cy).powi(2)).sqrt();
+        assert!((r1 - r2).abs() <= 0.001 * 2f64.sqrt(), "{text}: {r1} vs {r2}");
+    }
+
+    #[test]
+    fn loop_offsets_are_written_per_dialect() {
+        let mut w = Writer::new(Dialect::LinuxCnc.spec());
+        w.set_y_form(YForm::Offset("#<oy>"));
+        w.linear(Some(-5.0), Some(-1.5), None, Some(600.0));
+        let mut s = Writer::new(Dialect::Sinumerik.spec());
+        s.set_y_form(YForm::Offset("R10"));
+        s.linear(Some(-5.0), Some(1.5), None, Some(600.0));
+        assert_eq!(w.finish().expect("ok").0, "G1 X-5.0000 Y[#<oy>-1.5000] F600.0\n");
+        assert_eq!(s.finish().expect("ok").0, "G1 X-5.000 Y=R10+1.500 F600.0\n");
+    }
+}

@@ -1,0 +1,224 @@
+//! Test-side helpers shared by `core/tests/nc_*.rs` and the top-level `tests/nc_rs274.rs`:
+//! motions read back from a program (by our Sinumerik/ISO evaluator or by LinuxCNC's rs274),
+//! and the checks against the plan. Independent of the emitter: they only use the exact
+//! planned segments (`SlotPath::segments`) and plain geometry.
+#![allow(dead_code)]
+
+use trochoplan_core::Plan;
+use trochoplan_core::geom::{P2, p2};
+
+/// One move of the tool centre as a controller executes it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Motion {
+    /// G0 / STRAIGHT_TRAVERSE.
+    Rapid { start: [f64; 3], end: [f64; 3] },
+    /// G1 / STRAIGHT_FEED.
+    Line { start: [f64; 3], end: [f64; 3] },
+    /// G2/G3 / ARC_FEED in the XY plane: `turns` > 0 counter-clockwise, < 0 clockwise, |turns|
+    /// = 1 up to one full turn (start = end: a full circle). Radius may change linearly
+    /// with the angle (a controller's "spiral" when the written radii differ slightly).
+    Arc { start: [f64; 3], end: [f64; 3], center: P2, turns: i32 },
+}
+
+impl Motion {
+    pub fn start(&self) -> [f64; 3] {
+        match *self {
+            Motion::Rapid { start, .. } | Motion::Line { start, .. } | Motion::Arc { start, .. } => start,
+        }
+    }
+    pub fn end(&self) -> [f64; 3] {
+        match *self {
+            Motion::Rapid { end, .. } | Motion::Line { end, .. } | Motion::Arc { end, .. } => end,
+        }
+    }
+}
+
+fn xy(p: [f64; 3]) -> P2 {
+    p2(p[0], p[1])
+}
+
+/// Signed sweep (rad) and start/end radius of an arc motion.
+fn arc_sweep(start: P2, end: P2, center: P2, turns: i32) -> (f64, f64, f64, f64) {
+    let (vs, ve) = (start - center, end - center);
+    let a0 = vs.y.atan2(vs.x);
+    let a1 = ve.y.atan2(ve.x);
+    let tau = std::f64::consts::TAU;
+    let mut sweep = if turns > 0 { (a1 - a0).rem_euclid(tau) } else { -(a0 - a1).rem_euclid(tau) };
+    if sweep.abs() < 1e-9 {
+        sweep = tau * turns.signum() as f64;
+    }
+    sweep += tau * (turns.abs() - 1) as f64 * turns.signum() as f64;
+    (a0, sweep, vs.norm(), ve.norm())
+}
+
+/// The feed moves at cutting depth (z = −depth within `z_tol`), in program order: the cut.
+pub fn cut(motions: &[Motion], depth: f64, z_tol: f64) -> Vec<Motion> {
+    motions
+        .iter()
+        .copied()
+        .filter(|m| !matches!(m, Motion::Rapid { .. }))
+        .filter(|m| (m.start()[2] + depth).abs() <= z_tol && (m.end()[2] + depth).abs() <= z_tol)
+        .filter(|m| (xy(m.end()) - xy(m.start())).norm() > 0.0 || matches!(m, Motion::Arc { .. }))
+        .collect()
+}
+
+/// XY length of the cut.
+pub fn length(cut: &[Motion]) -> f64 {
+    cut.iter()
+        .map(|m| match *m {
+            Motion::Arc { start, end, center, turns } => {
+                let (_, sweep, r0, r1) = arc_sweep(xy(start), xy(end), center, turns);
+                0.5 * (r0 + r1) * sweep.abs()
+            }
+            _ => (xy(m.end()) - xy(m.start())).norm(),
+        })
+        .sum()
+}
+
+/// Points along the cut, at most `h` apart.
+pub fn sample(cut: &[Motion], h: f64) -> Vec<P2> {
+    let mut pts = Vec::new();
+    for m in cut {
+        match *m {
+            Motion::Arc { start, end, center, turns } => {
+                let (a0, sweep, r0, r1) = arc_sweep(xy(start), xy(end), center, turns);
+                let n = ((0.5 * (r0 + r1) * sweep.abs() / h).ceil() as usize).max(1);
+                for i in 0..=n {
+                    let f = i as f64 / n as f64;
+                    let (a, r) = (a0 + sweep * f, r0 + (r1 - r0) * f);
+                    pts.push(center + p2(a.cos(), a.sin()) * r);
+                }
+            }
+            _ => {
+                let (s, e) = (xy(m.start()), xy(m.end()));
+                let n = (((e - s).norm() / h).ceil() as usize).max(1);
+                pts.extend((0..=n).map(|i| s + (e - s) * (i as f64 / n as f64)));
+            }
+        }
+    }
+    pts
+}
+
+/// Points along the planned path (exact segments), spaced at most `h` in arc length.
+pub fn planned_samples(plan: &Plan, h: f64) -> Vec<P2> {
+    let mut pts = Vec::new();
+    for seg in plan.path.segments() {
+        let n = ((seg.length() / h).ceil() as usize).max(1);
+        pts.extend(seg.sample(n));
+    }
+    pts
+}
+
+/// Distance from `p` to the chord `a`–`b` (plain arithmetic: this is the hot loop of the
+/// checks and runs unoptimised in tests).
+fn dist_to_chord(a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> f64 {
+    let (abx, aby) = (b[0] - a[0], b[1] - a[1]);
+    let (apx, apy) = (p[0] - a[0], p[1] - a[1]);
+    let l2 = abx * abx + aby * aby;
+    let t = if l2 > 0.0 { ((apx * abx + apy * aby) / l2).clamp(0.0, 1.0) } else { 0.0 };
+    let (dx, dy) = (apx - abx * t, apy - aby * t);
+    (dx * dx + dy * dy).sqrt()
+}
+
+/// Largest distance of the points `a` from the polyline `b`, matching in order: a cursor
+/// walks forward along `b` and each point of `a` is measured against the next `window`
+/// chords only. The loops of a trochoidal path overlap their neighbours, so an unordered
+/// nearest-point search would hide a skipped or repeated cycle; this one does not.
+pub fn ordered_deviation(a: &[P2], b: &[P2], window: usize) -> f64 {
+    let b: Vec<[f64; 2]> = b.iter().map(|p| [p.x, p.y]).collect();
+    if b.len() < 2 {
+        return f64::INFINITY;
+    }
+    let mut cursor = 0usize;
+    let mut worst: f64 = 0.0;
+    for p in a {
+        let p = [p.x, p.y];
+        let (mut best, mut arg) = (f64::INFINITY, cursor);
+        for j in cursor..(cursor + window).min(b.len() - 1) {
+            let d = dist_to_chord(b[j], b[j + 1], p);
+            if d < best {
+                (best, arg) = (d, j);
+            }
+        }
+        cursor = arg;
+        worst = worst.max(best);
+    }
+    // the walk must have reached the end of b, or part of b was never matched
+    if cursor + window < b.len() - 1 { f64::INFINITY } else { worst }
+}
+
+/// Two-sided ordered deviation between a cut and the planned path.
+pub fn deviation_from_plan(cut: &[Motion], plan: &Plan) -> f64 {
+    const H: f64 = 0.02;
+    let prog = sample(cut, H);
+    let planned = planned_samples(plan, H);
+    // both are sampled at ≤ H, so the match moves a sample or two per step; 0.4 mm of path
+    // ahead is far more than that and than any deviation we accept
+    let window = (0.4 / H) as usize;
+    ordered_deviation(&prog, &planned, window).max(ordered_deviation(&planned, &prog, window))
+}
+
+/// Allowed distance from the planned path: the fit tolerance, plus rounding to the quantum q
+/// (end points ≤ q/√2; the written centre ≤ q/√2 off, which moves the arc by as much; start
+/// and end radii differ ≤ q√2, which the controller spreads as a spiral): < 3q; plus 2e-4 mm
+/// for rs274's 4-decimal print (≤ 7.1e-5) and the chords of the sampled plan (h²/8ρ ≤ 1e-4
+/// for h = 0.02 mm and ρ ≥ 0.5 mm).
+pub fn budget(tol: f64, q: f64) -> f64 {
+    tol + 3.0 * q + 2e-4
+}
+
+/// Every check of issue #4 on a cut read back from a program: it follows the plan within
+/// `budget`, never leaves |x| ≤ (B − D)/2 by more than the rounding, and has the analysis'
+/// path length within 0.1 %. Returns a description of the first failure.
+pub fn check_cut(label: &str, cut: &[Motion], plan: &Plan, tol: f64, q: f64) -> Result<(), String> {
+    if cut.is_empty() {
+        return Err(format!("{label}: no cutting moves"));
+    }
+    let dev = deviation_from_plan(cut, plan);
+    let allowed = budget(tol, q);
+    if !(dev <= allowed) {
+        return Err(format!("{label}: deviation from the planned path {dev:.6} mm > {allowed:.6} mm"));
+    }
+    let a = plan.job.trochoidal_radius();
+    let max_x = sample(cut, 0.02).iter().map(|p| p.x.abs()).fold(0.0, f64::max);
+    let band = a + 3.0 * q + 1e-4;
+    if max_x > band {
+        return Err(format!("{label}: |x| reaches {max_x:.6} mm > (B - D)/2 + rounding = {band:.6} mm (wall gouge)"));
+    }
+    let (len, want) = (length(cut), plan.metrics.path_length_mm);
+    if (len - want).abs() > 1e-3 * want {
+        return Err(format!("{label}: path length {len:.4} mm vs analysis {want:.4} mm (> 0.1 %)"));
+    }
+    Ok(())
+}
+
+/// Point halfway along an arc motion (by angle; radius interpolated as the controller does).
+fn arc_midpoint(start: [f64; 3], end: [f64; 3], center: P2, turns: i32) -> P2 {
+    let (a0, sweep, r0, r1) = arc_sweep(xy(start), xy(end), center, turns);
+    let a = a0 + 0.5 * sweep;
+    center + p2(a.cos(), a.sin()) * (0.5 * (r0 + r1))
+}
+
+/// Motions of two programs agree block by block within `tol`: same kind and direction, end
+/// points and arc midpoints within `tol` (not the centres: for a shallow arc a centre moves
+/// far along the normal when an end point moves by a rounding step, while the arc does not).
+pub fn same_motion(a: &[Motion], b: &[Motion], tol: f64) -> Result<(), String> {
+    if a.len() != b.len() {
+        return Err(format!("{} vs {} motions", a.len(), b.len()));
+    }
+    for (k, (x, y)) in a.iter().zip(b).enumerate() {
+        let close = |p: [f64; 3], q: [f64; 3]| (0..3).all(|i| (p[i] - q[i]).abs() <= tol);
+        let ok = match (*x, *y) {
+            (
+                Motion::Arc { start: s0, end: e0, center: c0, turns: t0 },
+                Motion::Arc { start: s1, end: e1, center: c1, turns: t1 },
+            ) => t0 == t1 && (arc_midpoint(s0, e0, c0, t0) - arc_midpoint(s1, e1, c1, t1)).norm() <= 2.0 * tol,
+            (Motion::Line { .. }, Motion::Line { .. }) | (Motion::Rapid { .. }, Motion::Rapid { .. }) => true,
+            _ => false,
+        };
+        if !ok || !close(x.end(), y.end()) {
+            return Err(format!("motion {k}: {x:?} vs {y:?}"));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,278 @@
+//! Exported programs read back by a small test-side evaluator and compared with the plan.
+//!
+//! The evaluator runs the subset of ISO / Sinumerik syntax the emitter writes: words with
+//! numbers (`X1.000`) or, Sinumerik, expressions (`X=R50+(R1-1)*R2*COS(R3)+R11`), `I=AC(…)`
+//! absolute centres, R-parameter assignments, labels and `IF … GOTOB`. It knows nothing of
+//! the emitter; its motions go through the same checks as rs274's (`nc_common`). The LinuxCNC
+//! O-word loop is left to rs274 (`tests/nc_rs274.rs`).
+
+mod nc_common;
+
+use nc_common::{Motion, check_cut, cut, same_motion};
+use std::collections::HashMap;
+use trochoplan_core::geom::{P2, p2};
+use trochoplan_core::nc::{Dialect, NcOptions, program};
+use trochoplan_core::{Job, PathKind, Plan, plan};
+
+/// Expression evaluator: + − * / ( ), numbers, R-parameters, SIN/COS in degrees.
+struct Expr<'a> {
+    s: &'a [u8],
+    i: usize,
+    r: &'a HashMap<u32, f64>,
+}
+
+impl Expr<'_> {
+    fn eval(text: &str, r: &HashMap<u32, f64>) -> Result<f64, String> {
+        let mut e = Expr { s: text.as_bytes(), i: 0, r };
+        let v = e.sum()?;
+        if e.i != e.s.len() {
+            return Err(format!("trailing text in {text}"));
+        }
+        Ok(v)
+    }
+    fn peek(&self) -> Option<u8> {
+        self.s.get(self.i).copied()
+    }
+    fn sum(&mut self) -> Result<f64, String> {
+        let mut v = self.product()?;
+        while let Some(c @ (b'+' | b'-')) = self.peek() {
+            self.i += 1;
+            let w = self.product()?;
+            v = if c == b'+' { v + w } else { v - w };
+        }
+        Ok(v)
+    }
+    fn product(&mut self) -> Result<f64, String> {
+        let mut v = self.atom()?;
+        while let Some(c @ (b'*' | b'/')) = self.peek() {
+            self.i += 1;
+            let w = self.atom()?;
+            v = if c == b'*' { v * w } else { v / w };
+        }
+        Ok(v)
+    }
+    fn atom(&mut self) -> Result<f64, String> {
+        match self.peek() {
+            Some(b'-') => {
+                self.i += 1;
+                Ok(-self.atom()?)
+            }
+            Some(b'(') => {
+                self.i += 1;
+                let v = self.sum()?;
+                if self.peek() != Some(b')') {
+                    return Err("missing )".into());
+                }
+                self.i += 1;
+                Ok(v)
+            }
+            Some(b'R') => {
+                self.i += 1;
+                let n = self.digits() as u32;
+                self.r.get(&n).copied().ok_or(format!("R{n} used before it was set"))
+            }
+            Some(b'S' | b'C') => {
+                let name = &self.s[self.i..self.i + 3];
+                self.i += 3;
+                let arg = self.atom()?.to_radians();
+                match name {
+                    b"SIN" => Ok(arg.sin()),
+                    b"COS" => Ok(arg.cos()),
+                    _ => Err("unknown function".into()),
+                }
+            }
+            _ => {
+                let st = self.i;
+                while matches!(self.peek(), Some(b'0'..=b'9' | b'.')) {
+                    self.i += 1;
+                }
+                std::str::from_utf8(&self.s[st..self.i]).ok().and_then(|t| t.parse().ok()).ok_or(format!("bad number at {st}"))
+            }
+        }
+    }
+    fn digits(&mut self) -> u64 {
+        let mut n = 0;
+        while let Some(c @ b'0'..=b'9') = self.peek() {
+            n = n * 10 + u64::from(c - b'0');
+            self.i += 1;
+        }
+        n
+    }
+}
+
+/// Run a program; returns its motions. `paren_comments`: ISO dialects comment with `( … )`;
+/// Sinumerik with `;` and uses parentheses in expressions.
+fn evaluate(text: &str, paren_comments: bool) -> Result<Vec<Motion>, String> {
+    let lines: Vec<String> = text
+        .lines()
+        .map(|l| {
+            let l = l.split(';').next().unwrap_or("");
+            if !paren_comments {
+                return l.trim().to_string();
+            }
+            let mut out = String::new();
+            let mut inside = false;
+            for c in l.chars() {
+                match c {
+                    '(' => inside = true,
+                    ')' => inside = false,
+                    _ if !inside => out.push(c),
+                    _ => {}
+                }
+            }
+            out.trim().to_string()
+        })
+        .collect();
+    let labels: HashMap<&str, usize> =
+        lines.iter().enumerate().filter_map(|(i, l)| l.strip_suffix(':').map(|n| (n, i))).collect();
+    let mut r: HashMap<u32, f64> = HashMap::new();
+    let mut pos = [0.0f64; 3];
+    let mut motion = 0u8;
+    let mut out = Vec::new();
+    let mut pc = 0usize;
+    let mut steps = 0usize;
+    while pc < lines.len() {
+        steps += 1;
+        if steps > 10_000_000 {
+            return Err("runaway loop".into());
+        }
+        let line = &lines[pc];
+        pc += 1;
+        if line.is_empty() || line.ends_with(':') || line == "%" || line.starts_with('O') {
+            continue;
+        }
+        let toks: Vec<&str> = line.split_whitespace().collect();
+        if toks[0] == "IF" {
+            let cond = toks[1];
+            let (lhs, op, rhs) = ["<=", ">=", "==", "<", ">"]
+                .iter()
+                .find_map(|op| cond.split_once(op).map(|(a, b)| (a, *op, b)))
+                .ok_or(format!("bad condition {cond}"))?;
+            let (a, b) = (Expr::eval(lhs, &r)?, Expr::eval(rhs, &r)?);
+            let holds = match op {
+                "<=" => a <= b,
+                ">=" => a >= b,
+                "==" => a == b,
+                "<" => a < b,
+                _ => a > b,
+            };
+            if toks.get(2) != Some(&"GOTOB") {
+                return Err(format!("only IF … GOTOB is written: {line}"));
+            }
+            if holds {
+                pc = *labels.get(toks[3]).ok_or(format!("no label {}", toks[3]))? + 1;
+            }
+            continue;
+        }
+        let mut target = pos;
+        let mut center: Option<P2> = None;
+        let (mut ci, mut cj) = (None::<(f64, bool)>, None::<(f64, bool)>);
+        let mut moved = false;
+        for t in toks {
+            if let Some((name, expr)) = t.split_once('=') {
+                if let Some(n) = name.strip_prefix('R') {
+                    r.insert(n.parse().map_err(|_| format!("bad R in {t}"))?, Expr::eval(expr, &r)?);
+                    continue;
+                }
+                let (value, absolute) = match expr.strip_prefix("AC(").and_then(|e| e.strip_suffix(')')) {
+                    Some(inner) => (Expr::eval(inner, &r)?, true),
+                    None => (Expr::eval(expr, &r)?, false),
+                };
+                match name {
+                    "X" => (target[0], moved) = (value, true),
+                    "Y" => (target[1], moved) = (value, true),
+                    "Z" => (target[2], moved) = (value, true),
+                    "I" => ci = Some((value, absolute)),
+                    "J" => cj = Some((value, absolute)),
+                    "F" => {}
+                    _ => return Err(format!("unknown word {t}")),
+                }
+                continue;
+            }
+            let (letter, num) = t.split_at(1);
+            let value: f64 = num.parse().map_err(|_| format!("bad word {t} in {line}"))?;
+            match letter {
+                "G" if [0.0, 1.0, 2.0, 3.0].contains(&value) => motion = value as u8,
+                "X" => (target[0], moved) = (value, true),
+                "Y" => (target[1], moved) = (value, true),
+                "Z" => (target[2], moved) = (value, true),
+                "I" => ci = Some((value, false)),
+                "J" => cj = Some((value, false)),
+                "G" | "F" | "S" | "M" | "T" | "D" | "H" | "P" => {}
+                _ => return Err(format!("unknown word {t}")),
+            }
+        }
+        if let (Some((i, ai)), Some((j, aj))) = (ci, cj) {
+            center = Some(p2(if ai { i } else { pos[0] + i }, if aj { j } else { pos[1] + j }));
+        }
+        if !moved {
+            continue;
+        }
+        out.push(match (motion, center) {
+            (0, _) => Motion::Rapid { start: pos, end: target },
+            (1, _) => Motion::Line { start: pos, end: target },
+            (2 | 3, Some(c)) => Motion::Arc { start: pos, end: target, center: c, turns: if motion == 2 { -1 } else { 1 } },
+            _ => return Err(format!("arc without I and J: {line}")),
+        });
+        pos = target;
+    }
+    Ok(out)
+}
+
+fn job(path: PathKind) -> Plan {
+    let (r_e, d) = match path {
+        PathKind::Elliptical => (0.8, 0.0),
+        PathKind::LinearElliptical => (0.6, 0.75),
+        _ => (1.0, 0.0),
+    };
+    plan(&Job { path, aspect_ratio: r_e, linear_distance: d, ..Job::default() }).expect("valid")
+}
+
+fn quantum(d: Dialect) -> f64 {
+    10f64.powi(-(d.spec().decimals as i32))
+}
+
+#[test]
+fn every_dialect_retraces_the_plan() {
+    for kind in PathKind::ALL {
+        let p = job(kind);
+        for d in Dialect::ALL {
+            // chords for the curved paths only (the circular-type circle is exact either way)
+            let chords = matches!(kind, PathKind::Circular | PathKind::Elliptical);
+            for linear_segments in [false, true].into_iter().filter(|l| !l || chords) {
+                let o = NcOptions { dialect: d, linear_segments, ..NcOptions::default() };
+                let text = program(&p, &o).expect("program").text;
+                let motions = evaluate(&text, d != Dialect::Sinumerik).unwrap_or_else(|e| panic!("{kind:?} {d:?}: {e}"));
+                let label = format!("{kind:?} {d:?} linear={linear_segments}");
+                check_cut(&label, &cut(&motions, p.job.depth, 1e-9), &p, o.tolerance_mm, quantum(d)).unwrap_or_else(|e| panic!("{e}"));
+                // approach: the first cutting move starts where the tool reached depth, outside the stock
+                let plunge = motions.iter().find(|m| matches!(m, Motion::Line { .. })).expect("plunge");
+                assert!(plunge.end()[1] + p.job.tool_radius() < 0.0, "{label}: descent inside the stock");
+                assert!(matches!(motions.last(), Some(Motion::Rapid { end, .. }) if end[2] > 0.0), "{label}: ends retracted");
+            }
+        }
+    }
+}
+
+#[test]
+fn sinumerik_loops_move_like_the_expanded_programs() {
+    for kind in PathKind::ALL {
+        let p = job(kind);
+        for fast in [None, Some(1800.0)] {
+            let o = NcOptions { dialect: Dialect::Sinumerik, return_feed_mm_per_min: fast, ..NcOptions::default() };
+            let expanded = program(&p, &o).expect("program").text;
+            let compact = program(&p, &NcOptions { compact: true, ..o.clone() }).expect("program").text;
+            assert!(compact.contains("GOTOB") && compact.contains("R1=R1+1"), "{compact}");
+            if kind == PathKind::CircularType {
+                assert!(compact.contains("I=AC(R50+R1*R2*COS(R3))"), "Grechishnikov form");
+            }
+            let (me, mc) = (evaluate(&expanded, false).expect("expanded"), evaluate(&compact, false).expect("compact"));
+            // the loop rounds the cycle-relative coordinates, the expanded program the absolute
+            // ones: the same point can differ by one quantum
+            same_motion(&me, &mc, 1.0e-3 + 1e-9).unwrap_or_else(|e| panic!("{kind:?}: {e}"));
+            check_cut(&format!("{kind:?} sinumerik loop"), &cut(&mc, p.job.depth, 1e-9), &p, o.tolerance_mm, 1e-3)
+                .unwrap_or_else(|e| panic!("{e}"));
+            assert!(compact.len() < expanded.len(), "the loop is compact: {} vs {} bytes", compact.len(), expanded.len());
+        }
+    }
+}

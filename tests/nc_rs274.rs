@@ -1,0 +1,151 @@
+//! End to end: `trochoplan export` writes LinuxCNC, Fanuc-style and GRBL programs, LinuxCNC's
+//! standalone interpreter `rs274` (Debian package `linuxcnc-uspace`) runs them, and the
+//! canonical motion it prints (STRAIGHT_TRAVERSE / STRAIGHT_FEED / ARC_FEED) must retrace
+//! the planned path: zero interpreter errors, deviation within the tolerance plus rounding,
+//! no wall gouge, path length within 0.1 % of the analysis (`nc_common::check_cut`).
+//!
+//! rs274 is run as `rs274 -g FILE OUTFILE </dev/null`: `-g` runs the whole file in batch mode;
+//! it needs no display, INI file or tool table (T1 M6 / G43 H1 use its built-in table).
+//! Fanuc's `%` tape marks and `O1000` program number are accepted by rs274 as they are, so the
+//! harness passes every program unchanged. Set RS274=/path/to/rs274 to use another binary.
+
+#[path = "../core/tests/nc_common/mod.rs"]
+mod nc_common;
+
+use nc_common::{Motion, check_cut, cut, same_motion};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use trochoplan_core::geom::p2;
+use trochoplan_core::{Job, PathKind, Plan, plan};
+
+fn rs274() -> String {
+    std::env::var("RS274").unwrap_or_else(|_| "rs274".to_string())
+}
+
+/// Run rs274 on `file`; the canonical calls it printed, or the interpreter's error.
+fn interpret(file: &Path) -> Result<String, String> {
+    let out = file.with_extension("canon");
+    let run = Command::new(rs274())
+        .arg("-g")
+        .arg(file)
+        .arg(&out)
+        .stdin(Stdio::null())
+        .output()
+        .unwrap_or_else(|e| {
+            panic!(
+                "cannot run `{}` ({e}). These tests need LinuxCNC's standalone G-code interpreter: \
+                 apt-get install -y --no-install-recommends linuxcnc-uspace (Debian bookworm), \
+                 or set RS274 to its path",
+                rs274()
+            )
+        });
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    // rs274 prints "executing" on stderr; anything else there is an interpreter message
+    let messages: Vec<&str> = stderr.lines().filter(|l| l.trim() != "executing" && !l.trim().is_empty()).collect();
+    if !run.status.success() || !messages.is_empty() {
+        return Err(format!("rs274 {} on {}: {}", run.status, file.display(), messages.join(" | ")));
+    }
+    std::fs::read_to_string(&out).map_err(|e| format!("{}: {e}", out.display()))
+}
+
+/// The motions in rs274's canonical output, from (0, 0, 0).
+fn motions(canon: &str) -> Vec<Motion> {
+    let mut pos = [0.0f64; 3];
+    let mut out = Vec::new();
+    for line in canon.lines() {
+        let Some((name, rest)) = line.split_once('(') else { continue };
+        let name = name.split_whitespace().last().unwrap_or("");
+        let args: Vec<f64> = rest.trim_end_matches(')').split(',').filter_map(|a| a.trim().parse().ok()).collect();
+        let m = match name {
+            "STRAIGHT_TRAVERSE" => Motion::Rapid { start: pos, end: [args[0], args[1], args[2]] },
+            "STRAIGHT_FEED" => Motion::Line { start: pos, end: [args[0], args[1], args[2]] },
+            // ARC_FEED(first_end, second_end, first_axis, second_axis, rotation, axis_end_point, …)
+            "ARC_FEED" => Motion::Arc {
+                start: pos,
+                end: [args[0], args[1], args[5]],
+                center: p2(args[2], args[3]),
+                turns: args[4] as i32,
+            },
+            _ => continue,
+        };
+        pos = m.end();
+        out.push(m);
+    }
+    out
+}
+
+/// (CLI flags, job): the paper's default job and every path type.
+fn jobs() -> Vec<(Vec<&'static str>, Job)> {
+    let d = Job::default();
+    vec![
+        (vec![], d.clone()),
+        (vec!["--path", "circular-type"], Job { path: PathKind::CircularType, ..d.clone() }),
+        (vec!["--path", "elliptical", "--aspect-ratio", "0.8"], Job { path: PathKind::Elliptical, aspect_ratio: 0.8, ..d.clone() }),
+        (vec!["--path", "elliptical", "--aspect-ratio", "1.2"], Job { path: PathKind::Elliptical, aspect_ratio: 1.2, ..d.clone() }),
+        (
+            vec!["--path", "linear-elliptical", "--aspect-ratio", "0.6", "--linear-distance", "0.75"],
+            Job { path: PathKind::LinearElliptical, aspect_ratio: 0.6, linear_distance: 0.75, ..d },
+        ),
+    ]
+}
+
+fn export(dir: &Path, name: &str, job_flags: &[&str], nc_flags: &[&str]) -> PathBuf {
+    let file = dir.join(name);
+    let out = Command::new(env!("CARGO_BIN_EXE_trochoplan"))
+        .arg("export")
+        .args(job_flags)
+        .args(nc_flags)
+        .arg("-o")
+        .arg(&file)
+        .output()
+        .expect("run trochoplan");
+    assert!(out.status.success(), "trochoplan export {job_flags:?} {nc_flags:?}: {}", String::from_utf8_lossy(&out.stderr));
+    file
+}
+
+fn read_back(file: &Path) -> Vec<Motion> {
+    motions(&interpret(file).unwrap_or_else(|e| panic!("{e}")))
+}
+
+fn check(label: &str, file: &Path, p: &Plan, tol: f64, decimals: i32) -> Vec<Motion> {
+    let m = read_back(file);
+    // rs274 prints 4 decimals: z is exact to that
+    check_cut(label, &cut(&m, p.job.depth, 1e-4), p, tol, 10f64.powi(-decimals)).unwrap_or_else(|e| panic!("{e}"));
+    m
+}
+
+#[test]
+fn linuxcnc_fanuc_and_grbl_programs_pass_rs274_and_retrace_the_plan() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    for (k, (flags, job)) in jobs().into_iter().enumerate() {
+        let p = plan(&job).expect("valid job");
+        for (dialect, ext, decimals) in [("linuxcnc", "ngc", 4), ("fanuc", "nc", 3), ("grbl", "gcode", 3)] {
+            let f = export(dir.path(), &format!("{k}.{ext}"), &flags, &["--dialect", dialect, "--coolant"]);
+            check(&format!("{} {dialect}", job.path.name()), &f, &p, 0.005, decimals);
+        }
+        let f = export(dir.path(), &format!("{k}_chords.ngc"), &flags, &["--dialect", "linuxcnc", "--linear-segments"]);
+        check(&format!("{} linuxcnc chords", job.path.name()), &f, &p, 0.005, 4);
+        let f = export(dir.path(), &format!("{k}_tol.nc"), &flags, &["--dialect", "fanuc", "--tolerance", "0.02"]);
+        check(&format!("{} fanuc 0.02 mm", job.path.name()), &f, &p, 0.02, 3);
+    }
+}
+
+#[test]
+fn linuxcnc_while_loop_moves_like_the_expanded_program() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    for (k, (flags, job)) in jobs().into_iter().enumerate() {
+        let p = plan(&job).expect("valid job");
+        for fast in [&[][..], &["--return-feed", "1800"][..]] {
+            let nc: Vec<&str> = ["--dialect", "linuxcnc"].iter().chain(fast).copied().collect();
+            let expanded = export(dir.path(), &format!("{k}.ngc"), &flags, &nc);
+            let compact_flags: Vec<&str> = nc.iter().copied().chain(["--compact"]).collect();
+            let compact = export(dir.path(), &format!("{k}_loop.ngc"), &flags, &compact_flags);
+            let text = std::fs::read_to_string(&compact).expect("read");
+            assert!(text.contains("o100 while") && text.contains("o100 endwhile"), "{text}");
+            let me = check(&format!("{} expanded", job.path.name()), &expanded, &p, 0.005, 4);
+            let mc = check(&format!("{} loop", job.path.name()), &compact, &p, 0.005, 4);
+            // cycle-relative vs absolute rounding: one quantum, plus rs274's print rounding
+            same_motion(&me, &mc, 1e-4 + 1e-4).unwrap_or_else(|e| panic!("{}: {e}", job.path.name()));
+        }
+    }
+}
