@@ -25,20 +25,14 @@ fn rs274() -> String {
 /// Run rs274 on `file`; the canonical calls it printed, or the interpreter's error.
 fn interpret(file: &Path) -> Result<String, String> {
     let out = file.with_extension("canon");
-    let run = Command::new(rs274())
-        .arg("-g")
-        .arg(file)
-        .arg(&out)
-        .stdin(Stdio::null())
-        .output()
-        .unwrap_or_else(|e| {
-            panic!(
-                "cannot run `{}` ({e}). These tests need LinuxCNC's standalone G-code interpreter: \
+    let run = Command::new(rs274()).arg("-g").arg(file).arg(&out).stdin(Stdio::null()).output().unwrap_or_else(|e| {
+        panic!(
+            "cannot run `{}` ({e}). These tests need LinuxCNC's standalone G-code interpreter: \
                  apt-get install -y --no-install-recommends linuxcnc-uspace (Debian bookworm), \
                  or set RS274 to its path",
-                rs274()
-            )
-        });
+            rs274()
+        )
+    });
     let stderr = String::from_utf8_lossy(&run.stderr);
     // rs274 prints "executing" on stderr; anything else there is an interpreter message
     let messages: Vec<&str> = stderr.lines().filter(|l| l.trim() != "executing" && !l.trim().is_empty()).collect();
@@ -80,8 +74,14 @@ fn jobs() -> Vec<(Vec<&'static str>, Job)> {
     vec![
         (vec![], d.clone()),
         (vec!["--path", "circular-type"], Job { path: PathKind::CircularType, ..d.clone() }),
-        (vec!["--path", "elliptical", "--aspect-ratio", "0.8"], Job { path: PathKind::Elliptical, aspect_ratio: 0.8, ..d.clone() }),
-        (vec!["--path", "elliptical", "--aspect-ratio", "1.2"], Job { path: PathKind::Elliptical, aspect_ratio: 1.2, ..d.clone() }),
+        (
+            vec!["--path", "elliptical", "--aspect-ratio", "0.8"],
+            Job { path: PathKind::Elliptical, aspect_ratio: 0.8, ..d.clone() },
+        ),
+        (
+            vec!["--path", "elliptical", "--aspect-ratio", "1.2"],
+            Job { path: PathKind::Elliptical, aspect_ratio: 1.2, ..d.clone() },
+        ),
         (
             vec!["--path", "linear-elliptical", "--aspect-ratio", "0.6", "--linear-distance", "0.75"],
             Job { path: PathKind::LinearElliptical, aspect_ratio: 0.6, linear_distance: 0.75, ..d },
@@ -99,7 +99,11 @@ fn export(dir: &Path, name: &str, job_flags: &[&str], nc_flags: &[&str]) -> Path
         .arg(&file)
         .output()
         .expect("run trochoplan");
-    assert!(out.status.success(), "trochoplan export {job_flags:?} {nc_flags:?}: {}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "trochoplan export {job_flags:?} {nc_flags:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     file
 }
 
@@ -148,4 +152,34 @@ fn linuxcnc_while_loop_moves_like_the_expanded_program() {
             same_motion(&me, &mc, 1e-4 + 1e-4).unwrap_or_else(|e| panic!("{}: {e}", job.path.name()));
         }
     }
+}
+
+#[test]
+fn the_harness_catches_interpreter_errors_and_wrong_motion() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    // an interpreter error (LinuxCNC rejects a nested comment) is reported, not ignored
+    let bad = dir.path().join("bad.ngc");
+    std::fs::write(&bad, "G21 G90\nG1 X1 F100 (a (nested) comment)\nM30\n").expect("write");
+    let err = interpret(&bad).expect_err("rs274 must reject it");
+    assert!(err.contains("comment"), "{err}");
+
+    // a program missing one block of one cycle is caught by the motion checks
+    let job = Job { path: PathKind::Elliptical, aspect_ratio: 0.8, ..Job::default() };
+    let p = plan(&job).expect("valid job");
+    let good =
+        export(dir.path(), "good.ngc", &["--path", "elliptical", "--aspect-ratio", "0.8"], &["--dialect", "linuxcnc"]);
+    let text = std::fs::read_to_string(&good).expect("read");
+    let lines: Vec<&str> = text.lines().collect();
+    let arcs: Vec<usize> = (0..lines.len()).filter(|&i| lines[i].starts_with('X')).collect();
+    let dropped = arcs[arcs.len() / 2];
+    // one arc piece becomes a straight line to its end; the next block gets its G2 back
+    let mut broken: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
+    broken[dropped] = format!("G1 {}", lines[dropped].split(" I").next().unwrap_or(""));
+    assert!(lines[dropped + 1].starts_with('X'), "the next block is an arc too");
+    broken[dropped + 1] = format!("G2 {}", lines[dropped + 1]);
+    let broken_file = dir.path().join("broken.ngc");
+    std::fs::write(&broken_file, broken.join("\n") + "\n").expect("write");
+    let m = motions(&interpret(&broken_file).unwrap_or_else(|e| panic!("{e}")));
+    let result = check_cut("broken", &cut(&m, p.job.depth, 1e-4), &p, 0.005, 1e-4);
+    assert!(result.is_err(), "a chord in place of an arc must exceed the tolerance");
 }

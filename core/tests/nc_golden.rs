@@ -11,13 +11,24 @@ use trochoplan_core::{Job, PathKind, plan};
 /// (file, job, options): short slots keep the files readable.
 fn cases() -> Vec<(&'static str, Job, NcOptions)> {
     let circular_type = Job { path: PathKind::CircularType, slot_length: 3.0, ..Job::default() };
-    let elliptical = Job { path: PathKind::Elliptical, aspect_ratio: 0.8, slot_length: 2.0, step: 2.0, ..Job::default() };
-    let lin_ell =
-        Job { path: PathKind::LinearElliptical, aspect_ratio: 0.6, linear_distance: 0.75, slot_length: 2.0, step: 2.0, ..Job::default() };
+    let elliptical =
+        Job { path: PathKind::Elliptical, aspect_ratio: 0.8, slot_length: 2.0, step: 2.0, ..Job::default() };
+    let lin_ell = Job {
+        path: PathKind::LinearElliptical,
+        aspect_ratio: 0.6,
+        linear_distance: 0.75,
+        slot_length: 2.0,
+        step: 2.0,
+        ..Job::default()
+    };
     let o = |dialect: Dialect| NcOptions { dialect, ..NcOptions::default() };
     vec![
         ("circular_type.ngc", circular_type.clone(), o(Dialect::LinuxCnc)),
-        ("circular_type_loop.ngc", circular_type.clone(), NcOptions { compact: true, coolant: true, ..o(Dialect::LinuxCnc) }),
+        (
+            "circular_type_loop.ngc",
+            circular_type.clone(),
+            NcOptions { compact: true, coolant: true, ..o(Dialect::LinuxCnc) },
+        ),
         ("circular_type.nc", circular_type.clone(), o(Dialect::Fanuc)),
         ("circular_type.gcode", circular_type.clone(), o(Dialect::Grbl)),
         ("circular_type_loop.mpf", circular_type, NcOptions { compact: true, ..o(Dialect::Sinumerik) }),
@@ -29,7 +40,11 @@ fn cases() -> Vec<(&'static str, Job, NcOptions)> {
             lin_ell.clone(),
             NcOptions { return_feed_mm_per_min: Some(1800.0), title: "golden (lin-ell)".into(), ..o(Dialect::Grbl) },
         ),
-        ("linear_elliptical_chords.ngc", lin_ell, NcOptions { linear_segments: true, tolerance_mm: 0.02, ..o(Dialect::LinuxCnc) }),
+        (
+            "linear_elliptical_chords.ngc",
+            lin_ell,
+            NcOptions { linear_segments: true, tolerance_mm: 0.02, ..o(Dialect::LinuxCnc) },
+        ),
     ]
 }
 

@@ -86,7 +86,10 @@ impl Expr<'_> {
                 while matches!(self.peek(), Some(b'0'..=b'9' | b'.')) {
                     self.i += 1;
                 }
-                std::str::from_utf8(&self.s[st..self.i]).ok().and_then(|t| t.parse().ok()).ok_or(format!("bad number at {st}"))
+                std::str::from_utf8(&self.s[st..self.i])
+                    .ok()
+                    .and_then(|t| t.parse().ok())
+                    .ok_or(format!("bad number at {st}"))
             }
         }
     }
@@ -211,7 +214,9 @@ fn evaluate(text: &str, paren_comments: bool) -> Result<Vec<Motion>, String> {
         out.push(match (motion, center) {
             (0, _) => Motion::Rapid { start: pos, end: target },
             (1, _) => Motion::Line { start: pos, end: target },
-            (2 | 3, Some(c)) => Motion::Arc { start: pos, end: target, center: c, turns: if motion == 2 { -1 } else { 1 } },
+            (2 | 3, Some(c)) => {
+                Motion::Arc { start: pos, end: target, center: c, turns: if motion == 2 { -1 } else { 1 } }
+            }
             _ => return Err(format!("arc without I and J: {line}")),
         });
         pos = target;
@@ -242,13 +247,18 @@ fn every_dialect_retraces_the_plan() {
             for linear_segments in [false, true].into_iter().filter(|l| !l || chords) {
                 let o = NcOptions { dialect: d, linear_segments, ..NcOptions::default() };
                 let text = program(&p, &o).expect("program").text;
-                let motions = evaluate(&text, d != Dialect::Sinumerik).unwrap_or_else(|e| panic!("{kind:?} {d:?}: {e}"));
+                let motions =
+                    evaluate(&text, d != Dialect::Sinumerik).unwrap_or_else(|e| panic!("{kind:?} {d:?}: {e}"));
                 let label = format!("{kind:?} {d:?} linear={linear_segments}");
-                check_cut(&label, &cut(&motions, p.job.depth, 1e-9), &p, o.tolerance_mm, quantum(d)).unwrap_or_else(|e| panic!("{e}"));
+                check_cut(&label, &cut(&motions, p.job.depth, 1e-9), &p, o.tolerance_mm, quantum(d))
+                    .unwrap_or_else(|e| panic!("{e}"));
                 // approach: the first cutting move starts where the tool reached depth, outside the stock
                 let plunge = motions.iter().find(|m| matches!(m, Motion::Line { .. })).expect("plunge");
                 assert!(plunge.end()[1] + p.job.tool_radius() < 0.0, "{label}: descent inside the stock");
-                assert!(matches!(motions.last(), Some(Motion::Rapid { end, .. }) if end[2] > 0.0), "{label}: ends retracted");
+                assert!(
+                    matches!(motions.last(), Some(Motion::Rapid { end, .. }) if end[2] > 0.0),
+                    "{label}: ends retracted"
+                );
             }
         }
     }
@@ -272,7 +282,12 @@ fn sinumerik_loops_move_like_the_expanded_programs() {
             same_motion(&me, &mc, 1.0e-3 + 1e-9).unwrap_or_else(|e| panic!("{kind:?}: {e}"));
             check_cut(&format!("{kind:?} sinumerik loop"), &cut(&mc, p.job.depth, 1e-9), &p, o.tolerance_mm, 1e-3)
                 .unwrap_or_else(|e| panic!("{e}"));
-            assert!(compact.len() < expanded.len(), "the loop is compact: {} vs {} bytes", compact.len(), expanded.len());
+            assert!(
+                compact.len() < expanded.len(),
+                "the loop is compact: {} vs {} bytes",
+                compact.len(),
+                expanded.len()
+            );
         }
     }
 }

@@ -109,7 +109,11 @@ pub fn biarc(p0: P2, t0: P2, p1: P2, t1: P2) -> [Segment; 2] {
     let s = t0 + t1;
     let c = 2.0 * (1.0 - t0.dot(&t1));
     let vs = v.dot(&s);
-    let d = if c > 1e-12 { (-vs + (vs * vs + c * v.norm_squared()).sqrt()) / c } else { v.norm_squared() / (4.0 * v.dot(&t1)) };
+    let d = if c > 1e-12 {
+        (-vs + (vs * vs + c * v.norm_squared()).sqrt()) / c
+    } else {
+        v.norm_squared() / (4.0 * v.dot(&t1))
+    };
     let pm = (p0 + t0 * d + p1 - t1 * d) * 0.5;
     let second = arc_through(p1, -t1, pm);
     [arc_through(p0, t0, pm), reversed(&second)]

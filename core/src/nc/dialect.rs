@@ -64,9 +64,11 @@ pub struct DialectSpec {
     pub tool_call: ToolCall,
     /// Largest sweep of one arc block (rad).
     pub max_arc_sweep: f64,
-    /// Largest start/end radius difference we allow in an arc block (mm), below what the
-    /// controller checks (LinuxCNC rejects ≥ 0.04 mm, see the e2e tests; GRBL 0.005 mm and
-    /// 0.1 %; Fanuc parameter 3410 and Sinumerik MD 21000 are machine settings, ~0.01 mm).
+    /// Largest start/end radius difference we allow in an arc block (mm), at or below what the
+    /// controller checks: LinuxCNC 2.9's rs274 accepted 0.02 mm and rejected 0.04 mm (probed
+    /// by hand, 5 mm radius); GRBL rejects > 0.005 mm and > 0.1 %; Fanuc parameter 3410 and
+    /// Sinumerik MD 21000 CIRCLE_ERROR_CONST are machine settings, typically ~0.01 mm. The
+    /// emitter keeps it ≤ q·√2 (writer docs), so this is a guard, not a target.
     pub arc_radius_tolerance_mm: f64,
     /// Lines after the last motion (program end).
     pub program_end: &'static [&'static str],

@@ -241,7 +241,12 @@ fn preamble(w: &mut Writer, plan: &Plan, opts: &NcOptions) {
         job.trochoidal_radius()
     ));
     let geometry = if opts.linear_segments { "G1 chords" } else { "arcs" };
-    w.comment(&format!("{}: {geometry} within {} mm{}", spec.name, opts.tolerance_mm, if opts.compact { ", loop" } else { "" }));
+    w.comment(&format!(
+        "{}: {geometry} within {} mm{}",
+        spec.name,
+        opts.tolerance_mm,
+        if opts.compact { ", loop" } else { "" }
+    ));
     if let Some(f) = opts.return_feed_mm_per_min {
         w.comment(&format!("return feed {f:.1} mm/min where no tooth cuts"));
     }

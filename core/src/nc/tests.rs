@@ -7,7 +7,12 @@ use crate::plan::plan;
 use std::f64::consts::TAU;
 
 fn planned(path: PathKind) -> Plan {
-    let job = Job { path, aspect_ratio: if path.uses_aspect_ratio() { 0.8 } else { 1.0 }, linear_distance: 0.5, ..Job::default() };
+    let job = Job {
+        path,
+        aspect_ratio: if path.uses_aspect_ratio() { 0.8 } else { 1.0 },
+        linear_distance: 0.5,
+        ..Job::default()
+    };
     plan(&job).expect("valid job")
 }
 
@@ -103,10 +108,8 @@ fn return_feed_only_where_no_tooth_cuts() {
     // (a front piece fails: its rim reaches uncut stock beyond every path)
     let r = p.job.tool_radius();
     let step = p.path.cycle.step;
-    let swept: Vec<crate::geom::P2> = [-step, 0.0]
-        .iter()
-        .flat_map(|dy| p.path.cycle.sample(crate::geom::p2(0.0, *dy), 2000))
-        .collect();
+    let swept: Vec<crate::geom::P2> =
+        [-step, 0.0].iter().flat_map(|dy| p.path.cycle.sample(crate::geom::p2(0.0, *dy), 2000)).collect();
     for m in fast {
         for t in [0.0, 0.5, 1.0] {
             let c = m.seg.point(t);

@@ -93,11 +93,7 @@ impl Writer {
         let unit = 10i64.pow(self.spec.decimals);
         let sign = if n < 0 { "-" } else { "" };
         let a = n.unsigned_abs();
-        if d == 0 {
-            format!("{sign}{a}")
-        } else {
-            format!("{sign}{}.{:0d$}", a / unit as u64, a % unit as u64)
-        }
+        if d == 0 { format!("{sign}{a}") } else { format!("{sign}{}.{:0d$}", a / unit as u64, a % unit as u64) }
     }
 
     /// A value written with the dialect's decimals (for header parameters).
@@ -158,11 +154,7 @@ impl Writer {
             YForm::Offset(var) => {
                 let (sign, mag) = if n < 0 { ("-", -n) } else { ("+", n) };
                 let num = self.number(mag);
-                if var.starts_with('#') {
-                    format!("Y[{var}{sign}{num}]")
-                } else {
-                    format!("Y={var}{sign}{num}")
-                }
+                if var.starts_with('#') { format!("Y[{var}{sign}{num}]") } else { format!("Y={var}{sign}{num}") }
             }
         }
     }

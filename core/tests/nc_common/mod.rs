@@ -177,6 +177,7 @@ pub fn check_cut(label: &str, cut: &[Motion], plan: &Plan, tol: f64, q: f64) -> 
     let dev = deviation_from_plan(cut, plan);
     let allowed = budget(tol, q);
     if !(dev <= allowed) {
+        // written so that a NaN deviation fails too
         return Err(format!("{label}: deviation from the planned path {dev:.6} mm > {allowed:.6} mm"));
     }
     let a = plan.job.trochoidal_radius();
