@@ -166,7 +166,9 @@ fn sweep_tab_runs_in_the_background_and_teaching_animates() {
     h.run();
     h.state_mut().state.sweep.steps = 6;
     h.get_by_label("Run sweep").click();
-    h.run();
+    // One frame starts the run; `run()` here would fail under load while the progress bar
+    // keeps asking for repaints. The loop below waits for the worker.
+    h.step();
     let t0 = Instant::now();
     while h.state().sweep.as_ref().is_some_and(SweepRun::running) && t0.elapsed().as_secs() < 60 {
         std::thread::sleep(std::time::Duration::from_millis(10));
