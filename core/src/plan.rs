@@ -69,6 +69,20 @@ pub struct Plan {
     pub series: Vec<ToothSample>,
     pub left_wall: WallProfile,
     pub right_wall: WallProfile,
+    /// Edge of the material left by previous cycles (for drawing chips and edges).
+    pub edge: PreviousEdge,
+}
+
+impl Plan {
+    /// Closed outline of the chip cut by tooth `tooth` of [`Plan::series`] (steady-state frame,
+    /// cycle origin at (0, 0)); empty if that tooth cuts nothing or does not exist.
+    pub fn chip_outline(&self, tooth: usize) -> Vec<crate::geom::P2> {
+        let Some(t) = self.series.get(tooth) else { return Vec::new() };
+        if !t.cutting {
+            return Vec::new();
+        }
+        analysis::chip::chip_outline(&self.path.cycle, &self.edge, self.job.tool_radius(), self.job.f_z(), t.s_mm, 24)
+    }
 }
 
 /// Validate `job`, build its path and analyse a steady-state cycle.
@@ -84,8 +98,9 @@ pub fn plan_valid(job: ValidJob) -> Plan {
     let f_z = job.f_z();
     let feed_mm_per_s = job.feed / 60.0;
     // The chip series and the two walls are independent: compute them side by side.
+    let edge = PreviousEdge::new(&path.cycle, r);
     let (series, (left_wall, right_wall)) = rayon::join(
-        || tooth_series(&path.cycle, &PreviousEdge::new(&path.cycle, r), r, f_z, feed_mm_per_s),
+        || tooth_series(&path.cycle, &edge, r, f_z, feed_mm_per_s),
         || rayon::join(|| wall_profile(&path.cycle, r, Wall::Left), || wall_profile(&path.cycle, r, Wall::Right)),
     );
     let timing = chip_timing(&series, f_z / feed_mm_per_s);
@@ -123,5 +138,5 @@ pub fn plan_valid(job: ValidJob) -> Plan {
             DEPTH_LIMIT_FRACTION * job.tool_diameter,
         ),
     };
-    Plan { job, path, metrics, series, left_wall, right_wall }
+    Plan { job, path, metrics, series, left_wall, right_wall, edge }
 }

@@ -169,3 +169,24 @@ fn flatter_ellipses_need_smaller_steps_for_46_degrees() {
     assert!(ell < circ, "{ell} vs {circ}");
     assert!(engagement_limited_step(&Job::default(), f64::NAN).is_err());
 }
+
+/// The chip outline drawn for a tooth is the chip the analysis measured: its points lie
+/// within the tool circle, and the deepest point of its inner side lies h_max inside it.
+#[test]
+fn chip_outline_has_the_measured_thickness() {
+    for job in [Job::default(), Job { path: PathKind::Elliptical, aspect_ratio: 0.7, ..Job::default() }] {
+        let p = plan(&job).expect("valid");
+        let k = p.series.iter().enumerate().max_by(|a, b| a.1.h_mm.total_cmp(&b.1.h_mm)).map(|x| x.0).expect("teeth");
+        let outline = p.chip_outline(k);
+        assert!(outline.len() > 10);
+        let t = p.series[k];
+        let c = trochoplan_core::geom::p2(t.x_mm, t.y_mm);
+        let r = job.tool_diameter / 2.0;
+        let depth = outline.iter().map(|q| r - (q - c).norm()).fold(0.0, f64::max);
+        assert!(outline.iter().all(|q| (q - c).norm() <= r + 1e-9));
+        // 24 rays per side: the sampled depth is within a ray spacing of the exact maximum.
+        assert!((depth - t.h_mm).abs() < 0.1 * t.h_mm, "depth {depth} vs h {}", t.h_mm);
+        let idle = p.series.iter().position(|t| !t.cutting).expect("a cooling tooth");
+        assert!(p.chip_outline(idle).is_empty());
+    }
+}

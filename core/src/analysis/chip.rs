@@ -236,19 +236,7 @@ fn engagement(swept: &Swept, f: &Frame, r: f64) -> Engagement {
 /// cutting tooth of a pass, or a previous tooth whose engaged arc is degenerate.
 fn ray_thickness(swept: &Swept, f: &Frame, prev_c: Option<P2>, r: f64, intervals: &[(f64, f64)]) -> f64 {
     let centre_swept = swept.margin(f.c) <= 0.0;
-    let thickness = |phi: f64| {
-        let u = f.dir(phi);
-        if swept.margin(f.c + u * r) <= 0.0 {
-            return 0.0;
-        }
-        let t_s = if centre_swept { bracketed_root(0.0, r, 1e-10, |t| swept.margin(f.c + u * t)) } else { 0.0 };
-        let t_1 = prev_c.map_or(0.0, |pc| {
-            let d = f.c - pc;
-            let b = d.dot(&u);
-            (-b + (b * b - d.norm_squared() + r * r).max(0.0).sqrt()).max(0.0)
-        });
-        r - t_s.max(t_1)
-    };
+    let thickness = |phi: f64| radial_thickness(swept, f, prev_c, r, centre_swept, phi);
     let mut best: f64 = 0.0;
     for &(a, b) in intervals {
         let phis: Vec<f64> = (0..=10).map(|i| a + (b - a) * i as f64 / 10.0).collect();
@@ -259,6 +247,53 @@ fn ray_thickness(swept: &Swept, f: &Frame, prev_c: Option<P2>, r: f64, intervals
         best = best.max(vb).max(-neg);
     }
     best
+}
+
+/// Radial chip thickness along direction φ from the tool centre: R − max(t₁, t_s), with t₁ the
+/// exit of the ray from the previous tooth's disc and t_s its exit from swept material.
+fn radial_thickness(swept: &Swept, f: &Frame, prev_c: Option<P2>, r: f64, centre_swept: bool, phi: f64) -> f64 {
+    let u = f.dir(phi);
+    if swept.margin(f.c + u * r) <= 0.0 {
+        return 0.0;
+    }
+    let t_s = if centre_swept { bracketed_root(0.0, r, 1e-10, |t| swept.margin(f.c + u * t)) } else { 0.0 };
+    let t_1 = prev_c.map_or(0.0, |pc| {
+        let d = f.c - pc;
+        let b = d.dot(&u);
+        (-b + (b * b - d.norm_squared() + r * r).max(0.0).sqrt()).max(0.0)
+    });
+    (r - t_s.max(t_1)).max(0.0)
+}
+
+/// Outline of the chip cut by the tooth at arc length `s` (mm from the cycle start, steady
+/// state, cycle origin at (0, 0)): the engaged arc of the tool circle, then back along the
+/// inner boundary of the chip (the previous tooth's circle or the swept edge), as a closed
+/// polygon with `n` points per engaged interval and side. Empty when the tooth cuts nothing.
+/// For drawing the chip (teaching view); the numbers come from [`tooth_series`].
+pub fn chip_outline(cycle: &Cycle, edge: &PreviousEdge, r: f64, f_z: f64, s: f64, n: usize) -> Vec<P2> {
+    let len = cycle.length();
+    let start = CyclePos { seg: 0, t: 0.0 };
+    let Some(pos) = cycle.advance(start, s.clamp(0.0, len)) else { return Vec::new() };
+    let f = Frame::at(cycle, pos, P2::zeros());
+    let prev = if s >= f_z {
+        cycle.advance(start, s - f_z).map(|p| Frame::at(cycle, p, P2::zeros()).c)
+    } else {
+        cycle.advance(start, len + s - f_z).map(|p| Frame::at(cycle, p, P2::new(0.0, -cycle.step)).c)
+    };
+    let early = EarlySweep::new(cycle, P2::zeros(), r, 0.25);
+    let swept = Swept { edge, early: (s >= 0.5 * len).then_some(&early) };
+    let e = engagement(&swept, &f, r);
+    let centre_swept = swept.margin(f.c) <= 0.0;
+    let n = n.max(2);
+    let mut out = Vec::new();
+    for &(a, b) in &e.intervals {
+        let phis: Vec<f64> = (0..=n).map(|i| a + (b - a) * i as f64 / n as f64).collect();
+        out.extend(phis.iter().map(|&p| f.c + f.dir(p) * r));
+        out.extend(
+            phis.iter().rev().map(|&p| f.c + f.dir(p) * (r - radial_thickness(&swept, &f, prev, r, centre_swept, p))),
+        );
+    }
+    out
 }
 
 /// Engaged arcs shorter than this (rad) give no usable point B for the next tooth.
