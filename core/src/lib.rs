@@ -14,10 +14,12 @@
 //! - [`geom`]: points, exact segments (line, arc, eq. (1) trochoid piece), numerics.
 //! - [`path`]: the four slot path types as one repeated cycle.
 //! - [`analysis`]: edge of previous cycles, per-tooth h and engagement, waviness, step limit.
+//! - [`corner`]: pocket corners (issue #5): engagement model, corner trochoids, evaluator.
 //! - [`plan`]: [`plan()`] — job in, [`Plan`] out; used by the GUI and the CLI.
 //! - [`error`]: [`JobError`].
 
 pub mod analysis;
+pub mod corner;
 pub mod error;
 pub mod geom;
 pub mod job;

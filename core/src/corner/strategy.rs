@@ -1,0 +1,541 @@
+//! Corner trochoids for one line–line corner of a contour-parallel ring (Wu et al. 2016 §4.2;
+//! domain-spec §3.3–3.4), and the corner scenario used to measure them.
+//!
+//! Scenario (our reading of Fig. 12–14, which are missing from the fragments): a convex corner
+//! of two walls of length `edge_length` from the apex. The previous ring's tool centre ran on
+//! the walls offset by `r + a_e` with a sharp corner at `P0` (so it left the corner arc PSQ of
+//! radius r about P0), and everything farther inside was cleared before. The current ring U–V
+//! runs on the walls offset by `r`, from beyond the end of wall 1 to the tool corner point
+//! `U0 = W0 + (r / sin α) b̂` and out beyond the end of wall 2.
+//!
+//! Every strategy replaces the corner of U–V by counter-clockwise (G3) tool-centre circles that
+//! are tangent to U (their offset circles touch wall 1), entered and left at that tangent point
+//! and linked by straight moves along U, so the path is G1-continuous up to the corner point,
+//! where it turns onto V exactly like the plain ring:
+//! `U leg → circle 1 → line on U → circle 2 → … → line on U to U0 → V leg`.
+
+use super::engagement::{Circle, TwoCircle, Turn, radial_depth_for_engagement, straight_engagement};
+use super::evaluator::Polygon;
+use super::geometry::Corner;
+use crate::error::JobError;
+use crate::geom::{P2, Segment};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::{PI, TAU};
+
+/// Bisection steps allowed for one circle (domain-spec §3.3: "max 60 iterations").
+const MAX_BISECTION: usize = 60;
+/// Circles allowed in one corner (guards against a stop rule that never fires).
+const MAX_CIRCLES: usize = 2000;
+
+/// Corner strategy.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Method {
+    /// The plain contour-parallel ring: straight into the tool corner point and out.
+    Plain,
+    /// Variable circles on the bisector (Wu et al. §4.2.1, eqs. 23–24; domain-spec §3.3).
+    Variable,
+    /// Isometric circles along U offset by rh (Wu et al. §4.2.2, eq. 25; domain-spec §3.4).
+    Isometric,
+}
+
+impl Method {
+    /// CLI / JSON name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Plain => "plain",
+            Method::Variable => "variable",
+            Method::Isometric => "isometric",
+        }
+    }
+}
+
+/// Inputs of a corner plan (mm, rad, mm/min).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CornerSettings {
+    /// Tool radius r (mm).
+    pub tool_radius: f64,
+    /// Radial step-over a_e between rings (mm), 0 < a_e < D.
+    pub step_over: f64,
+    /// Target engagement a* (rad): the straight-part value a_str·(1 + t1).
+    pub target: f64,
+    /// Bisection acceptance band ε (rad): accept m ∈ (a*, a* + ε] (eq. 24).
+    pub tolerance: f64,
+    /// Wall length from the apex (mm).
+    pub edge_length: f64,
+    /// Feed rate for the machining time (mm/min).
+    pub feed_mm_per_min: f64,
+    /// Tool-centre radius rh of isometric circles (mm); `None` = r/2.
+    pub isometric_radius: Option<f64>,
+}
+
+impl CornerSettings {
+    /// Settings whose target is the straight-part engagement of `step_over` (t1 = 0), ε = 0.5°,
+    /// 60 mm walls, 600 mm/min.
+    pub fn new(tool_radius: f64, step_over: f64) -> Result<CornerSettings, JobError> {
+        let target = straight_engagement(step_over, tool_radius)?;
+        Ok(CornerSettings {
+            tool_radius,
+            step_over,
+            target,
+            tolerance: 0.5f64.to_radians(),
+            edge_length: 60.0,
+            feed_mm_per_min: 600.0,
+            isometric_radius: None,
+        })
+    }
+
+    /// Smallest tool-centre circle radius worth cutting: max(0.05 r, 0.05 mm) (domain-spec §3.3).
+    pub fn r_min(&self) -> f64 {
+        (0.05 * self.tool_radius).max(0.05)
+    }
+
+    /// Tool-centre radius of isometric circles.
+    pub fn rh(&self) -> f64 {
+        self.isometric_radius.unwrap_or(0.5 * self.tool_radius)
+    }
+
+    /// Range checks; each error names the parameter and its allowed range.
+    pub fn validate(&self) -> Result<(), JobError> {
+        let r = self.tool_radius;
+        if !(r.is_finite() && r > 0.0 && r <= 500.0) {
+            return Err(JobError::range("tool diameter", 2.0 * r, "a finite number from 0 to 1000 mm (exclusive of 0)"));
+        }
+        if !(self.step_over.is_finite() && self.step_over > 0.0 && self.step_over < 2.0 * r) {
+            return Err(JobError::range("step-over", self.step_over, format!("greater than 0 and less than the tool diameter {} mm", 2.0 * r)));
+        }
+        if !(self.target.is_finite() && self.target > 0.0 && self.target < PI) {
+            return Err(JobError::range("target", format!("{}°", self.target.to_degrees()), "greater than 0° and less than 180°"));
+        }
+        if !(self.tolerance.is_finite() && self.tolerance > 0.0 && self.tolerance <= 10f64.to_radians()) {
+            return Err(JobError::range("tolerance", format!("{}°", self.tolerance.to_degrees()), "greater than 0° and at most 10°"));
+        }
+        if !(self.edge_length.is_finite() && self.edge_length > 4.0 * r && self.edge_length <= 1.0e4) {
+            return Err(JobError::range("edge length", self.edge_length, format!("more than two tool diameters ({} mm) and at most 10000 mm", 4.0 * r)));
+        }
+        if !(self.feed_mm_per_min.is_finite() && self.feed_mm_per_min > 0.0) {
+            return Err(JobError::range("feed", self.feed_mm_per_min, "a finite number > 0 mm/min"));
+        }
+        let rh = self.rh();
+        if !(rh.is_finite() && rh >= self.r_min() && rh <= 10.0 * r) {
+            return Err(JobError::range("isometric radius", rh, format!("from r_min = {} mm to 10·r = {} mm", self.r_min(), 10.0 * r)));
+        }
+        Ok(())
+    }
+}
+
+/// The corner of one ring with the material the previous ring left (see module docs).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CornerScenario {
+    pub corner: Corner,
+    pub settings: CornerSettings,
+    /// Stock before the previous ring: the band between the walls and the previous ring's tool
+    /// path (farther inside was cleared by earlier rings).
+    pub stock: Polygon,
+    /// The previous ring's tool-centre path (walls offset by r + a_e), already cut.
+    pub previous_ring: Vec<Segment>,
+    /// Start of the current ring (beyond the end of wall 1, on U).
+    pub ring_start: P2,
+    /// Tool corner point U0 = W0 + (r / sin α) b̂.
+    pub corner_point: P2,
+    /// End of the current ring (beyond the end of wall 2, on V).
+    pub ring_end: P2,
+}
+
+impl CornerScenario {
+    /// Builds and validates the scenario. A corner too narrow for the tool to enter (the
+    /// previous ring's corner would lie within one tool diameter of the wall ends) is an error
+    /// naming the corner angle and the smallest angle these walls allow.
+    pub fn new(corner: Corner, settings: CornerSettings) -> Result<CornerScenario, JobError> {
+        settings.validate()?;
+        let (r, ae, len) = (settings.tool_radius, settings.step_over, settings.edge_length);
+        let alpha = corner.half_angle;
+        // Foot of the previous ring's corner on the walls: (r + a_e)·cot α from the apex.
+        let foot = (r + ae) / alpha.tan();
+        if foot > len - 2.0 * r {
+            let min_angle = 2.0 * ((r + ae) / (len - 2.0 * r)).atan();
+            return Err(JobError::range(
+                "corner angle",
+                format!("{:.3}°", (2.0 * alpha).to_degrees()),
+                format!(
+                    "at least {:.3}° for a {} mm tool, step-over {} mm and {} mm walls (narrower corners cannot be entered)",
+                    min_angle.to_degrees(),
+                    2.0 * r,
+                    ae,
+                    len
+                ),
+            ));
+        }
+        let (w0, b, s) = (corner.apex, corner.bisector, alpha.sin());
+        let (ni, no) = (corner.normal_in(), corner.normal_out());
+        let end1 = w0 - corner.dir_in * len; // far end of wall 1
+        let end2 = w0 + corner.dir_out * len; // far end of wall 2
+        let w = r + ae;
+        let stock = Polygon::new(vec![end1, w0, end2, end2 + no * w, w0 + b * (w / s), end1 + ni * w])?;
+        let out = 2.0 * r; // how far the rings run beyond the wall ends
+        let p0 = w0 + b * (w / s);
+        let previous_ring = vec![
+            Segment::Line { start: end1 + ni * w - corner.dir_in * out, end: p0 },
+            Segment::Line { start: p0, end: end2 + no * w + corner.dir_out * out },
+        ];
+        Ok(CornerScenario {
+            corner,
+            settings,
+            stock,
+            previous_ring,
+            ring_start: end1 + ni * r - corner.dir_in * out,
+            corner_point: w0 + b * (r / s),
+            ring_end: end2 + no * r + corner.dir_out * out,
+        })
+    }
+}
+
+/// One corner trochoid circle.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CornerCircle {
+    /// Tool-centre circle (centre, radius R − r).
+    pub tool_circle: Circle,
+    /// Offset circle (the boundary it cuts), radius R.
+    pub offset_radius: f64,
+    /// Peak engagement predicted by the two-circle model after the previous circle (rad);
+    /// `None` for a circle placed without a predecessor circle (the first one).
+    pub predicted_max: Option<f64>,
+    /// Bisection steps used to place it (0 when placed directly).
+    pub steps: usize,
+}
+
+/// A planned corner: circles, the connected tool path and its cost.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CornerPlan {
+    pub method: Method,
+    /// Circles in machining order.
+    pub circles: Vec<CornerCircle>,
+    /// Tool-centre path of the whole ring piece (U leg, corner, V leg).
+    pub path: Vec<Segment>,
+    /// Path length (mm).
+    pub path_length_mm: f64,
+    /// Machining time at the feed rate (s).
+    pub time_s: f64,
+    /// How the strategy was applied (fallbacks, readings).
+    pub notes: Vec<String>,
+}
+
+/// Limit point M of the bisection (Wu et al. §4.2.1 step 1; domain-spec §3.3, DERIVED):
+/// `tM = (tN(1 − sin α) + 2r)/(1 + sin α)`, valid while `R_N = tN sin α > r`.
+pub fn limit_point(t_n: f64, alpha: f64, r: f64) -> f64 {
+    let s = alpha.sin();
+    (t_n * (1.0 - s) + 2.0 * r) / (1.0 + s)
+}
+
+/// Metric m(t) of the bisection: peak two-circle engagement (§1.2) of the wall-tangent circle at
+/// bisector parameter `t` after the one at `t_n` (eq. 24 with the engagement angle).
+pub fn engagement_after(corner: &Corner, r: f64, t_n: f64, t: f64) -> f64 {
+    let model = TwoCircle {
+        previous: corner.wall_tangent_circle(t_n),
+        current: corner.wall_tangent_circle(t),
+        tool_radius: r,
+        turn: Turn::Ccw,
+    };
+    model.max_engagement().angle
+}
+
+/// Result of one bisection (domain-spec §3.3).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct NextCircle {
+    /// Accepted bisector parameter t.
+    pub t: f64,
+    /// m(t) (rad).
+    pub metric: f64,
+    /// Bisection steps taken.
+    pub steps: usize,
+}
+
+/// Next variable circle after the one at `t_n` by bisection on the bisector between `t_n`
+/// (Z < 0: nothing left to cut) and the limit point `tM` (eqs. 23–24, domain-spec §3.3):
+/// accept when `0 < Z ≤ ε` with `Z = m(t) − a*`; if `Z(tM) ≤ 0` take tM. After 60 steps the
+/// low end (Z < 0, under the target) is taken.
+pub fn next_variable_circle(corner: &Corner, r: f64, t_n: f64, target: f64, eps: f64) -> Result<NextCircle, JobError> {
+    let alpha = corner.half_angle;
+    if !(t_n * alpha.sin() > r) {
+        return Err(JobError::range("t_N", t_n, format!("> r / sin α = {} mm (the current circle must be larger than the tool)", r / alpha.sin())));
+    }
+    let t_m = limit_point(t_n, alpha, r);
+    let m_m = engagement_after(corner, r, t_n, t_m);
+    if m_m - target <= 0.0 {
+        return Ok(NextCircle { t: t_m, metric: m_m, steps: 0 });
+    }
+    let (mut lo, mut hi) = (t_n, t_m); // Z(lo) < 0 (same circle), Z(hi) > 0
+    for step in 1..=MAX_BISECTION {
+        let t = 0.5 * (lo + hi);
+        let m = engagement_after(corner, r, t_n, t);
+        let z = m - target;
+        if z > 0.0 && z <= eps {
+            return Ok(NextCircle { t, metric: m, steps: step });
+        }
+        if z < 0.0 {
+            lo = t;
+        } else {
+            hi = t;
+        }
+    }
+    Ok(NextCircle { t: lo, metric: engagement_after(corner, r, t_n, lo), steps: MAX_BISECTION })
+}
+
+/// Variable circles from `t_start` towards the apex until the next tool-centre radius drops
+/// below `r_min` (domain-spec §3.3 stop rule). Returns the circles after the start circle.
+fn variable_chain(sc: &CornerScenario, t_start: f64) -> Result<Vec<CornerCircle>, JobError> {
+    let (corner, s) = (&sc.corner, &sc.settings);
+    let r = s.tool_radius;
+    let mut out = Vec::new();
+    let mut t = t_start;
+    while t * corner.half_angle.sin() - r >= s.r_min() {
+        let next = next_variable_circle(corner, r, t, s.target, s.tolerance)?;
+        let big_r = next.t * corner.half_angle.sin();
+        if big_r - r < s.r_min() || next.t >= t {
+            break;
+        }
+        out.push(CornerCircle {
+            tool_circle: Circle::new(corner.on_bisector(next.t), big_r - r),
+            offset_radius: big_r,
+            predicted_max: Some(next.metric),
+            steps: next.steps,
+        });
+        if out.len() > MAX_CIRCLES {
+            return Err(JobError::range("circles", out.len(), format!("at most {MAX_CIRCLES} per corner")));
+        }
+        t = next.t;
+    }
+    Ok(out)
+}
+
+/// First variable circle c1 (our reading; the fragment only says it is "the circle on the end
+/// position of the corner"): the wall-tangent circle whose offset circle passes through the
+/// point S of the previous corner arc on the bisector, `t1(1 − sin α) = tP − r` with
+/// `tP = (r + a_e)/sin α`. It contains the whole corner arc PSQ, so it cuts only the band the
+/// previous ring left along the walls (its engagement approaches the straight-part value).
+fn first_variable_t(sc: &CornerScenario) -> f64 {
+    let s = sc.settings;
+    let sin = sc.corner.half_angle.sin();
+    let t_p = (s.tool_radius + s.step_over) / sin;
+    (t_p - s.tool_radius) / (1.0 - sin)
+}
+
+/// Plan one corner with a strategy.
+pub fn plan_corner(sc: &CornerScenario, method: Method) -> Result<CornerPlan, JobError> {
+    let s = sc.settings;
+    let (r, corner) = (s.tool_radius, &sc.corner);
+    let sin = corner.half_angle.sin();
+    let mut notes = Vec::new();
+    let circles = match method {
+        Method::Plain => Vec::new(),
+        Method::Variable => {
+            let t1 = first_variable_t(sc);
+            let first = CornerCircle {
+                tool_circle: Circle::new(corner.on_bisector(t1), t1 * sin - r),
+                offset_radius: t1 * sin,
+                predicted_max: None,
+                steps: 0,
+            };
+            let mut c = vec![first];
+            c.extend(variable_chain(sc, t1)?);
+            c
+        }
+        Method::Isometric => isometric_circles(sc, &mut notes)?,
+    };
+    let path = ring_path(sc, &circles);
+    let len: f64 = path.iter().map(Segment::length).sum();
+    Ok(CornerPlan { method, circles, path, path_length_mm: len, time_s: len / s.feed_mm_per_min * 60.0, notes })
+}
+
+/// Isometric circles (Wu et al. §4.2.2, domain-spec §3.4): tool-centre radius rh, centres on
+/// Up (U offset by rh into the corner) from the circle touching U at the foot of the previous
+/// corner P0 to the circle on the bisector, spaced at most `L = P(a*)` of domain-spec §2.2
+/// with `Rs = rh + r`. eq. 25: `rh1 = |PH1|/2 − r` with P the point of the previous corner arc
+/// PSQ farthest from wall 1; if `rh ≤ rh1` the Fig. 14b layout (not in our fragments) would be
+/// needed and the variable method is used instead (noted). The corner tip beyond the bisector
+/// circle is finished by variable circles (§3.3) from that circle (noted), because one size of
+/// circle cannot reach into the tip without exceeding the target.
+fn isometric_circles(sc: &CornerScenario, notes: &mut Vec<String>) -> Result<Vec<CornerCircle>, JobError> {
+    let s = sc.settings;
+    let (r, ae, corner) = (s.tool_radius, s.step_over, &sc.corner);
+    let alpha = corner.half_angle;
+    let sin = alpha.sin();
+    let rh = s.rh();
+    // eq. 25 threshold. P0 at distance r + a_e from both walls; the arc PSQ of radius r about P0
+    // ends where it meets the band lines; its point farthest from wall 1 is its end on wall 2's
+    // band line, Q = P0 − r·n_out, at distance (r + a_e) − r·(n_out·n_in) from wall 1.
+    let p0 = corner.on_bisector((r + ae) / sin);
+    let q = p0 - corner.normal_out() * r;
+    let (l1, _) = corner.wall_lines()?;
+    let ph1 = l1.distance_offset(q, 0.0);
+    let rh1 = ph1 / 2.0 - r;
+    if rh <= rh1 {
+        notes.push(format!(
+            "rh = {rh:.4} mm ≤ rh1 = {rh1:.4} mm (eq. 25): the isometric circles cannot cover the previous corner arc; Fig. 14b layout is not in the source, variable circles used"
+        ));
+        let t1 = first_variable_t(sc);
+        let mut c = vec![CornerCircle { tool_circle: Circle::new(corner.on_bisector(t1), t1 * sin - r), offset_radius: t1 * sin, predicted_max: None, steps: 0 }];
+        c.extend(variable_chain(sc, t1)?);
+        return Ok(c);
+    }
+    let big_r = rh + r;
+    let rho_sq = rh * rh + r * r + 2.0 * rh * r * s.target.cos();
+    let spacing = big_r - rho_sq.max(0.0).sqrt(); // §2.2 P(a) with Rs = rh + r
+    if !(spacing > 1e-6) {
+        return Err(JobError::range("target", format!("{}°", s.target.to_degrees()), "large enough for a positive isometric centre spacing"));
+    }
+    // Centres on Up: along U's direction, measured from the bisector circle (u = 0) backwards.
+    let o_bis = corner.on_bisector(big_r / sin);
+    // Foot of P0 on U and the corresponding centre distance back from the bisector circle.
+    let foot_dist = (p0 - o_bis).dot(&(-corner.dir_in)).max(0.0);
+    let n = (foot_dist / spacing).ceil() as usize;
+    let step = if n > 0 { foot_dist / n as f64 } else { 0.0 };
+    let mut circles = Vec::new();
+    for k in (0..=n).rev() {
+        let center = o_bis - corner.dir_in * (k as f64 * step);
+        circles.push(CornerCircle {
+            tool_circle: Circle::new(center, rh),
+            offset_radius: big_r,
+            predicted_max: if circles.is_empty() { None } else { Some(s.target) },
+            steps: 0,
+        });
+        if circles.len() > MAX_CIRCLES {
+            return Err(JobError::range("circles", circles.len(), format!("at most {MAX_CIRCLES} per corner")));
+        }
+    }
+    notes.push(format!("isometric: rh = {rh:.4} mm, rh1 = {rh1:.4} mm (eq. 25), spacing L = {step:.4} mm (≤ P(a*) = {spacing:.4} mm)"));
+    let tip = variable_chain(sc, big_r / sin)?;
+    if !tip.is_empty() {
+        notes.push(format!("corner tip finished with {} variable circles (§3.3) after the bisector circle", tip.len()));
+    }
+    circles.extend(tip);
+    Ok(circles)
+}
+
+/// The connected ring piece: U leg to the first circle's tangent point on U, each circle once
+/// round (CCW) from its tangent point, straight moves along U between tangent points, then to
+/// the corner point and out along V.
+fn ring_path(sc: &CornerScenario, circles: &[CornerCircle]) -> Vec<Segment> {
+    let n_in = sc.corner.normal_in();
+    let mut path = Vec::new();
+    let mut at = sc.ring_start;
+    for c in circles {
+        let o = c.tool_circle.center;
+        let rho = c.tool_circle.radius;
+        let tangent = o - n_in * rho; // point of the tool circle on U
+        if (tangent - at).norm() > 1e-12 {
+            path.push(Segment::Line { start: at, end: tangent });
+        }
+        let dir = tangent - o;
+        path.push(Segment::Arc { center: o, radius: rho, start_angle: dir.y.atan2(dir.x), sweep: TAU });
+        at = tangent;
+    }
+    path.push(Segment::Line { start: at, end: sc.corner_point });
+    path.push(Segment::Line { start: sc.corner_point, end: sc.ring_end });
+    path
+}
+
+/// Straight-part radial depth for a target engagement (domain-spec §1.1 inverse), for callers
+/// that state the target instead of the step-over.
+pub fn step_over_for(target: f64, r: f64) -> f64 {
+    radial_depth_for_engagement(target, r)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn deg(x: f64) -> f64 {
+        x.to_degrees()
+    }
+
+    #[test]
+    fn variable_circle_spec_test() {
+        // domain-spec §3.3 TEST: α = 30°, r = 5, tN = 30 (RN = 15), a* = 46°, ε = 0.5°.
+        let corner = Corner::symmetric(60f64.to_radians()).unwrap();
+        let r = 5.0;
+        let t_m = limit_point(30.0, corner.half_angle, r);
+        assert!((t_m - 16.6667).abs() < 1e-4, "tM = {t_m}");
+        for (t, want) in [(29.0, 31.788), (27.0, 56.633), (25.0, 75.522), (20.0, 120.0)] {
+            let m = deg(engagement_after(&corner, r, 30.0, t));
+            assert!((m - want).abs() < 1e-3, "m({t}) = {m}, want {want}");
+        }
+        // m(tM): the spec's 162.844° is a 0.05° scan; the peak is a kink at the entry point E,
+        // so refinement can only raise it. An independent dense scan (2·10⁶ points) gives
+        // 162.8538° at φ = 84.26°; the closed form (first case) would say 180°.
+        let m = deg(engagement_after(&corner, r, 30.0, t_m));
+        assert!((162.844..162.844 + 0.02).contains(&m), "m(tM) = {m}");
+        let closed = TwoCircle {
+            previous: corner.wall_tangent_circle(30.0),
+            current: corner.wall_tangent_circle(t_m),
+            tool_radius: r,
+            turn: Turn::Ccw,
+        }
+        .closed_form_max();
+        assert!((deg(closed) - 180.0).abs() < 1e-4, "closed form {}", deg(closed)); // acos near −1: ill-conditioned
+        let next = next_variable_circle(&corner, r, 30.0, 46f64.to_radians(), 0.5f64.to_radians()).unwrap();
+        assert!((next.t - 27.9427).abs() < 1e-4, "t = {}", next.t);
+        assert_eq!(next.steps, 9);
+        assert!((deg(next.metric) - 46.0 - 0.258).abs() < 1e-3, "Z = {}", deg(next.metric) - 46.0);
+        let big_r = next.t * 0.5;
+        assert!((big_r - 13.9714).abs() < 1e-4 && (big_r - r - 8.9714).abs() < 1e-4);
+    }
+
+    #[test]
+    fn variable_circle_sequence_spec_test() {
+        // domain-spec §3.3: R = 15, 13.971, 12.990, 12.054, 11.172, 10.336, 9.572, 8.869, 8.245.
+        let corner = Corner::symmetric(60f64.to_radians()).unwrap();
+        let mut t = 30.0;
+        for want in [13.971, 12.990, 12.054, 11.172, 10.336, 9.572, 8.869, 8.245] {
+            t = next_variable_circle(&corner, 5.0, t, 46f64.to_radians(), 0.5f64.to_radians()).unwrap().t;
+            assert!((t * 0.5 - want).abs() < 1e-3, "R = {}, want {want}", t * 0.5);
+        }
+    }
+
+    #[test]
+    fn isometric_spacing_spec_test() {
+        // domain-spec §3.4 TEST: rh = 5, r = 5 (Rs = 10), a_lim = 46° → L = 0.7950 mm.
+        let (rh, r, a) = (5.0f64, 5.0f64, 46f64.to_radians());
+        let l = (rh + r) - (rh * rh + r * r + 2.0 * rh * r * a.cos()).sqrt();
+        assert!((l - 0.7950).abs() < 1e-4, "L = {l}");
+    }
+
+    #[test]
+    fn paths_are_connected_and_circles_shrink_towards_the_apex() {
+        let settings = CornerSettings::new(5.0, radial_depth_for_engagement(46f64.to_radians(), 5.0)).unwrap();
+        for angle in [30.0f64, 90.0, 150.0] {
+            let sc = CornerScenario::new(Corner::symmetric(angle.to_radians()).unwrap(), settings).unwrap();
+            for m in [Method::Plain, Method::Variable, Method::Isometric] {
+                let p = plan_corner(&sc, m).unwrap();
+                for w in p.path.windows(2) {
+                    assert!((w[0].end() - w[1].start()).norm() < 1e-9, "{angle}° {m:?}: gap");
+                }
+                assert!((p.path[0].start() - sc.ring_start).norm() < 1e-12);
+                assert!((p.path.last().unwrap().end() - sc.ring_end).norm() < 1e-12);
+                if m == Method::Variable {
+                    for w in p.circles.windows(2) {
+                        assert!(w[1].offset_radius < w[0].offset_radius, "{angle}°: radii must shrink");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn bad_settings_are_named() {
+        let ok = CornerSettings::new(5.0, 1.5).unwrap();
+        for (s, name) in [
+            (CornerSettings { step_over: 10.0, ..ok }, "step-over"),
+            (CornerSettings { step_over: f64::NAN, ..ok }, "step-over"),
+            (CornerSettings { tool_radius: -1.0, ..ok }, "tool diameter"),
+            (CornerSettings { target: 0.0, ..ok }, "target"),
+            (CornerSettings { feed_mm_per_min: 0.0, ..ok }, "feed"),
+            (CornerSettings { edge_length: 5.0, ..ok }, "edge length"),
+        ] {
+            assert_eq!(s.validate().unwrap_err().parameter(), Some(name));
+        }
+        // A 5° corner with 60 mm walls cannot be entered by a 10 mm tool.
+        let e = CornerScenario::new(Corner::symmetric(5f64.to_radians()).unwrap(), ok).unwrap_err();
+        assert_eq!(e.parameter(), Some("corner angle"), "{e}");
+    }
+}
