@@ -14,7 +14,9 @@
 //! - [`geometry`]: offset lines, bisector (eqs. 21–22), wall-tangent circles (§3.2).
 //! - [`strategy`]: the corner scenario, the plain contour-parallel corner and the
 //!   variable-circle (§3.3) and isometric-circle (§3.4) corner trochoids.
+//! - [`acceptance`]: the issue #5 acceptance table, measured with the evaluator.
 
+pub mod acceptance;
 pub mod engagement;
 pub mod evaluator;
 pub mod geometry;
@@ -23,4 +25,5 @@ pub mod strategy;
 pub use engagement::{Circle, MaxEngagement, Turn, TwoCircle, radial_depth_for_engagement, straight_engagement};
 pub use evaluator::{EngagementProfile, EngagementSample, EvaluatorOptions, Polygon, engagement_profile, parse_points, polyline};
 pub use geometry::{Corner, LineEq, bisector_point};
-pub use strategy::{CornerCircle, CornerPlan, CornerScenario, CornerSettings, Method, plan_corner};
+pub use acceptance::{AcceptanceRow, acceptance_row, acceptance_table};
+pub use strategy::{CornerCircle, CornerPlan, CornerScenario, CornerSettings, Method, first_circle_radius, plan_corner};

@@ -24,6 +24,8 @@ use std::f64::consts::{PI, TAU};
 
 /// Bisection steps allowed for one circle (domain-spec §3.3: "max 60 iterations").
 const MAX_BISECTION: usize = 60;
+/// Wu et al.'s example tolerance over the straight-part value, t1 = 15 % (eq. 23).
+pub const DEFAULT_T1: f64 = 0.15;
 /// Circles allowed in one corner (guards against a stop rule that never fires).
 const MAX_CIRCLES: usize = 2000;
 
@@ -65,21 +67,22 @@ pub struct CornerSettings {
     pub edge_length: f64,
     /// Feed rate for the machining time (mm/min).
     pub feed_mm_per_min: f64,
-    /// Tool-centre radius rh of isometric circles (mm); `None` = r/2.
+    /// Tool-centre radius rh of isometric circles (mm); `None` = the smallest admissible,
+    /// R1 − r (see [`first_circle_radius`]); smaller values are raised to it.
     pub isometric_radius: Option<f64>,
 }
 
 impl CornerSettings {
-    /// Settings whose target is the straight-part engagement of `step_over` (t1 = 0), ε = 0.5°,
-    /// 60 mm walls, 600 mm/min.
+    /// Settings with Wu et al.'s target a* = a_str·(1 + t1), t1 = 15 % (eq. 23 analogue,
+    /// domain-spec §3.3), ε = 0.5°, 100 mm walls, 600 mm/min.
     pub fn new(tool_radius: f64, step_over: f64) -> Result<CornerSettings, JobError> {
-        let target = straight_engagement(step_over, tool_radius)?;
+        let target = straight_engagement(step_over, tool_radius)? * (1.0 + DEFAULT_T1);
         Ok(CornerSettings {
             tool_radius,
             step_over,
             target,
             tolerance: 0.5f64.to_radians(),
-            edge_length: 60.0,
+            edge_length: 100.0,
             feed_mm_per_min: 600.0,
             isometric_radius: None,
         })
@@ -92,7 +95,7 @@ impl CornerSettings {
 
     /// Tool-centre radius of isometric circles.
     pub fn rh(&self) -> f64 {
-        self.isometric_radius.unwrap_or(0.5 * self.tool_radius)
+        self.isometric_radius.unwrap_or_else(|| first_circle_radius(self).map_or(self.tool_radius, |r1| r1 - self.tool_radius))
     }
 
     /// Range checks; each error names the parameter and its allowed range.
@@ -308,16 +311,47 @@ fn variable_chain(sc: &CornerScenario, t_start: f64) -> Result<Vec<CornerCircle>
     Ok(out)
 }
 
-/// First variable circle c1 (our reading; the fragment only says it is "the circle on the end
-/// position of the corner"): the wall-tangent circle whose offset circle passes through the
-/// point S of the previous corner arc on the bisector, `t1(1 − sin α) = tP − r` with
-/// `tP = (r + a_e)/sin α`. It contains the whole corner arc PSQ, so it cuts only the band the
-/// previous ring left along the walls (its engagement approaches the straight-part value).
-fn first_variable_t(sc: &CornerScenario) -> f64 {
-    let s = sc.settings;
-    let sin = sc.corner.half_angle.sin();
-    let t_p = (s.tool_radius + s.step_over) / sin;
-    (t_p - s.tool_radius) / (1.0 - sin)
+/// Offset radius R1 of the first corner circle (DERIVED; the fragment only says c1 is "the
+/// circle on the end position of the corner"). The previous ring cleared everything inside the
+/// walls offset by a_e except the tip beyond its corner arc, so for a wall-tangent circle of
+/// radius R the concentric circle of radius R − a_e (tangent to the offset walls, radius ≥ r)
+/// is already cut. With that as the previous circle, §1.2's closed form gives
+/// `cos a = ((R − a_e)² − ρ² − r²)/(2ρr)`, ρ = R − r; solving `a = a*` for R:
+/// `R1 = (2r²(1 − cos a*) − a_e²) / (2r(cos a_str − cos a*))`, a_str = arccos(1 − a_e/r).
+/// A concave circle cutting the full band of depth a_e always exceeds a_str (R1 → ∞ as
+/// a* → a_str), so the target must exceed the straight-part engagement: Wu et al. use
+/// a* = a_str·(1 + t1), t1 = 15 %.
+pub fn first_circle_radius(s: &CornerSettings) -> Result<f64, JobError> {
+    let r = s.tool_radius;
+    let a_str = straight_engagement(s.step_over, r)?;
+    let (cs, ct) = (a_str.cos(), s.target.cos());
+    let den = 2.0 * r * (cs - ct);
+    if !(s.target > a_str + 1e-6 && den > 0.0) {
+        return Err(JobError::range(
+            "target",
+            format!("{:.3}°", s.target.to_degrees()),
+            format!("greater than the straight-part engagement {:.3}° (corner circles cut the wall band concavely)", a_str.to_degrees()),
+        ));
+    }
+    let big_r = (2.0 * r * r * (1.0 - ct) - s.step_over * s.step_over) / den;
+    // The concentric circle must be a real offset circle (radius ≥ r) for the argument above.
+    Ok(big_r.max(r + s.step_over))
+}
+
+/// Bisector parameter of the first variable circle c1, checked against the wall length.
+fn first_variable_t(sc: &CornerScenario) -> Result<f64, JobError> {
+    let big_r = first_circle_radius(&sc.settings)?;
+    let t1 = sc.corner.t_for_radius(big_r);
+    let along = t1 * sc.corner.half_angle.cos();
+    let need = along + 2.0 * sc.settings.tool_radius;
+    if need > sc.settings.edge_length {
+        return Err(JobError::range(
+            "edge length",
+            sc.settings.edge_length,
+            format!("at least {need:.3} mm: the first corner circle (R = {big_r:.3} mm) touches the walls {along:.3} mm from the apex"),
+        ));
+    }
+    Ok(t1)
 }
 
 /// Plan one corner with a strategy.
@@ -329,7 +363,7 @@ pub fn plan_corner(sc: &CornerScenario, method: Method) -> Result<CornerPlan, Jo
     let circles = match method {
         Method::Plain => Vec::new(),
         Method::Variable => {
-            let t1 = first_variable_t(sc);
+            let t1 = first_variable_t(sc)?;
             let first = CornerCircle {
                 tool_circle: Circle::new(corner.on_bisector(t1), t1 * sin - r),
                 offset_radius: t1 * sin,
@@ -360,7 +394,15 @@ fn isometric_circles(sc: &CornerScenario, notes: &mut Vec<String>) -> Result<Vec
     let (r, ae, corner) = (s.tool_radius, s.step_over, &sc.corner);
     let alpha = corner.half_angle;
     let sin = alpha.sin();
-    let rh = s.rh();
+    let r1 = first_circle_radius(&s)?;
+    let mut rh = s.rh();
+    if rh + r < r1 {
+        notes.push(format!(
+            "rh raised from {rh:.4} to {:.4} mm: a smaller circle cutting the full wall band exceeds the target (see first_circle_radius)",
+            r1 - r
+        ));
+        rh = r1 - r;
+    }
     // eq. 25 threshold. P0 at distance r + a_e from both walls; the arc PSQ of radius r about P0
     // ends where it meets the band lines; its point farthest from wall 1 is its end on wall 2's
     // band line, Q = P0 − r·n_out, at distance (r + a_e) − r·(n_out·n_in) from wall 1.
@@ -373,7 +415,7 @@ fn isometric_circles(sc: &CornerScenario, notes: &mut Vec<String>) -> Result<Vec
         notes.push(format!(
             "rh = {rh:.4} mm ≤ rh1 = {rh1:.4} mm (eq. 25): the isometric circles cannot cover the previous corner arc; Fig. 14b layout is not in the source, variable circles used"
         ));
-        let t1 = first_variable_t(sc);
+        let t1 = first_variable_t(sc)?;
         let mut c = vec![CornerCircle { tool_circle: Circle::new(corner.on_bisector(t1), t1 * sin - r), offset_radius: t1 * sin, predicted_max: None, steps: 0 }];
         c.extend(variable_chain(sc, t1)?);
         return Ok(c);
@@ -534,7 +576,10 @@ mod tests {
         ] {
             assert_eq!(s.validate().unwrap_err().parameter(), Some(name));
         }
-        // A 5° corner with 60 mm walls cannot be entered by a 10 mm tool.
+        // Target not above the straight-part engagement: no first circle exists.
+        let flat = CornerSettings { target: straight_engagement(1.5, 5.0).unwrap(), ..ok };
+        assert_eq!(first_circle_radius(&flat).unwrap_err().parameter(), Some("target"));
+        // A 5° corner with 100 mm walls cannot be entered by a 10 mm tool.
         let e = CornerScenario::new(Corner::symmetric(5f64.to_radians()).unwrap(), ok).unwrap_err();
         assert_eq!(e.parameter(), Some("corner angle"), "{e}");
     }
