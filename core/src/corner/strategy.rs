@@ -14,7 +14,7 @@
 //! where it turns onto V exactly like the plain ring:
 //! `U leg → circle 1 → line on U → circle 2 → … → line on U to U0 → V leg`.
 
-use super::engagement::{Circle, TwoCircle, Turn, radial_depth_for_engagement, straight_engagement};
+use super::engagement::{Circle, TwoCircle, Turn, straight_engagement};
 use super::evaluator::Polygon;
 use super::geometry::Corner;
 use crate::error::JobError;
@@ -67,8 +67,7 @@ pub struct CornerSettings {
     pub edge_length: f64,
     /// Feed rate for the machining time (mm/min).
     pub feed_mm_per_min: f64,
-    /// Tool-centre radius rh of isometric circles (mm); `None` = the smallest admissible,
-    /// R1 − r (see [`first_circle_radius`]); smaller values are raised to it.
+    /// Tool-centre radius rh of isometric circles (mm); `None` = r (domain-spec §3.4 TEST).
     pub isometric_radius: Option<f64>,
 }
 
@@ -95,7 +94,7 @@ impl CornerSettings {
 
     /// Tool-centre radius of isometric circles.
     pub fn rh(&self) -> f64 {
-        self.isometric_radius.unwrap_or_else(|| first_circle_radius(self).map_or(self.tool_radius, |r1| r1 - self.tool_radius))
+        self.isometric_radius.unwrap_or(self.tool_radius)
     }
 
     /// Range checks; each error names the parameter and its allowed range.
@@ -357,110 +356,129 @@ fn first_variable_t(sc: &CornerScenario) -> Result<f64, JobError> {
 /// Plan one corner with a strategy.
 pub fn plan_corner(sc: &CornerScenario, method: Method) -> Result<CornerPlan, JobError> {
     let s = sc.settings;
-    let (r, corner) = (s.tool_radius, &sc.corner);
-    let sin = corner.half_angle.sin();
     let mut notes = Vec::new();
-    let circles = match method {
-        Method::Plain => Vec::new(),
-        Method::Variable => {
-            let t1 = first_variable_t(sc)?;
-            let first = CornerCircle {
-                tool_circle: Circle::new(corner.on_bisector(t1), t1 * sin - r),
-                offset_radius: t1 * sin,
-                predicted_max: None,
-                steps: 0,
-            };
-            let mut c = vec![first];
-            c.extend(variable_chain(sc, t1)?);
-            c
-        }
+    let (circles, leg_end) = match method {
+        Method::Plain => (Vec::new(), None),
+        Method::Variable => (variable_circles(sc)?, None),
         Method::Isometric => isometric_circles(sc, &mut notes)?,
     };
-    let path = ring_path(sc, &circles);
+    let path = ring_path(sc, &circles, leg_end);
     let len: f64 = path.iter().map(Segment::length).sum();
     Ok(CornerPlan { method, circles, path, path_length_mm: len, time_s: len / s.feed_mm_per_min * 60.0, notes })
 }
 
-/// Isometric circles (Wu et al. §4.2.2, domain-spec §3.4): tool-centre radius rh, centres on
-/// Up (U offset by rh into the corner) from the circle touching U at the foot of the previous
-/// corner P0 to the circle on the bisector, spaced at most `L = P(a*)` of domain-spec §2.2
-/// with `Rs = rh + r`. eq. 25: `rh1 = |PH1|/2 − r` with P the point of the previous corner arc
-/// PSQ farthest from wall 1; if `rh ≤ rh1` the Fig. 14b layout (not in our fragments) would be
-/// needed and the variable method is used instead (noted). The corner tip beyond the bisector
-/// circle is finished by variable circles (§3.3) from that circle (noted), because one size of
-/// circle cannot reach into the tip without exceeding the target.
-fn isometric_circles(sc: &CornerScenario, notes: &mut Vec<String>) -> Result<Vec<CornerCircle>, JobError> {
+/// Isometric circles (Wu et al. §4.2.2, domain-spec §3.4), our reading of Fig. 14a (missing
+/// from the fragments). All circles have tool-centre radius rh (offset radius R = rh + r) and
+/// centres on Up (U offset by rh), spaced at most `L = P(a*)` of domain-spec §2.2 with
+/// `Rs = R`, which bounds the engagement of each circle after its predecessor (assuming
+/// material everywhere outside it). The first circle is placed where it cuts nothing: the U
+/// leg runs to X, one tool radius before the foot of the previous ring's corner P0 (where the
+/// band ends and the corner material begins), and returns along U to the first circle, whose
+/// disc then lies in the U leg's sweep and keeps a_e clear of wall 2. The circles march
+/// towards the corner to the circle on the bisector (tangent to both walls); the tip beyond
+/// it is finished by variable circles (§3.3) from there (noted), because one size of circle
+/// cannot reach into the tip.
+///
+/// eq. 25: `rh1 = |PH1|/2 − r` with P the point of the previous corner arc PSQ farthest from
+/// wall 1 (our reading); if `rh ≤ rh1` the Fig. 14b layout (not in our fragments) would be
+/// needed and the variable method is used instead (noted).
+fn isometric_circles(sc: &CornerScenario, notes: &mut Vec<String>) -> Result<(Vec<CornerCircle>, Option<P2>), JobError> {
     let s = sc.settings;
     let (r, ae, corner) = (s.tool_radius, s.step_over, &sc.corner);
     let alpha = corner.half_angle;
-    let sin = alpha.sin();
-    let r1 = first_circle_radius(&s)?;
-    let mut rh = s.rh();
-    if rh + r < r1 {
-        notes.push(format!(
-            "rh raised from {rh:.4} to {:.4} mm: a smaller circle cutting the full wall band exceeds the target (see first_circle_radius)",
-            r1 - r
-        ));
-        rh = r1 - r;
-    }
-    // eq. 25 threshold. P0 at distance r + a_e from both walls; the arc PSQ of radius r about P0
-    // ends where it meets the band lines; its point farthest from wall 1 is its end on wall 2's
-    // band line, Q = P0 − r·n_out, at distance (r + a_e) − r·(n_out·n_in) from wall 1.
+    let (sin, tan) = (alpha.sin(), alpha.tan());
+    let rh = s.rh();
+    // eq. 25 threshold. P0 is r + a_e from both walls; the arc PSQ of radius r about P0 ends on
+    // wall 2's band line at Q = P0 − r·n_out, its point farthest from wall 1.
     let p0 = corner.on_bisector((r + ae) / sin);
     let q = p0 - corner.normal_out() * r;
     let (l1, _) = corner.wall_lines()?;
-    let ph1 = l1.distance_offset(q, 0.0);
-    let rh1 = ph1 / 2.0 - r;
+    let rh1 = l1.distance_offset(q, 0.0) / 2.0 - r;
     if rh <= rh1 {
         notes.push(format!(
             "rh = {rh:.4} mm ≤ rh1 = {rh1:.4} mm (eq. 25): the isometric circles cannot cover the previous corner arc; Fig. 14b layout is not in the source, variable circles used"
         ));
-        let t1 = first_variable_t(sc)?;
-        let mut c = vec![CornerCircle { tool_circle: Circle::new(corner.on_bisector(t1), t1 * sin - r), offset_radius: t1 * sin, predicted_max: None, steps: 0 }];
-        c.extend(variable_chain(sc, t1)?);
-        return Ok(c);
+        return Ok((variable_circles(sc)?, None));
     }
     let big_r = rh + r;
-    let rho_sq = rh * rh + r * r + 2.0 * rh * r * s.target.cos();
-    let spacing = big_r - rho_sq.max(0.0).sqrt(); // §2.2 P(a) with Rs = rh + r
+    let spacing = big_r - (rh * rh + r * r + 2.0 * rh * r * s.target.cos()).max(0.0).sqrt(); // §2.2 P(a*)
     if !(spacing > 1e-6) {
         return Err(JobError::range("target", format!("{}°", s.target.to_degrees()), "large enough for a positive isometric centre spacing"));
     }
-    // Centres on Up: along U's direction, measured from the bisector circle (u = 0) backwards.
+    // Along-wall coordinates measure distance from the apex along wall 1.
+    let foot = (r + ae) / tan;
+    let x_along = foot + r;
+    let leg_end = corner.apex - corner.dir_in * x_along + corner.normal_in() * r;
     let o_bis = corner.on_bisector(big_r / sin);
-    // Foot of P0 on U and the corresponding centre distance back from the bisector circle.
-    let foot_dist = (p0 - o_bis).dot(&(-corner.dir_in)).max(0.0);
-    let n = (foot_dist / spacing).ceil() as usize;
-    let step = if n > 0 { foot_dist / n as f64 } else { 0.0 };
-    let mut circles = Vec::new();
-    for k in (0..=n).rev() {
-        let center = o_bis - corner.dir_in * (k as f64 * step);
-        circles.push(CornerCircle {
-            tool_circle: Circle::new(center, rh),
-            offset_radius: big_r,
-            predicted_max: if circles.is_empty() { None } else { Some(s.target) },
-            steps: 0,
-        });
-        if circles.len() > MAX_CIRCLES {
-            return Err(JobError::range("circles", circles.len(), format!("at most {MAX_CIRCLES} per corner")));
-        }
+    // First circle: its disc starts at X along wall 1 and stays a_e clear of wall 2.
+    let u1 = (x_along + big_r - big_r / tan).max(ae / (2.0 * alpha).sin()).max(0.0);
+    let first_along = big_r / tan + u1;
+    if first_along + 2.0 * r > s.edge_length {
+        return Err(JobError::range(
+            "edge length",
+            s.edge_length,
+            format!("at least {:.3} mm for isometric circles of rh = {rh} mm (the first touches wall 1 {first_along:.3} mm from the apex)", first_along + 2.0 * r),
+        ));
     }
-    notes.push(format!("isometric: rh = {rh:.4} mm, rh1 = {rh1:.4} mm (eq. 25), spacing L = {step:.4} mm (≤ P(a*) = {spacing:.4} mm)"));
+    let n = (u1 / spacing).ceil() as usize;
+    if n > MAX_CIRCLES {
+        return Err(JobError::range("circles", n, format!("at most {MAX_CIRCLES} per corner")));
+    }
+    let step = if n > 0 { u1 / n as f64 } else { 0.0 };
+    let mut circles: Vec<CornerCircle> = Vec::with_capacity(n + 1);
+    for k in 0..=n {
+        let center = o_bis - corner.dir_in * (u1 - k as f64 * step);
+        let predicted_max = circles.last().map(|prev| {
+            TwoCircle {
+                previous: Circle::new(prev.tool_circle.center, big_r),
+                current: Circle::new(center, big_r),
+                tool_radius: r,
+                turn: Turn::Ccw,
+            }
+            .max_engagement()
+            .angle
+        });
+        circles.push(CornerCircle { tool_circle: Circle::new(center, rh), offset_radius: big_r, predicted_max, steps: 0 });
+    }
+    notes.push(format!(
+        "isometric: rh = {rh:.4} mm, rh1 = {rh1:.4} mm (eq. 25), {} circles spaced {step:.4} mm (≤ P(a*) = {spacing:.4} mm); U leg to {x_along:.3} mm from the apex, then back along U to the first circle",
+        n + 1
+    ));
     let tip = variable_chain(sc, big_r / sin)?;
     if !tip.is_empty() {
         notes.push(format!("corner tip finished with {} variable circles (§3.3) after the bisector circle", tip.len()));
     }
     circles.extend(tip);
-    Ok(circles)
+    Ok((circles, Some(leg_end)))
 }
 
-/// The connected ring piece: U leg to the first circle's tangent point on U, each circle once
+/// Variable circles: c1 from [`first_circle_radius`], then the §3.3 chain.
+fn variable_circles(sc: &CornerScenario) -> Result<Vec<CornerCircle>, JobError> {
+    let t1 = first_variable_t(sc)?;
+    let sin = sc.corner.half_angle.sin();
+    let r = sc.settings.tool_radius;
+    let mut c = vec![CornerCircle {
+        tool_circle: Circle::new(sc.corner.on_bisector(t1), t1 * sin - r),
+        offset_radius: t1 * sin,
+        predicted_max: None,
+        steps: 0,
+    }];
+    c.extend(variable_chain(sc, t1)?);
+    Ok(c)
+}
+
+/// The connected ring piece: U leg to the first circle's tangent point on U (or to `leg_end`
+/// and back along U to it), each circle once
 /// round (CCW) from its tangent point, straight moves along U between tangent points, then to
 /// the corner point and out along V.
-fn ring_path(sc: &CornerScenario, circles: &[CornerCircle]) -> Vec<Segment> {
+fn ring_path(sc: &CornerScenario, circles: &[CornerCircle], leg_end: Option<P2>) -> Vec<Segment> {
     let n_in = sc.corner.normal_in();
     let mut path = Vec::new();
     let mut at = sc.ring_start;
+    if let Some(x) = leg_end {
+        path.push(Segment::Line { start: at, end: x });
+        at = x;
+    }
     for c in circles {
         let o = c.tool_circle.center;
         let rho = c.tool_circle.radius;
@@ -475,12 +493,6 @@ fn ring_path(sc: &CornerScenario, circles: &[CornerCircle]) -> Vec<Segment> {
     path.push(Segment::Line { start: at, end: sc.corner_point });
     path.push(Segment::Line { start: sc.corner_point, end: sc.ring_end });
     path
-}
-
-/// Straight-part radial depth for a target engagement (domain-spec §1.1 inverse), for callers
-/// that state the target instead of the step-over.
-pub fn step_over_for(target: f64, r: f64) -> f64 {
-    radial_depth_for_engagement(target, r)
 }
 
 #[cfg(test)]
@@ -544,7 +556,7 @@ mod tests {
 
     #[test]
     fn paths_are_connected_and_circles_shrink_towards_the_apex() {
-        let settings = CornerSettings::new(5.0, radial_depth_for_engagement(46f64.to_radians(), 5.0)).unwrap();
+        let settings = CornerSettings::new(5.0, crate::corner::radial_depth_for_engagement(46f64.to_radians(), 5.0)).unwrap();
         for angle in [30.0f64, 90.0, 150.0] {
             let sc = CornerScenario::new(Corner::symmetric(angle.to_radians()).unwrap(), settings).unwrap();
             for m in [Method::Plain, Method::Variable, Method::Isometric] {
