@@ -14,12 +14,14 @@
 //! - [`geometry`]: offset lines, bisector (eqs. 21–22), wall-tangent circles (§3.2).
 //! - [`strategy`]: the corner scenario, the plain contour-parallel corner and the
 //!   variable-circle (§3.3) and isometric-circle (§3.4) corner trochoids.
+//! - [`medial`]: medial axis of a polygon (segment Voronoi by `boostvoronoi`, §3.5).
 //! - [`acceptance`]: the issue #5 acceptance table, measured with the evaluator.
 
 pub mod acceptance;
 pub mod engagement;
 pub mod evaluator;
 pub mod geometry;
+pub mod medial;
 pub mod strategy;
 
 pub use engagement::{Circle, MaxEngagement, Turn, TwoCircle, radial_depth_for_engagement, straight_engagement};
