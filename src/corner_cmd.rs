@@ -22,6 +22,8 @@ pub enum MethodArg {
     Variable,
     /// Isometric circles (Wu et al. 2016 §4.2.2, eq. 25).
     Isometric,
+    /// Perforative circles along the medial axis of the pocket (Voronoi, boostvoronoi).
+    MedialAxis,
 }
 
 impl From<MethodArg> for Method {
@@ -30,6 +32,7 @@ impl From<MethodArg> for Method {
             MethodArg::Plain => Method::Plain,
             MethodArg::Variable => Method::Variable,
             MethodArg::Isometric => Method::Isometric,
+            MethodArg::MedialAxis => Method::MedialAxis,
         }
     }
 }
@@ -167,7 +170,7 @@ struct CornerOut {
     circles: Vec<CircleOut>,
     path_length_mm: f64,
     time_s: f64,
-    /// Measured with the independent evaluator over the corner scenario.
+    /// Measured with the independent evaluator over the plan's material model.
     max_engagement_deg: f64,
     max_engagement_at: [f64; 2],
     plain_max_engagement_deg: f64,
@@ -189,7 +192,7 @@ pub fn corner(args: &CornerArgs) -> Result<String, String> {
     let sc = CornerScenario::new(corner, s).map_err(err)?;
     let opts = EvaluatorOptions::new(s.tool_radius, args.spacing);
     let plan = trochoplan_core::corner::plan_corner(&sc, method).map_err(err)?;
-    let prof = engagement_profile(&sc.stock, &sc.previous_ring, &plan.path, &opts).map_err(err)?;
+    let prof = engagement_profile(&plan.stock, &plan.precut, &plan.path, &opts).map_err(err)?;
     let plain = trochoplan_core::corner::plan_corner(&sc, Method::Plain).map_err(err)?;
     let plain_prof = engagement_profile(&sc.stock, &sc.previous_ring, &plain.path, &opts).map_err(err)?;
     let mx = prof.max();

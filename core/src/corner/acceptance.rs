@@ -56,11 +56,15 @@ pub fn acceptance_row(angle_deg: f64, method: Method, settings: CornerSettings, 
     let plain = plan_corner(&sc, Method::Plain)?;
     let plain_prof = engagement_profile(&sc.stock, &sc.previous_ring, &plain.path, &opts)?;
     let plan = plan_corner(&sc, method)?;
-    let prof = engagement_profile(&sc.stock, &sc.previous_ring, &plan.path, &opts)?;
-    // The final move into U0 is the second-to-last segment (the last is the V leg).
-    let n = plan.path.len();
-    let tip_start: f64 = plan.path[..n.saturating_sub(2)].iter().map(|s| s.length()).sum();
-    let tip_end = tip_start + plan.path[n.saturating_sub(2)].length();
+    let prof = engagement_profile(&plan.stock, &plan.precut, &plan.path, &opts)?;
+    // The final move into U0 is reported apart (see the module docs).
+    let (tip_start, tip_end) = match plan.tip_segment {
+        Some(i) => {
+            let start: f64 = plan.path[..i].iter().map(|s| s.length()).sum();
+            (start, start + plan.path[i].length())
+        }
+        None => (f64::INFINITY, f64::INFINITY),
+    };
     let (mut body, mut tip) = (0.0f64, 0.0f64);
     for s in &prof.samples {
         if s.s_mm > tip_start + 1e-9 && s.s_mm <= tip_end + 1e-9 {
@@ -71,7 +75,11 @@ pub fn acceptance_row(angle_deg: f64, method: Method, settings: CornerSettings, 
     }
     let sin = corner.half_angle.sin();
     let r = settings.tool_radius;
-    let rho = plan.circles.last().map_or(0.0, |c| c.tool_circle.radius);
+    let rho = if plan.circles.len() > usize::from(plan.method == Method::MedialAxis) {
+        plan.circles.last().map_or(0.0, |c| c.tool_circle.radius)
+    } else {
+        0.0
+    };
     let sliver = rho * (1.0 / sin - 1.0);
     let tip_limit = if rho > 0.0 {
         let (e, big_r) = (rho / sin, r + rho);

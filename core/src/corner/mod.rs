@@ -12,8 +12,9 @@
 //! - [`evaluator`]: generic engagement of any path over any stock polygon (§1.3), independent
 //!   of the analytic model; stock polygons and CSV tool paths.
 //! - [`geometry`]: offset lines, bisector (eqs. 21–22), wall-tangent circles (§3.2).
-//! - [`strategy`]: the corner scenario, the plain contour-parallel corner and the
-//!   variable-circle (§3.3) and isometric-circle (§3.4) corner trochoids.
+//! - [`strategy`]: the corner scenario, the plain contour-parallel corner, the variable-circle
+//!   (§3.3) and isometric-circle (§3.4) corner trochoids and the perforative medial-axis
+//!   trochoids (§3.5).
 //! - [`medial`]: medial axis of a polygon (segment Voronoi by `boostvoronoi`, §3.5).
 //! - [`acceptance`]: the issue #5 acceptance table, measured with the evaluator.
 
@@ -27,5 +28,6 @@ pub mod strategy;
 pub use engagement::{Circle, MaxEngagement, Turn, TwoCircle, radial_depth_for_engagement, straight_engagement};
 pub use evaluator::{EngagementProfile, EngagementSample, EvaluatorOptions, Polygon, engagement_profile, parse_points, polyline};
 pub use geometry::{Corner, LineEq, bisector_point};
+pub use medial::{AxisEdge, MedialAxis, medial_axis};
 pub use acceptance::{AcceptanceRow, acceptance_row, acceptance_table};
 pub use strategy::{CornerCircle, CornerPlan, CornerScenario, CornerSettings, Method, first_circle_radius, plan_corner};

@@ -39,6 +39,8 @@ pub enum Method {
     Variable,
     /// Isometric circles along U offset by rh (Wu et al. §4.2.2, eq. 25; domain-spec §3.4).
     Isometric,
+    /// Perforative circles along the medial axis of the pocket (Wu et al. §4.2; §3.5).
+    MedialAxis,
 }
 
 impl Method {
@@ -48,6 +50,7 @@ impl Method {
             Method::Plain => "plain",
             Method::Variable => "variable",
             Method::Isometric => "isometric",
+            Method::MedialAxis => "medial-axis",
         }
     }
 }
@@ -220,6 +223,13 @@ pub struct CornerPlan {
     pub time_s: f64,
     /// How the strategy was applied (fallbacks, readings).
     pub notes: Vec<String>,
+    /// Material model the plan was made for (what an evaluator should measure it against):
+    /// the stock polygon and the tool paths cut before.
+    pub stock: Polygon,
+    pub precut: Vec<Segment>,
+    /// Index in `path` of the final move into the tool corner point (see
+    /// [`super::acceptance`] for its stated engagement limit); `None` for the plain ring.
+    pub tip_segment: Option<usize>,
 }
 
 /// Limit point M of the bisection (Wu et al. §4.2.1 step 1; domain-spec §3.3, DERIVED):
@@ -357,14 +367,97 @@ fn first_variable_t(sc: &CornerScenario) -> Result<f64, JobError> {
 pub fn plan_corner(sc: &CornerScenario, method: Method) -> Result<CornerPlan, JobError> {
     let s = sc.settings;
     let mut notes = Vec::new();
+    if method == Method::MedialAxis {
+        return medial_axis_plan(sc);
+    }
     let (circles, leg_end) = match method {
-        Method::Plain => (Vec::new(), None),
+        Method::Plain | Method::MedialAxis => (Vec::new(), None),
         Method::Variable => (variable_circles(sc)?, None),
         Method::Isometric => isometric_circles(sc, &mut notes)?,
     };
     let path = ring_path(sc, &circles, leg_end);
     let len: f64 = path.iter().map(Segment::length).sum();
-    Ok(CornerPlan { method, circles, path, path_length_mm: len, time_s: len / s.feed_mm_per_min * 60.0, notes })
+    let tip_segment = if circles.is_empty() { None } else { Some(path.len() - 2) };
+    Ok(CornerPlan {
+        method,
+        circles,
+        path,
+        path_length_mm: len,
+        time_s: len / s.feed_mm_per_min * 60.0,
+        notes,
+        stock: sc.stock.clone(),
+        precut: sc.previous_ring.clone(),
+        tip_segment,
+    })
+}
+
+/// Perforative trochoids along the medial axis (Wu et al. §4.2 (c); domain-spec §3.5) for the
+/// corner as part of a triangular pocket (apex, ends of the two walls). The axis comes from
+/// [`super::medial::medial_axis`]; the corner's branch runs from the apex to the first Voronoi
+/// node, whose clearance Rc is the largest circle there. The perforative trochoids that reached
+/// the node along the rest of the axis have cleared that circle (modelled as concentric passes,
+/// `precut`); from it, circles of offset radius Rc(t) = t·sin α (allowance 0) are placed down
+/// the branch by the §3.3 bisection (the axis as guide, §3.5 step 3), linked along U, and the
+/// tool finishes at the tool corner point (§3.5 step 2). With no contour-parallel ring here the
+/// two-circle model's "material everywhere outside the previous circle" is exact.
+fn medial_axis_plan(sc: &CornerScenario) -> Result<CornerPlan, JobError> {
+    let s = sc.settings;
+    let (r, corner) = (s.tool_radius, &sc.corner);
+    let end1 = corner.apex - corner.dir_in * s.edge_length;
+    let end2 = corner.apex + corner.dir_out * s.edge_length;
+    let pocket = Polygon::new(vec![end1, corner.apex, end2])?;
+    let axis = super::medial::medial_axis(&pocket, 1e-4)?;
+    let (node, rc) = axis
+        .branch_from(corner.apex, 1e-3)
+        .ok_or_else(|| JobError::range("polygon", "no medial-axis branch at the corner", "a corner with a Voronoi branch"))?;
+    if rc - r < s.r_min() {
+        return Err(JobError::range(
+            "edge length",
+            s.edge_length,
+            format!("long enough that the largest circle in the pocket (radius {rc:.3} mm) exceeds the tool radius by r_min = {} mm", s.r_min()),
+        ));
+    }
+    let t_node = (node - corner.apex).dot(&corner.bisector);
+    let mut circles = vec![CornerCircle { tool_circle: Circle::new(node, rc - r), offset_radius: rc, predicted_max: None, steps: 0 }];
+    circles.extend(variable_chain(sc, t_node)?);
+    // Concentric passes clearing the node circle (tool-centre radii rc − r, rc − 2.5r, …).
+    let mut precut = Vec::new();
+    let mut rho = rc - r;
+    while rho > 0.0 {
+        precut.push(Segment::Arc { center: node, radius: rho, start_angle: 0.0, sweep: TAU });
+        rho -= 1.5 * r;
+    }
+    precut.push(Segment::Line { start: node, end: node + corner.bisector * 1e-3 });
+    let n_in = corner.normal_in();
+    let mut path = Vec::new();
+    let mut at = node - n_in * (rc - r);
+    for c in &circles[1..] {
+        let (o, rho) = (c.tool_circle.center, c.tool_circle.radius);
+        let tangent = o - n_in * rho;
+        path.push(Segment::Line { start: at, end: tangent });
+        let dir = tangent - o;
+        path.push(Segment::Arc { center: o, radius: rho, start_angle: dir.y.atan2(dir.x), sweep: TAU });
+        at = tangent;
+    }
+    path.push(Segment::Line { start: at, end: sc.corner_point });
+    let len: f64 = path.iter().map(Segment::length).sum();
+    let notes = vec![format!(
+        "medial axis (boostvoronoi) of the triangular pocket: corner branch to the node at {:.3} mm from the apex, clearance {rc:.3} mm; {} circles down the branch",
+        t_node,
+        circles.len() - 1
+    )];
+    let tip = path.len() - 1;
+    Ok(CornerPlan {
+        method: Method::MedialAxis,
+        circles,
+        path,
+        path_length_mm: len,
+        time_s: len / s.feed_mm_per_min * 60.0,
+        notes,
+        stock: pocket,
+        precut,
+        tip_segment: Some(tip),
+    })
 }
 
 /// Isometric circles (Wu et al. §4.2.2, domain-spec §3.4), our reading of Fig. 14a (missing
