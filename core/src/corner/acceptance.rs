@@ -75,11 +75,7 @@ pub fn acceptance_row(angle_deg: f64, method: Method, settings: CornerSettings, 
     }
     let sin = corner.half_angle.sin();
     let r = settings.tool_radius;
-    let rho = if plan.circles.len() > usize::from(plan.method == Method::MedialAxis) {
-        plan.circles.last().map_or(0.0, |c| c.tool_circle.radius)
-    } else {
-        0.0
-    };
+    let rho = plan.circles.last().map_or(0.0, |c| c.tool_circle.radius);
     let sliver = rho * (1.0 / sin - 1.0);
     let tip_limit = if rho > 0.0 {
         let (e, big_r) = (rho / sin, r + rho);
