@@ -325,13 +325,20 @@ mod tests {
     fn engagement_reads_csv_and_polygon() {
         let dir = tempfile::tempdir().expect("tempdir");
         let (pc, sp) = (dir.path().join("p.csv"), dir.path().join("s.txt"));
-        // Straight cut with a_e = 2.5 mm (ae/D = 0.25) along +x: arccos(1 − 2.5/5) = 60°.
+        // Straight cut with a_e = 2.5 mm (ae/D = 0.25) along +x: arccos(1 − 2.5/5) = 60° once
+        // moving; at the first position the tool has plunged, so both halves count: 120°.
         std::fs::write(&pc, "x,y\n-20,0\n20,0\n").expect("write");
         std::fs::write(&sp, "-50,2.5\n50,2.5\n50,40\n-50,40\n").expect("write");
         let args = EngagementArgs { path_csv: pc, stock_polygon: sp.clone(), tool_diameter: 10.0, spacing: 1.0 };
         let v: serde_json::Value = serde_json::from_str(&engagement(&args).expect("run")).expect("json");
         let mx = v["max_engagement_deg"].as_f64().expect("max");
-        assert!((mx - 60.0).abs() < 1e-3, "{mx}");
+        assert!((mx - 120.0).abs() < 1e-3 && v["max_at"]["s_mm"].as_f64() == Some(0.0), "{mx}");
+        let samples = v["samples"].as_array().expect("samples");
+        assert_eq!(samples.len(), 41);
+        for s in samples.iter().filter(|s| (10.0..=30.0).contains(&s["s_mm"].as_f64().unwrap_or(-1.0))) {
+            let a = s["engagement_deg"].as_f64().expect("deg");
+            assert!((a - 60.0).abs() < 1e-3, "{s}");
+        }
         std::fs::write(&sp, "0,0\n1,1\n1,0\n0,1\n").expect("write");
         let e = engagement(&EngagementArgs { stock_polygon: sp, ..args }).expect_err("bow tie");
         assert!(e.contains("polygon"), "{e}");

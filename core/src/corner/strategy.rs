@@ -8,11 +8,14 @@
 //! runs on the walls offset by `r`, from beyond the end of wall 1 to the tool corner point
 //! `U0 = W0 + (r / sin α) b̂` and out beyond the end of wall 2.
 //!
-//! Every strategy replaces the corner of U–V by counter-clockwise (G3) tool-centre circles that
-//! are tangent to U (their offset circles touch wall 1), entered and left at that tangent point
-//! and linked by straight moves along U, so the path is G1-continuous up to the corner point,
-//! where it turns onto V exactly like the plain ring:
-//! `U leg → circle 1 → line on U → circle 2 → … → line on U to U0 → V leg`.
+//! The ring strategies (variable, isometric) replace the corner of U–V by counter-clockwise (G3)
+//! tool-centre circles that are tangent to U (their offset circles touch wall 1), entered and
+//! left at that tangent point and linked by straight moves along U, so the path is
+//! G1-continuous up to the corner point, where it turns onto V exactly like the plain ring:
+//! `U leg → circle 1 → line on U → circle 2 → … → line on U to U0 → V leg` (the isometric
+//! layout first runs the U leg a little further and returns along U in air to circle 1).
+//! The medial-axis strategy has no rings: it cuts the corner of a triangular pocket down the
+//! corner's medial-axis branch (see `medial_axis_plan`).
 
 use super::engagement::{Circle, TwoCircle, Turn, straight_engagement};
 use super::evaluator::Polygon;
@@ -494,7 +497,7 @@ fn isometric_circles(sc: &CornerScenario, notes: &mut Vec<String>) -> Result<(Ve
         return Ok((variable_circles(sc)?, None));
     }
     let big_r = rh + r;
-    let spacing = big_r - (rh * rh + r * r + 2.0 * rh * r * s.target.cos()).max(0.0).sqrt(); // §2.2 P(a*)
+    let spacing = isometric_spacing(rh, r, s.target);
     if !(spacing > 1e-6) {
         return Err(JobError::range("target", format!("{}°", s.target.to_degrees()), "large enough for a positive isometric centre spacing"));
     }
@@ -543,6 +546,12 @@ fn isometric_circles(sc: &CornerScenario, notes: &mut Vec<String>) -> Result<(Ve
     }
     circles.extend(tip);
     Ok((circles, Some(leg_end)))
+}
+
+/// Centre spacing of equal circles for a peak engagement `a` (domain-spec §2.2, DERIVED from
+/// §1.2 with R1 = R2 = Rs = rh + r, ρ = rh): `P(a) = Rs − sqrt(ρ² + r² + 2ρr·cos a)`.
+pub fn isometric_spacing(rh: f64, r: f64, a: f64) -> f64 {
+    (rh + r) - (rh * rh + r * r + 2.0 * rh * r * a.cos()).max(0.0).sqrt()
 }
 
 /// Variable circles: c1 from [`first_circle_radius`], then the §3.3 chain.
@@ -641,10 +650,20 @@ mod tests {
 
     #[test]
     fn isometric_spacing_spec_test() {
-        // domain-spec §3.4 TEST: rh = 5, r = 5 (Rs = 10), a_lim = 46° → L = 0.7950 mm.
-        let (rh, r, a) = (5.0f64, 5.0f64, 46f64.to_radians());
-        let l = (rh + r) - (rh * rh + r * r + 2.0 * rh * r * a.cos()).sqrt();
-        assert!((l - 0.7950).abs() < 1e-4, "L = {l}");
+        // domain-spec §3.4 TEST: rh = 5, r = 5 (Rs = 10), a_lim = 46° → L = 0.7950 mm; §2.2 TEST
+        // (same relation): P(30°) = 0.3407, P(60°) = 1.3397; D = 12 (r = 6, rh = 4): 0.7618.
+        for (rh, r, a, want) in [(5.0, 5.0, 46.0, 0.7950), (5.0, 5.0, 30.0, 0.3407), (5.0, 5.0, 60.0, 1.3397), (4.0, 6.0, 46.0, 0.7618)] {
+            let l = isometric_spacing(rh, r, f64::to_radians(a));
+            assert!((l - want).abs() < 1e-4, "L({rh}, {r}, {a}°) = {l}, want {want}");
+            // Independent check: two equal circles that far apart peak at exactly a (§1.2 scan).
+            let m = TwoCircle {
+                previous: Circle::new(crate::geom::p2(0.0, 0.0), rh + r),
+                current: Circle::new(crate::geom::p2(l, 0.0), rh + r),
+                tool_radius: r,
+                turn: Turn::Ccw,
+            };
+            assert!((m.max_engagement().angle.to_degrees() - a).abs() < 1e-3);
+        }
     }
 
     #[test]
