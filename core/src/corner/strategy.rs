@@ -271,7 +271,7 @@ pub struct NextCircle {
 /// low end (Z < 0, under the target) is taken.
 pub fn next_variable_circle(corner: &Corner, r: f64, t_n: f64, target: f64, eps: f64) -> Result<NextCircle, JobError> {
     let alpha = corner.half_angle;
-    if !(t_n * alpha.sin() > r) {
+    if t_n.is_nan() || t_n * alpha.sin() <= r {
         return Err(JobError::range("t_N", t_n, format!("> r / sin α = {} mm (the current circle must be larger than the tool)", r / alpha.sin())));
     }
     let t_m = limit_point(t_n, alpha, r);
@@ -498,7 +498,7 @@ fn isometric_circles(sc: &CornerScenario, notes: &mut Vec<String>) -> Result<(Ve
     }
     let big_r = rh + r;
     let spacing = isometric_spacing(rh, r, s.target);
-    if !(spacing > 1e-6) {
+    if spacing.is_nan() || spacing <= 1e-6 {
         return Err(JobError::range("target", format!("{}°", s.target.to_degrees()), "large enough for a positive isometric centre spacing"));
     }
     // Along-wall coordinates measure distance from the apex along wall 1.
