@@ -355,6 +355,9 @@ pub fn engagement_profile(
     opts.validate()?;
     check_segments(before, "before path")?;
     check_segments(path, "path")?;
+    if path.is_empty() {
+        return Err(JobError::range("path", "empty", "at least one segment"));
+    }
     let r = opts.tool_radius;
     let path = flatten(path);
     let lengths: Vec<f64> = path.iter().map(Segment::length).collect();
@@ -504,5 +507,7 @@ mod tests {
         ] {
             assert_eq!(engagement_profile(&stock, &[], &path, &o).unwrap_err().parameter(), Some(name));
         }
+        let empty = engagement_profile(&stock, &[], &[], &EvaluatorOptions::new(1.0, 1.0)).unwrap_err();
+        assert_eq!(empty.parameter(), Some("path"));
     }
 }
