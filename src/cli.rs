@@ -2,6 +2,9 @@
 //! scripts rely on: `analyze`, `sweep`, and the job flags below (same names as job-file keys).
 
 use crate::files::write_atomic;
+// Pocket-corner commands (issue #5) live in their own file next to this one.
+#[path = "corner_cmd.rs"]
+mod corner_cmd;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -51,6 +54,17 @@ enum Command {
         job: JobArgs,
         #[command(flatten)]
         nc: crate::export::ExportArgs,
+    },
+    /// Plan the trochoids of one pocket corner; print JSON (circles, path length, engagement),
+    /// or with --table the acceptance table for corner angles 30°…150°.
+    Corner {
+        #[command(flatten)]
+        args: corner_cmd::CornerArgs,
+    },
+    /// Engagement along a tool path (CSV x,y) over a stock polygon; print JSON per position.
+    Engagement {
+        #[command(flatten)]
+        args: corner_cmd::EngagementArgs,
     },
 }
 
@@ -191,6 +205,8 @@ fn run(cmd: Command) -> Result<String, String> {
         }
         Command::Sweep { job, param, from, to, steps } => sweep(job.job()?, param, from, to, steps),
         Command::Export { job, nc } => crate::export::run(&job.job()?, &nc),
+        Command::Corner { args } => corner_cmd::corner(&args),
+        Command::Engagement { args } => corner_cmd::engagement(&args),
     }
 }
 

@@ -15,10 +15,12 @@
 //! - [`path`]: the four slot path types as one repeated cycle.
 //! - [`analysis`]: edge of previous cycles, per-tooth h and engagement, waviness, step limit.
 //! - [`nc`]: NC programs (LinuxCNC, Fanuc-style ISO, GRBL, Sinumerik), biarc output.
+//! - [`corner`]: pocket corners (issue #5): engagement model, corner trochoids, evaluator.
 //! - [`plan`]: [`plan()`] — job in, [`Plan`] out; used by the GUI and the CLI.
 //! - [`error`]: the [`JobError`] type.
 
 pub mod analysis;
+pub mod corner;
 pub mod error;
 pub mod geom;
 pub mod job;

@@ -1,0 +1,295 @@
+//! Analytic engagement angle: the straight cut (domain-spec §1.1) and the two-circle model of
+//! Wu et al. (2016) eqs. (2)–(6) in the cleaned form of domain-spec §1.2.
+//!
+//! Symbols: tool radius `r`; previous offset circle (O1, R1) — everything inside it is already
+//! cut, everything outside is assumed to be material; current offset circle (O2, R2); the tool
+//! centre runs on (O2, ρ = R2 − r). Angles in radians.
+
+use crate::error::JobError;
+use crate::geom::{P2, cross, golden_min, p2};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::{PI, TAU};
+
+/// A circle (centre and radius, mm). Used for offset circles and tool-centre circles.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Circle {
+    /// Centre (mm).
+    pub center: P2,
+    /// Radius (mm).
+    pub radius: f64,
+}
+
+impl Circle {
+    /// Shorthand constructor.
+    pub fn new(center: P2, radius: f64) -> Circle {
+        Circle { center, radius }
+    }
+}
+
+/// Direction of travel on a circle: counter-clockwise (G3) or clockwise (G2), seen from +Z.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Turn {
+    /// Counter-clockwise, G3.
+    Ccw,
+    /// Clockwise, G2.
+    Cw,
+}
+
+/// Straight-cut engagement `a = arccos(1 − a_e/r)` (domain-spec §1.1) for a radial depth
+/// `0 ≤ a_e ≤ 2r`. Errors name `a_e` or `tool radius` and the allowed range.
+pub fn straight_engagement(a_e: f64, r: f64) -> Result<f64, JobError> {
+    if !(r.is_finite() && r > 0.0) {
+        return Err(JobError::range("tool radius", r, "a finite number > 0 mm"));
+    }
+    if !(a_e.is_finite() && (0.0..=2.0 * r).contains(&a_e)) {
+        return Err(JobError::range("a_e", a_e, format!("from 0 to the tool diameter {} mm", 2.0 * r)));
+    }
+    Ok((1.0 - a_e / r).clamp(-1.0, 1.0).acos())
+}
+
+/// Inverse of [`straight_engagement`]: radial depth `a_e = r(1 − cos a)` (domain-spec §1.1).
+pub fn radial_depth_for_engagement(a: f64, r: f64) -> f64 {
+    r * (1.0 - a.cos())
+}
+
+/// Engagement of one tool position on the current circle.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct EngagementAt {
+    /// Engaged angle (rad), 0 when the tool is in air.
+    pub angle: f64,
+    /// True when the whole tool is in material (`d ≥ R1 + r`): reported as π, the slotting limit.
+    pub slotting: bool,
+}
+
+/// Maximum of the engagement over one pass of the current circle.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MaxEngagement {
+    /// Maximum engaged angle (rad).
+    pub angle: f64,
+    /// Polar angle φ of the tool centre about O2 where it occurs (rad, in [0, 2π)).
+    pub phi: f64,
+    /// True when some position of the pass is fully in material.
+    pub slotting: bool,
+}
+
+/// Two-circle engagement model (Wu et al. 2016 eqs. 2–6; domain-spec §1.2).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TwoCircle {
+    /// Previous offset circle (O1, R1): already cut.
+    pub previous: Circle,
+    /// Current offset circle (O2, R2).
+    pub current: Circle,
+    /// Tool radius r (mm).
+    pub tool_radius: f64,
+    /// Direction of travel on the current circle.
+    pub turn: Turn,
+}
+
+/// Scan step of [`TwoCircle::max_engagement`] (0.1°, domain-spec §1.2), then golden refinement.
+const SCAN_STEP: f64 = 0.1 * PI / 180.0;
+
+impl TwoCircle {
+    /// Checks that the radii are finite and positive and that the tool fits in the current
+    /// circle (`R2 ≥ r`).
+    pub fn validate(&self) -> Result<(), JobError> {
+        let r = self.tool_radius;
+        if !(r.is_finite() && r > 0.0) {
+            return Err(JobError::range("tool radius", r, "a finite number > 0 mm"));
+        }
+        let (c1, c2) = (self.previous, self.current);
+        if !(c1.radius.is_finite() && c1.radius > 0.0) {
+            return Err(JobError::range("R1", c1.radius, "a finite number > 0 mm"));
+        }
+        if !(c2.radius.is_finite() && c2.radius >= r) {
+            return Err(JobError::range("R2", c2.radius, format!("a finite number ≥ the tool radius {r} mm")));
+        }
+        for (name, p) in [("O1", c1.center), ("O2", c2.center)] {
+            if !(p.x.is_finite() && p.y.is_finite()) {
+                return Err(JobError::range(name, format!("({}, {})", p.x, p.y), "finite coordinates"));
+            }
+        }
+        Ok(())
+    }
+
+    /// Tool centre `C(φ) = O2 + ρ(cos φ, sin φ)` (paper eq. 5).
+    pub fn tool_center(&self, phi: f64) -> P2 {
+        let rho = self.current.radius - self.tool_radius;
+        self.current.center + p2(phi.cos(), phi.sin()) * rho
+    }
+
+    /// Engagement at tool-centre polar angle φ about O2 (domain-spec §1.2):
+    /// `δ = arccos((d² + r² − R1²)/(2dr))` (eqs. 3, 6), `β` = angle from C→E1 to C→O1 turning
+    /// with the travel, `a = max(0, β − δ)` (eq. 4), with the guards of §1.2.
+    pub fn engagement_at(&self, phi: f64) -> EngagementAt {
+        let r = self.tool_radius;
+        let (o1, r1) = (self.previous.center, self.previous.radius);
+        let u = p2(phi.cos(), phi.sin());
+        let c = self.tool_center(phi);
+        let e1 = c + u * r;
+        let air = EngagementAt { angle: 0.0, slotting: false };
+        if (e1 - o1).norm() <= r1 {
+            return air; // the wall point is already cut
+        }
+        let d = (c - o1).norm();
+        if d + r <= r1 {
+            return air; // the tool is wholly inside the previous circle
+        }
+        if d >= r1 + r {
+            return EngagementAt { angle: PI, slotting: true };
+        }
+        let delta = ((d * d + r * r - r1 * r1) / (2.0 * d * r)).clamp(-1.0, 1.0).acos();
+        let w = (o1 - c) / d;
+        let gamma0 = u.dot(&w).clamp(-1.0, 1.0).acos();
+        let x = cross(u, w);
+        let beta = match self.turn {
+            Turn::Ccw if x >= 0.0 => gamma0,
+            Turn::Cw if x <= 0.0 => gamma0,
+            _ => TAU - gamma0,
+        };
+        EngagementAt { angle: (beta - delta).max(0.0), slotting: false }
+    }
+
+    /// Maximum engagement over one full pass of the current circle: scan φ in 0.1° steps, then
+    /// golden-section refinement around the best sample (domain-spec §1.2 "production code").
+    pub fn max_engagement(&self) -> MaxEngagement {
+        let n = (TAU / SCAN_STEP).round() as usize;
+        let mut best = (0.0, -1.0);
+        let mut slotting = false;
+        for i in 0..n {
+            let phi = i as f64 * SCAN_STEP;
+            let e = self.engagement_at(phi);
+            slotting |= e.slotting;
+            if e.angle > best.1 {
+                best = (phi, e.angle);
+            }
+        }
+        let (phi0, a0) = best;
+        let (phi, neg) = golden_min(phi0 - SCAN_STEP, phi0 + SCAN_STEP, 1e-10, |p| -self.engagement_at(p).angle);
+        let (phi, angle) = if -neg >= a0 { (phi, -neg) } else { (phi0, a0) };
+        MaxEngagement { angle, phi: phi.rem_euclid(TAU), slotting }
+    }
+
+    /// Closed form of the peak engagement (domain-spec §1.2, DERIVED):
+    /// `cos a_max = (k² − ρ² − r²)/(2ρr)` with `k = R1 − |O1O2|`, valid only when the peak is
+    /// where the tool periphery passes through M (the first case of Wu et al. §2.4.1). A test
+    /// oracle and fast path, not a replacement for [`TwoCircle::max_engagement`].
+    pub fn closed_form_max(&self) -> f64 {
+        let r = self.tool_radius;
+        let rho = self.current.radius - r;
+        let k = self.previous.radius - (self.current.center - self.previous.center).norm();
+        ((k * k - rho * rho - r * r) / (2.0 * rho * r)).clamp(-1.0, 1.0).acos()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const TOL_DEG: f64 = 1e-3;
+
+    fn deg(x: f64) -> f64 {
+        x.to_degrees()
+    }
+
+    fn close(name: &str, got: f64, want: f64, tol: f64) {
+        assert!((got - want).abs() <= tol, "{name}: got {got}, want {want} (tol {tol})");
+    }
+
+    #[test]
+    fn straight_cut_matches_widia_table() {
+        // domain-spec §1.1 TEST: ae/D → engagement (deg), D = 10.
+        let r = 5.0;
+        for (ae_d, want) in [(0.05, 25.842), (0.10, 36.870), (0.20, 53.130), (0.30, 66.422), (0.50, 90.0), (1.0, 180.0)] {
+            let a = straight_engagement(ae_d * 2.0 * r, r).unwrap();
+            close(&format!("ae/D = {ae_d}"), deg(a), want, TOL_DEG);
+        }
+        // Inverse: a = 46°, D = 10 → ae = 1.5267 mm.
+        close("ae(46°)", radial_depth_for_engagement(46f64.to_radians(), r), 1.5267, 1e-4);
+    }
+
+    #[test]
+    fn straight_cut_rejects_bad_depth_naming_it() {
+        for ae in [-0.1, 10.1, f64::NAN] {
+            let e = straight_engagement(ae, 5.0).unwrap_err();
+            assert_eq!(e.parameter(), Some("a_e"), "{e}");
+        }
+        assert_eq!(straight_engagement(1.0, 0.0).unwrap_err().parameter(), Some("tool radius"));
+    }
+
+    fn equal_radii() -> TwoCircle {
+        TwoCircle {
+            previous: Circle::new(p2(0.0, 0.0), 10.0),
+            current: Circle::new(p2(1.0, 0.0), 10.0),
+            tool_radius: 5.0,
+            turn: Turn::Ccw,
+        }
+    }
+
+    #[test]
+    fn two_circle_equal_radii_spec_values() {
+        // domain-spec §1.2 TEST (CCW, O1 = (0,0), R1 = R2 = 10, r = 5, O2 = (1,0)).
+        let m = equal_radii();
+        m.validate().unwrap();
+        for (phi, want) in [(0.0, 49.458), (-30.0, 51.621), (30.0, 41.877), (60.0, 28.842)] {
+            let a = m.engagement_at(f64::to_radians(phi)).angle;
+            close(&format!("a({phi}°)"), deg(a), want, TOL_DEG);
+        }
+        let mx = m.max_engagement();
+        close("a_max", deg(mx.angle), 51.684, TOL_DEG);
+        // At the peak |C − M| = r, cos φ = 0.9 (φ = −25.84°).
+        close("phi at a_max", deg(mx.phi) - 360.0, -(0.9f64.acos().to_degrees()), 1e-3);
+        close("closed form", m.closed_form_max().cos(), 31.0 / 50.0, 1e-12);
+        close("scan vs closed form", deg(mx.angle), deg(m.closed_form_max()), TOL_DEG);
+        assert!(!mx.slotting);
+    }
+
+    #[test]
+    fn two_circle_unequal_radii_spec_values() {
+        // domain-spec §1.2 TEST: O1 = (0,0), R1 = 8, O2 = (1.5,0), R2 = 10, r = 5.
+        let m = TwoCircle {
+            previous: Circle::new(p2(0.0, 0.0), 8.0),
+            current: Circle::new(p2(1.5, 0.0), 10.0),
+            tool_radius: 5.0,
+            turn: Turn::Ccw,
+        };
+        close("a(0)", deg(m.engagement_at(0.0).angle), 92.866, TOL_DEG);
+        let mx = m.max_engagement();
+        close("a_max", deg(mx.angle), 98.917, TOL_DEG);
+        close("phi at a_max", deg(mx.phi) - 360.0, -49.5, 0.1);
+        close("closed form cos", m.closed_form_max().cos(), -0.155, 1e-12);
+    }
+
+    #[test]
+    fn clockwise_is_the_mirror_image() {
+        // Mirroring the equal-radii case in y turns CCW into CW and φ into −φ.
+        let ccw = equal_radii();
+        let cw = TwoCircle { turn: Turn::Cw, ..ccw };
+        for phi in [-60.0f64, -30.0, 0.0, 30.0, 60.0, 120.0] {
+            let a = ccw.engagement_at(phi.to_radians()).angle;
+            let b = cw.engagement_at((-phi).to_radians()).angle;
+            close(&format!("mirror at {phi}°"), b, a, 1e-12);
+        }
+        close("mirror max", cw.max_engagement().angle, ccw.max_engagement().angle, 1e-9);
+    }
+
+    #[test]
+    fn guards_air_and_slotting() {
+        // Same circle twice: nothing left to cut.
+        let same = TwoCircle { current: Circle::new(p2(0.0, 0.0), 10.0), ..equal_radii() };
+        assert_eq!(same.max_engagement().angle, 0.0);
+        // Current circle far away from the previous one: full slot, flagged.
+        let far = TwoCircle { current: Circle::new(p2(40.0, 0.0), 10.0), ..equal_radii() };
+        let mx = far.max_engagement();
+        assert!(mx.slotting);
+        close("slotting limit", mx.angle, PI, 1e-12);
+    }
+
+    #[test]
+    fn validate_names_the_bad_radius() {
+        let bad = TwoCircle { current: Circle::new(p2(1.0, 0.0), 4.0), ..equal_radii() };
+        assert_eq!(bad.validate().unwrap_err().parameter(), Some("R2"));
+        let nan = TwoCircle { previous: Circle::new(p2(0.0, 0.0), f64::NAN), ..equal_radii() };
+        assert_eq!(nan.validate().unwrap_err().parameter(), Some("R1"));
+    }
+}

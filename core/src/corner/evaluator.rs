@@ -1,0 +1,513 @@
+//! Generic engagement evaluator (domain-spec §1.3; issue #5 item 2): any tool-centre path of
+//! exact segments over any simple stock polygon.
+//!
+//! Material at a tool position = inside the stock polygon and farther than `r` from every
+//! tool-centre position swept before (the `before` paths, then the path itself up to the
+//! current position). The engaged angle is the measure of the tool periphery in material: the
+//! periphery is sampled at `samples` points (720 by default) and every in/out transition is
+//! refined by bisection on the same predicate to ~1e-10 rad, so the result is far finer than the
+//! sample spacing. Points of the periphery ahead of the tool are exactly `r` from the current
+//! position; they count as material (the predicate is `distance ≥ r − 1e-11 mm`; the tangency at the side of the tool makes that an
+//! angular error of √(2·1e-11/r) ≈ 1e-4° at r = 5), points behind
+//! are nearer than `r` to the path just travelled and do not.
+//!
+//! This module deliberately shares nothing with the analytic two-circle model
+//! ([`super::engagement`]): it is the independent check of every corner strategy.
+
+use crate::error::JobError;
+use crate::geom::{P2, Segment, p2};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::TAU;
+
+/// Distance tolerance of the material test (mm).
+const DIST_TOL: f64 = 1e-11;
+/// Bisection steps refining one in/out transition on the periphery.
+const REFINE_STEPS: usize = 36;
+/// Upper bound of tool positions in one evaluation (keeps run time bounded).
+const MAX_POSITIONS: f64 = 2.0e6;
+/// Lines used for one trochoid piece (the evaluator works on lines and arcs).
+const TROCHOID_LINES: usize = 256;
+
+/// A simple polygon (no self-intersections, no degenerate edges), stored counter-clockwise.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Polygon {
+    vertices: Vec<P2>,
+}
+
+impl Polygon {
+    /// Validates and stores a polygon: at least 3 finite vertices (a repeated first vertex at
+    /// the end is dropped), no edge shorter than 1e-9 mm, no two edges crossing or overlapping,
+    /// non-zero area. Clockwise input is reversed.
+    pub fn new(mut vertices: Vec<P2>) -> Result<Polygon, JobError> {
+        if let (Some(first), Some(last)) = (vertices.first(), vertices.last())
+            && vertices.len() > 1
+            && (first - last).norm() <= 1e-9
+        {
+            vertices.pop();
+        }
+        let n = vertices.len();
+        if n < 3 {
+            return Err(JobError::range("polygon vertices", n, "at least 3 distinct vertices"));
+        }
+        for (i, v) in vertices.iter().enumerate() {
+            if !(v.x.is_finite() && v.y.is_finite()) {
+                return Err(JobError::range("polygon vertex", format!("#{} ({}, {})", i + 1, v.x, v.y), "finite coordinates"));
+            }
+        }
+        for i in 0..n {
+            let len = (vertices[(i + 1) % n] - vertices[i]).norm();
+            if len <= 1e-9 {
+                return Err(JobError::range("polygon edge length", format!("{len} (edge #{})", i + 1), "> 1e-9 mm (degenerate edge)"));
+            }
+        }
+        for i in 0..n {
+            for j in i + 1..n {
+                let (a, b) = (vertices[i], vertices[(i + 1) % n]);
+                let (c, d) = (vertices[j], vertices[(j + 1) % n]);
+                let adjacent = j == i + 1 || (i == 0 && j == n - 1);
+                let bad = if adjacent {
+                    // Adjacent edges share one vertex; they may only overlap if they fold back.
+                    let (shared, p, q) = if j == i + 1 { (b, a, d) } else { (a, b, c) };
+                    let (u, v) = (p - shared, q - shared);
+                    crate::geom::cross(u, v).abs() <= 1e-12 * u.norm() * v.norm() && u.dot(&v) > 0.0
+                } else {
+                    segments_intersect(a, b, c, d)
+                };
+                if bad {
+                    return Err(JobError::range(
+                        "polygon",
+                        format!("edges #{} and #{} cross or overlap", i + 1, j + 1),
+                        "a simple polygon (no self-intersections)",
+                    ));
+                }
+            }
+        }
+        let area = signed_area(&vertices);
+        if area.abs() <= 1e-12 {
+            return Err(JobError::range("polygon area", area.abs(), "> 0 mm²"));
+        }
+        if area < 0.0 {
+            vertices.reverse();
+        }
+        Ok(Polygon { vertices })
+    }
+
+    /// Vertices, counter-clockwise.
+    pub fn vertices(&self) -> &[P2] {
+        &self.vertices
+    }
+
+    /// Area (mm²).
+    pub fn area(&self) -> f64 {
+        signed_area(&self.vertices)
+    }
+
+    /// Even-odd point-in-polygon test.
+    pub fn contains(&self, p: P2) -> bool {
+        let v = &self.vertices;
+        let mut inside = false;
+        let mut j = v.len() - 1;
+        for i in 0..v.len() {
+            let (a, b) = (v[i], v[j]);
+            if (a.y > p.y) != (b.y > p.y) && p.x < (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x {
+                inside = !inside;
+            }
+            j = i;
+        }
+        inside
+    }
+}
+
+fn signed_area(v: &[P2]) -> f64 {
+    let n = v.len();
+    0.5 * (0..n).map(|i| crate::geom::cross(v[i], v[(i + 1) % n])).sum::<f64>()
+}
+
+fn orient(a: P2, b: P2, c: P2) -> f64 {
+    crate::geom::cross(b - a, c - a)
+}
+
+/// Closed segments ab and cd share a point.
+fn segments_intersect(a: P2, b: P2, c: P2, d: P2) -> bool {
+    let (d1, d2) = (orient(c, d, a), orient(c, d, b));
+    let (d3, d4) = (orient(a, b, c), orient(a, b, d));
+    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0)) {
+        return true;
+    }
+    let on = |p: P2, q: P2, x: P2, o: f64| {
+        o.abs() <= 1e-12 * (q - p).norm().max(1.0) && x.x >= p.x.min(q.x) - 1e-12 && x.x <= p.x.max(q.x) + 1e-12
+            && x.y >= p.y.min(q.y) - 1e-12 && x.y <= p.y.max(q.y) + 1e-12
+    };
+    on(c, d, a, d1) || on(c, d, b, d2) || on(a, b, c, d3) || on(a, b, d, d4)
+}
+
+/// Reads points "x,y" (or "x y", "x;y"), one per line. Blank lines and lines starting with '#'
+/// are skipped, and so is a non-numeric first line (a header). `what` names the file in errors.
+pub fn parse_points(text: &str, what: &str) -> Result<Vec<P2>, JobError> {
+    let mut pts = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let fields: Vec<&str> = line.split(|c: char| c == ',' || c == ';' || c.is_whitespace()).filter(|f| !f.is_empty()).collect();
+        let nums: Option<Vec<f64>> = fields.iter().map(|f| f.parse::<f64>().ok()).collect();
+        match nums {
+            Some(v) if v.len() >= 2 => {
+                if !(v[0].is_finite() && v[1].is_finite()) {
+                    return Err(JobError::File(format!("{what} line {}: x and y must be finite numbers, got {line:?}", i + 1)));
+                }
+                pts.push(p2(v[0], v[1]));
+            }
+            _ if pts.is_empty() && i == 0 => {} // header
+            _ => return Err(JobError::File(format!("{what} line {}: expected two numbers x,y, got {line:?}", i + 1))),
+        }
+    }
+    Ok(pts)
+}
+
+/// A tool-centre polyline from points; consecutive duplicate points are skipped.
+pub fn polyline(points: &[P2]) -> Result<Vec<Segment>, JobError> {
+    let mut segs = Vec::new();
+    let mut last: Option<P2> = None;
+    for &p in points {
+        if !(p.x.is_finite() && p.y.is_finite()) {
+            return Err(JobError::range("path point", format!("({}, {})", p.x, p.y), "finite coordinates"));
+        }
+        match last {
+            Some(q) if (p - q).norm() <= 1e-12 => {}
+            Some(q) => {
+                segs.push(Segment::Line { start: q, end: p });
+                last = Some(p);
+            }
+            None => last = Some(p),
+        }
+    }
+    if segs.is_empty() {
+        return Err(JobError::range("path points", points.len(), "at least 2 distinct points"));
+    }
+    Ok(segs)
+}
+
+/// Evaluation settings.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct EvaluatorOptions {
+    /// Tool radius r (mm).
+    pub tool_radius: f64,
+    /// Arc-length spacing of evaluated tool positions (mm).
+    pub spacing: f64,
+    /// Periphery samples before refinement (≥ 8; 720 = every 0.5°).
+    pub samples: usize,
+}
+
+impl EvaluatorOptions {
+    /// Tool radius and position spacing with 720 periphery samples.
+    pub fn new(tool_radius: f64, spacing: f64) -> EvaluatorOptions {
+        EvaluatorOptions { tool_radius, spacing, samples: 720 }
+    }
+
+    fn validate(&self) -> Result<(), JobError> {
+        if !(self.tool_radius.is_finite() && self.tool_radius > 0.0) {
+            return Err(JobError::range("tool radius", self.tool_radius, "a finite number > 0 mm"));
+        }
+        if !(self.spacing.is_finite() && self.spacing > 0.0) {
+            return Err(JobError::range("spacing", self.spacing, "a finite number > 0 mm"));
+        }
+        if !(8..=100_000).contains(&self.samples) {
+            return Err(JobError::range("samples", self.samples, "from 8 to 100000"));
+        }
+        Ok(())
+    }
+}
+
+/// Engagement at one tool position.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct EngagementSample {
+    /// Arc length along the evaluated path (mm).
+    pub s_mm: f64,
+    /// Tool-centre position (mm).
+    pub x_mm: f64,
+    pub y_mm: f64,
+    /// Engaged angle of the periphery (rad).
+    pub angle_rad: f64,
+}
+
+/// Engagement along a whole path.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct EngagementProfile {
+    /// One sample per evaluated position, in path order.
+    pub samples: Vec<EngagementSample>,
+    /// Path length (mm).
+    pub path_length_mm: f64,
+}
+
+impl EngagementProfile {
+    /// The sample with the largest engagement (None for an empty profile).
+    pub fn max(&self) -> Option<EngagementSample> {
+        self.samples.iter().copied().fold(None, |best: Option<EngagementSample>, s| match best {
+            Some(b) if b.angle_rad >= s.angle_rad => Some(b),
+            _ => Some(s),
+        })
+    }
+
+    /// Largest engagement (rad), 0 for an empty profile.
+    pub fn max_angle(&self) -> f64 {
+        self.max().map_or(0.0, |s| s.angle_rad)
+    }
+}
+
+/// Cut segment with an axis-aligned box grown by the tool radius.
+struct Cutter {
+    seg: Segment,
+    lo: P2,
+    hi: P2,
+}
+
+impl Cutter {
+    fn new(seg: Segment, r: f64) -> Cutter {
+        let (lo, hi) = match seg {
+            Segment::Arc { center, radius, .. } => (center - p2(radius, radius), center + p2(radius, radius)),
+            _ => {
+                let (a, b) = (seg.start(), seg.end());
+                (p2(a.x.min(b.x), a.y.min(b.y)), p2(a.x.max(b.x), a.y.max(b.y)))
+            }
+        };
+        Cutter { seg, lo: lo - p2(r, r), hi: hi + p2(r, r) }
+    }
+
+    /// Whether a disc of radius `r` around `c` can reach this segment's grown box.
+    fn near(&self, c: P2, r: f64) -> bool {
+        c.x + r >= self.lo.x && c.x - r <= self.hi.x && c.y + r >= self.lo.y && c.y - r <= self.hi.y
+    }
+}
+
+/// Exact distance from `p` to a line or arc segment.
+fn distance(p: P2, seg: &Segment) -> f64 {
+    match *seg {
+        Segment::Line { start, end } => {
+            let d = end - start;
+            let l2 = d.norm_squared();
+            let t = if l2 > 0.0 { ((p - start).dot(&d) / l2).clamp(0.0, 1.0) } else { 0.0 };
+            (p - (start + d * t)).norm()
+        }
+        Segment::Arc { center, radius, start_angle, sweep } => {
+            let v = p - center;
+            let ang = v.y.atan2(v.x);
+            // Parameter of p's direction along the sweep, in [0, 2π) measured in sweep sense.
+            let rel = if sweep >= 0.0 { (ang - start_angle).rem_euclid(TAU) } else { (start_angle - ang).rem_euclid(TAU) };
+            if rel <= sweep.abs() {
+                (v.norm() - radius).abs()
+            } else {
+                (p - seg.start()).norm().min((p - seg.end()).norm())
+            }
+        }
+        Segment::Trochoid { .. } => {
+            // Not reached: trochoid pieces are flattened to lines before evaluation.
+            let pts = seg.sample(TROCHOID_LINES);
+            pts.windows(2).map(|w| distance(p, &Segment::Line { start: w[0], end: w[1] })).fold(f64::INFINITY, f64::min)
+        }
+    }
+}
+
+/// Lines and arcs only: trochoid pieces become `TROCHOID_LINES` chords each.
+fn flatten(path: &[Segment]) -> Vec<Segment> {
+    let mut out = Vec::with_capacity(path.len());
+    for seg in path {
+        match seg {
+            Segment::Trochoid { .. } => {
+                let pts = seg.sample(TROCHOID_LINES);
+                out.extend(pts.windows(2).map(|w| Segment::Line { start: w[0], end: w[1] }));
+            }
+            _ => out.push(*seg),
+        }
+    }
+    out
+}
+
+/// The first part of a line or arc, up to local parameter `t`.
+fn head(seg: &Segment, t: f64) -> Segment {
+    match *seg {
+        Segment::Line { start, .. } => Segment::Line { start, end: seg.point(t) },
+        Segment::Arc { center, radius, start_angle, sweep } => Segment::Arc { center, radius, start_angle, sweep: sweep * t },
+        other => other,
+    }
+}
+
+fn check_segments(path: &[Segment], name: &'static str) -> Result<(), JobError> {
+    for (i, s) in path.iter().enumerate() {
+        let (a, b) = (s.start(), s.end());
+        if !(a.x.is_finite() && a.y.is_finite() && b.x.is_finite() && b.y.is_finite() && s.length().is_finite()) {
+            return Err(JobError::range(name, format!("segment #{} is not finite", i + 1), "finite coordinates"));
+        }
+    }
+    Ok(())
+}
+
+/// Engagement along `path` (tool-centre segments) over `stock`, after the tool already swept
+/// the `before` paths (previous rings, earlier passes; no engagement reported for them).
+/// Positions are `spacing` apart in arc length, plus the end point.
+pub fn engagement_profile(
+    stock: &Polygon,
+    before: &[Segment],
+    path: &[Segment],
+    opts: &EvaluatorOptions,
+) -> Result<EngagementProfile, JobError> {
+    opts.validate()?;
+    check_segments(before, "before path")?;
+    check_segments(path, "path")?;
+    if path.is_empty() {
+        return Err(JobError::range("path", "empty", "at least one segment"));
+    }
+    let r = opts.tool_radius;
+    let path = flatten(path);
+    let lengths: Vec<f64> = path.iter().map(Segment::length).collect();
+    let total: f64 = lengths.iter().sum();
+    if total / opts.spacing > MAX_POSITIONS {
+        return Err(JobError::range("spacing", opts.spacing, format!("≥ path length / {MAX_POSITIONS} = {} mm", total / MAX_POSITIONS)));
+    }
+    let before: Vec<Cutter> = flatten(before).into_iter().map(|s| Cutter::new(s, r)).collect();
+    let cutters: Vec<Cutter> = path.iter().map(|s| Cutter::new(*s, r)).collect();
+    // Arc lengths of the evaluated positions: 0, spacing, 2·spacing, …, and the end.
+    let mut targets: Vec<f64> = Vec::new();
+    let mut k = 0.0;
+    while k * opts.spacing < total - 1e-9 {
+        targets.push(k * opts.spacing);
+        k += 1.0;
+    }
+    targets.push(total);
+    let mut samples = Vec::with_capacity(targets.len());
+    let (mut i, mut s0) = (0usize, 0.0); // current segment and the arc length at its start
+    let mut near: Vec<Segment> = Vec::new();
+    for s in targets {
+        while i + 1 < path.len() && s > s0 + lengths[i] {
+            s0 += lengths[i];
+            i += 1;
+        }
+        let seg = &path[i];
+        let local = if lengths[i] > 0.0 { ((s - s0) / lengths[i]).clamp(0.0, 1.0) } else { 1.0 };
+        let c = seg.point(local);
+        near.clear();
+        near.push(head(seg, local));
+        near.extend(cutters[..i].iter().rev().filter(|k| k.near(c, r)).map(|k| k.seg));
+        near.extend(before.iter().filter(|k| k.near(c, r)).map(|k| k.seg));
+        let angle = engaged_angle(stock, c, r, &near, opts.samples);
+        samples.push(EngagementSample { s_mm: s, x_mm: c.x, y_mm: c.y, angle_rad: angle });
+    }
+    Ok(EngagementProfile { samples, path_length_mm: total })
+}
+
+/// Measure (rad) of the periphery of the tool at `c` that lies in material.
+fn engaged_angle(stock: &Polygon, c: P2, r: f64, cut: &[Segment], n: usize) -> f64 {
+    let in_material = |th: f64| {
+        let p = c + p2(th.cos(), th.sin()) * r;
+        stock.contains(p) && cut.iter().all(|s| distance(p, s) >= r - DIST_TOL)
+    };
+    let step = TAU / n as f64;
+    let flags: Vec<bool> = (0..n).map(|k| in_material(k as f64 * step)).collect();
+    let count = flags.iter().filter(|&&f| f).count();
+    if count == 0 {
+        return 0.0;
+    }
+    if count == n {
+        return TAU;
+    }
+    let mut total = if flags[0] { TAU } else { 0.0 };
+    for k in 0..n {
+        let (a, b) = (flags[k], flags[(k + 1) % n]);
+        if a == b {
+            continue;
+        }
+        // Bisection between sample k (state a) and k+1 (state b).
+        let (mut lo, mut hi) = (k as f64 * step, (k + 1) as f64 * step);
+        for _ in 0..REFINE_STEPS {
+            let mid = 0.5 * (lo + hi);
+            if in_material(mid) == a {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        let boundary = 0.5 * (lo + hi);
+        total += if a { boundary } else { -boundary };
+    }
+    total
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square(x0: f64, y0: f64, x1: f64, y1: f64) -> Polygon {
+        Polygon::new(vec![p2(x0, y0), p2(x1, y0), p2(x1, y1), p2(x0, y1)]).unwrap()
+    }
+
+    #[test]
+    fn straight_cut_engagement_is_arccos_of_depth() {
+        // Independent of §1.2: a straight pass with radial depth a_e into a block whose wall is
+        // y = a_e above the tool's edge. Expected arccos(1 − a_e/r) (domain-spec §1.1 TEST).
+        let r = 5.0;
+        for (ae_d, want_deg) in [(0.05, 25.842), (0.10, 36.870), (0.20, 53.130), (0.30, 66.422), (0.50, 90.0)] {
+            let ae = ae_d * 10.0;
+            // Material: y from r − ae to 100 (tool centre on y = 0 moving +x).
+            let stock = square(-50.0, r - ae, 50.0, 100.0);
+            let path = [Segment::Line { start: p2(-20.0, 0.0), end: p2(20.0, 0.0) }];
+            let prof = engagement_profile(&stock, &[], &path, &EvaluatorOptions::new(r, 1.0)).unwrap();
+            // Steady state away from the ends.
+            for s in prof.samples.iter().filter(|s| s.s_mm > 10.0 && s.s_mm < 30.0) {
+                let got = s.angle_rad.to_degrees();
+                assert!((got - want_deg).abs() < 1e-3, "ae/D {ae_d}: got {got}, want {want_deg}");
+            }
+        }
+    }
+
+    #[test]
+    fn full_slot_is_half_the_periphery() {
+        let stock = square(-50.0, -50.0, 50.0, 50.0);
+        let path = [Segment::Line { start: p2(-20.0, 0.0), end: p2(20.0, 0.0) }];
+        let prof = engagement_profile(&stock, &[], &path, &EvaluatorOptions::new(5.0, 2.0)).unwrap();
+        let mid = prof.samples.iter().find(|s| s.s_mm >= 20.0).unwrap();
+        assert!((mid.angle_rad.to_degrees() - 180.0).abs() < 1e-3, "{mid:?}");
+    }
+
+    #[test]
+    fn polygon_rejects_bad_shapes_naming_them() {
+        let bow = Polygon::new(vec![p2(0.0, 0.0), p2(1.0, 1.0), p2(1.0, 0.0), p2(0.0, 1.0)]).unwrap_err();
+        assert_eq!(bow.parameter(), Some("polygon"), "{bow}");
+        let dup = Polygon::new(vec![p2(0.0, 0.0), p2(0.0, 0.0), p2(1.0, 0.0), p2(0.0, 1.0)]).unwrap_err();
+        assert_eq!(dup.parameter(), Some("polygon edge length"), "{dup}");
+        let two = Polygon::new(vec![p2(0.0, 0.0), p2(1.0, 0.0)]).unwrap_err();
+        assert_eq!(two.parameter(), Some("polygon vertices"));
+        let nan = Polygon::new(vec![p2(0.0, 0.0), p2(f64::NAN, 0.0), p2(0.0, 1.0)]).unwrap_err();
+        assert_eq!(nan.parameter(), Some("polygon vertex"));
+        let flat = Polygon::new(vec![p2(0.0, 0.0), p2(1.0, 0.0), p2(2.0, 0.0)]).unwrap_err();
+        assert!(flat.parameter().is_some(), "{flat}");
+        // Clockwise input is accepted and turned counter-clockwise.
+        let cw = Polygon::new(vec![p2(0.0, 0.0), p2(0.0, 1.0), p2(1.0, 1.0), p2(1.0, 0.0)]).unwrap();
+        assert!((cw.area() - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn parse_points_reads_csv_with_header_and_reports_bad_lines() {
+        let pts = parse_points("x,y\n0,0\n1.5, 2\n# comment\n\n3 4\n", "path").unwrap();
+        assert_eq!(pts, vec![p2(0.0, 0.0), p2(1.5, 2.0), p2(3.0, 4.0)]);
+        let err = parse_points("0,0\n1,abc\n", "path").unwrap_err().to_string();
+        assert!(err.contains("line 2"), "{err}");
+        assert!(parse_points("0,0\nNaN,1\n", "path").is_err());
+        assert_eq!(polyline(&[p2(0.0, 0.0), p2(0.0, 0.0)]).unwrap_err().parameter(), Some("path points"));
+    }
+
+    #[test]
+    fn bad_options_are_named() {
+        let stock = square(0.0, 0.0, 1.0, 1.0);
+        let path = [Segment::Line { start: p2(0.0, 0.0), end: p2(1.0, 0.0) }];
+        for (o, name) in [
+            (EvaluatorOptions::new(0.0, 1.0), "tool radius"),
+            (EvaluatorOptions::new(1.0, f64::NAN), "spacing"),
+            (EvaluatorOptions { samples: 2, ..EvaluatorOptions::new(1.0, 1.0) }, "samples"),
+        ] {
+            assert_eq!(engagement_profile(&stock, &[], &path, &o).unwrap_err().parameter(), Some(name));
+        }
+        let empty = engagement_profile(&stock, &[], &[], &EvaluatorOptions::new(1.0, 1.0)).unwrap_err();
+        assert_eq!(empty.parameter(), Some("path"));
+    }
+}

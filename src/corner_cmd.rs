@@ -1,0 +1,346 @@
+//! CLI handlers of the pocket-corner commands (issue #5): `corner` and `engagement`.
+//! Degrees at this edge, radians in the core. Output is JSON (or a Markdown table with
+//! `corner --table`).
+
+use clap::{Args, ValueEnum};
+use serde::Serialize;
+use std::path::PathBuf;
+use trochoplan_core::JobError;
+use trochoplan_core::corner::acceptance::{acceptance_table, markdown};
+use trochoplan_core::corner::{
+    Corner, CornerScenario, CornerSettings, EvaluatorOptions, Method, Polygon, engagement_profile, parse_points, polyline,
+    radial_depth_for_engagement, straight_engagement,
+};
+use trochoplan_core::geom::Segment;
+
+/// Corner strategy on the command line.
+#[derive(Clone, Copy, ValueEnum)]
+pub enum MethodArg {
+    /// The plain contour-parallel ring (no corner trochoids), for comparison.
+    Plain,
+    /// Variable circles on the bisector (Wu et al. 2016 eqs. 23–24).
+    Variable,
+    /// Isometric circles (Wu et al. 2016 §4.2.2, eq. 25).
+    Isometric,
+    /// Perforative circles along the medial axis of the pocket (Voronoi, boostvoronoi).
+    MedialAxis,
+}
+
+impl From<MethodArg> for Method {
+    fn from(m: MethodArg) -> Method {
+        match m {
+            MethodArg::Plain => Method::Plain,
+            MethodArg::Variable => Method::Variable,
+            MethodArg::Isometric => Method::Isometric,
+            MethodArg::MedialAxis => Method::MedialAxis,
+        }
+    }
+}
+
+/// Flags of `trochoplan corner`.
+#[derive(Args)]
+pub struct CornerArgs {
+    /// Interior corner angle (degrees).
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true, default_value_t = 90.0)]
+    angle: f64,
+    /// Corner strategy.
+    #[arg(long, value_enum, default_value = "variable")]
+    method: MethodArg,
+    /// Tool diameter D (mm).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = 10.0)]
+    tool_diameter: f64,
+    /// Ring step-over a_e (mm). Default: the step-over giving --straight-engagement.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    step_over: Option<f64>,
+    /// Engagement on the straight part of the ring (degrees), used when --step-over is absent.
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true, default_value_t = 46.0)]
+    straight_engagement: f64,
+    /// Target engagement a* (degrees). Default: straight-part engagement × (1 + t1).
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
+    target: Option<f64>,
+    /// Allowed excess over the straight-part engagement, t1 (Wu et al. eq. 23), when --target is absent.
+    #[arg(long, value_name = "FRACTION", allow_hyphen_values = true, default_value_t = 0.15)]
+    t1: f64,
+    /// Bisection acceptance band ε (degrees).
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true, default_value_t = 0.5)]
+    tolerance: f64,
+    /// Wall length from the apex (mm).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = 100.0)]
+    edge_length: f64,
+    /// Feed rate for the machining time (mm/min).
+    #[arg(long, value_name = "MM_PER_MIN", allow_hyphen_values = true, default_value_t = 600.0)]
+    feed: f64,
+    /// Tool-centre radius rh of isometric circles (mm). Default: the tool radius.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    isometric_radius: Option<f64>,
+    /// Spacing of the tool positions measured by the evaluator (mm).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = 0.1)]
+    spacing: f64,
+    /// Print the acceptance table (corner angles 30°…150° in 15° steps) as Markdown instead.
+    #[arg(long)]
+    table: bool,
+}
+
+/// Flags of `trochoplan engagement`.
+#[derive(Args)]
+pub struct EngagementArgs {
+    /// Tool-centre path: one point "x,y" per line (mm); an optional header line.
+    #[arg(long, value_name = "FILE.csv")]
+    path_csv: PathBuf,
+    /// Stock polygon: one vertex "x,y" per line (mm), simple polygon.
+    #[arg(long, value_name = "FILE")]
+    stock_polygon: PathBuf,
+    /// Tool diameter D (mm).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = 10.0)]
+    tool_diameter: f64,
+    /// Spacing of the evaluated tool positions along the path (mm).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = 0.1)]
+    spacing: f64,
+}
+
+fn err(e: JobError) -> String {
+    e.to_string()
+}
+
+fn finite(name: &'static str, v: f64) -> Result<f64, String> {
+    if v.is_finite() { Ok(v) } else { Err(JobError::range(name, v, "a finite number").to_string()) }
+}
+
+impl CornerArgs {
+    fn settings(&self) -> Result<CornerSettings, String> {
+        let d = finite("tool diameter", self.tool_diameter)?;
+        if d <= 0.0 {
+            return Err(JobError::range("tool diameter", d, "a finite number > 0 mm").to_string());
+        }
+        let r = d / 2.0;
+        let step_over = match self.step_over {
+            Some(ae) => ae,
+            None => {
+                let a = finite("straight engagement", self.straight_engagement)?;
+                if !(a > 0.0 && a < 180.0) {
+                    return Err(JobError::range("straight engagement", a, "greater than 0° and less than 180°").to_string());
+                }
+                radial_depth_for_engagement(a.to_radians(), r)
+            }
+        };
+        let mut s = CornerSettings::new(r, step_over).map_err(|e| match e {
+            JobError::OutOfRange { name: "a_e", value, .. } => {
+                JobError::range("step-over", value, format!("greater than 0 and less than the tool diameter {d} mm")).to_string()
+            }
+            other => other.to_string(),
+        })?;
+        let a_str = straight_engagement(step_over, r).map_err(err)?;
+        s.target = match self.target {
+            Some(t) => finite("target", t)?.to_radians(),
+            None => {
+                let t1 = finite("t1", self.t1)?;
+                if !(0.0..=1.0).contains(&t1) {
+                    return Err(JobError::range("t1", t1, "from 0 to 1").to_string());
+                }
+                a_str * (1.0 + t1)
+            }
+        };
+        s.tolerance = finite("tolerance", self.tolerance)?.to_radians();
+        s.edge_length = self.edge_length;
+        s.feed_mm_per_min = self.feed;
+        s.isometric_radius = self.isometric_radius;
+        s.validate().map_err(err)?;
+        Ok(s)
+    }
+}
+
+#[derive(Serialize)]
+struct CircleOut {
+    x_mm: f64,
+    y_mm: f64,
+    tool_center_radius_mm: f64,
+    offset_radius_mm: f64,
+    predicted_max_engagement_deg: Option<f64>,
+    bisection_steps: usize,
+}
+
+#[derive(Serialize)]
+struct CornerOut {
+    method: &'static str,
+    corner_angle_deg: f64,
+    tool_diameter_mm: f64,
+    step_over_mm: f64,
+    straight_engagement_deg: f64,
+    target_deg: f64,
+    circles: Vec<CircleOut>,
+    path_length_mm: f64,
+    time_s: f64,
+    /// Measured with the independent evaluator over the plan's material model.
+    max_engagement_deg: f64,
+    max_engagement_at: [f64; 2],
+    plain_max_engagement_deg: f64,
+    plain_path_length_mm: f64,
+    notes: Vec<String>,
+    path: Vec<Segment>,
+}
+
+/// `trochoplan corner`: plan one corner (JSON) or print the acceptance table (Markdown).
+pub fn corner(args: &CornerArgs) -> Result<String, String> {
+    let s = args.settings()?;
+    let method: Method = args.method.into();
+    if args.table {
+        let rows = acceptance_table(method, s, args.spacing).map_err(err)?;
+        return Ok(markdown(&rows));
+    }
+    let angle = finite("angle", args.angle)?;
+    let corner = Corner::symmetric(angle.to_radians()).map_err(err)?;
+    let sc = CornerScenario::new(corner, s).map_err(err)?;
+    let opts = EvaluatorOptions::new(s.tool_radius, args.spacing);
+    let plan = trochoplan_core::corner::plan_corner(&sc, method).map_err(err)?;
+    let prof = engagement_profile(&plan.stock, &plan.precut, &plan.path, &opts).map_err(err)?;
+    let plain = trochoplan_core::corner::plan_corner(&sc, Method::Plain).map_err(err)?;
+    let plain_prof = engagement_profile(&sc.stock, &sc.previous_ring, &plain.path, &opts).map_err(err)?;
+    let mx = prof.max();
+    let out = CornerOut {
+        method: method.name(),
+        corner_angle_deg: angle,
+        tool_diameter_mm: 2.0 * s.tool_radius,
+        step_over_mm: s.step_over,
+        straight_engagement_deg: straight_engagement(s.step_over, s.tool_radius).map_err(err)?.to_degrees(),
+        target_deg: s.target.to_degrees(),
+        circles: plan
+            .circles
+            .iter()
+            .map(|c| CircleOut {
+                x_mm: c.tool_circle.center.x,
+                y_mm: c.tool_circle.center.y,
+                tool_center_radius_mm: c.tool_circle.radius,
+                offset_radius_mm: c.offset_radius,
+                predicted_max_engagement_deg: c.predicted_max.map(f64::to_degrees),
+                bisection_steps: c.steps,
+            })
+            .collect(),
+        path_length_mm: plan.path_length_mm,
+        time_s: plan.time_s,
+        max_engagement_deg: prof.max_angle().to_degrees(),
+        max_engagement_at: mx.map_or([f64::NAN; 2], |m| [m.x_mm, m.y_mm]),
+        plain_max_engagement_deg: plain_prof.max_angle().to_degrees(),
+        plain_path_length_mm: plain.path_length_mm,
+        notes: plan.notes,
+        path: plan.path,
+    };
+    let mut text = serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?;
+    text.push('\n');
+    Ok(text)
+}
+
+#[derive(Serialize)]
+struct SampleOut {
+    s_mm: f64,
+    x_mm: f64,
+    y_mm: f64,
+    engagement_deg: f64,
+}
+
+#[derive(Serialize)]
+struct EngagementOut {
+    tool_diameter_mm: f64,
+    spacing_mm: f64,
+    path_length_mm: f64,
+    max_engagement_deg: f64,
+    max_at: Option<SampleOut>,
+    samples: Vec<SampleOut>,
+}
+
+fn read(path: &PathBuf) -> Result<String, String> {
+    std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))
+}
+
+/// `trochoplan engagement`: per-position engagement of a CSV tool path over a stock polygon.
+pub fn engagement(args: &EngagementArgs) -> Result<String, String> {
+    let d = finite("tool diameter", args.tool_diameter)?;
+    let what_path = args.path_csv.display().to_string();
+    let what_stock = args.stock_polygon.display().to_string();
+    let path = polyline(&parse_points(&read(&args.path_csv)?, &what_path).map_err(err)?).map_err(|e| format!("{what_path}: {e}"))?;
+    let stock = Polygon::new(parse_points(&read(&args.stock_polygon)?, &what_stock).map_err(err)?).map_err(|e| format!("{what_stock}: {e}"))?;
+    let prof = engagement_profile(&stock, &[], &path, &EvaluatorOptions::new(d / 2.0, args.spacing)).map_err(err)?;
+    let conv = |s: &trochoplan_core::corner::EngagementSample| SampleOut {
+        s_mm: s.s_mm,
+        x_mm: s.x_mm,
+        y_mm: s.y_mm,
+        engagement_deg: s.angle_rad.to_degrees(),
+    };
+    let out = EngagementOut {
+        tool_diameter_mm: d,
+        spacing_mm: args.spacing,
+        path_length_mm: prof.path_length_mm,
+        max_engagement_deg: prof.max_angle().to_degrees(),
+        max_at: prof.max().as_ref().map(conv),
+        samples: prof.samples.iter().map(conv).collect(),
+    };
+    let mut text = serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?;
+    text.push('\n');
+    Ok(text)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Parser)]
+    struct T {
+        #[command(flatten)]
+        c: CornerArgs,
+    }
+
+    fn corner_args(flags: &[&str]) -> CornerArgs {
+        let mut v = vec!["t"];
+        v.extend_from_slice(flags);
+        T::try_parse_from(v).expect("parse").c
+    }
+
+    #[test]
+    fn bad_corner_inputs_name_the_parameter() {
+        for (flags, name) in [
+            (vec!["--step-over", "10"], "step-over"),
+            (vec!["--step-over", "12"], "step-over"),
+            (vec!["--tool-diameter", "NaN"], "tool diameter"),
+            (vec!["--angle", "NaN"], "angle"),
+            (vec!["--angle", "3"], "corner angle"),
+            (vec!["--angle", "180"], "corner angle"),
+            (vec!["--target", "40"], "target"),
+        ] {
+            let e = corner(&corner_args(&flags)).expect_err("must fail");
+            assert!(e.contains(name), "{flags:?}: {e}");
+        }
+    }
+
+    #[test]
+    fn corner_json_has_circles_length_and_engagement() {
+        let text = corner(&corner_args(&["--angle", "120", "--spacing", "0.5"])).expect("plan");
+        let v: serde_json::Value = serde_json::from_str(&text).expect("json");
+        assert!(v["circles"].as_array().is_some_and(|c| !c.is_empty()));
+        assert!(v["path_length_mm"].as_f64().is_some_and(|l| l > 0.0));
+        let (m, p) = (v["max_engagement_deg"].as_f64().expect("max"), v["plain_max_engagement_deg"].as_f64().expect("plain"));
+        assert!(m < p, "{m} vs plain {p}");
+    }
+
+    #[test]
+    fn engagement_reads_csv_and_polygon() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let (pc, sp) = (dir.path().join("p.csv"), dir.path().join("s.txt"));
+        // Straight cut with a_e = 2.5 mm (ae/D = 0.25) along +x: arccos(1 − 2.5/5) = 60° once
+        // moving; at the first position the tool has plunged, so both halves count: 120°.
+        std::fs::write(&pc, "x,y\n-20,0\n20,0\n").expect("write");
+        std::fs::write(&sp, "-50,2.5\n50,2.5\n50,40\n-50,40\n").expect("write");
+        let args = EngagementArgs { path_csv: pc, stock_polygon: sp.clone(), tool_diameter: 10.0, spacing: 1.0 };
+        let v: serde_json::Value = serde_json::from_str(&engagement(&args).expect("run")).expect("json");
+        let mx = v["max_engagement_deg"].as_f64().expect("max");
+        assert!((mx - 120.0).abs() < 1e-3 && v["max_at"]["s_mm"].as_f64() == Some(0.0), "{mx}");
+        let samples = v["samples"].as_array().expect("samples");
+        assert_eq!(samples.len(), 41);
+        for s in samples.iter().filter(|s| (10.0..=30.0).contains(&s["s_mm"].as_f64().unwrap_or(-1.0))) {
+            let a = s["engagement_deg"].as_f64().expect("deg");
+            assert!((a - 60.0).abs() < 1e-3, "{s}");
+        }
+        std::fs::write(&sp, "0,0\n1,1\n1,0\n0,1\n").expect("write");
+        let e = engagement(&EngagementArgs { stock_polygon: sp, ..args }).expect_err("bow tie");
+        assert!(e.contains("polygon"), "{e}");
+    }
+}
