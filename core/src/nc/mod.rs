@@ -300,14 +300,25 @@ fn oword_loop(w: &mut Writer, plan: &Plan, moves: &[CycleMove]) {
     w.block(&["#<k>=0".to_string()]);
     w.raw("o100 while [#<k> LT #<n>]");
     w.raw("#<oy>=[#<y0>+#<k>*#<s>]");
+    loop_body(w, moves, "#<oy>");
+    w.raw("#<k>=[#<k>+1]");
+    w.raw("o100 endwhile");
+    end_loop(w);
+}
+
+/// The cycle's blocks inside a loop, with Y relative to the loop's origin variable `oy`.
+/// Modal state is forgotten on entry (the loop is entered repeatedly).
+fn loop_body(w: &mut Writer, moves: &[CycleMove], oy: &'static str) {
     w.forget_modal();
-    w.set_y_form(YForm::Offset("#<oy>"));
+    w.set_y_form(YForm::Offset(oy));
     body_start(w, moves);
     for m in moves {
         w.segment(&m.seg, m.feed_mm_per_min);
     }
-    w.raw("#<k>=[#<k>+1]");
-    w.raw("o100 endwhile");
+}
+
+/// After a loop: absolute Y again, modal state unknown.
+fn end_loop(w: &mut Writer) {
     w.set_y_form(YForm::Plain);
     w.forget_modal();
 }
@@ -319,16 +330,10 @@ fn r_parameter_loop(w: &mut Writer, plan: &Plan, moves: &[CycleMove]) {
     r_common(w, plan);
     w.raw("LOOP:");
     w.raw("R10=R51+(R1-1)*R2");
-    w.forget_modal();
-    w.set_y_form(YForm::Offset("R10"));
-    body_start(w, moves);
-    for m in moves {
-        w.segment(&m.seg, m.feed_mm_per_min);
-    }
+    loop_body(w, moves, "R10");
     w.raw("R1=R1+1");
     w.raw("IF R1<R5/R2+0.5 GOTOB LOOP");
-    w.set_y_form(YForm::Plain);
-    w.forget_modal();
+    end_loop(w);
 }
 
 /// R1, R2, R5, R51 with comments.
