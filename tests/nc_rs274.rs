@@ -25,14 +25,25 @@ fn rs274() -> String {
 /// Run rs274 on `file`; the canonical calls it printed, or the interpreter's error.
 fn interpret(file: &Path) -> Result<String, String> {
     let out = file.with_extension("canon");
-    let run = Command::new(rs274()).arg("-g").arg(file).arg(&out).stdin(Stdio::null()).output().unwrap_or_else(|e| {
-        panic!(
-            "cannot run `{}` ({e}). These tests need LinuxCNC's standalone G-code interpreter: \
+    // rs274 creates and maps $HOME/.tool.mmap with O_TRUNC: runs in parallel (test threads)
+    // sharing one HOME truncate each other's mapping and die with SIGBUS. One HOME per run.
+    let home = file.with_extension("home");
+    std::fs::create_dir_all(&home).unwrap_or_else(|e| panic!("{}: {e}", home.display()));
+    let run = Command::new(rs274())
+        .arg("-g")
+        .arg(file)
+        .arg(&out)
+        .env("HOME", &home)
+        .stdin(Stdio::null())
+        .output()
+        .unwrap_or_else(|e| {
+            panic!(
+                "cannot run `{}` ({e}). These tests need LinuxCNC's standalone G-code interpreter: \
                  apt-get install -y --no-install-recommends linuxcnc-uspace (Debian bookworm), \
                  or set RS274 to its path",
-            rs274()
-        )
-    });
+                rs274()
+            )
+        });
     let stderr = String::from_utf8_lossy(&run.stderr);
     // rs274 prints "executing" on stderr; anything else there is an interpreter message
     let messages: Vec<&str> = stderr.lines().filter(|l| l.trim() != "executing" && !l.trim().is_empty()).collect();
