@@ -7,7 +7,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 use trochoplan_core::analysis::step::engagement_limited_step;
 use trochoplan_core::analysis::{PreviousEdge, Wall, tooth_series, wall_profile};
-use trochoplan_core::path::SlotPath;
+use trochoplan_core::path::{Cycle, SlotPath};
 use trochoplan_core::{Job, PathKind, plan};
 
 fn plans(c: &mut Criterion) {
@@ -30,7 +30,9 @@ fn parts(c: &mut Criterion) {
     let job = Job::default().validate().expect("valid");
     let path = SlotPath::for_job(&job);
     let r = job.tool_radius();
-    c.bench_function("path/cycle length (quadrature)", |b| b.iter(|| black_box(&path.cycle).length()));
+    c.bench_function("path/build one cycle (segments + quadrature lengths)", |b| {
+        b.iter(|| Cycle::for_job(black_box(&job)))
+    });
     c.bench_function("path/expand 1 m slot into segments", |b| {
         let long = SlotPath::for_job(&Job { slot_length: 1000.0, ..Job::default() }.validate().expect("valid"));
         b.iter(|| black_box(&long).segments().count())

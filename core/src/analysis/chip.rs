@@ -33,7 +33,7 @@ use std::f64::consts::PI;
 pub const H_CUT_MM: f64 = 1e-6;
 
 /// Coarse samples across the forward half circle before refinement.
-const COARSE: usize = 25;
+const COARSE: usize = 17;
 
 /// Analysis of one tooth position.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -181,9 +181,13 @@ impl<'a> EarlySweep<'a> {
     }
 }
 
-/// Best coarse margin below which no poke-out can hide between coarse samples (mm): the margin
-/// along the circle changes by at most ~R·Δφ²/8 plus the edge's own bending between samples.
-const NO_POKE_OUT_MM: f64 = -0.05;
+/// Best coarse margin below which no poke-out can hide between coarse samples (mm). Between
+/// samples Δφ apart the circle bulges beyond its chord by R·Δφ²/8 and the edge bends away (it
+/// is convex), so twice that bulge is a safe bound; anything closer is refined below.
+fn no_poke_out_mm(r: f64) -> f64 {
+    let dphi = PI / (COARSE - 1) as f64;
+    -r * dphi * dphi / 4.0
+}
 
 fn engagement(swept: &Swept, f: &Frame, r: f64) -> Engagement {
     let g = |phi: f64| swept.margin(f.c + f.dir(phi) * r);
@@ -194,7 +198,7 @@ fn engagement(swept: &Swept, f: &Frame, r: f64) -> Engagement {
     if vals.iter().all(|&v| v <= 0.0) {
         let (ibest, vbest) =
             vals.iter().enumerate().fold((0, f64::NEG_INFINITY), |b, (i, &v)| if v > b.1 { (i, v) } else { b });
-        if vbest < NO_POKE_OUT_MM {
+        if vbest < no_poke_out_mm(r) {
             return Engagement { angle: 0.0, ends: vec![], intervals: vec![], reaches_back: false };
         }
         let lo = phis[ibest.saturating_sub(1)];
