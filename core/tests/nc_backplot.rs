@@ -3,6 +3,8 @@
 //! back-plot polyline and the exact planned tool-centre path are within the fit tolerance plus
 //! output rounding plus the back-plot's chord tolerance of each other (two-sided, in order).
 
+#![allow(clippy::expect_used, clippy::panic)]
+
 mod nc_common;
 
 use nc_common::{budget, ordered_deviation, planned_samples};

@@ -8,8 +8,8 @@
 //! (rad  to  deg), shifting by a cycle origin and subtracting the wall's valley position.
 
 use egui_plot::PlotPoint;
-use trochoplan_core::Plan;
 use trochoplan_core::analysis::edge::outer_offset_points;
+use trochoplan_core::{Plan, ValidJob};
 
 /// Most points of a time series handed to egui_plot (min/max decimation above this).
 pub const MAX_SERIES_POINTS: usize = 2000;
@@ -143,6 +143,37 @@ impl Graphics {
     }
 }
 
+/// The chip of the animated tooth (`Plan::chip_outline`) in the path view's absolute
+/// coordinates: the core's outline shifted by the shown cycle's origin, recomputed only when
+/// the plan or the tooth changed (not every frame).
+#[derive(Clone, Debug, Default)]
+pub struct Chip {
+    key: Option<(ValidJob, usize)>,
+    /// Closed outline (mm); empty when the tooth cuts nothing.
+    pub outline: Vec<PlotPoint>,
+    /// Calls of the core so far (tests check the cache).
+    pub computed: u64,
+}
+
+impl Chip {
+    /// The chip of tooth `tooth` of `plan.series`, drawn with `g` (same plan).
+    pub fn update(&mut self, plan: &Plan, g: &Graphics, tooth: usize) {
+        if self.key.as_ref().is_some_and(|(j, t)| *j == plan.job && *t == tooth) {
+            return;
+        }
+        self.key = Some((plan.job.clone(), tooth));
+        self.computed += 1;
+        let [ox, oy] = g.origin;
+        self.outline = plan.chip_outline(tooth).into_iter().map(|p| PlotPoint::new(p.x + ox, p.y + oy)).collect();
+    }
+
+    /// No chip (no plan shown).
+    pub fn clear(&mut self) {
+        self.key = None;
+        self.outline.clear();
+    }
+}
+
 /// Min/max decimation of a curve sampled along x: at most `max` points (two per bucket), so
 /// that peaks survive. Returns the points unchanged when there are few enough.
 pub fn decimate(points: &[[f64; 2]], max: usize) -> Vec<PlotPoint> {
@@ -186,5 +217,24 @@ mod tests {
         let n = g.path_before.len() + g.path_current.len() + g.path_after.len();
         assert!(n < 1000, "{n} path points for a 1 m slot");
         assert!(g.h.len() <= MAX_SERIES_POINTS);
+    }
+
+    #[test]
+    fn chip_is_the_cores_outline_at_the_shown_cycle_and_cached() {
+        let plan = trochoplan_core::plan(&trochoplan_core::Job::default()).expect("valid");
+        let g = Graphics::new(&plan, 5);
+        let cutting = plan.series.iter().position(|t| t.cutting).expect("a cutting tooth");
+        let cooling = plan.series.iter().position(|t| !t.cutting).expect("a cooling tooth");
+        let mut chip = Chip::default();
+        chip.update(&plan, &g, cutting);
+        let core = plan.chip_outline(cutting);
+        assert!(core.len() >= 3);
+        assert_eq!(chip.outline.len(), core.len());
+        assert!((chip.outline[0].x - core[0].x - g.origin[0]).abs() < 1e-12);
+        assert!((chip.outline[0].y - core[0].y - g.origin[1]).abs() < 1e-12);
+        chip.update(&plan, &g, cutting);
+        assert_eq!(chip.computed, 1, "same tooth: cached");
+        chip.update(&plan, &g, cooling);
+        assert!(chip.outline.is_empty(), "no chip while cooling");
     }
 }
