@@ -13,7 +13,6 @@ pub(crate) mod panels;
 use crate::files::write_atomic;
 use eframe::egui;
 use egui::util::undoer::Undoer;
-use egui_plot::PlotPoint;
 use panels::Command;
 use panels::compare::{self, MAX_VARIANTS, VariantView};
 use panels::export::{ExportCache, ExportSettings};
@@ -84,6 +83,8 @@ pub struct State {
     pub teach: bool,
     /// Cycles drawn in the path view.
     pub cycles_shown: usize,
+    /// The chip view zooms onto the middle of the chip instead of showing all of it.
+    pub chip_close_up: bool,
     /// Overlay pinned variants in the Plots tab too.
     pub overlay_pins: bool,
     pub pinned: Vec<PinnedJob>,
@@ -101,6 +102,7 @@ impl Default for State {
             tab: Tab::Plots,
             teach: false,
             cycles_shown: 5,
+            chip_close_up: true,
             overlay_pins: true,
             pinned: Vec::new(),
             sweep: SweepSettings::default(),
@@ -578,6 +580,8 @@ impl App {
                     ui.add(egui::DragValue::new(&mut self.state.cycles_shown).range(2..=20))
                         .labelled_by(l.id)
                         .on_hover_text("Cycles of the tool-centre path drawn in the path view");
+                    ui.checkbox(&mut self.state.chip_close_up, "chip close-up")
+                        .on_hover_text("Chip view: the middle of the chip at 8·h (on) or the whole chip (off)");
                     if !self.variants.is_empty() {
                         ui.checkbox(&mut self.state.overlay_pins, format!("overlay {} pinned", self.variants.len()));
                     }
@@ -589,7 +593,7 @@ impl App {
                 panels::teach::controls(ui, &mut self.anim, &cur.plan);
                 let cursor = self.anim.cursor(&cur.plan);
                 let layers = layers(&self.planner, &self.variants, self.state.overlay_pins);
-                plot_grid(ui, &layers, cursor, &self.chip.outline, self.state.teach);
+                plot_grid(ui, &layers, cursor, &self.chip, self.state.chip_close_up, self.state.teach);
             }
             Tab::Compare => {
                 let views: Vec<VariantView> = self
@@ -609,7 +613,7 @@ impl App {
                 ui.separator();
                 let cursor = self.planner.last.as_ref().and_then(|p| self.anim.cursor(&p.plan));
                 let layers = layers(&self.planner, &self.variants, true);
-                plot_grid(ui, &layers, cursor, &self.chip.outline, self.state.teach);
+                plot_grid(ui, &layers, cursor, &self.chip, self.state.chip_close_up, self.state.teach);
             }
             Tab::Sweep => {
                 if let Some(c) = panels::sweep::show(ui, &mut self.state.sweep, self.sweep.as_ref(), &self.state.job) {
@@ -776,34 +780,48 @@ fn w_of(p: &Plan) -> (f64, f64) {
 
 /// The four plots in a 2 × 2 grid filling the rest of `ui`; the path view's cell shares its
 /// width with the zoomed chip view.
-fn plot_grid(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, chip: &[PlotPoint], teach: bool) {
+fn plot_grid(
+    ui: &mut egui::Ui,
+    layers: &[Layer],
+    cursor: Option<Cursor>,
+    chip: &Chip,
+    chip_close_up: bool,
+    teach: bool,
+) {
     let gap = 8.0;
     let avail = ui.available_size();
     let cell = egui::vec2(((avail.x - gap) / 2.0).max(150.0), ((avail.y - gap) / 2.0).max(140.0));
-    let in_cell = |ui: &mut egui::Ui, f: &dyn Fn(&mut egui::Ui)| {
+    let in_sized = |ui: &mut egui::Ui, cell: egui::Vec2, f: &dyn Fn(&mut egui::Ui)| {
         ui.allocate_ui_with_layout(cell, egui::Layout::top_down(egui::Align::Min), |ui| {
             ui.set_min_size(cell);
+            ui.set_max_width(cell.x);
             f(ui);
         });
     };
+    let in_cell = |ui: &mut egui::Ui, f: &dyn Fn(&mut egui::Ui)| in_sized(ui, cell, f);
+    // top row: the path view shares its cell with the chip view, so it gets more of the width
+    let wide = egui::vec2(((avail.x - gap) * 0.6).max(300.0), cell.y);
+    let narrow = egui::vec2((avail.x - gap - wide.x).max(150.0), cell.y);
     ui.horizontal(|ui| {
-        in_cell(ui, &|ui| {
+        in_sized(ui, wide, &|ui| {
             let w = ui.available_width();
-            let chip_w = (0.36 * w).clamp(150.0, 320.0);
+            let chip_w = (0.45 * w).clamp(150.0, 400.0);
             let h = ui.available_height();
             ui.horizontal_top(|ui| {
                 let path_w = w - chip_w - ui.spacing().item_spacing.x;
                 ui.allocate_ui_with_layout(egui::vec2(path_w, h), egui::Layout::top_down(egui::Align::Min), |ui| {
                     ui.set_min_size(egui::vec2(path_w, h));
+                    ui.set_max_width(path_w);
                     plots::path_view(ui, layers, cursor, chip, teach);
                 });
                 ui.allocate_ui_with_layout(egui::vec2(chip_w, h), egui::Layout::top_down(egui::Align::Min), |ui| {
                     ui.set_min_size(egui::vec2(chip_w, h));
-                    plots::chip_view(ui, layers, cursor, chip, teach);
+                    ui.set_max_width(chip_w);
+                    plots::chip_view(ui, layers, cursor, chip, chip_close_up, teach);
                 });
             });
         });
-        in_cell(ui, &|ui| plots::h_plot(ui, layers, cursor, teach));
+        in_sized(ui, narrow, &|ui| plots::h_plot(ui, layers, cursor, teach));
     });
     ui.add_space(gap);
     ui.horizontal(|ui| {

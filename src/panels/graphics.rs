@@ -149,8 +149,13 @@ impl Graphics {
 #[derive(Clone, Debug, Default)]
 pub struct Chip {
     key: Option<(ValidJob, usize)>,
-    /// Closed outline (mm); empty when the tooth cuts nothing.
+    /// Closed outline (mm, last point = first); empty when the tooth cuts nothing.
     pub outline: Vec<PlotPoint>,
+    /// The chip as thin convex quadrilaterals for filling (egui_plot fills only convex
+    /// polygons, and a chip is a crescent): quad k joins outline points k, k+1 of the tool edge
+    /// with the inner-boundary points on the same rays (the outline's layout, see
+    /// `analysis::chip::chip_outline`). Empty if the outline does not have that layout.
+    pub fill: Vec<[PlotPoint; 4]>,
     /// Calls of the core so far (tests check the cache).
     pub computed: u64,
 }
@@ -164,14 +169,40 @@ impl Chip {
         self.key = Some((plan.job.clone(), tooth));
         self.computed += 1;
         let [ox, oy] = g.origin;
-        self.outline = plan.chip_outline(tooth).into_iter().map(|p| PlotPoint::new(p.x + ox, p.y + oy)).collect();
+        let pts: Vec<PlotPoint> =
+            plan.chip_outline(tooth).into_iter().map(|p| PlotPoint::new(p.x + ox, p.y + oy)).collect();
+        self.fill = chip_quads(&pts);
+        self.outline = pts;
+        if let Some(&first) = self.outline.first() {
+            self.outline.push(first);
+        }
     }
 
     /// No chip (no plan shown).
     pub fn clear(&mut self) {
         self.key = None;
         self.outline.clear();
+        self.fill.clear();
     }
+}
+
+/// Points per side of one engaged interval in `Plan::chip_outline` (its n = 24, plus one).
+const CHIP_POINTS_PER_SIDE: usize = 25;
+
+/// Quads of a chip outline made of blocks of [`CHIP_POINTS_PER_SIDE`] points along the tool
+/// edge followed by as many on the inner boundary in reverse (same rays); none otherwise.
+fn chip_quads(pts: &[PlotPoint]) -> Vec<[PlotPoint; 4]> {
+    let m = 2 * CHIP_POINTS_PER_SIDE;
+    if pts.is_empty() || !pts.len().is_multiple_of(m) {
+        return Vec::new();
+    }
+    let mut quads = Vec::new();
+    for block in pts.chunks(m) {
+        for k in 0..CHIP_POINTS_PER_SIDE - 1 {
+            quads.push([block[k], block[k + 1], block[m - 2 - k], block[m - 1 - k]]);
+        }
+    }
+    quads
 }
 
 /// Min/max decimation of a curve sampled along x: at most `max` points (two per bucket), so
@@ -229,7 +260,8 @@ mod tests {
         chip.update(&plan, &g, cutting);
         let core = plan.chip_outline(cutting);
         assert!(core.len() >= 3);
-        assert_eq!(chip.outline.len(), core.len());
+        assert_eq!(chip.outline.len(), core.len() + 1, "closed");
+        assert_eq!(chip.fill.len(), core.len() / 2 - 1, "one quad per pair of rays");
         assert!((chip.outline[0].x - core[0].x - g.origin[0]).abs() < 1e-12);
         assert!((chip.outline[0].y - core[0].y - g.origin[1]).abs() < 1e-12);
         chip.update(&plan, &g, cutting);

@@ -331,7 +331,8 @@ fn teaching_highlights_the_chip_of_a_cutting_tooth_and_none_while_cooling() {
     let outline = &h.state().chip.outline;
     let core = plan.chip_outline(c.tooth);
     assert!(outline.len() >= 3, "chip drawn at a cutting tooth");
-    assert_eq!(outline.len(), core.len());
+    assert_eq!(outline.len(), core.len() + 1, "closed outline");
+    assert!(!h.state().chip.fill.is_empty(), "chip filled");
     assert!((outline[0].x - (core[0].x + g.origin[0])).abs() < 1e-12);
     // scrub into the cooling interval through the UI
     let (a, b) = g.cooling[0];
