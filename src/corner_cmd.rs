@@ -8,8 +8,8 @@ use std::path::PathBuf;
 use trochoplan_core::JobError;
 use trochoplan_core::corner::acceptance::{acceptance_table, markdown};
 use trochoplan_core::corner::{
-    Corner, CornerScenario, CornerSettings, EvaluatorOptions, Method, Polygon, engagement_profile, parse_points,
-    polyline, radial_depth_for_engagement, straight_engagement,
+    Corner, CornerScenario, CornerSettings, EvaluatorOptions, Method, Polygon, engagement_profile, parse_points, polyline,
+    radial_depth_for_engagement, straight_engagement,
 };
 use trochoplan_core::geom::Segment;
 
@@ -118,17 +118,14 @@ impl CornerArgs {
             None => {
                 let a = finite("straight engagement", self.straight_engagement)?;
                 if !(a > 0.0 && a < 180.0) {
-                    return Err(
-                        JobError::range("straight engagement", a, "greater than 0° and less than 180°").to_string()
-                    );
+                    return Err(JobError::range("straight engagement", a, "greater than 0° and less than 180°").to_string());
                 }
                 radial_depth_for_engagement(a.to_radians(), r)
             }
         };
         let mut s = CornerSettings::new(r, step_over).map_err(|e| match e {
             JobError::OutOfRange { name: "a_e", value, .. } => {
-                JobError::range("step-over", value, format!("greater than 0 and less than the tool diameter {d} mm"))
-                    .to_string()
+                JobError::range("step-over", value, format!("greater than 0 and less than the tool diameter {d} mm")).to_string()
             }
             other => other.to_string(),
         })?;
@@ -259,10 +256,8 @@ pub fn engagement(args: &EngagementArgs) -> Result<String, String> {
     let d = finite("tool diameter", args.tool_diameter)?;
     let what_path = args.path_csv.display().to_string();
     let what_stock = args.stock_polygon.display().to_string();
-    let path = polyline(&parse_points(&read(&args.path_csv)?, &what_path).map_err(err)?)
-        .map_err(|e| format!("{what_path}: {e}"))?;
-    let stock = Polygon::new(parse_points(&read(&args.stock_polygon)?, &what_stock).map_err(err)?)
-        .map_err(|e| format!("{what_stock}: {e}"))?;
+    let path = polyline(&parse_points(&read(&args.path_csv)?, &what_path).map_err(err)?).map_err(|e| format!("{what_path}: {e}"))?;
+    let stock = Polygon::new(parse_points(&read(&args.stock_polygon)?, &what_stock).map_err(err)?).map_err(|e| format!("{what_stock}: {e}"))?;
     let prof = engagement_profile(&stock, &[], &path, &EvaluatorOptions::new(d / 2.0, args.spacing)).map_err(err)?;
     let conv = |s: &trochoplan_core::corner::EngagementSample| SampleOut {
         s_mm: s.s_mm,
@@ -322,8 +317,7 @@ mod tests {
         let v: serde_json::Value = serde_json::from_str(&text).expect("json");
         assert!(v["circles"].as_array().is_some_and(|c| !c.is_empty()));
         assert!(v["path_length_mm"].as_f64().is_some_and(|l| l > 0.0));
-        let (m, p) =
-            (v["max_engagement_deg"].as_f64().expect("max"), v["plain_max_engagement_deg"].as_f64().expect("plain"));
+        let (m, p) = (v["max_engagement_deg"].as_f64().expect("max"), v["plain_max_engagement_deg"].as_f64().expect("plain"));
         assert!(m < p, "{m} vs plain {p}");
     }
 

@@ -18,13 +18,7 @@ fn check(method: Method) {
     for r in &rows {
         // The plain ring exceeds the target at every angle of the table.
         assert!(r.plain_max_deg > limit, "{r:?}");
-        assert!(
-            r.body_max_deg <= limit,
-            "{}° {}: body {} > {limit}",
-            r.corner_angle_deg,
-            method.name(),
-            r.body_max_deg
-        );
+        assert!(r.body_max_deg <= limit, "{}° {}: body {} > {limit}", r.corner_angle_deg, method.name(), r.body_max_deg);
         assert!(r.tip_deg <= limit.max(r.tip_limit_deg + 1.0), "{}°: tip {}", r.corner_angle_deg, r.tip_deg);
         assert!(r.max_deg < r.plain_max_deg, "{}°: no improvement", r.corner_angle_deg);
         assert!(r.path_length_mm > 0.0 && r.time_s > 0.0);

@@ -61,9 +61,7 @@ fn evaluator_reproduces_spec_unequal_radii_values() {
     let (o1, o2) = (p2(0.0, 0.0), p2(1.5, 0.0));
     let got = measured_by_lead_in(o1, 8.0, o2, 10.0, 5.0, 0.0);
     assert!((got - 92.866).abs() < 1e-3, "a(0): evaluator {got}");
-    let mx = (0..=400)
-        .map(|k| measured_by_lead_in(o1, 8.0, o2, 10.0, 5.0, (-60.0 + 0.05 * k as f64).to_radians()))
-        .fold(0.0, f64::max);
+    let mx = (0..=400).map(|k| measured_by_lead_in(o1, 8.0, o2, 10.0, 5.0, (-60.0 + 0.05 * k as f64).to_radians())).fold(0.0, f64::max);
     assert!((mx - 98.917).abs() < 2e-3, "max over −60°…−40°: {mx}");
 }
 
@@ -72,12 +70,9 @@ fn model_agrees_with_evaluator_on_other_circles() {
     // Configurations not in the spec: the model's value equals the evaluator's at every 5° of
     // the circle (both ways: neither is the oracle here), and so do the maxima.
     let r = 5.0;
-    for (o2x, o2y, r1, r2) in
-        [(0.8, 0.3, 9.0, 9.5), (0.0, 1.2, 10.0, 10.0), (2.0, -1.0, 9.5, 12.0), (-1.0, 0.5, 7.0, 8.0)]
-    {
+    for (o2x, o2y, r1, r2) in [(0.8, 0.3, 9.0, 9.5), (0.0, 1.2, 10.0, 10.0), (2.0, -1.0, 9.5, 12.0), (-1.0, 0.5, 7.0, 8.0)] {
         let (o1, o2) = (p2(0.0, 0.0), p2(o2x, o2y));
-        let model =
-            TwoCircle { previous: Circle::new(o1, r1), current: Circle::new(o2, r2), tool_radius: r, turn: Turn::Ccw };
+        let model = TwoCircle { previous: Circle::new(o1, r1), current: Circle::new(o2, r2), tool_radius: r, turn: Turn::Ccw };
         let mut ev_max: f64 = 0.0;
         for k in 0..72 {
             let phi = (5.0 * k as f64).to_radians();
@@ -91,11 +86,7 @@ fn model_agrees_with_evaluator_on_other_circles() {
                 continue;
             }
             let a = e.angle.to_degrees();
-            assert!(
-                (a - got).abs() < 1e-3,
-                "O2 = {o2:?}, R1 = {r1}, R2 = {r2}, φ = {}°: model {a}, evaluator {got}",
-                5 * k
-            );
+            assert!((a - got).abs() < 1e-3, "O2 = {o2:?}, R1 = {r1}, R2 = {r2}, φ = {}°: model {a}, evaluator {got}", 5 * k);
         }
         let m = model.max_engagement().angle.to_degrees();
         assert!(ev_max <= m + 1e-3 && ev_max > m - 1.0, "maxima: evaluator {ev_max} (5° grid), model {m}");

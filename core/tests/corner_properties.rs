@@ -55,8 +55,7 @@ fn engagement_is_invariant_under_rotation_and_translation() {
     let s = CornerSettings::new(r, radial_depth_for_engagement(46f64.to_radians(), r)).unwrap();
     let base = Corner::symmetric(75f64.to_radians()).unwrap();
     let (turn, shift) = (0.7, p2(12.0, -5.0));
-    let moved =
-        Corner::new(rotate(base.apex, turn) + shift, rotate(base.dir_in, turn), rotate(base.dir_out, turn)).unwrap();
+    let moved = Corner::new(rotate(base.apex, turn) + shift, rotate(base.dir_in, turn), rotate(base.dir_out, turn)).unwrap();
     let opts = EvaluatorOptions::new(r, 0.5);
     for m in [Method::Plain, Method::Variable, Method::Isometric] {
         let measure = |c: Corner| {

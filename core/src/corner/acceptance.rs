@@ -49,12 +49,7 @@ pub const ANGLES_DEG: [f64; 9] = [30.0, 45.0, 60.0, 75.0, 90.0, 105.0, 120.0, 13
 
 /// One row: plan the plain ring and `method` for the symmetric corner of `angle_deg`, measure
 /// both with the evaluator at `spacing` mm.
-pub fn acceptance_row(
-    angle_deg: f64,
-    method: Method,
-    settings: CornerSettings,
-    spacing: f64,
-) -> Result<AcceptanceRow, JobError> {
+pub fn acceptance_row(angle_deg: f64, method: Method, settings: CornerSettings, spacing: f64) -> Result<AcceptanceRow, JobError> {
     let corner = Corner::symmetric(angle_deg.to_radians())?;
     let sc = CornerScenario::new(corner, settings)?;
     let opts = EvaluatorOptions::new(settings.tool_radius, spacing);
@@ -108,11 +103,7 @@ pub fn acceptance_row(
 }
 
 /// All rows for one method.
-pub fn acceptance_table(
-    method: Method,
-    settings: CornerSettings,
-    spacing: f64,
-) -> Result<Vec<AcceptanceRow>, JobError> {
+pub fn acceptance_table(method: Method, settings: CornerSettings, spacing: f64) -> Result<Vec<AcceptanceRow>, JobError> {
     ANGLES_DEG.iter().map(|&a| acceptance_row(a, method, settings, spacing)).collect()
 }
 

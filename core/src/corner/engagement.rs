@@ -200,8 +200,7 @@ mod tests {
     fn straight_cut_matches_widia_table() {
         // domain-spec §1.1 TEST: ae/D → engagement (deg), D = 10.
         let r = 5.0;
-        for (ae_d, want) in [(0.05, 25.842), (0.10, 36.870), (0.20, 53.130), (0.30, 66.422), (0.50, 90.0), (1.0, 180.0)]
-        {
+        for (ae_d, want) in [(0.05, 25.842), (0.10, 36.870), (0.20, 53.130), (0.30, 66.422), (0.50, 90.0), (1.0, 180.0)] {
             let a = straight_engagement(ae_d * 2.0 * r, r).unwrap();
             close(&format!("ae/D = {ae_d}"), deg(a), want, TOL_DEG);
         }

@@ -51,21 +51,13 @@ impl Polygon {
         }
         for (i, v) in vertices.iter().enumerate() {
             if !(v.x.is_finite() && v.y.is_finite()) {
-                return Err(JobError::range(
-                    "polygon vertex",
-                    format!("#{} ({}, {})", i + 1, v.x, v.y),
-                    "finite coordinates",
-                ));
+                return Err(JobError::range("polygon vertex", format!("#{} ({}, {})", i + 1, v.x, v.y), "finite coordinates"));
             }
         }
         for i in 0..n {
             let len = (vertices[(i + 1) % n] - vertices[i]).norm();
             if len <= 1e-9 {
-                return Err(JobError::range(
-                    "polygon edge length",
-                    format!("{len} (edge #{})", i + 1),
-                    "> 1e-9 mm (degenerate edge)",
-                ));
+                return Err(JobError::range("polygon edge length", format!("{len} (edge #{})", i + 1), "> 1e-9 mm (degenerate edge)"));
             }
         }
         for i in 0..n {
@@ -143,11 +135,8 @@ fn segments_intersect(a: P2, b: P2, c: P2, d: P2) -> bool {
         return true;
     }
     let on = |p: P2, q: P2, x: P2, o: f64| {
-        o.abs() <= 1e-12 * (q - p).norm().max(1.0)
-            && x.x >= p.x.min(q.x) - 1e-12
-            && x.x <= p.x.max(q.x) + 1e-12
-            && x.y >= p.y.min(q.y) - 1e-12
-            && x.y <= p.y.max(q.y) + 1e-12
+        o.abs() <= 1e-12 * (q - p).norm().max(1.0) && x.x >= p.x.min(q.x) - 1e-12 && x.x <= p.x.max(q.x) + 1e-12
+            && x.y >= p.y.min(q.y) - 1e-12 && x.y <= p.y.max(q.y) + 1e-12
     };
     on(c, d, a, d1) || on(c, d, b, d2) || on(a, b, c, d3) || on(a, b, d, d4)
 }
@@ -161,16 +150,12 @@ pub fn parse_points(text: &str, what: &str) -> Result<Vec<P2>, JobError> {
         if line.is_empty() || line.starts_with('#') {
             continue;
         }
-        let fields: Vec<&str> =
-            line.split(|c: char| c == ',' || c == ';' || c.is_whitespace()).filter(|f| !f.is_empty()).collect();
+        let fields: Vec<&str> = line.split(|c: char| c == ',' || c == ';' || c.is_whitespace()).filter(|f| !f.is_empty()).collect();
         let nums: Option<Vec<f64>> = fields.iter().map(|f| f.parse::<f64>().ok()).collect();
         match nums {
             Some(v) if v.len() >= 2 => {
                 if !(v[0].is_finite() && v[1].is_finite()) {
-                    return Err(JobError::File(format!(
-                        "{what} line {}: x and y must be finite numbers, got {line:?}",
-                        i + 1
-                    )));
+                    return Err(JobError::File(format!("{what} line {}: x and y must be finite numbers, got {line:?}", i + 1)));
                 }
                 pts.push(p2(v[0], v[1]));
             }
@@ -309,8 +294,7 @@ fn distance(p: P2, seg: &Segment) -> f64 {
             let v = p - center;
             let ang = v.y.atan2(v.x);
             // Parameter of p's direction along the sweep, in [0, 2π) measured in sweep sense.
-            let rel =
-                if sweep >= 0.0 { (ang - start_angle).rem_euclid(TAU) } else { (start_angle - ang).rem_euclid(TAU) };
+            let rel = if sweep >= 0.0 { (ang - start_angle).rem_euclid(TAU) } else { (start_angle - ang).rem_euclid(TAU) };
             if rel <= sweep.abs() {
                 (v.norm() - radius).abs()
             } else {
@@ -344,9 +328,7 @@ fn flatten(path: &[Segment]) -> Vec<Segment> {
 fn head(seg: &Segment, t: f64) -> Segment {
     match *seg {
         Segment::Line { start, .. } => Segment::Line { start, end: seg.point(t) },
-        Segment::Arc { center, radius, start_angle, sweep } => {
-            Segment::Arc { center, radius, start_angle, sweep: sweep * t }
-        }
+        Segment::Arc { center, radius, start_angle, sweep } => Segment::Arc { center, radius, start_angle, sweep: sweep * t },
         other => other,
     }
 }
@@ -381,11 +363,7 @@ pub fn engagement_profile(
     let lengths: Vec<f64> = path.iter().map(Segment::length).collect();
     let total: f64 = lengths.iter().sum();
     if total / opts.spacing > MAX_POSITIONS {
-        return Err(JobError::range(
-            "spacing",
-            opts.spacing,
-            format!("≥ path length / {MAX_POSITIONS} = {} mm", total / MAX_POSITIONS),
-        ));
+        return Err(JobError::range("spacing", opts.spacing, format!("≥ path length / {MAX_POSITIONS} = {} mm", total / MAX_POSITIONS)));
     }
     let before: Vec<Cutter> = flatten(before).into_iter().map(|s| Cutter::new(s, r)).collect();
     let cutters: Vec<Cutter> = path.iter().map(|s| Cutter::new(*s, r)).collect();

@@ -108,11 +108,7 @@ impl Corner {
     /// along +x: wall 1 comes in from the upper right, wall 2 leaves to the lower right.
     pub fn symmetric(angle: f64) -> Result<Corner, JobError> {
         if !(angle.is_finite() && angle > 0.0 && angle < std::f64::consts::PI) {
-            return Err(JobError::range(
-                "corner angle",
-                format!("{}°", angle.to_degrees()),
-                "strictly between 0° and 180°",
-            ));
+            return Err(JobError::range("corner angle", format!("{}°", angle.to_degrees()), "strictly between 0° and 180°"));
         }
         let h = 0.5 * angle;
         Corner::new(p2(0.0, 0.0), -p2(h.cos(), h.sin()), p2(h.cos(), -h.sin()))
@@ -213,9 +209,6 @@ mod tests {
         assert_eq!(Corner::symmetric(std::f64::consts::PI).unwrap_err().parameter(), Some("corner angle"));
         assert_eq!(Corner::new(p2(0.0, 0.0), p2(0.0, 0.0), p2(1.0, 0.0)).unwrap_err().parameter(), Some("edge length"));
         // A right turn is a reflex (outside) corner for a CCW pocket.
-        assert_eq!(
-            Corner::new(p2(0.0, 0.0), p2(1.0, 0.0), p2(0.0, -1.0)).unwrap_err().parameter(),
-            Some("corner angle")
-        );
+        assert_eq!(Corner::new(p2(0.0, 0.0), p2(1.0, 0.0), p2(0.0, -1.0)).unwrap_err().parameter(), Some("corner angle"));
     }
 }

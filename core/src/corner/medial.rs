@@ -66,11 +66,7 @@ pub fn medial_axis(poly: &Polygon, resolution: f64) -> Result<MedialAxis, JobErr
     for i in 0..v.len() {
         let (a, b) = (to_grid(v[i])?, to_grid(v[(i + 1) % v.len()])?);
         if a == b {
-            return Err(JobError::range(
-                "polygon edge length",
-                (v[(i + 1) % v.len()] - v[i]).norm(),
-                format!("≥ the resolution {resolution} mm"),
-            ));
+            return Err(JobError::range("polygon edge length", (v[(i + 1) % v.len()] - v[i]).norm(), format!("≥ the resolution {resolution} mm")));
         }
         segs.push([a[0] as i32, a[1] as i32, b[0] as i32, b[1] as i32]);
     }
@@ -94,13 +90,7 @@ pub fn medial_axis(poly: &Polygon, resolution: f64) -> Result<MedialAxis, JobErr
         if !(inside(a) && inside(b) && poly.contains((a + b) / 2.0)) || (a - b).norm() <= tol {
             continue;
         }
-        edges.push(AxisEdge {
-            a,
-            b,
-            clearance_a: clearance(poly, a),
-            clearance_b: clearance(poly, b),
-            curved: e.is_curved(),
-        });
+        edges.push(AxisEdge { a, b, clearance_a: clearance(poly, a), clearance_b: clearance(poly, b), curved: e.is_curved() });
     }
     Ok(MedialAxis { edges })
 }
@@ -131,12 +121,7 @@ mod tests {
         let poly = Polygon::new(vec![p2(0.0, 0.0), p2(20.0, 0.0), p2(20.0, 10.0), p2(0.0, 10.0)]).unwrap();
         let ax = medial_axis(&poly, 1e-4).unwrap();
         assert_eq!(ax.edges.len(), 5, "{:?}", ax.edges);
-        for (corner, node) in [
-            ((0.0, 0.0), (5.0, 5.0)),
-            ((20.0, 0.0), (15.0, 5.0)),
-            ((20.0, 10.0), (15.0, 5.0)),
-            ((0.0, 10.0), (5.0, 5.0)),
-        ] {
+        for (corner, node) in [((0.0, 0.0), (5.0, 5.0)), ((20.0, 0.0), (15.0, 5.0)), ((20.0, 10.0), (15.0, 5.0)), ((0.0, 10.0), (5.0, 5.0))] {
             let (end, c) = ax.branch_from(p2(corner.0, corner.1), 1e-3).unwrap();
             assert!((end - p2(node.0, node.1)).norm() < 1e-3, "{corner:?} → {end:?}");
             assert!((c - 5.0).abs() < 1e-3);
@@ -159,15 +144,7 @@ mod tests {
     #[test]
     fn reflex_vertex_gives_a_curved_edge() {
         // L-shape: the reflex corner at (10,10) is bounded by parabolic axis pieces.
-        let poly = Polygon::new(vec![
-            p2(0.0, 0.0),
-            p2(20.0, 0.0),
-            p2(20.0, 10.0),
-            p2(10.0, 10.0),
-            p2(10.0, 20.0),
-            p2(0.0, 20.0),
-        ])
-        .unwrap();
+        let poly = Polygon::new(vec![p2(0.0, 0.0), p2(20.0, 0.0), p2(20.0, 10.0), p2(10.0, 10.0), p2(10.0, 20.0), p2(0.0, 20.0)]).unwrap();
         let ax = medial_axis(&poly, 1e-4).unwrap();
         assert!(ax.edges.iter().any(|e| e.curved), "{:?}", ax.edges);
         for e in &ax.edges {

@@ -25,13 +25,9 @@ pub mod geometry;
 pub mod medial;
 pub mod strategy;
 
-pub use acceptance::{AcceptanceRow, acceptance_row, acceptance_table};
 pub use engagement::{Circle, MaxEngagement, Turn, TwoCircle, radial_depth_for_engagement, straight_engagement};
-pub use evaluator::{
-    EngagementProfile, EngagementSample, EvaluatorOptions, Polygon, engagement_profile, parse_points, polyline,
-};
+pub use evaluator::{EngagementProfile, EngagementSample, EvaluatorOptions, Polygon, engagement_profile, parse_points, polyline};
 pub use geometry::{Corner, LineEq, bisector_point};
 pub use medial::{AxisEdge, MedialAxis, medial_axis};
-pub use strategy::{
-    CornerCircle, CornerPlan, CornerScenario, CornerSettings, Method, first_circle_radius, plan_corner,
-};
+pub use acceptance::{AcceptanceRow, acceptance_row, acceptance_table};
+pub use strategy::{CornerCircle, CornerPlan, CornerScenario, CornerSettings, Method, first_circle_radius, plan_corner};

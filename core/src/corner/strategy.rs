@@ -17,7 +17,7 @@
 //! The medial-axis strategy has no rings: it cuts the corner of a triangular pocket down the
 //! corner's medial-axis branch (see `medial_axis_plan`).
 
-use super::engagement::{Circle, Turn, TwoCircle, straight_engagement};
+use super::engagement::{Circle, TwoCircle, Turn, straight_engagement};
 use super::evaluator::Polygon;
 use super::geometry::Corner;
 use crate::error::JobError;
@@ -107,50 +107,26 @@ impl CornerSettings {
     pub fn validate(&self) -> Result<(), JobError> {
         let r = self.tool_radius;
         if !(r.is_finite() && r > 0.0 && r <= 500.0) {
-            return Err(JobError::range(
-                "tool diameter",
-                2.0 * r,
-                "a finite number from 0 to 1000 mm (exclusive of 0)",
-            ));
+            return Err(JobError::range("tool diameter", 2.0 * r, "a finite number from 0 to 1000 mm (exclusive of 0)"));
         }
         if !(self.step_over.is_finite() && self.step_over > 0.0 && self.step_over < 2.0 * r) {
-            return Err(JobError::range(
-                "step-over",
-                self.step_over,
-                format!("greater than 0 and less than the tool diameter {} mm", 2.0 * r),
-            ));
+            return Err(JobError::range("step-over", self.step_over, format!("greater than 0 and less than the tool diameter {} mm", 2.0 * r)));
         }
         if !(self.target.is_finite() && self.target > 0.0 && self.target < PI) {
-            return Err(JobError::range(
-                "target",
-                format!("{}°", self.target.to_degrees()),
-                "greater than 0° and less than 180°",
-            ));
+            return Err(JobError::range("target", format!("{}°", self.target.to_degrees()), "greater than 0° and less than 180°"));
         }
         if !(self.tolerance.is_finite() && self.tolerance > 0.0 && self.tolerance <= 10f64.to_radians()) {
-            return Err(JobError::range(
-                "tolerance",
-                format!("{}°", self.tolerance.to_degrees()),
-                "greater than 0° and at most 10°",
-            ));
+            return Err(JobError::range("tolerance", format!("{}°", self.tolerance.to_degrees()), "greater than 0° and at most 10°"));
         }
         if !(self.edge_length.is_finite() && self.edge_length > 4.0 * r && self.edge_length <= 1.0e4) {
-            return Err(JobError::range(
-                "edge length",
-                self.edge_length,
-                format!("more than two tool diameters ({} mm) and at most 10000 mm", 4.0 * r),
-            ));
+            return Err(JobError::range("edge length", self.edge_length, format!("more than two tool diameters ({} mm) and at most 10000 mm", 4.0 * r)));
         }
         if !(self.feed_mm_per_min.is_finite() && self.feed_mm_per_min > 0.0) {
             return Err(JobError::range("feed", self.feed_mm_per_min, "a finite number > 0 mm/min"));
         }
         let rh = self.rh();
         if !(rh.is_finite() && rh >= self.r_min() && rh <= 10.0 * r) {
-            return Err(JobError::range(
-                "isometric radius",
-                rh,
-                format!("from r_min = {} mm to 10·r = {} mm", self.r_min(), 10.0 * r),
-            ));
+            return Err(JobError::range("isometric radius", rh, format!("from r_min = {} mm to 10·r = {} mm", self.r_min(), 10.0 * r)));
         }
         Ok(())
     }
@@ -296,11 +272,7 @@ pub struct NextCircle {
 pub fn next_variable_circle(corner: &Corner, r: f64, t_n: f64, target: f64, eps: f64) -> Result<NextCircle, JobError> {
     let alpha = corner.half_angle;
     if t_n.is_nan() || t_n * alpha.sin() <= r {
-        return Err(JobError::range(
-            "t_N",
-            t_n,
-            format!("> r / sin α = {} mm (the current circle must be larger than the tool)", r / alpha.sin()),
-        ));
+        return Err(JobError::range("t_N", t_n, format!("> r / sin α = {} mm (the current circle must be larger than the tool)", r / alpha.sin())));
     }
     let t_m = limit_point(t_n, alpha, r);
     let m_m = engagement_after(corner, r, t_n, t_m);
@@ -370,10 +342,7 @@ pub fn first_circle_radius(s: &CornerSettings) -> Result<f64, JobError> {
         return Err(JobError::range(
             "target",
             format!("{:.3}°", s.target.to_degrees()),
-            format!(
-                "greater than the straight-part engagement {:.3}° (corner circles cut the wall band concavely)",
-                a_str.to_degrees()
-            ),
+            format!("greater than the straight-part engagement {:.3}° (corner circles cut the wall band concavely)", a_str.to_degrees()),
         ));
     }
     let big_r = (2.0 * r * r * (1.0 - ct) - s.step_over * s.step_over) / den;
@@ -391,9 +360,7 @@ fn first_variable_t(sc: &CornerScenario) -> Result<f64, JobError> {
         return Err(JobError::range(
             "edge length",
             sc.settings.edge_length,
-            format!(
-                "at least {need:.3} mm: the first corner circle (R = {big_r:.3} mm) touches the walls {along:.3} mm from the apex"
-            ),
+            format!("at least {need:.3} mm: the first corner circle (R = {big_r:.3} mm) touches the walls {along:.3} mm from the apex"),
         ));
     }
     Ok(t1)
@@ -443,22 +410,18 @@ fn medial_axis_plan(sc: &CornerScenario) -> Result<CornerPlan, JobError> {
     let end2 = corner.apex + corner.dir_out * s.edge_length;
     let pocket = Polygon::new(vec![end1, corner.apex, end2])?;
     let axis = super::medial::medial_axis(&pocket, 1e-4)?;
-    let (node, rc) = axis.branch_from(corner.apex, 1e-3).ok_or_else(|| {
-        JobError::range("polygon", "no medial-axis branch at the corner", "a corner with a Voronoi branch")
-    })?;
+    let (node, rc) = axis
+        .branch_from(corner.apex, 1e-3)
+        .ok_or_else(|| JobError::range("polygon", "no medial-axis branch at the corner", "a corner with a Voronoi branch"))?;
     if rc - r < s.r_min() {
         return Err(JobError::range(
             "edge length",
             s.edge_length,
-            format!(
-                "long enough that the largest circle in the pocket (radius {rc:.3} mm) exceeds the tool radius by r_min = {} mm",
-                s.r_min()
-            ),
+            format!("long enough that the largest circle in the pocket (radius {rc:.3} mm) exceeds the tool radius by r_min = {} mm", s.r_min()),
         ));
     }
     let t_node = (node - corner.apex).dot(&corner.bisector);
-    let mut circles =
-        vec![CornerCircle { tool_circle: Circle::new(node, rc - r), offset_radius: rc, predicted_max: None, steps: 0 }];
+    let mut circles = vec![CornerCircle { tool_circle: Circle::new(node, rc - r), offset_radius: rc, predicted_max: None, steps: 0 }];
     circles.extend(variable_chain(sc, t_node)?);
     // Concentric passes clearing the node circle (tool-centre radii rc − r, rc − 2.5r, …).
     let mut precut = Vec::new();
@@ -515,10 +478,7 @@ fn medial_axis_plan(sc: &CornerScenario) -> Result<CornerPlan, JobError> {
 /// eq. 25: `rh1 = |PH1|/2 − r` with P the point of the previous corner arc PSQ farthest from
 /// wall 1 (our reading); if `rh ≤ rh1` the Fig. 14b layout (not in our fragments) would be
 /// needed and the variable method is used instead (noted).
-fn isometric_circles(
-    sc: &CornerScenario,
-    notes: &mut Vec<String>,
-) -> Result<(Vec<CornerCircle>, Option<P2>), JobError> {
+fn isometric_circles(sc: &CornerScenario, notes: &mut Vec<String>) -> Result<(Vec<CornerCircle>, Option<P2>), JobError> {
     let s = sc.settings;
     let (r, ae, corner) = (s.tool_radius, s.step_over, &sc.corner);
     let alpha = corner.half_angle;
@@ -539,11 +499,7 @@ fn isometric_circles(
     let big_r = rh + r;
     let spacing = isometric_spacing(rh, r, s.target);
     if spacing.is_nan() || spacing <= 1e-6 {
-        return Err(JobError::range(
-            "target",
-            format!("{}°", s.target.to_degrees()),
-            "large enough for a positive isometric centre spacing",
-        ));
+        return Err(JobError::range("target", format!("{}°", s.target.to_degrees()), "large enough for a positive isometric centre spacing"));
     }
     // Along-wall coordinates measure distance from the apex along wall 1.
     let foot = (r + ae) / tan;
@@ -557,10 +513,7 @@ fn isometric_circles(
         return Err(JobError::range(
             "edge length",
             s.edge_length,
-            format!(
-                "at least {:.3} mm for isometric circles of rh = {rh} mm (the first touches wall 1 {first_along:.3} mm from the apex)",
-                first_along + 2.0 * r
-            ),
+            format!("at least {:.3} mm for isometric circles of rh = {rh} mm (the first touches wall 1 {first_along:.3} mm from the apex)", first_along + 2.0 * r),
         ));
     }
     let n = (u1 / spacing).ceil() as usize;
@@ -581,12 +534,7 @@ fn isometric_circles(
             .max_engagement()
             .angle
         });
-        circles.push(CornerCircle {
-            tool_circle: Circle::new(center, rh),
-            offset_radius: big_r,
-            predicted_max,
-            steps: 0,
-        });
+        circles.push(CornerCircle { tool_circle: Circle::new(center, rh), offset_radius: big_r, predicted_max, steps: 0 });
     }
     notes.push(format!(
         "isometric: rh = {rh:.4} mm, rh1 = {rh1:.4} mm (eq. 25), {} circles spaced {step:.4} mm (≤ P(a*) = {spacing:.4} mm); U leg to {x_along:.3} mm from the apex, then back along U to the first circle",
@@ -704,9 +652,7 @@ mod tests {
     fn isometric_spacing_spec_test() {
         // domain-spec §3.4 TEST: rh = 5, r = 5 (Rs = 10), a_lim = 46° → L = 0.7950 mm; §2.2 TEST
         // (same relation): P(30°) = 0.3407, P(60°) = 1.3397; D = 12 (r = 6, rh = 4): 0.7618.
-        for (rh, r, a, want) in
-            [(5.0, 5.0, 46.0, 0.7950), (5.0, 5.0, 30.0, 0.3407), (5.0, 5.0, 60.0, 1.3397), (4.0, 6.0, 46.0, 0.7618)]
-        {
+        for (rh, r, a, want) in [(5.0, 5.0, 46.0, 0.7950), (5.0, 5.0, 30.0, 0.3407), (5.0, 5.0, 60.0, 1.3397), (4.0, 6.0, 46.0, 0.7618)] {
             let l = isometric_spacing(rh, r, f64::to_radians(a));
             assert!((l - want).abs() < 1e-4, "L({rh}, {r}, {a}°) = {l}, want {want}");
             // Independent check: two equal circles that far apart peak at exactly a (§1.2 scan).
@@ -722,8 +668,7 @@ mod tests {
 
     #[test]
     fn paths_are_connected_and_circles_shrink_towards_the_apex() {
-        let settings =
-            CornerSettings::new(5.0, crate::corner::radial_depth_for_engagement(46f64.to_radians(), 5.0)).unwrap();
+        let settings = CornerSettings::new(5.0, crate::corner::radial_depth_for_engagement(46f64.to_radians(), 5.0)).unwrap();
         for angle in [30.0f64, 90.0, 150.0] {
             let sc = CornerScenario::new(Corner::symmetric(angle.to_radians()).unwrap(), settings).unwrap();
             for m in [Method::Plain, Method::Variable, Method::Isometric] {
