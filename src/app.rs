@@ -15,7 +15,8 @@ use eframe::egui;
 use egui::util::undoer::Undoer;
 use panels::Command;
 use panels::compare::{self, MAX_VARIANTS, VariantView};
-use panels::graphics::Graphics;
+use panels::export::{ExportCache, ExportSettings};
+use panels::graphics::{Chip, Graphics};
 use panels::plots::{self, Cursor, Layer, PALETTE};
 use panels::sweep::{SweepRun, SweepSettings};
 use panels::teach::Animation;
@@ -61,6 +62,8 @@ pub enum Tab {
     Plots,
     Compare,
     Sweep,
+    /// The "Export NC…" panel.
+    Export,
 }
 
 /// A pinned variant as persisted.
@@ -80,10 +83,14 @@ pub struct State {
     pub teach: bool,
     /// Cycles drawn in the path view.
     pub cycles_shown: usize,
+    /// The chip view zooms onto the middle of the chip instead of showing all of it.
+    pub chip_close_up: bool,
     /// Overlay pinned variants in the Plots tab too.
     pub overlay_pins: bool,
     pub pinned: Vec<PinnedJob>,
     pub sweep: SweepSettings,
+    /// NC export options.
+    pub export: ExportSettings,
     /// The job file last opened or saved.
     pub file: Option<PathBuf>,
 }
@@ -95,9 +102,11 @@ impl Default for State {
             tab: Tab::Plots,
             teach: false,
             cycles_shown: 5,
+            chip_close_up: true,
             overlay_pins: true,
             pinned: Vec::new(),
             sweep: SweepSettings::default(),
+            export: ExportSettings::default(),
             file: None,
         }
     }
@@ -245,6 +254,8 @@ pub trait FileDialogs {
     fn open_job(&mut self) -> Option<PathBuf>;
     /// Ask where to save the job (`current`: the file last used).
     fn save_job(&mut self, current: Option<&Path>) -> Option<PathBuf>;
+    /// Ask where to save an NC program (`extension`: the dialect's, without the dot).
+    fn save_nc(&mut self, extension: &str) -> Option<PathBuf>;
 }
 
 /// rfd dialogs (XDG desktop portal on Linux).
@@ -269,6 +280,15 @@ impl FileDialogs for NativeDialogs {
             None => d = d.set_file_name("job.toml"),
         }
         d.save_file()
+    }
+
+    fn save_nc(&mut self, extension: &str) -> Option<PathBuf> {
+        rfd::FileDialog::new()
+            .set_title("Export NC program")
+            .add_filter(format!("NC program (.{extension})"), &[extension])
+            .add_filter("All files", &["*"])
+            .set_file_name(format!("slot.{extension}"))
+            .save_file()
     }
 }
 
@@ -315,6 +335,10 @@ pub struct App {
     undoer: Undoer<Job>,
     pub anim: Animation,
     pub sweep: Option<SweepRun>,
+    /// The NC program of the current plan and export settings.
+    pub export: ExportCache,
+    /// The chip of the animated tooth.
+    pub chip: Chip,
     dialogs: Box<dyn FileDialogs>,
     /// Last message for the status bar: (text, is_error).
     pub status: Option<(String, bool)>,
@@ -339,6 +363,8 @@ impl App {
             undoer: Undoer::default(),
             anim: Animation::default(),
             sweep: None,
+            export: ExportCache::default(),
+            chip: Chip::default(),
             dialogs,
             status: None,
             titled: None,
@@ -418,6 +444,10 @@ impl App {
             if self.anim.playing {
                 ui.ctx().request_repaint();
             }
+            match self.anim.cursor(&p.plan) {
+                Some(c) => self.chip.update(&p.plan, &p.graphics, c.tooth),
+                None => self.chip.clear(),
+            }
         }
 
         egui::CentralPanel::default().show(ui, |ui| self.central(ui, &mut cmds));
@@ -471,8 +501,13 @@ impl App {
                     cmds.push(Command::SaveAs);
                 }
                 ui.separator();
-                ui.add_enabled(false, egui::Button::new("Export NC…"))
-                    .on_disabled_hover_text("NC export: coming with issue #4");
+                if ui
+                    .button("Export NC…")
+                    .on_hover_text("Dialect, tolerance, preview, back-plot and save of the NC program")
+                    .clicked()
+                {
+                    self.state.tab = Tab::Export;
+                }
                 ui.separator();
                 if ui.button("Reset to the paper's default job").clicked() {
                     cmds.push(Command::ResetJob);
@@ -494,6 +529,7 @@ impl App {
                 ui.radio_value(&mut self.state.tab, Tab::Plots, "Plots");
                 ui.radio_value(&mut self.state.tab, Tab::Compare, "Compare");
                 ui.radio_value(&mut self.state.tab, Tab::Sweep, "Sweep");
+                ui.radio_value(&mut self.state.tab, Tab::Export, "NC export");
                 ui.separator();
                 ui.checkbox(&mut self.state.teach, "Teaching: explanations under the plots");
                 ui.checkbox(&mut self.state.overlay_pins, "Overlay pinned variants in Plots");
@@ -502,6 +538,7 @@ impl App {
             ui.selectable_value(&mut self.state.tab, Tab::Plots, "Plots");
             ui.selectable_value(&mut self.state.tab, Tab::Compare, "Compare");
             ui.selectable_value(&mut self.state.tab, Tab::Sweep, "Sweep");
+            ui.selectable_value(&mut self.state.tab, Tab::Export, "Export NC");
             ui.separator();
             ui.toggle_value(&mut self.state.teach, "Teach")
                 .on_hover_text("Explanations with formula and source equation under each plot");
@@ -543,6 +580,8 @@ impl App {
                     ui.add(egui::DragValue::new(&mut self.state.cycles_shown).range(2..=20))
                         .labelled_by(l.id)
                         .on_hover_text("Cycles of the tool-centre path drawn in the path view");
+                    ui.checkbox(&mut self.state.chip_close_up, "chip close-up")
+                        .on_hover_text("Chip view: the middle of the chip at 8·h (on) or the whole chip (off)");
                     if !self.variants.is_empty() {
                         ui.checkbox(&mut self.state.overlay_pins, format!("overlay {} pinned", self.variants.len()));
                     }
@@ -554,7 +593,7 @@ impl App {
                 panels::teach::controls(ui, &mut self.anim, &cur.plan);
                 let cursor = self.anim.cursor(&cur.plan);
                 let layers = layers(&self.planner, &self.variants, self.state.overlay_pins);
-                plot_grid(ui, &layers, cursor, self.state.teach);
+                plot_grid(ui, &layers, cursor, &self.chip, self.state.chip_close_up, self.state.teach);
             }
             Tab::Compare => {
                 let views: Vec<VariantView> = self
@@ -574,13 +613,29 @@ impl App {
                 ui.separator();
                 let cursor = self.planner.last.as_ref().and_then(|p| self.anim.cursor(&p.plan));
                 let layers = layers(&self.planner, &self.variants, true);
-                plot_grid(ui, &layers, cursor, self.state.teach);
+                plot_grid(ui, &layers, cursor, &self.chip, self.state.chip_close_up, self.state.teach);
             }
             Tab::Sweep => {
                 if let Some(c) = panels::sweep::show(ui, &mut self.state.sweep, self.sweep.as_ref(), &self.state.job) {
                     cmds.push(c);
                 }
             }
+            Tab::Export => {
+                self.refresh_export();
+                let job_error = self.planner.error.as_ref().map(ToString::to_string);
+                if let Some(c) = panels::export::show(ui, &mut self.state.export, &self.export, job_error.as_deref()) {
+                    cmds.push(c);
+                }
+                // settings edited this frame: regenerate now, so the next frame shows them
+                self.refresh_export();
+            }
+        }
+    }
+
+    /// Regenerate the NC program if the plan or the export settings changed.
+    fn refresh_export(&mut self) {
+        if let Some(p) = &self.planner.last {
+            self.export.update(&p.plan, &self.state.export);
         }
     }
 
@@ -647,6 +702,7 @@ impl App {
                     run.cancel();
                 }
             }
+            Command::ExportNc => self.export_nc(),
         }
     }
 
@@ -662,6 +718,25 @@ impl App {
                 self.status = Some((format!("opened {}", path.display()), false));
             }
             Err(e) => self.status = Some((format!("cannot open {}: {e}", path.display()), true)),
+        }
+    }
+
+    /// Ask for a file and write the previewed NC program to it (atomically).
+    fn export_nc(&mut self) {
+        if let Some(e) = &self.planner.error {
+            self.status = Some((format!("cannot export: job invalid: {e}"), true));
+            return;
+        }
+        self.refresh_export();
+        if let Some(Err(e)) = &self.export.result {
+            self.status = Some((format!("cannot export: {e}"), true));
+            return;
+        }
+        let Some(text) = self.export.view().map(|v| v.text.clone()) else { return };
+        let Some(path) = self.dialogs.save_nc(self.state.export.dialect.extension()) else { return };
+        match write_atomic(&path, text.as_bytes()) {
+            Ok(()) => self.status = Some((format!("exported {} ({} bytes)", path.display(), text.len()), false)),
+            Err(e) => self.status = Some((e, true)),
         }
     }
 
@@ -703,20 +778,50 @@ fn w_of(p: &Plan) -> (f64, f64) {
     (p.metrics.waviness_left_mm, p.metrics.waviness_right_mm)
 }
 
-/// The four plots in a 2 × 2 grid filling the rest of `ui`.
-fn plot_grid(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, teach: bool) {
+/// The four plots in a 2 × 2 grid filling the rest of `ui`; the path view's cell shares its
+/// width with the zoomed chip view.
+fn plot_grid(
+    ui: &mut egui::Ui,
+    layers: &[Layer],
+    cursor: Option<Cursor>,
+    chip: &Chip,
+    chip_close_up: bool,
+    teach: bool,
+) {
     let gap = 8.0;
     let avail = ui.available_size();
     let cell = egui::vec2(((avail.x - gap) / 2.0).max(150.0), ((avail.y - gap) / 2.0).max(140.0));
-    let in_cell = |ui: &mut egui::Ui, f: &dyn Fn(&mut egui::Ui)| {
+    let in_sized = |ui: &mut egui::Ui, cell: egui::Vec2, f: &dyn Fn(&mut egui::Ui)| {
         ui.allocate_ui_with_layout(cell, egui::Layout::top_down(egui::Align::Min), |ui| {
             ui.set_min_size(cell);
+            ui.set_max_width(cell.x);
             f(ui);
         });
     };
+    let in_cell = |ui: &mut egui::Ui, f: &dyn Fn(&mut egui::Ui)| in_sized(ui, cell, f);
+    // top row: the path view shares its cell with the chip view, so it gets more of the width
+    let wide = egui::vec2(((avail.x - gap) * 0.6).max(300.0), cell.y);
+    let narrow = egui::vec2((avail.x - gap - wide.x).max(150.0), cell.y);
     ui.horizontal(|ui| {
-        in_cell(ui, &|ui| plots::path_view(ui, layers, cursor, teach));
-        in_cell(ui, &|ui| plots::h_plot(ui, layers, cursor, teach));
+        in_sized(ui, wide, &|ui| {
+            let w = ui.available_width();
+            let chip_w = (0.45 * w).clamp(150.0, 400.0);
+            let h = ui.available_height();
+            ui.horizontal_top(|ui| {
+                let path_w = w - chip_w - ui.spacing().item_spacing.x;
+                ui.allocate_ui_with_layout(egui::vec2(path_w, h), egui::Layout::top_down(egui::Align::Min), |ui| {
+                    ui.set_min_size(egui::vec2(path_w, h));
+                    ui.set_max_width(path_w);
+                    plots::path_view(ui, layers, cursor, chip, teach);
+                });
+                ui.allocate_ui_with_layout(egui::vec2(chip_w, h), egui::Layout::top_down(egui::Align::Min), |ui| {
+                    ui.set_min_size(egui::vec2(chip_w, h));
+                    ui.set_max_width(chip_w);
+                    plots::chip_view(ui, layers, cursor, chip, chip_close_up, teach);
+                });
+            });
+        });
+        in_sized(ui, narrow, &|ui| plots::h_plot(ui, layers, cursor, teach));
     });
     ui.add_space(gap);
     ui.horizontal(|ui| {

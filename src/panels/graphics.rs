@@ -8,8 +8,8 @@
 //! (rad  to  deg), shifting by a cycle origin and subtracting the wall's valley position.
 
 use egui_plot::PlotPoint;
-use trochoplan_core::Plan;
 use trochoplan_core::analysis::edge::outer_offset_points;
+use trochoplan_core::{Plan, ValidJob};
 
 /// Most points of a time series handed to egui_plot (min/max decimation above this).
 pub const MAX_SERIES_POINTS: usize = 2000;
@@ -143,6 +143,68 @@ impl Graphics {
     }
 }
 
+/// The chip of the animated tooth (`Plan::chip_outline`) in the path view's absolute
+/// coordinates: the core's outline shifted by the shown cycle's origin, recomputed only when
+/// the plan or the tooth changed (not every frame).
+#[derive(Clone, Debug, Default)]
+pub struct Chip {
+    key: Option<(ValidJob, usize)>,
+    /// Closed outline (mm, last point = first); empty when the tooth cuts nothing.
+    pub outline: Vec<PlotPoint>,
+    /// The chip as thin convex quadrilaterals for filling (egui_plot fills only convex
+    /// polygons, and a chip is a crescent): quad k joins outline points k, k+1 of the tool edge
+    /// with the inner-boundary points on the same rays (the outline's layout, see
+    /// `analysis::chip::chip_outline`). Empty if the outline does not have that layout.
+    pub fill: Vec<[PlotPoint; 4]>,
+    /// Calls of the core so far (tests check the cache).
+    pub computed: u64,
+}
+
+impl Chip {
+    /// The chip of tooth `tooth` of `plan.series`, drawn with `g` (same plan).
+    pub fn update(&mut self, plan: &Plan, g: &Graphics, tooth: usize) {
+        if self.key.as_ref().is_some_and(|(j, t)| *j == plan.job && *t == tooth) {
+            return;
+        }
+        self.key = Some((plan.job.clone(), tooth));
+        self.computed += 1;
+        let [ox, oy] = g.origin;
+        let pts: Vec<PlotPoint> =
+            plan.chip_outline(tooth).into_iter().map(|p| PlotPoint::new(p.x + ox, p.y + oy)).collect();
+        self.fill = chip_quads(&pts);
+        self.outline = pts;
+        if let Some(&first) = self.outline.first() {
+            self.outline.push(first);
+        }
+    }
+
+    /// No chip (no plan shown).
+    pub fn clear(&mut self) {
+        self.key = None;
+        self.outline.clear();
+        self.fill.clear();
+    }
+}
+
+/// Points per side of one engaged interval in `Plan::chip_outline` (its n = 24, plus one).
+const CHIP_POINTS_PER_SIDE: usize = 25;
+
+/// Quads of a chip outline made of blocks of [`CHIP_POINTS_PER_SIDE`] points along the tool
+/// edge followed by as many on the inner boundary in reverse (same rays); none otherwise.
+fn chip_quads(pts: &[PlotPoint]) -> Vec<[PlotPoint; 4]> {
+    let m = 2 * CHIP_POINTS_PER_SIDE;
+    if pts.is_empty() || !pts.len().is_multiple_of(m) {
+        return Vec::new();
+    }
+    let mut quads = Vec::new();
+    for block in pts.chunks(m) {
+        for k in 0..CHIP_POINTS_PER_SIDE - 1 {
+            quads.push([block[k], block[k + 1], block[m - 2 - k], block[m - 1 - k]]);
+        }
+    }
+    quads
+}
+
 /// Min/max decimation of a curve sampled along x: at most `max` points (two per bucket), so
 /// that peaks survive. Returns the points unchanged when there are few enough.
 pub fn decimate(points: &[[f64; 2]], max: usize) -> Vec<PlotPoint> {
@@ -186,5 +248,25 @@ mod tests {
         let n = g.path_before.len() + g.path_current.len() + g.path_after.len();
         assert!(n < 1000, "{n} path points for a 1 m slot");
         assert!(g.h.len() <= MAX_SERIES_POINTS);
+    }
+
+    #[test]
+    fn chip_is_the_cores_outline_at_the_shown_cycle_and_cached() {
+        let plan = trochoplan_core::plan(&trochoplan_core::Job::default()).expect("valid");
+        let g = Graphics::new(&plan, 5);
+        let cutting = plan.series.iter().position(|t| t.cutting).expect("a cutting tooth");
+        let cooling = plan.series.iter().position(|t| !t.cutting).expect("a cooling tooth");
+        let mut chip = Chip::default();
+        chip.update(&plan, &g, cutting);
+        let core = plan.chip_outline(cutting);
+        assert!(core.len() >= 3);
+        assert_eq!(chip.outline.len(), core.len() + 1, "closed");
+        assert_eq!(chip.fill.len(), core.len() / 2 - 1, "one quad per pair of rays");
+        assert!((chip.outline[0].x - core[0].x - g.origin[0]).abs() < 1e-12);
+        assert!((chip.outline[0].y - core[0].y - g.origin[1]).abs() < 1e-12);
+        chip.update(&plan, &g, cutting);
+        assert_eq!(chip.computed, 1, "same tooth: cached");
+        chip.update(&plan, &g, cooling);
+        assert!(chip.outline.is_empty(), "no chip while cooling");
     }
 }

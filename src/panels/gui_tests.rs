@@ -20,6 +20,9 @@ impl FileDialogs for FakeDialogs {
     fn save_job(&mut self, _current: Option<&Path>) -> Option<PathBuf> {
         self.save.clone()
     }
+    fn save_nc(&mut self, _extension: &str) -> Option<PathBuf> {
+        self.save.clone()
+    }
 }
 
 fn harness_with(app: App) -> Harness<'static, App> {
@@ -258,4 +261,88 @@ fn frame_time_while_dragging_a_slider() {
         app.planner.plan_ms
     );
     assert!(app.planner.replans > 100, "replanned while dragging: {}", app.planner.replans);
+}
+
+fn export_text(h: &Harness<'_, App>) -> String {
+    h.state().export.view().expect("a program").text.clone()
+}
+
+#[test]
+fn export_panel_previews_each_dialect_reports_errors_and_saves_the_previewed_text() {
+    use panels::export::label as nc;
+    let dir = tempfile::tempdir().expect("tempdir");
+    let file = dir.path().join("slot.ngc");
+    let app = App::new(Job::default(), None, Box::new(FakeDialogs { open: None, save: Some(file.clone()) }));
+    let mut h = harness_with(app);
+    h.get_by_label("File").click();
+    h.run();
+    h.get_by_label("Export NC…").click();
+    h.run();
+    assert_eq!(h.state().state.tab, Tab::Export);
+    let linuxcnc = export_text(&h);
+    assert!(linuxcnc.contains("G21") && linuxcnc.contains("G64 P"), "{linuxcnc}");
+    assert!(shows(&h, "G17 G21 G40 G49 G80 G90 G91.1 G94"), "preview shows the set-up block");
+    assert!(!h.state().export.view().expect("view").backplot.is_empty(), "back-plot drawn");
+    let generated = h.state().export.generated;
+    h.run();
+    assert_eq!(h.state().export.generated, generated, "not regenerated per frame");
+
+    h.get_by_label("Sinumerik 840D").click();
+    h.run();
+    let sinumerik = export_text(&h);
+    assert_ne!(sinumerik, linuxcnc);
+    assert!(sinumerik.contains("G71") && sinumerik.starts_with("; TrochoPlan slot"), "{sinumerik}");
+    assert!(!sinumerik.contains("G21"));
+    assert!(shows(&h, "G17 G40 G71 G90 G94"), "preview follows the dialect");
+
+    // an invalid tolerance: the core's message in the panel, no panic, nothing to save
+    h.get_by_role_and_label(Role::Slider, nc::TOLERANCE).set_value_accesskit(5.0);
+    h.run();
+    assert_eq!(h.state().state.export.tolerance_mm, 5.0);
+    let opts = trochoplan_core::nc::NcOptions { tolerance_mm: 5.0, ..Default::default() };
+    let msg = opts.validate().expect_err("invalid").to_string();
+    assert!(shows(&h, &format!("Cannot write the program: {msg}")), "error shown: {msg}");
+    assert!(h.query_by_label(nc::SAVE).is_none(), "no save button without a program");
+
+    h.get_by_role_and_label(Role::Slider, nc::TOLERANCE).set_value_accesskit(0.01);
+    h.get_by_label(nc::COMPACT).click();
+    h.run();
+    let view = h.state().export.view().expect("program").clone();
+    assert!(view.text.contains("GOTOB"), "compact Sinumerik loop");
+    assert!(view.backplot_note.is_some() && !view.backplot.is_empty(), "loop back-plotted as expanded");
+    h.get_by_label(nc::SAVE).click();
+    h.run();
+    let saved = std::fs::read_to_string(&file).expect("saved");
+    assert_eq!(saved, view.text, "the file holds the previewed text");
+    let (status, is_err) = h.state().status.clone().expect("status");
+    assert!(!is_err && status.starts_with("exported"), "{status}");
+}
+
+#[test]
+fn teaching_highlights_the_chip_of_a_cutting_tooth_and_none_while_cooling() {
+    let mut h = harness();
+    // the animation starts at the h_max tooth: it cuts
+    let (plan, g) = {
+        let p = h.state().planner.last.as_ref().expect("plan");
+        (p.plan.clone(), p.graphics.clone())
+    };
+    let c = h.state().anim.cursor(&plan).expect("cursor");
+    assert!(c.cutting);
+    let outline = &h.state().chip.outline;
+    let core = plan.chip_outline(c.tooth);
+    assert!(outline.len() >= 3, "chip drawn at a cutting tooth");
+    assert_eq!(outline.len(), core.len() + 1, "closed outline");
+    assert!(!h.state().chip.fill.is_empty(), "chip filled");
+    assert!((outline[0].x - (core[0].x + g.origin[0])).abs() < 1e-12);
+    // scrub into the cooling interval through the UI
+    let (a, b) = g.cooling[0];
+    h.get_by_role_and_label(Role::Slider, "t").set_value_accesskit(0.5 * (a + b));
+    h.run();
+    let c = h.state().anim.cursor(&plan).expect("cursor");
+    assert!(!c.cutting, "cooling tooth at t = {}", c.t_s);
+    assert!(h.state().chip.outline.is_empty(), "no chip while cooling");
+    // and back to a cutting tooth
+    h.get_by_label("at h_max").click();
+    h.run();
+    assert!(!h.state().chip.outline.is_empty());
 }

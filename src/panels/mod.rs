@@ -2,6 +2,7 @@
 //! or return a [`Command`]; commands run after all panels have drawn (see `app.rs`).
 
 pub mod compare;
+pub mod export;
 pub mod graphics;
 pub mod metrics;
 pub mod params;
@@ -26,4 +27,6 @@ pub enum Command {
     LoadPinned(usize),
     StartSweep,
     CancelSweep,
+    /// Ask for a file and write the previewed NC program.
+    ExportNc,
 }

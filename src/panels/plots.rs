@@ -1,7 +1,7 @@
 //! The four plots of a plan (and of pinned variants, overlaid). Each function only converts
 //! cached [`Graphics`] into egui_plot items; no geometry is computed here.
 
-use super::graphics::Graphics;
+use super::graphics::{Chip, Graphics};
 use eframe::egui::{self, Color32, RichText, Stroke};
 use egui_plot::{
     AxisHints, ColorConflictHandling, Corner, HLine, Legend, Line, LineStyle, Plot, PlotPoint, PlotPoints, Points,
@@ -23,6 +23,8 @@ pub struct Layer<'a> {
 /// Where the animation is: time in the steady-state cycle and the tooth there.
 #[derive(Clone, Copy, Debug)]
 pub struct Cursor {
+    /// Index of the tooth in `Plan::series`.
+    pub tooth: usize,
     pub t_s: f64,
     /// Tool centre at that tooth, relative to the cycle origin (mm).
     pub centre: [f64; 2],
@@ -49,6 +51,9 @@ pub mod explain {
         y = b·sin θ + s·θ/2π, with a = (B − D)/2 and b = r_e·a (eq. 2). Dashed: the tool edge of the \
         previous cycle C₂, the offset of C₁ by R (eq. 3); shaded: the region that cycle swept. Circle: the tool C₃ (eq. 5) at the current \
         tooth, red while it cuts. Grey lines: the slot walls x = ±B/2. Equal axis scale.";
+    pub const CHIP: &str = "Chip cut by the current tooth (Plan::chip_outline): between this \
+        tooth's edge C₃ (eq. 5), the previous tooth's edge f_z back and the previous cycle's edge \
+        C₂ (eq. 3); its thickness along the ray from the tool centre is h (eqs. 4, 6).";
     pub const H: &str = "Local maximum chip thickness per tooth, h = |DB| (eq. 4): B is where the \
         previous tooth's circle meets the previous cycle's edge C₂ (eqs. 3, 5), D the point of the \
         current tool circle on the ray O_C-B (eq. 6). Teeth are f_z = f_r/(n·z) apart along the path. \
@@ -66,7 +71,11 @@ pub mod explain {
 
 fn title(ui: &mut egui::Ui, text: &str, explanation: &str, teach: bool) {
     ui.horizontal(|ui| {
-        ui.label(RichText::new(text).strong());
+        // a narrow cell truncates the title (full text on hover) instead of growing
+        ui.scope(|ui| {
+            ui.set_max_width((ui.available_width() - 28.0).max(40.0));
+            ui.add(egui::Label::new(RichText::new(text).strong()).truncate()).on_hover_text(explanation);
+        });
         ui.label(RichText::new("(?)").weak()).on_hover_text(explanation);
     });
     if teach {
@@ -117,8 +126,9 @@ fn named(layers: &[Layer], l: &Layer, what: &str) -> String {
 }
 
 /// Path view: tool-centre path over a few cycles, slot walls, previous cycle's edge and the tool
-/// at the cursor. Equal axis scale.
-pub fn path_view(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, teach: bool) {
+/// at the cursor with the chip it cuts (`chip`: closed outline, absolute mm; empty when the tooth
+/// cuts nothing). Equal axis scale.
+pub fn path_view(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, chip: &Chip, teach: bool) {
     title(ui, "Path view (tool centre, slot walls, previous cycle's edge)", explain::PATH, teach);
     base_plot_at(ui, "path_view", Corner::LeftBottom)
         .data_aspect(1.0)
@@ -181,6 +191,7 @@ pub fn path_view(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, te
                         Polygon::new("tool at current tooth", circle(centre, g.tool_r)).stroke(stroke).fill_color(fill),
                     );
                     p.points(Points::new("", vec![centre]).radius(4.0).color(stroke.color));
+                    draw_chip(p, chip, "chip of the current tooth", 0.9, 1.5);
                     p.text(
                         Text::new(
                             "",
@@ -193,6 +204,134 @@ pub fn path_view(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, te
                 }
             }
         });
+}
+
+/// Chip view: the path view zoomed onto the chip of the current tooth (a chip is ~0.06 mm thick
+/// and a few mm long: invisible at the path view's scale). The bounds follow the chip: its whole
+/// outline, or with `close_up` a square of 8·h around the middle of the chip (halfway between
+/// the middle points of its outer and inner side, which is where h usually is); while no tooth
+/// cuts, the view shows the tool and says so. Equal axis scale.
+pub fn chip_view(
+    ui: &mut egui::Ui,
+    layers: &[Layer],
+    cursor: Option<Cursor>,
+    chip: &Chip,
+    close_up: bool,
+    teach: bool,
+) {
+    let what = if close_up { "Chip of the current tooth (close-up)" } else { "Chip of the current tooth (zoomed)" };
+    title(ui, what, explain::CHIP, teach);
+    let Some(l) = layers.iter().find(|l| l.primary) else { return };
+    let g = l.g;
+    let centre = cursor.map(|c| [g.origin[0] + c.centre[0], g.origin[1] + c.centre[1]]);
+    // bounds: the chip's box with a margin, or the tool when there is no chip
+    let bounds = if chip.outline.is_empty() {
+        centre.map(|c| ([c[0] - 1.2 * g.tool_r, c[1] - 1.2 * g.tool_r], [c[0] + 1.2 * g.tool_r, c[1] + 1.2 * g.tool_r]))
+    } else if close_up {
+        let pts = &chip.outline[..chip.outline.len() - 1];
+        let n = pts.len();
+        let (a, b) = (pts[n / 4], pts[n - 1 - n / 4]);
+        let mid = [0.5 * (a.x + b.x), 0.5 * (a.y + b.y)];
+        let half = cursor.map_or(0.1, |c| (4.0 * c.h_mm).max(0.1));
+        Some(([mid[0] - half, mid[1] - half], [mid[0] + half, mid[1] + half]))
+    } else {
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in &chip.outline {
+            lo = [lo[0].min(p.x), lo[1].min(p.y)];
+            hi = [hi[0].max(p.x), hi[1].max(p.y)];
+        }
+        let m = 0.15 * (hi[0] - lo[0]).max(hi[1] - lo[1]).max(0.05);
+        Some(([lo[0] - m, lo[1] - m], [hi[0] + m, hi[1] + m]))
+    };
+    // about square (equal scale), with room below for the readout
+    let side = ui.available_width().min(ui.available_height() - 40.0).max(80.0);
+    // no legend: it would hide the chip in this small view; the readout below names the lines
+    Plot::new("chip_view")
+        .width(ui.available_width().max(80.0))
+        .height(side)
+        .data_aspect(1.0)
+        .allow_drag(false)
+        .allow_zoom(false)
+        .allow_scroll(false)
+        .custom_x_axes(x_axis("x [mm]"))
+        .y_axis_label("y [mm]")
+        .show(ui, |p| {
+            if let Some((lo, hi)) = bounds {
+                p.set_plot_bounds(egui_plot::PlotBounds::from_min_max(lo, hi));
+            }
+            p.line(
+                Line::new("previous cycle's edge C₂", PlotPoints::Borrowed(&g.previous_edge))
+                    .color(l.color)
+                    .style(LineStyle::dashed_loose())
+                    .width(1.2),
+            );
+            if let Some(c) = centre {
+                p.line(
+                    Line::new("tool edge at current tooth", circle_fine(c, g.tool_r))
+                        .color(Color32::DARK_GRAY)
+                        .width(1.5),
+                );
+            }
+            if chip.outline.is_empty() {
+                if let Some(c) = centre {
+                    p.text(
+                        Text::new("", PlotPoint::new(c[0], c[1]), "no chip: this tooth cuts nothing (cooling)")
+                            .color(Color32::DARK_GRAY),
+                    );
+                }
+            } else {
+                draw_chip(p, chip, "chip", 0.6, 2.0);
+                if let Some(c) = cursor {
+                    let outline = &chip.outline;
+                    let top = outline.iter().map(|p| p.y).fold(f64::NEG_INFINITY, f64::max);
+                    let xs = outline.iter().map(|p| p.x).sum::<f64>() / outline.len() as f64;
+                    p.text(
+                        Text::new("", PlotPoint::new(xs, top), format!("h = {:.4} mm", c.h_mm))
+                            .anchor(egui::Align2::CENTER_BOTTOM)
+                            .color(CHIP_COLOR),
+                    );
+                }
+            }
+        });
+    if let Some(c) = cursor {
+        let text = if chip.outline.is_empty() {
+            format!("tooth {}: no chip (cooling)", c.tooth)
+        } else {
+            format!(
+                "tooth {}: h = {:.4} mm, {:.1}° engaged. True scale; red: chip, grey: tool edge, \
+                 dashed: previous cycle's edge",
+                c.tooth, c.h_mm, c.engagement_deg
+            )
+        };
+        ui.add(egui::Label::new(RichText::new(text).small()).wrap());
+    }
+}
+
+/// The chip filled (convex quads) and outlined.
+fn draw_chip<'a>(p: &mut egui_plot::PlotUi<'a>, chip: &'a Chip, name: &str, fill_alpha: f32, width: f32) {
+    if chip.outline.is_empty() {
+        return;
+    }
+    for (k, q) in chip.fill.iter().enumerate() {
+        let pts: Vec<[f64; 2]> = q.iter().map(|p| [p.x, p.y]).collect();
+        p.polygon(
+            Polygon::new(if k == 0 { name } else { "" }, pts)
+                .fill_color(CHIP_COLOR.gamma_multiply(fill_alpha))
+                .stroke(Stroke::new(0.0, CHIP_COLOR)),
+        );
+    }
+    p.line(Line::new(name, PlotPoints::Borrowed(&chip.outline)).color(CHIP_COLOR).width(width));
+}
+
+/// A circle with enough points to look round when zoomed onto a chip (0.1 mm view of a 5 mm
+/// radius).
+fn circle_fine(c: [f64; 2], r: f64) -> Vec<[f64; 2]> {
+    (0..=1440)
+        .map(|i| {
+            let a = i as f64 / 1440.0 * std::f64::consts::TAU;
+            [c[0] + r * a.cos(), c[1] + r * a.sin()]
+        })
+        .collect()
 }
 
 /// h over one steady-state cycle with h_max, t_hmax and the cooling intervals.

@@ -1,6 +1,6 @@
 //! Teaching: play/pause/scrub the tool along one steady-state cycle; the current tooth is shown
-//! in the path view (the tool circle, red while it cuts) and as a cursor in the h and engagement
-//! plots. The explanation texts live with the plots (`plots::explain`).
+//! in the path view (the tool circle, red while it cuts, and the chip it cuts, also zoomed in the
+//! chip view beside it) and as a cursor in the h and engagement plots. The explanation texts live with the plots (`plots::explain`).
 
 use super::plots::Cursor;
 use eframe::egui::{self, RichText};
@@ -46,8 +46,10 @@ impl Animation {
         let series = &plan.series;
         let dt = if series.len() > 1 { series[1].time_s - series[0].time_s } else { 1.0 };
         let i = ((t - series.first()?.time_s) / dt).floor().max(0.0) as usize;
-        let s = series.get(i.min(series.len() - 1))?;
+        let tooth = i.min(series.len() - 1);
+        let s = series.get(tooth)?;
         Some(Cursor {
+            tooth,
             t_s: s.time_s,
             centre: [s.x_mm, s.y_mm],
             h_mm: s.h_mm,

@@ -19,8 +19,11 @@
 //! R-parameter loop (§5.1, Grechishnikov et al. 2017) with the same per-cycle blocks, written
 //! relative to the cycle origin (`Y[#<oy>+…]`, `Y=R10+…`).
 
+pub mod backplot;
 mod dialect;
 mod writer;
+
+pub use backplot::backplot;
 
 pub use dialect::{CommentStyle, Dialect, DialectSpec, LoopStyle, ToolCall, sanitize_comment};
 pub use writer::{Writer, YForm};

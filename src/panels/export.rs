@@ -1,0 +1,385 @@
+//! "Export NC…" panel (issue #4, GUI part): dialect, tolerance and options, a read-only preview
+//! of the program text, the program's own back-plot over the planned path, and a save button.
+//!
+//! The program comes from the core (`nc::program`), the back-plot from interpreting that text
+//! (`nc::backplot`), both computed once per (plan, settings) in [`ExportCache`], not per frame.
+//! Compact loop programs are not interpreted: their back-plot is that of the expanded program
+//! with the same options (the core guarantees the same motion), and the panel says so.
+
+use super::Command;
+use super::params::ERROR_COLOR;
+use eframe::egui::{self, Color32, RichText, Slider, SliderClamping};
+use egui_plot::{Corner, Legend, Line, Plot, PlotPoint, PlotPoints};
+use serde::{Deserialize, Serialize};
+use trochoplan_core::Plan;
+use trochoplan_core::job::ValidJob;
+use trochoplan_core::nc::{self, DEFAULT_TOLERANCE_MM, Dialect, NcOptions};
+
+/// Accessible names of the panel's inputs (tests find them by these).
+pub mod label {
+    pub const TOLERANCE: &str = "NC tolerance";
+    pub const LINEAR: &str = "Linear segments (G1 chords only)";
+    pub const COMPACT: &str = "Compact loop";
+    pub const COOLANT: &str = "Coolant (M8/M9)";
+    pub const RETURN_FEED: &str = "Faster return feed";
+    pub const RETURN_FEED_VALUE: &str = "Return feed";
+    pub const SAVE: &str = "Save NC program…";
+}
+
+/// Chord tolerance of the drawn back-plot (mm), raised for very long programs.
+const BACKPLOT_CHORD_MM: f64 = 0.002;
+/// Most back-plot points drawn before the chord tolerance is raised.
+const MAX_BACKPLOT_POINTS: usize = 60_000;
+/// Points per path segment of the planned path under the back-plot.
+const PLANNED_POINTS_PER_SEGMENT: usize = 48;
+
+/// The four dialects as the GUI persists them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum NcDialect {
+    #[default]
+    LinuxCnc,
+    Fanuc,
+    Grbl,
+    Sinumerik,
+}
+
+impl NcDialect {
+    pub const ALL: [NcDialect; 4] = [NcDialect::LinuxCnc, NcDialect::Fanuc, NcDialect::Grbl, NcDialect::Sinumerik];
+
+    pub fn core(self) -> Dialect {
+        match self {
+            NcDialect::LinuxCnc => Dialect::LinuxCnc,
+            NcDialect::Fanuc => Dialect::Fanuc,
+            NcDialect::Grbl => Dialect::Grbl,
+            NcDialect::Sinumerik => Dialect::Sinumerik,
+        }
+    }
+
+    /// Radio-button label.
+    pub fn label(self) -> &'static str {
+        match self {
+            NcDialect::LinuxCnc => "LinuxCNC",
+            NcDialect::Fanuc => "Fanuc-style ISO",
+            NcDialect::Grbl => "GRBL",
+            NcDialect::Sinumerik => "Sinumerik 840D",
+        }
+    }
+
+    fn tooltip(self) -> &'static str {
+        match self {
+            NcDialect::LinuxCnc => "RS274NGC: G64 P blending at the tolerance, O-word while loop available.",
+            NcDialect::Fanuc => "Fanuc-style ISO: % tape marks, program number O1000, 3 decimals.",
+            NcDialect::Grbl => "GRBL 1.1: no tool change or loops; arcs split into half circles at most.",
+            NcDialect::Sinumerik => "Siemens Sinumerik 840D: ; comments, G71, R-parameter loop available.",
+        }
+    }
+
+    /// File extension offered by the save dialog.
+    pub fn extension(self) -> &'static str {
+        match self {
+            NcDialect::LinuxCnc => "ngc",
+            NcDialect::Fanuc => "nc",
+            NcDialect::Grbl => "gcode",
+            NcDialect::Sinumerik => "mpf",
+        }
+    }
+}
+
+/// The export options the user chose (persisted with the rest of the state).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct ExportSettings {
+    pub dialect: NcDialect,
+    pub tolerance_mm: f64,
+    pub linear_segments: bool,
+    pub compact: bool,
+    pub coolant: bool,
+    pub return_feed: bool,
+    pub return_feed_mm_per_min: f64,
+}
+
+impl Default for ExportSettings {
+    fn default() -> Self {
+        ExportSettings {
+            dialect: NcDialect::LinuxCnc,
+            tolerance_mm: DEFAULT_TOLERANCE_MM,
+            linear_segments: false,
+            compact: false,
+            coolant: false,
+            return_feed: false,
+            return_feed_mm_per_min: 1800.0,
+        }
+    }
+}
+
+impl ExportSettings {
+    /// The core's options (validated by the core when the program is written).
+    pub fn options(&self) -> NcOptions {
+        let dialect = self.dialect.core();
+        NcOptions {
+            dialect,
+            tolerance_mm: self.tolerance_mm,
+            linear_segments: self.linear_segments,
+            coolant: self.coolant,
+            return_feed_mm_per_min: self.return_feed.then_some(self.return_feed_mm_per_min),
+            compact: self.compact,
+            ..NcOptions::default()
+        }
+    }
+}
+
+/// A written program and its back-plot, ready to draw.
+#[derive(Clone, Debug)]
+pub struct ExportView {
+    pub text: String,
+    /// Line start offsets of `text` (the preview draws only the visible rows).
+    line_starts: Vec<usize>,
+    pub blocks: usize,
+    /// The program's own motion (XY, mm), from its text.
+    pub backplot: Vec<PlotPoint>,
+    /// Why the back-plot is not of the previewed text itself, if it is not.
+    pub backplot_note: Option<String>,
+    /// Why there is no back-plot (the program itself is fine).
+    pub backplot_error: Option<String>,
+    /// The planned tool-centre path (XY, mm).
+    pub planned: Vec<PlotPoint>,
+}
+
+impl ExportView {
+    fn line(&self, i: usize) -> &str {
+        let start = self.line_starts[i];
+        let end = self.line_starts.get(i + 1).map_or(self.text.len(), |&e| e);
+        self.text[start..end].trim_end_matches('\n')
+    }
+
+    fn lines(&self) -> usize {
+        self.line_starts.len()
+    }
+}
+
+/// The program of the last (plan, settings), recomputed only when either changed.
+#[derive(Default)]
+pub struct ExportCache {
+    key: Option<(ValidJob, ExportSettings)>,
+    /// The program and back-plot, or the core's message.
+    pub result: Option<Result<ExportView, String>>,
+    /// Number of programs generated (tests check the cache).
+    pub generated: u64,
+}
+
+impl ExportCache {
+    /// Regenerate if `plan` or `settings` changed since the last call.
+    pub fn update(&mut self, plan: &Plan, settings: &ExportSettings) {
+        if self.key.as_ref().is_some_and(|(j, s)| *j == plan.job && s == settings) {
+            return;
+        }
+        self.key = Some((plan.job.clone(), settings.clone()));
+        self.generated += 1;
+        self.result = Some(generate(plan, settings));
+    }
+
+    /// The current program, if it was written without error.
+    pub fn view(&self) -> Option<&ExportView> {
+        self.result.as_ref().and_then(|r| r.as_ref().ok())
+    }
+}
+
+fn to_points(pts: Vec<trochoplan_core::geom::P2>) -> Vec<PlotPoint> {
+    pts.into_iter().map(|p| PlotPoint::new(p.x, p.y)).collect()
+}
+
+fn generate(plan: &Plan, settings: &ExportSettings) -> Result<ExportView, String> {
+    let opts = settings.options();
+    let program = nc::program(plan, &opts).map_err(|e| e.to_string())?;
+    // Loop programs are not interpreted: back-plot the expanded program of the same options.
+    let (plotted, note) = if opts.compact {
+        let expanded = NcOptions { compact: false, ..opts.clone() };
+        let text = nc::program(plan, &expanded).map_err(|e| e.to_string())?.text;
+        let note = "Back-plot of the expanded program with the same options: the loop form \
+            describes the same motion (checked by the core's tests); loops are not interpreted here.";
+        (text, Some(note.to_owned()))
+    } else {
+        (program.text.clone(), None)
+    };
+    let mut chord = BACKPLOT_CHORD_MM;
+    let mut backplot = nc::backplot(&plotted, opts.dialect, chord);
+    while matches!(&backplot, Ok(p) if p.len() > MAX_BACKPLOT_POINTS) && chord < 0.1 {
+        chord *= 4.0;
+        backplot = nc::backplot(&plotted, opts.dialect, chord);
+    }
+    let (backplot, backplot_error) = match backplot {
+        Ok(p) => (to_points(p), None),
+        Err(e) => (Vec::new(), Some(e)),
+    };
+    let path = &plan.path;
+    let per_segment = (PLANNED_POINTS_PER_SEGMENT * 40 / path.cycles.max(1)).clamp(8, PLANNED_POINTS_PER_SEGMENT);
+    let planned = to_points(path.sample_cycles(0, path.cycles, per_segment));
+    let mut line_starts = vec![0];
+    line_starts.extend(program.text.match_indices('\n').map(|(i, _)| i + 1).filter(|&i| i < program.text.len()));
+    Ok(ExportView {
+        text: program.text,
+        line_starts,
+        blocks: program.blocks,
+        backplot,
+        backplot_note: note,
+        backplot_error,
+        planned,
+    })
+}
+
+/// The export panel: options on top, then preview and back-plot side by side.
+/// `job_error`: the edited job is invalid (the program would be of the last valid plan).
+pub fn show(
+    ui: &mut egui::Ui,
+    settings: &mut ExportSettings,
+    cache: &ExportCache,
+    job_error: Option<&str>,
+) -> Option<Command> {
+    let mut cmd = None;
+    ui.horizontal_wrapped(|ui| {
+        ui.label(RichText::new("Dialect").strong());
+        for d in NcDialect::ALL {
+            ui.radio_value(&mut settings.dialect, d, d.label()).on_hover_text(d.tooltip());
+        }
+    });
+    ui.horizontal_wrapped(|ui| {
+        let l = ui.label(label::TOLERANCE).on_hover_text(
+            "Largest distance of the written path from the planned one before rounding (mm). \
+             Curves become biarcs (or chords) within it; domain-spec §5.4 default 0.005 mm.",
+        );
+        ui.spacing_mut().slider_width = 140.0;
+        ui.add(
+            Slider::new(&mut settings.tolerance_mm, 1e-4..=1.0)
+                .logarithmic(true)
+                .clamping(SliderClamping::Never)
+                .max_decimals(4)
+                .suffix(" mm"),
+        )
+        .labelled_by(l.id);
+        ui.checkbox(&mut settings.linear_segments, label::LINEAR)
+            .on_hover_text("Write every curve as G1 chords instead of G2/G3 arcs (many more blocks).");
+        let loops = settings.dialect.core().spec().loop_style.is_some();
+        if !loops {
+            settings.compact = false;
+        }
+        ui.add_enabled(loops, egui::Checkbox::new(&mut settings.compact, label::COMPACT))
+            .on_hover_text("LinuxCNC O-word while loop / Sinumerik R-parameter loop: one cycle's blocks, repeated.")
+            .on_disabled_hover_text("Only LinuxCNC and Sinumerik have a loop form.");
+        ui.checkbox(&mut settings.coolant, label::COOLANT);
+        ui.checkbox(&mut settings.return_feed, label::RETURN_FEED)
+            .on_hover_text("A faster feed on the moves where no tooth cuts in the steady state.");
+        let l = ui.label(label::RETURN_FEED_VALUE);
+        ui.add_enabled(
+            settings.return_feed,
+            egui::DragValue::new(&mut settings.return_feed_mm_per_min).speed(10.0).suffix(" mm/min"),
+        )
+        .labelled_by(l.id);
+    });
+    if let Some(e) = job_error {
+        ui.colored_label(ERROR_COLOR, format!("Job invalid ({e}): fix it before exporting."));
+    }
+    let view = match &cache.result {
+        None => {
+            ui.label("No valid job yet: fix the marked parameter.");
+            return cmd;
+        }
+        Some(Err(e)) => {
+            ui.colored_label(ERROR_COLOR, format!("Cannot write the program: {e}"));
+            return cmd;
+        }
+        Some(Ok(v)) => v,
+    };
+    ui.horizontal(|ui| {
+        let ok = job_error.is_none();
+        if ui
+            .add_enabled(ok, egui::Button::new(label::SAVE))
+            .on_hover_text("Choose a file; it is written atomically (temporary file, then rename).")
+            .clicked()
+        {
+            cmd = Some(Command::ExportNc);
+        }
+        ui.label(format!("{} blocks, {} bytes, {} lines", view.blocks, view.text.len(), view.lines()));
+    });
+    ui.separator();
+    let avail = ui.available_size();
+    let left = (avail.x * 0.42).max(260.0);
+    ui.horizontal_top(|ui| {
+        ui.allocate_ui_with_layout(egui::vec2(left, avail.y), egui::Layout::top_down(egui::Align::Min), |ui| {
+            ui.set_min_size(egui::vec2(left, avail.y));
+            ui.label(RichText::new("Program (read-only)").strong());
+            let row_h = ui.text_style_height(&egui::TextStyle::Monospace);
+            egui::ScrollArea::both().id_salt("nc_preview").auto_shrink([false, false]).show_rows(
+                ui,
+                row_h,
+                view.lines(),
+                |ui, rows| {
+                    for i in rows {
+                        ui.add(egui::Label::new(RichText::new(view.line(i)).monospace()).extend());
+                    }
+                },
+            );
+        });
+        ui.vertical(|ui| {
+            ui.label(RichText::new("Back-plot: the program's own motion over the planned path").strong());
+            if let Some(n) = &view.backplot_note {
+                ui.add(egui::Label::new(RichText::new(n).weak()).wrap());
+            }
+            if let Some(e) = &view.backplot_error {
+                ui.colored_label(ERROR_COLOR, format!("No back-plot: {e}"));
+            }
+            backplot_plot(ui, view);
+        });
+    });
+    cmd
+}
+
+fn backplot_plot(ui: &mut egui::Ui, view: &ExportView) {
+    let size = ui.available_size();
+    Plot::new("nc_backplot")
+        .width(size.x.max(120.0))
+        .height(size.y.max(80.0))
+        .data_aspect(1.0)
+        .x_axis_label("X [mm]")
+        .y_axis_label("Y [mm]")
+        .legend(Legend::default().position(Corner::LeftTop).background_alpha(0.75))
+        .allow_scroll(false)
+        .show(ui, |p| {
+            p.line(
+                Line::new("planned path", PlotPoints::Borrowed(&view.planned))
+                    .color(Color32::from_rgb(120, 170, 240).gamma_multiply(0.6))
+                    .width(5.0),
+            );
+            p.line(
+                Line::new("program back-plot", PlotPoints::Borrowed(&view.backplot))
+                    .color(Color32::from_rgb(200, 40, 40))
+                    .width(1.0),
+            );
+        });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cache_regenerates_only_on_change_and_reports_core_errors() {
+        let plan = trochoplan_core::plan(&trochoplan_core::Job::default()).expect("plan");
+        let mut c = ExportCache::default();
+        let s = ExportSettings::default();
+        c.update(&plan, &s);
+        c.update(&plan, &s);
+        assert_eq!(c.generated, 1);
+        let v = c.view().expect("program");
+        assert_eq!(v.line(0), v.text.lines().next().expect("a line"));
+        assert_eq!(v.lines(), v.text.lines().count());
+        assert!(!v.backplot.is_empty() && v.backplot_error.is_none());
+        c.update(&plan, &ExportSettings { tolerance_mm: 5.0, ..s.clone() });
+        assert_eq!(c.generated, 2);
+        let e = c.result.as_ref().expect("result").as_ref().expect_err("invalid tolerance");
+        assert!(e.contains("tolerance"), "{e}");
+        c.update(&plan, &ExportSettings { compact: true, dialect: NcDialect::Sinumerik, ..s });
+        let v = c.view().expect("compact program");
+        assert!(v.text.contains("GOTOB"));
+        assert!(v.backplot_note.is_some() && !v.backplot.is_empty());
+    }
+}
