@@ -1,5 +1,7 @@
 //! `trochoplan export` as a user meets it: files, errors and exit codes.
 
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
 use std::process::{Command, Output};
 
 fn trochoplan(args: &[&str]) -> Output {

@@ -9,6 +9,8 @@
 //! Fanuc's `%` tape marks and `O1000` program number are accepted by rs274 as they are, so the
 //! harness passes every program unchanged. Set RS274=/path/to/rs274 to use another binary.
 
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
 #[path = "../core/tests/nc_common/mod.rs"]
 mod nc_common;
 

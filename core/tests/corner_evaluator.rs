@@ -2,6 +2,8 @@
 //! generic evaluator (§1.3): the evaluator reproduces the spec's TEST values, and the model
 //! agrees with the evaluator on configurations the spec does not list.
 
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
 use std::f64::consts::PI;
 use trochoplan_core::corner::*;
 use trochoplan_core::geom::{P2, Segment, p2};

@@ -1,6 +1,8 @@
 //! Properties of corner planning: no panics on any input, named errors for invalid input,
 //! connected paths, and metamorphic invariance of the measured engagement under rigid motions.
 
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
 use proptest::prelude::*;
 use trochoplan_core::corner::*;
 use trochoplan_core::geom::{P2, p2};

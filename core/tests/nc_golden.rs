@@ -4,6 +4,8 @@
 //! Their motion is checked elsewhere (`nc_motion.rs`, `tests/nc_rs274.rs`); these files pin
 //! the exact text: words, order, modal suppression, number format.
 
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
 use std::path::PathBuf;
 use trochoplan_core::nc::{Dialect, NcOptions, program};
 use trochoplan_core::{Job, PathKind, plan};

@@ -6,6 +6,8 @@
 //! the emitter; its motions go through the same checks as rs274's (`nc_common`). The LinuxCNC
 //! O-word loop is left to rs274 (`tests/nc_rs274.rs`).
 
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
 mod nc_common;
 
 use nc_common::{Motion, check_cut, cut, same_motion};

@@ -2,6 +2,8 @@
 //! motions read back from a program (by our Sinumerik/ISO evaluator or by LinuxCNC's rs274),
 //! and the checks against the plan. Independent of the emitter: they only use the exact
 //! planned segments (`SlotPath::segments`) and plain geometry.
+
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 #![allow(dead_code)]
 
 use trochoplan_core::Plan;
@@ -176,6 +178,7 @@ pub fn check_cut(label: &str, cut: &[Motion], plan: &Plan, tol: f64, q: f64) -> 
     }
     let dev = deviation_from_plan(cut, plan);
     let allowed = budget(tol, q);
+    #[allow(clippy::neg_cmp_op_on_partial_ord)] // deliberately NaN-safe: NaN fails the check
     if !(dev <= allowed) {
         // written so that a NaN deviation fails too
         return Err(format!("{label}: deviation from the planned path {dev:.6} mm > {allowed:.6} mm"));
