@@ -7,7 +7,7 @@
 
 mod nc_common;
 
-use nc_common::{budget, ordered_deviation, planned_samples};
+use nc_common::{budget, job, ordered_deviation, planned_samples};
 use trochoplan_core::geom::P2;
 use trochoplan_core::nc::{Dialect, NcOptions, backplot, program};
 use trochoplan_core::{Job, PathKind, Plan, plan};
@@ -16,15 +16,6 @@ use trochoplan_core::{Job, PathKind, Plan, plan};
 const H: f64 = 0.02;
 /// Chord tolerance of the back-plot in this test (mm).
 const CHORD: f64 = 1e-4;
-
-fn job(path: PathKind) -> Plan {
-    let (r_e, d) = match path {
-        PathKind::Elliptical => (0.8, 0.0),
-        PathKind::LinearElliptical => (0.6, 0.75),
-        _ => (1.0, 0.0),
-    };
-    plan(&Job { path, aspect_ratio: r_e, linear_distance: d, ..Job::default() }).expect("valid")
-}
 
 /// The polyline with extra points so that no two consecutive points are more than `h` apart.
 fn densify(pts: &[P2], h: f64) -> Vec<P2> {

@@ -10,11 +10,11 @@
 
 mod nc_common;
 
-use nc_common::{Motion, check_cut, cut, same_motion};
+use nc_common::{Motion, check_cut, cut, job, same_motion};
 use std::collections::HashMap;
+use trochoplan_core::PathKind;
 use trochoplan_core::geom::{P2, p2};
 use trochoplan_core::nc::{Dialect, NcOptions, program};
-use trochoplan_core::{Job, PathKind, Plan, plan};
 
 /// Expression evaluator: + − * / ( ), numbers, R-parameters, SIN/COS in degrees.
 struct Expr<'a> {
@@ -224,15 +224,6 @@ fn evaluate(text: &str, paren_comments: bool) -> Result<Vec<Motion>, String> {
         pos = target;
     }
     Ok(out)
-}
-
-fn job(path: PathKind) -> Plan {
-    let (r_e, d) = match path {
-        PathKind::Elliptical => (0.8, 0.0),
-        PathKind::LinearElliptical => (0.6, 0.75),
-        _ => (1.0, 0.0),
-    };
-    plan(&Job { path, aspect_ratio: r_e, linear_distance: d, ..Job::default() }).expect("valid")
 }
 
 fn quantum(d: Dialect) -> f64 {

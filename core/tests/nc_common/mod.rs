@@ -6,8 +6,8 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 #![allow(dead_code)]
 
-use trochoplan_core::Plan;
 use trochoplan_core::geom::{P2, p2};
+use trochoplan_core::{Job, PathKind, Plan, plan};
 
 /// One move of the tool centre as a controller executes it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -225,4 +225,15 @@ pub fn same_motion(a: &[Motion], b: &[Motion], tol: f64) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// The test job of each path type: Table 1 conditions; r_e = 0.8 for the elliptical path,
+/// r_e = 0.6 with d = 0.75 mm for the linear-elliptical one.
+pub fn job(path: PathKind) -> Plan {
+    let (r_e, d) = match path {
+        PathKind::Elliptical => (0.8, 0.0),
+        PathKind::LinearElliptical => (0.6, 0.75),
+        _ => (1.0, 0.0),
+    };
+    plan(&Job { path, aspect_ratio: r_e, linear_distance: d, ..Job::default() }).expect("valid")
 }
