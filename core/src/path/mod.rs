@@ -120,23 +120,6 @@ impl Cycle {
         }
         pts
     }
-
-    /// Extreme x over the cycle: (min x, max x), found by scanning and golden refinement.
-    pub fn x_extremes(&self) -> (f64, f64) {
-        let mut lo = f64::INFINITY;
-        let mut hi = f64::NEG_INFINITY;
-        for seg in &self.segments {
-            let n = 64;
-            for i in 0..n {
-                let (t0, t1) = (i as f64 / n as f64, (i + 1) as f64 / n as f64);
-                let (_, fmin) = crate::geom::golden_min(t0, t1, 1e-12, |t| seg.point(t).x);
-                let (_, fmax) = crate::geom::golden_min(t0, t1, 1e-12, |t| -seg.point(t).x);
-                lo = lo.min(fmin);
-                hi = hi.max(-fmax);
-            }
-        }
-        (lo, hi)
-    }
 }
 
 /// A complete slot path: the cycle repeated from outside the stock to beyond its end.
