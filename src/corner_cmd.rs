@@ -108,10 +108,10 @@ pub struct CornerExportArgs {
     #[arg(long, requires = "export")]
     coolant: bool,
     /// Cutting depth below the stock top Z0 (mm), for --export.
-    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = 6.0)]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = 6.0, requires = "export")]
     depth: f64,
     /// Spindle speed (rpm), for --export.
-    #[arg(long, value_name = "RPM", allow_hyphen_values = true, default_value_t = 2000.0)]
+    #[arg(long, value_name = "RPM", allow_hyphen_values = true, default_value_t = 2000.0, requires = "export")]
     rpm: f64,
     /// Text for the header comment (--export).
     #[arg(long, value_name = "TEXT", requires = "export")]
@@ -441,6 +441,23 @@ mod tests {
         let (m, p) =
             (v["max_engagement_deg"].as_f64().expect("max"), v["plain_max_engagement_deg"].as_f64().expect("plain"));
         assert!(m < p, "{m} vs plain {p}");
+    }
+
+    #[test]
+    fn export_flags_need_export() {
+        for flags in [["--dialect", "fanuc"], ["--depth", "3"], ["--nc-tolerance", "0.01"], ["--rpm", "3000"]] {
+            let mut v = vec!["t"];
+            v.extend_from_slice(&flags);
+            let err = T::try_parse_from(v).err().map(|e| e.to_string()).unwrap_or_default();
+            assert!(err.contains("--export"), "{flags:?}: {err}");
+        }
+        let dir = tempfile::tempdir().expect("tempdir");
+        let f = dir.path().join("c.mpf");
+        let args = corner_args(&["--spacing", "1", "--export", f.to_str().expect("utf-8"), "--dialect", "sinumerik"]);
+        let v: serde_json::Value = serde_json::from_str(&corner(&args).expect("export")).expect("json");
+        let text = std::fs::read_to_string(&f).expect("written");
+        assert_eq!(v["nc_export"]["bytes"].as_u64(), Some(text.len() as u64));
+        assert!(text.starts_with("; TrochoPlan corner\n") && text.contains("\nG3 "), "{text}");
     }
 
     #[test]
