@@ -2,16 +2,20 @@
 //! Degrees at this edge, radians in the core. Output is JSON (or a Markdown table with
 //! `corner --table`).
 
+use crate::export::DialectArg;
+use crate::files::write_atomic;
 use clap::{Args, ValueEnum};
 use serde::Serialize;
 use std::path::PathBuf;
 use trochoplan_core::JobError;
+use trochoplan_core::corner::CornerPlan;
 use trochoplan_core::corner::acceptance::{acceptance_table, markdown};
 use trochoplan_core::corner::{
     Corner, CornerScenario, CornerSettings, EvaluatorOptions, Method, Polygon, engagement_profile, parse_points,
     polyline, radial_depth_for_engagement, straight_engagement,
 };
 use trochoplan_core::geom::Segment;
+use trochoplan_core::nc::{DEFAULT_TOLERANCE_MM, NcOptions, PathJob, program_for_path};
 
 /// Corner strategy on the command line.
 #[derive(Clone, Copy, ValueEnum)]
@@ -79,6 +83,39 @@ pub struct CornerArgs {
     /// Print the acceptance table (corner angles 30°…150° in 15° steps) as Markdown instead.
     #[arg(long)]
     table: bool,
+    #[command(flatten)]
+    nc: CornerExportArgs,
+}
+
+/// NC export of `trochoplan corner` (same program frame as `trochoplan export`; the corner's
+/// own frame: apex at X0 Y0, bisector along +X, stock top Z0).
+#[derive(Args)]
+pub struct CornerExportArgs {
+    /// Write the corner's tool path as an NC program to FILE (atomically).
+    #[arg(long, value_name = "FILE")]
+    export: Option<PathBuf>,
+    /// Controller dialect of --export.
+    #[arg(long, value_enum, default_value = "linuxcnc", requires = "export")]
+    dialect: DialectArg,
+    /// Largest distance of the written path from the planned one, before rounding (mm), for
+    /// --export (--tolerance is the bisection band).
+    #[arg(long, value_name = "MM", default_value_t = DEFAULT_TOLERANCE_MM, allow_hyphen_values = true, requires = "export")]
+    nc_tolerance: f64,
+    /// Write arcs as G1 chords instead of G2/G3 (--export).
+    #[arg(long, requires = "export")]
+    linear_segments: bool,
+    /// Coolant on (M8) during the cut (--export).
+    #[arg(long, requires = "export")]
+    coolant: bool,
+    /// Cutting depth below the stock top Z0 (mm), for --export.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = 6.0, requires = "export")]
+    depth: f64,
+    /// Spindle speed (rpm), for --export.
+    #[arg(long, value_name = "RPM", allow_hyphen_values = true, default_value_t = 2000.0, requires = "export")]
+    rpm: f64,
+    /// Text for the header comment (--export).
+    #[arg(long, value_name = "TEXT", requires = "export")]
+    title: Option<String>,
 }
 
 /// Flags of `trochoplan engagement`.
@@ -180,6 +217,77 @@ struct CornerOut {
     plain_path_length_mm: f64,
     notes: Vec<String>,
     path: Vec<Segment>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    nc_export: Option<NcExportOut>,
+}
+
+/// What `--export` wrote.
+#[derive(Serialize)]
+struct NcExportOut {
+    file: String,
+    dialect: &'static str,
+    blocks: usize,
+    bytes: usize,
+}
+
+/// Write the corner program of `plan` to `file` (see [`CornerExportArgs`]).
+fn export_corner(
+    args: &CornerArgs,
+    file: &std::path::Path,
+    s: &CornerSettings,
+    angle_deg: f64,
+    plan: &CornerPlan,
+) -> Result<NcExportOut, String> {
+    let nc = &args.nc;
+    let opts = NcOptions {
+        dialect: nc.dialect.into(),
+        tolerance_mm: nc.nc_tolerance,
+        linear_segments: nc.linear_segments,
+        coolant: nc.coolant,
+        title: nc.title.clone().unwrap_or_default(),
+        ..NcOptions::default()
+    };
+    let a_str = straight_engagement(s.step_over, s.tool_radius).map_err(err)?;
+    let job = PathJob {
+        segments: &plan.path,
+        depth_mm: nc.depth,
+        feed_mm_per_min: s.feed_mm_per_min,
+        spindle_rpm: nc.rpm,
+        tool_diameter_mm: 2.0 * s.tool_radius,
+        default_title: "TrochoPlan corner",
+        description: vec![
+            format!(
+                "corner {} deg, method {}, {} circles, path {:.3} mm",
+                angle_deg,
+                plan.method.name(),
+                plan.circles.len(),
+                plan.path_length_mm
+            ),
+            format!("apex X0 Y0, bisector along +X, walls {:.3} mm", s.edge_length),
+            format!("depth {:.3} mm below the stock top Z0", nc.depth),
+            format!(
+                "tool T{} D {:.3} mm, {:.0} rpm, feed {:.1} mm/min",
+                opts.tool_number,
+                2.0 * s.tool_radius,
+                nc.rpm,
+                s.feed_mm_per_min
+            ),
+            format!(
+                "a_e {:.4} mm, engagement straight {:.2} deg, target {:.2} deg",
+                s.step_over,
+                a_str.to_degrees(),
+                s.target.to_degrees()
+            ),
+        ],
+    };
+    let prog = program_for_path(&job, &opts).map_err(err)?;
+    write_atomic(file, prog.text.as_bytes())?;
+    Ok(NcExportOut {
+        file: file.display().to_string(),
+        dialect: opts.dialect.name(),
+        blocks: prog.blocks,
+        bytes: prog.text.len(),
+    })
 }
 
 /// `trochoplan corner`: plan one corner (JSON) or print the acceptance table (Markdown).
@@ -187,6 +295,9 @@ pub fn corner(args: &CornerArgs) -> Result<String, String> {
     let s = args.settings()?;
     let method: Method = args.method.into();
     if args.table {
+        if args.nc.export.is_some() {
+            return Err("--export writes one corner's program; it cannot be combined with --table".into());
+        }
         let rows = acceptance_table(method, s, args.spacing).map_err(err)?;
         return Ok(markdown(&rows));
     }
@@ -199,6 +310,10 @@ pub fn corner(args: &CornerArgs) -> Result<String, String> {
     let plain = trochoplan_core::corner::plan_corner(&sc, Method::Plain).map_err(err)?;
     let plain_prof = engagement_profile(&sc.stock, &sc.previous_ring, &plain.path, &opts).map_err(err)?;
     let mx = prof.max();
+    let nc_export = match &args.nc.export {
+        Some(file) => Some(export_corner(args, file, &s, angle, &plan)?),
+        None => None,
+    };
     let out = CornerOut {
         method: method.name(),
         corner_angle_deg: angle,
@@ -226,6 +341,7 @@ pub fn corner(args: &CornerArgs) -> Result<String, String> {
         plain_path_length_mm: plain.path_length_mm,
         notes: plan.notes,
         path: plan.path,
+        nc_export,
     };
     let mut text = serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?;
     text.push('\n');
@@ -325,6 +441,23 @@ mod tests {
         let (m, p) =
             (v["max_engagement_deg"].as_f64().expect("max"), v["plain_max_engagement_deg"].as_f64().expect("plain"));
         assert!(m < p, "{m} vs plain {p}");
+    }
+
+    #[test]
+    fn export_flags_need_export() {
+        for flags in [["--dialect", "fanuc"], ["--depth", "3"], ["--nc-tolerance", "0.01"], ["--rpm", "3000"]] {
+            let mut v = vec!["t"];
+            v.extend_from_slice(&flags);
+            let err = T::try_parse_from(v).err().map(|e| e.to_string()).unwrap_or_default();
+            assert!(err.contains("--export"), "{flags:?}: {err}");
+        }
+        let dir = tempfile::tempdir().expect("tempdir");
+        let f = dir.path().join("c.mpf");
+        let args = corner_args(&["--spacing", "1", "--export", f.to_str().expect("utf-8"), "--dialect", "sinumerik"]);
+        let v: serde_json::Value = serde_json::from_str(&corner(&args).expect("export")).expect("json");
+        let text = std::fs::read_to_string(&f).expect("written");
+        assert_eq!(v["nc_export"]["bytes"].as_u64(), Some(text.len() as u64));
+        assert!(text.starts_with("; TrochoPlan corner\n") && text.contains("\nG3 "), "{text}");
     }
 
     #[test]

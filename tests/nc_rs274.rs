@@ -14,72 +14,10 @@
 #[path = "../core/tests/nc_common/mod.rs"]
 mod nc_common;
 
-use nc_common::{Motion, check_cut, cut, same_motion};
+use nc_common::{Motion, check_cut, cut, interpret, motions, same_motion};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
-use trochoplan_core::geom::p2;
+use std::process::Command;
 use trochoplan_core::{Job, PathKind, Plan, plan};
-
-fn rs274() -> String {
-    std::env::var("RS274").unwrap_or_else(|_| "rs274".to_string())
-}
-
-/// Run rs274 on `file`; the canonical calls it printed, or the interpreter's error.
-fn interpret(file: &Path) -> Result<String, String> {
-    let out = file.with_extension("canon");
-    // rs274 creates and maps $HOME/.tool.mmap with O_TRUNC: runs in parallel (test threads)
-    // sharing one HOME truncate each other's mapping and die with SIGBUS. One HOME per run.
-    let home = file.with_extension("home");
-    std::fs::create_dir_all(&home).unwrap_or_else(|e| panic!("{}: {e}", home.display()));
-    let run = Command::new(rs274())
-        .arg("-g")
-        .arg(file)
-        .arg(&out)
-        .env("HOME", &home)
-        .stdin(Stdio::null())
-        .output()
-        .unwrap_or_else(|e| {
-            panic!(
-                "cannot run `{}` ({e}). These tests need LinuxCNC's standalone G-code interpreter: \
-                 apt-get install -y --no-install-recommends linuxcnc-uspace (Debian bookworm), \
-                 or set RS274 to its path",
-                rs274()
-            )
-        });
-    let stderr = String::from_utf8_lossy(&run.stderr);
-    // rs274 prints "executing" on stderr; anything else there is an interpreter message
-    let messages: Vec<&str> = stderr.lines().filter(|l| l.trim() != "executing" && !l.trim().is_empty()).collect();
-    if !run.status.success() || !messages.is_empty() {
-        return Err(format!("rs274 {} on {}: {}", run.status, file.display(), messages.join(" | ")));
-    }
-    std::fs::read_to_string(&out).map_err(|e| format!("{}: {e}", out.display()))
-}
-
-/// The motions in rs274's canonical output, from (0, 0, 0).
-fn motions(canon: &str) -> Vec<Motion> {
-    let mut pos = [0.0f64; 3];
-    let mut out = Vec::new();
-    for line in canon.lines() {
-        let Some((name, rest)) = line.split_once('(') else { continue };
-        let name = name.split_whitespace().last().unwrap_or("");
-        let args: Vec<f64> = rest.trim_end_matches(')').split(',').filter_map(|a| a.trim().parse().ok()).collect();
-        let m = match name {
-            "STRAIGHT_TRAVERSE" => Motion::Rapid { start: pos, end: [args[0], args[1], args[2]] },
-            "STRAIGHT_FEED" => Motion::Line { start: pos, end: [args[0], args[1], args[2]] },
-            // ARC_FEED(first_end, second_end, first_axis, second_axis, rotation, axis_end_point, …)
-            "ARC_FEED" => Motion::Arc {
-                start: pos,
-                end: [args[0], args[1], args[5]],
-                center: p2(args[2], args[3]),
-                turns: args[4] as i32,
-            },
-            _ => continue,
-        };
-        pos = m.end();
-        out.push(m);
-    }
-    out
-}
 
 /// (CLI flags, job): the paper's default job and every path type.
 fn jobs() -> Vec<(Vec<&'static str>, Job)> {

@@ -284,3 +284,47 @@ fn sinumerik_loops_move_like_the_expanded_programs() {
         }
     }
 }
+
+/// Pocket corners (issue #5) through `program_for_path`, in every dialect (Sinumerik too,
+/// which rs274 cannot run): the evaluator's motion follows the corner path within the
+/// tolerance plus rounding and has its length (`nc_common::check_path_cut`).
+#[test]
+fn corner_programs_in_every_dialect_retrace_the_corner_path() {
+    use trochoplan_core::corner::radial_depth_for_engagement;
+    use trochoplan_core::corner::{Corner, CornerScenario, CornerSettings, Method, plan_corner};
+    use trochoplan_core::nc::{PathJob, program_for_path};
+    let r = 5.0;
+    let settings = CornerSettings::new(r, radial_depth_for_engagement(46f64.to_radians(), r)).expect("settings");
+    for angle in [60.0f64, 90.0, 120.0] {
+        let sc =
+            CornerScenario::new(Corner::symmetric(angle.to_radians()).expect("corner"), settings).expect("scenario");
+        for method in [Method::Variable, Method::Isometric, Method::MedialAxis] {
+            let plan = plan_corner(&sc, method).expect("corner plan");
+            let job = PathJob {
+                segments: &plan.path,
+                depth_mm: 6.0,
+                feed_mm_per_min: 600.0,
+                spindle_rpm: 2000.0,
+                tool_diameter_mm: 2.0 * r,
+                default_title: "corner",
+                description: Vec::new(),
+            };
+            for d in Dialect::ALL {
+                for linear_segments in [false, true] {
+                    let o = NcOptions { dialect: d, linear_segments, ..NcOptions::default() };
+                    let label = format!("{} {angle} deg {d:?} linear={linear_segments}", method.name());
+                    let text = program_for_path(&job, &o).expect("program").text;
+                    let motions = evaluate(&text, d != Dialect::Sinumerik).unwrap_or_else(|e| panic!("{label}: {e}"));
+                    nc_common::check_path_cut(
+                        &label,
+                        &cut(&motions, 6.0, 1e-9),
+                        &plan.path,
+                        o.tolerance_mm,
+                        quantum(d),
+                    )
+                    .unwrap_or_else(|e| panic!("{e}"));
+                }
+            }
+        }
+    }
+}

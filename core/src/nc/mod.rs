@@ -29,7 +29,7 @@ pub use dialect::{CommentStyle, Dialect, DialectSpec, LoopStyle, ToolCall, sanit
 pub use writer::{Writer, YForm};
 
 use crate::error::JobError;
-use crate::geom::{FitPiece, Segment, fit_biarcs, polyline};
+use crate::geom::{FitPiece, P2, Segment, fit_biarcs, polyline};
 use crate::job::PathKind;
 use crate::plan::Plan;
 use std::f64::consts::TAU;
@@ -134,9 +134,7 @@ pub fn cycle_moves(plan: &Plan, opts: &NcOptions) -> Vec<CycleMove> {
     let mut moves = Vec::new();
     let mut s_before = 0.0;
     for (seg, len) in cycle.segments.iter().zip(&cycle.lengths) {
-        let pieces: Vec<FitPiece> =
-            if opts.linear_segments { polyline(seg, opts.tolerance_mm) } else { fit_biarcs(seg, opts.tolerance_mm) };
-        for p in pieces {
+        for p in fit(seg, opts) {
             let feed = match opts.return_feed_mm_per_min {
                 Some(fast) => {
                     let s0 = s_before + seg.length_between(0.0, p.t0);
@@ -182,14 +180,12 @@ pub fn program(plan: &Plan, opts: &NcOptions) -> Result<NcProgram, JobError> {
     let spec = opts.dialect.spec();
     let moves = cycle_moves(plan, opts);
     let mut w = Writer::new(spec);
-    preamble(&mut w, plan, opts);
     let job = &plan.job;
+    preamble(&mut w, &slot_header(plan, opts), opts);
     let path = &plan.path;
     let start = path.origin(0) + moves.first().map_or(path.cycle.segments[0].start(), |m| m.seg.start());
     // approach outside the open slot end at safe Z, feed down to depth there
-    w.linear(None, None, Some(opts.safe_z_mm), None);
-    w.linear(Some(start.x), Some(start.y), None, None);
-    w.linear(None, None, Some(-job.depth), Some(job.feed));
+    approach(&mut w, start, job.depth, job.feed, opts);
     match (opts.compact, spec.loop_style) {
         (true, Some(LoopStyle::OWord)) => oword_loop(&mut w, plan, &moves),
         (true, Some(LoopStyle::RParameter)) => {
@@ -208,41 +204,174 @@ pub fn program(plan: &Plan, opts: &NcOptions) -> Result<NcProgram, JobError> {
             }
         }
     }
+    epilogue(&mut w, opts);
+    let (text, blocks) = w.finish()?;
+    Ok(NcProgram { text, blocks })
+}
+
+/// A tool-centre path that is not a slot (a pocket corner, a ring piece) and what its program
+/// header and set-up need: the path is cut at one depth, at one feed, from its first point.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PathJob<'a> {
+    /// Connected lines, arcs and trochoid pieces in machining order (XY, mm).
+    pub segments: &'a [Segment],
+    /// Cutting depth below the stock top Z0 (mm).
+    pub depth_mm: f64,
+    /// Cutting feed (mm/min).
+    pub feed_mm_per_min: f64,
+    pub spindle_rpm: f64,
+    pub tool_diameter_mm: f64,
+    /// Title used when [`NcOptions::title`] is empty.
+    pub default_title: &'a str,
+    /// Header comment lines describing the job (sanitised when written).
+    pub description: Vec<String>,
+}
+
+/// Largest gap allowed between consecutive segments of a [`PathJob`] (mm): far below any
+/// dialect's quantum, so the written blocks join where the plan joins.
+pub const PATH_GAP_MM: f64 = 1e-6;
+
+impl PathJob<'_> {
+    /// Check the job; the error names the parameter, its value and the allowed range.
+    pub fn validate(&self) -> Result<(), JobError> {
+        if self.segments.is_empty() {
+            return Err(JobError::range("path", "0 segments", "at least one segment"));
+        }
+        let d = self.depth_mm;
+        if !(d.is_finite() && d > 0.0 && d <= 1000.0) {
+            return Err(JobError::range("depth", d, "a finite number > 0 and ≤ 1000 mm"));
+        }
+        let f = self.feed_mm_per_min;
+        if !(f.is_finite() && f > 0.0 && f <= 1.0e6) {
+            return Err(JobError::range("feed", f, "a finite number > 0 and ≤ 1000000 mm/min"));
+        }
+        let n = self.spindle_rpm;
+        if !(n.is_finite() && n > 0.0 && n <= 1.0e6) {
+            return Err(JobError::range("rpm", n, "a finite number > 0 and ≤ 1000000 rpm"));
+        }
+        let t = self.tool_diameter_mm;
+        if !(t.is_finite() && t > 0.0 && t <= 1000.0) {
+            return Err(JobError::range("tool diameter", t, "a finite number > 0 and ≤ 1000 mm"));
+        }
+        for (k, pair) in self.segments.windows(2).enumerate() {
+            let gap = (pair[1].start() - pair[0].end()).norm();
+            if gap.is_nan() || gap > PATH_GAP_MM {
+                return Err(JobError::range(
+                    "path",
+                    format!("gap of {gap} mm after segment {k}"),
+                    format!("connected segments (gaps of at most {PATH_GAP_MM} mm)"),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The NC program of any connected tool-centre path (a pocket corner, for instance): the same
+/// header, set-up, approach, retract and end as a slot program ([`program`]), and the
+/// segments at the cutting feed, fitted like a slot cycle (lines as G1, arcs as G2/G3, trochoid
+/// pieces as biarcs, or all as chords with [`NcOptions::linear_segments`]).
+///
+/// The loop form and the return feed need the repeating cycles and the tooth series of a slot
+/// plan: asking for them here is an error naming the option.
+pub fn program_for_path(job: &PathJob<'_>, opts: &NcOptions) -> Result<NcProgram, JobError> {
+    opts.validate()?;
+    job.validate()?;
+    if opts.compact {
+        return Err(JobError::range("compact", "true", "false for a path without repeating cycles"));
+    }
+    if let Some(f) = opts.return_feed_mm_per_min {
+        return Err(JobError::range("return-feed", f, "unset for a path without a tooth series"));
+    }
+    let mut w = Writer::new(opts.dialect.spec());
+    let header = Header {
+        default_title: job.default_title,
+        description: job.description.clone(),
+        tool_diameter_mm: job.tool_diameter_mm,
+        spindle_rpm: job.spindle_rpm,
+    };
+    preamble(&mut w, &header, opts);
+    approach(&mut w, job.segments[0].start(), job.depth_mm, job.feed_mm_per_min, opts);
+    for seg in job.segments {
+        for piece in fit(seg, opts) {
+            w.segment(&piece.seg, job.feed_mm_per_min);
+        }
+    }
+    epilogue(&mut w, opts);
+    let (text, blocks) = w.finish()?;
+    Ok(NcProgram { text, blocks })
+}
+
+/// Lines and arcs for one planned segment: biarcs within the tolerance, or chords when asked.
+fn fit(seg: &Segment, opts: &NcOptions) -> Vec<FitPiece> {
+    if opts.linear_segments { polyline(seg, opts.tolerance_mm) } else { fit_biarcs(seg, opts.tolerance_mm) }
+}
+
+/// What the shared preamble writes about a job.
+struct Header<'a> {
+    default_title: &'a str,
+    /// Job lines of the header comment, after the title.
+    description: Vec<String>,
+    tool_diameter_mm: f64,
+    spindle_rpm: f64,
+}
+
+/// The header of a slot program.
+fn slot_header<'a>(plan: &Plan, opts: &NcOptions) -> Header<'a> {
+    let (job, m) = (&plan.job, &plan.metrics);
+    Header {
+        default_title: "TrochoPlan slot",
+        description: vec![
+            format!("path {}, {} cycles, path length {:.3} mm", job.path.name(), m.cycles, m.path_length_mm),
+            format!("slot B {:.3} x L {:.3} mm, depth {:.3} mm", job.slot_width, job.slot_length, job.depth),
+            "slot from X0 Y0 along +Y, stock top Z0".to_string(),
+            format!(
+                "tool T{} D {:.3} mm, {} teeth, {:.0} rpm, feed {:.1} mm/min",
+                opts.tool_number, job.tool_diameter, job.teeth, job.rpm, job.feed
+            ),
+            format!(
+                "step s {:.4} mm, r_e {:.4}, d {:.4} mm, a {:.4} mm",
+                job.step,
+                job.aspect_ratio,
+                job.linear_distance,
+                job.trochoidal_radius()
+            ),
+        ],
+        tool_diameter_mm: job.tool_diameter,
+        spindle_rpm: job.rpm,
+    }
+}
+
+/// Safe Z, rapid to `start`, feed down to `depth` there.
+fn approach(w: &mut Writer, start: P2, depth: f64, feed: f64, opts: &NcOptions) {
+    w.linear(None, None, Some(opts.safe_z_mm), None);
+    w.linear(Some(start.x), Some(start.y), None, None);
+    w.linear(None, None, Some(-depth), Some(feed));
+}
+
+/// Retract to safe Z, coolant and spindle off, program end.
+fn epilogue(w: &mut Writer, opts: &NcOptions) {
     w.linear(None, None, Some(opts.safe_z_mm), None);
     if opts.coolant {
         w.raw("M9");
     }
     w.raw("M5");
-    for line in spec.program_end {
+    for line in opts.dialect.spec().program_end {
         w.raw(line);
     }
-    let (text, blocks) = w.finish()?;
-    Ok(NcProgram { text, blocks })
 }
 
 /// Header comment, set-up, tool, spindle and coolant.
-fn preamble(w: &mut Writer, plan: &Plan, opts: &NcOptions) {
+fn preamble(w: &mut Writer, header: &Header<'_>, opts: &NcOptions) {
     let spec = opts.dialect.spec();
-    let (job, m) = (&plan.job, &plan.metrics);
     for line in spec.program_start {
         w.raw(line);
     }
-    let title = if opts.title.trim().is_empty() { "TrochoPlan slot".to_string() } else { opts.title.clone() };
+    let title = if opts.title.trim().is_empty() { header.default_title.to_string() } else { opts.title.clone() };
     w.comment(&title);
-    w.comment(&format!("path {}, {} cycles, path length {:.3} mm", job.path.name(), m.cycles, m.path_length_mm));
-    w.comment(&format!("slot B {:.3} x L {:.3} mm, depth {:.3} mm", job.slot_width, job.slot_length, job.depth));
-    w.comment("slot from X0 Y0 along +Y, stock top Z0");
-    w.comment(&format!(
-        "tool T{} D {:.3} mm, {} teeth, {:.0} rpm, feed {:.1} mm/min",
-        opts.tool_number, job.tool_diameter, job.teeth, job.rpm, job.feed
-    ));
-    w.comment(&format!(
-        "step s {:.4} mm, r_e {:.4}, d {:.4} mm, a {:.4} mm",
-        job.step,
-        job.aspect_ratio,
-        job.linear_distance,
-        job.trochoidal_radius()
-    ));
+    for line in &header.description {
+        w.comment(line);
+    }
     let geometry = if opts.linear_segments { "G1 chords" } else { "arcs" };
     w.comment(&format!(
         "{}: {geometry} within {} mm{}",
@@ -269,9 +398,9 @@ fn preamble(w: &mut Writer, plan: &Plan, opts: &NcOptions) {
             w.raw(&format!("T{t} D1"));
             w.raw("M6");
         }
-        dialect::ToolCall::CommentOnly => w.comment(&format!("load tool {t}: D {:.3} mm", job.tool_diameter)),
+        dialect::ToolCall::CommentOnly => w.comment(&format!("load tool {t}: D {:.3} mm", header.tool_diameter_mm)),
     }
-    w.raw(&format!("S{:.0} M3", job.rpm));
+    w.raw(&format!("S{:.0} M3", header.spindle_rpm));
     if opts.coolant {
         w.raw("M8");
     }

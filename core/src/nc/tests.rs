@@ -123,3 +123,75 @@ fn return_feed_only_where_no_tooth_cuts() {
     }
     assert!(program(&p, &o).expect("program").text.contains("F1800.0"));
 }
+
+/// A square-ish path: a line, a quarter arc (CCW, centre (0, 10), radius 10), a line.
+fn l_path() -> Vec<Segment> {
+    use crate::geom::p2;
+    vec![
+        Segment::Line { start: p2(-20.0, 0.0), end: p2(0.0, 0.0) },
+        Segment::Arc { center: p2(0.0, 10.0), radius: 10.0, start_angle: -0.25 * TAU, sweep: 0.25 * TAU },
+        Segment::Line { start: p2(10.0, 10.0), end: p2(10.0, 30.0) },
+    ]
+}
+
+fn path_job(segments: &[Segment]) -> PathJob<'_> {
+    PathJob {
+        segments,
+        depth_mm: 3.0,
+        feed_mm_per_min: 500.0,
+        spindle_rpm: 4000.0,
+        tool_diameter_mm: 8.0,
+        default_title: "TrochoPlan test path",
+        description: vec!["an L (with a bracket)".into()],
+    }
+}
+
+#[test]
+fn path_program_has_the_slot_program_frame() {
+    let segs = l_path();
+    let prog = program_for_path(&path_job(&segs), &opts(Dialect::LinuxCnc)).expect("program");
+    let slot = program(&planned(PathKind::Circular), &opts(Dialect::LinuxCnc)).expect("slot");
+    // same set-up lines as a slot program, from the setup block to the spindle start
+    let setup = |t: &str| -> Vec<String> {
+        t.lines().skip_while(|l| l.starts_with('(')).take_while(|l| !l.starts_with("G0")).map(String::from).collect()
+    };
+    assert_eq!(
+        setup(&prog.text).iter().filter(|l| !l.starts_with('S')).collect::<Vec<_>>(),
+        setup(&slot.text).iter().filter(|l| !l.starts_with('S')).collect::<Vec<_>>()
+    );
+    // the header names the path (sanitised), the approach goes to the first point, then depth
+    assert!(prog.text.starts_with("(TrochoPlan test path)\n(an L [with a bracket])\n"), "{}", prog.text);
+    assert!(
+        prog.text.contains("S4000 M3\nG0 Z5.0000\nX-20.0000 Y0.0000\nG1 Z-3.0000 F500.0\nX0.0000\n"),
+        "{}",
+        prog.text
+    );
+    // the quarter arc: CCW from (0, 0) to (10, 10) around (0, 10): I0 J10
+    assert!(
+        prog.text.contains("G3 X10.0000 Y10.0000 I0.0000 J10.0000\nG1 Y30.0000\nG0 Z5.0000\nM5\nM30\n"),
+        "{}",
+        prog.text
+    );
+}
+
+#[test]
+fn bad_path_jobs_name_the_parameter() {
+    let segs = l_path();
+    let mut gap = l_path();
+    gap[2] = Segment::Line { start: crate::geom::p2(10.0, 10.1), end: crate::geom::p2(10.0, 30.0) };
+    let cases: Vec<(PathJob<'_>, NcOptions, &str)> = vec![
+        (path_job(&[]), opts(Dialect::Fanuc), "path"),
+        (path_job(&gap), opts(Dialect::Fanuc), "path"),
+        (PathJob { depth_mm: 0.0, ..path_job(&segs) }, opts(Dialect::Fanuc), "depth"),
+        (PathJob { feed_mm_per_min: f64::NAN, ..path_job(&segs) }, opts(Dialect::Fanuc), "feed"),
+        (PathJob { spindle_rpm: -1.0, ..path_job(&segs) }, opts(Dialect::Fanuc), "rpm"),
+        (PathJob { tool_diameter_mm: 0.0, ..path_job(&segs) }, opts(Dialect::Fanuc), "tool diameter"),
+        (path_job(&segs), NcOptions { compact: true, ..opts(Dialect::LinuxCnc) }, "compact"),
+        (path_job(&segs), NcOptions { return_feed_mm_per_min: Some(900.0), ..opts(Dialect::Grbl) }, "return-feed"),
+        (path_job(&segs), NcOptions { tolerance_mm: 0.0, ..opts(Dialect::Grbl) }, "tolerance"),
+    ];
+    for (job, o, name) in cases {
+        let err = program_for_path(&job, &o).expect_err("must be rejected");
+        assert_eq!(err.parameter(), Some(name), "{err}");
+    }
+}

@@ -1,4 +1,5 @@
-//! Test-side helpers shared by `core/tests/nc_*.rs` and the top-level `tests/nc_rs274.rs`:
+//! Test-side helpers shared by `core/tests/nc_*.rs` and the top-level `tests/nc_rs274.rs` and
+//! `tests/nc_corner_rs274.rs`:
 //! motions read back from a program (by our Sinumerik/ISO evaluator or by LinuxCNC's rs274),
 //! and the checks against the plan. Independent of the emitter: they only use the exact
 //! planned segments (`SlotPath::segments`) and plain geometry.
@@ -6,7 +7,9 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 #![allow(dead_code)]
 
-use trochoplan_core::geom::{P2, p2};
+use std::path::Path;
+use std::process::{Command, Stdio};
+use trochoplan_core::geom::{P2, Segment, p2};
 use trochoplan_core::{Job, PathKind, Plan, plan};
 
 /// One move of the tool centre as a controller executes it.
@@ -103,8 +106,13 @@ pub fn sample(cut: &[Motion], h: f64) -> Vec<P2> {
 
 /// Points along the planned path (exact segments), spaced at most `h` in arc length.
 pub fn planned_samples(plan: &Plan, h: f64) -> Vec<P2> {
+    segment_samples(plan.path.segments(), h)
+}
+
+/// Points along exact segments, spaced at most `h` in arc length.
+pub fn segment_samples(segments: impl IntoIterator<Item = Segment>, h: f64) -> Vec<P2> {
     let mut pts = Vec::new();
-    for seg in plan.path.segments() {
+    for seg in segments {
         let n = ((seg.length() / h).ceil() as usize).max(1);
         pts.extend(seg.sample(n));
     }
@@ -122,6 +130,13 @@ fn dist_to_chord(a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> f64 {
     (dx * dx + dy * dy).sqrt()
 }
 
+/// Chord distances closer than this (mm) count as equal when the ordered match moves its
+/// cursor: more than the rounding that makes two written copies of one line differ (≤ √2·q,
+/// q ≤ 1e-3 mm), less than the smallest budget (`budget(0.005, 1e-4)` = 0.0055 mm). The
+/// cursor then lags the nearest chord by at most this much of path on a line (a chord or two
+/// on a curve), far inside the 0.4 mm window; the deviation counted is unchanged.
+const TIE_MM: f64 = 0.005;
+
 /// Largest distance of the points `a` from the polyline `b`, matching in order: a cursor
 /// walks forward along `b` and each point of `a` is measured against the next `window`
 /// chords only. The loops of a trochoidal path overlap their neighbours, so an unordered
@@ -133,16 +148,20 @@ pub fn ordered_deviation(a: &[P2], b: &[P2], window: usize) -> f64 {
     }
     let mut cursor = 0usize;
     let mut worst: f64 = 0.0;
+    let mut d = Vec::with_capacity(window);
     for p in a {
         let p = [p.x, p.y];
-        let (mut best, mut arg) = (f64::INFINITY, cursor);
-        for j in cursor..(cursor + window).min(b.len() - 1) {
-            let d = dist_to_chord(b[j], b[j + 1], p);
-            if d < best {
-                (best, arg) = (d, j);
-            }
+        let end = (cursor + window).min(b.len() - 1);
+        d.clear();
+        d.extend((cursor..end).map(|j| dist_to_chord(b[j], b[j + 1], p)));
+        let best = d.iter().copied().fold(f64::INFINITY, f64::min);
+        // The cursor moves to the first chord as close as the best within TIE_MM: where the
+        // path retraces itself (a corner path reversing along the line it came on), chords
+        // behind and ahead of the turn are equally close, and the later one would skip the
+        // turn. The deviation counted is `best` either way.
+        if let Some(k) = d.iter().position(|&x| x <= best + TIE_MM) {
+            cursor += k;
         }
-        cursor = arg;
         worst = worst.max(best);
     }
     // the walk must have reached the end of b, or part of b was never matched
@@ -151,9 +170,15 @@ pub fn ordered_deviation(a: &[P2], b: &[P2], window: usize) -> f64 {
 
 /// Two-sided ordered deviation between a cut and the planned path.
 pub fn deviation_from_plan(cut: &[Motion], plan: &Plan) -> f64 {
+    deviation_from_segments(cut, plan.path.segments())
+}
+
+/// Two-sided ordered deviation between a cut and any planned path given as exact segments
+/// in machining order (a pocket corner, for instance).
+pub fn deviation_from_segments(cut: &[Motion], segments: impl IntoIterator<Item = Segment>) -> f64 {
     const H: f64 = 0.02;
     let prog = sample(cut, H);
-    let planned = planned_samples(plan, H);
+    let planned = segment_samples(segments, H);
     // both are sampled at ≤ H, so the match moves a sample or two per step; 0.4 mm of path
     // ahead is far more than that and than any deviation we accept
     let window = (0.4 / H) as usize;
@@ -176,21 +201,40 @@ pub fn check_cut(label: &str, cut: &[Motion], plan: &Plan, tol: f64, q: f64) -> 
     if cut.is_empty() {
         return Err(format!("{label}: no cutting moves"));
     }
-    let dev = deviation_from_plan(cut, plan);
-    let allowed = budget(tol, q);
-    #[allow(clippy::neg_cmp_op_on_partial_ord)] // deliberately NaN-safe: NaN fails the check
-    if !(dev <= allowed) {
-        // written so that a NaN deviation fails too
-        return Err(format!("{label}: deviation from the planned path {dev:.6} mm > {allowed:.6} mm"));
-    }
+    check_deviation(label, deviation_from_plan(cut, plan), tol, q)?;
     let a = plan.job.trochoidal_radius();
     let max_x = sample(cut, 0.02).iter().map(|p| p.x.abs()).fold(0.0, f64::max);
     let band = a + 3.0 * q + 1e-4;
     if max_x > band {
         return Err(format!("{label}: |x| reaches {max_x:.6} mm > (B - D)/2 + rounding = {band:.6} mm (wall gouge)"));
     }
-    let (len, want) = (length(cut), plan.metrics.path_length_mm);
-    if (len - want).abs() > 1e-3 * want {
+    check_length(label, length(cut), plan.metrics.path_length_mm)
+}
+
+/// The checks of [`check_cut`] that apply to any planned path given as exact segments: it
+/// follows the segments within `budget` and has their length within 0.1 %. (The wall band is
+/// the caller's: it depends on what the path machines.)
+pub fn check_path_cut(label: &str, cut: &[Motion], segments: &[Segment], tol: f64, q: f64) -> Result<(), String> {
+    if cut.is_empty() {
+        return Err(format!("{label}: no cutting moves"));
+    }
+    check_deviation(label, deviation_from_segments(cut, segments.iter().copied()), tol, q)?;
+    check_length(label, length(cut), segments.iter().map(Segment::length).sum())
+}
+
+fn check_deviation(label: &str, dev: f64, tol: f64, q: f64) -> Result<(), String> {
+    let allowed = budget(tol, q);
+    #[allow(clippy::neg_cmp_op_on_partial_ord)] // deliberately NaN-safe: NaN fails the check
+    if !(dev <= allowed) {
+        // written so that a NaN deviation fails too
+        return Err(format!("{label}: deviation from the planned path {dev:.6} mm > {allowed:.6} mm"));
+    }
+    Ok(())
+}
+
+fn check_length(label: &str, len: f64, want: f64) -> Result<(), String> {
+    #[allow(clippy::neg_cmp_op_on_partial_ord)] // NaN fails
+    if !((len - want).abs() <= 1e-3 * want) {
         return Err(format!("{label}: path length {len:.4} mm vs analysis {want:.4} mm (> 0.1 %)"));
     }
     Ok(())
@@ -236,4 +280,68 @@ pub fn job(path: PathKind) -> Plan {
         _ => (1.0, 0.0),
     };
     plan(&Job { path, aspect_ratio: r_e, linear_distance: d, ..Job::default() }).expect("valid")
+}
+
+// ---- LinuxCNC's standalone interpreter rs274 (used by the top-level tests/nc_*rs274.rs) ----
+
+/// The rs274 binary: $RS274, or `rs274` on the PATH.
+pub fn rs274() -> String {
+    std::env::var("RS274").unwrap_or_else(|_| "rs274".to_string())
+}
+
+/// Run rs274 on `file`; the canonical calls it printed, or the interpreter's error.
+pub fn interpret(file: &Path) -> Result<String, String> {
+    let out = file.with_extension("canon");
+    // rs274 creates and maps $HOME/.tool.mmap with O_TRUNC: runs in parallel (test threads)
+    // sharing one HOME truncate each other's mapping and die with SIGBUS. One HOME per run.
+    let home = file.with_extension("home");
+    std::fs::create_dir_all(&home).unwrap_or_else(|e| panic!("{}: {e}", home.display()));
+    let run = Command::new(rs274())
+        .arg("-g")
+        .arg(file)
+        .arg(&out)
+        .env("HOME", &home)
+        .stdin(Stdio::null())
+        .output()
+        .unwrap_or_else(|e| {
+            panic!(
+                "cannot run `{}` ({e}). These tests need LinuxCNC's standalone G-code interpreter: \
+                 apt-get install -y --no-install-recommends linuxcnc-uspace (Debian bookworm), \
+                 or set RS274 to its path",
+                rs274()
+            )
+        });
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    // rs274 prints "executing" on stderr; anything else there is an interpreter message
+    let messages: Vec<&str> = stderr.lines().filter(|l| l.trim() != "executing" && !l.trim().is_empty()).collect();
+    if !run.status.success() || !messages.is_empty() {
+        return Err(format!("rs274 {} on {}: {}", run.status, file.display(), messages.join(" | ")));
+    }
+    std::fs::read_to_string(&out).map_err(|e| format!("{}: {e}", out.display()))
+}
+
+/// The motions in rs274's canonical output, from (0, 0, 0).
+pub fn motions(canon: &str) -> Vec<Motion> {
+    let mut pos = [0.0f64; 3];
+    let mut out = Vec::new();
+    for line in canon.lines() {
+        let Some((name, rest)) = line.split_once('(') else { continue };
+        let name = name.split_whitespace().last().unwrap_or("");
+        let args: Vec<f64> = rest.trim_end_matches(')').split(',').filter_map(|a| a.trim().parse().ok()).collect();
+        let m = match name {
+            "STRAIGHT_TRAVERSE" => Motion::Rapid { start: pos, end: [args[0], args[1], args[2]] },
+            "STRAIGHT_FEED" => Motion::Line { start: pos, end: [args[0], args[1], args[2]] },
+            // ARC_FEED(first_end, second_end, first_axis, second_axis, rotation, axis_end_point, …)
+            "ARC_FEED" => Motion::Arc {
+                start: pos,
+                end: [args[0], args[1], args[5]],
+                center: p2(args[2], args[3]),
+                turns: args[4] as i32,
+            },
+            _ => continue,
+        };
+        pos = m.end();
+        out.push(m);
+    }
+    out
 }
