@@ -103,9 +103,9 @@ pub struct EngagementArgs {
 pub enum PocketMethodArg {
     /// Plain contour-parallel rings.
     Plain,
-    /// Variable circles at every ring corner (not implemented for pockets yet: an error).
+    /// Variable circles at every convex corner of every ring but the innermost.
     Variable,
-    /// Isometric circles at every ring corner (not implemented for pockets yet: an error).
+    /// Isometric circles at every convex corner of every ring but the innermost.
     Isometric,
 }
 
@@ -146,6 +146,10 @@ struct RingOut {
 #[derive(Serialize)]
 struct PocketOut {
     method: &'static str,
+    /// Ring corners given corner trochoids.
+    trochoid_corners: usize,
+    /// Convex ring corners left plain (strategy preconditions not met; innermost ring excluded).
+    plain_corners: usize,
     tool_diameter_mm: f64,
     step_over_mm: f64,
     feed_mm_per_min: f64,
@@ -172,19 +176,18 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
         step_over: args.step_over,
         feed_mm_per_min: args.feed,
         spacing: args.spacing,
+        method: match args.method {
+            PocketMethodArg::Plain => Method::Plain,
+            PocketMethodArg::Variable => Method::Variable,
+            PocketMethodArg::Isometric => Method::Isometric,
+        },
     };
     settings.validate().map_err(err)?;
-    if args.method != PocketMethodArg::Plain {
-        return Err(JobError::range(
-            "method",
-            if args.method == PocketMethodArg::Variable { "variable" } else { "isometric" },
-            "plain (corner strategies at the corners of pocket rings are not implemented yet; see `trochoplan corner`)",
-        )
-        .to_string());
-    }
     let plan = plan_pocket(&polygon, settings).map_err(err)?;
     let out = PocketOut {
-        method: "plain",
+        method: settings.method.name(),
+        trochoid_corners: plan.trochoid_corners,
+        plain_corners: plan.plain_corners,
         tool_diameter_mm: d,
         step_over_mm: args.step_over,
         feed_mm_per_min: args.feed,
@@ -488,13 +491,12 @@ mod tests {
         assert_eq!(v["ring_count"].as_u64(), Some(4));
         assert!(v["path_length_mm"].as_f64().is_some_and(|l| (l - 448.0).abs() < 1e-8), "{}", v["path_length_mm"]);
         assert!(v["time_s"].as_f64().is_some_and(|t| (t - 44.8).abs() < 1e-9));
-        assert!(v["rings"][0]["segments"].as_array().is_some_and(|s| s.len() == 4));
+        assert!(v["rings"][0]["segments"].as_array().is_some_and(|s| s.len() == 5)); // 4 edges, the longest split at the entry
         assert!(v["max_engagement_deg"].as_f64().is_some_and(|m| (m - 180.0).abs() < 1e-3));
         for (flags, name) in [
             (vec!["--step-over", "10"], "step-over"),
             (vec!["--tool-diameter", "NaN"], "tool diameter"),
             (vec!["--tool-diameter", "50"], "tool diameter"),
-            (vec!["--method", "variable"], "method"),
         ] {
             let e = pocket(&args(&flags)).expect_err("must fail");
             assert!(e.contains(name), "{flags:?}: {e}");

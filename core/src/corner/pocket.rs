@@ -22,10 +22,23 @@
 //! The first position of each ring (the entry, where the evaluator has no swept path behind
 //! the tool yet) is reported apart from the ring's running maximum.
 //!
-//! Corner strategies (variable / isometric circles at each corner of each ring) are not applied
-//! yet: [`plan_pocket`] plans the plain rings only.
+//! Corner strategies (variable / isometric circles, [`super::strategy`]) are applied at every
+//! convex line–line corner of every ring that has a previous (inner) ring, through a small
+//! adapter ([`ring_with_corner_trochoids`]): the strategy's corner scenario assumes the current
+//! ring is the walls offset by r and the previous ring the walls offset by r + a_e with a sharp
+//! corner. For ring k (offset r + k·a_e) those walls are the polygon offset by k·a_e, whose
+//! corner apex is `U0 − (r / sin α) b̂` (U0 the ring's corner vertex); the previous ring k + 1,
+//! machined before it (inside-out order), is exactly the sharp r + a_e offset of those walls
+//! near the corner. The strategy's path from its ring start to U0 is spliced into the ring in
+//! place of the incoming line. Corners where the scenario's preconditions fail (walls too short
+//! for the circles, the circles' entry not on the incoming line, arcs next to the corner) stay
+//! plain and are counted in `PocketPlan::plain_corners`. The innermost ring (a full slot, no
+//! previous ring) stays plain. Gouging of circles into other walls of small rings is not
+//! checked; the engagement of the result is measured by the evaluator like the plain rings.
 
 use super::evaluator::{EvaluatorOptions, Polygon, engagement_profile};
+use super::geometry::Corner;
+use super::strategy::{CornerScenario, CornerSettings, Method, plan_corner};
 use crate::error::JobError;
 use crate::geom::{P2, Segment, p2};
 use cavalier_contours::polyline::{PlineSource, PlineSourceMut, PlineVertex, Polyline, seg_arc_radius_and_center};
@@ -47,6 +60,9 @@ pub struct PocketSettings {
     pub feed_mm_per_min: f64,
     /// Arc-length spacing of the evaluated tool positions (mm).
     pub spacing: f64,
+    /// Corner strategy at the ring corners: plain, variable or isometric (medial-axis is a
+    /// whole-pocket strategy and is rejected here).
+    pub method: Method,
 }
 
 impl PocketSettings {
@@ -68,6 +84,9 @@ impl PocketSettings {
         }
         if !(self.spacing.is_finite() && self.spacing > 0.0 && self.spacing <= r) {
             return Err(JobError::range("spacing", self.spacing, format!("greater than 0 and at most r = {r} mm")));
+        }
+        if self.method == Method::MedialAxis {
+            return Err(JobError::range("method", "medial-axis", "plain, variable or isometric for pocket rings"));
         }
         Ok(())
     }
@@ -106,6 +125,10 @@ pub struct PocketPlan {
     pub time_s: f64,
     /// Largest running engagement over all rings (rad), entries excluded.
     pub max_engagement_rad: f64,
+    /// Ring corners where the strategy's circles were spliced in.
+    pub trochoid_corners: usize,
+    /// Convex ring corners left plain (strategy preconditions not met; innermost ring excluded).
+    pub plain_corners: usize,
 }
 
 /// Validates a pocket boundary: ≥ 3 finite vertices, no zero-length edges, not
@@ -194,8 +217,19 @@ pub fn plan_pocket(polygon: &Polygon, settings: PocketSettings) -> Result<Pocket
     let opts = EvaluatorOptions::new(r, settings.spacing);
     let mut rings = Vec::new();
     let mut cut: Vec<Segment> = Vec::new();
+    let innermost = levels.len() - 1;
+    let (mut trochoid_corners, mut plain_corners) = (0, 0);
     for (k, d, loops) in levels.into_iter().rev() {
-        for segs in loops {
+        for plain in loops {
+            let segs = if settings.method == Method::Plain || k == innermost {
+                plain
+            } else {
+                let (segs, done, skipped) = ring_with_corner_trochoids(&plain, settings)?;
+                trochoid_corners += done;
+                plain_corners += skipped;
+                segs
+            };
+            let segs = start_mid_longest_line(segs);
             let prof = engagement_profile(polygon, &cut, &segs, &opts)?;
             let entry = prof.samples.first().map_or(0.0, |s| s.angle_rad);
             let best = prof.samples.iter().skip(1).fold(None, |b: Option<(f64, P2)>, s| match b {
@@ -224,5 +258,98 @@ pub fn plan_pocket(polygon: &Polygon, settings: PocketSettings) -> Result<Pocket
         path_length_mm: len,
         time_s: len / settings.feed_mm_per_min * 60.0,
         max_engagement_rad: max,
+        trochoid_corners,
+        plain_corners,
     })
+}
+
+/// The same closed loop, restarted at the midpoint of its longest line (split in two), so the
+/// ring is entered on a straight part rather than at a corner (where the corner trochoids of
+/// the last corner would run only after the tool had already turned there). Loops without a
+/// line are returned as they are.
+fn start_mid_longest_line(ring: Vec<Segment>) -> Vec<Segment> {
+    let best = ring
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| matches!(s, Segment::Line { .. }))
+        .fold(None, |b: Option<(usize, f64)>, (i, s)| match b {
+            Some((_, l)) if l >= s.length() => b,
+            _ => Some((i, s.length())),
+        });
+    let Some((i, _)) = best else { return ring };
+    let Segment::Line { start, end } = ring[i] else { return ring };
+    let mid = (start + end) * 0.5;
+    let mut out = Vec::with_capacity(ring.len() + 1);
+    out.push(Segment::Line { start: mid, end });
+    out.extend(ring[i + 1..].iter().copied());
+    out.extend(ring[..i].iter().copied());
+    out.push(Segment::Line { start, end: mid });
+    out
+}
+
+/// Adapter from a ring to [`plan_corner`] (see the module docs): every convex line–line corner
+/// of the closed CCW loop `ring` gets the corner trochoids of `settings.method`, spliced in
+/// place of the incoming line. Returns the new loop, the number of corners done and the number
+/// of convex corners left plain because the corner scenario's preconditions failed.
+pub fn ring_with_corner_trochoids(
+    ring: &[Segment],
+    settings: PocketSettings,
+) -> Result<(Vec<Segment>, usize, usize), JobError> {
+    let (r, ae) = (settings.tool_radius, settings.step_over);
+    let base = CornerSettings { feed_mm_per_min: settings.feed_mm_per_min, ..CornerSettings::new(r, ae)? };
+    let n = ring.len();
+    let mut out = Vec::with_capacity(n);
+    let (mut done, mut skipped) = (0, 0);
+    for i in 0..n {
+        let (seg, next) = (ring[i], ring[(i + 1) % n]);
+        let (Segment::Line { start: a, end: u0 }, Segment::Line { end: c, .. }) = (seg, next) else {
+            out.push(seg);
+            continue;
+        };
+        let (u, v) = (u0 - a, c - u0);
+        if crate::geom::cross(u, v) <= 1e-9 * u.norm() * v.norm() {
+            out.push(seg); // straight or reflex (concave-of-pocket) vertex
+            continue;
+        }
+        match corner_piece(a, u0, c, base, settings.method) {
+            Some(piece) => {
+                out.extend(piece);
+                done += 1;
+            }
+            None => {
+                out.push(seg);
+                skipped += 1;
+            }
+        }
+    }
+    Ok((out, done, skipped))
+}
+
+/// The strategy's path from `a` (start of the incoming ring line) to the corner vertex `u0`,
+/// or `None` where the corner scenario does not apply.
+fn corner_piece(a: P2, u0: P2, c: P2, base: CornerSettings, method: Method) -> Option<Vec<Segment>> {
+    let r = base.tool_radius;
+    let at_vertex = Corner::new(u0, u0 - a, c - u0).ok()?;
+    let (alpha, b) = (at_vertex.half_angle, at_vertex.bisector);
+    let apex = u0 - b * (r / alpha.sin());
+    let corner = Corner::new(apex, at_vertex.dir_in, at_vertex.dir_out).ok()?;
+    // Wall length from the apex: the ring line's length plus the foot of U0 on the wall, r/tan α.
+    let edge_length = (u0 - a).norm().min((c - u0).norm()) + r / alpha.tan();
+    let sc = CornerScenario::new(corner, CornerSettings { edge_length, ..base }).ok()?;
+    let plan = plan_corner(&sc, method).ok()?;
+    let mut path = plan.path;
+    path.pop(); // corner point → ring end: the next ring segment
+    let first = path.first_mut()?;
+    let Segment::Line { end: e, .. } = *first else { return None };
+    // The strategy's first move must end on the incoming line, between a and u0.
+    let (dir, len) = ((u0 - a) / (u0 - a).norm(), (u0 - a).norm());
+    let t = (e - a).dot(&dir);
+    if !(t >= 0.0 && t <= len && crate::geom::cross(dir, e - a).abs() < 1e-6) {
+        return None;
+    }
+    *first = Segment::Line { start: a, end: e };
+    if path.last().map(Segment::end).is_none_or(|p| (p - u0).norm() > 1e-6) {
+        return None;
+    }
+    Some(path)
 }
