@@ -169,8 +169,8 @@ struct PocketOut {
 pub fn pocket(args: &PocketArgs) -> Result<String, String> {
     let d = finite("tool diameter", args.tool_diameter)?;
     let what = args.polygon.display().to_string();
-    let polygon = pocket_polygon(parse_points(&read(&args.polygon)?, &what).map_err(err)?)
-        .map_err(|e| format!("{what}: {e}"))?;
+    let polygon =
+        pocket_polygon(parse_points(&read(&args.polygon)?, &what).map_err(err)?).map_err(|e| format!("{what}: {e}"))?;
     let settings = PocketSettings {
         tool_radius: d / 2.0,
         step_over: args.step_over,
@@ -487,7 +487,8 @@ mod tests {
             v.extend_from_slice(extra);
             PT::try_parse_from(v).expect("parse").p
         };
-        let v: serde_json::Value = serde_json::from_str(&pocket(&args(&["--step-over", "4"])).expect("plan")).expect("json");
+        let v: serde_json::Value =
+            serde_json::from_str(&pocket(&args(&["--step-over", "4"])).expect("plan")).expect("json");
         assert_eq!(v["ring_count"].as_u64(), Some(4));
         assert!(v["path_length_mm"].as_f64().is_some_and(|l| (l - 448.0).abs() < 1e-8), "{}", v["path_length_mm"]);
         assert!(v["time_s"].as_f64().is_some_and(|t| (t - 44.8).abs() < 1e-9));

@@ -75,7 +75,9 @@ fn rectangle_rings_count_and_lengths() {
     assert!(checked >= 10, "{checked} straight samples");
     // The plain ring's corners exceed the straight value: the engagement jump this issue is about.
     assert!(outer.max_engagement_rad.to_degrees() > a_str + 10.0, "{:?}", outer.max_engagement_rad.to_degrees());
-    assert!((plan.max_engagement_rad - plan.rings.iter().map(|g| g.max_engagement_rad).fold(0.0, f64::max)).abs() < 1e-15);
+    assert!(
+        (plan.max_engagement_rad - plan.rings.iter().map(|g| g.max_engagement_rad).fold(0.0, f64::max)).abs() < 1e-15
+    );
 }
 
 #[test]

@@ -34,8 +34,8 @@ pub use evaluator::{
     EngagementProfile, EngagementSample, EvaluatorOptions, Polygon, engagement_profile, parse_points, polyline,
 };
 pub use geometry::{Corner, LineEq, bisector_point};
-pub use pocket::{PocketPlan, PocketSettings, Ring, inward_offset, plan_pocket, pocket_polygon};
 pub use medial::{AxisEdge, MedialAxis, medial_axis};
+pub use pocket::{PocketPlan, PocketSettings, Ring, inward_offset, plan_pocket, pocket_polygon};
 pub use strategy::{
     CornerCircle, CornerPlan, CornerScenario, CornerSettings, Method, first_circle_radius, plan_corner,
 };

@@ -70,7 +70,11 @@ impl PocketSettings {
     pub fn validate(&self) -> Result<(), JobError> {
         let r = self.tool_radius;
         if !(r.is_finite() && r > 0.0 && r <= 500.0) {
-            return Err(JobError::range("tool diameter", 2.0 * r, "a finite number greater than 0 and at most 1000 mm"));
+            return Err(JobError::range(
+                "tool diameter",
+                2.0 * r,
+                "a finite number greater than 0 and at most 1000 mm",
+            ));
         }
         if !(self.step_over.is_finite() && self.step_over > 0.0 && self.step_over < 2.0 * r) {
             return Err(JobError::range(
@@ -268,14 +272,13 @@ pub fn plan_pocket(polygon: &Polygon, settings: PocketSettings) -> Result<Pocket
 /// the last corner would run only after the tool had already turned there). Loops without a
 /// line are returned as they are.
 fn start_mid_longest_line(ring: Vec<Segment>) -> Vec<Segment> {
-    let best = ring
-        .iter()
-        .enumerate()
-        .filter(|(_, s)| matches!(s, Segment::Line { .. }))
-        .fold(None, |b: Option<(usize, f64)>, (i, s)| match b {
+    let best = ring.iter().enumerate().filter(|(_, s)| matches!(s, Segment::Line { .. })).fold(
+        None,
+        |b: Option<(usize, f64)>, (i, s)| match b {
             Some((_, l)) if l >= s.length() => b,
             _ => Some((i, s.length())),
-        });
+        },
+    );
     let Some((i, _)) = best else { return ring };
     let Segment::Line { start, end } = ring[i] else { return ring };
     let mid = (start + end) * 0.5;
