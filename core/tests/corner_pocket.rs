@@ -194,7 +194,7 @@ fn variable_circles_at_ring_corners_where_they_fit() {
     // single-corner stated tip limit π − 2α + 1° = 91° (acceptance.rs). The outer ring measures
     // 91.98° at (55, 34.9976), 0.0024 mm before a corner point: the tip engagement rises steeply
     // into U0 (82.6° at 0.063 mm before it with the inner rings plain), so the value depends on
-    // how close a sample lands to U0, in the single-corner table as well.
+    // how close a sample lands to U0 (whether the single-corner table shares this is not checked).
     for k in [8, 9] {
         let (p, v) = (plain.rings[k].max_engagement_rad.to_degrees(), var.rings[k].max_engagement_rad.to_degrees());
         assert!(p > a_str.to_degrees() + 89.0 && v < p - 40.0, "ring {k}: plain {p}°, variable {v}°");
