@@ -66,6 +66,12 @@ enum Command {
         #[command(flatten)]
         args: corner_cmd::EngagementArgs,
     },
+    /// Clear a polygonal pocket by contour-parallel rings; print JSON (rings, path length,
+    /// time, engagement per ring measured by the evaluator).
+    Pocket {
+        #[command(flatten)]
+        args: corner_cmd::PocketArgs,
+    },
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -207,6 +213,7 @@ fn run(cmd: Command) -> Result<String, String> {
         Command::Export { job, nc } => crate::export::run(&job.job()?, &nc),
         Command::Corner { args } => corner_cmd::corner(&args),
         Command::Engagement { args } => corner_cmd::engagement(&args),
+        Command::Pocket { args } => corner_cmd::pocket(&args),
     }
 }
 

@@ -1,4 +1,4 @@
-//! CLI handlers of the pocket-corner commands (issue #5): `corner` and `engagement`.
+//! CLI handlers of the pocket-corner commands (issue #5): `corner`, `engagement` and `pocket`.
 //! Degrees at this edge, radians in the core. Output is JSON (or a Markdown table with
 //! `corner --table`).
 
@@ -11,8 +11,8 @@ use trochoplan_core::JobError;
 use trochoplan_core::corner::CornerPlan;
 use trochoplan_core::corner::acceptance::{acceptance_table, markdown};
 use trochoplan_core::corner::{
-    Corner, CornerScenario, CornerSettings, EvaluatorOptions, Method, Polygon, engagement_profile, parse_points,
-    polyline, radial_depth_for_engagement, straight_engagement,
+    Corner, CornerScenario, CornerSettings, EvaluatorOptions, Method, PocketSettings, Polygon, engagement_profile,
+    parse_points, plan_pocket, pocket_polygon, polyline, radial_depth_for_engagement, straight_engagement,
 };
 use trochoplan_core::geom::Segment;
 use trochoplan_core::nc::{DEFAULT_TOLERANCE_MM, NcOptions, PathJob, program_for_path};
@@ -133,6 +133,124 @@ pub struct EngagementArgs {
     /// Spacing of the evaluated tool positions along the path (mm).
     #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = 0.1)]
     spacing: f64,
+}
+
+/// Corner strategy of `trochoplan pocket`.
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum PocketMethodArg {
+    /// Plain contour-parallel rings.
+    Plain,
+    /// Variable circles at every convex corner of every ring but the innermost.
+    Variable,
+    /// Isometric circles at every convex corner of every ring but the innermost.
+    Isometric,
+}
+
+/// Flags of `trochoplan pocket`.
+#[derive(Args)]
+pub struct PocketArgs {
+    /// Pocket boundary: one vertex "x,y" per line (mm), '#' comments allowed; a simple polygon.
+    #[arg(long, value_name = "FILE")]
+    polygon: PathBuf,
+    /// Tool diameter D (mm).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = 10.0)]
+    tool_diameter: f64,
+    /// Ring step-over a_e (mm), 0 < a_e < D (default 2.5: a_e/D = 0.25 for D = 10, 60° straight engagement).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = 2.5)]
+    step_over: f64,
+    /// Feed rate for the machining time (mm/min).
+    #[arg(long, value_name = "MM_PER_MIN", allow_hyphen_values = true, default_value_t = 600.0)]
+    feed: f64,
+    /// Corner strategy at the ring corners.
+    #[arg(long, value_enum, default_value = "plain")]
+    method: PocketMethodArg,
+    /// Spacing of the tool positions measured by the evaluator (mm).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = 0.25)]
+    spacing: f64,
+}
+
+#[derive(Serialize)]
+struct RingOut {
+    level: usize,
+    offset_mm: f64,
+    length_mm: f64,
+    max_engagement_deg: f64,
+    max_engagement_at: [f64; 2],
+    entry_engagement_deg: f64,
+    segments: Vec<Segment>,
+}
+
+#[derive(Serialize)]
+struct PocketOut {
+    method: &'static str,
+    /// Ring corners given corner trochoids.
+    trochoid_corners: usize,
+    /// Convex ring corners left plain (strategy preconditions not met; innermost ring excluded).
+    plain_corners: usize,
+    tool_diameter_mm: f64,
+    step_over_mm: f64,
+    feed_mm_per_min: f64,
+    /// Straight-cut engagement of the step-over, arccos(1 − a_e/r) (domain-spec §1.1).
+    straight_engagement_deg: f64,
+    polygon: Vec<[f64; 2]>,
+    ring_count: usize,
+    /// Rings in machining order (innermost first); links between rings are not included.
+    rings: Vec<RingOut>,
+    path_length_mm: f64,
+    time_s: f64,
+    /// Largest engagement over all rings (entries excluded), measured by the evaluator.
+    max_engagement_deg: f64,
+}
+
+/// `trochoplan pocket`: contour-parallel rings of a polygonal pocket, measured ring by ring.
+pub fn pocket(args: &PocketArgs) -> Result<String, String> {
+    let d = finite("tool diameter", args.tool_diameter)?;
+    let what = args.polygon.display().to_string();
+    let polygon =
+        pocket_polygon(parse_points(&read(&args.polygon)?, &what).map_err(err)?).map_err(|e| format!("{what}: {e}"))?;
+    let settings = PocketSettings {
+        tool_radius: d / 2.0,
+        step_over: args.step_over,
+        feed_mm_per_min: args.feed,
+        spacing: args.spacing,
+        method: match args.method {
+            PocketMethodArg::Plain => Method::Plain,
+            PocketMethodArg::Variable => Method::Variable,
+            PocketMethodArg::Isometric => Method::Isometric,
+        },
+    };
+    settings.validate().map_err(err)?;
+    let plan = plan_pocket(&polygon, settings).map_err(err)?;
+    let out = PocketOut {
+        method: settings.method.name(),
+        trochoid_corners: plan.trochoid_corners,
+        plain_corners: plan.plain_corners,
+        tool_diameter_mm: d,
+        step_over_mm: args.step_over,
+        feed_mm_per_min: args.feed,
+        straight_engagement_deg: straight_engagement(args.step_over, d / 2.0).map_err(err)?.to_degrees(),
+        polygon: polygon.vertices().iter().map(|v| [v.x, v.y]).collect(),
+        ring_count: plan.rings.len(),
+        rings: plan
+            .rings
+            .iter()
+            .map(|g| RingOut {
+                level: g.level,
+                offset_mm: g.offset_mm,
+                length_mm: g.length_mm,
+                max_engagement_deg: g.max_engagement_rad.to_degrees(),
+                max_engagement_at: [g.max_engagement_at.x, g.max_engagement_at.y],
+                entry_engagement_deg: g.entry_engagement_rad.to_degrees(),
+                segments: g.segments.clone(),
+            })
+            .collect(),
+        path_length_mm: plan.path_length_mm,
+        time_s: plan.time_s,
+        max_engagement_deg: plan.max_engagement_rad.to_degrees(),
+    };
+    let mut text = serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?;
+    text.push('\n');
+    Ok(text)
 }
 
 fn err(e: JobError) -> String {
@@ -480,6 +598,45 @@ mod tests {
         }
         std::fs::write(&sp, "0,0\n1,1\n1,0\n0,1\n").expect("write");
         let e = engagement(&EngagementArgs { stock_polygon: sp, ..args }).expect_err("bow tie");
+        assert!(e.contains("polygon"), "{e}");
+    }
+
+    #[derive(Parser)]
+    struct PT {
+        #[command(flatten)]
+        p: PocketArgs,
+    }
+
+    #[test]
+    fn pocket_json_and_errors() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let f = dir.path().join("rect.txt");
+        // 60 × 40 rectangle, D = 10, a_e = 4: rings at d = 5, 9, 13, 17 (d < 20), perimeters
+        // 200 − 8d = 160, 128, 96, 64; total 448 mm, 44.8 s at 600 mm/min.
+        std::fs::write(&f, "# rectangle\n0,0\n60,0\n60,40\n0,40\n").expect("write");
+        let p = f.display().to_string();
+        let args = |extra: &[&str]| {
+            let mut v = vec!["t", "--polygon", p.as_str(), "--spacing", "0.5"];
+            v.extend_from_slice(extra);
+            PT::try_parse_from(v).expect("parse").p
+        };
+        let v: serde_json::Value =
+            serde_json::from_str(&pocket(&args(&["--step-over", "4"])).expect("plan")).expect("json");
+        assert_eq!(v["ring_count"].as_u64(), Some(4));
+        assert!(v["path_length_mm"].as_f64().is_some_and(|l| (l - 448.0).abs() < 1e-8), "{}", v["path_length_mm"]);
+        assert!(v["time_s"].as_f64().is_some_and(|t| (t - 44.8).abs() < 1e-9));
+        assert!(v["rings"][0]["segments"].as_array().is_some_and(|s| s.len() == 5)); // 4 edges, the longest split at the entry
+        assert!(v["max_engagement_deg"].as_f64().is_some_and(|m| (m - 180.0).abs() < 1e-3));
+        for (flags, name) in [
+            (vec!["--step-over", "10"], "step-over"),
+            (vec!["--tool-diameter", "NaN"], "tool diameter"),
+            (vec!["--tool-diameter", "50"], "tool diameter"),
+        ] {
+            let e = pocket(&args(&flags)).expect_err("must fail");
+            assert!(e.contains(name), "{flags:?}: {e}");
+        }
+        std::fs::write(&f, "0,0\n10,10\n10,0\n0,10\n").expect("write");
+        let e = pocket(&args(&["--step-over", "4"])).expect_err("bow tie");
         assert!(e.contains("polygon"), "{e}");
     }
 }

@@ -16,6 +16,8 @@
 //!   (§3.3) and isometric-circle (§3.4) corner trochoids and the perforative medial-axis
 //!   trochoids (§3.5).
 //! - [`medial`]: medial axis of a polygon (segment Voronoi by `boostvoronoi`, §3.5).
+//! - [`pocket`]: a polygonal pocket cleared by contour-parallel rings (`cavalier_contours`
+//!   offsets), measured ring by ring with the evaluator (§3.1; issue #5 item 5).
 //! - [`acceptance`]: the issue #5 acceptance table, measured with the evaluator.
 
 pub mod acceptance;
@@ -23,6 +25,7 @@ pub mod engagement;
 pub mod evaluator;
 pub mod geometry;
 pub mod medial;
+pub mod pocket;
 pub mod strategy;
 
 pub use acceptance::{AcceptanceRow, acceptance_row, acceptance_table};
@@ -32,6 +35,7 @@ pub use evaluator::{
 };
 pub use geometry::{Corner, LineEq, bisector_point};
 pub use medial::{AxisEdge, MedialAxis, medial_axis};
+pub use pocket::{PocketPlan, PocketSettings, Ring, inward_offset, plan_pocket, pocket_polygon};
 pub use strategy::{
     CornerCircle, CornerPlan, CornerScenario, CornerSettings, Method, first_circle_radius, plan_corner,
 };

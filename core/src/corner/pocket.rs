@@ -1,0 +1,358 @@
+//! Polygonal pocket cleared by contour-parallel rings (issue #5 item 5; Wu et al. 2016 §4,
+//! domain-spec §3.1: the plain contour-parallel path whose corners the strategies replace).
+//!
+//! Conventions as in [`super`]: mm, counter-clockwise pocket boundary, tool-centre rings walked
+//! counter-clockwise (pocket material on the left: climb milling with M3).
+//!
+//! Rings: ring `k` is the inward offset of the pocket boundary by `d_k = r + k·a_e`
+//! (`k = 0, 1, …`) while that offset is non-empty. Offsetting is done by `cavalier_contours`
+//! (J. Buckmccready, MIT/Apache-2.0), called from this module only, and only on a polygon that
+//! [`Polygon::new`] has validated (≥ 3 finite vertices, no degenerate edges, simple, CCW) and
+//! with a finite positive offset, so the library's preconditions hold (it can panic on
+//! degenerate input; nothing is caught here). Its output keeps arcs exact as bulges; they are
+//! converted to [`Segment::Arc`] (`sweep = 4·atan(bulge)`, cavalier_contours' bulge
+//! definition). Note: an *inward* offset of a convex pocket corner stays sharp; arcs appear at
+//! reflex (concave-of-pocket) vertices, with radius `d_k`.
+//!
+//! Measurement: each ring is measured by the independent evaluator ([`engagement_profile`])
+//! over the pocket polygon as stock, after every ring machined before it. Rings are machined
+//! from the innermost outward (the usual contour-parallel order starting in the middle), so
+//! the innermost ring is a full slot (180°) and each further ring cuts a band of `a_e`.
+//! Links between rings are not part of the path (not measured, not in the length or time).
+//! The first position of each ring (the entry, where the evaluator has no swept path behind
+//! the tool yet) is reported apart from the ring's running maximum.
+//!
+//! Corner strategies (variable / isometric circles, [`super::strategy`]) are applied at every
+//! convex line–line corner of every ring that has a previous (inner) ring, through a small
+//! adapter ([`ring_with_corner_trochoids`]): the strategy's corner scenario assumes the current
+//! ring is the walls offset by r and the previous ring the walls offset by r + a_e with a sharp
+//! corner. For ring k (offset r + k·a_e) those walls are the polygon offset by k·a_e, whose
+//! corner apex is `U0 − (r / sin α) b̂` (U0 the ring's corner vertex); the previous ring k + 1,
+//! machined before it (inside-out order), is exactly the sharp r + a_e offset of those walls
+//! near the corner. The strategy's path from its ring start to U0 is spliced into the ring in
+//! place of the incoming line. Corners where the scenario's preconditions fail (walls too short
+//! for the circles, the circles' entry not on the incoming line, arcs next to the corner) stay
+//! plain and are counted in `PocketPlan::plain_corners`. The innermost ring (a full slot, no
+//! previous ring) stays plain. Gouging of circles into other walls of small rings is not
+//! checked; the engagement of the result is measured by the evaluator like the plain rings.
+
+use super::evaluator::{EvaluatorOptions, Polygon, engagement_profile};
+use super::geometry::Corner;
+use super::strategy::{CornerScenario, CornerSettings, Method, plan_corner};
+use crate::error::JobError;
+use crate::geom::{P2, Segment, p2};
+use cavalier_contours::polyline::{PlineSource, PlineSourceMut, PlineVertex, Polyline, seg_arc_radius_and_center};
+use serde::{Deserialize, Serialize};
+
+/// Upper bound on the number of offset levels (keeps run time bounded for tiny step-overs).
+const MAX_LEVELS: usize = 10_000;
+/// Offset loops shorter than this are dropped as numerical slivers (mm).
+const MIN_RING_LENGTH: f64 = 1e-6;
+
+/// Inputs of a pocket plan (mm, mm/min).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PocketSettings {
+    /// Tool radius r (mm).
+    pub tool_radius: f64,
+    /// Radial step-over a_e between rings (mm), 0 < a_e < D.
+    pub step_over: f64,
+    /// Feed rate for the machining time (mm/min).
+    pub feed_mm_per_min: f64,
+    /// Arc-length spacing of the evaluated tool positions (mm).
+    pub spacing: f64,
+    /// Corner strategy at the ring corners: plain, variable or isometric (medial-axis is a
+    /// whole-pocket strategy and is rejected here).
+    pub method: Method,
+}
+
+impl PocketSettings {
+    /// Range checks; each error names the parameter, the value and the allowed range.
+    pub fn validate(&self) -> Result<(), JobError> {
+        let r = self.tool_radius;
+        if !(r.is_finite() && r > 0.0 && r <= 500.0) {
+            return Err(JobError::range(
+                "tool diameter",
+                2.0 * r,
+                "a finite number greater than 0 and at most 1000 mm",
+            ));
+        }
+        if !(self.step_over.is_finite() && self.step_over > 0.0 && self.step_over < 2.0 * r) {
+            return Err(JobError::range(
+                "step-over",
+                self.step_over,
+                format!("greater than 0 and less than the tool diameter {} mm", 2.0 * r),
+            ));
+        }
+        if !(self.feed_mm_per_min.is_finite() && self.feed_mm_per_min > 0.0) {
+            return Err(JobError::range("feed", self.feed_mm_per_min, "a finite number > 0 mm/min"));
+        }
+        if !(self.spacing.is_finite() && self.spacing > 0.0 && self.spacing <= r) {
+            return Err(JobError::range("spacing", self.spacing, format!("greater than 0 and at most r = {r} mm")));
+        }
+        if self.method == Method::MedialAxis {
+            return Err(JobError::range("method", "medial-axis", "plain, variable or isometric for pocket rings"));
+        }
+        Ok(())
+    }
+}
+
+/// One closed tool-centre ring.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Ring {
+    /// Offset level k (0 = the ring next to the wall).
+    pub level: usize,
+    /// Inward offset of the pocket boundary, d = r + k·a_e (mm).
+    pub offset_mm: f64,
+    /// Closed counter-clockwise loop of lines and arcs.
+    pub segments: Vec<Segment>,
+    /// Length (mm).
+    pub length_mm: f64,
+    /// Largest engagement after the entry position, measured by the evaluator (rad).
+    pub max_engagement_rad: f64,
+    /// Where it occurs (mm).
+    pub max_engagement_at: P2,
+    /// Engagement at the entry position (rad; the tool has no swept path behind it there).
+    pub entry_engagement_rad: f64,
+}
+
+/// A planned pocket.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PocketPlan {
+    /// The validated pocket (counter-clockwise).
+    pub polygon: Polygon,
+    pub settings: PocketSettings,
+    /// Rings in machining order (innermost first).
+    pub rings: Vec<Ring>,
+    /// Total ring length (mm), links excluded.
+    pub path_length_mm: f64,
+    /// Machining time of the rings at the feed (s).
+    pub time_s: f64,
+    /// Largest running engagement over all rings (rad), entries excluded.
+    pub max_engagement_rad: f64,
+    /// Ring corners where the strategy's circles were spliced in.
+    pub trochoid_corners: usize,
+    /// Convex ring corners left plain (strategy preconditions not met; innermost ring excluded).
+    pub plain_corners: usize,
+}
+
+/// Validates a pocket boundary: ≥ 3 finite vertices, no zero-length edges, not
+/// self-intersecting, non-zero area; clockwise input is reversed. Errors name the parameter
+/// (`polygon …`) and the offending vertex or edge index (1-based).
+pub fn pocket_polygon(vertices: Vec<P2>) -> Result<Polygon, JobError> {
+    Polygon::new(vertices)
+}
+
+/// The inward offset loops of a validated polygon at distance `d` (> 0, finite), as closed
+/// counter-clockwise segment loops. Empty when the offset vanishes.
+pub fn inward_offset(polygon: &Polygon, d: f64) -> Result<Vec<Vec<Segment>>, JobError> {
+    if !(d.is_finite() && d > 0.0) {
+        return Err(JobError::range("offset", d, "a finite number > 0 mm"));
+    }
+    let mut pline: Polyline<f64> = Polyline::new_closed();
+    for v in polygon.vertices() {
+        pline.add(v.x, v.y, 0.0);
+    }
+    // Counter-clockwise boundary: positive offset is to the left, i.e. inward.
+    let mut loops = Vec::new();
+    for mut off in pline.parallel_offset(d) {
+        if off.vertex_count() < 2 || !off.is_closed() {
+            continue;
+        }
+        if off.area() < 0.0 {
+            off.invert_direction_mut();
+        }
+        let segs = to_segments(&off);
+        let len: f64 = segs.iter().map(Segment::length).sum();
+        if len > MIN_RING_LENGTH && segs.iter().all(|s| s.length().is_finite()) {
+            loops.push(segs);
+        }
+    }
+    Ok(loops)
+}
+
+/// Closed cavalier_contours polyline to lines and arcs. Arc from bulge b between v1 and v2:
+/// centre and radius by `seg_arc_radius_and_center`, sweep `4·atan(b)` (b > 0: CCW).
+fn to_segments(pl: &Polyline<f64>) -> Vec<Segment> {
+    let n = pl.vertex_count();
+    let mut out = Vec::with_capacity(n);
+    for i in 0..n {
+        let v1: PlineVertex<f64> = pl.at(i);
+        let v2: PlineVertex<f64> = pl.at((i + 1) % n);
+        let (a, b) = (p2(v1.x, v1.y), p2(v2.x, v2.y));
+        if (b - a).norm() <= 1e-12 {
+            continue;
+        }
+        if v1.bulge.abs() <= 1e-12 {
+            out.push(Segment::Line { start: a, end: b });
+        } else {
+            let (radius, c) = seg_arc_radius_and_center(v1, v2);
+            let center = p2(c.x, c.y);
+            let start_angle = (a.y - center.y).atan2(a.x - center.x);
+            out.push(Segment::Arc { center, radius, start_angle, sweep: 4.0 * v1.bulge.atan() });
+        }
+    }
+    out
+}
+
+/// Plain contour-parallel rings of a pocket, each measured by the independent evaluator.
+/// Errors: settings out of range (named), a pocket too narrow for the tool (`tool diameter`).
+pub fn plan_pocket(polygon: &Polygon, settings: PocketSettings) -> Result<PocketPlan, JobError> {
+    settings.validate()?;
+    let (r, ae) = (settings.tool_radius, settings.step_over);
+    let mut levels: Vec<(usize, f64, Vec<Vec<Segment>>)> = Vec::new();
+    for k in 0..MAX_LEVELS {
+        let d = r + k as f64 * ae;
+        let loops = inward_offset(polygon, d)?;
+        if loops.is_empty() {
+            break;
+        }
+        levels.push((k, d, loops));
+    }
+    if levels.is_empty() {
+        return Err(JobError::range(
+            "tool diameter",
+            2.0 * r,
+            "small enough to fit in the pocket (the inward offset of the polygon by the tool radius is empty)",
+        ));
+    }
+    if levels.len() == MAX_LEVELS {
+        return Err(JobError::range("step-over", ae, format!("large enough for at most {MAX_LEVELS} rings")));
+    }
+    let opts = EvaluatorOptions::new(r, settings.spacing);
+    let mut rings = Vec::new();
+    let mut cut: Vec<Segment> = Vec::new();
+    let innermost = levels.len() - 1;
+    let (mut trochoid_corners, mut plain_corners) = (0, 0);
+    for (k, d, loops) in levels.into_iter().rev() {
+        for plain in loops {
+            let segs = if settings.method == Method::Plain || k == innermost {
+                plain
+            } else {
+                let (segs, done, skipped) = ring_with_corner_trochoids(&plain, settings)?;
+                trochoid_corners += done;
+                plain_corners += skipped;
+                segs
+            };
+            let segs = start_mid_longest_line(segs);
+            let prof = engagement_profile(polygon, &cut, &segs, &opts)?;
+            let entry = prof.samples.first().map_or(0.0, |s| s.angle_rad);
+            let best = prof.samples.iter().skip(1).fold(None, |b: Option<(f64, P2)>, s| match b {
+                Some((a, _)) if a >= s.angle_rad => b,
+                _ => Some((s.angle_rad, p2(s.x_mm, s.y_mm))),
+            });
+            let (max, at) = best.unwrap_or((entry, segs[0].start()));
+            cut.extend(segs.iter().copied());
+            rings.push(Ring {
+                level: k,
+                offset_mm: d,
+                length_mm: prof.path_length_mm,
+                segments: segs,
+                max_engagement_rad: max,
+                max_engagement_at: at,
+                entry_engagement_rad: entry,
+            });
+        }
+    }
+    let len: f64 = rings.iter().map(|g| g.length_mm).sum();
+    let max = rings.iter().map(|g| g.max_engagement_rad).fold(0.0, f64::max);
+    Ok(PocketPlan {
+        polygon: polygon.clone(),
+        settings,
+        rings,
+        path_length_mm: len,
+        time_s: len / settings.feed_mm_per_min * 60.0,
+        max_engagement_rad: max,
+        trochoid_corners,
+        plain_corners,
+    })
+}
+
+/// The same closed loop, restarted at the midpoint of its longest line (split in two), so the
+/// ring is entered on a straight part rather than at a corner (where the corner trochoids of
+/// the last corner would run only after the tool had already turned there). Loops without a
+/// line are returned as they are.
+fn start_mid_longest_line(ring: Vec<Segment>) -> Vec<Segment> {
+    let best = ring.iter().enumerate().filter(|(_, s)| matches!(s, Segment::Line { .. })).fold(
+        None,
+        |b: Option<(usize, f64)>, (i, s)| match b {
+            Some((_, l)) if l >= s.length() => b,
+            _ => Some((i, s.length())),
+        },
+    );
+    let Some((i, _)) = best else { return ring };
+    let Segment::Line { start, end } = ring[i] else { return ring };
+    let mid = (start + end) * 0.5;
+    let mut out = Vec::with_capacity(ring.len() + 1);
+    out.push(Segment::Line { start: mid, end });
+    out.extend(ring[i + 1..].iter().copied());
+    out.extend(ring[..i].iter().copied());
+    out.push(Segment::Line { start, end: mid });
+    out
+}
+
+/// Adapter from a ring to [`plan_corner`] (see the module docs): every convex line–line corner
+/// of the closed CCW loop `ring` gets the corner trochoids of `settings.method`, spliced in
+/// place of the incoming line. Returns the new loop, the number of corners done and the number
+/// of convex corners left plain because the corner scenario's preconditions failed.
+pub fn ring_with_corner_trochoids(
+    ring: &[Segment],
+    settings: PocketSettings,
+) -> Result<(Vec<Segment>, usize, usize), JobError> {
+    let (r, ae) = (settings.tool_radius, settings.step_over);
+    let base = CornerSettings { feed_mm_per_min: settings.feed_mm_per_min, ..CornerSettings::new(r, ae)? };
+    let n = ring.len();
+    let mut out = Vec::with_capacity(n);
+    let (mut done, mut skipped) = (0, 0);
+    for i in 0..n {
+        let (seg, next) = (ring[i], ring[(i + 1) % n]);
+        let (Segment::Line { start: a, end: u0 }, Segment::Line { end: c, .. }) = (seg, next) else {
+            out.push(seg);
+            continue;
+        };
+        let (u, v) = (u0 - a, c - u0);
+        if crate::geom::cross(u, v) <= 1e-9 * u.norm() * v.norm() {
+            out.push(seg); // straight or reflex (concave-of-pocket) vertex
+            continue;
+        }
+        match corner_piece(a, u0, c, base, settings.method) {
+            Some(piece) => {
+                out.extend(piece);
+                done += 1;
+            }
+            None => {
+                out.push(seg);
+                skipped += 1;
+            }
+        }
+    }
+    Ok((out, done, skipped))
+}
+
+/// The strategy's path from `a` (start of the incoming ring line) to the corner vertex `u0`,
+/// or `None` where the corner scenario does not apply.
+fn corner_piece(a: P2, u0: P2, c: P2, base: CornerSettings, method: Method) -> Option<Vec<Segment>> {
+    let r = base.tool_radius;
+    let at_vertex = Corner::new(u0, u0 - a, c - u0).ok()?;
+    let (alpha, b) = (at_vertex.half_angle, at_vertex.bisector);
+    let apex = u0 - b * (r / alpha.sin());
+    let corner = Corner::new(apex, at_vertex.dir_in, at_vertex.dir_out).ok()?;
+    // Wall length from the apex: the ring line's length plus the foot of U0 on the wall, r/tan α.
+    let edge_length = (u0 - a).norm().min((c - u0).norm()) + r / alpha.tan();
+    let sc = CornerScenario::new(corner, CornerSettings { edge_length, ..base }).ok()?;
+    let plan = plan_corner(&sc, method).ok()?;
+    let mut path = plan.path;
+    path.pop(); // corner point → ring end: the next ring segment
+    let first = path.first_mut()?;
+    let Segment::Line { end: e, .. } = *first else { return None };
+    // The strategy's first move must end on the incoming line, between a and u0.
+    let (dir, len) = ((u0 - a) / (u0 - a).norm(), (u0 - a).norm());
+    let t = (e - a).dot(&dir);
+    if !(t >= 0.0 && t <= len && crate::geom::cross(dir, e - a).abs() < 1e-6) {
+        return None;
+    }
+    *first = Segment::Line { start: a, end: e };
+    if path.last().map(Segment::end).is_none_or(|p| (p - u0).norm() > 1e-6) {
+        return None;
+    }
+    Some(path)
+}

@@ -1,0 +1,215 @@
+//! Polygonal pocket cleared by contour-parallel rings (issue #5 item 5): ring count and ring
+//! lengths against analytic offsets, engagement against the straight-cut formula (§1.1,
+//! computed here independently), and named errors for bad input.
+
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use std::f64::consts::PI;
+use trochoplan_core::corner::*;
+use trochoplan_core::geom::{P2, Segment, p2};
+
+const LEN_TOL: f64 = 1e-9; // mm, offset geometry is exact (lines and arcs)
+const ANGLE_TOL_DEG: f64 = 1e-3; // evaluator refinement is ~1e-8 rad
+
+fn settings(d: f64, ae: f64) -> PocketSettings {
+    PocketSettings { tool_radius: d / 2.0, step_over: ae, feed_mm_per_min: 600.0, spacing: 0.5, method: Method::Plain }
+}
+
+fn poly(pts: &[(f64, f64)]) -> Polygon {
+    pocket_polygon(pts.iter().map(|&(x, y)| p2(x, y)).collect()).unwrap()
+}
+
+fn length(segs: &[Segment]) -> f64 {
+    segs.iter().map(Segment::length).sum()
+}
+
+#[test]
+fn rectangle_rings_count_and_lengths() {
+    // 60 × 40 rectangle, D = 10 (r = 5), a_e = 4. Half-width h = 20. Ring k is the offset by
+    // d_k = r + k·a_e and exists while d_k < h: k < (h − r)/a_e = 15/4 = 3.75 → k = 0..3, four
+    // rings. The inward offset of a convex polygon keeps sharp corners (arcs appear only at
+    // reflex vertices), so ring k is the rectangle [d, 60 − d] × [d, 40 − d] with perimeter
+    // 2(60 − 2d) + 2(40 − 2d) = 200 − 8d: d = 17, 13, 9, 5 → 64, 96, 128, 160 (innermost first).
+    let pocket = poly(&[(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)]);
+    let plan = plan_pocket(&pocket, settings(10.0, 4.0)).unwrap();
+    assert_eq!(plan.rings.len(), 4);
+    for (ring, (d, want)) in plan.rings.iter().zip([(17.0, 64.0), (13.0, 96.0), (9.0, 128.0), (5.0, 160.0)]) {
+        assert!((ring.offset_mm - d).abs() < LEN_TOL, "offset {} vs {d}", ring.offset_mm);
+        let got = length(&ring.segments);
+        assert!((got - want).abs() < LEN_TOL, "d = {d}: length {got} vs {want}");
+        assert!((ring.length_mm - want).abs() < LEN_TOL);
+        for s in &ring.segments {
+            assert!(matches!(s, Segment::Line { .. }), "convex pocket offsets are lines: {s:?}");
+            for p in [s.start(), s.end()] {
+                let on_x = (p.x - d).abs() < LEN_TOL || (p.x - (60.0 - d)).abs() < LEN_TOL;
+                let on_y = (p.y - d).abs() < LEN_TOL || (p.y - (40.0 - d)).abs() < LEN_TOL;
+                assert!(on_x || on_y, "d = {d}: {p:?} not on the offset rectangle");
+            }
+        }
+    }
+    let total = 64.0 + 96.0 + 128.0 + 160.0;
+    assert!((plan.path_length_mm - total).abs() < 1e-8);
+    // Time at 600 mm/min: 448 mm / 600 mm/min · 60 s/min = 44.8 s.
+    assert!((plan.time_s - 44.8).abs() < 1e-9, "{}", plan.time_s);
+
+    // Engagement. Innermost ring: nothing cut before → a full slot on its first leg, 180°.
+    assert!((plan.rings[0].max_engagement_rad.to_degrees() - 180.0).abs() < ANGLE_TOL_DEG, "{:?}", plan.rings[0]);
+    // Outer rings on straight parts, away from corners: a band of a_e = 4 left by the previous
+    // ring → straight-cut engagement arccos(1 − a_e/r) = arccos(0.2) (domain-spec §1.1).
+    let a_str = (1.0f64 - 4.0 / 5.0).acos().to_degrees();
+    let stock = pocket.clone();
+    let opts = EvaluatorOptions::new(5.0, 0.5);
+    let before: Vec<Segment> = plan.rings[..3].iter().flat_map(|g| g.segments.iter().copied()).collect();
+    let outer = &plan.rings[3];
+    let prof = engagement_profile(&stock, &before, &outer.segments, &opts).unwrap();
+    let mut checked = 0;
+    for s in &prof.samples {
+        // The ring is entered at the middle of its longest edge, (30, 5), and runs towards +x.
+        // Bottom edge y = 5 after the entry sample, x in (30, 40]: ≥ 15 mm from the corners and
+        // before the loop comes back to its start.
+        if s.s_mm > 0.0 && (s.y_mm - 5.0).abs() < 1e-9 && s.x_mm > 30.0 && s.x_mm <= 40.0 {
+            assert!((s.angle_rad.to_degrees() - a_str).abs() < ANGLE_TOL_DEG, "{s:?} vs {a_str}");
+            checked += 1;
+        }
+    }
+    assert!(checked >= 10, "{checked} straight samples");
+    // The plain ring's corners exceed the straight value: the engagement jump this issue is about.
+    assert!(outer.max_engagement_rad.to_degrees() > a_str + 10.0, "{:?}", outer.max_engagement_rad.to_degrees());
+    assert!(
+        (plan.max_engagement_rad - plan.rings.iter().map(|g| g.max_engagement_rad).fold(0.0, f64::max)).abs() < 1e-15
+    );
+}
+
+#[test]
+fn triangle_rings_are_similar_triangles() {
+    // Right triangle 40 × 30 (hypotenuse 50): perimeter P = 120, area A = 600, inradius
+    // ρ = A / (P/2) = 10. Inward offsets by d are similar triangles with inradius ρ − d, so the
+    // perimeter is P(ρ − d)/ρ. D = 4 (r = 2), a_e = 3: d = 2, 5, 8 (< ρ), 11 (≥ ρ, vanishes):
+    // (ρ − r)/a_e = 8/3 → k = 0..2, three rings with perimeters 96, 60, 24.
+    let pocket = poly(&[(0.0, 0.0), (40.0, 0.0), (0.0, 30.0)]);
+    let plan = plan_pocket(&pocket, settings(4.0, 3.0)).unwrap();
+    let got: Vec<(f64, f64)> = plan.rings.iter().map(|g| (g.offset_mm, g.length_mm)).collect();
+    assert_eq!(got.len(), 3, "{got:?}");
+    for ((d, len), (wd, wl)) in got.iter().zip([(8.0, 24.0), (5.0, 60.0), (2.0, 96.0)]) {
+        assert!((d - wd).abs() < LEN_TOL && (len - wl).abs() < 1e-8, "{d}, {len} vs {wd}, {wl}");
+    }
+    for g in &plan.rings {
+        assert_eq!(g.segments.len(), 4, "a triangle offset has three edges, the longest split at the ring start");
+        let m = g.max_engagement_rad.to_degrees();
+        assert!(m.is_finite() && m > 0.0 && m <= 360.0, "{m}");
+    }
+}
+
+#[test]
+fn reflex_vertex_gives_an_arc_of_radius_d() {
+    // L-shaped pocket, reflex vertex at (20, 20). Offset d = 5: lines y = 5 (x 5..55, 50),
+    // x = 55 (y 5..15, 10), y = 15 (x 55..20, 35), arc about (20, 20) of radius 5 and a quarter
+    // turn clockwise (the ring turns right round the reflex vertex; length 5π/2), x = 15
+    // (y 20..55, 35), y = 55 (x 15..5, 10), x = 5 (y 55..5, 50). Total 190 + 5π/2.
+    let pocket = poly(&[(0.0, 0.0), (60.0, 0.0), (60.0, 20.0), (20.0, 20.0), (20.0, 60.0), (0.0, 60.0)]);
+    let loops = inward_offset(&pocket, 5.0).unwrap();
+    assert_eq!(loops.len(), 1);
+    let want = 190.0 + 5.0 * PI / 2.0;
+    assert!((length(&loops[0]) - want).abs() < LEN_TOL, "{} vs {want}", length(&loops[0]));
+    let arcs: Vec<&Segment> = loops[0].iter().filter(|s| matches!(s, Segment::Arc { .. })).collect();
+    assert_eq!(arcs.len(), 1, "{:?}", loops[0]);
+    if let Segment::Arc { center, radius, sweep, .. } = *arcs[0] {
+        assert!((center - p2(20.0, 20.0)).norm() < LEN_TOL && (radius - 5.0).abs() < LEN_TOL);
+        assert!((sweep + PI / 2.0).abs() < 1e-12, "sweep {sweep}");
+    }
+    // The loop is closed and connected.
+    let n = loops[0].len();
+    for i in 0..n {
+        let gap: P2 = loops[0][(i + 1) % n].start() - loops[0][i].end();
+        assert!(gap.norm() < 1e-9, "gap {gap:?} after segment {i}");
+    }
+}
+
+#[test]
+fn clockwise_input_gives_the_same_rings() {
+    // Metamorphic: the same rectangle listed clockwise.
+    let ccw = plan_pocket(&poly(&[(0.0, 0.0), (30.0, 0.0), (30.0, 20.0), (0.0, 20.0)]), settings(6.0, 2.0)).unwrap();
+    let cw = plan_pocket(&poly(&[(0.0, 0.0), (0.0, 20.0), (30.0, 20.0), (30.0, 0.0)]), settings(6.0, 2.0)).unwrap();
+    assert_eq!(ccw.rings.len(), cw.rings.len());
+    assert!((ccw.path_length_mm - cw.path_length_mm).abs() < 1e-9);
+}
+
+#[test]
+fn bad_input_gives_named_errors() {
+    let pts = |v: &[(f64, f64)]| v.iter().map(|&(x, y)| p2(x, y)).collect::<Vec<_>>();
+    let bow = pocket_polygon(pts(&[(0.0, 0.0), (10.0, 10.0), (10.0, 0.0), (0.0, 10.0)])).unwrap_err();
+    assert_eq!(bow.parameter(), Some("polygon"), "{bow}");
+    assert!(bow.to_string().contains("edges #"), "{bow}");
+    let dup = pocket_polygon(pts(&[(0.0, 0.0), (10.0, 0.0), (10.0, 0.0), (0.0, 10.0)])).unwrap_err();
+    assert_eq!(dup.parameter(), Some("polygon edge length"), "{dup}");
+    assert!(dup.to_string().contains("edge #2"), "{dup}");
+    let nan = pocket_polygon(pts(&[(0.0, 0.0), (f64::NAN, 0.0), (0.0, 10.0)])).unwrap_err();
+    assert_eq!(nan.parameter(), Some("polygon vertex"), "{nan}");
+    assert!(nan.to_string().contains("#2"), "{nan}");
+    let two = pocket_polygon(pts(&[(0.0, 0.0), (10.0, 0.0)])).unwrap_err();
+    assert_eq!(two.parameter(), Some("polygon vertices"), "{two}");
+
+    let rect = poly(&[(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)]);
+    for (s, name) in [
+        (settings(10.0, 10.0), "step-over"),
+        (settings(10.0, 12.0), "step-over"),
+        (settings(10.0, 0.0), "step-over"),
+        (settings(10.0, f64::NAN), "step-over"),
+        (settings(f64::NAN, 4.0), "tool diameter"),
+        (settings(-2.0, 1.0), "tool diameter"),
+        (PocketSettings { feed_mm_per_min: 0.0, ..settings(10.0, 4.0) }, "feed"),
+    ] {
+        let e = plan_pocket(&rect, s).unwrap_err();
+        assert_eq!(e.parameter(), Some(name), "{e}");
+    }
+    // A slot 8 mm wide is narrower than a 10 mm tool: the offset by r = 5 > 4 is empty.
+    let narrow = poly(&[(0.0, 0.0), (60.0, 0.0), (60.0, 8.0), (0.0, 8.0)]);
+    let e = plan_pocket(&narrow, settings(10.0, 4.0)).unwrap_err();
+    assert_eq!(e.parameter(), Some("tool diameter"), "{e}");
+}
+
+#[test]
+fn variable_circles_at_ring_corners_where_they_fit() {
+    // 60 × 40 rectangle, D = 10 (r = 5), a_e = 1.6: rings d = 5 + 1.6k < 20, k < 15/1.6 = 9.375
+    // → k = 0..9, ten rings. Straight-part engagement a_str = arccos(1 − a_e/r) = arccos(0.68),
+    // target a* = 1.15·a_str (Wu et al. t1 = 15 %). First variable circle (domain-spec §3.3):
+    // R1 = (2r²(1 − cos a*) − a_e²)/(2r(cos a_str − cos a*)) ≈ 19.09 mm; at a 90° corner it
+    // touches the walls R1·cot 45° = R1 from the apex and needs walls of R1 + 2r. The adapter's
+    // wall length is the ring's shorter edge plus r·cot 45°: 40 − 2d + 5 ≥ R1 + 10 ↔ d ≤ 7.95,
+    // so rings k = 0, 1 (d = 5, 6.6) get circles at their 4 corners (8), rings k = 2..8 stay
+    // plain (7 × 4 = 28), the innermost ring k = 9 (a full slot, no previous ring) is not counted.
+    let (r, ae) = (5.0f64, 1.6f64);
+    let a_str = (1.0 - ae / r).acos();
+    let a_t = 1.15 * a_str;
+    let r1 = (2.0 * r * r * (1.0 - a_t.cos()) - ae * ae) / (2.0 * r * (a_str.cos() - a_t.cos()));
+    assert!((40.0 - 2.0 * 6.6 + r >= r1 + 2.0 * r) && (40.0 - 2.0 * 8.2 + r < r1 + 2.0 * r), "R1 = {r1}");
+    let pocket = poly(&[(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)]);
+    let plain = plan_pocket(&pocket, settings(10.0, ae)).unwrap();
+    let var = plan_pocket(&pocket, PocketSettings { method: Method::Variable, ..settings(10.0, ae) }).unwrap();
+    assert_eq!(plain.rings.len(), 10);
+    assert_eq!(var.rings.len(), 10);
+    assert_eq!((var.trochoid_corners, var.plain_corners), (8, 28));
+    // The two outer rings: the plain ring's corner spike (a_str + 90° = 137.2° for a 90° turn, as
+    // measured for the rectangle above) drops by more than 40°. Not claimed here: the
+    // single-corner stated tip limit π − 2α + 1° = 91° (acceptance.rs). The outer ring measures
+    // 91.98° at (55, 34.9976), 0.0024 mm before a corner point: the tip engagement rises steeply
+    // into U0 (82.6° at 0.063 mm before it with the inner rings plain), so the value depends on
+    // how close a sample lands to U0 (whether the single-corner table shares this is not checked).
+    for k in [8, 9] {
+        let (p, v) = (plain.rings[k].max_engagement_rad.to_degrees(), var.rings[k].max_engagement_rad.to_degrees());
+        assert!(p > a_str.to_degrees() + 89.0 && v < p - 40.0, "ring {k}: plain {p}°, variable {v}°");
+        assert!(var.rings[k].length_mm > plain.rings[k].length_mm);
+    }
+    assert!(var.path_length_mm > plain.path_length_mm && var.time_s > plain.time_s);
+    // Closed, connected loops.
+    for g in &var.rings {
+        let n = g.segments.len();
+        for i in 0..n {
+            let gap = g.segments[(i + 1) % n].start() - g.segments[i].end();
+            assert!(gap.norm() < 1e-6, "ring {}: gap {gap:?} after segment {i}", g.level);
+        }
+    }
+    // Medial axis is a whole-pocket strategy, not a ring-corner one.
+    let e = plan_pocket(&pocket, PocketSettings { method: Method::MedialAxis, ..settings(10.0, ae) }).unwrap_err();
+    assert_eq!(e.parameter(), Some("method"), "{e}");
+}
