@@ -15,8 +15,8 @@ use std::sync::Arc;
 use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
 use trochoplan_core::JobError;
 use trochoplan_core::corner::{
-    Corner, CornerScenario, CornerSettings, EngagementProfile, EvaluatorOptions, Method, engagement_profile,
-    plan_corner, radial_depth_for_engagement, straight_engagement,
+    Corner, CornerScenario, CornerSettings, EngagementProfile, EvaluatorOptions, Method, acceptance_row,
+    engagement_profile, plan_corner, radial_depth_for_engagement, straight_engagement,
 };
 use trochoplan_core::geom::Segment;
 
@@ -139,6 +139,11 @@ pub struct CornerResult {
     /// Largest engagement of the strategy's path, measured by the evaluator (degrees).
     pub max_deg: f64,
     pub plain_max_deg: f64,
+    /// Largest engagement outside the final move into the corner point (degrees).
+    pub body_max_deg: f64,
+    /// Largest engagement of the final move into the corner point, and its stated limit (degrees).
+    pub tip_deg: f64,
+    pub tip_limit_deg: f64,
     pub plain_length_mm: f64,
     pub plain_time_s: f64,
     pub notes: Vec<String>,
@@ -207,6 +212,8 @@ pub fn compute(i: &CornerInputs) -> Result<CornerResult, String> {
     let prof = engagement_profile(&plan.stock, &plan.precut, &plan.path, &opts).map_err(|e| e.to_string())?;
     let plain = plan_corner(&sc, Method::Plain).map_err(|e| e.to_string())?;
     let plain_prof = engagement_profile(&sc.stock, &sc.previous_ring, &plain.path, &opts).map_err(|e| e.to_string())?;
+    // body / tip split and the tip's stated limit, as the acceptance table reports them
+    let row = acceptance_row(angle, method, s, SPACING_MM).map_err(|e| e.to_string())?;
     let c = sc.corner;
     let wall = |p: trochoplan_core::geom::P2| [p.x, p.y];
     Ok(CornerResult {
@@ -220,6 +227,9 @@ pub fn compute(i: &CornerInputs) -> Result<CornerResult, String> {
         time_s: plan.time_s,
         max_deg: prof.max_angle().to_degrees(),
         plain_max_deg: plain_prof.max_angle().to_degrees(),
+        body_max_deg: row.body_max_deg,
+        tip_deg: row.tip_deg,
+        tip_limit_deg: row.tip_limit_deg,
         plain_length_mm: plain.path_length_mm,
         plain_time_s: plain.time_s,
         notes: plan.notes.clone(),
@@ -436,22 +446,29 @@ pub fn show(ui: &mut egui::Ui, inputs: &mut CornerInputs, view: &CornerView) {
 const TEACH_HEIGHT: f32 = 120.0;
 
 fn numbers(ui: &mut egui::Ui, r: &CornerResult) {
-    egui::Grid::new("corner_numbers").num_columns(5).striped(true).show(ui, |ui| {
+    egui::Grid::new("corner_numbers").num_columns(6).striped(true).show(ui, |ui| {
         ui.label("");
         ui.label("max engagement");
+        ui.label("body / tip (limit)").on_hover_text(
+            "Body: everything but the final move into the tool's corner point. Tip: that move, which touches \
+             both walls and engages about 180° minus the corner angle over a thin sliver; its stated limit in \
+             brackets (see the README's acceptance table). Measured by the evaluator.",
+        );
         ui.label("path length");
         ui.label("time");
         ui.label("circles");
         ui.end_row();
         ui.colored_label(PLAIN_COLOR, "plain ring");
         ui.label(format!("{:.1}°", r.plain_max_deg));
+        ui.label("–");
         ui.label(format!("{:.1} mm", r.plain_length_mm));
         ui.label(format!("{:.2} s", r.plain_time_s));
         ui.label("–");
         ui.end_row();
         ui.colored_label(STRATEGY_COLOR, r.method);
-        let over = r.max_deg > r.target_deg + 1.0;
-        let text = RichText::new(format!("{:.1}°", r.max_deg));
+        ui.label(format!("{:.1}°", r.max_deg));
+        let over = r.body_max_deg > r.target_deg + 1.0 || r.tip_deg > r.tip_limit_deg + 1.0;
+        let text = RichText::new(format!("{:.1}° / {:.1}° ({:.1}°)", r.body_max_deg, r.tip_deg, r.tip_limit_deg));
         ui.label(if over { text.color(ERROR_COLOR) } else { text });
         ui.label(format!("{:.1} mm", r.path_length_mm));
         ui.label(format!("{:.2} s", r.time_s));

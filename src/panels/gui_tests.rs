@@ -369,6 +369,8 @@ fn corner_tab_opens_and_shows_the_measured_engagement() {
     assert!(r.plain_max_deg > r.max_deg, "plain {} vs variable {}", r.plain_max_deg, r.max_deg);
     assert!(shows(&h, &format!("{:.1}°", r.max_deg)), "strategy max shown");
     assert!(shows(&h, &format!("{:.1}°", r.plain_max_deg)), "plain max shown");
+    assert!(r.body_max_deg <= r.target_deg + 1.0, "body {} within target {} + 1°", r.body_max_deg, r.target_deg);
+    assert!(shows(&h, &format!("{:.1}° / {:.1}° ({:.1}°)", r.body_max_deg, r.tip_deg, r.tip_limit_deg)));
 }
 
 #[test]
