@@ -15,8 +15,9 @@ use std::sync::Arc;
 use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
 use trochoplan_core::JobError;
 use trochoplan_core::corner::{
-    Corner, CornerScenario, CornerSettings, EngagementProfile, EvaluatorOptions, Method, acceptance_row,
-    engagement_profile, plan_corner, radial_depth_for_engagement, straight_engagement,
+    Corner, CornerScenario, CornerSettings, EngagementProfile, EvaluatorOptions, Method, PocketSettings,
+    acceptance_row, engagement_profile, parse_points, plan_corner, plan_pocket, pocket_polygon,
+    radial_depth_for_engagement, straight_engagement,
 };
 use trochoplan_core::geom::Segment;
 
@@ -27,6 +28,19 @@ pub mod label {
     pub const STEP_OVER: &str = "Ring step-over a_e (mm)";
     pub const STRAIGHT: &str = "Straight engagement a_str (°)";
     pub const T1: &str = "Allowed excess t1";
+    pub const POLYGON: &str = "Pocket vertices (x,y per line)";
+    pub const POCKET_STEP_OVER: &str = "Pocket step-over a_e (mm)";
+}
+
+/// Spacing of the evaluated tool positions in a pocket (mm), as the CLI's default.
+const POCKET_SPACING_MM: f64 = 0.25;
+
+/// What the tab plans: one corner or a whole polygonal pocket.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum CornerMode {
+    #[default]
+    Corner,
+    Pocket,
 }
 
 /// Spacing of the tool positions measured by the evaluator (mm), as the CLI's default.
@@ -108,6 +122,11 @@ pub struct CornerInputs {
     pub straight_engagement_deg: f64,
     /// Allowed excess t1: target a* = a_str·(1 + t1).
     pub t1: f64,
+    pub mode: CornerMode,
+    /// Pocket boundary, one vertex "x,y" per line.
+    pub polygon_text: String,
+    /// Ring step-over of the pocket (mm).
+    pub pocket_step_over_mm: f64,
 }
 
 impl Default for CornerInputs {
@@ -120,6 +139,9 @@ impl Default for CornerInputs {
             step_over_mm: 2.5,
             straight_engagement_deg: 46.0,
             t1: 0.15,
+            mode: CornerMode::Corner,
+            polygon_text: "0,0\n60,0\n60,40\n0,40\n".to_owned(),
+            pocket_step_over_mm: 2.5,
         }
     }
 }
@@ -254,6 +276,75 @@ pub fn compute(i: &CornerInputs) -> Result<CornerResult, String> {
     })
 }
 
+/// A planned pocket converted for drawing.
+#[derive(Clone, Debug)]
+pub struct PocketResult {
+    pub method: &'static str,
+    pub boundary: Vec<[f64; 2]>,
+    /// Rings in machining order: level, offset (mm), max engagement (degrees), points.
+    pub rings: Vec<(usize, f64, f64, Vec<[f64; 2]>)>,
+    pub path_length_mm: f64,
+    pub time_s: f64,
+    pub max_deg: f64,
+    pub trochoid_corners: usize,
+    pub plain_corners: usize,
+}
+
+/// Plan the pocket as `trochoplan pocket` does.
+pub fn compute_pocket(i: &CornerInputs) -> Result<PocketResult, String> {
+    let d = finite("tool diameter", i.tool_diameter_mm)?;
+    let polygon = pocket_polygon(parse_points(&i.polygon_text, "polygon").map_err(|e| e.to_string())?)
+        .map_err(|e| format!("polygon: {e}"))?;
+    let settings = PocketSettings {
+        tool_radius: d / 2.0,
+        step_over: i.pocket_step_over_mm,
+        feed_mm_per_min: FEED_MM_PER_MIN,
+        spacing: POCKET_SPACING_MM,
+        method: i.method.core(),
+    };
+    settings.validate().map_err(|e| e.to_string())?;
+    let plan = plan_pocket(&polygon, settings).map_err(|e| e.to_string())?;
+    let mut boundary: Vec<[f64; 2]> = polygon.vertices().iter().map(|v| [v.x, v.y]).collect();
+    if let Some(&first) = boundary.first() {
+        boundary.push(first);
+    }
+    Ok(PocketResult {
+        method: settings.method.name(),
+        boundary,
+        rings: plan
+            .rings
+            .iter()
+            .map(|g| {
+                (
+                    g.level,
+                    g.offset_mm,
+                    g.max_engagement_rad.to_degrees(),
+                    segment_points(&g.segments, MAX_PATH_POINTS / 4),
+                )
+            })
+            .collect(),
+        path_length_mm: plan.path_length_mm,
+        time_s: plan.time_s,
+        max_deg: plan.max_engagement_rad.to_degrees(),
+        trochoid_corners: plan.trochoid_corners,
+        plain_corners: plan.plain_corners,
+    })
+}
+
+/// A finished plan of either mode.
+#[derive(Clone, Debug)]
+pub enum Outcome {
+    Corner(CornerResult),
+    Pocket(PocketResult),
+}
+
+fn compute_any(i: &CornerInputs) -> Result<Outcome, String> {
+    match i.mode {
+        CornerMode::Corner => compute(i).map(Outcome::Corner),
+        CornerMode::Pocket => compute_pocket(i).map(Outcome::Pocket),
+    }
+}
+
 /// Points along `segments` for drawing: about `max` in all, lines by their ends.
 pub fn segment_points(segments: &[Segment], max: usize) -> Vec<[f64; 2]> {
     let total: f64 = segments.iter().map(Segment::length).sum::<f64>().max(1e-9);
@@ -274,13 +365,15 @@ fn profile_points(p: &EngagementProfile) -> Vec<[f64; 2]> {
     p.samples.iter().map(|s| [s.s_mm, s.angle_rad.to_degrees()]).collect()
 }
 
-type Answer = (CornerInputs, Result<CornerResult, String>);
+type Answer = (CornerInputs, Result<Outcome, String>);
 
 /// The last corner result, its error, and (in the window) the worker thread computing it.
 #[derive(Default)]
 pub struct CornerView {
     /// The newest valid result (kept while the inputs are invalid).
     pub last: Option<Arc<CornerResult>>,
+    /// The newest valid pocket.
+    pub last_pocket: Option<Arc<PocketResult>>,
     /// The error for the newest inputs, if they are invalid.
     pub error: Option<String>,
     /// Inputs of the newest request.
@@ -303,7 +396,7 @@ impl CornerView {
                 while let Ok(newer) = req_rx.try_recv() {
                     inputs = newer;
                 }
-                let result = compute(&inputs);
+                let result = compute_any(&inputs);
                 if ans_tx.send((inputs, result)).is_err() {
                     break;
                 }
@@ -321,8 +414,12 @@ impl CornerView {
     fn accept(&mut self, (inputs, result): Answer) {
         self.replans += 1;
         match result {
-            Ok(r) => {
+            Ok(Outcome::Corner(r)) => {
                 self.last = Some(Arc::new(r));
+                self.error = None;
+            }
+            Ok(Outcome::Pocket(r)) => {
+                self.last_pocket = Some(Arc::new(r));
                 self.error = None;
             }
             Err(e) => self.error = Some(e),
@@ -355,7 +452,7 @@ impl CornerView {
         match &self.worker {
             Some((tx, _)) if tx.send(inputs.clone()).is_ok() => {}
             _ => {
-                let r = compute(inputs);
+                let r = compute_any(inputs);
                 self.accept((inputs.clone(), r));
             }
         }
@@ -368,6 +465,16 @@ const STRATEGY_COLOR: Color32 = Color32::from_rgb(40, 110, 200);
 
 /// The Corner tab: inputs, numbers, the corner view and the engagement plot.
 pub fn show(ui: &mut egui::Ui, inputs: &mut CornerInputs, view: &CornerView) {
+    ui.horizontal(|ui| {
+        ui.selectable_value(&mut inputs.mode, CornerMode::Corner, "One corner")
+            .on_hover_text("A single line–line corner between two walls, apex at the origin");
+        ui.selectable_value(&mut inputs.mode, CornerMode::Pocket, "Pocket")
+            .on_hover_text("A polygonal pocket cleared by contour-parallel rings, the strategy at every ring corner");
+    });
+    if inputs.mode == CornerMode::Pocket {
+        pocket(ui, inputs, view);
+        return;
+    }
     ui.horizontal_wrapped(|ui| {
         let l = ui.label(label::ANGLE);
         ui.add(Slider::new(&mut inputs.angle_deg, 30.0..=150.0).step_by(1.0).clamping(SliderClamping::Never))
@@ -545,4 +652,96 @@ fn teaching(ui: &mut egui::Ui) {
              remaining material (segment Voronoi diagram). Plain: the ring as it is, for comparison.",
         );
     });
+}
+
+/// The Pocket sub-mode: vertices as text, tool, step-over, method; the rings and their numbers.
+fn pocket(ui: &mut egui::Ui, inputs: &mut CornerInputs, view: &CornerView) {
+    ui.horizontal_wrapped(|ui| {
+        ui.label("Method");
+        for m in CornerMethod::ALL {
+            ui.selectable_value(&mut inputs.method, m, m.label()).on_hover_text(m.tooltip());
+        }
+        ui.separator();
+        let l = ui.label(label::TOOL_DIAMETER);
+        ui.add(DragValue::new(&mut inputs.tool_diameter_mm).speed(0.1).suffix(" mm")).labelled_by(l.id);
+        let l = ui.label(label::POCKET_STEP_OVER);
+        ui.add(DragValue::new(&mut inputs.pocket_step_over_mm).speed(0.05).suffix(" mm"))
+            .labelled_by(l.id)
+            .on_hover_text("Distance between successive contour-parallel rings, 0 < a_e < D.");
+    });
+    if let Some(e) = &view.error {
+        ui.add(egui::Label::new(RichText::new(format!("invalid: {e}")).color(ERROR_COLOR)).wrap());
+    }
+    if view.pending() {
+        ui.horizontal(|ui| {
+            ui.spinner();
+            ui.label("planning…");
+        });
+    }
+    let h = (ui.available_height() - 10.0).max(220.0);
+    ui.horizontal_top(|ui| {
+        ui.vertical(|ui| {
+            ui.set_width(230.0);
+            let l = ui.label(label::POLYGON);
+            ui.add(egui::TextEdit::multiline(&mut inputs.polygon_text).desired_rows(8).code_editor())
+                .labelled_by(l.id)
+                .on_hover_text("A simple polygon, lines only, one vertex \"x,y\" (mm) per line; '#' comments allowed.");
+            if let Some(r) = view.last_pocket.as_deref() {
+                ui.add_space(6.0);
+                ui.label(format!("method {}", r.method));
+                ui.label(format!("{} rings", r.rings.len()));
+                ui.label(format!("path {:.1} mm, {:.1} s", r.path_length_mm, r.time_s));
+                ui.label(format!("max engagement {:.1}°", r.max_deg));
+                ui.label(format!("corners with trochoids {}, plain {}", r.trochoid_corners, r.plain_corners));
+                egui::Grid::new("pocket_rings").striped(true).show(ui, |ui| {
+                    ui.label("ring");
+                    ui.label("offset");
+                    ui.label("max eng.");
+                    ui.end_row();
+                    for (level, off, mx, _) in &r.rings {
+                        ui.label(format!("{level}"));
+                        ui.label(format!("{off:.2} mm"));
+                        ui.label(format!("{mx:.1}°"));
+                        ui.end_row();
+                    }
+                });
+            }
+        });
+        let Some(r) = view.last_pocket.as_deref() else {
+            return;
+        };
+        Plot::new("pocket_rings_plot")
+            .data_aspect(1.0)
+            .height(h)
+            .legend(Legend::default())
+            .x_axis_label("x (mm)")
+            .y_axis_label("y (mm)")
+            .show(ui, |p| {
+                p.line(line("pocket", &r.boundary).color(Color32::GRAY).width(2.5));
+                for (_, _, _, pts) in &r.rings {
+                    p.line(line("rings", pts).color(STRATEGY_COLOR).width(1.0));
+                }
+            });
+    });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn threaded_view_delivers_the_newest_inputs() {
+        let mut v = CornerView::threaded(|| {});
+        let mut i = CornerInputs { angle_deg: 120.0, ..CornerInputs::default() };
+        v.update(&i);
+        i.angle_deg = 100.0;
+        v.update(&i);
+        let t0 = std::time::Instant::now();
+        while v.pending() && t0.elapsed().as_secs() < 60 {
+            std::thread::sleep(std::time::Duration::from_millis(20));
+            v.update(&i);
+        }
+        assert!(!v.pending(), "answered within 60 s");
+        assert_eq!(v.last.as_ref().expect("a result").angle_deg, 100.0);
+    }
 }

@@ -412,3 +412,19 @@ fn invalid_corner_input_shows_the_core_error_and_keeps_the_last_result() {
     h.run();
     assert!(h.state().corner.error.is_some());
 }
+
+#[test]
+fn pocket_mode_shows_the_rings_and_reports_a_bad_polygon() {
+    let mut h = corner_harness();
+    h.get_by_label("Pocket").click();
+    h.run();
+    assert!(h.state().corner.error.is_none(), "{:?}", h.state().corner.error);
+    let p = h.state().corner.last_pocket.clone().expect("a pocket");
+    assert!(!p.rings.is_empty());
+    assert!(shows(&h, &format!("{} rings", p.rings.len())));
+    // a self-intersecting bow tie
+    h.state_mut().state.corner.polygon_text = "0,0\n60,40\n60,0\n0,40\n".to_owned();
+    h.run();
+    assert!(h.state().corner.error.is_some(), "bow tie rejected");
+    assert!(h.state().corner.last_pocket.is_some(), "last pocket kept");
+}
