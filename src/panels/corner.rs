@@ -596,8 +596,14 @@ fn line(name: &str, pts: &[[f64; 2]]) -> Line<'static> {
 }
 
 fn corner_plot(ui: &mut egui::Ui, r: &CornerResult, height: f32) {
-    Plot::new("corner_geometry")
+    // start on the corner region (the circles and a margin); the whole walls after a zoom-out.
+    // A new corner or method gets a new plot memory, so the view follows the plan.
+    let reach = r.circle_points.iter().flatten().map(|p| p[0]).fold(0.0f64, f64::max);
+    let x_max = (reach * 1.5).max(30.0);
+    Plot::new(("corner_geometry", r.angle_deg.to_bits(), r.method))
         .data_aspect(1.0)
+        .default_x_bounds(-5.0, x_max)
+        .default_y_bounds(-0.5 * (x_max + 5.0), 0.5 * (x_max + 5.0))
         .height(height)
         .legend(Legend::default())
         .x_axis_label("x (mm)")
