@@ -50,7 +50,10 @@ pub fn run(job: Job) -> eframe::Result<()> {
             let stored = stored.map(|s| if job == Job::default() { s } else { State { job: job.clone(), ..s } });
             let ctx = cc.egui_ctx.clone();
             let planner = Planner::threaded(move || ctx.request_repaint());
-            Ok(Box::new(App::with_planner(job, stored, Box::new(NativeDialogs), planner)))
+            let mut app = App::with_planner(job, stored, Box::new(NativeDialogs), planner);
+            let ctx = cc.egui_ctx.clone();
+            app.corner = panels::corner::CornerView::threaded(move || ctx.request_repaint());
+            Ok(Box::new(app))
         }),
     )
 }
@@ -64,6 +67,8 @@ pub enum Tab {
     Sweep,
     /// The "Export NC…" panel.
     Export,
+    /// One pocket corner and its corner trochoids (issue #5).
+    Corner,
 }
 
 /// A pinned variant as persisted.
@@ -91,6 +96,8 @@ pub struct State {
     pub sweep: SweepSettings,
     /// NC export options.
     pub export: ExportSettings,
+    /// Inputs of the Corner tab.
+    pub corner: panels::corner::CornerInputs,
     /// The job file last opened or saved.
     pub file: Option<PathBuf>,
 }
@@ -107,6 +114,7 @@ impl Default for State {
             pinned: Vec::new(),
             sweep: SweepSettings::default(),
             export: ExportSettings::default(),
+            corner: panels::corner::CornerInputs::default(),
             file: None,
         }
     }
@@ -335,6 +343,8 @@ pub struct App {
     undoer: Undoer<Job>,
     pub anim: Animation,
     pub sweep: Option<SweepRun>,
+    /// The Corner tab's last result (planned inline, or on a thread in the window).
+    pub corner: panels::corner::CornerView,
     /// The NC program of the current plan and export settings.
     pub export: ExportCache,
     /// The chip of the animated tooth.
@@ -363,6 +373,7 @@ impl App {
             undoer: Undoer::default(),
             anim: Animation::default(),
             sweep: None,
+            corner: panels::corner::CornerView::default(),
             export: ExportCache::default(),
             chip: Chip::default(),
             dialogs,
@@ -530,6 +541,7 @@ impl App {
                 ui.radio_value(&mut self.state.tab, Tab::Compare, "Compare");
                 ui.radio_value(&mut self.state.tab, Tab::Sweep, "Sweep");
                 ui.radio_value(&mut self.state.tab, Tab::Export, "NC export");
+                ui.radio_value(&mut self.state.tab, Tab::Corner, "Corner");
                 ui.separator();
                 ui.checkbox(&mut self.state.teach, "Teaching: explanations under the plots");
                 ui.checkbox(&mut self.state.overlay_pins, "Overlay pinned variants in Plots");
@@ -539,6 +551,7 @@ impl App {
             ui.selectable_value(&mut self.state.tab, Tab::Compare, "Compare");
             ui.selectable_value(&mut self.state.tab, Tab::Sweep, "Sweep");
             ui.selectable_value(&mut self.state.tab, Tab::Export, "Export NC");
+            ui.selectable_value(&mut self.state.tab, Tab::Corner, "Corner");
             ui.separator();
             ui.toggle_value(&mut self.state.teach, "Teach")
                 .on_hover_text("Explanations with formula and source equation under each plot");
@@ -628,6 +641,12 @@ impl App {
                 }
                 // settings edited this frame: regenerate now, so the next frame shows them
                 self.refresh_export();
+            }
+            Tab::Corner => {
+                self.corner.update(&self.state.corner);
+                panels::corner::show(ui, &mut self.state.corner, &self.corner);
+                // inputs edited this frame: ask for the new plan now
+                self.corner.update(&self.state.corner);
             }
         }
     }

@@ -346,3 +346,85 @@ fn teaching_highlights_the_chip_of_a_cutting_tooth_and_none_while_cooling() {
     h.run();
     assert!(!h.state().chip.outline.is_empty());
 }
+
+fn corner_harness() -> Harness<'static, App> {
+    let mut h = harness();
+    h.get_by_label("Corner").click();
+    h.run();
+    h
+}
+
+fn corner_result(h: &Harness<'_, App>) -> std::sync::Arc<panels::corner::CornerResult> {
+    h.state().corner.last.clone().expect("a corner result")
+}
+
+#[test]
+fn corner_tab_opens_and_shows_the_measured_engagement() {
+    let h = corner_harness();
+    assert_eq!(h.state().state.tab, Tab::Corner);
+    assert!(h.state().corner.error.is_none(), "{:?}", h.state().corner.error);
+    let r = corner_result(&h);
+    assert_eq!(r.method, "variable");
+    assert!(r.circles > 0, "variable circles planned");
+    assert!(r.plain_max_deg > r.max_deg, "plain {} vs variable {}", r.plain_max_deg, r.max_deg);
+    assert!(shows(&h, &format!("{:.1}°", r.max_deg)), "strategy max shown");
+    assert!(shows(&h, &format!("{:.1}°", r.plain_max_deg)), "plain max shown");
+    assert!(r.body_max_deg <= r.target_deg + 1.0, "body {} within target {} + 1°", r.body_max_deg, r.target_deg);
+    assert!(shows(&h, &format!("{:.1}° / {:.1}° ({:.1}°)", r.body_max_deg, r.tip_deg, r.tip_limit_deg)));
+}
+
+#[test]
+fn corner_angle_and_method_replan_and_change_the_shown_numbers() {
+    let mut h = corner_harness();
+    let before = corner_result(&h);
+    let replans = h.state().corner.replans;
+    h.get_by_role_and_label(Role::Slider, panels::corner::label::ANGLE).set_value_accesskit(60.0);
+    h.run();
+    let after = corner_result(&h);
+    assert!(h.state().corner.replans > replans, "replanned");
+    assert_eq!(after.angle_deg, 60.0);
+    assert_ne!(after.plain_max_deg, before.plain_max_deg);
+    assert!(shows(&h, &format!("{:.1}°", after.plain_max_deg)));
+
+    h.get_by_label(panels::corner::CornerMethod::Isometric.label()).click();
+    h.run();
+    let iso = corner_result(&h);
+    assert_eq!(iso.method, "isometric");
+    assert_eq!(h.state().state.corner.method, panels::corner::CornerMethod::Isometric);
+    assert_ne!(iso.path_length_mm, after.path_length_mm);
+    assert!(shows(&h, &format!("{:.1} mm", iso.path_length_mm)), "isometric length shown");
+}
+
+#[test]
+fn invalid_corner_input_shows_the_core_error_and_keeps_the_last_result() {
+    let mut h = corner_harness();
+    let before = corner_result(&h);
+    h.state_mut().state.corner.use_step_over = true;
+    h.run();
+    h.state_mut().state.corner.step_over_mm = 12.0; // ≥ D = 10
+    h.run();
+    let err = h.state().corner.error.clone().expect("an error for a_e ≥ D");
+    assert!(err.contains("step-over"), "{err}");
+    assert!(shows(&h, &format!("invalid: {err}")), "error shown at the panel");
+    let kept = corner_result(&h);
+    assert_eq!(kept.angle_deg, before.angle_deg, "last result kept");
+    h.get_by_role_and_label(Role::Slider, panels::corner::label::ANGLE).set_value_accesskit(200.0);
+    h.run();
+    assert!(h.state().corner.error.is_some());
+}
+
+#[test]
+fn pocket_mode_shows_the_rings_and_reports_a_bad_polygon() {
+    let mut h = corner_harness();
+    h.get_by_label("Pocket").click();
+    h.run();
+    assert!(h.state().corner.error.is_none(), "{:?}", h.state().corner.error);
+    let p = h.state().corner.last_pocket.clone().expect("a pocket");
+    assert!(!p.rings.is_empty());
+    assert!(shows(&h, &format!("{} rings", p.rings.len())));
+    // a self-intersecting bow tie
+    h.state_mut().state.corner.polygon_text = "0,0\n60,40\n60,0\n0,40\n".to_owned();
+    h.run();
+    assert!(h.state().corner.error.is_some(), "bow tie rejected");
+    assert!(h.state().corner.last_pocket.is_some(), "last pocket kept");
+}

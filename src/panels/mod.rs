@@ -2,6 +2,7 @@
 //! or return a [`Command`]; commands run after all panels have drawn (see `app.rs`).
 
 pub mod compare;
+pub mod corner;
 pub mod export;
 pub mod graphics;
 pub mod metrics;

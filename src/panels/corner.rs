@@ -1,0 +1,753 @@
+//! The Corner tab (issue #5): one line–line pocket corner planned by the core's corner
+//! strategies (Wu et al. 2016), the corner drawn with equal axes, and the engagement measured by
+//! the core's independent evaluator along the plain ring and along the strategy's path.
+//!
+//! The inputs mirror `trochoplan corner` (see `corner_cmd.rs`); [`compute`] calls the same core
+//! functions and only converts their results to plot points. Planning takes 0.1–1 s, so the
+//! window runs it on a worker thread ([`CornerView::threaded`]) that keeps only the newest
+//! request; the tests plan inline ([`CornerView::default`]).
+
+use super::params::ERROR_COLOR;
+use eframe::egui::{self, Color32, DragValue, RichText, Slider, SliderClamping};
+use egui_plot::{HLine, Legend, Line, Plot, PlotPoints};
+use serde::{Deserialize, Serialize};
+use std::sync::Arc;
+use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
+use trochoplan_core::JobError;
+use trochoplan_core::corner::{
+    Corner, CornerScenario, CornerSettings, EngagementProfile, EvaluatorOptions, Method, PocketSettings,
+    acceptance_row, engagement_profile, parse_points, plan_corner, plan_pocket, pocket_polygon,
+    radial_depth_for_engagement, straight_engagement,
+};
+use trochoplan_core::geom::Segment;
+
+/// Labels of the inputs (used by the tests' accessibility queries).
+pub mod label {
+    pub const ANGLE: &str = "Corner angle (°)";
+    pub const TOOL_DIAMETER: &str = "Corner tool diameter D (mm)";
+    pub const STEP_OVER: &str = "Ring step-over a_e (mm)";
+    pub const STRAIGHT: &str = "Straight engagement a_str (°)";
+    pub const T1: &str = "Allowed excess t1";
+    pub const POLYGON: &str = "Pocket vertices (x,y per line)";
+    pub const POCKET_STEP_OVER: &str = "Pocket step-over a_e (mm)";
+}
+
+/// Spacing of the evaluated tool positions in a pocket (mm), as the CLI's default.
+const POCKET_SPACING_MM: f64 = 0.25;
+
+/// What the tab plans: one corner or a whole polygonal pocket.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum CornerMode {
+    #[default]
+    Corner,
+    Pocket,
+}
+
+/// Spacing of the tool positions measured by the evaluator (mm), as the CLI's default.
+const SPACING_MM: f64 = 0.1;
+/// Wall length from the apex (mm), as the CLI's default.
+const EDGE_LENGTH_MM: f64 = 100.0;
+/// Feed for the machining time (mm/min), as the CLI's default.
+const FEED_MM_PER_MIN: f64 = 600.0;
+/// Most points drawn for the tool path.
+const MAX_PATH_POINTS: usize = 6000;
+
+/// Corner strategy as chosen in the tab.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum CornerMethod {
+    Plain,
+    #[default]
+    Variable,
+    Isometric,
+    MedialAxis,
+}
+
+impl CornerMethod {
+    pub const ALL: [CornerMethod; 4] =
+        [CornerMethod::Plain, CornerMethod::Variable, CornerMethod::Isometric, CornerMethod::MedialAxis];
+
+    fn core(self) -> Method {
+        match self {
+            CornerMethod::Plain => Method::Plain,
+            CornerMethod::Variable => Method::Variable,
+            CornerMethod::Isometric => Method::Isometric,
+            CornerMethod::MedialAxis => Method::MedialAxis,
+        }
+    }
+
+    /// Button label.
+    pub fn label(self) -> &'static str {
+        match self {
+            CornerMethod::Plain => "plain ring",
+            CornerMethod::Variable => "variable circles",
+            CornerMethod::Isometric => "isometric circles",
+            CornerMethod::MedialAxis => "medial axis",
+        }
+    }
+
+    fn tooltip(self) -> &'static str {
+        match self {
+            CornerMethod::Plain => "The contour-parallel ring turning at the corner, no trochoids (for comparison).",
+            CornerMethod::Variable => {
+                "Circles tangent to both offset walls, centres on the bisector (eqs. 21–22); each next circle \
+                 found by bisection between the limit points M and N until its engagement lies in \
+                 (a*, a* + ε] (eqs. 23–24)."
+            }
+            CornerMethod::Isometric => {
+                "Circles of one radius rh (default: the tool radius), centre spacing from the engagement \
+                 limit; needs rh above the threshold rh1 (eq. 25)."
+            }
+            CornerMethod::MedialAxis => {
+                "Perforative circles along the medial axis of the corner's remaining material \
+                 (segment Voronoi diagram, §4.2 / domain-spec §3.5)."
+            }
+        }
+    }
+}
+
+/// Inputs of the Corner tab, persisted with the app state.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct CornerInputs {
+    /// Interior corner angle (degrees).
+    pub angle_deg: f64,
+    pub method: CornerMethod,
+    /// Tool diameter D (mm).
+    pub tool_diameter_mm: f64,
+    /// Give the step-over directly (else it follows from the straight engagement).
+    pub use_step_over: bool,
+    /// Ring step-over a_e (mm).
+    pub step_over_mm: f64,
+    /// Engagement on the straight part a_str (degrees).
+    pub straight_engagement_deg: f64,
+    /// Allowed excess t1: target a* = a_str·(1 + t1).
+    pub t1: f64,
+    pub mode: CornerMode,
+    /// Pocket boundary, one vertex "x,y" per line.
+    pub polygon_text: String,
+    /// Ring step-over of the pocket (mm).
+    pub pocket_step_over_mm: f64,
+}
+
+impl Default for CornerInputs {
+    fn default() -> Self {
+        CornerInputs {
+            angle_deg: 90.0,
+            method: CornerMethod::Variable,
+            tool_diameter_mm: 10.0,
+            use_step_over: false,
+            step_over_mm: 2.5,
+            straight_engagement_deg: 46.0,
+            t1: 0.15,
+            mode: CornerMode::Corner,
+            polygon_text: "0,0\n60,0\n60,40\n0,40\n".to_owned(),
+            pocket_step_over_mm: 2.5,
+        }
+    }
+}
+
+/// A planned corner converted for drawing (numbers from the core, points sampled from its
+/// segments).
+#[derive(Clone, Debug)]
+pub struct CornerResult {
+    pub method: &'static str,
+    pub angle_deg: f64,
+    pub step_over_mm: f64,
+    pub straight_deg: f64,
+    pub target_deg: f64,
+    pub circles: usize,
+    pub path_length_mm: f64,
+    pub time_s: f64,
+    /// Largest engagement of the strategy's path, measured by the evaluator (degrees).
+    pub max_deg: f64,
+    pub plain_max_deg: f64,
+    /// Largest engagement outside the final move into the corner point (degrees).
+    pub body_max_deg: f64,
+    /// Largest engagement of the final move into the corner point, and its stated limit (degrees).
+    pub tip_deg: f64,
+    pub tip_limit_deg: f64,
+    pub plain_length_mm: f64,
+    pub plain_time_s: f64,
+    pub notes: Vec<String>,
+    /// Wall 1 to the apex to wall 2.
+    pub walls: Vec<[f64; 2]>,
+    /// The previous ring's tool-centre path (already cut).
+    pub previous_ring: Vec<[f64; 2]>,
+    /// Tool-centre circles of the corner trochoids.
+    pub circle_points: Vec<Vec<[f64; 2]>>,
+    /// The strategy's tool-centre path (decimated).
+    pub path: Vec<[f64; 2]>,
+    /// Engagement (degrees) against path position (mm).
+    pub profile: Vec<[f64; 2]>,
+    pub plain_profile: Vec<[f64; 2]>,
+}
+
+/// Core settings from the tab's inputs, as `trochoplan corner` builds them.
+fn settings(i: &CornerInputs) -> Result<CornerSettings, String> {
+    let d = finite("tool diameter", i.tool_diameter_mm)?;
+    if d <= 0.0 {
+        return Err(JobError::range("tool diameter", d, "a finite number > 0 mm").to_string());
+    }
+    let r = d / 2.0;
+    let step_over = if i.use_step_over {
+        finite("step-over", i.step_over_mm)?
+    } else {
+        let a = finite("straight engagement", i.straight_engagement_deg)?;
+        if !(a > 0.0 && a < 180.0) {
+            return Err(JobError::range("straight engagement", a, "greater than 0° and less than 180°").to_string());
+        }
+        radial_depth_for_engagement(a.to_radians(), r)
+    };
+    let mut s = CornerSettings::new(r, step_over).map_err(|e| match e {
+        JobError::OutOfRange { name: "a_e", value, .. } => {
+            JobError::range("step-over", value, format!("greater than 0 and less than the tool diameter {d} mm"))
+                .to_string()
+        }
+        other => other.to_string(),
+    })?;
+    let a_str = straight_engagement(step_over, r).map_err(|e| e.to_string())?;
+    let t1 = finite("t1", i.t1)?;
+    if !(0.0..=1.0).contains(&t1) {
+        return Err(JobError::range("t1", t1, "from 0 to 1").to_string());
+    }
+    s.target = a_str * (1.0 + t1);
+    s.edge_length = EDGE_LENGTH_MM;
+    s.feed_mm_per_min = FEED_MM_PER_MIN;
+    s.validate().map_err(|e| e.to_string())?;
+    Ok(s)
+}
+
+fn finite(name: &'static str, v: f64) -> Result<f64, String> {
+    if v.is_finite() { Ok(v) } else { Err(JobError::range(name, v, "a finite number").to_string()) }
+}
+
+/// Plan the corner and measure the strategy and the plain ring with the evaluator (the same
+/// calls as `trochoplan corner`).
+pub fn compute(i: &CornerInputs) -> Result<CornerResult, String> {
+    let s = settings(i)?;
+    let angle = finite("angle", i.angle_deg)?;
+    let corner = Corner::symmetric(angle.to_radians()).map_err(|e| e.to_string())?;
+    let sc = CornerScenario::new(corner, s).map_err(|e| e.to_string())?;
+    let opts = EvaluatorOptions::new(s.tool_radius, SPACING_MM);
+    let method = i.method.core();
+    let plan = plan_corner(&sc, method).map_err(|e| e.to_string())?;
+    let prof = engagement_profile(&plan.stock, &plan.precut, &plan.path, &opts).map_err(|e| e.to_string())?;
+    let plain = plan_corner(&sc, Method::Plain).map_err(|e| e.to_string())?;
+    let plain_prof = engagement_profile(&sc.stock, &sc.previous_ring, &plain.path, &opts).map_err(|e| e.to_string())?;
+    // body / tip split and the tip's stated limit, as the acceptance table reports them
+    let row = acceptance_row(angle, method, s, SPACING_MM).map_err(|e| e.to_string())?;
+    let c = sc.corner;
+    let wall = |p: trochoplan_core::geom::P2| [p.x, p.y];
+    Ok(CornerResult {
+        method: method.name(),
+        angle_deg: angle,
+        step_over_mm: s.step_over,
+        straight_deg: straight_engagement(s.step_over, s.tool_radius).map_err(|e| e.to_string())?.to_degrees(),
+        target_deg: s.target.to_degrees(),
+        circles: plan.circles.len(),
+        path_length_mm: plan.path_length_mm,
+        time_s: plan.time_s,
+        max_deg: prof.max_angle().to_degrees(),
+        plain_max_deg: plain_prof.max_angle().to_degrees(),
+        body_max_deg: row.body_max_deg,
+        tip_deg: row.tip_deg,
+        tip_limit_deg: row.tip_limit_deg,
+        plain_length_mm: plain.path_length_mm,
+        plain_time_s: plain.time_s,
+        notes: plan.notes.clone(),
+        walls: vec![wall(c.apex - c.dir_in * s.edge_length), wall(c.apex), wall(c.apex + c.dir_out * s.edge_length)],
+        previous_ring: segment_points(&sc.previous_ring, MAX_PATH_POINTS / 4),
+        circle_points: plan
+            .circles
+            .iter()
+            .map(|cc| {
+                let full = Segment::Arc {
+                    center: cc.tool_circle.center,
+                    radius: cc.tool_circle.radius,
+                    start_angle: 0.0,
+                    sweep: std::f64::consts::TAU,
+                };
+                full.sample(72).iter().map(|p| [p.x, p.y]).collect()
+            })
+            .collect(),
+        path: segment_points(&plan.path, MAX_PATH_POINTS),
+        profile: profile_points(&prof),
+        plain_profile: profile_points(&plain_prof),
+    })
+}
+
+/// A planned pocket converted for drawing.
+#[derive(Clone, Debug)]
+pub struct PocketResult {
+    pub method: &'static str,
+    pub boundary: Vec<[f64; 2]>,
+    /// Rings in machining order: level, offset (mm), max engagement (degrees), points.
+    pub rings: Vec<(usize, f64, f64, Vec<[f64; 2]>)>,
+    pub path_length_mm: f64,
+    pub time_s: f64,
+    pub max_deg: f64,
+    pub trochoid_corners: usize,
+    pub plain_corners: usize,
+}
+
+/// Plan the pocket as `trochoplan pocket` does.
+pub fn compute_pocket(i: &CornerInputs) -> Result<PocketResult, String> {
+    let d = finite("tool diameter", i.tool_diameter_mm)?;
+    let polygon = pocket_polygon(parse_points(&i.polygon_text, "polygon").map_err(|e| e.to_string())?)
+        .map_err(|e| format!("polygon: {e}"))?;
+    let settings = PocketSettings {
+        tool_radius: d / 2.0,
+        step_over: i.pocket_step_over_mm,
+        feed_mm_per_min: FEED_MM_PER_MIN,
+        spacing: POCKET_SPACING_MM,
+        method: i.method.core(),
+    };
+    settings.validate().map_err(|e| e.to_string())?;
+    let plan = plan_pocket(&polygon, settings).map_err(|e| e.to_string())?;
+    let mut boundary: Vec<[f64; 2]> = polygon.vertices().iter().map(|v| [v.x, v.y]).collect();
+    if let Some(&first) = boundary.first() {
+        boundary.push(first);
+    }
+    Ok(PocketResult {
+        method: settings.method.name(),
+        boundary,
+        rings: plan
+            .rings
+            .iter()
+            .map(|g| {
+                (
+                    g.level,
+                    g.offset_mm,
+                    g.max_engagement_rad.to_degrees(),
+                    segment_points(&g.segments, MAX_PATH_POINTS / 4),
+                )
+            })
+            .collect(),
+        path_length_mm: plan.path_length_mm,
+        time_s: plan.time_s,
+        max_deg: plan.max_engagement_rad.to_degrees(),
+        trochoid_corners: plan.trochoid_corners,
+        plain_corners: plan.plain_corners,
+    })
+}
+
+/// A finished plan of either mode.
+#[derive(Clone, Debug)]
+pub enum Outcome {
+    Corner(CornerResult),
+    Pocket(PocketResult),
+}
+
+fn compute_any(i: &CornerInputs) -> Result<Outcome, String> {
+    match i.mode {
+        CornerMode::Corner => compute(i).map(Outcome::Corner),
+        CornerMode::Pocket => compute_pocket(i).map(Outcome::Pocket),
+    }
+}
+
+/// Points along `segments` for drawing: about `max` in all, lines by their ends.
+pub fn segment_points(segments: &[Segment], max: usize) -> Vec<[f64; 2]> {
+    let total: f64 = segments.iter().map(Segment::length).sum::<f64>().max(1e-9);
+    let mut out = Vec::new();
+    for seg in segments {
+        let n = match seg {
+            Segment::Line { .. } => 1,
+            _ => ((seg.length() / total * max as f64).ceil() as usize).clamp(4, max),
+        };
+        let pts = seg.sample(n);
+        let skip = usize::from(!out.is_empty());
+        out.extend(pts.iter().skip(skip).map(|p| [p.x, p.y]));
+    }
+    out
+}
+
+fn profile_points(p: &EngagementProfile) -> Vec<[f64; 2]> {
+    p.samples.iter().map(|s| [s.s_mm, s.angle_rad.to_degrees()]).collect()
+}
+
+type Answer = (CornerInputs, Result<Outcome, String>);
+
+/// The last corner result, its error, and (in the window) the worker thread computing it.
+#[derive(Default)]
+pub struct CornerView {
+    /// The newest valid result (kept while the inputs are invalid).
+    pub last: Option<Arc<CornerResult>>,
+    /// The newest valid pocket.
+    pub last_pocket: Option<Arc<PocketResult>>,
+    /// The error for the newest inputs, if they are invalid.
+    pub error: Option<String>,
+    /// Inputs of the newest request.
+    requested: Option<CornerInputs>,
+    /// Inputs whose answer is shown.
+    answered: Option<CornerInputs>,
+    /// Completed plans (for the tests and the status line).
+    pub replans: usize,
+    worker: Option<(Sender<CornerInputs>, Receiver<Answer>)>,
+}
+
+impl CornerView {
+    /// A view planning on its own thread; `repaint` is called when an answer is ready.
+    pub fn threaded(repaint: impl Fn() + Send + 'static) -> CornerView {
+        let (req_tx, req_rx) = channel::<CornerInputs>();
+        let (ans_tx, ans_rx) = channel::<Answer>();
+        let spawned = std::thread::Builder::new().name("corner".into()).spawn(move || {
+            while let Ok(mut inputs) = req_rx.recv() {
+                // keep only the newest request
+                while let Ok(newer) = req_rx.try_recv() {
+                    inputs = newer;
+                }
+                let result = compute_any(&inputs);
+                if ans_tx.send((inputs, result)).is_err() {
+                    break;
+                }
+                repaint();
+            }
+        });
+        CornerView { worker: spawned.ok().map(|_| (req_tx, ans_rx)), ..CornerView::default() }
+    }
+
+    /// True while a request is being planned.
+    pub fn pending(&self) -> bool {
+        self.requested.is_some() && self.requested != self.answered
+    }
+
+    fn accept(&mut self, (inputs, result): Answer) {
+        self.replans += 1;
+        match result {
+            Ok(Outcome::Corner(r)) => {
+                self.last = Some(Arc::new(r));
+                self.error = None;
+            }
+            Ok(Outcome::Pocket(r)) => {
+                self.last_pocket = Some(Arc::new(r));
+                self.error = None;
+            }
+            Err(e) => self.error = Some(e),
+        }
+        self.answered = Some(inputs);
+    }
+
+    /// Collect answers and ask for a plan of `inputs` if they changed.
+    pub fn update(&mut self, inputs: &CornerInputs) {
+        let mut answers = Vec::new();
+        if let Some((_, rx)) = &self.worker {
+            loop {
+                match rx.try_recv() {
+                    Ok(a) => answers.push(a),
+                    Err(TryRecvError::Empty) => break,
+                    Err(TryRecvError::Disconnected) => {
+                        self.worker = None;
+                        break;
+                    }
+                }
+            }
+        }
+        for a in answers {
+            self.accept(a);
+        }
+        if self.requested.as_ref() == Some(inputs) {
+            return;
+        }
+        self.requested = Some(inputs.clone());
+        match &self.worker {
+            Some((tx, _)) if tx.send(inputs.clone()).is_ok() => {}
+            _ => {
+                let r = compute_any(inputs);
+                self.accept((inputs.clone(), r));
+            }
+        }
+    }
+}
+
+/// Colours of the two paths.
+const PLAIN_COLOR: Color32 = Color32::from_rgb(200, 90, 40);
+const STRATEGY_COLOR: Color32 = Color32::from_rgb(40, 110, 200);
+
+/// The Corner tab: inputs, numbers, the corner view and the engagement plot.
+pub fn show(ui: &mut egui::Ui, inputs: &mut CornerInputs, view: &CornerView) {
+    ui.horizontal(|ui| {
+        ui.selectable_value(&mut inputs.mode, CornerMode::Corner, "One corner")
+            .on_hover_text("A single line–line corner between two walls, apex at the origin");
+        ui.selectable_value(&mut inputs.mode, CornerMode::Pocket, "Pocket")
+            .on_hover_text("A polygonal pocket cleared by contour-parallel rings, the strategy at every ring corner");
+    });
+    if inputs.mode == CornerMode::Pocket {
+        pocket(ui, inputs, view);
+        return;
+    }
+    ui.horizontal_wrapped(|ui| {
+        let l = ui.label(label::ANGLE);
+        ui.add(Slider::new(&mut inputs.angle_deg, 30.0..=150.0).step_by(1.0).clamping(SliderClamping::Never))
+            .labelled_by(l.id)
+            .on_hover_text(
+                "Interior angle between the two walls (30°–150°); the apex is at the origin, the bisector along +x.",
+            );
+        ui.separator();
+        ui.label("Method");
+        for m in CornerMethod::ALL {
+            ui.selectable_value(&mut inputs.method, m, m.label()).on_hover_text(m.tooltip());
+        }
+    });
+    ui.horizontal_wrapped(|ui| {
+        let l = ui.label(label::TOOL_DIAMETER);
+        ui.add(DragValue::new(&mut inputs.tool_diameter_mm).speed(0.1).suffix(" mm"))
+            .labelled_by(l.id)
+            .on_hover_text("Tool diameter D = 2r.");
+        ui.separator();
+        ui.checkbox(&mut inputs.use_step_over, "give step-over")
+            .on_hover_text("On: enter the ring step-over a_e. Off: a_e follows from the straight engagement.");
+        if inputs.use_step_over {
+            let l = ui.label(label::STEP_OVER);
+            ui.add(DragValue::new(&mut inputs.step_over_mm).speed(0.05).suffix(" mm"))
+                .labelled_by(l.id)
+                .on_hover_text("Distance between successive contour-parallel rings, 0 < a_e < D.");
+        } else {
+            let l = ui.label(label::STRAIGHT);
+            ui.add(DragValue::new(&mut inputs.straight_engagement_deg).speed(0.5).suffix("°"))
+                .labelled_by(l.id)
+                .on_hover_text(
+                    "Engagement angle of the ring on the straight part of the walls, a_str = arccos(1 − a_e/r) \
+                     (domain-spec §1.1); the acceptance table uses 46°.",
+                );
+        }
+        ui.separator();
+        let l = ui.label(label::T1);
+        ui.add(DragValue::new(&mut inputs.t1).speed(0.01).range(-1.0..=2.0)).labelled_by(l.id).on_hover_text(
+            "Wu et al. 2016 eq. 23: the target engagement of the corner circles is a* = a_str·(1 + t1); \
+                 the variable circles are bisected until their engagement lies in (a*, a* + ε] (eq. 24); \
+                 isometric circles use a* for their spacing and the threshold rh1 (eq. 25). t1 from 0 to 1.",
+        );
+    });
+    if let Some(e) = &view.error {
+        ui.add(egui::Label::new(RichText::new(format!("invalid: {e}")).color(ERROR_COLOR)).wrap());
+        if view.last.is_some() {
+            ui.label("Showing the last valid corner.");
+        }
+    }
+    if view.pending() {
+        ui.horizontal(|ui| {
+            ui.spinner();
+            ui.label("planning…");
+        });
+    }
+    let Some(r) = view.last.as_deref() else {
+        if view.error.is_none() {
+            ui.label("Planning the corner…");
+        }
+        return;
+    };
+    numbers(ui, r);
+    ui.separator();
+    let h = (ui.available_height() - TEACH_HEIGHT - 16.0).max(220.0);
+    ui.columns(2, |cols| {
+        cols[0].label(RichText::new(format!("Corner {:.0}°: walls, circles, tool path", r.angle_deg)).strong());
+        corner_plot(&mut cols[0], r, h - 20.0);
+        cols[1].label(RichText::new("Engagement along the path (evaluator)").strong());
+        engagement_plot(&mut cols[1], r, h - 20.0);
+    });
+    ui.separator();
+    teaching(ui);
+}
+
+/// Height of the teaching text under the plots.
+const TEACH_HEIGHT: f32 = 120.0;
+
+fn numbers(ui: &mut egui::Ui, r: &CornerResult) {
+    egui::Grid::new("corner_numbers").num_columns(6).striped(true).show(ui, |ui| {
+        ui.label("");
+        ui.label("max engagement");
+        ui.label("body / tip (limit)").on_hover_text(
+            "Body: everything but the final move into the tool's corner point. Tip: that move, which touches \
+             both walls and engages about 180° minus the corner angle over a thin sliver; its stated limit in \
+             brackets (see the README's acceptance table). Measured by the evaluator.",
+        );
+        ui.label("path length");
+        ui.label("time");
+        ui.label("circles");
+        ui.end_row();
+        ui.colored_label(PLAIN_COLOR, "plain ring");
+        ui.label(format!("{:.1}°", r.plain_max_deg));
+        ui.label("–");
+        ui.label(format!("{:.1} mm", r.plain_length_mm));
+        ui.label(format!("{:.2} s", r.plain_time_s));
+        ui.label("–");
+        ui.end_row();
+        ui.colored_label(STRATEGY_COLOR, r.method);
+        ui.label(format!("{:.1}°", r.max_deg));
+        let over = r.body_max_deg > r.target_deg + 1.0 || r.tip_deg > r.tip_limit_deg + 1.0;
+        let text = RichText::new(format!("{:.1}° / {:.1}° ({:.1}°)", r.body_max_deg, r.tip_deg, r.tip_limit_deg));
+        ui.label(if over { text.color(ERROR_COLOR) } else { text });
+        ui.label(format!("{:.1} mm", r.path_length_mm));
+        ui.label(format!("{:.2} s", r.time_s));
+        ui.label(format!("{}", r.circles));
+        ui.end_row();
+    });
+    ui.label(format!(
+        "a_e {:.3} mm · a_str {:.1}° · target a* {:.1}° · feed {FEED_MM_PER_MIN:.0} mm/min",
+        r.step_over_mm, r.straight_deg, r.target_deg
+    ));
+    for n in &r.notes {
+        ui.add(egui::Label::new(RichText::new(n).italics()).wrap());
+    }
+}
+
+fn line(name: &str, pts: &[[f64; 2]]) -> Line<'static> {
+    Line::new(name.to_owned(), PlotPoints::from(pts.to_vec()))
+}
+
+fn corner_plot(ui: &mut egui::Ui, r: &CornerResult, height: f32) {
+    // start on the corner region (the circles and a margin); the whole walls after a zoom-out.
+    // A new corner or method gets a new plot memory, so the view follows the plan.
+    let reach = r.circle_points.iter().flatten().map(|p| p[0]).fold(0.0f64, f64::max);
+    let x_max = (reach * 1.5).max(30.0);
+    Plot::new(("corner_geometry", r.angle_deg.to_bits(), r.method))
+        .data_aspect(1.0)
+        .default_x_bounds(-5.0, x_max)
+        .default_y_bounds(-0.5 * (x_max + 5.0), 0.5 * (x_max + 5.0))
+        .height(height)
+        .legend(Legend::default())
+        .x_axis_label("x (mm)")
+        .y_axis_label("y (mm)")
+        .show(ui, |p| {
+            p.line(line("walls", &r.walls).color(Color32::GRAY).width(2.5));
+            p.line(
+                line("previous ring", &r.previous_ring)
+                    .color(Color32::from_gray(150))
+                    .style(egui_plot::LineStyle::dashed_dense()),
+            );
+            for c in &r.circle_points {
+                p.line(line("corner circles", c).color(Color32::from_rgb(60, 160, 90)).width(0.8));
+            }
+            p.line(line("tool path", &r.path).color(STRATEGY_COLOR).width(1.2));
+        });
+}
+
+fn engagement_plot(ui: &mut egui::Ui, r: &CornerResult, height: f32) {
+    Plot::new("corner_engagement")
+        .height(height)
+        .legend(Legend::default())
+        .x_axis_label("position along the path s (mm)")
+        .y_axis_label("engagement (°)")
+        .include_y(0.0)
+        .show(ui, |p| {
+            p.line(line("plain ring", &r.plain_profile).color(PLAIN_COLOR));
+            p.line(line(r.method, &r.profile).color(STRATEGY_COLOR));
+            p.hline(HLine::new("target a*", r.target_deg).color(Color32::from_rgb(200, 40, 40)));
+            p.hline(HLine::new("straight a_str", r.straight_deg).color(Color32::GRAY));
+        });
+}
+
+/// Short explanation of the engagement model and the strategies.
+fn teaching(ui: &mut egui::Ui) {
+    egui::ScrollArea::vertical().id_salt("corner_teach").max_height(TEACH_HEIGHT).show(ui, |ui| {
+        ui.label(
+            "Engagement: on a straight wall the tool of radius r cuts the arc a_str = arccos(1 − a_e/r) \
+             (domain-spec §1.1). At an inside corner the next ring's tool wraps around the material the \
+             previous ring left, and the engaged arc jumps (two-circle model, Wu et al. 2016 eqs. 2–6): \
+             forces spike. The right plot is measured by the independent evaluator (material left by \
+             everything cut before, engaged arc per tool position every 0.1 mm), not by the model.",
+        );
+        ui.label(
+            "Variable circles: circles tangent to both offset walls with centres on the bisector \
+             (eqs. 21–22); each next circle is found by bisection between the limit points M and N until \
+             its engagement lies in (a*, a* + ε], with a* = a_str·(1 + t1) (eqs. 23–24).",
+        );
+        ui.label(
+            "Isometric circles: one radius rh, centre spacing from the engagement limit; rh must exceed \
+             the threshold rh1 (eq. 25). Medial axis: perforative circles along the medial axis of the \
+             remaining material (segment Voronoi diagram). Plain: the ring as it is, for comparison.",
+        );
+    });
+}
+
+/// The Pocket sub-mode: vertices as text, tool, step-over, method; the rings and their numbers.
+fn pocket(ui: &mut egui::Ui, inputs: &mut CornerInputs, view: &CornerView) {
+    ui.horizontal_wrapped(|ui| {
+        ui.label("Method");
+        for m in CornerMethod::ALL {
+            ui.selectable_value(&mut inputs.method, m, m.label()).on_hover_text(m.tooltip());
+        }
+        ui.separator();
+        let l = ui.label(label::TOOL_DIAMETER);
+        ui.add(DragValue::new(&mut inputs.tool_diameter_mm).speed(0.1).suffix(" mm")).labelled_by(l.id);
+        let l = ui.label(label::POCKET_STEP_OVER);
+        ui.add(DragValue::new(&mut inputs.pocket_step_over_mm).speed(0.05).suffix(" mm"))
+            .labelled_by(l.id)
+            .on_hover_text("Distance between successive contour-parallel rings, 0 < a_e < D.");
+    });
+    if let Some(e) = &view.error {
+        ui.add(egui::Label::new(RichText::new(format!("invalid: {e}")).color(ERROR_COLOR)).wrap());
+    }
+    if view.pending() {
+        ui.horizontal(|ui| {
+            ui.spinner();
+            ui.label("planning…");
+        });
+    }
+    let h = (ui.available_height() - 10.0).max(220.0);
+    ui.horizontal_top(|ui| {
+        ui.vertical(|ui| {
+            ui.set_width(230.0);
+            let l = ui.label(label::POLYGON);
+            ui.add(egui::TextEdit::multiline(&mut inputs.polygon_text).desired_rows(8).code_editor())
+                .labelled_by(l.id)
+                .on_hover_text("A simple polygon, lines only, one vertex \"x,y\" (mm) per line; '#' comments allowed.");
+            if let Some(r) = view.last_pocket.as_deref() {
+                ui.add_space(6.0);
+                ui.label(format!("method {}", r.method));
+                ui.label(format!("{} rings", r.rings.len()));
+                ui.label(format!("path {:.1} mm, {:.1} s", r.path_length_mm, r.time_s));
+                ui.label(format!("max engagement {:.1}°", r.max_deg));
+                ui.label(format!("corners with trochoids {}, plain {}", r.trochoid_corners, r.plain_corners));
+                egui::Grid::new("pocket_rings").striped(true).show(ui, |ui| {
+                    ui.label("ring");
+                    ui.label("offset");
+                    ui.label("max eng.");
+                    ui.end_row();
+                    for (level, off, mx, _) in &r.rings {
+                        ui.label(format!("{level}"));
+                        ui.label(format!("{off:.2} mm"));
+                        ui.label(format!("{mx:.1}°"));
+                        ui.end_row();
+                    }
+                });
+            }
+        });
+        let Some(r) = view.last_pocket.as_deref() else {
+            return;
+        };
+        Plot::new("pocket_rings_plot")
+            .data_aspect(1.0)
+            .height(h)
+            .legend(Legend::default())
+            .x_axis_label("x (mm)")
+            .y_axis_label("y (mm)")
+            .show(ui, |p| {
+                p.line(line("pocket", &r.boundary).color(Color32::GRAY).width(2.5));
+                for (_, _, _, pts) in &r.rings {
+                    p.line(line("rings", pts).color(STRATEGY_COLOR).width(1.0));
+                }
+            });
+    });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn threaded_view_delivers_the_newest_inputs() {
+        let mut v = CornerView::threaded(|| {});
+        let mut i = CornerInputs { angle_deg: 120.0, ..CornerInputs::default() };
+        v.update(&i);
+        i.angle_deg = 100.0;
+        v.update(&i);
+        let t0 = std::time::Instant::now();
+        while v.pending() && t0.elapsed().as_secs() < 60 {
+            std::thread::sleep(std::time::Duration::from_millis(20));
+            v.update(&i);
+        }
+        assert!(!v.pending(), "answered within 60 s");
+        assert_eq!(v.last.as_ref().expect("a result").angle_deg, 100.0);
+    }
+}
