@@ -18,7 +18,18 @@
 //! over the pocket polygon as stock, after every ring machined before it. Rings are machined
 //! from the innermost outward (the usual contour-parallel order starting in the middle), so
 //! the innermost ring is a full slot (180°) and each further ring cuts a band of `a_e`.
-//! Links between rings are not part of the path (not measured, not in the length or time).
+//! Links between rings ([`Link`], one from the end of each ring to the entry of the next in
+//! machining order) are kept apart from the rings: not in `path_length_mm` nor `time_s`
+//! (they are in `link_length_mm`), and measured on their own (`Link::max_engagement_rad`).
+//!
+//! Link choice: a straight feed move (G1) when the tool centre on the whole segment keeps at
+//! least the tool radius from every pocket edge — checked exactly, segment against edge (see
+//! [`link_is_inside`]) — so the tool cannot gouge a wall; otherwise a retract to safe Z, a rapid
+//! and a plunge at the next entry ([`LinkKind::Retract`]). A feed link is *not* claimed to run
+//! in cleared material only: between consecutive rings it ends on the next ring, a_e outside
+//! the last one, so its last part cuts the band that ring removes anyway (a radial step-over
+//! like any contour-parallel pocket's). Its engagement is measured by the evaluator over the
+//! material left by the rings before it and reported, not hidden.
 //! The first position of each ring (the entry, where the evaluator has no swept path behind
 //! the tool yet) is reported apart from the ring's running maximum.
 //!
@@ -133,6 +144,85 @@ pub struct PocketPlan {
     pub trochoid_corners: usize,
     /// Convex ring corners left plain (strategy preconditions not met; innermost ring excluded).
     pub plain_corners: usize,
+    /// `links[i]` joins the end of `rings[i]` to the entry of `rings[i + 1]`.
+    pub links: Vec<Link>,
+    /// Length of the feed links (mm; retract links count 0).
+    pub link_length_mm: f64,
+}
+
+/// How the tool gets from one ring to the next.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LinkKind {
+    /// A straight feed move at depth, inside the pocket offset by the tool radius.
+    Feed,
+    /// Retract to safe Z, rapid above the next entry, plunge (the straight move would come
+    /// closer than the tool radius to a pocket edge).
+    Retract,
+}
+
+/// A move from the end of one ring to the entry of the next.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Link {
+    pub kind: LinkKind,
+    pub from: P2,
+    pub to: P2,
+    /// XY length (mm).
+    pub length_mm: f64,
+    /// Largest engagement along a feed link over the material left before it, by the
+    /// evaluator (rad); 0 for a retract link.
+    pub max_engagement_rad: f64,
+}
+
+impl PocketPlan {
+    /// The whole pocket as one tool path in machining order: rings and feed links as segments,
+    /// and the indices of the segments the tool reaches by a retract link (retract to safe Z,
+    /// rapid to the segment's start, plunge). Consecutive segments not at such an index join.
+    pub fn tool_path(&self) -> (Vec<Segment>, Vec<usize>) {
+        let mut segs = Vec::new();
+        let mut breaks = Vec::new();
+        for (i, ring) in self.rings.iter().enumerate() {
+            segs.extend(ring.segments.iter().copied());
+            match self.links.get(i) {
+                Some(Link { kind: LinkKind::Feed, from, to, .. }) if (*to - *from).norm() > 0.0 => {
+                    segs.push(Segment::Line { start: *from, end: *to });
+                }
+                Some(Link { kind: LinkKind::Retract, .. }) => breaks.push(segs.len()),
+                _ => {}
+            }
+        }
+        (segs, breaks)
+    }
+}
+
+/// Whether every point of the segment `a`–`b` is inside `polygon` at a distance of at least
+/// `r` from its boundary (up to `1e-9` mm of rounding): `a` inside and the distance from the
+/// segment to every edge ≥ r (a segment crossing an edge has distance 0 from it).
+pub fn link_is_inside(polygon: &Polygon, a: P2, b: P2, r: f64) -> bool {
+    let v = polygon.vertices();
+    let n = v.len();
+    polygon.contains(a) && (0..n).all(|i| segment_distance(a, b, v[i], v[(i + 1) % n]) >= r - 1e-9)
+}
+
+/// Distance between the closed segments p0–p1 and q0–q1 (0 when they cross).
+fn segment_distance(p0: P2, p1: P2, q0: P2, q1: P2) -> f64 {
+    use crate::geom::cross;
+    let (d1, d2) = (cross(p1 - p0, q0 - p0), cross(p1 - p0, q1 - p0));
+    let (d3, d4) = (cross(q1 - q0, p0 - q0), cross(q1 - q0, p1 - q0));
+    if d1 * d2 < 0.0 && d3 * d4 < 0.0 {
+        return 0.0;
+    }
+    point_segment(p0, q0, q1)
+        .min(point_segment(p1, q0, q1))
+        .min(point_segment(q0, p0, p1))
+        .min(point_segment(q1, p0, p1))
+}
+
+fn point_segment(p: P2, a: P2, b: P2) -> f64 {
+    let ab = b - a;
+    let l2 = ab.dot(&ab);
+    let t = if l2 > 0.0 { ((p - a).dot(&ab) / l2).clamp(0.0, 1.0) } else { 0.0 };
+    (p - (a + ab * t)).norm()
 }
 
 /// Validates a pocket boundary: ≥ 3 finite vertices, no zero-length edges, not
@@ -253,6 +343,29 @@ pub fn plan_pocket(polygon: &Polygon, settings: PocketSettings) -> Result<Pocket
             });
         }
     }
+    let mut links = Vec::with_capacity(rings.len().saturating_sub(1));
+    let mut before: Vec<Segment> = Vec::new();
+    for pair in rings.windows(2) {
+        before.extend(pair[0].segments.iter().copied());
+        let (from, to) =
+            (pair[0].segments.last().map_or(pair[0].max_engagement_at, Segment::end), pair[1].segments[0].start());
+        let length_mm = (to - from).norm();
+        let link = if link_is_inside(polygon, from, to, r) {
+            let max = if length_mm > 0.0 {
+                engagement_profile(polygon, &before, &[Segment::Line { start: from, end: to }], &opts)?.max_angle()
+            } else {
+                0.0
+            };
+            Link { kind: LinkKind::Feed, from, to, length_mm, max_engagement_rad: max }
+        } else {
+            Link { kind: LinkKind::Retract, from, to, length_mm, max_engagement_rad: 0.0 }
+        };
+        links.push(link);
+        if link.kind == LinkKind::Feed && length_mm > 0.0 {
+            before.push(Segment::Line { start: from, end: to });
+        }
+    }
+    let link_length_mm = links.iter().filter(|l| l.kind == LinkKind::Feed).map(|l| l.length_mm).sum();
     let len: f64 = rings.iter().map(|g| g.length_mm).sum();
     let max = rings.iter().map(|g| g.max_engagement_rad).fold(0.0, f64::max);
     Ok(PocketPlan {
@@ -264,6 +377,8 @@ pub fn plan_pocket(polygon: &Polygon, settings: PocketSettings) -> Result<Pocket
         max_engagement_rad: max,
         trochoid_corners,
         plain_corners,
+        links,
+        link_length_mm,
     })
 }
 
