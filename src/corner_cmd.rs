@@ -728,6 +728,26 @@ mod tests {
             let e = pocket(&args(&flags)).expect_err("must fail");
             assert!(e.contains(name), "{flags:?}: {e}");
         }
+        // --export: links (step of a_e = 4 between entries on the long sides, three of them,
+        // 12 mm) and the program written whole
+        let nc = dir.path().join("rect.ngc");
+        let n = nc.display().to_string();
+        let v: serde_json::Value =
+            serde_json::from_str(&pocket(&args(&["--step-over", "4", "--export", n.as_str()])).expect("export"))
+                .expect("json");
+        assert_eq!(v["links"].as_array().map(Vec::len), Some(3));
+        assert!(v["link_length_mm"].as_f64().is_some_and(|l| (l - 12.0).abs() < 1e-9), "{}", v["link_length_mm"]);
+        let text = std::fs::read_to_string(&nc).expect("written");
+        assert_eq!(v["nc_export"]["bytes"].as_u64(), Some(text.len() as u64));
+        assert!(text.starts_with("(TrochoPlan pocket)\n") && text.ends_with("M5\nM30\n"), "{text}");
+        for flags in [["--dialect", "fanuc"], ["--depth", "3"]] {
+            let mut a = vec!["t", "--polygon", p.as_str()];
+            a.extend_from_slice(&flags);
+            let e = PT::try_parse_from(a).err().map(|e| e.to_string()).unwrap_or_default();
+            assert!(e.contains("--export"), "{flags:?}: {e}");
+        }
+        let e = pocket(&args(&["--export", n.as_str(), "--depth", "-1"])).expect_err("depth");
+        assert!(e.contains("depth") && e.contains("-1"), "{e}");
         std::fs::write(&f, "0,0\n10,10\n10,0\n0,10\n").expect("write");
         let e = pocket(&args(&["--step-over", "4"])).expect_err("bow tie");
         assert!(e.contains("polygon"), "{e}");
