@@ -382,8 +382,12 @@ pub fn plan_pocket(polygon: &Polygon, settings: PocketSettings) -> Result<Pocket
     let mut before: Vec<Segment> = Vec::new();
     for pair in rings.windows(2) {
         before.extend(pair[0].segments.iter().copied());
-        let (from, to) =
-            (pair[0].segments.last().map_or(pair[0].max_engagement_at, Segment::end), pair[1].segments[0].start());
+        // Rings are never empty (inward_offset drops loops shorter than MIN_RING_LENGTH).
+        let (Some(from), Some(to)) =
+            (pair[0].segments.last().map(Segment::end), pair[1].segments.first().map(Segment::start))
+        else {
+            return Err(JobError::range("ring", "no segments", "at least one segment"));
+        };
         let length_mm = (to - from).norm();
         let link = if link_is_inside(polygon, from, to, r) {
             let max = if length_mm > 0.0 {
