@@ -8,12 +8,12 @@ use clap::{Args, ValueEnum};
 use serde::Serialize;
 use std::path::PathBuf;
 use trochoplan_core::JobError;
-use trochoplan_core::corner::CornerPlan;
 use trochoplan_core::corner::acceptance::{acceptance_table, markdown};
 use trochoplan_core::corner::{
     Corner, CornerScenario, CornerSettings, EvaluatorOptions, Method, PocketSettings, Polygon, engagement_profile,
     parse_points, plan_pocket, pocket_polygon, polyline, radial_depth_for_engagement, straight_engagement,
 };
+use trochoplan_core::corner::{CornerPlan, LinkKind, PocketPlan};
 use trochoplan_core::geom::Segment;
 use trochoplan_core::nc::{DEFAULT_TOLERANCE_MM, NcOptions, PathJob, program_for_path};
 
@@ -87,11 +87,12 @@ pub struct CornerArgs {
     nc: CornerExportArgs,
 }
 
-/// NC export of `trochoplan corner` (same program frame as `trochoplan export`; the corner's
-/// own frame: apex at X0 Y0, bisector along +X, stock top Z0).
+/// NC export of `trochoplan corner` and `trochoplan pocket` (same program frame as
+/// `trochoplan export`; the corner's own frame: apex at X0 Y0, bisector along +X; the pocket's:
+/// the polygon file's coordinates; stock top Z0).
 #[derive(Args)]
 pub struct CornerExportArgs {
-    /// Write the corner's tool path as an NC program to FILE (atomically).
+    /// Write the tool path as an NC program to FILE (atomically).
     #[arg(long, value_name = "FILE")]
     export: Option<PathBuf>,
     /// Controller dialect of --export.
@@ -167,6 +168,19 @@ pub struct PocketArgs {
     /// Spacing of the tool positions measured by the evaluator (mm).
     #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = 0.25)]
     spacing: f64,
+    #[command(flatten)]
+    nc: CornerExportArgs,
+}
+
+#[derive(Serialize)]
+struct LinkOut {
+    /// "feed" (G1 at depth) or "retract" (safe Z, rapid, plunge).
+    kind: trochoplan_core::corner::LinkKind,
+    from: [f64; 2],
+    to: [f64; 2],
+    length_mm: f64,
+    /// Measured by the evaluator over the material left before the link; 0 for a retract.
+    max_engagement_deg: f64,
 }
 
 #[derive(Serialize)]
@@ -196,10 +210,18 @@ struct PocketOut {
     ring_count: usize,
     /// Rings in machining order (innermost first); links between rings are not included.
     rings: Vec<RingOut>,
+    /// `links[i]` joins the end of `rings[i]` to the entry of `rings[i + 1]`.
+    links: Vec<LinkOut>,
+    /// Ring length (links excluded).
     path_length_mm: f64,
+    /// Length of the feed links.
+    link_length_mm: f64,
+    /// Machining time of the rings (links excluded).
     time_s: f64,
     /// Largest engagement over all rings (entries excluded), measured by the evaluator.
     max_engagement_deg: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    nc_export: Option<NcExportOut>,
 }
 
 /// `trochoplan pocket`: contour-parallel rings of a polygonal pocket, measured ring by ring.
@@ -221,6 +243,10 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
     };
     settings.validate().map_err(err)?;
     let plan = plan_pocket(&polygon, settings).map_err(err)?;
+    let nc_export = match &args.nc.export {
+        Some(file) => Some(export_pocket(&args.nc, file, &plan)?),
+        None => None,
+    };
     let out = PocketOut {
         method: settings.method.name(),
         trochoid_corners: plan.trochoid_corners,
@@ -244,9 +270,22 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
                 segments: g.segments.clone(),
             })
             .collect(),
+        links: plan
+            .links
+            .iter()
+            .map(|l| LinkOut {
+                kind: l.kind,
+                from: [l.from.x, l.from.y],
+                to: [l.to.x, l.to.y],
+                length_mm: l.length_mm,
+                max_engagement_deg: l.max_engagement_rad.to_degrees(),
+            })
+            .collect(),
         path_length_mm: plan.path_length_mm,
+        link_length_mm: plan.link_length_mm,
         time_s: plan.time_s,
         max_engagement_deg: plan.max_engagement_rad.to_degrees(),
+        nc_export,
     };
     let mut text = serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?;
     text.push('\n');
@@ -348,6 +387,30 @@ struct NcExportOut {
     bytes: usize,
 }
 
+/// The NC options of the shared export flags.
+fn nc_options(nc: &CornerExportArgs) -> NcOptions {
+    NcOptions {
+        dialect: nc.dialect.into(),
+        tolerance_mm: nc.nc_tolerance,
+        linear_segments: nc.linear_segments,
+        coolant: nc.coolant,
+        title: nc.title.clone().unwrap_or_default(),
+        ..NcOptions::default()
+    }
+}
+
+/// Write the program of `job` to `file` (atomically) and say what was written.
+fn write_program(file: &std::path::Path, job: &PathJob<'_>, opts: &NcOptions) -> Result<NcExportOut, String> {
+    let prog = program_for_path(job, opts).map_err(err)?;
+    write_atomic(file, prog.text.as_bytes())?;
+    Ok(NcExportOut {
+        file: file.display().to_string(),
+        dialect: opts.dialect.name(),
+        blocks: prog.blocks,
+        bytes: prog.text.len(),
+    })
+}
+
 /// Write the corner program of `plan` to `file` (see [`CornerExportArgs`]).
 fn export_corner(
     args: &CornerArgs,
@@ -357,17 +420,11 @@ fn export_corner(
     plan: &CornerPlan,
 ) -> Result<NcExportOut, String> {
     let nc = &args.nc;
-    let opts = NcOptions {
-        dialect: nc.dialect.into(),
-        tolerance_mm: nc.nc_tolerance,
-        linear_segments: nc.linear_segments,
-        coolant: nc.coolant,
-        title: nc.title.clone().unwrap_or_default(),
-        ..NcOptions::default()
-    };
+    let opts = nc_options(nc);
     let a_str = straight_engagement(s.step_over, s.tool_radius).map_err(err)?;
     let job = PathJob {
         segments: &plan.path,
+        retract_before: &[],
         depth_mm: nc.depth,
         feed_mm_per_min: s.feed_mm_per_min,
         spindle_rpm: nc.rpm,
@@ -398,14 +455,50 @@ fn export_corner(
             ),
         ],
     };
-    let prog = program_for_path(&job, &opts).map_err(err)?;
-    write_atomic(file, prog.text.as_bytes())?;
-    Ok(NcExportOut {
-        file: file.display().to_string(),
-        dialect: opts.dialect.name(),
-        blocks: prog.blocks,
-        bytes: prog.text.len(),
-    })
+    write_program(file, &job, &opts)
+}
+
+/// Write the whole pocket (rings and links, [`PocketPlan::tool_path`]) to `file`.
+fn export_pocket(nc: &CornerExportArgs, file: &std::path::Path, plan: &PocketPlan) -> Result<NcExportOut, String> {
+    let opts = nc_options(nc);
+    let s = &plan.settings;
+    let (segments, retract_before) = plan.tool_path();
+    let feed_links = plan.links.iter().filter(|l| l.kind == LinkKind::Feed).count();
+    let job = PathJob {
+        segments: &segments,
+        retract_before: &retract_before,
+        depth_mm: nc.depth,
+        feed_mm_per_min: s.feed_mm_per_min,
+        spindle_rpm: nc.rpm,
+        tool_diameter_mm: 2.0 * s.tool_radius,
+        default_title: "TrochoPlan pocket",
+        description: vec![
+            format!(
+                "pocket of {} vertices, method {}, {} rings, {} corner trochoids",
+                plan.polygon.vertices().len(),
+                s.method.name(),
+                plan.rings.len(),
+                plan.trochoid_corners
+            ),
+            format!(
+                "rings {:.3} mm, {} feed links {:.3} mm, {} retract links",
+                plan.path_length_mm,
+                feed_links,
+                plan.link_length_mm,
+                plan.links.len() - feed_links
+            ),
+            format!("polygon file coordinates, depth {:.3} mm below the stock top Z0", nc.depth),
+            format!(
+                "tool T{} D {:.3} mm, {:.0} rpm, feed {:.1} mm/min, a_e {:.4} mm",
+                opts.tool_number,
+                2.0 * s.tool_radius,
+                nc.rpm,
+                s.feed_mm_per_min,
+                s.step_over
+            ),
+        ],
+    };
+    write_program(file, &job, &opts)
 }
 
 /// `trochoplan corner`: plan one corner (JSON) or print the acceptance table (Markdown).
@@ -635,6 +728,26 @@ mod tests {
             let e = pocket(&args(&flags)).expect_err("must fail");
             assert!(e.contains(name), "{flags:?}: {e}");
         }
+        // --export: links (step of a_e = 4 between entries on the long sides, three of them,
+        // 12 mm) and the program written whole
+        let nc = dir.path().join("rect.ngc");
+        let n = nc.display().to_string();
+        let v: serde_json::Value =
+            serde_json::from_str(&pocket(&args(&["--step-over", "4", "--export", n.as_str()])).expect("export"))
+                .expect("json");
+        assert_eq!(v["links"].as_array().map(Vec::len), Some(3));
+        assert!(v["link_length_mm"].as_f64().is_some_and(|l| (l - 12.0).abs() < 1e-9), "{}", v["link_length_mm"]);
+        let text = std::fs::read_to_string(&nc).expect("written");
+        assert_eq!(v["nc_export"]["bytes"].as_u64(), Some(text.len() as u64));
+        assert!(text.starts_with("(TrochoPlan pocket)\n") && text.ends_with("M5\nM30\n"), "{text}");
+        for flags in [["--dialect", "fanuc"], ["--depth", "3"]] {
+            let mut a = vec!["t", "--polygon", p.as_str()];
+            a.extend_from_slice(&flags);
+            let e = PT::try_parse_from(a).err().map(|e| e.to_string()).unwrap_or_default();
+            assert!(e.contains("--export"), "{flags:?}: {e}");
+        }
+        let e = pocket(&args(&["--export", n.as_str(), "--depth", "-1"])).expect_err("depth");
+        assert!(e.contains("depth") && e.contains("-1"), "{e}");
         std::fs::write(&f, "0,0\n10,10\n10,0\n0,10\n").expect("write");
         let e = pocket(&args(&["--step-over", "4"])).expect_err("bow tie");
         assert!(e.contains("polygon"), "{e}");

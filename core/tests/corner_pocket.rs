@@ -5,6 +5,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use std::f64::consts::PI;
+use trochoplan_core::corner::pocket::LINK_ENGAGEMENT_SLACK_RAD;
 use trochoplan_core::corner::*;
 use trochoplan_core::geom::{P2, Segment, p2};
 
@@ -212,4 +213,136 @@ fn variable_circles_at_ring_corners_where_they_fit() {
     // Medial axis is a whole-pocket strategy, not a ring-corner one.
     let e = plan_pocket(&pocket, PocketSettings { method: Method::MedialAxis, ..settings(10.0, ae) }).unwrap_err();
     assert_eq!(e.parameter(), Some("method"), "{e}");
+}
+
+// ---- links between rings ----
+
+/// Smallest distance from the sampled tool-centre points of `segs` to the polygon's edges,
+/// negative when a point is outside (even–odd ray casting). Independent of the planner's
+/// exact segment test.
+fn clearance(pts: &[(f64, f64)], segs: &[Segment]) -> f64 {
+    let poly: Vec<P2> = pts.iter().map(|&(x, y)| p2(x, y)).collect();
+    let n = poly.len();
+    let mut worst = f64::INFINITY;
+    for s in segs {
+        let m = ((s.length() / 0.01).ceil() as usize).max(1);
+        for p in s.sample(m) {
+            let mut d = f64::INFINITY;
+            let mut inside = false;
+            for i in 0..n {
+                let (a, b) = (poly[i], poly[(i + 1) % n]);
+                let ab = b - a;
+                let t = ((p - a).dot(&ab) / ab.dot(&ab)).clamp(0.0, 1.0);
+                d = d.min((p - (a + ab * t)).norm());
+                if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) {
+                    inside = !inside;
+                }
+            }
+            worst = worst.min(if inside { d } else { -d });
+        }
+    }
+    worst
+}
+
+const DUMBBELL: &[(f64, f64)] = &[
+    (0.0, 0.0),
+    (40.0, 0.0),
+    (40.0, 12.0),
+    (60.0, 12.0),
+    (60.0, 0.0),
+    (100.0, 0.0),
+    (100.0, 40.0),
+    (60.0, 40.0),
+    (60.0, 28.0),
+    (40.0, 28.0),
+    (40.0, 40.0),
+    (0.0, 40.0),
+];
+
+#[test]
+fn rectangle_links_are_radial_steps_of_one_step_over() {
+    // 60 × 40, D = 10, a_e = 2.5: seven rings (d = 5 … 20), each entered at the middle of a long
+    // side, so each link is the step of a_e = 2.5 mm from one ring's entry to the next one's.
+    // Its engagement: the tool ends with the band's edge a_e beyond the last ring in front,
+    // at r − a_e = 2.5 mm from the centre: the arc 2·arccos(2.5/5) = 120°.
+    let rect = [(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)];
+    let plan = plan_pocket(&poly(&rect), settings(10.0, 2.5)).unwrap();
+    assert_eq!((plan.rings.len(), plan.links.len()), (7, 6));
+    let want = 2.0 * 0.5f64.acos();
+    for (i, l) in plan.links.iter().enumerate() {
+        assert_eq!(l.kind, LinkKind::Feed, "link {i}: {l:?}");
+        assert!((l.length_mm - 2.5).abs() < LEN_TOL, "link {i}: {l:?}");
+        assert!((l.max_engagement_rad - want).abs() < ANGLE_TOL_DEG.to_radians(), "link {i}: {l:?} vs {want}");
+        assert!((l.from - plan.rings[i].segments.last().unwrap().end()).norm() < LEN_TOL);
+        assert!((l.to - plan.rings[i + 1].segments[0].start()).norm() < LEN_TOL);
+    }
+    assert!((plan.link_length_mm - 15.0).abs() < LEN_TOL);
+    // One connected path: 700 mm of rings (200 − 8d summed over d = 5, 7.5, …, 20) + 15 mm.
+    let (path, breaks) = plan.tool_path();
+    assert!(breaks.is_empty());
+    for (k, w) in path.windows(2).enumerate() {
+        assert!((w[1].start() - w[0].end()).norm() < 1e-9, "gap after segment {k}");
+    }
+    assert!((length(&path) - 715.0).abs() < 1e-8, "{}", length(&path));
+    // inside the rectangle offset by r: x in [5, 55], y in [5, 35]
+    assert!(clearance(&rect, &path) >= 5.0 - 1e-9, "{}", clearance(&rect, &path));
+}
+
+#[test]
+fn links_across_uncut_material_or_too_close_to_a_wall_retract() {
+    // The dumbbell's inner rings split into one loop per lobe, machined in turn: a straight
+    // move from lobe to lobe would slot across the uncut neck (engagement up to 180° > 120°)
+    // or pass its corners closer than r. Those links retract; the others feed.
+    for method in [Method::Plain, Method::Variable] {
+        let plan = plan_pocket(&poly(DUMBBELL), PocketSettings { method, ..settings(10.0, 2.5) }).unwrap();
+        let retracts: Vec<usize> = (0..plan.links.len()).filter(|&i| plan.links[i].kind == LinkKind::Retract).collect();
+        assert!(!retracts.is_empty() && retracts.len() < plan.links.len(), "{:?}", plan.links);
+        let bound = 2.0 * 0.5f64.acos() + LINK_ENGAGEMENT_SLACK_RAD;
+        for l in plan.links.iter().filter(|l| l.kind == LinkKind::Feed) {
+            assert!(l.max_engagement_rad <= bound, "{l:?}");
+            let seg = [Segment::Line { start: l.from, end: l.to }];
+            assert!(clearance(DUMBBELL, &seg) >= 5.0 - 1e-9, "{l:?}: {}", clearance(DUMBBELL, &seg));
+        }
+        // tool_path: a break exactly where a retract link is, connected elsewhere
+        let (path, breaks) = plan.tool_path();
+        assert_eq!(breaks.len(), retracts.len());
+        for (k, w) in path.windows(2).enumerate() {
+            let gap = (w[1].start() - w[0].end()).norm();
+            assert!(breaks.contains(&(k + 1)) || gap < 1e-9, "gap {gap} after segment {k}");
+        }
+        let want = plan.path_length_mm + plan.link_length_mm;
+        assert!((length(&path) - want).abs() < 1e-8);
+        assert!(clearance(DUMBBELL, &path) >= 5.0 - 1e-9, "{method:?}: {}", clearance(DUMBBELL, &path));
+    }
+}
+
+#[test]
+fn link_test_is_exact_at_the_offset_and_at_reflex_corners() {
+    let l = poly(&[(0.0, 0.0), (60.0, 0.0), (60.0, 25.0), (25.0, 25.0), (25.0, 50.0), (0.0, 50.0)]);
+    // along the offset line y = 5 (exactly r from the bottom edge): inside
+    assert!(link_is_inside(&l, p2(5.0, 5.0), p2(55.0, 5.0), 5.0));
+    // 1 µm closer: not
+    assert!(!link_is_inside(&l, p2(5.0, 4.999), p2(55.0, 4.999), 5.0));
+    // across the notch, from arm to arm: the segment from (50, 15) to (15, 45) passes the reflex
+    // vertex (25, 25) at distance |cross|/|v| = |(−35)(10) − (30)(−25)|/√(35² + 30²) = 400/46.1 = 8.68 > 5
+    // but leaves the pocket (it crosses x = 25 at y = 36.4 > 25): not inside
+    assert!(!link_is_inside(&l, p2(50.0, 15.0), p2(15.0, 45.0), 5.0));
+    // start outside the pocket
+    assert!(!link_is_inside(&l, p2(40.0, 40.0), p2(15.0, 40.0), 5.0));
+}
+
+#[test]
+fn corner_circles_that_would_leave_the_pocket_stay_plain() {
+    // L with 25 mm arms, D = 10, a_e = 2.5: the variable circles of the corners facing the
+    // reflex vertex grow along the bisector into the notch (before this check the first circle
+    // of ring d = 10 had centre (23.24, 23.24), radius 13.24: 7.6 mm outside the pocket). Every
+    // ring must keep the tool centre r from every edge.
+    let pts = [(0.0, 0.0), (60.0, 0.0), (60.0, 25.0), (25.0, 25.0), (25.0, 50.0), (0.0, 50.0)];
+    for method in [Method::Variable, Method::Isometric] {
+        let plan = plan_pocket(&poly(&pts), PocketSettings { method, ..settings(10.0, 2.5) }).unwrap();
+        let (path, _) = plan.tool_path();
+        let c = clearance(&pts, &path);
+        assert!(c >= 5.0 - 1e-9, "{method:?}: clearance {c}");
+        assert!(plan.plain_corners > 0, "{method:?}");
+    }
 }

@@ -35,7 +35,9 @@ pub use evaluator::{
 };
 pub use geometry::{Corner, LineEq, bisector_point};
 pub use medial::{AxisEdge, MedialAxis, medial_axis};
-pub use pocket::{PocketPlan, PocketSettings, Ring, inward_offset, plan_pocket, pocket_polygon};
+pub use pocket::{
+    Link, LinkKind, PocketPlan, PocketSettings, Ring, inward_offset, link_is_inside, plan_pocket, pocket_polygon,
+};
 pub use strategy::{
     CornerCircle, CornerPlan, CornerScenario, CornerSettings, Method, first_circle_radius, plan_corner,
 };

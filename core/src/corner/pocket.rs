@@ -18,7 +18,27 @@
 //! over the pocket polygon as stock, after every ring machined before it. Rings are machined
 //! from the innermost outward (the usual contour-parallel order starting in the middle), so
 //! the innermost ring is a full slot (180°) and each further ring cuts a band of `a_e`.
-//! Links between rings are not part of the path (not measured, not in the length or time).
+//! Links between rings ([`Link`], one from the end of each ring to the entry of the next in
+//! machining order) are kept apart from the rings: not in `path_length_mm` nor `time_s`
+//! (they are in `link_length_mm`), and measured on their own (`Link::max_engagement_rad`).
+//!
+//! Link choice: a straight feed move (G1) when both
+//! 1. the tool centre on the whole segment keeps at least the tool radius from every pocket
+//!    edge — checked exactly, segment against edge ([`link_is_inside`]) — so the tool cannot
+//!    gouge a wall, and
+//! 2. the link cuts no more than a radial step of one step-over does: its engagement, measured
+//!    by the evaluator over the material left by the rings and links before it, is at most
+//!    `2·arccos(1 − a_e/r)` (capped at 180°) + [`LINK_ENGAGEMENT_SLACK_RAD`]. Derived: moving
+//!    straight towards a band whose edge is a_e beyond the last ring, the tool ends with the
+//!    band's chord in its front, at distance r − a_e from the centre, i.e. the arc
+//!    2·arccos((r − a_e)/r). A link cannot be shown to run in cleared material only — it ends
+//!    on the next ring, a_e outside the last one — so this bound is the honest criterion.
+//!
+//! Otherwise a retract to safe Z, a rapid and a plunge at the next entry
+//! ([`LinkKind::Retract`]): e.g. a link that would slot across uncut material between two
+//! lobes of a pocket, or one that would pass a reflex corner closer than r. The plunge lands
+//! at the entry of the next ring, where the ring itself cuts next. The material a feed link
+//! removes is not credited to the rings after it (their measurement is unchanged: conservative).
 //! The first position of each ring (the entry, where the evaluator has no swept path behind
 //! the tool yet) is reported apart from the ring's running maximum.
 //!
@@ -32,9 +52,13 @@
 //! near the corner. The strategy's path from its ring start to U0 is spliced into the ring in
 //! place of the incoming line. Corners where the scenario's preconditions fail (walls too short
 //! for the circles, the circles' entry not on the incoming line, arcs next to the corner) stay
-//! plain and are counted in `PocketPlan::plain_corners`. The innermost ring (a full slot, no
-//! previous ring) stays plain. Gouging of circles into other walls of small rings is not
-//! checked; the engagement of the result is measured by the evaluator like the plain rings.
+//! plain and are counted in `PocketPlan::plain_corners`, and so do corners whose circles would
+//! take the tool centre closer than r to any pocket edge (a corner's circles only know its two
+//! walls: in an L-shaped pocket the first circles of the corner opposite the reflex vertex grow
+//! along the bisector into the notch). That check ([`piece_is_inside`]) is exact for lines and
+//! treats every arc as its full circle (sufficient, so it may leave a corner plain that would
+//! fit). The innermost ring (a full slot, no previous ring) stays plain. The engagement of the
+//! result is measured by the evaluator like the plain rings.
 
 use super::evaluator::{EvaluatorOptions, Polygon, engagement_profile};
 use super::geometry::Corner;
@@ -48,6 +72,10 @@ use serde::{Deserialize, Serialize};
 const MAX_LEVELS: usize = 10_000;
 /// Offset loops shorter than this are dropped as numerical slivers (mm).
 const MIN_RING_LENGTH: f64 = 1e-6;
+
+/// Rounding allowance of the link engagement bound (rad): far above the evaluator's
+/// refinement (~1e-8 rad), far below any engagement difference that matters (0.006°).
+pub const LINK_ENGAGEMENT_SLACK_RAD: f64 = 1e-4;
 
 /// Inputs of a pocket plan (mm, mm/min).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -133,6 +161,101 @@ pub struct PocketPlan {
     pub trochoid_corners: usize,
     /// Convex ring corners left plain (strategy preconditions not met; innermost ring excluded).
     pub plain_corners: usize,
+    /// `links[i]` joins the end of `rings[i]` to the entry of `rings[i + 1]`.
+    pub links: Vec<Link>,
+    /// Length of the feed links (mm; retract links count 0).
+    pub link_length_mm: f64,
+}
+
+/// How the tool gets from one ring to the next.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LinkKind {
+    /// A straight feed move at depth, inside the pocket offset by the tool radius.
+    Feed,
+    /// Retract to safe Z, rapid above the next entry, plunge (the straight move would come
+    /// closer than the tool radius to a pocket edge).
+    Retract,
+}
+
+/// A move from the end of one ring to the entry of the next.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Link {
+    pub kind: LinkKind,
+    pub from: P2,
+    pub to: P2,
+    /// XY length (mm).
+    pub length_mm: f64,
+    /// Largest engagement along a feed link over the material left before it, by the
+    /// evaluator (rad); 0 for a retract link (not cut at depth).
+    pub max_engagement_rad: f64,
+}
+
+impl PocketPlan {
+    /// The whole pocket as one tool path in machining order: rings and feed links as segments,
+    /// and the indices of the segments the tool reaches by a retract link (retract to safe Z,
+    /// rapid to the segment's start, plunge). Consecutive segments not at such an index join.
+    pub fn tool_path(&self) -> (Vec<Segment>, Vec<usize>) {
+        let mut segs = Vec::new();
+        let mut breaks = Vec::new();
+        for (i, ring) in self.rings.iter().enumerate() {
+            segs.extend(ring.segments.iter().copied());
+            match self.links.get(i) {
+                Some(Link { kind: LinkKind::Feed, from, to, .. }) if (*to - *from).norm() > 0.0 => {
+                    segs.push(Segment::Line { start: *from, end: *to });
+                }
+                Some(Link { kind: LinkKind::Retract, .. }) => breaks.push(segs.len()),
+                _ => {}
+            }
+        }
+        (segs, breaks)
+    }
+}
+
+/// Whether every point of the segment `a`–`b` is inside `polygon` at a distance of at least
+/// `r` from its boundary (up to `1e-9` mm of rounding): `a` inside and the distance from the
+/// segment to every edge ≥ r (a segment crossing an edge has distance 0 from it).
+pub fn link_is_inside(polygon: &Polygon, a: P2, b: P2, r: f64) -> bool {
+    let v = polygon.vertices();
+    let n = v.len();
+    polygon.contains(a) && (0..n).all(|i| segment_distance(a, b, v[i], v[(i + 1) % n]) >= r - 1e-9)
+}
+
+/// Whether the tool centre on `piece` keeps at least `r` from every edge of `polygon` and stays
+/// inside it: lines exactly ([`link_is_inside`]); an arc (centre c, radius ρ) by its full
+/// circle, which keeps r from an edge iff the edge's distance from c is ≥ ρ + r (then the edge
+/// is outside the disc and its distance from the circle is that minus ρ), with c inside.
+pub fn piece_is_inside(polygon: &Polygon, piece: &[Segment], r: f64) -> bool {
+    let v = polygon.vertices();
+    let n = v.len();
+    piece.iter().all(|seg| match *seg {
+        Segment::Line { start, end } => link_is_inside(polygon, start, end, r),
+        Segment::Arc { center, radius, .. } => {
+            polygon.contains(center) && (0..n).all(|i| point_segment(center, v[i], v[(i + 1) % n]) >= radius + r - 1e-9)
+        }
+        _ => false,
+    })
+}
+
+/// Distance between the closed segments p0–p1 and q0–q1 (0 when they cross).
+fn segment_distance(p0: P2, p1: P2, q0: P2, q1: P2) -> f64 {
+    use crate::geom::cross;
+    let (d1, d2) = (cross(p1 - p0, q0 - p0), cross(p1 - p0, q1 - p0));
+    let (d3, d4) = (cross(q1 - q0, p0 - q0), cross(q1 - q0, p1 - q0));
+    if d1 * d2 < 0.0 && d3 * d4 < 0.0 {
+        return 0.0;
+    }
+    point_segment(p0, q0, q1)
+        .min(point_segment(p1, q0, q1))
+        .min(point_segment(q0, p0, p1))
+        .min(point_segment(q1, p0, p1))
+}
+
+fn point_segment(p: P2, a: P2, b: P2) -> f64 {
+    let ab = b - a;
+    let l2 = ab.dot(&ab);
+    let t = if l2 > 0.0 { ((p - a).dot(&ab) / l2).clamp(0.0, 1.0) } else { 0.0 };
+    (p - (a + ab * t)).norm()
 }
 
 /// Validates a pocket boundary: ≥ 3 finite vertices, no zero-length edges, not
@@ -228,7 +351,7 @@ pub fn plan_pocket(polygon: &Polygon, settings: PocketSettings) -> Result<Pocket
             let segs = if settings.method == Method::Plain || k == innermost {
                 plain
             } else {
-                let (segs, done, skipped) = ring_with_corner_trochoids(&plain, settings)?;
+                let (segs, done, skipped) = ring_with_corner_trochoids(polygon, &plain, settings)?;
                 trochoid_corners += done;
                 plain_corners += skipped;
                 segs
@@ -253,6 +376,39 @@ pub fn plan_pocket(polygon: &Polygon, settings: PocketSettings) -> Result<Pocket
             });
         }
     }
+    let link_bound =
+        2.0 * (1.0 - ae / r).clamp(-1.0, 1.0).acos().min(0.5 * std::f64::consts::PI) + LINK_ENGAGEMENT_SLACK_RAD;
+    let mut links = Vec::with_capacity(rings.len().saturating_sub(1));
+    let mut before: Vec<Segment> = Vec::new();
+    for pair in rings.windows(2) {
+        before.extend(pair[0].segments.iter().copied());
+        // Rings are never empty (inward_offset drops loops shorter than MIN_RING_LENGTH).
+        let (Some(from), Some(to)) =
+            (pair[0].segments.last().map(Segment::end), pair[1].segments.first().map(Segment::start))
+        else {
+            return Err(JobError::range("ring", "no segments", "at least one segment"));
+        };
+        let length_mm = (to - from).norm();
+        let link = if link_is_inside(polygon, from, to, r) {
+            let max = if length_mm > 0.0 {
+                engagement_profile(polygon, &before, &[Segment::Line { start: from, end: to }], &opts)?.max_angle()
+            } else {
+                0.0
+            };
+            if max <= link_bound {
+                Link { kind: LinkKind::Feed, from, to, length_mm, max_engagement_rad: max }
+            } else {
+                Link { kind: LinkKind::Retract, from, to, length_mm, max_engagement_rad: 0.0 }
+            }
+        } else {
+            Link { kind: LinkKind::Retract, from, to, length_mm, max_engagement_rad: 0.0 }
+        };
+        links.push(link);
+        if link.kind == LinkKind::Feed && length_mm > 0.0 {
+            before.push(Segment::Line { start: from, end: to });
+        }
+    }
+    let link_length_mm = links.iter().filter(|l| l.kind == LinkKind::Feed).map(|l| l.length_mm).sum();
     let len: f64 = rings.iter().map(|g| g.length_mm).sum();
     let max = rings.iter().map(|g| g.max_engagement_rad).fold(0.0, f64::max);
     Ok(PocketPlan {
@@ -264,6 +420,8 @@ pub fn plan_pocket(polygon: &Polygon, settings: PocketSettings) -> Result<Pocket
         max_engagement_rad: max,
         trochoid_corners,
         plain_corners,
+        links,
+        link_length_mm,
     })
 }
 
@@ -295,6 +453,7 @@ fn start_mid_longest_line(ring: Vec<Segment>) -> Vec<Segment> {
 /// place of the incoming line. Returns the new loop, the number of corners done and the number
 /// of convex corners left plain because the corner scenario's preconditions failed.
 pub fn ring_with_corner_trochoids(
+    polygon: &Polygon,
     ring: &[Segment],
     settings: PocketSettings,
 ) -> Result<(Vec<Segment>, usize, usize), JobError> {
@@ -314,7 +473,7 @@ pub fn ring_with_corner_trochoids(
             out.push(seg); // straight or reflex (concave-of-pocket) vertex
             continue;
         }
-        match corner_piece(a, u0, c, base, settings.method) {
+        match corner_piece(a, u0, c, base, settings.method).filter(|p| piece_is_inside(polygon, p, r)) {
             Some(piece) => {
                 out.extend(piece);
                 done += 1;

@@ -213,8 +213,12 @@ pub fn program(plan: &Plan, opts: &NcOptions) -> Result<NcProgram, JobError> {
 /// header and set-up need: the path is cut at one depth, at one feed, from its first point.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PathJob<'a> {
-    /// Connected lines, arcs and trochoid pieces in machining order (XY, mm).
+    /// Lines, arcs and trochoid pieces in machining order (XY, mm), connected except before
+    /// the indices in `retract_before`.
     pub segments: &'a [Segment],
+    /// Indices of segments reached by retract to safe Z, rapid to their start and feed down to
+    /// depth (a pocket's links between rings that a straight move cannot take); increasing.
+    pub retract_before: &'a [usize],
     /// Cutting depth below the stock top Z0 (mm).
     pub depth_mm: f64,
     /// Cutting feed (mm/min).
@@ -253,7 +257,17 @@ impl PathJob<'_> {
         if !(t.is_finite() && t > 0.0 && t <= 1000.0) {
             return Err(JobError::range("tool diameter", t, "a finite number > 0 and ≤ 1000 mm"));
         }
+        if let Some(&bad) = self.retract_before.iter().find(|&&i| i == 0 || i >= self.segments.len()) {
+            return Err(JobError::range(
+                "retract",
+                format!("before segment {bad}"),
+                format!("before segments 1 to {}", self.segments.len().saturating_sub(1)),
+            ));
+        }
         for (k, pair) in self.segments.windows(2).enumerate() {
+            if self.retract_before.contains(&(k + 1)) {
+                continue;
+            }
             let gap = (pair[1].start() - pair[0].end()).norm();
             if gap.is_nan() || gap > PATH_GAP_MM {
                 return Err(JobError::range(
@@ -267,10 +281,12 @@ impl PathJob<'_> {
     }
 }
 
-/// The NC program of any connected tool-centre path (a pocket corner, for instance): the same
+/// The NC program of any tool-centre path (a pocket corner, a whole pocket): the same
 /// header, set-up, approach, retract and end as a slot program ([`program`]), and the
 /// segments at the cutting feed, fitted like a slot cycle (lines as G1, arcs as G2/G3, trochoid
-/// pieces as biarcs, or all as chords with [`NcOptions::linear_segments`]).
+/// pieces as biarcs, or all as chords with [`NcOptions::linear_segments`]). Before each segment
+/// in [`PathJob::retract_before`]: retract to safe Z, rapid to its start, feed down (the
+/// approach again). A connected path (no retracts) is written exactly as before.
 ///
 /// The loop form and the return feed need the repeating cycles and the tooth series of a slot
 /// plan: asking for them here is an error naming the option.
@@ -292,7 +308,10 @@ pub fn program_for_path(job: &PathJob<'_>, opts: &NcOptions) -> Result<NcProgram
     };
     preamble(&mut w, &header, opts);
     approach(&mut w, job.segments[0].start(), job.depth_mm, job.feed_mm_per_min, opts);
-    for seg in job.segments {
+    for (i, seg) in job.segments.iter().enumerate() {
+        if job.retract_before.contains(&i) {
+            approach(&mut w, seg.start(), job.depth_mm, job.feed_mm_per_min, opts);
+        }
         for piece in fit(seg, opts) {
             w.segment(&piece.seg, job.feed_mm_per_min);
         }

@@ -137,6 +137,7 @@ fn l_path() -> Vec<Segment> {
 fn path_job(segments: &[Segment]) -> PathJob<'_> {
     PathJob {
         segments,
+        retract_before: &[],
         depth_mm: 3.0,
         feed_mm_per_min: 500.0,
         spindle_rpm: 4000.0,
@@ -182,6 +183,8 @@ fn bad_path_jobs_name_the_parameter() {
     let cases: Vec<(PathJob<'_>, NcOptions, &str)> = vec![
         (path_job(&[]), opts(Dialect::Fanuc), "path"),
         (path_job(&gap), opts(Dialect::Fanuc), "path"),
+        (PathJob { retract_before: &[0], ..path_job(&segs) }, opts(Dialect::Fanuc), "retract"),
+        (PathJob { retract_before: &[3], ..path_job(&segs) }, opts(Dialect::Fanuc), "retract"),
         (PathJob { depth_mm: 0.0, ..path_job(&segs) }, opts(Dialect::Fanuc), "depth"),
         (PathJob { feed_mm_per_min: f64::NAN, ..path_job(&segs) }, opts(Dialect::Fanuc), "feed"),
         (PathJob { spindle_rpm: -1.0, ..path_job(&segs) }, opts(Dialect::Fanuc), "rpm"),
@@ -194,4 +197,21 @@ fn bad_path_jobs_name_the_parameter() {
         let err = program_for_path(&job, &o).expect_err("must be rejected");
         assert_eq!(err.parameter(), Some(name), "{err}");
     }
+}
+
+#[test]
+fn a_retract_before_a_segment_repeats_the_approach() {
+    // The gap of 0.1 mm before the last line is allowed once the tool retracts there: safe Z,
+    // rapid to (10, 10.1), feed down to depth, then the line; nothing else changes.
+    let mut segs = l_path();
+    segs[2] = Segment::Line { start: crate::geom::p2(10.0, 10.1), end: crate::geom::p2(10.0, 30.0) };
+    let prog = program_for_path(&PathJob { retract_before: &[2], ..path_job(&segs) }, &opts(Dialect::LinuxCnc))
+        .expect("program");
+    assert!(
+        prog.text.contains(
+            "G3 X10.0000 Y10.0000 I0.0000 J10.0000\nG0 Z5.0000\nY10.1000\nG1 Z-3.0000\nY30.0000\nG0 Z5.0000\nM5\n"
+        ),
+        "{}",
+        prog.text
+    );
 }
