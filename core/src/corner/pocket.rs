@@ -97,20 +97,7 @@ impl PocketSettings {
     /// Range checks; each error names the parameter, the value and the allowed range.
     pub fn validate(&self) -> Result<(), JobError> {
         let r = self.tool_radius;
-        if !(r.is_finite() && r > 0.0 && r <= 500.0) {
-            return Err(JobError::range(
-                "tool diameter",
-                2.0 * r,
-                "a finite number greater than 0 and at most 1000 mm",
-            ));
-        }
-        if !(self.step_over.is_finite() && self.step_over > 0.0 && self.step_over < 2.0 * r) {
-            return Err(JobError::range(
-                "step-over",
-                self.step_over,
-                format!("greater than 0 and less than the tool diameter {} mm", 2.0 * r),
-            ));
-        }
+        super::strategy::validate_tool_and_step_over(r, self.step_over)?;
         if !(self.feed_mm_per_min.is_finite() && self.feed_mm_per_min > 0.0) {
             return Err(JobError::range("feed", self.feed_mm_per_min, "a finite number > 0 mm/min"));
         }

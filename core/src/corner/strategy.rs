@@ -106,20 +106,7 @@ impl CornerSettings {
     /// Range checks; each error names the parameter and its allowed range.
     pub fn validate(&self) -> Result<(), JobError> {
         let r = self.tool_radius;
-        if !(r.is_finite() && r > 0.0 && r <= 500.0) {
-            return Err(JobError::range(
-                "tool diameter",
-                2.0 * r,
-                "a finite number from 0 to 1000 mm (exclusive of 0)",
-            ));
-        }
-        if !(self.step_over.is_finite() && self.step_over > 0.0 && self.step_over < 2.0 * r) {
-            return Err(JobError::range(
-                "step-over",
-                self.step_over,
-                format!("greater than 0 and less than the tool diameter {} mm", 2.0 * r),
-            ));
-        }
+        validate_tool_and_step_over(r, self.step_over)?;
         if !(self.target.is_finite() && self.target > 0.0 && self.target < PI) {
             return Err(JobError::range(
                 "target",
@@ -647,6 +634,22 @@ fn ring_path(sc: &CornerScenario, circles: &[CornerCircle], leg_end: Option<P2>)
     path.push(Segment::Line { start: at, end: sc.corner_point });
     path.push(Segment::Line { start: sc.corner_point, end: sc.ring_end });
     path
+}
+
+/// Checks shared by corner and pocket settings: tool radius r (0 < D ≤ 1000 mm) and ring
+/// step-over a_e (0 < a_e < D); each error names the parameter, the value and the range.
+pub fn validate_tool_and_step_over(r: f64, step_over: f64) -> Result<(), JobError> {
+    if !(r.is_finite() && r > 0.0 && r <= 500.0) {
+        return Err(JobError::range("tool diameter", 2.0 * r, "a finite number greater than 0 and at most 1000 mm"));
+    }
+    if !(step_over.is_finite() && step_over > 0.0 && step_over < 2.0 * r) {
+        return Err(JobError::range(
+            "step-over",
+            step_over,
+            format!("greater than 0 and less than the tool diameter {} mm", 2.0 * r),
+        ));
+    }
+    Ok(())
 }
 
 #[cfg(test)]
