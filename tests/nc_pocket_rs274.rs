@@ -13,7 +13,7 @@
 #[path = "../core/tests/nc_common/mod.rs"]
 mod nc_common;
 
-use nc_common::{Motion, budget, check_path_cut, cut, interpret, motions, sample};
+use nc_common::{DUMBBELL, Motion, budget, check_path_cut, cut, interpret, motions, sample};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use trochoplan_core::geom::{P2, Segment, p2};
@@ -27,23 +27,6 @@ const RECT: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)
 /// An L: 100 × 90 minus the 60 × 50 block at the top right, arms 40 wide; one reflex vertex
 /// at (40, 40).
 const L_SHAPE: &[(f64, f64)] = &[(0.0, 0.0), (100.0, 0.0), (100.0, 40.0), (40.0, 40.0), (40.0, 90.0), (0.0, 90.0)];
-/// Two 40 × 40 lobes joined by a 20 × 16 neck: inner rings split into one loop per lobe, and
-/// links from lobe to lobe cannot be straight feed moves (they would slot across the uncut
-/// neck or pass its corners closer than r): retracts.
-const DUMBBELL: &[(f64, f64)] = &[
-    (0.0, 0.0),
-    (40.0, 0.0),
-    (40.0, 12.0),
-    (60.0, 12.0),
-    (60.0, 0.0),
-    (100.0, 0.0),
-    (100.0, 40.0),
-    (60.0, 40.0),
-    (60.0, 28.0),
-    (40.0, 28.0),
-    (40.0, 40.0),
-    (0.0, 40.0),
-];
 
 const DIALECTS: [(&str, &str, i32); 3] = [("linuxcnc", "ngc", 4), ("fanuc", "nc", 3), ("grbl", "gcode", 3)];
 

@@ -4,6 +4,9 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
+mod nc_common;
+
+use nc_common::DUMBBELL;
 use std::f64::consts::PI;
 use trochoplan_core::corner::pocket::LINK_ENGAGEMENT_SLACK_RAD;
 use trochoplan_core::corner::*;
@@ -243,21 +246,6 @@ fn clearance(pts: &[(f64, f64)], segs: &[Segment]) -> f64 {
     }
     worst
 }
-
-const DUMBBELL: &[(f64, f64)] = &[
-    (0.0, 0.0),
-    (40.0, 0.0),
-    (40.0, 12.0),
-    (60.0, 12.0),
-    (60.0, 0.0),
-    (100.0, 0.0),
-    (100.0, 40.0),
-    (60.0, 40.0),
-    (60.0, 28.0),
-    (40.0, 28.0),
-    (40.0, 40.0),
-    (0.0, 40.0),
-];
 
 #[test]
 fn rectangle_links_are_radial_steps_of_one_step_over() {

@@ -345,3 +345,21 @@ pub fn motions(canon: &str) -> Vec<Motion> {
     }
     out
 }
+
+/// Two 40 × 40 lobes joined by a 20 × 16 neck: inner rings split into one loop per lobe, and
+/// links from lobe to lobe cannot be straight feed moves (they would slot across the uncut
+/// neck or pass its corners closer than r): retracts.
+pub const DUMBBELL: &[(f64, f64)] = &[
+    (0.0, 0.0),
+    (40.0, 0.0),
+    (40.0, 12.0),
+    (60.0, 12.0),
+    (60.0, 0.0),
+    (100.0, 0.0),
+    (100.0, 40.0),
+    (60.0, 40.0),
+    (60.0, 28.0),
+    (40.0, 28.0),
+    (40.0, 40.0),
+    (0.0, 40.0),
+];
