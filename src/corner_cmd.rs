@@ -11,9 +11,9 @@ use trochoplan_core::JobError;
 use trochoplan_core::corner::acceptance::{acceptance_table, markdown};
 use trochoplan_core::corner::{
     Corner, CornerScenario, CornerSettings, EvaluatorOptions, Method, PocketSettings, Polygon, engagement_profile,
-    parse_points, plan_pocket, pocket_polygon, polyline, radial_depth_for_engagement, straight_engagement,
+    parse_points, plan_pocket, pocket_polygon, polyline, straight_engagement,
 };
-use trochoplan_core::corner::{CornerPlan, LinkKind, PocketPlan};
+use trochoplan_core::corner::{CornerPlan, LinkKind, PocketPlan, RingStep, TargetSpec};
 use trochoplan_core::geom::Segment;
 use trochoplan_core::nc::{DEFAULT_TOLERANCE_MM, NcOptions, PathJob, program_for_path};
 
@@ -302,41 +302,15 @@ fn finite(name: &'static str, v: f64) -> Result<f64, String> {
 
 impl CornerArgs {
     fn settings(&self) -> Result<CornerSettings, String> {
-        let d = finite("tool diameter", self.tool_diameter)?;
-        if d <= 0.0 {
-            return Err(JobError::range("tool diameter", d, "a finite number > 0 mm").to_string());
-        }
-        let r = d / 2.0;
-        let step_over = match self.step_over {
-            Some(ae) => ae,
-            None => {
-                let a = finite("straight engagement", self.straight_engagement)?;
-                if !(a > 0.0 && a < 180.0) {
-                    return Err(
-                        JobError::range("straight engagement", a, "greater than 0° and less than 180°").to_string()
-                    );
-                }
-                radial_depth_for_engagement(a.to_radians(), r)
-            }
+        let step = match self.step_over {
+            Some(ae) => RingStep::StepOver(ae),
+            None => RingStep::StraightEngagementDeg(self.straight_engagement),
         };
-        let mut s = CornerSettings::new(r, step_over).map_err(|e| match e {
-            JobError::OutOfRange { name: "a_e", value, .. } => {
-                JobError::range("step-over", value, format!("greater than 0 and less than the tool diameter {d} mm"))
-                    .to_string()
-            }
-            other => other.to_string(),
-        })?;
-        let a_str = straight_engagement(step_over, r).map_err(err)?;
-        s.target = match self.target {
-            Some(t) => finite("target", t)?.to_radians(),
-            None => {
-                let t1 = finite("t1", self.t1)?;
-                if !(0.0..=1.0).contains(&t1) {
-                    return Err(JobError::range("t1", t1, "from 0 to 1").to_string());
-                }
-                a_str * (1.0 + t1)
-            }
+        let target = match self.target {
+            Some(t) => TargetSpec::Deg(t),
+            None => TargetSpec::T1(self.t1),
         };
+        let mut s = CornerSettings::from_inputs(self.tool_diameter, step, target).map_err(err)?;
         s.tolerance = finite("tolerance", self.tolerance)?.to_radians();
         s.edge_length = self.edge_length;
         s.feed_mm_per_min = self.feed;

@@ -16,9 +16,9 @@ use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
 use trochoplan_core::JobError;
 use trochoplan_core::corner::{
     Corner, CornerScenario, CornerSettings, EngagementProfile, EvaluatorOptions, Method, PocketSettings,
-    acceptance_row, engagement_profile, parse_points, plan_corner, plan_pocket, pocket_polygon,
-    radial_depth_for_engagement, straight_engagement,
+    acceptance_row, engagement_profile, parse_points, plan_corner, plan_pocket, pocket_polygon, straight_engagement,
 };
+use trochoplan_core::corner::{RingStep, TargetSpec};
 use trochoplan_core::geom::Segment;
 
 /// Labels of the inputs (used by the tests' accessibility queries).
@@ -184,33 +184,13 @@ pub struct CornerResult {
 
 /// Core settings from the tab's inputs, as `trochoplan corner` builds them.
 fn settings(i: &CornerInputs) -> Result<CornerSettings, String> {
-    let d = finite("tool diameter", i.tool_diameter_mm)?;
-    if d <= 0.0 {
-        return Err(JobError::range("tool diameter", d, "a finite number > 0 mm").to_string());
-    }
-    let r = d / 2.0;
-    let step_over = if i.use_step_over {
-        finite("step-over", i.step_over_mm)?
+    let step = if i.use_step_over {
+        RingStep::StepOver(i.step_over_mm)
     } else {
-        let a = finite("straight engagement", i.straight_engagement_deg)?;
-        if !(a > 0.0 && a < 180.0) {
-            return Err(JobError::range("straight engagement", a, "greater than 0° and less than 180°").to_string());
-        }
-        radial_depth_for_engagement(a.to_radians(), r)
+        RingStep::StraightEngagementDeg(i.straight_engagement_deg)
     };
-    let mut s = CornerSettings::new(r, step_over).map_err(|e| match e {
-        JobError::OutOfRange { name: "a_e", value, .. } => {
-            JobError::range("step-over", value, format!("greater than 0 and less than the tool diameter {d} mm"))
-                .to_string()
-        }
-        other => other.to_string(),
-    })?;
-    let a_str = straight_engagement(step_over, r).map_err(|e| e.to_string())?;
-    let t1 = finite("t1", i.t1)?;
-    if !(0.0..=1.0).contains(&t1) {
-        return Err(JobError::range("t1", t1, "from 0 to 1").to_string());
-    }
-    s.target = a_str * (1.0 + t1);
+    let mut s =
+        CornerSettings::from_inputs(i.tool_diameter_mm, step, TargetSpec::T1(i.t1)).map_err(|e| e.to_string())?;
     s.edge_length = EDGE_LENGTH_MM;
     s.feed_mm_per_min = FEED_MM_PER_MIN;
     s.validate().map_err(|e| e.to_string())?;

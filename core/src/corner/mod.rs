@@ -39,5 +39,6 @@ pub use pocket::{
     Link, LinkKind, PocketPlan, PocketSettings, Ring, inward_offset, link_is_inside, plan_pocket, pocket_polygon,
 };
 pub use strategy::{
-    CornerCircle, CornerPlan, CornerScenario, CornerSettings, Method, first_circle_radius, plan_corner,
+    CornerCircle, CornerPlan, CornerScenario, CornerSettings, Method, RingStep, TargetSpec, first_circle_radius,
+    plan_corner,
 };

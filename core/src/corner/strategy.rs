@@ -636,6 +636,67 @@ fn ring_path(sc: &CornerScenario, circles: &[CornerCircle], leg_end: Option<P2>)
     path
 }
 
+/// How the user fixes the ring's radial step a_e.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum RingStep {
+    /// a_e itself (mm).
+    StepOver(f64),
+    /// The straight-cut engagement a_str (degrees), a_e = r(1 − cos a_str) (domain-spec §1.1).
+    StraightEngagementDeg(f64),
+}
+
+/// How the user fixes the target engagement a*.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TargetSpec {
+    /// a* itself (degrees).
+    Deg(f64),
+    /// a* = a_str·(1 + t1) (Wu et al. 2016 eq. 23's analogue for engagement), t1 ∈ [0, 1].
+    T1(f64),
+}
+
+fn finite(name: &'static str, v: f64) -> Result<f64, JobError> {
+    if v.is_finite() { Ok(v) } else { Err(JobError::range(name, v, "a finite number")) }
+}
+
+impl CornerSettings {
+    /// Settings from what a user states (CLI flags, GUI fields): tool diameter (mm), the ring
+    /// step and the target; the other fields keep their defaults. Each error names the input.
+    pub fn from_inputs(tool_diameter: f64, step: RingStep, target: TargetSpec) -> Result<CornerSettings, JobError> {
+        let d = finite("tool diameter", tool_diameter)?;
+        if d <= 0.0 {
+            return Err(JobError::range("tool diameter", d, "a finite number > 0 mm"));
+        }
+        let r = d / 2.0;
+        let step_over = match step {
+            RingStep::StepOver(ae) => finite("step-over", ae)?,
+            RingStep::StraightEngagementDeg(a) => {
+                let a = finite("straight engagement", a)?;
+                if !(a > 0.0 && a < 180.0) {
+                    return Err(JobError::range("straight engagement", a, "greater than 0° and less than 180°"));
+                }
+                super::radial_depth_for_engagement(a.to_radians(), r)
+            }
+        };
+        let mut s = CornerSettings::new(r, step_over).map_err(|e| match e {
+            JobError::OutOfRange { name: "a_e", value, .. } => {
+                JobError::range("step-over", value, format!("greater than 0 and less than the tool diameter {d} mm"))
+            }
+            other => other,
+        })?;
+        s.target = match target {
+            TargetSpec::Deg(t) => finite("target", t)?.to_radians(),
+            TargetSpec::T1(t1) => {
+                let t1 = finite("t1", t1)?;
+                if !(0.0..=1.0).contains(&t1) {
+                    return Err(JobError::range("t1", t1, "from 0 to 1"));
+                }
+                straight_engagement(step_over, r)? * (1.0 + t1)
+            }
+        };
+        Ok(s)
+    }
+}
+
 /// Checks shared by corner and pocket settings: tool radius r (0 < D ≤ 1000 mm) and ring
 /// step-over a_e (0 < a_e < D); each error names the parameter, the value and the range.
 pub fn validate_tool_and_step_over(r: f64, step_over: f64) -> Result<(), JobError> {
