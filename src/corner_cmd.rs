@@ -13,8 +13,10 @@ use trochoplan_core::corner::{
     Corner, CornerScenario, CornerSettings, EvaluatorOptions, Method, PocketSettings, Polygon, engagement_profile,
     parse_points, plan_pocket, pocket_polygon, polyline, straight_engagement,
 };
-use trochoplan_core::corner::{CornerPlan, LinkKind, PocketPlan, RingStep, TargetSpec};
-use trochoplan_core::geom::Segment;
+use trochoplan_core::corner::{
+    CornerPlan, LinkKind, MoveKind, PerforativePlan, PocketPlan, RingStep, TargetSpec, plan_perforative_pocket,
+};
+use trochoplan_core::geom::{P2, Segment};
 use trochoplan_core::nc::{DEFAULT_TOLERANCE_MM, NcOptions, PathJob, program_for_path};
 
 /// Corner strategy on the command line.
@@ -145,6 +147,8 @@ pub enum PocketMethodArg {
     Variable,
     /// Isometric circles at every convex corner of every ring but the innermost.
     Isometric,
+    /// No rings: perforative trochoids along the medial axis of the whole pocket.
+    MedialAxis,
 }
 
 /// Flags of `trochoplan pocket`.
@@ -239,8 +243,12 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
             PocketMethodArg::Plain => Method::Plain,
             PocketMethodArg::Variable => Method::Variable,
             PocketMethodArg::Isometric => Method::Isometric,
+            PocketMethodArg::MedialAxis => Method::MedialAxis,
         },
     };
+    if settings.method == Method::MedialAxis {
+        return perforative_pocket(args, &polygon, settings);
+    }
     settings.validate().map_err(err)?;
     let plan = plan_pocket(&polygon, settings).map_err(err)?;
     let nc_export = match &args.nc.export {
@@ -290,6 +298,167 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
     let mut text = serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?;
     text.push('\n');
     Ok(text)
+}
+
+#[derive(Serialize)]
+struct AxisCircleOut {
+    center: [f64; 2],
+    /// Tool-centre radius ρ (mm).
+    radius_mm: f64,
+    /// Offset radius R = ρ + r (mm).
+    offset_radius_mm: f64,
+    /// "entry", "spiral" (concentric clearing of the largest circle) or "circle" (on the axis).
+    kind: MoveKind,
+    /// Two-circle engagement after the previous circle (§1.2), absent after a plunge or a
+    /// straight move.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    predicted_max_deg: Option<f64>,
+}
+
+#[derive(Serialize)]
+struct KindOut {
+    kind: MoveKind,
+    max_engagement_deg: f64,
+    at: [f64; 2],
+    length_mm: f64,
+}
+
+#[derive(Serialize)]
+struct PerforativeOut {
+    method: &'static str,
+    tool_diameter_mm: f64,
+    step_over_mm: f64,
+    feed_mm_per_min: f64,
+    /// Straight-cut engagement of the step-over, arccos(1 − a_e/r) (domain-spec §1.1).
+    straight_engagement_deg: f64,
+    /// Target a* = a_str·(1 + t1) and the bisection band ε.
+    target_deg: f64,
+    tolerance_deg: f64,
+    polygon: Vec<[f64; 2]>,
+    /// Medial-axis edges (boostvoronoi), as polylines.
+    axis: Vec<Vec<[f64; 2]>>,
+    /// Parts of the axis reached by separate plunges (necks narrower than the tool split it).
+    parts: usize,
+    /// Axis length where the tool does not fit (clearance < r).
+    unreachable_axis_mm: f64,
+    circle_count: usize,
+    circles: Vec<AxisCircleOut>,
+    /// Whole feed path (all moves), and its machining time.
+    path_length_mm: f64,
+    time_s: f64,
+    /// Largest engagement of the body (concentric clearing, axis circles, links), measured by
+    /// the evaluator: the number the target bounds.
+    max_engagement_deg: f64,
+    /// Per kind of move: entry (first circle after a plunge), spiral, circle, link, straight
+    /// (through a neck), tip (into a corner point), return (back through cut material).
+    by_move: Vec<KindOut>,
+    /// The tool path, and what each segment does.
+    segments: Vec<Segment>,
+    kinds: Vec<MoveKind>,
+    /// Segments reached by retract, rapid and plunge.
+    retract_before: Vec<usize>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    nc_export: Option<NcExportOut>,
+}
+
+/// `trochoplan pocket --method medial-axis`: perforative trochoids along the medial axis.
+fn perforative_pocket(args: &PocketArgs, polygon: &Polygon, settings: PocketSettings) -> Result<String, String> {
+    let plan = plan_perforative_pocket(polygon, settings).map_err(err)?;
+    let nc_export = match &args.nc.export {
+        Some(file) => Some(export_perforative(&args.nc, file, &plan)?),
+        None => None,
+    };
+    let xy = |p: P2| [p.x, p.y];
+    let out = PerforativeOut {
+        method: settings.method.name(),
+        tool_diameter_mm: 2.0 * settings.tool_radius,
+        step_over_mm: settings.step_over,
+        feed_mm_per_min: settings.feed_mm_per_min,
+        straight_engagement_deg: straight_engagement(settings.step_over, settings.tool_radius)
+            .map_err(err)?
+            .to_degrees(),
+        target_deg: plan.target_rad.to_degrees(),
+        tolerance_deg: plan.tolerance_rad.to_degrees(),
+        polygon: polygon.vertices().iter().map(|&v| xy(v)).collect(),
+        axis: plan.axis.edges.iter().map(|e| e.points.iter().map(|&p| xy(p)).collect()).collect(),
+        parts: plan.parts,
+        unreachable_axis_mm: plan.unreachable_axis_mm,
+        circle_count: plan.circles.len(),
+        circles: plan
+            .circles
+            .iter()
+            .map(|c| AxisCircleOut {
+                center: xy(c.tool_circle.center),
+                radius_mm: c.tool_circle.radius,
+                offset_radius_mm: c.offset_radius,
+                kind: c.kind,
+                predicted_max_deg: c.predicted_max_rad.map(f64::to_degrees),
+            })
+            .collect(),
+        path_length_mm: plan.path_length_mm,
+        time_s: plan.time_s,
+        max_engagement_deg: plan.body_max_rad.to_degrees(),
+        by_move: plan
+            .maxima
+            .iter()
+            .map(|m| KindOut {
+                kind: m.kind,
+                max_engagement_deg: m.max_rad.to_degrees(),
+                at: xy(m.at),
+                length_mm: m.length_mm,
+            })
+            .collect(),
+        segments: plan.segments.clone(),
+        kinds: plan.kinds.clone(),
+        retract_before: plan.retract_before.clone(),
+        nc_export,
+    };
+    let mut text = serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?;
+    text.push('\n');
+    Ok(text)
+}
+
+/// Write the perforative pocket ([`PerforativePlan`]) to `file`.
+fn export_perforative(
+    nc: &CornerExportArgs,
+    file: &std::path::Path,
+    plan: &PerforativePlan,
+) -> Result<NcExportOut, String> {
+    let opts = nc_options(nc);
+    let s = &plan.settings;
+    let job = PathJob {
+        segments: &plan.segments,
+        retract_before: &plan.retract_before,
+        depth_mm: nc.depth,
+        feed_mm_per_min: s.feed_mm_per_min,
+        spindle_rpm: nc.rpm,
+        tool_diameter_mm: 2.0 * s.tool_radius,
+        default_title: "TrochoPlan pocket",
+        description: vec![
+            format!(
+                "pocket of {} vertices, method medial-axis, {} circles, {} part(s)",
+                plan.polygon.vertices().len(),
+                plan.circles.len(),
+                plan.parts
+            ),
+            format!(
+                "path {:.3} mm, body engagement {:.2} deg (target {:.2} deg)",
+                plan.path_length_mm,
+                plan.body_max_rad.to_degrees(),
+                plan.target_rad.to_degrees()
+            ),
+            format!("polygon file coordinates, depth {:.3} mm below the stock top Z0", nc.depth),
+            format!(
+                "tool T{} D {:.3} mm, {:.0} rpm, feed {:.1} mm/min, a_e {:.4} mm",
+                opts.tool_number,
+                2.0 * s.tool_radius,
+                nc.rpm,
+                s.feed_mm_per_min,
+                s.step_over
+            ),
+        ],
+    };
+    write_program(file, &job, &opts)
 }
 
 fn err(e: JobError) -> String {

@@ -172,3 +172,30 @@ fn series_csv_is_written_whole_or_not_at_all() {
     let (ok, _, err) = run(&["analyze", "--series", "/proc/not-writable/series.csv"]);
     assert!(!ok && err.contains("series.csv"), "{err}");
 }
+
+#[test]
+fn pocket_medial_axis_prints_circles_axis_and_engagement_by_move() {
+    // 60 × 40 rectangle, D 10: perforative trochoids along the medial axis; the JSON carries
+    // the circles, the axis, the per-move maxima and the whole path.
+    let dir = tempfile::tempdir().unwrap();
+    let poly = dir.path().join("rect.txt");
+    std::fs::write(&poly, "0,0\n60,0\n60,40\n0,40\n").unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_trochoplan"))
+        .args(["pocket", "--method", "medial-axis", "--step-over", "1.5", "--polygon", poly.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["method"], "medial-axis");
+    assert!(v["circle_count"].as_u64().unwrap() > 20);
+    assert_eq!(v["circles"].as_array().unwrap().len() as u64, v["circle_count"].as_u64().unwrap());
+    // The 60 × 40 rectangle's axis: four corner branches and the spine.
+    assert_eq!(v["axis"].as_array().unwrap().len(), 5);
+    let target = v["target_deg"].as_f64().unwrap();
+    assert!(v["max_engagement_deg"].as_f64().unwrap() <= target + 1.0, "{}", v["max_engagement_deg"]);
+    let kinds: Vec<&str> = v["by_move"].as_array().unwrap().iter().map(|m| m["kind"].as_str().unwrap()).collect();
+    for k in ["entry", "spiral", "circle", "link", "tip", "return"] {
+        assert!(kinds.contains(&k), "{k} missing: {kinds:?}");
+    }
+    assert_eq!(v["segments"].as_array().unwrap().len(), v["kinds"].as_array().unwrap().len());
+}

@@ -50,6 +50,12 @@ fn export(dir: &Path, name: &str, polygon: &[(f64, f64)], args: &[&str]) -> Expo
     let out = Command::new(env!("CARGO_BIN_EXE_trochoplan")).args(&all).output().expect("run trochoplan");
     assert!(out.status.success(), "trochoplan {all:?}: {}", String::from_utf8_lossy(&out.stderr));
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    assert!(json["nc_export"]["blocks"].as_u64().is_some_and(|b| b > 20), "{}", json["nc_export"]);
+    if let Some(segs) = json.get("segments") {
+        // medial-axis: the whole path, with jumps only where the program retracts
+        let feed_path: Vec<Segment> = serde_json::from_value(segs.clone()).expect("segments");
+        return Exported { file, feed_path, json };
+    }
     let rings = json["rings"].as_array().expect("rings");
     let links = json["links"].as_array().expect("links");
     assert_eq!(links.len() + 1, rings.len(), "{name}: one link between consecutive rings");
@@ -64,7 +70,6 @@ fn export(dir: &Path, name: &str, polygon: &[(f64, f64)], args: &[&str]) -> Expo
             feed_path.push(Segment::Line { start: pt(&l["from"]), end: pt(&l["to"]) });
         }
     }
-    assert!(json["nc_export"]["blocks"].as_u64().is_some_and(|b| b > 20), "{}", json["nc_export"]);
     Exported { file, feed_path, json }
 }
 
@@ -172,4 +177,36 @@ fn retract_links_pass_rs274_and_the_cut_skips_them() {
         assert_eq!(plunges, 1 + retracts, "{dialect}:\n{text}");
         check(&format!("dumbbell variable {dialect}"), &e, DUMBBELL, 0.005, decimals);
     }
+}
+
+#[test]
+fn medial_axis_pocket_programs_pass_rs274_and_stay_inside_the_offset() {
+    // Perforative trochoids along the medial axis (`--method medial-axis`): rectangle, L and the
+    // dumbbell with D = 18, whose 16 mm neck splits it into two parts (one retract between).
+    let dir = tempfile::tempdir().expect("tempdir");
+    for (dialect, ext, decimals) in DIALECTS {
+        for (shape, polygon) in [("rect", RECT), ("l", L_SHAPE)] {
+            let e = export(
+                dir.path(),
+                &format!("{shape}_ma.{ext}"),
+                polygon,
+                &["--method", "medial-axis", "--dialect", dialect],
+            );
+            assert_eq!(e.json["parts"], 1, "{shape}");
+            check(&format!("{shape} medial-axis {dialect}"), &e, polygon, 0.005, decimals);
+        }
+    }
+    let e = export(
+        dir.path(),
+        "dumbbell_ma.ngc",
+        DUMBBELL,
+        &["--method", "medial-axis", "--tool-diameter", "18", "--step-over", "3", "--dialect", "linuxcnc"],
+    );
+    assert_eq!(e.json["parts"], 2);
+    let text = std::fs::read_to_string(&e.file).expect("read");
+    assert_eq!(text.lines().filter(|l| l.contains("Z-6.000")).count(), 2, "one plunge per part");
+    let canon = interpret(&e.file).unwrap_or_else(|err| panic!("dumbbell D18: {err}"));
+    let c = cut(&motions(&canon), DEPTH, 1e-4);
+    check_path_cut("dumbbell D18", &c, &e.feed_path, 0.005, 1e-4).unwrap_or_else(|err| panic!("{err}"));
+    assert!(wall_clearance(&c, DUMBBELL) >= 9.0 - budget(0.005, 1e-4));
 }

@@ -363,7 +363,7 @@ fn check_segments(path: &[Segment], name: &'static str) -> Result<(), JobError> 
 
 /// Engagement along `path` (tool-centre segments) over `stock`, after the tool already swept
 /// the `before` paths (previous rings, earlier passes; no engagement reported for them).
-/// Positions are `spacing` apart in arc length, plus the end point.
+/// Positions are `spacing` apart in arc length, plus the end of every segment.
 pub fn engagement_profile(
     stock: &Polygon,
     before: &[Segment],
@@ -389,14 +389,23 @@ pub fn engagement_profile(
     }
     let before: Vec<Cutter> = flatten(before).into_iter().map(|s| Cutter::new(s, r)).collect();
     let cutters: Vec<Cutter> = path.iter().map(|s| Cutter::new(*s, r)).collect();
-    // Arc lengths of the evaluated positions: 0, spacing, 2·spacing, …, and the end.
+    // Arc lengths of the evaluated positions: 0, spacing, 2·spacing, …, and the end of every
+    // segment (the engagement peaks at kinks, e.g. where a move ends in a corner point, and
+    // can fall by tens of degrees within 0.1 mm before it).
     let mut targets: Vec<f64> = Vec::new();
     let mut k = 0.0;
     while k * opts.spacing < total - 1e-9 {
         targets.push(k * opts.spacing);
         k += 1.0;
     }
+    let mut end = 0.0;
+    for l in &lengths {
+        end += l;
+        targets.push(end.min(total));
+    }
     targets.push(total);
+    targets.sort_by(f64::total_cmp);
+    targets.dedup_by(|a, b| (*a - *b).abs() <= 1e-9);
     let mut samples = Vec::with_capacity(targets.len());
     let (mut i, mut s0) = (0usize, 0.0); // current segment and the arc length at its start
     let mut near: Vec<Segment> = Vec::new();

@@ -6,25 +6,32 @@
 //!
 //! The polygon is snapped to an integer grid of `resolution` mm (the crate works on integer
 //! input). Kept: primary, finite Voronoi edges inside the polygon. Edges bounded by a reflex
-//! vertex and an edge are parabolic arcs; they are kept as their chords (noted in the field
-//! `curved`).
+//! vertex and an edge are parabolic arcs (focus the vertex, directrix the edge's line); they are
+//! kept as polylines through points of the exact parabola, at most [`CURVE_STEP_MM`] apart
+//! along the directrix (field `points`; `curved` marks them).
 
 use super::evaluator::Polygon;
 use crate::error::JobError;
-use crate::geom::{P2, p2};
+use crate::geom::{P2, p2, rot90};
 use boostvoronoi::prelude::*;
 use serde::{Deserialize, Serialize};
 
+/// Largest spacing of the points of a parabolic axis edge, measured along its directrix (mm).
+pub const CURVE_STEP_MM: f64 = 0.5;
+
 /// One edge of the medial axis with the clearance (distance to the nearest polygon edge) at
 /// both ends.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct AxisEdge {
     pub a: P2,
     pub b: P2,
     pub clearance_a: f64,
     pub clearance_b: f64,
-    /// Parabolic in truth (reflex vertex against an edge); stored as its chord.
+    /// Parabolic (a reflex vertex against an edge).
     pub curved: bool,
+    /// The edge as a polyline from `a` to `b`: `[a, b]` for a straight edge, points of the
+    /// exact parabola for a curved one.
+    pub points: Vec<P2>,
 }
 
 /// Medial axis of a polygon.
@@ -94,15 +101,64 @@ pub fn medial_axis(poly: &Polygon, resolution: f64) -> Result<MedialAxis, JobErr
         if !(inside(a) && inside(b) && poly.contains((a + b) / 2.0)) || (a - b).norm() <= tol {
             continue;
         }
+        let points = if e.is_curved() {
+            let cells = [
+                diagram.cell(e.cell().map_err(fail)?).map_err(fail)?,
+                diagram.cell(diagram.edge_get_cell(twin).map_err(fail)?).map_err(fail)?,
+            ];
+            parabola_points(v, &cells, a, b)
+        } else {
+            vec![a, b]
+        };
         edges.push(AxisEdge {
             a,
             b,
             clearance_a: clearance(poly, a),
             clearance_b: clearance(poly, b),
             curved: e.is_curved(),
+            points,
         });
     }
     Ok(MedialAxis { edges })
+}
+
+/// Points of the parabolic axis edge from `a` to `b` between the point site and the segment
+/// site of `cells` (input segment i = polygon edge `v[i]`–`v[i + 1]`). With the directrix
+/// through A along unit u, normal n towards the focus F at height h_F and abscissa s_F, the
+/// parabola is `A + s·u + h(s)·n`, `h(s) = ((s − s_F)² + h_F²)/(2h_F)` (equal distance h to
+/// the line and to F). Falls back to the chord if the sites are not one point and one segment.
+fn parabola_points(v: &[P2], cells: &[&Cell; 2], a: P2, b: P2) -> Vec<P2> {
+    let n = v.len();
+    let (point_cell, seg_cell) = match (cells[0].contains_point(), cells[1].contains_point()) {
+        (true, false) => (cells[0], cells[1]),
+        (false, true) => (cells[1], cells[0]),
+        _ => return vec![a, b],
+    };
+    let i = point_cell.source_index().usize();
+    let focus = if point_cell.contains_segment_endpoint() { v[(i + 1) % n] } else { v[i % n] };
+    let j = seg_cell.source_index().usize() % n;
+    let (p, q) = (v[j], v[(j + 1) % n]);
+    let u = (q - p).normalize();
+    let mut nrm = rot90(u);
+    let mut h_f = (focus - p).dot(&nrm);
+    if h_f < 0.0 {
+        nrm = -nrm;
+        h_f = -h_f;
+    }
+    if h_f <= 1e-9 {
+        return vec![a, b];
+    }
+    let s_f = (focus - p).dot(&u);
+    let (s_a, s_b) = ((a - p).dot(&u), (b - p).dot(&u));
+    let pieces = ((s_b - s_a).abs() / CURVE_STEP_MM).ceil().clamp(1.0, 10_000.0) as usize;
+    let mut out = vec![a];
+    for k in 1..pieces {
+        let s = s_a + (s_b - s_a) * k as f64 / pieces as f64;
+        let h = ((s - s_f).powi(2) + h_f * h_f) / (2.0 * h_f);
+        out.push(p + u * s + nrm * h);
+    }
+    out.push(b);
+    out
 }
 
 impl MedialAxis {
@@ -172,6 +228,20 @@ mod tests {
         assert!(ax.edges.iter().any(|e| e.curved), "{:?}", ax.edges);
         for e in &ax.edges {
             assert!(poly.contains((e.a + e.b) / 2.0));
+        }
+        // Every point of a curved edge is equidistant (the medial-axis property) from the reflex
+        // vertex and from the nearest other edge: its clearance equals its distance to (10, 10).
+        let curved: Vec<&AxisEdge> = ax.edges.iter().filter(|e| e.curved).collect();
+        for e in &curved {
+            assert!(e.points.len() > 2, "{e:?}");
+            for q in &e.points {
+                let to_vertex = (q - p2(10.0, 10.0)).norm();
+                assert!(
+                    (clearance(&poly, *q) - to_vertex).abs() < 1e-3,
+                    "{q:?}: {} vs {to_vertex}",
+                    clearance(&poly, *q)
+                );
+            }
         }
     }
 }

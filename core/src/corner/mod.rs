@@ -16,6 +16,8 @@
 //!   (§3.3) and isometric-circle (§3.4) corner trochoids and the perforative medial-axis
 //!   trochoids (§3.5).
 //! - [`medial`]: medial axis of a polygon (segment Voronoi by `boostvoronoi`, §3.5).
+//! - [`perforative`]: a whole pocket cleared by perforative trochoids along its medial axis
+//!   (§3.5), measured with the evaluator.
 //! - [`pocket`]: a polygonal pocket cleared by contour-parallel rings (`cavalier_contours`
 //!   offsets), measured ring by ring with the evaluator (§3.1; issue #5 item 5).
 //! - [`acceptance`]: the issue #5 acceptance table, measured with the evaluator.
@@ -25,6 +27,7 @@ pub mod engagement;
 pub mod evaluator;
 pub mod geometry;
 pub mod medial;
+pub mod perforative;
 pub mod pocket;
 pub mod strategy;
 
@@ -35,6 +38,7 @@ pub use evaluator::{
 };
 pub use geometry::{Corner, LineEq, bisector_point};
 pub use medial::{AxisEdge, MedialAxis, medial_axis};
+pub use perforative::{AxisCircle, KindMax, MoveKind, PerforativePlan, plan_perforative_pocket};
 pub use pocket::{
     Link, LinkKind, PocketPlan, PocketSettings, Ring, inward_offset, link_is_inside, plan_pocket, pocket_polygon,
 };

@@ -256,7 +256,9 @@ impl Writer {
             }
             return;
         };
-        let (ex, ey) = (self.quantize("x", end.x), self.quantize("y", end.y));
+        // A full circle ends exactly where it starts: its computed end may round to a
+        // neighbouring quantum, which a controller would read as a tiny arc.
+        let (ex, ey) = if full_circle { (sx, sy) } else { (self.quantize("x", end.x), self.quantize("y", end.y)) };
         if (ex, ey) == (sx, sy) && !full_circle {
             return;
         }
@@ -324,6 +326,21 @@ mod tests {
         let (text, blocks) = w.finish().expect("ok");
         assert_eq!(text, "G1 X1.0000 Y2.0000 F600.0\nY3.0000\n");
         assert_eq!(blocks, 2);
+    }
+
+    #[test]
+    fn full_circle_ends_where_it_starts_after_rounding() {
+        // Start x = 14.46875 rounds up to 14.4688; cos/sin put the computed end at
+        // 14.468749999…, which would round down to 14.4687 and turn the circle into a 1e-4 mm arc.
+        // (The arc of a 60 × 40 medial-axis pocket that a rs274 check caught.)
+        let mut w = Writer::new(Dialect::LinuxCnc.spec());
+        w.linear(Some(14.46875), Some(35.0), None, Some(600.0));
+        let c = p2(14.46875, 25.53125);
+        let arc = Segment::Arc { center: c, radius: 9.46875, start_angle: 1.5707963267948963, sweep: 6.283185307179587 };
+        w.segment(&arc, 600.0);
+        let (text, _) = w.finish().expect("ok");
+        let last = text.lines().last().unwrap();
+        assert!(last.contains("X14.4688") && last.contains("Y35.0000"), "{text}");
     }
 
     #[test]

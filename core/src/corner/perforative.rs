@@ -1,0 +1,913 @@
+//! Perforative trochoids along the medial axis of a whole polygonal pocket (issue #5 item 5,
+//! "or the medial-axis strategy for the whole pocket"). Wu et al. 2016 §4.2 only say the third
+//! method "uses the method of Voronoi diagrams to calculate the medial axis of the cavity and
+//! arrange the perforative trochoid according to the medial axis", with steps (1)–(4): reference
+//! engagement, guiding curve, circles one by one under the engagement control, a linked list.
+//! The algorithm below is ours (domain-spec §3.5, DERIVED), written so that every choice can be
+//! checked by the independent evaluator.
+//!
+//! 1. **Axis.** The medial axis of the pocket ([`super::medial`], boostvoronoi; parabolic edges
+//!    as points of the exact parabola). At an axis point q the clearance Rc(q) (distance to the
+//!    nearest wall) is the radius of the largest circle the walls allow; the tool centre may be
+//!    at q only where Rc(q) ≥ r. The axis is clipped to that part (bisection on Rc = r); a
+//!    pocket whose axis falls apart there (a neck narrower than the tool) is cleared part by
+//!    part, each part reached by retract, rapid and plunge, and the axis length the tool cannot
+//!    reach is reported (`unreachable_axis_mm`).
+//! 2. **Start.** In each part, the tool plunges at the axis point of largest clearance (a
+//!    Voronoi vertex) and clears that largest circle by concentric circles about the plunge
+//!    point, joined by half-circles (G1: the half-circle from radius ρi at angle θ to ρi+1 at θ + π
+//!    has centre `p + (ρi − ρi+1)/2·e(θ)` and radius `(ρi + ρi+1)/2`). Each radius is the
+//!    largest whose two-circle engagement (§1.2) after the previous circle stays within the
+//!    target (bisection as §3.3). The first circle about the plunge hole cannot: for a tool
+//!    centre at distance ρ from the hole's centre, §1.2 gives δ = arccos(ρ/2r), β = π, so the
+//!    engagement is π/2 + arcsin(ρ/2r) ≥ 90° for any ρ (DERIVED); it is cut at ρ1 = min(a_e,
+//!    Rc − r) and reported as the entry, apart from the body.
+//! 3. **Circles along the axis.** The axis is a tree; it is walked depth first from the start,
+//!    one root-to-leaf guide at a time (children in counter-clockwise order). On a guide, the
+//!    next circle is centred on the axis at arc length s with offset radius Rc(s) (allowance 0:
+//!    it touches the walls), tool-centre radius ρ = Rc − r, and s is found by bisection exactly as
+//!    §3.3 with the axis as guide: accept when the two-circle engagement after the previous
+//!    circle is in (a*, a* + ε], or take the far end of the search if it is under a*. The search
+//!    reaches at most 2·R_prev ahead (no overlap beyond), not past the next Voronoi vertex (so a
+//!    circle that reaches it is the one touching three walls there) and not past the point where
+//!    ρ drops below r_min (§3.3 stop rule). Circles are counter-clockwise (G3, climb with M3), joined by
+//!    the common tangent on their right (seen along the guide), so the path is G1 there; each
+//!    circle runs a full turn from its entry and on to the exit tangent point (an extra
+//!    `δ ∈ [−30°, 330°)`; a few degrees short of the full turn are left where the next link runs
+//!    outside the circle anyway). Where one circle contains the other, or the tangent would come
+//!    closer than r to a wall (near a reflex corner), the circles are joined instead by the G1
+//!    half-circle of step 2 (generalised to offset centres, [`transition`]), whose engagement is
+//!    then part of the bisection's metric; for circles that overlap without containment it
+//!    lies inside both discs, i.e. in cut material. Disjoint circles whose tangent would touch
+//!    a wall are joined along the axis (centre to centre).
+//! 4. **Narrow parts.** Where ρ < r_min the tool moves along the axis: into a convex corner this
+//!    ends at the tool corner point (Rc = r), reported as the corner's `tip` (see
+//!    [`super::acceptance`] for why its engagement has its own limit); through a neck it is a
+//!    `straight` move, after which a circle of radius r_min restarts the chain.
+//! 5. **Back.** After a leaf the tool returns along the axis to the centre of the last circle the
+//!    next guide shares with this one (cleared material), then moves out to that circle's exit
+//!    point; the chain continues from that circle.
+//!
+//! The whole path is measured by the evaluator over the pocket polygon; samples are classified
+//! by the move they belong to ([`MoveKind`]), and the maximum is reported per class.
+
+use super::engagement::{Circle, Turn, TwoCircle};
+use super::evaluator::{EngagementProfile, EvaluatorOptions, Polygon, engagement_profile};
+use super::medial::{MedialAxis, clearance, medial_axis};
+use super::pocket::{PocketSettings, link_is_inside};
+use super::strategy::{CornerSettings, Method};
+use crate::error::JobError;
+use crate::geom::{P2, Segment, golden_min, rot90};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::{PI, TAU};
+
+/// Grid of the Voronoi input (mm).
+const VORONOI_RESOLUTION_MM: f64 = 1e-4;
+/// Spacing of the clearance samples along the axis before a crossing is refined (mm).
+const CLEARANCE_STEP_MM: f64 = 0.25;
+/// Bisection steps allowed for one circle (domain-spec §3.3).
+const MAX_BISECTION: usize = 60;
+/// Circles allowed in one pocket.
+const MAX_CIRCLES: usize = 20_000;
+/// Points of the axis closer than this are one node (mm).
+const NODE_TOL_MM: f64 = 1e-6;
+/// A circle ends this far short of a full turn at most when its exit precedes its entry (rad).
+const SHORT_TURN_RAD: f64 = PI / 6.0;
+
+/// What a move of the perforative path does (the evaluator's samples are reported per kind).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum MoveKind {
+    /// The first circle after a plunge (≥ 90°, see the module docs).
+    Entry,
+    /// The concentric circles clearing the largest circle.
+    Spiral,
+    /// A trochoid circle on the axis.
+    Circle,
+    /// A tangent link between circles, or from a circle's centre out to its exit point.
+    Link,
+    /// Along the axis where the tool-centre circle would be smaller than r_min (a neck).
+    Straight,
+    /// Along the axis into the tool corner point of a convex corner.
+    Tip,
+    /// Back along the axis through cleared material.
+    Return,
+}
+
+/// One circle of the path.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct AxisCircle {
+    /// Tool-centre circle (centre on the axis, radius ρ = Rc − r).
+    pub tool_circle: Circle,
+    /// Offset radius R = ρ + r (the circle the tool clears).
+    pub offset_radius: f64,
+    /// Two-circle engagement after the previous circle (rad); `None` after a plunge or a
+    /// straight move.
+    pub predicted_max_rad: Option<f64>,
+    /// Part of the start (concentric) clearing or on the axis.
+    pub kind: MoveKind,
+}
+
+/// Maximum engagement of one kind of move, measured by the evaluator.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct KindMax {
+    pub kind: MoveKind,
+    /// Largest engagement (rad) and where.
+    pub max_rad: f64,
+    pub at: P2,
+    /// Length of these moves (mm).
+    pub length_mm: f64,
+}
+
+/// A pocket cleared by perforative trochoids along its medial axis.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PerforativePlan {
+    pub polygon: Polygon,
+    pub settings: PocketSettings,
+    /// Target engagement a* (rad) and the bisection band ε (rad).
+    pub target_rad: f64,
+    pub tolerance_rad: f64,
+    pub axis: MedialAxis,
+    pub circles: Vec<AxisCircle>,
+    /// The tool path in machining order; `kinds[i]` says what `segments[i]` does.
+    pub segments: Vec<Segment>,
+    pub kinds: Vec<MoveKind>,
+    /// Indices of the segments reached by retract, rapid and plunge: the start of every part
+    /// but the first (which the program's approach reaches).
+    pub retract_before: Vec<usize>,
+    /// Parts of the axis reached separately (one plunge each).
+    pub parts: usize,
+    /// Axis length where the tool does not fit (Rc < r), left uncut (mm).
+    pub unreachable_axis_mm: f64,
+    /// Feed path length, all moves (mm), and its machining time at the feed (s).
+    pub path_length_mm: f64,
+    pub time_s: f64,
+    /// The evaluator's profile along `segments` (positions `settings.spacing` apart).
+    pub profile: EngagementProfile,
+    /// Per kind of move present: maximum measured engagement and length.
+    pub maxima: Vec<KindMax>,
+    /// Largest engagement of the body (spiral, circles, links; rad): what the target bounds.
+    pub body_max_rad: f64,
+}
+
+impl PerforativePlan {
+    /// Maximum of one kind of move (0 if absent).
+    pub fn max_of(&self, kind: MoveKind) -> f64 {
+        self.maxima.iter().find(|m| m.kind == kind).map_or(0.0, |m| m.max_rad)
+    }
+}
+
+/// The axis as a graph of tool-feasible polylines (Rc ≥ r).
+struct AxisGraph {
+    nodes: Vec<P2>,
+    /// (other node, edge index) per node.
+    adj: Vec<Vec<(usize, usize)>>,
+    /// Polyline of each edge, from its first to its second node.
+    edges: Vec<(usize, usize, Vec<P2>)>,
+    unreachable_mm: f64,
+}
+
+impl AxisGraph {
+    fn new(poly: &Polygon, axis: &MedialAxis, r: f64) -> AxisGraph {
+        let mut g = AxisGraph { nodes: Vec::new(), adj: Vec::new(), edges: Vec::new(), unreachable_mm: 0.0 };
+        let fits = |q: P2| clearance(poly, q) >= r;
+        for e in &axis.edges {
+            // Dense samples with the original points kept; runs where the tool fits.
+            let mut run: Vec<P2> = Vec::new();
+            for w in e.points.windows(2) {
+                let (p, q) = (w[0], w[1]);
+                let n = ((q - p).norm() / CLEARANCE_STEP_MM).ceil().max(1.0) as usize;
+                for k in 0..n {
+                    let (a, b) = (p + (q - p) * (k as f64 / n as f64), p + (q - p) * ((k + 1) as f64 / n as f64));
+                    match (fits(a), fits(b)) {
+                        (true, true) => {
+                            if run.is_empty() {
+                                run.push(a);
+                            }
+                            if k + 1 == n {
+                                run.push(b);
+                            }
+                        }
+                        (true, false) => {
+                            if run.is_empty() {
+                                run.push(a);
+                            }
+                            let t = crossing(poly, a, b, r);
+                            run.push(a + (b - a) * t);
+                            g.unreachable_mm += (b - a).norm() * (1.0 - t);
+                            g.add_edge(std::mem::take(&mut run));
+                        }
+                        (false, true) => {
+                            let t = crossing(poly, b, a, r);
+                            g.unreachable_mm += (b - a).norm() * (1.0 - t);
+                            run.push(b + (a - b) * t);
+                            if k + 1 == n {
+                                run.push(b);
+                            }
+                        }
+                        (false, false) => g.unreachable_mm += (b - a).norm(),
+                    }
+                }
+            }
+            g.add_edge(run);
+        }
+        g
+    }
+
+    fn node(&mut self, p: P2) -> usize {
+        if let Some(i) = self.nodes.iter().position(|q| (q - p).norm() <= NODE_TOL_MM) {
+            return i;
+        }
+        self.nodes.push(p);
+        self.adj.push(Vec::new());
+        self.nodes.len() - 1
+    }
+
+    fn add_edge(&mut self, mut pts: Vec<P2>) {
+        pts.dedup_by(|a, b| (*a - *b).norm() <= NODE_TOL_MM);
+        if pts.len() < 2 {
+            return;
+        }
+        let (a, b) = (self.node(pts[0]), self.node(pts[pts.len() - 1]));
+        if a == b {
+            return;
+        }
+        let id = self.edges.len();
+        self.edges.push((a, b, pts));
+        self.adj[a].push((b, id));
+        self.adj[b].push((a, id));
+    }
+
+    /// Connected parts: node lists, each starting at its node of largest clearance.
+    fn parts(&self, poly: &Polygon) -> Vec<Vec<usize>> {
+        let mut seen = vec![false; self.nodes.len()];
+        let mut parts = Vec::new();
+        for start in 0..self.nodes.len() {
+            if seen[start] || self.adj[start].is_empty() {
+                continue;
+            }
+            let (mut part, mut stack) = (Vec::new(), vec![start]);
+            seen[start] = true;
+            while let Some(i) = stack.pop() {
+                part.push(i);
+                for &(j, _) in &self.adj[i] {
+                    if !seen[j] {
+                        seen[j] = true;
+                        stack.push(j);
+                    }
+                }
+            }
+            let root = part
+                .iter()
+                .copied()
+                .max_by(|&a, &b| clearance(poly, self.nodes[a]).total_cmp(&clearance(poly, self.nodes[b])))
+                .unwrap_or(start);
+            let k = part.iter().position(|&i| i == root).unwrap_or(0);
+            part.swap(0, k);
+            parts.push(part);
+        }
+        parts
+    }
+
+    /// Root-to-leaf guides of the part rooted at `root`, depth first, children counter-clockwise
+    /// from the direction the walk came in. Each guide is its node sequence.
+    fn leaf_walks(&self, root: usize) -> Vec<Vec<usize>> {
+        let mut walks = Vec::new();
+        let mut stack: Vec<Vec<usize>> = vec![vec![root]];
+        while let Some(walk) = stack.pop() {
+            let here = walk[walk.len() - 1];
+            let prev = if walk.len() > 1 { Some(walk[walk.len() - 2]) } else { None };
+            let came = prev.map_or(0.0, |p| {
+                let d = self.nodes[here] - self.nodes[p];
+                d.y.atan2(d.x)
+            });
+            let mut next: Vec<(f64, usize)> = self.adj[here]
+                .iter()
+                .filter(|(j, _)| Some(*j) != prev && !walk.contains(j))
+                .map(|&(j, e)| {
+                    let pts = self.polyline(here, j, e);
+                    let d = pts[1] - pts[0];
+                    ((d.y.atan2(d.x) - came + PI).rem_euclid(TAU), j)
+                })
+                .collect();
+            if next.is_empty() {
+                walks.push(walk);
+                continue;
+            }
+            // Pushed in reverse so the smallest turn (rightmost) is walked first.
+            next.sort_by(|a, b| b.0.total_cmp(&a.0));
+            for (_, j) in next {
+                let mut w = walk.clone();
+                w.push(j);
+                stack.push(w);
+            }
+        }
+        walks
+    }
+
+    /// Polyline of edge `e` oriented from node `from` to node `to`.
+    fn polyline(&self, from: usize, to: usize, e: usize) -> Vec<P2> {
+        let (a, _, pts) = &self.edges[e];
+        let mut p = pts.clone();
+        if *a != from {
+            p.reverse();
+        }
+        debug_assert!((p[p.len() - 1] - self.nodes[to]).norm() <= NODE_TOL_MM);
+        p
+    }
+
+    /// The polyline through a node sequence, with the arc length at each node.
+    fn guide(&self, walk: &[usize]) -> Guide {
+        let mut pts = vec![self.nodes[walk[0]]];
+        let mut node_s = vec![0.0];
+        for w in walk.windows(2) {
+            let e = self.adj[w[0]].iter().find(|(j, _)| *j == w[1]).map_or(0, |&(_, e)| e);
+            pts.extend(self.polyline(w[0], w[1], e).into_iter().skip(1));
+            node_s.push(0.0);
+        }
+        let mut g = Guide::new(pts);
+        // Arc length at the nodes (their points are on the polyline in order).
+        let mut k = 0;
+        for (i, s) in node_s.iter_mut().enumerate().skip(1) {
+            while k + 1 < g.pts.len() && (g.pts[k] - self.nodes[walk[i]]).norm() > NODE_TOL_MM {
+                k += 1;
+            }
+            *s = g.cum[k];
+        }
+        g.node_s = node_s;
+        g
+    }
+}
+
+/// The G1 half-circle from the tool-centre circle (c1, ρ1) to (c2, ρ2) when one contains the
+/// other (|ρ2 − ρ1| ≥ |c2 − c1|; concentric circles included): with u the unit vector from c1
+/// to c2 (any if they coincide), it starts at A = c1 + ρ1·u, where circle 1 runs along
+/// rot90(u), and ends at B = c2 − ρ2·u, where circle 2 runs along −rot90(u); A and B lie on
+/// one line along u, so the half-circle on AB (counter-clockwise from A) is tangent to both.
+/// Returns its centre, radius and start angle (its sweep is π).
+fn transition(c1: P2, rho1: f64, c2: P2, rho2: f64) -> (P2, f64, f64) {
+    let d = c2 - c1;
+    transition_along(c1, rho1, c2, rho2, if d.norm() > 1e-12 { d / d.norm() } else { P2::new(1.0, 0.0) })
+}
+
+/// [`transition`] with the direction u given (for concentric circles).
+fn transition_along(c1: P2, rho1: f64, c2: P2, rho2: f64, u: P2) -> (P2, f64, f64) {
+    let (a, b) = (c1 + u * rho1, c2 - u * rho2);
+    ((a + b) / 2.0, (a - b).norm() / 2.0, u.y.atan2(u.x))
+}
+
+/// Fraction t ∈ (0, 1) along a→b where the clearance drops to r (a fits, b does not).
+fn crossing(poly: &Polygon, a: P2, b: P2, r: f64) -> f64 {
+    let (mut lo, mut hi) = (0.0, 1.0);
+    for _ in 0..60 {
+        let t = 0.5 * (lo + hi);
+        if clearance(poly, a + (b - a) * t) >= r {
+            lo = t;
+        } else {
+            hi = t;
+        }
+    }
+    lo
+}
+
+/// A polyline guide with arc-length parametrisation.
+struct Guide {
+    pts: Vec<P2>,
+    cum: Vec<f64>,
+    node_s: Vec<f64>,
+}
+
+impl Guide {
+    fn new(pts: Vec<P2>) -> Guide {
+        let mut cum = vec![0.0];
+        for w in pts.windows(2) {
+            cum.push(cum[cum.len() - 1] + (w[1] - w[0]).norm());
+        }
+        Guide { pts, cum, node_s: Vec::new() }
+    }
+
+    fn length(&self) -> f64 {
+        self.cum[self.cum.len() - 1]
+    }
+
+    fn at(&self, s: f64) -> P2 {
+        let s = s.clamp(0.0, self.length());
+        let i = self.cum.partition_point(|&c| c <= s).clamp(1, self.pts.len() - 1);
+        let (a, b, l) = (self.pts[i - 1], self.pts[i], self.cum[i] - self.cum[i - 1]);
+        if l > 0.0 { a + (b - a) * ((s - self.cum[i - 1]) / l) } else { a }
+    }
+
+    /// Unit direction at s.
+    fn dir(&self, s: f64) -> P2 {
+        let s = s.clamp(0.0, self.length());
+        let i = self.cum.partition_point(|&c| c <= s).clamp(1, self.pts.len() - 1);
+        let d = self.pts[i] - self.pts[i - 1];
+        if d.norm() > 0.0 { d / d.norm() } else { P2::new(1.0, 0.0) }
+    }
+
+    /// Points strictly between arc lengths s0 and s1 (either order), then the point at s1.
+    fn walk(&self, s0: f64, s1: f64) -> Vec<P2> {
+        let mut out: Vec<P2> = if s1 >= s0 {
+            (0..self.pts.len()).filter(|&i| self.cum[i] > s0 && self.cum[i] < s1).map(|i| self.pts[i]).collect()
+        } else {
+            (0..self.pts.len()).rev().filter(|&i| self.cum[i] < s0 && self.cum[i] > s1).map(|i| self.pts[i]).collect()
+        };
+        out.push(self.at(s1));
+        out
+    }
+}
+
+/// The path under construction.
+struct Builder {
+    segments: Vec<Segment>,
+    kinds: Vec<MoveKind>,
+    pos: P2,
+}
+
+impl Builder {
+    fn line(&mut self, to: P2, kind: MoveKind) {
+        if (to - self.pos).norm() > 1e-9 {
+            self.segments.push(Segment::Line { start: self.pos, end: to });
+            self.kinds.push(kind);
+        }
+        self.pos = to;
+    }
+
+    fn arc(&mut self, center: P2, radius: f64, start_angle: f64, sweep: f64, kind: MoveKind) {
+        if radius > 0.0 && sweep.abs() > 1e-12 {
+            self.segments.push(Segment::Arc { center, radius, start_angle, sweep });
+            self.kinds.push(kind);
+        }
+        self.pos = center + P2::new((start_angle + sweep).cos(), (start_angle + sweep).sin()) * radius;
+    }
+
+    fn polyline(&mut self, pts: &[P2], kind: MoveKind) {
+        for &p in pts {
+            self.line(p, kind);
+        }
+    }
+}
+
+/// The circle the chain continues from: its arc length on the guide, offset radius, and the
+/// angle at which the tool entered its tool-centre circle (`None`: the tool is at its centre or
+/// the circle is already cut).
+#[derive(Clone, Copy, Debug)]
+struct Current {
+    s: f64,
+    center: P2,
+    offset_radius: f64,
+    entry: Option<f64>,
+}
+
+/// Plan the pocket `polygon` with perforative trochoids along its medial axis. `settings.method`
+/// must be [`Method::MedialAxis`]; the target is the corner strategies' a* = a_str·(1 + t1).
+pub fn plan_perforative_pocket(polygon: &Polygon, settings: PocketSettings) -> Result<PerforativePlan, JobError> {
+    if settings.method != Method::MedialAxis {
+        return Err(JobError::range("method", settings.method.name(), "medial-axis for a perforative pocket"));
+    }
+    PocketSettings { method: Method::Plain, ..settings }.validate()?;
+    let (r, ae) = (settings.tool_radius, settings.step_over);
+    let cs = CornerSettings { feed_mm_per_min: settings.feed_mm_per_min, ..CornerSettings::new(r, ae)? };
+    let axis = medial_axis(polygon, VORONOI_RESOLUTION_MM)?;
+    let graph = AxisGraph::new(polygon, &axis, r);
+    let parts = graph.parts(polygon);
+    if parts.is_empty() {
+        let widest = axis.edges.iter().map(|e| e.clearance_a.max(e.clearance_b)).fold(0.0, f64::max);
+        return Err(JobError::range(
+            "tool diameter",
+            2.0 * r,
+            format!("at most {:.3} mm, the widest circle that fits in the pocket", 2.0 * widest),
+        ));
+    }
+    let mut p = Planner {
+        poly: polygon,
+        cs,
+        b: Builder { segments: Vec::new(), kinds: Vec::new(), pos: graph.nodes[parts[0][0]] },
+        circles: Vec::new(),
+    };
+    let mut retract_before = Vec::new();
+    for part in &parts {
+        retract_before.push(p.b.segments.len());
+        p.b.pos = graph.nodes[part[0]];
+        p.part(&graph, part[0])?;
+    }
+    retract_before.dedup();
+    retract_before.retain(|&i| i < p.b.segments.len());
+    let plunges = retract_before.clone();
+    retract_before.retain(|&i| i > 0); // the first part is reached by the program's approach
+    let Planner { b, circles, .. } = p;
+    let opts = EvaluatorOptions::new(r, settings.spacing);
+    let profile = engagement_profile(polygon, &[], &b.segments, &opts)?;
+    let (maxima, body_max_rad) = maxima(&profile, &b.segments, &b.kinds, &plunges);
+    let len: f64 = b.segments.iter().map(Segment::length).sum();
+    Ok(PerforativePlan {
+        polygon: polygon.clone(),
+        settings,
+        target_rad: cs.target,
+        tolerance_rad: cs.tolerance,
+        axis,
+        circles,
+        segments: b.segments,
+        kinds: b.kinds,
+        retract_before,
+        parts: parts.len(),
+        unreachable_axis_mm: graph.unreachable_mm,
+        path_length_mm: len,
+        time_s: len / settings.feed_mm_per_min * 60.0,
+        profile,
+        maxima,
+        body_max_rad,
+    })
+}
+
+/// Per-kind maxima of the profile and the body maximum (spiral, circles, links). The
+/// positions where the tool plunges (the start of each part) are left out: there the tool
+/// drills its own hole and the evaluator reads the whole periphery (360°).
+fn maxima(
+    profile: &EngagementProfile,
+    segments: &[Segment],
+    kinds: &[MoveKind],
+    plunges: &[usize],
+) -> (Vec<KindMax>, f64) {
+    let mut out: Vec<KindMax> = Vec::new();
+    let mut ends = Vec::with_capacity(segments.len());
+    let mut plunge_s = Vec::new();
+    let mut acc = 0.0;
+    for (i, (s, &k)) in segments.iter().zip(kinds).enumerate() {
+        if plunges.contains(&i) {
+            plunge_s.push(acc);
+        }
+        acc += s.length();
+        ends.push(acc);
+        match out.iter_mut().find(|m| m.kind == k) {
+            Some(m) => m.length_mm += s.length(),
+            None => out.push(KindMax { kind: k, max_rad: 0.0, at: s.start(), length_mm: s.length() }),
+        }
+    }
+    for smp in profile.samples.iter().filter(|m| plunge_s.iter().all(|p| (m.s_mm - p).abs() > 1e-9)) {
+        // The segment a sample belongs to: the first whose end is at or beyond it (a sample on
+        // a joint belongs to the segment that ends there).
+        let i = ends.partition_point(|&e| e < smp.s_mm - 1e-9).min(kinds.len() - 1);
+        if let Some(m) = out.iter_mut().find(|m| m.kind == kinds[i])
+            && smp.angle_rad > m.max_rad
+        {
+            m.max_rad = smp.angle_rad;
+            m.at = P2::new(smp.x_mm, smp.y_mm);
+        }
+    }
+    let body = out
+        .iter()
+        .filter(|m| matches!(m.kind, MoveKind::Spiral | MoveKind::Circle | MoveKind::Link))
+        .map(|m| m.max_rad)
+        .fold(0.0, f64::max);
+    (out, body)
+}
+
+struct Planner<'a> {
+    poly: &'a Polygon,
+    cs: CornerSettings,
+    b: Builder,
+    circles: Vec<AxisCircle>,
+}
+
+impl Planner<'_> {
+    fn r(&self) -> f64 {
+        self.cs.tool_radius
+    }
+
+    fn rho(&self, q: P2) -> f64 {
+        clearance(self.poly, q) - self.r()
+    }
+
+    fn engagement(&self, prev: Circle, cur: Circle) -> f64 {
+        TwoCircle { previous: prev, current: cur, tool_radius: self.r(), turn: Turn::Ccw }.max_engagement().angle
+    }
+
+    /// Largest two-circle engagement (§1.2) along the half-circle transition from the circle
+    /// (c1, ρ1) to (c2, ρ2) of [`Planner::transition`], after the first circle was cut: the
+    /// half-circle is a piece of a circle, so the model applies to it over its half turn
+    /// (scanned every 0.5°, refined by golden section).
+    fn transition_engagement(&self, c1: P2, rho1: f64, c2: P2, rho2: f64) -> f64 {
+        let (m, rt, a0) = transition(c1, rho1, c2, rho2);
+        let model = TwoCircle {
+            previous: Circle::new(c1, rho1 + self.r()),
+            current: Circle::new(m, rt + self.r()),
+            tool_radius: self.r(),
+            turn: Turn::Ccw,
+        };
+        let f = |phi: f64| model.engagement_at(phi).angle;
+        let n = 360;
+        let (mut best, mut at) = (0.0, a0);
+        for i in 0..=n {
+            let phi = a0 + PI * i as f64 / n as f64;
+            if f(phi) > best {
+                (best, at) = (f(phi), phi);
+            }
+        }
+        let h = PI / n as f64;
+        let (lo, hi) = ((at - h).max(a0), (at + h).min(a0 + PI));
+        best.max(-golden_min(lo, hi, 1e-9, |p| -f(p)).1)
+    }
+
+    fn push_circle(&mut self, center: P2, rho: f64, predicted: Option<f64>, kind: MoveKind) -> Result<(), JobError> {
+        self.circles.push(AxisCircle {
+            tool_circle: Circle::new(center, rho),
+            offset_radius: rho + self.r(),
+            predicted_max_rad: predicted,
+            kind,
+        });
+        if self.circles.len() > MAX_CIRCLES {
+            return Err(JobError::range("circles", self.circles.len(), format!("at most {MAX_CIRCLES} per pocket")));
+        }
+        Ok(())
+    }
+
+    /// One connected part: plunge at the root, concentric clearing, then every leaf.
+    fn part(&mut self, g: &AxisGraph, root: usize) -> Result<(), JobError> {
+        let center = g.nodes[root];
+        let rho_root = self.rho(center);
+        let entry = self.spiral(center, rho_root)?;
+        let mut cur = Current { s: 0.0, center, offset_radius: rho_root.max(0.0) + self.r(), entry };
+        let walks = g.leaf_walks(root);
+        let mut prev: Option<(Vec<usize>, Guide, Vec<Current>)> = None;
+        for walk in walks {
+            let guide = g.guide(&walk);
+            // Circles of the previous walk on the shared prefix; the chain restarts at the last.
+            let mut placed = vec![cur];
+            if let Some((pw, pg, pc)) = &prev {
+                let common = walk.iter().zip(pw).take_while(|(a, b)| a == b).count();
+                let s_lca = guide.node_s[common - 1];
+                placed = pc.iter().copied().filter(|c| c.s <= s_lca + 1e-9).collect();
+                let restart = placed[placed.len() - 1];
+                let back = pg.walk(pg.length(), restart.s);
+                self.b.polyline(&back, MoveKind::Return);
+                cur = Current { entry: None, ..restart };
+            }
+            self.chain(&guide, cur, &mut placed)?;
+            prev = Some((walk, guide, placed));
+        }
+        Ok(())
+    }
+
+    /// Concentric circles about the plunge point `c` up to tool-centre radius `rho_max`.
+    /// Returns the entry angle of the last circle (`None` if none was cut).
+    fn spiral(&mut self, c: P2, rho_max: f64) -> Result<Option<f64>, JobError> {
+        let (r, target, eps) = (self.r(), self.cs.target, self.cs.tolerance);
+        if rho_max < self.cs.r_min() {
+            return Ok(None);
+        }
+        let mut rho = self.cs.step_over.min(rho_max);
+        let mut theta: f64 = 0.0;
+        // From the plunge point: half-circle out to ρ1, then the full first circle.
+        let mut prev_rho = 0.0;
+        let mut kind = MoveKind::Entry;
+        let mut predicted = None;
+        loop {
+            let e = P2::new(theta.cos(), theta.sin());
+            let (m, rt, _) = transition_along(c, prev_rho, c, rho, e);
+            self.b.arc(m, rt, theta, PI, kind);
+            theta += PI;
+            self.push_circle(c, rho, predicted, kind)?;
+            if rho >= rho_max - 1e-9 {
+                return Ok(Some(theta)); // its full turn is cut by the chain (`link`, `finish`)
+            }
+            self.b.arc(c, rho, theta, TAU, kind);
+            // Next radius: the largest in (ρ, ρ_max] within the target (bisection, §3.3).
+            let prev_c = Circle::new(c, rho + r);
+            let m =
+                |x: f64| self.engagement(prev_c, Circle::new(c, x + r)).max(self.transition_engagement(c, rho, c, x));
+            let (mut lo, mut hi) = (rho, rho_max);
+            let mut next = (hi, m(hi));
+            if next.1 > target {
+                next = (lo, 0.0);
+                for _ in 0..MAX_BISECTION {
+                    let x = 0.5 * (lo + hi);
+                    let v = m(x);
+                    if v > target && v <= target + eps {
+                        next = (x, v);
+                        break;
+                    }
+                    if v <= target {
+                        lo = x;
+                        next = (x, v);
+                    } else {
+                        hi = x;
+                    }
+                }
+            }
+            if next.0 <= rho + 1e-6 {
+                next = ((rho + self.cs.r_min()).min(rho_max), m((rho + self.cs.r_min()).min(rho_max)));
+            }
+            prev_rho = rho;
+            rho = next.0;
+            predicted = Some(next.1);
+            kind = MoveKind::Spiral;
+        }
+    }
+
+    /// Circles and axis moves along `guide` from the circle `start` to the guide's end.
+    /// `placed` collects the circles (with their arc length) for the next restart.
+    fn chain(&mut self, guide: &Guide, start: Current, placed: &mut Vec<Current>) -> Result<(), JobError> {
+        let (r, target, eps, r_min) = (self.r(), self.cs.target, self.cs.tolerance, self.cs.r_min());
+        let end = guide.length();
+        let mut cur = start;
+        loop {
+            let rho_cur = cur.offset_radius - r;
+            // Search range: up to 2·R ahead, not past the first point where ρ < r_min.
+            // Not past the next Voronoi vertex either: its circle touches three walls.
+            let node = guide.node_s.iter().copied().find(|&n| n > cur.s + 1e-6).unwrap_or(end);
+            let reach = (cur.s + 2.0 * cur.offset_radius).min(end).min(node);
+            let zone_end = self.zone_end(guide, cur.s, reach);
+            let m = |s: f64| {
+                let q = guide.at(s);
+                let rho = self.rho(q).max(r_min);
+                let circle = self.engagement(Circle::new(cur.center, cur.offset_radius), Circle::new(q, rho + r));
+                if (rho - rho_cur).abs() >= (q - cur.center).norm() {
+                    circle.max(self.transition_engagement(cur.center, rho_cur, q, rho))
+                } else {
+                    circle
+                }
+            };
+            let next = if zone_end > cur.s + 1e-6 {
+                let (mut lo, mut hi) = (cur.s, zone_end);
+                let mut next = (hi, m(hi));
+                if next.1 > target {
+                    next = (lo, 0.0);
+                    for _ in 0..MAX_BISECTION {
+                        let s = 0.5 * (lo + hi);
+                        let v = m(s);
+                        if v > target && v <= target + eps {
+                            next = (s, v);
+                            break;
+                        }
+                        if v <= target {
+                            lo = s;
+                            next = (s, v);
+                        } else {
+                            hi = s;
+                        }
+                    }
+                }
+                Some(next).filter(|n| n.0 > cur.s + 1e-6)
+            } else {
+                None
+            };
+            match next {
+                Some((s, v)) => {
+                    let q = guide.at(s);
+                    let rho = self.rho(q).max(r_min);
+                    self.link(guide, &cur, rho_cur, s, q, rho);
+                    self.push_circle(q, rho, Some(v), MoveKind::Circle)?;
+                    cur = Current { s, center: q, offset_radius: rho + r, entry: Some(self.angle_of(q)) };
+                    placed.push(cur);
+                }
+                None => {
+                    // ρ < r_min ahead: finish the circle, go along the axis to where circles
+                    // fit again (a neck) or to the guide's end (a corner tip).
+                    self.finish(&cur, rho_cur);
+                    self.b.line(cur.center, MoveKind::Link);
+                    let resume = self.zone_start(guide, cur.s, end);
+                    match resume {
+                        Some(s) => {
+                            self.b.polyline(&guide.walk(cur.s, s), MoveKind::Straight);
+                            let q = guide.at(s);
+                            let rho = self.rho(q).max(r_min);
+                            self.b.line(q - rot90(guide.dir(s)) * rho, MoveKind::Link);
+                            let a0 = self.angle_of(q);
+                            self.push_circle(q, rho, None, MoveKind::Circle)?;
+                            cur = Current { s, center: q, offset_radius: rho + r, entry: Some(a0) };
+                            placed.push(cur);
+                        }
+                        None => {
+                            self.b.polyline(&guide.walk(cur.s, end), MoveKind::Tip);
+                            return Ok(());
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Angle of the tool's position about `center`.
+    fn angle_of(&self, center: P2) -> f64 {
+        let d = self.b.pos - center;
+        d.y.atan2(d.x)
+    }
+
+    /// Complete the current circle (a full turn from its entry) if it has one.
+    fn finish(&mut self, cur: &Current, rho: f64) {
+        if let Some(a) = cur.entry {
+            self.b.arc(cur.center, rho, a, TAU, MoveKind::Circle);
+        }
+    }
+
+    /// From the current circle to the next one (centre q, tool-centre radius ρ, at arc length s):
+    /// the circle's turn up to the right common tangent, the tangent, ending at the next circle.
+    fn link(&mut self, guide: &Guide, cur: &Current, rho_cur: f64, s: f64, q: P2, rho: f64) {
+        let d = q - cur.center;
+        let dist = d.norm();
+        let u = d / dist;
+        let v = rot90(u);
+        let sin_b = (rho - rho_cur) / dist;
+        let (exit, entry, tangent_ok) = if sin_b.abs() < 1.0 {
+            let nrm = v * (1.0 - sin_b * sin_b).sqrt() + u * sin_b;
+            (cur.center - nrm * rho_cur, q - nrm * rho, true)
+        } else {
+            (cur.center - v * rho_cur, q - v * rho, false)
+        };
+        let inside = tangent_ok && link_is_inside(self.poly, exit, entry, self.r());
+        if !inside && dist < rho_cur + rho {
+            // One circle contains the other, or the tangent would come closer than r to a wall
+            // (a reflex corner): the half-circle transition (G1, inside both circles' discs
+            // when they overlap without containment, so in cut material).
+            let (m, rt, a0) = transition(cur.center, rho_cur, q, rho);
+            match cur.entry {
+                Some(a) => self.b.arc(cur.center, rho_cur, a, TAU + (a0 - a).rem_euclid(TAU), MoveKind::Circle),
+                None => {
+                    self.b.line(cur.center, MoveKind::Link);
+                    self.b.line(cur.center + P2::new(a0.cos(), a0.sin()) * rho_cur, MoveKind::Link);
+                }
+            }
+            self.b.arc(m, rt, a0, PI, MoveKind::Link);
+            return;
+        }
+        let exit_angle = (exit - cur.center).y.atan2((exit - cur.center).x);
+        match cur.entry {
+            Some(a) => {
+                let delta = (exit_angle - a + SHORT_TURN_RAD).rem_euclid(TAU) - SHORT_TURN_RAD;
+                let sweep = if tangent_ok && inside { TAU + delta } else { TAU };
+                self.b.arc(cur.center, rho_cur, a, sweep, MoveKind::Circle);
+            }
+            None => {
+                // Restarting from the centre of a circle cut before: out to its exit point.
+                self.b.line(cur.center, MoveKind::Link);
+                if tangent_ok && inside {
+                    self.b.line(exit, MoveKind::Link);
+                }
+            }
+        }
+        if tangent_ok && inside {
+            self.b.line(entry, MoveKind::Link);
+        } else {
+            // Along the axis, centre to centre, then out to the next circle.
+            self.b.line(cur.center, MoveKind::Link);
+            self.b.polyline(&guide.walk(cur.s, s), MoveKind::Link);
+            self.b.line(q - v * rho, MoveKind::Link);
+        }
+    }
+
+    /// The first arc length in (s0, s1] where ρ < r_min, or s1 if there is none. Sampled every
+    /// [`CLEARANCE_STEP_MM`], the crossing refined by bisection.
+    fn zone_end(&self, guide: &Guide, s0: f64, s1: f64) -> f64 {
+        let r_min = self.cs.r_min();
+        let ok = |s: f64| self.rho(guide.at(s)) >= r_min;
+        let n = ((s1 - s0) / CLEARANCE_STEP_MM).ceil().max(1.0) as usize;
+        let mut prev = s0;
+        for k in 1..=n {
+            let s = s0 + (s1 - s0) * k as f64 / n as f64;
+            if !ok(s) {
+                let (mut lo, mut hi) = (prev, s);
+                for _ in 0..50 {
+                    let m = 0.5 * (lo + hi);
+                    if ok(m) {
+                        lo = m;
+                    } else {
+                        hi = m;
+                    }
+                }
+                return lo;
+            }
+            prev = s;
+        }
+        s1
+    }
+
+    /// The first arc length in (s0, s1] where ρ ≥ r_min again after a narrow stretch, if any.
+    fn zone_start(&self, guide: &Guide, s0: f64, s1: f64) -> Option<f64> {
+        let r_min = self.cs.r_min();
+        let ok = |s: f64| self.rho(guide.at(s)) >= r_min;
+        let n = ((s1 - s0) / CLEARANCE_STEP_MM).ceil().max(1.0) as usize;
+        let mut prev = s0;
+        let mut left = false;
+        for k in 1..=n {
+            let s = s0 + (s1 - s0) * k as f64 / n as f64;
+            let good = ok(s);
+            if !good {
+                left = true;
+            } else if left {
+                let (mut lo, mut hi) = (prev, s);
+                for _ in 0..50 {
+                    let m = 0.5 * (lo + hi);
+                    if ok(m) {
+                        hi = m;
+                    } else {
+                        lo = m;
+                    }
+                }
+                return Some(hi);
+            }
+            prev = s;
+        }
+        None
+    }
+}
