@@ -5,6 +5,10 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
+mod nc_common;
+
+use nc_common::DUMBBELL;
+
 use std::f64::consts::PI;
 use trochoplan_core::corner::{
     Method, MoveKind, PerforativePlan, PocketSettings, Polygon, plan_perforative_pocket, straight_engagement,
@@ -28,21 +32,6 @@ fn poly(pts: &[(f64, f64)]) -> Polygon {
 
 const RECT: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)];
 const L_SHAPE: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 25.0), (25.0, 25.0), (25.0, 60.0), (0.0, 60.0)];
-/// Two 40 × 40 lobes joined by a 20 × 16 neck.
-const DUMBBELL: &[(f64, f64)] = &[
-    (0.0, 0.0),
-    (40.0, 0.0),
-    (40.0, 12.0),
-    (60.0, 12.0),
-    (60.0, 0.0),
-    (100.0, 0.0),
-    (100.0, 40.0),
-    (60.0, 40.0),
-    (60.0, 28.0),
-    (40.0, 28.0),
-    (40.0, 40.0),
-    (0.0, 40.0),
-];
 const TRIANGLE: &[(f64, f64)] = &[(0.0, 0.0), (80.0, 0.0), (20.0, 50.0)];
 
 fn dist_to_edge(p: P2, a: P2, b: P2) -> f64 {

@@ -339,6 +339,31 @@ impl AxisGraph {
     }
 }
 
+/// The §3.3 bisection on (lo, hi] for a metric m with m(lo) = 0 (the same circle): hi if
+/// m(hi) ≤ a*; else the first x with m(x) ∈ (a*, a* + ε]; after 60 steps the last x found
+/// under a* (or lo). Returns (x, m(x)).
+fn bisect(mut lo: f64, mut hi: f64, target: f64, eps: f64, m: impl Fn(f64) -> f64) -> (f64, f64) {
+    let at_hi = m(hi);
+    if at_hi <= target {
+        return (hi, at_hi);
+    }
+    let mut best = (lo, 0.0);
+    for _ in 0..MAX_BISECTION {
+        let x = 0.5 * (lo + hi);
+        let v = m(x);
+        if v > target && v <= target + eps {
+            return (x, v);
+        }
+        if v <= target {
+            lo = x;
+            best = (x, v);
+        } else {
+            hi = x;
+        }
+    }
+    best
+}
+
 /// The G1 half-circle from the tool-centre circle (c1, ρ1) to (c2, ρ2) when one contains the
 /// other (|ρ2 − ρ1| ≥ |c2 − c1|; concentric circles included): with u the unit vector from c1
 /// to c2 (any if they coincide), it starts at A = c1 + ρ1·u, where circle 1 runs along
@@ -676,25 +701,7 @@ impl Planner<'_> {
             let prev_c = Circle::new(c, rho + r);
             let m =
                 |x: f64| self.engagement(prev_c, Circle::new(c, x + r)).max(self.transition_engagement(c, rho, c, x));
-            let (mut lo, mut hi) = (rho, rho_max);
-            let mut next = (hi, m(hi));
-            if next.1 > target {
-                next = (lo, 0.0);
-                for _ in 0..MAX_BISECTION {
-                    let x = 0.5 * (lo + hi);
-                    let v = m(x);
-                    if v > target && v <= target + eps {
-                        next = (x, v);
-                        break;
-                    }
-                    if v <= target {
-                        lo = x;
-                        next = (x, v);
-                    } else {
-                        hi = x;
-                    }
-                }
-            }
+            let mut next = bisect(rho, rho_max, target, eps, m);
             if next.0 <= rho + 1e-6 {
                 next = ((rho + self.cs.r_min()).min(rho_max), m((rho + self.cs.r_min()).min(rho_max)));
             }
@@ -729,26 +736,7 @@ impl Planner<'_> {
                 }
             };
             let next = if zone_end > cur.s + 1e-6 {
-                let (mut lo, mut hi) = (cur.s, zone_end);
-                let mut next = (hi, m(hi));
-                if next.1 > target {
-                    next = (lo, 0.0);
-                    for _ in 0..MAX_BISECTION {
-                        let s = 0.5 * (lo + hi);
-                        let v = m(s);
-                        if v > target && v <= target + eps {
-                            next = (s, v);
-                            break;
-                        }
-                        if v <= target {
-                            lo = s;
-                            next = (s, v);
-                        } else {
-                            hi = s;
-                        }
-                    }
-                }
-                Some(next).filter(|n| n.0 > cur.s + 1e-6)
+                Some(bisect(cur.s, zone_end, target, eps, m)).filter(|n| n.0 > cur.s + 1e-6)
             } else {
                 None
             };

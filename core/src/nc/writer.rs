@@ -336,7 +336,8 @@ mod tests {
         let mut w = Writer::new(Dialect::LinuxCnc.spec());
         w.linear(Some(14.46875), Some(35.0), None, Some(600.0));
         let c = p2(14.46875, 25.53125);
-        let arc = Segment::Arc { center: c, radius: 9.46875, start_angle: 1.5707963267948963, sweep: 6.283185307179587 };
+        let arc =
+            Segment::Arc { center: c, radius: 9.46875, start_angle: 1.5707963267948963, sweep: 6.283185307179587 };
         w.segment(&arc, 600.0);
         let (text, _) = w.finish().expect("ok");
         let last = text.lines().last().unwrap();
