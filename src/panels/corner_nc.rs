@@ -23,7 +23,7 @@ pub mod label {
     pub const COOLANT: &str = "Coolant (M8/M9)";
     pub const DEPTH: &str = "Depth below Z0";
     pub const RPM: &str = "Spindle";
-    pub const SAVE: &str = "Save corner NC program…";
+    pub const SAVE: &str = "Save program as…";
 }
 
 /// The export options of the Corner tab (persisted with the app state).
