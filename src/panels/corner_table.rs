@@ -294,14 +294,7 @@ pub fn show(ui: &mut egui::Ui, view: &TableView) -> Option<Command> {
         s.feed_mm_per_min
     ));
     ui.add_space(4.0);
-    ui.horizontal_top(|ui| {
-        ui.vertical(|ui| grid(ui, view));
-        let w = ui.available_width().max(200.0);
-        ui.vertical(|ui| {
-            ui.label(RichText::new("Peak engagement against the corner angle").strong());
-            plot(ui, view, target, w, 360.0);
-        });
-    });
+    grid(ui, view);
     ui.add_space(6.0);
     ui.add(
         egui::Label::new(
@@ -309,13 +302,17 @@ pub fn show(ui: &mut egui::Ui, view: &TableView) -> Option<Command> {
                 "Body and tip: every strategy ends its chain of wall-tangent circles when the next circle gets too \
                  small and then moves into the tool's corner point, where the tool touches both walls. That last \
                  move engages about 180° minus the corner angle over a thin sliver, whatever the strategy, so it \
-                 is reported apart (tip) with its own stated limit; the rest of the path (body) must stay within \
-                 a* + 1°. Hover the column titles for details.",
+                 is reported apart (tip, dashed in the plot) with its own stated limit; the rest of the path \
+                 (body) must stay within a* + 1°. Hover the column titles for details.",
             )
             .weak(),
         )
         .wrap(),
     );
+    ui.add_space(4.0);
+    ui.label(RichText::new("Peak engagement against the corner angle (evaluator)").strong());
+    let (w, h) = (ui.available_width(), (ui.available_height() - 8.0).max(200.0));
+    plot(ui, view, target, w, h);
     cmd
 }
 
@@ -336,9 +333,9 @@ fn grid(ui: &mut egui::Ui, view: &TableView) {
             header(ui, "body °", tip::BODY);
             header(ui, "tip °", tip::TIP);
             header(ui, "limit °", tip::LIMIT);
-            header(ui, "", tip::PASS);
-            header(ui, "mm", tip::LENGTH);
-            header(ui, "s", tip::TIME);
+            header(ui, "pass?", tip::PASS);
+            header(ui, "length mm", tip::LENGTH);
+            header(ui, "time s", tip::TIME);
         }
         ui.end_row();
         for a in &view.angles {
