@@ -98,6 +98,8 @@ pub struct State {
     pub export: ExportSettings,
     /// Inputs of the Corner tab.
     pub corner: panels::corner::CornerInputs,
+    /// NC export options of the Corner tab.
+    pub corner_nc: panels::corner_nc::CornerNcSettings,
     /// The job file last opened or saved.
     pub file: Option<PathBuf>,
 }
@@ -115,6 +117,7 @@ impl Default for State {
             sweep: SweepSettings::default(),
             export: ExportSettings::default(),
             corner: panels::corner::CornerInputs::default(),
+            corner_nc: panels::corner_nc::CornerNcSettings::default(),
             file: None,
         }
     }
@@ -262,8 +265,9 @@ pub trait FileDialogs {
     fn open_job(&mut self) -> Option<PathBuf>;
     /// Ask where to save the job (`current`: the file last used).
     fn save_job(&mut self, current: Option<&Path>) -> Option<PathBuf>;
-    /// Ask where to save an NC program (`extension`: the dialect's, without the dot).
-    fn save_nc(&mut self, extension: &str) -> Option<PathBuf>;
+    /// Ask where to save an NC program (`stem`: the default file name without extension,
+    /// `extension`: the dialect's, without the dot).
+    fn save_nc(&mut self, stem: &str, extension: &str) -> Option<PathBuf>;
 }
 
 /// rfd dialogs (XDG desktop portal on Linux).
@@ -290,12 +294,12 @@ impl FileDialogs for NativeDialogs {
         d.save_file()
     }
 
-    fn save_nc(&mut self, extension: &str) -> Option<PathBuf> {
+    fn save_nc(&mut self, stem: &str, extension: &str) -> Option<PathBuf> {
         rfd::FileDialog::new()
             .set_title("Export NC program")
             .add_filter(format!("NC program (.{extension})"), &[extension])
             .add_filter("All files", &["*"])
-            .set_file_name(format!("slot.{extension}"))
+            .set_file_name(format!("{stem}.{extension}"))
             .save_file()
     }
 }
@@ -347,6 +351,8 @@ pub struct App {
     pub corner: panels::corner::CornerView,
     /// The NC program of the current plan and export settings.
     pub export: ExportCache,
+    /// The NC program of the Corner tab's plan and its export settings.
+    pub corner_nc: panels::corner_nc::CornerNcCache,
     /// The chip of the animated tooth.
     pub chip: Chip,
     dialogs: Box<dyn FileDialogs>,
@@ -375,6 +381,7 @@ impl App {
             sweep: None,
             corner: panels::corner::CornerView::default(),
             export: ExportCache::default(),
+            corner_nc: panels::corner_nc::CornerNcCache::default(),
             chip: Chip::default(),
             dialogs,
             status: None,
@@ -419,35 +426,46 @@ impl App {
 
         egui::Panel::top("menu_bar").show(ui, |ui| self.menu_bar(ui, &mut cmds));
         egui::Panel::bottom("status_bar").show(ui, |ui| self.status_bar(ui));
-        egui::Panel::left("parameters").resizable(true).default_size(370.0).min_size(300.0).show(ui, |ui| {
-            egui::ScrollArea::vertical().show(ui, |ui| {
-                panels::params::show(ui, &mut self.state.job, self.planner.error.as_ref());
-                ui.add_space(8.0);
-                ui.horizontal(|ui| {
-                    if ui.add_enabled(self.undoer.has_undo(&self.state.job), egui::Button::new("Undo")).clicked() {
-                        cmds.push(Command::Undo);
-                    }
-                    if ui.add_enabled(self.undoer.has_redo(&self.state.job), egui::Button::new("Redo")).clicked() {
-                        cmds.push(Command::Redo);
-                    }
-                    if ui
-                        .button("Reset to paper defaults")
-                        .on_hover_text("Wagih et al. (2023) Table 1 conditions")
-                        .clicked()
-                    {
-                        cmds.push(Command::ResetJob);
-                    }
+        // The slot's parameters and derived values mean nothing in the Corner tab (it has its own
+        // tool and inputs): it gets the whole width, which its acceptance table needs.
+        let slot_panels = self.state.tab != Tab::Corner;
+        if slot_panels {
+            egui::Panel::left("parameters").resizable(true).default_size(370.0).min_size(300.0).show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    panels::params::show(ui, &mut self.state.job, self.planner.error.as_ref());
+                    ui.add_space(8.0);
+                    ui.horizontal(|ui| {
+                        if ui.add_enabled(self.undoer.has_undo(&self.state.job), egui::Button::new("Undo")).clicked() {
+                            cmds.push(Command::Undo);
+                        }
+                        if ui.add_enabled(self.undoer.has_redo(&self.state.job), egui::Button::new("Redo")).clicked() {
+                            cmds.push(Command::Redo);
+                        }
+                        if ui
+                            .button("Reset to paper defaults")
+                            .on_hover_text("Wagih et al. (2023) Table 1 conditions")
+                            .clicked()
+                        {
+                            cmds.push(Command::ResetJob);
+                        }
+                    });
                 });
             });
-        });
+        }
         let replanned = self.planner.update(&self.state.job, self.state.cycles_shown);
         self.undoer.feed_state(ui.input(|i| i.time), &self.state.job);
 
-        egui::Panel::right("derived").resizable(true).default_size(265.0).min_size(210.0).show(ui, |ui| {
-            egui::ScrollArea::vertical().show(ui, |ui| {
-                panels::metrics::show(ui, self.planner.last.as_ref().map(|p| &p.plan), self.planner.error.is_some());
+        if slot_panels {
+            egui::Panel::right("derived").resizable(true).default_size(265.0).min_size(210.0).show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    panels::metrics::show(
+                        ui,
+                        self.planner.last.as_ref().map(|p| &p.plan),
+                        self.planner.error.is_some(),
+                    );
+                });
             });
-        });
+        }
 
         if let Some(p) = &self.planner.last {
             let dt = f64::from(ui.input(|i| i.stable_dt).min(0.1));
@@ -643,12 +661,22 @@ impl App {
                 self.refresh_export();
             }
             Tab::Corner => {
-                self.corner.update(&self.state.corner);
-                panels::corner::show(ui, &mut self.state.corner, &self.corner);
-                // inputs edited this frame: ask for the new plan now
-                self.corner.update(&self.state.corner);
+                self.refresh_corner();
+                let (inputs, nc) = (&mut self.state.corner, &mut self.state.corner_nc);
+                if let Some(c) = panels::corner::show(ui, inputs, &self.corner, nc, &self.corner_nc) {
+                    cmds.push(c);
+                }
+                // inputs edited this frame: ask for the new plan (and program) now
+                self.refresh_corner();
             }
         }
+    }
+
+    /// Collect the Corner tab's plans, ask for new ones if its inputs changed, and regenerate
+    /// its NC program if the plan or the export settings changed.
+    fn refresh_corner(&mut self) {
+        self.corner.update(&self.state.corner);
+        self.corner_nc.update(&self.corner, self.state.corner.mode, &self.state.corner_nc);
     }
 
     /// Regenerate the NC program if the plan or the export settings changed.
@@ -722,6 +750,9 @@ impl App {
                 }
             }
             Command::ExportNc => self.export_nc(),
+            Command::CancelCornerTable => self.corner.table.cancel(),
+            Command::RestartCornerTable => self.corner.table.restart(),
+            Command::ExportCornerNc => self.export_corner_nc(),
         }
     }
 
@@ -752,7 +783,32 @@ impl App {
             return;
         }
         let Some(text) = self.export.view().map(|v| v.text.clone()) else { return };
-        let Some(path) = self.dialogs.save_nc(self.state.export.dialect.extension()) else { return };
+        let Some(path) = self.dialogs.save_nc("slot", self.state.export.dialect.extension()) else { return };
+        match write_atomic(&path, text.as_bytes()) {
+            Ok(()) => self.status = Some((format!("exported {} ({} bytes)", path.display(), text.len()), false)),
+            Err(e) => self.status = Some((e, true)),
+        }
+    }
+
+    /// Ask for a file and write the Corner tab's previewed NC program to it (atomically).
+    fn export_corner_nc(&mut self) {
+        self.refresh_corner();
+        if let Some(e) = &self.corner.error {
+            self.status = Some((format!("cannot export: corner inputs invalid: {e}"), true));
+            return;
+        }
+        let (text, stem) = match &self.corner_nc.result {
+            Some(Ok(p)) => (p.text.clone(), p.file_stem),
+            Some(Err(e)) => {
+                self.status = Some((format!("cannot export: {e}"), true));
+                return;
+            }
+            None => {
+                self.status = Some(("cannot export: no corner or pocket planned yet".into(), true));
+                return;
+            }
+        };
+        let Some(path) = self.dialogs.save_nc(stem, self.state.corner_nc.dialect.extension()) else { return };
         match write_atomic(&path, text.as_bytes()) {
             Ok(()) => self.status = Some((format!("exported {} ({} bytes)", path.display(), text.len()), false)),
             Err(e) => self.status = Some((e, true)),

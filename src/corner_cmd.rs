@@ -14,10 +14,12 @@ use trochoplan_core::corner::{
     parse_points, plan_pocket, pocket_polygon, polyline, straight_engagement,
 };
 use trochoplan_core::corner::{
-    CornerPlan, LinkKind, MoveKind, PerforativePlan, PocketPlan, RingStep, TargetSpec, plan_perforative_pocket,
+    CornerPlan, MoveKind, PerforativePlan, PocketPlan, RingStep, TargetSpec, plan_perforative_pocket,
 };
 use trochoplan_core::geom::{P2, Segment};
-use trochoplan_core::nc::{DEFAULT_TOLERANCE_MM, NcOptions, PathJob, program_for_path};
+use trochoplan_core::nc::{
+    CutSetup, DEFAULT_TOLERANCE_MM, NcOptions, NcProgram, corner_program, perforative_program, pocket_program,
+};
 
 /// Corner strategy on the command line.
 #[derive(Clone, Copy, ValueEnum)]
@@ -425,40 +427,8 @@ fn export_perforative(
     plan: &PerforativePlan,
 ) -> Result<NcExportOut, String> {
     let opts = nc_options(nc);
-    let s = &plan.settings;
-    let job = PathJob {
-        segments: &plan.segments,
-        retract_before: &plan.retract_before,
-        depth_mm: nc.depth,
-        feed_mm_per_min: s.feed_mm_per_min,
-        spindle_rpm: nc.rpm,
-        tool_diameter_mm: 2.0 * s.tool_radius,
-        default_title: "TrochoPlan pocket",
-        description: vec![
-            format!(
-                "pocket of {} vertices, method medial-axis, {} circles, {} part(s)",
-                plan.polygon.vertices().len(),
-                plan.circles.len(),
-                plan.parts
-            ),
-            format!(
-                "path {:.3} mm, body engagement {:.2} deg (target {:.2} deg)",
-                plan.path_length_mm,
-                plan.body_max_rad.to_degrees(),
-                plan.target_rad.to_degrees()
-            ),
-            format!("polygon file coordinates, depth {:.3} mm below the stock top Z0", nc.depth),
-            format!(
-                "tool T{} D {:.3} mm, {:.0} rpm, feed {:.1} mm/min, a_e {:.4} mm",
-                opts.tool_number,
-                2.0 * s.tool_radius,
-                nc.rpm,
-                s.feed_mm_per_min,
-                s.step_over
-            ),
-        ],
-    };
-    write_program(file, &job, &opts)
+    let prog = perforative_program(plan, cut_setup(nc), &opts).map_err(err)?;
+    write_program(file, &prog, &opts)
 }
 
 fn err(e: JobError) -> String {
@@ -542,9 +512,13 @@ fn nc_options(nc: &CornerExportArgs) -> NcOptions {
     }
 }
 
-/// Write the program of `job` to `file` (atomically) and say what was written.
-fn write_program(file: &std::path::Path, job: &PathJob<'_>, opts: &NcOptions) -> Result<NcExportOut, String> {
-    let prog = program_for_path(job, opts).map_err(err)?;
+/// The depth and spindle speed of the shared export flags.
+fn cut_setup(nc: &CornerExportArgs) -> CutSetup {
+    CutSetup { depth_mm: nc.depth, spindle_rpm: nc.rpm }
+}
+
+/// Write `prog` to `file` (atomically) and say what was written.
+fn write_program(file: &std::path::Path, prog: &NcProgram, opts: &NcOptions) -> Result<NcExportOut, String> {
     write_atomic(file, prog.text.as_bytes())?;
     Ok(NcExportOut {
         file: file.display().to_string(),
@@ -562,86 +536,16 @@ fn export_corner(
     angle_deg: f64,
     plan: &CornerPlan,
 ) -> Result<NcExportOut, String> {
-    let nc = &args.nc;
-    let opts = nc_options(nc);
-    let a_str = straight_engagement(s.step_over, s.tool_radius).map_err(err)?;
-    let job = PathJob {
-        segments: &plan.path,
-        retract_before: &[],
-        depth_mm: nc.depth,
-        feed_mm_per_min: s.feed_mm_per_min,
-        spindle_rpm: nc.rpm,
-        tool_diameter_mm: 2.0 * s.tool_radius,
-        default_title: "TrochoPlan corner",
-        description: vec![
-            format!(
-                "corner {} deg, method {}, {} circles, path {:.3} mm",
-                angle_deg,
-                plan.method.name(),
-                plan.circles.len(),
-                plan.path_length_mm
-            ),
-            format!("apex X0 Y0, bisector along +X, walls {:.3} mm", s.edge_length),
-            format!("depth {:.3} mm below the stock top Z0", nc.depth),
-            format!(
-                "tool T{} D {:.3} mm, {:.0} rpm, feed {:.1} mm/min",
-                opts.tool_number,
-                2.0 * s.tool_radius,
-                nc.rpm,
-                s.feed_mm_per_min
-            ),
-            format!(
-                "a_e {:.4} mm, engagement straight {:.2} deg, target {:.2} deg",
-                s.step_over,
-                a_str.to_degrees(),
-                s.target.to_degrees()
-            ),
-        ],
-    };
-    write_program(file, &job, &opts)
+    let opts = nc_options(&args.nc);
+    let prog = corner_program(plan, s, angle_deg, cut_setup(&args.nc), &opts).map_err(err)?;
+    write_program(file, &prog, &opts)
 }
 
 /// Write the whole pocket (rings and links, [`PocketPlan::tool_path`]) to `file`.
 fn export_pocket(nc: &CornerExportArgs, file: &std::path::Path, plan: &PocketPlan) -> Result<NcExportOut, String> {
     let opts = nc_options(nc);
-    let s = &plan.settings;
-    let (segments, retract_before) = plan.tool_path();
-    let feed_links = plan.links.iter().filter(|l| l.kind == LinkKind::Feed).count();
-    let job = PathJob {
-        segments: &segments,
-        retract_before: &retract_before,
-        depth_mm: nc.depth,
-        feed_mm_per_min: s.feed_mm_per_min,
-        spindle_rpm: nc.rpm,
-        tool_diameter_mm: 2.0 * s.tool_radius,
-        default_title: "TrochoPlan pocket",
-        description: vec![
-            format!(
-                "pocket of {} vertices, method {}, {} rings, {} corner trochoids",
-                plan.polygon.vertices().len(),
-                s.method.name(),
-                plan.rings.len(),
-                plan.trochoid_corners
-            ),
-            format!(
-                "rings {:.3} mm, {} feed links {:.3} mm, {} retract links",
-                plan.path_length_mm,
-                feed_links,
-                plan.link_length_mm,
-                plan.links.len() - feed_links
-            ),
-            format!("polygon file coordinates, depth {:.3} mm below the stock top Z0", nc.depth),
-            format!(
-                "tool T{} D {:.3} mm, {:.0} rpm, feed {:.1} mm/min, a_e {:.4} mm",
-                opts.tool_number,
-                2.0 * s.tool_radius,
-                nc.rpm,
-                s.feed_mm_per_min,
-                s.step_over
-            ),
-        ],
-    };
-    write_program(file, &job, &opts)
+    let prog = pocket_program(plan, cut_setup(nc), &opts).map_err(err)?;
+    write_program(file, &prog, &opts)
 }
 
 /// `trochoplan corner`: plan one corner (JSON) or print the acceptance table (Markdown).

@@ -5,8 +5,13 @@
 //! The inputs mirror `trochoplan corner` (see `corner_cmd.rs`); [`compute`] calls the same core
 //! functions and only converts their results to plot points. Planning takes 0.1–1 s, so the
 //! window runs it on a worker thread ([`CornerView::threaded`]) that keeps only the newest
-//! request; the tests plan inline ([`CornerView::default`]).
+//! request; the tests plan inline ([`CornerView::default`]). The acceptance table
+//! ([`super::corner_table`], always on its own thread) and the NC export
+//! ([`super::corner_nc`]) are sub-views of the tab.
 
+use super::Command;
+use super::corner_nc::{self, CornerNcCache, CornerNcSettings};
+use super::corner_table::{self, TableView};
 use super::params::ERROR_COLOR;
 use eframe::egui::{self, Color32, DragValue, RichText, Slider, SliderClamping};
 use egui_plot::{HLine, Legend, Line, Plot, PlotPoints};
@@ -15,8 +20,9 @@ use std::sync::Arc;
 use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
 use trochoplan_core::JobError;
 use trochoplan_core::corner::{
-    Corner, CornerScenario, CornerSettings, EngagementProfile, EvaluatorOptions, Method, PocketSettings,
-    acceptance_row, engagement_profile, parse_points, plan_corner, plan_pocket, pocket_polygon, straight_engagement,
+    Corner, CornerPlan, CornerScenario, CornerSettings, EngagementProfile, EvaluatorOptions, Method, MoveKind,
+    PerforativePlan, PocketPlan, PocketSettings, acceptance_row, engagement_profile, parse_points, plan_corner,
+    plan_perforative_pocket, plan_pocket, pocket_polygon, straight_engagement,
 };
 use trochoplan_core::corner::{RingStep, TargetSpec};
 use trochoplan_core::geom::Segment;
@@ -35,16 +41,18 @@ pub mod label {
 /// Spacing of the evaluated tool positions in a pocket (mm), as the CLI's default.
 const POCKET_SPACING_MM: f64 = 0.25;
 
-/// What the tab plans: one corner or a whole polygonal pocket.
+/// What the tab plans: one corner, the acceptance table of all corner angles, or a whole
+/// polygonal pocket.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum CornerMode {
     #[default]
     Corner,
+    Table,
     Pocket,
 }
 
 /// Spacing of the tool positions measured by the evaluator (mm), as the CLI's default.
-const SPACING_MM: f64 = 0.1;
+pub const SPACING_MM: f64 = 0.1;
 /// Wall length from the apex (mm), as the CLI's default.
 const EDGE_LENGTH_MM: f64 = 100.0;
 /// Feed for the machining time (mm/min), as the CLI's default.
@@ -66,7 +74,7 @@ impl CornerMethod {
     pub const ALL: [CornerMethod; 4] =
         [CornerMethod::Plain, CornerMethod::Variable, CornerMethod::Isometric, CornerMethod::MedialAxis];
 
-    fn core(self) -> Method {
+    pub(super) fn core(self) -> Method {
         match self {
             CornerMethod::Plain => Method::Plain,
             CornerMethod::Variable => Method::Variable,
@@ -166,6 +174,8 @@ pub struct CornerResult {
     /// Largest engagement of the final move into the corner point, and its stated limit (degrees).
     pub tip_deg: f64,
     pub tip_limit_deg: f64,
+    /// Body within a* + 1° and tip within its allowance (core `AcceptanceRow::passes`).
+    pub passes: bool,
     pub plain_length_mm: f64,
     pub plain_time_s: f64,
     pub notes: Vec<String>,
@@ -180,10 +190,13 @@ pub struct CornerResult {
     /// Engagement (degrees) against path position (mm).
     pub profile: Vec<[f64; 2]>,
     pub plain_profile: Vec<[f64; 2]>,
+    /// The plan itself and its settings (for the NC program).
+    pub plan: CornerPlan,
+    pub settings: CornerSettings,
 }
 
 /// Core settings from the tab's inputs, as `trochoplan corner` builds them.
-fn settings(i: &CornerInputs) -> Result<CornerSettings, String> {
+pub fn settings(i: &CornerInputs) -> Result<CornerSettings, String> {
     let step = if i.use_step_over {
         RingStep::StepOver(i.step_over_mm)
     } else {
@@ -232,6 +245,7 @@ pub fn compute(i: &CornerInputs) -> Result<CornerResult, String> {
         body_max_deg: row.body_max_deg,
         tip_deg: row.tip_deg,
         tip_limit_deg: row.tip_limit_deg,
+        passes: row.passes(),
         plain_length_mm: plain.path_length_mm,
         plain_time_s: plain.time_s,
         notes: plan.notes.clone(),
@@ -253,6 +267,8 @@ pub fn compute(i: &CornerInputs) -> Result<CornerResult, String> {
         path: segment_points(&plan.path, MAX_PATH_POINTS),
         profile: profile_points(&prof),
         plain_profile: profile_points(&plain_prof),
+        plan,
+        settings: s,
     })
 }
 
@@ -266,8 +282,17 @@ pub struct PocketResult {
     pub path_length_mm: f64,
     pub time_s: f64,
     pub max_deg: f64,
-    pub trochoid_corners: usize,
-    pub plain_corners: usize,
+    /// What the strategy did: corners given trochoids, or circles along the medial axis.
+    pub detail: String,
+    /// The plan itself (for the NC program).
+    pub plan: PocketPlans,
+}
+
+/// A pocket planned by rings (plain, variable, isometric) or along the medial axis.
+#[derive(Clone, Debug)]
+pub enum PocketPlans {
+    Rings(PocketPlan),
+    Perforative(PerforativePlan),
 }
 
 /// Plan the pocket as `trochoplan pocket` does.
@@ -282,12 +307,32 @@ pub fn compute_pocket(i: &CornerInputs) -> Result<PocketResult, String> {
         spacing: POCKET_SPACING_MM,
         method: i.method.core(),
     };
-    settings.validate().map_err(|e| e.to_string())?;
-    let plan = plan_pocket(&polygon, settings).map_err(|e| e.to_string())?;
     let mut boundary: Vec<[f64; 2]> = polygon.vertices().iter().map(|v| [v.x, v.y]).collect();
     if let Some(&first) = boundary.first() {
         boundary.push(first);
     }
+    if settings.method == Method::MedialAxis {
+        // No rings: one pass along the medial axis (shown as one entry of the ring list).
+        let plan = plan_perforative_pocket(&polygon, settings).map_err(|e| e.to_string())?;
+        let body = plan.body_max_rad.to_degrees();
+        return Ok(PocketResult {
+            method: settings.method.name(),
+            boundary,
+            rings: vec![(0, 0.0, body, segment_points(&plan.segments, MAX_PATH_POINTS))],
+            path_length_mm: plan.path_length_mm,
+            time_s: plan.time_s,
+            max_deg: body,
+            detail: format!(
+                "{} circles along the medial axis, {} part(s); tips up to {:.1}°",
+                plan.circles.len(),
+                plan.parts,
+                plan.max_of(MoveKind::Tip).to_degrees()
+            ),
+            plan: PocketPlans::Perforative(plan),
+        });
+    }
+    settings.validate().map_err(|e| e.to_string())?;
+    let plan = plan_pocket(&polygon, settings).map_err(|e| e.to_string())?;
     Ok(PocketResult {
         method: settings.method.name(),
         boundary,
@@ -306,22 +351,22 @@ pub fn compute_pocket(i: &CornerInputs) -> Result<PocketResult, String> {
         path_length_mm: plan.path_length_mm,
         time_s: plan.time_s,
         max_deg: plan.max_engagement_rad.to_degrees(),
-        trochoid_corners: plan.trochoid_corners,
-        plain_corners: plan.plain_corners,
+        detail: format!("corners with trochoids {}, plain {}", plan.trochoid_corners, plan.plain_corners),
+        plan: PocketPlans::Rings(plan),
     })
 }
 
 /// A finished plan of either mode.
 #[derive(Clone, Debug)]
 pub enum Outcome {
-    Corner(CornerResult),
-    Pocket(PocketResult),
+    Corner(Arc<CornerResult>),
+    Pocket(Arc<PocketResult>),
 }
 
 fn compute_any(i: &CornerInputs) -> Result<Outcome, String> {
     match i.mode {
-        CornerMode::Corner => compute(i).map(Outcome::Corner),
-        CornerMode::Pocket => compute_pocket(i).map(Outcome::Pocket),
+        CornerMode::Corner | CornerMode::Table => compute(i).map(|r| Outcome::Corner(Arc::new(r))),
+        CornerMode::Pocket => compute_pocket(i).map(|r| Outcome::Pocket(Arc::new(r))),
     }
 }
 
@@ -350,6 +395,8 @@ type Answer = (CornerInputs, Result<Outcome, String>);
 /// The last corner result, its error, and (in the window) the worker thread computing it.
 #[derive(Default)]
 pub struct CornerView {
+    /// The acceptance table (its own worker thread).
+    pub table: TableView,
     /// The newest valid result (kept while the inputs are invalid).
     pub last: Option<Arc<CornerResult>>,
     /// The newest valid pocket.
@@ -367,7 +414,10 @@ pub struct CornerView {
 
 impl CornerView {
     /// A view planning on its own thread; `repaint` is called when an answer is ready.
-    pub fn threaded(repaint: impl Fn() + Send + 'static) -> CornerView {
+    pub fn threaded(repaint: impl Fn() + Send + Sync + 'static) -> CornerView {
+        let repaint = Arc::new(repaint);
+        let table_repaint = repaint.clone();
+        let table = TableView::new(SPACING_MM, move || table_repaint());
         let (req_tx, req_rx) = channel::<CornerInputs>();
         let (ans_tx, ans_rx) = channel::<Answer>();
         let spawned = std::thread::Builder::new().name("corner".into()).spawn(move || {
@@ -383,7 +433,7 @@ impl CornerView {
                 repaint();
             }
         });
-        CornerView { worker: spawned.ok().map(|_| (req_tx, ans_rx)), ..CornerView::default() }
+        CornerView { worker: spawned.ok().map(|_| (req_tx, ans_rx)), table, ..CornerView::default() }
     }
 
     /// True while a request is being planned.
@@ -395,11 +445,11 @@ impl CornerView {
         self.replans += 1;
         match result {
             Ok(Outcome::Corner(r)) => {
-                self.last = Some(Arc::new(r));
+                self.last = Some(r);
                 self.error = None;
             }
             Ok(Outcome::Pocket(r)) => {
-                self.last_pocket = Some(Arc::new(r));
+                self.last_pocket = Some(r);
                 self.error = None;
             }
             Err(e) => self.error = Some(e),
@@ -407,8 +457,13 @@ impl CornerView {
         self.answered = Some(inputs);
     }
 
-    /// Collect answers and ask for a plan of `inputs` if they changed.
+    /// Collect answers and ask for a plan of `inputs` if they changed; in the table mode, ask
+    /// for the table of their settings instead.
     pub fn update(&mut self, inputs: &CornerInputs) {
+        if inputs.mode == CornerMode::Table {
+            self.table.update(settings(inputs));
+            return;
+        }
         let mut answers = Vec::new();
         if let Some((_, rx)) = &self.worker {
             loop {
@@ -440,34 +495,46 @@ impl CornerView {
 }
 
 /// Colours of the two paths.
-const PLAIN_COLOR: Color32 = Color32::from_rgb(200, 90, 40);
+pub(super) const PLAIN_COLOR: Color32 = Color32::from_rgb(200, 90, 40);
 const STRATEGY_COLOR: Color32 = Color32::from_rgb(40, 110, 200);
 
-/// The Corner tab: inputs, numbers, the corner view and the engagement plot.
-pub fn show(ui: &mut egui::Ui, inputs: &mut CornerInputs, view: &CornerView) {
+/// The Corner tab: the mode, its inputs and results (one corner with its view and engagement
+/// plot, the acceptance table, or a pocket), and the NC export when it is open.
+pub fn show(
+    ui: &mut egui::Ui,
+    inputs: &mut CornerInputs,
+    view: &CornerView,
+    nc: &mut CornerNcSettings,
+    nc_cache: &CornerNcCache,
+) -> Option<Command> {
     ui.horizontal(|ui| {
         ui.selectable_value(&mut inputs.mode, CornerMode::Corner, "One corner")
             .on_hover_text("A single line–line corner between two walls, apex at the origin");
+        ui.selectable_value(&mut inputs.mode, CornerMode::Table, "Acceptance table").on_hover_text(
+            "Every corner angle from 30° to 150° in 15° steps: the plain ring and the three strategies, measured \
+             by the evaluator (`trochoplan corner --method M --table`)",
+        );
         ui.selectable_value(&mut inputs.mode, CornerMode::Pocket, "Pocket")
             .on_hover_text("A polygonal pocket cleared by contour-parallel rings, the strategy at every ring corner");
-    });
-    if inputs.mode == CornerMode::Pocket {
-        pocket(ui, inputs, view);
-        return;
-    }
-    ui.horizontal_wrapped(|ui| {
-        let l = ui.label(label::ANGLE);
-        ui.add(Slider::new(&mut inputs.angle_deg, 30.0..=150.0).step_by(1.0).clamping(SliderClamping::Never))
-            .labelled_by(l.id)
-            .on_hover_text(
-                "Interior angle between the two walls (30°–150°); the apex is at the origin, the bisector along +x.",
-            );
         ui.separator();
-        ui.label("Method");
-        for m in CornerMethod::ALL {
-            ui.selectable_value(&mut inputs.method, m, m.label()).on_hover_text(m.tooltip());
-        }
+        ui.add_enabled_ui(inputs.mode != CornerMode::Table, |ui| {
+            ui.toggle_value(&mut nc.open, corner_nc::label::OPEN)
+                .on_hover_text("Options, preview and save of the NC program of the corner or the pocket")
+                .on_disabled_hover_text("Export one corner or a pocket; the table has no single tool path.");
+        });
     });
+    match inputs.mode {
+        CornerMode::Table => {
+            tool_inputs(ui, inputs);
+            corner_table::show(ui, &view.table)
+        }
+        CornerMode::Pocket => pocket(ui, inputs, view, nc, nc_cache),
+        CornerMode::Corner => corner(ui, inputs, view, nc, nc_cache),
+    }
+}
+
+/// Tool, step-over (or straight engagement) and t1: the inputs of the corner and the table.
+fn tool_inputs(ui: &mut egui::Ui, inputs: &mut CornerInputs) {
     ui.horizontal_wrapped(|ui| {
         let l = ui.label(label::TOOL_DIAMETER);
         ui.add(DragValue::new(&mut inputs.tool_diameter_mm).speed(0.1).suffix(" mm"))
@@ -498,6 +565,31 @@ pub fn show(ui: &mut egui::Ui, inputs: &mut CornerInputs, view: &CornerView) {
                  isometric circles use a* for their spacing and the threshold rh1 (eq. 25). t1 from 0 to 1.",
         );
     });
+}
+
+/// One corner: angle, method, tool inputs, numbers; the corner view beside the engagement plot,
+/// or beside the program when the NC export is open.
+fn corner(
+    ui: &mut egui::Ui,
+    inputs: &mut CornerInputs,
+    view: &CornerView,
+    nc: &mut CornerNcSettings,
+    nc_cache: &CornerNcCache,
+) -> Option<Command> {
+    ui.horizontal_wrapped(|ui| {
+        let l = ui.label(label::ANGLE);
+        ui.add(Slider::new(&mut inputs.angle_deg, 30.0..=150.0).step_by(1.0).clamping(SliderClamping::Never))
+            .labelled_by(l.id)
+            .on_hover_text(
+                "Interior angle between the two walls (30°–150°); the apex is at the origin, the bisector along +x.",
+            );
+        ui.separator();
+        ui.label("Method");
+        for m in CornerMethod::ALL {
+            ui.selectable_value(&mut inputs.method, m, m.label()).on_hover_text(m.tooltip());
+        }
+    });
+    tool_inputs(ui, inputs);
     if let Some(e) = &view.error {
         ui.add(egui::Label::new(RichText::new(format!("invalid: {e}")).color(ERROR_COLOR)).wrap());
         if view.last.is_some() {
@@ -514,19 +606,32 @@ pub fn show(ui: &mut egui::Ui, inputs: &mut CornerInputs, view: &CornerView) {
         if view.error.is_none() {
             ui.label("Planning the corner…");
         }
-        return;
+        return None;
     };
     numbers(ui, r);
     ui.separator();
-    let h = (ui.available_height() - TEACH_HEIGHT - 16.0).max(220.0);
+    let mut cmd = None;
+    if nc.open {
+        cmd = corner_nc::options(ui, nc, nc_cache, view.error.is_some());
+        ui.separator();
+    }
+    let teach = if nc.open { 0.0 } else { TEACH_HEIGHT + 16.0 };
+    let h = (ui.available_height() - teach).max(220.0);
     ui.columns(2, |cols| {
         cols[0].label(RichText::new(format!("Corner {:.0}°: walls, circles, tool path", r.angle_deg)).strong());
         corner_plot(&mut cols[0], r, h - 20.0);
-        cols[1].label(RichText::new("Engagement along the path (evaluator)").strong());
-        engagement_plot(&mut cols[1], r, h - 20.0);
+        if nc.open {
+            cols[1].allocate_ui(egui::vec2(cols[1].available_width(), h), |ui| corner_nc::preview(ui, nc_cache));
+        } else {
+            cols[1].label(RichText::new("Engagement along the path (evaluator)").strong());
+            engagement_plot(&mut cols[1], r, h - 20.0);
+        }
     });
-    ui.separator();
-    teaching(ui);
+    if !nc.open {
+        ui.separator();
+        teaching(ui);
+    }
+    cmd
 }
 
 /// Height of the teaching text under the plots.
@@ -554,9 +659,8 @@ fn numbers(ui: &mut egui::Ui, r: &CornerResult) {
         ui.end_row();
         ui.colored_label(STRATEGY_COLOR, r.method);
         ui.label(format!("{:.1}°", r.max_deg));
-        let over = r.body_max_deg > r.target_deg + 1.0 || r.tip_deg > r.tip_limit_deg + 1.0;
         let text = RichText::new(format!("{:.1}° / {:.1}° ({:.1}°)", r.body_max_deg, r.tip_deg, r.tip_limit_deg));
-        ui.label(if over { text.color(ERROR_COLOR) } else { text });
+        ui.label(if r.passes { text } else { text.color(ERROR_COLOR) });
         ui.label(format!("{:.1} mm", r.path_length_mm));
         ui.label(format!("{:.2} s", r.time_s));
         ui.label(format!("{}", r.circles));
@@ -640,8 +744,15 @@ fn teaching(ui: &mut egui::Ui) {
     });
 }
 
-/// The Pocket sub-mode: vertices as text, tool, step-over, method; the rings and their numbers.
-fn pocket(ui: &mut egui::Ui, inputs: &mut CornerInputs, view: &CornerView) {
+/// The Pocket sub-mode: vertices as text, tool, step-over, method; the rings and their numbers,
+/// and the program beside the rings when the NC export is open.
+fn pocket(
+    ui: &mut egui::Ui,
+    inputs: &mut CornerInputs,
+    view: &CornerView,
+    nc: &mut CornerNcSettings,
+    nc_cache: &CornerNcCache,
+) -> Option<Command> {
     ui.horizontal_wrapped(|ui| {
         ui.label("Method");
         for m in CornerMethod::ALL {
@@ -664,6 +775,12 @@ fn pocket(ui: &mut egui::Ui, inputs: &mut CornerInputs, view: &CornerView) {
             ui.label("planning…");
         });
     }
+    let mut cmd = None;
+    if nc.open {
+        ui.separator();
+        cmd = corner_nc::options(ui, nc, nc_cache, view.error.is_some());
+        ui.separator();
+    }
     let h = (ui.available_height() - 10.0).max(220.0);
     ui.horizontal_top(|ui| {
         ui.vertical(|ui| {
@@ -678,26 +795,31 @@ fn pocket(ui: &mut egui::Ui, inputs: &mut CornerInputs, view: &CornerView) {
                 ui.label(format!("{} rings", r.rings.len()));
                 ui.label(format!("path {:.1} mm, {:.1} s", r.path_length_mm, r.time_s));
                 ui.label(format!("max engagement {:.1}°", r.max_deg));
-                ui.label(format!("corners with trochoids {}, plain {}", r.trochoid_corners, r.plain_corners));
-                egui::Grid::new("pocket_rings").striped(true).show(ui, |ui| {
-                    ui.label("ring");
-                    ui.label("offset");
-                    ui.label("max eng.");
-                    ui.end_row();
-                    for (level, off, mx, _) in &r.rings {
-                        ui.label(format!("{level}"));
-                        ui.label(format!("{off:.2} mm"));
-                        ui.label(format!("{mx:.1}°"));
+                ui.label(&r.detail);
+                egui::ScrollArea::vertical().id_salt("pocket_rings_scroll").show(ui, |ui| {
+                    egui::Grid::new("pocket_rings").striped(true).show(ui, |ui| {
+                        ui.label("ring");
+                        ui.label("offset");
+                        ui.label("max eng.");
                         ui.end_row();
-                    }
+                        for (level, off, mx, _) in &r.rings {
+                            ui.label(format!("{level}"));
+                            ui.label(format!("{off:.2} mm"));
+                            ui.label(format!("{mx:.1}°"));
+                            ui.end_row();
+                        }
+                    });
                 });
             }
         });
         let Some(r) = view.last_pocket.as_deref() else {
             return;
         };
+        let w = ui.available_width();
+        let plot_w = if nc.open { 0.5 * w } else { w };
         Plot::new("pocket_rings_plot")
             .data_aspect(1.0)
+            .width(plot_w)
             .height(h)
             .legend(Legend::default())
             .x_axis_label("x (mm)")
@@ -708,7 +830,14 @@ fn pocket(ui: &mut egui::Ui, inputs: &mut CornerInputs, view: &CornerView) {
                     p.line(line("rings", pts).color(STRATEGY_COLOR).width(1.0));
                 }
             });
+        if nc.open {
+            ui.vertical(|ui| {
+                ui.set_min_size(egui::vec2(ui.available_width(), h));
+                corner_nc::preview(ui, nc_cache);
+            });
+        }
     });
+    cmd
 }
 
 #[cfg(test)]

@@ -146,15 +146,39 @@ pub struct ExportView {
 }
 
 impl ExportView {
+    #[cfg(test)]
     fn line(&self, i: usize) -> &str {
-        let start = self.line_starts[i];
-        let end = self.line_starts.get(i + 1).map_or(self.text.len(), |&e| e);
-        self.text[start..end].trim_end_matches('\n')
+        line_of(&self.text, &self.line_starts, i)
     }
 
     fn lines(&self) -> usize {
         self.line_starts.len()
     }
+}
+
+/// Byte offsets of the line starts of `text` (for [`program_text`]).
+pub(super) fn line_starts(text: &str) -> Vec<usize> {
+    let mut starts = vec![0];
+    starts.extend(text.match_indices('\n').map(|(i, _)| i + 1).filter(|&i| i < text.len()));
+    starts
+}
+
+/// Line `i` of `text` without its newline (`starts` from [`line_starts`]).
+fn line_of<'a>(text: &'a str, starts: &[usize], i: usize) -> &'a str {
+    let start = starts[i];
+    let end = starts.get(i + 1).map_or(text.len(), |&e| e);
+    text[start..end].trim_end_matches('\n')
+}
+
+/// A read-only program preview filling `ui`: only the visible lines are laid out, so a long
+/// program costs nothing per frame.
+pub(super) fn program_text(ui: &mut egui::Ui, id: &str, text: &str, starts: &[usize]) {
+    let row_h = ui.text_style_height(&egui::TextStyle::Monospace);
+    egui::ScrollArea::both().id_salt(id).auto_shrink([false, false]).show_rows(ui, row_h, starts.len(), |ui, rows| {
+        for i in rows {
+            ui.add(egui::Label::new(RichText::new(line_of(text, starts, i)).monospace()).extend());
+        }
+    });
 }
 
 /// The program of the last (plan, settings), recomputed only when either changed.
@@ -214,8 +238,7 @@ fn generate(plan: &Plan, settings: &ExportSettings) -> Result<ExportView, String
     let path = &plan.path;
     let per_segment = (PLANNED_POINTS_PER_SEGMENT * 40 / path.cycles.max(1)).clamp(8, PLANNED_POINTS_PER_SEGMENT);
     let planned = to_points(path.sample_cycles(0, path.cycles, per_segment));
-    let mut line_starts = vec![0];
-    line_starts.extend(program.text.match_indices('\n').map(|(i, _)| i + 1).filter(|&i| i < program.text.len()));
+    let line_starts = line_starts(&program.text);
     Ok(ExportView {
         text: program.text,
         line_starts,
@@ -307,17 +330,7 @@ pub fn show(
         ui.allocate_ui_with_layout(egui::vec2(left, avail.y), egui::Layout::top_down(egui::Align::Min), |ui| {
             ui.set_min_size(egui::vec2(left, avail.y));
             ui.label(RichText::new("Program (read-only)").strong());
-            let row_h = ui.text_style_height(&egui::TextStyle::Monospace);
-            egui::ScrollArea::both().id_salt("nc_preview").auto_shrink([false, false]).show_rows(
-                ui,
-                row_h,
-                view.lines(),
-                |ui, rows| {
-                    for i in rows {
-                        ui.add(egui::Label::new(RichText::new(view.line(i)).monospace()).extend());
-                    }
-                },
-            );
+            program_text(ui, "nc_preview", &view.text, &view.line_starts);
         });
         ui.vertical(|ui| {
             ui.label(RichText::new("Back-plot: the program's own motion over the planned path").strong());

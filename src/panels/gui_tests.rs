@@ -20,7 +20,7 @@ impl FileDialogs for FakeDialogs {
     fn save_job(&mut self, _current: Option<&Path>) -> Option<PathBuf> {
         self.save.clone()
     }
-    fn save_nc(&mut self, _extension: &str) -> Option<PathBuf> {
+    fn save_nc(&mut self, _stem: &str, _extension: &str) -> Option<PathBuf> {
         self.save.clone()
     }
 }
@@ -427,4 +427,166 @@ fn pocket_mode_shows_the_rings_and_reports_a_bad_polygon() {
     h.run();
     assert!(h.state().corner.error.is_some(), "bow tie rejected");
     assert!(h.state().corner.last_pocket.is_some(), "last pocket kept");
+}
+
+#[test]
+fn pocket_mode_plans_the_medial_axis_strategy_for_the_whole_pocket() {
+    use super::panels::corner::{CornerMethod, PocketPlans};
+    use trochoplan_core::corner::{Method, PocketSettings, parse_points, plan_perforative_pocket, pocket_polygon};
+    let mut h = corner_harness();
+    h.get_by_label("Pocket").click();
+    h.run();
+    h.state_mut().state.corner.method = CornerMethod::MedialAxis;
+    h.run();
+    let t0 = Instant::now();
+    while h.state().corner.pending() && t0.elapsed().as_secs() < 120 {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        h.step();
+    }
+    h.run();
+    assert!(h.state().corner.error.is_none(), "{:?}", h.state().corner.error);
+    let p = h.state().corner.last_pocket.clone().expect("a pocket");
+    let PocketPlans::Perforative(plan) = &p.plan else { panic!("medial-axis plan expected, got rings") };
+    // The tab shows what the core plans for the same inputs.
+    let i = &h.state().state.corner;
+    let polygon = pocket_polygon(parse_points(&i.polygon_text, "polygon").unwrap()).unwrap();
+    let settings = PocketSettings { method: Method::MedialAxis, ..plan.settings };
+    let want = plan_perforative_pocket(&polygon, settings).unwrap();
+    assert_eq!(want.segments, plan.segments);
+    assert!(shows(&h, &p.detail), "{}", p.detail);
+    assert!(p.detail.contains(&format!("{} circles along the medial axis", want.circles.len())), "{}", p.detail);
+}
+
+/// Step frames until the Corner tab's acceptance table is no longer being computed.
+fn wait_for_table(h: &mut Harness<'_, App>) {
+    let t0 = Instant::now();
+    while h.state().corner.table.running() && t0.elapsed().as_secs() < 600 {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        h.step();
+    }
+    h.run();
+}
+
+#[test]
+fn corner_table_lists_every_angle_for_each_strategy_as_the_core_measures_it() {
+    use trochoplan_core::corner::acceptance::{ANGLES_DEG, STRATEGIES, acceptance_row};
+    let mut h = corner_harness();
+    h.get_by_label("Acceptance table").click();
+    h.step(); // the click: the table is asked for after the panels drew
+    h.step();
+    assert!(h.state().corner.table.running(), "measured on the worker thread");
+    assert!(h.query_by_label(panels::corner_table::label::CANCEL).is_some(), "progress with a cancel button");
+    wait_for_table(&mut h);
+    let table = &h.state().corner.table;
+    assert!(table.complete() && table.error.is_none(), "{:?}", table.error);
+    assert_eq!(table.angles.len(), 9);
+    let mut per_strategy = [0usize; 3];
+    for (a, &angle) in table.angles.iter().zip(&ANGLES_DEG) {
+        assert_eq!(a.angle_deg, angle);
+        let rows = a.rows.as_ref().expect("rows");
+        for (i, (r, m)) in rows.iter().zip(&STRATEGIES).enumerate() {
+            assert_eq!((r.method, r.corner_angle_deg), (*m, angle));
+            per_strategy[i] += 1;
+        }
+        assert!(shows(&h, &format!("{angle:.0}°")), "row of {angle}° shown");
+    }
+    assert_eq!(per_strategy, [9, 9, 9], "9 rows per strategy");
+    let all: Vec<_> = table.angles.iter().flat_map(|a| a.rows.as_ref().expect("rows").iter()).collect();
+    let shown_verdicts = h.query_all_by_label("pass").count() + h.query_all_by_label("fail").count();
+    assert_eq!(shown_verdicts, 27, "a verdict per strategy and angle");
+    assert_eq!(h.query_all_by_label("pass").count(), all.iter().filter(|r| r.passes()).count());
+
+    // the 90° rows are the core's, for the tab's settings, and shown as such
+    let settings = panels::corner::settings(&h.state().state.corner).expect("valid settings");
+    let rows90 = table.angles[4].rows.as_ref().expect("rows").clone();
+    for (row, &m) in rows90.iter().zip(&STRATEGIES) {
+        let want = acceptance_row(90.0, m, settings, panels::corner::SPACING_MM).expect("core row");
+        assert_eq!(*row, want, "{}", m.name());
+        for text in [
+            format!("{:.2}", want.body_max_deg),
+            format!("{:.2}", want.tip_deg),
+            format!("{:.2}", want.tip_limit_deg),
+            format!("{:.1}", want.path_length_mm),
+            format!("{:.1}", want.time_s),
+        ] {
+            assert!(shows(&h, &text), "{} at 90°: {text} shown", m.name());
+        }
+    }
+    assert!(shows(&h, &format!("{:.2}", rows90[0].plain_max_deg)), "plain max shown");
+
+    // an invalid input: the core's message, the last table kept, nothing recomputed
+    h.state_mut().state.corner.use_step_over = true;
+    h.state_mut().state.corner.step_over_mm = 12.0; // ≥ D = 10
+    h.run();
+    let err = h.state().corner.table.error.clone().expect("invalid step-over");
+    assert!(err.contains("step-over"), "{err}");
+    assert!(shows(&h, &format!("invalid: {err}")));
+    assert!(h.state().corner.table.complete() && !h.state().corner.table.running(), "last table kept");
+}
+
+#[test]
+fn corner_export_previews_the_core_program_saves_it_and_reports_a_bad_depth() {
+    use panels::corner_nc::label as nc;
+    use trochoplan_core::nc::{CutSetup, Dialect, NcOptions, corner_program, pocket_program};
+    let dir = tempfile::tempdir().expect("tempdir");
+    let file = dir.path().join("corner.nc");
+    let app = App::new(Job::default(), None, Box::new(FakeDialogs { open: None, save: Some(file.clone()) }));
+    let mut h = harness_with(app);
+    h.get_by_label("Corner").click();
+    h.run();
+    assert!(h.query_by_label(nc::SAVE).is_none(), "export closed by default");
+    h.get_by_label(nc::OPEN).click();
+    h.run();
+    assert!(h.state().state.corner_nc.open);
+    let r = corner_result(&h);
+    // the CLI's defaults give the CLI's program (`trochoplan corner --export`)
+    let want = corner_program(&r.plan, &r.settings, r.angle_deg, CutSetup::default(), &NcOptions::default())
+        .expect("core program");
+    assert_eq!(h.state().corner_nc.preview().expect("program").text, want.text);
+    assert!(shows(&h, "(TrochoPlan corner)"), "preview shows the program");
+    let generated = h.state().corner_nc.generated;
+    h.run();
+    assert_eq!(h.state().corner_nc.generated, generated, "not regenerated per frame");
+
+    h.get_by_label("Fanuc-style ISO").click();
+    h.get_by_label(nc::LINEAR).click();
+    h.run();
+    let fanuc = h.state().corner_nc.preview().expect("program").text.clone();
+    let opts = NcOptions { dialect: Dialect::Fanuc, linear_segments: true, ..NcOptions::default() };
+    let want = corner_program(&r.plan, &r.settings, r.angle_deg, CutSetup::default(), &opts).expect("core program");
+    assert_eq!(fanuc, want.text);
+    assert!(fanuc.starts_with("%\nO1000\n") && !fanuc.contains("\nG3"), "Fanuc, chords only");
+
+    // a bad depth: the core's message in the tab, no save button, no panic
+    h.get_by_role_and_label(Role::SpinButton, nc::DEPTH).set_value_accesskit(-1.0);
+    h.run();
+    assert_eq!(h.state().state.corner_nc.depth_mm, -1.0);
+    let bad = CutSetup { depth_mm: -1.0, ..CutSetup::default() };
+    let msg = corner_program(&r.plan, &r.settings, r.angle_deg, bad, &opts).expect_err("depth").to_string();
+    assert!(msg.contains("depth"), "{msg}");
+    assert!(shows(&h, &format!("Cannot write the program: {msg}")), "error shown: {msg}");
+    assert!(h.query_by_label(nc::SAVE).is_none(), "nothing to save");
+
+    h.get_by_role_and_label(Role::SpinButton, nc::DEPTH).set_value_accesskit(3.0);
+    h.run();
+    let preview = h.state().corner_nc.preview().expect("program").text.clone();
+    assert!(preview.contains("\nG1 Z-3.000 F600.0\n"), "depth 3 mm: {preview}");
+    h.get_by_label(nc::SAVE).click();
+    h.run();
+    assert_eq!(std::fs::read_to_string(&file).expect("saved"), preview, "the file holds the previewed text");
+    let (status, is_err) = h.state().status.clone().expect("status");
+    assert!(!is_err && status.starts_with("exported"), "{status}");
+
+    // pocket mode exports the whole pocket
+    h.get_by_label("Pocket").click();
+    h.run();
+    let p = h.state().corner.last_pocket.clone().expect("a pocket");
+    let cut = CutSetup { depth_mm: 3.0, ..CutSetup::default() };
+    let super::panels::corner::PocketPlans::Rings(plan) = &p.plan else { panic!("ring pocket expected") };
+    let want = pocket_program(plan, cut, &opts).expect("core pocket program");
+    let preview = h.state().corner_nc.preview().expect("program").text.clone();
+    assert_eq!(preview, want.text);
+    h.get_by_label(nc::SAVE).click();
+    h.run();
+    assert_eq!(std::fs::read_to_string(&file).expect("saved"), preview);
 }

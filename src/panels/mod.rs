@@ -3,6 +3,8 @@
 
 pub mod compare;
 pub mod corner;
+pub mod corner_nc;
+pub mod corner_table;
 pub mod export;
 pub mod graphics;
 pub mod metrics;
@@ -30,4 +32,10 @@ pub enum Command {
     CancelSweep,
     /// Ask for a file and write the previewed NC program.
     ExportNc,
+    /// Stop the Corner tab's acceptance table.
+    CancelCornerTable,
+    /// Compute the acceptance table again.
+    RestartCornerTable,
+    /// Ask for a file and write the Corner tab's previewed NC program.
+    ExportCornerNc,
 }

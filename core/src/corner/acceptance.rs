@@ -11,9 +11,9 @@
 //! ρ(1/sin α − 1) thick. So the final move is reported separately ("tip") and bounded by
 //! max(a* + 1°, π − 2α + 1°); the rest of the path ("body") must stay within a* + 1°.
 
-use super::evaluator::{EvaluatorOptions, engagement_profile};
+use super::evaluator::{EngagementProfile, EvaluatorOptions, engagement_profile};
 use super::geometry::Corner;
-use super::strategy::{CornerScenario, CornerSettings, Method, plan_corner};
+use super::strategy::{CornerPlan, CornerScenario, CornerSettings, Method, plan_corner};
 use crate::error::JobError;
 use serde::{Deserialize, Serialize};
 
@@ -47,6 +47,40 @@ pub struct AcceptanceRow {
 /// Corner angles of the acceptance table (degrees).
 pub const ANGLES_DEG: [f64; 9] = [30.0, 45.0, 60.0, 75.0, 90.0, 105.0, 120.0, 135.0, 150.0];
 
+/// The corner strategies of the table (the plain ring is measured in every row).
+pub const STRATEGIES: [Method; 3] = [Method::Variable, Method::Isometric, Method::MedialAxis];
+
+/// Margin over the target a* (and over the tip's stated limit) that still passes (degrees):
+/// issue #5 accepts the measured peak within a* + 1°.
+pub const MARGIN_DEG: f64 = 1.0;
+
+impl AcceptanceRow {
+    /// Largest accepted body engagement, a* + [`MARGIN_DEG`] (degrees).
+    pub fn body_limit_deg(&self) -> f64 {
+        self.target_deg + MARGIN_DEG
+    }
+
+    /// Largest accepted tip engagement, max(a* + 1°, tip limit + 1°) (degrees; module docs).
+    pub fn tip_allowed_deg(&self) -> f64 {
+        self.body_limit_deg().max(self.tip_limit_deg + MARGIN_DEG)
+    }
+
+    /// The body stays within a* + 1°.
+    pub fn body_passes(&self) -> bool {
+        self.body_max_deg <= self.body_limit_deg()
+    }
+
+    /// The final move into the corner point stays within its allowance ([`Self::tip_allowed_deg`]).
+    pub fn tip_passes(&self) -> bool {
+        self.tip_deg <= self.tip_allowed_deg()
+    }
+
+    /// Both the body and the tip pass (a NaN anywhere fails).
+    pub fn passes(&self) -> bool {
+        self.body_passes() && self.tip_passes()
+    }
+}
+
 /// One row: plan the plain ring and `method` for the symmetric corner of `angle_deg`, measure
 /// both with the evaluator at `spacing` mm.
 pub fn acceptance_row(
@@ -55,13 +89,42 @@ pub fn acceptance_row(
     settings: CornerSettings,
     spacing: f64,
 ) -> Result<AcceptanceRow, JobError> {
+    let rows = acceptance_rows_at(angle_deg, &[method], settings, spacing)?;
+    rows.into_iter().next().ok_or_else(|| JobError::range("method", "none", "one corner strategy"))
+}
+
+/// The rows of several methods at one corner angle, in the order of `methods`: the plain ring
+/// is planned and measured once and shared; each row equals [`acceptance_row`] for its method.
+pub fn acceptance_rows_at(
+    angle_deg: f64,
+    methods: &[Method],
+    settings: CornerSettings,
+    spacing: f64,
+) -> Result<Vec<AcceptanceRow>, JobError> {
     let corner = Corner::symmetric(angle_deg.to_radians())?;
     let sc = CornerScenario::new(corner, settings)?;
     let opts = EvaluatorOptions::new(settings.tool_radius, spacing);
     let plain = plan_corner(&sc, Method::Plain)?;
     let plain_prof = engagement_profile(&sc.stock, &sc.previous_ring, &plain.path, &opts)?;
-    let plan = plan_corner(&sc, method)?;
-    let prof = engagement_profile(&plan.stock, &plan.precut, &plan.path, &opts)?;
+    methods
+        .iter()
+        .map(|&method| {
+            let plan = plan_corner(&sc, method)?;
+            let prof = engagement_profile(&plan.stock, &plan.precut, &plan.path, &opts)?;
+            Ok(row(angle_deg, method, &corner, settings, (&plan, &prof), (&plain, &plain_prof)))
+        })
+        .collect()
+}
+
+/// The row of a measured plan (body / tip split and the tip's limit, module docs).
+fn row(
+    angle_deg: f64,
+    method: Method,
+    corner: &Corner,
+    settings: CornerSettings,
+    (plan, prof): (&CornerPlan, &EngagementProfile),
+    (plain, plain_prof): (&CornerPlan, &EngagementProfile),
+) -> AcceptanceRow {
     // The final move into U0 is reported apart (see the module docs).
     let (tip_start, tip_end) = match plan.tip_segment {
         Some(i) => {
@@ -89,7 +152,7 @@ pub fn acceptance_row(
     } else {
         std::f64::consts::PI - 2.0 * corner.half_angle
     };
-    Ok(AcceptanceRow {
+    AcceptanceRow {
         corner_angle_deg: angle_deg,
         method,
         target_deg: settings.target.to_degrees(),
@@ -104,7 +167,7 @@ pub fn acceptance_row(
         time_s: plan.time_s,
         plain_path_length_mm: plain.path_length_mm,
         plain_time_s: plain.time_s,
-    })
+    }
 }
 
 /// All rows for one method.
@@ -141,4 +204,56 @@ pub fn markdown(rows: &[AcceptanceRow]) -> String {
         ));
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::corner::engagement::radial_depth_for_engagement;
+
+    /// The table's settings (module docs of the integration test `corner_acceptance.rs`):
+    /// D = 10, a_e giving 46° on the straight part, t1 = 15 %.
+    fn settings() -> CornerSettings {
+        let r = 5.0;
+        CornerSettings::new(r, radial_depth_for_engagement(46f64.to_radians(), r)).expect("settings")
+    }
+
+    #[test]
+    fn rows_at_one_angle_equal_the_single_rows_and_share_the_plain_ring() {
+        let (angle, spacing) = (120.0, 1.0);
+        let rows = acceptance_rows_at(angle, &STRATEGIES, settings(), spacing).expect("rows");
+        assert_eq!(rows.len(), STRATEGIES.len());
+        for (row, &m) in rows.iter().zip(&STRATEGIES) {
+            let single = acceptance_row(angle, m, settings(), spacing).expect("row");
+            assert_eq!(*row, single, "{}", m.name());
+        }
+        assert!(rows.windows(2).all(|w| w[0].plain_max_deg == w[1].plain_max_deg));
+        assert!(acceptance_rows_at(angle, &[], settings(), spacing).expect("no methods").is_empty());
+        let e = acceptance_rows_at(200.0, &STRATEGIES, settings(), spacing).expect_err("angle");
+        assert!(e.to_string().contains("angle"), "{e}");
+    }
+
+    #[test]
+    fn pass_flags_compare_with_the_target_and_the_tip_allowance() {
+        let row = acceptance_row(90.0, Method::Variable, settings(), 1.0).expect("row");
+        let at = |body: f64, tip: f64, limit: f64| AcceptanceRow {
+            body_max_deg: body,
+            tip_deg: tip,
+            tip_limit_deg: limit,
+            ..row.clone()
+        };
+        let t = row.target_deg;
+        // boundaries are inclusive: a* + 1° passes, anything above fails
+        assert!(at(t + MARGIN_DEG, 0.0, 0.0).body_passes());
+        assert!(!at(t + MARGIN_DEG + 1e-9, 0.0, 0.0).body_passes());
+        assert!(!at(t + 2.0, 0.0, 0.0).passes());
+        // the tip may reach its own limit + 1° when that is above a* + 1° ...
+        assert!(at(t, 120.0, 119.0).tip_passes() && at(t, 120.0, 119.0).passes());
+        assert!(!at(t, 120.0 + 1e-9, 119.0).tip_passes());
+        // ... and a* + 1° when its limit is below the target
+        assert_eq!(at(t, 0.0, 20.0).tip_allowed_deg(), t + MARGIN_DEG);
+        assert!(at(t, t + MARGIN_DEG, 20.0).tip_passes() && !at(t, t + 1.5, 20.0).tip_passes());
+        assert!(!at(f64::NAN, 0.0, 0.0).passes() && !at(t, f64::NAN, 90.0).passes());
+        assert_eq!(row.passes(), row.body_passes() && row.tip_passes());
+    }
 }

@@ -20,10 +20,12 @@
 //! relative to the cycle origin (`Y[#<oy>+…]`, `Y=R10+…`).
 
 pub mod backplot;
+pub mod corner;
 mod dialect;
 mod writer;
 
 pub use backplot::backplot;
+pub use corner::{CutSetup, corner_program, perforative_program, pocket_program};
 
 pub use dialect::{CommentStyle, Dialect, DialectSpec, LoopStyle, ToolCall, sanitize_comment};
 pub use writer::{Writer, YForm};

@@ -1,0 +1,233 @@
+//! NC export from the Corner tab (issue #5): the program of the planned corner or pocket, with
+//! dialect, tolerance, arcs or G1 chords, coolant, depth and spindle speed; previewed read-only
+//! and saved through the app's file dialog (`Command::ExportCornerNc`).
+//!
+//! The program comes from the core (`nc::corner_program`, `nc::pocket_program`), the same calls
+//! as `trochoplan corner --export` and `trochoplan pocket --export`, so the GUI writes the
+//! CLI's text. It is generated once per (plan, settings) in [`CornerNcCache`], not per frame.
+
+use super::Command;
+use super::corner::{CornerMode, CornerResult, CornerView, PocketPlans, PocketResult};
+use super::export::{NcDialect, line_starts, program_text};
+use super::params::ERROR_COLOR;
+use eframe::egui::{self, DragValue, RichText, Slider, SliderClamping};
+use serde::{Deserialize, Serialize};
+use std::sync::Arc;
+use trochoplan_core::nc::{self, CutSetup, DEFAULT_TOLERANCE_MM, NcOptions};
+
+/// Accessible names of the inputs (tests find them by these).
+pub mod label {
+    pub const OPEN: &str = "NC export";
+    pub const TOLERANCE: &str = "Corner NC tolerance";
+    pub const LINEAR: &str = "G1 chords only";
+    pub const COOLANT: &str = "Coolant (M8/M9)";
+    pub const DEPTH: &str = "Depth below Z0";
+    pub const RPM: &str = "Spindle";
+    pub const SAVE: &str = "Save program as…";
+}
+
+/// The export options of the Corner tab (persisted with the app state).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct CornerNcSettings {
+    /// Show the export options and the program preview.
+    pub open: bool,
+    pub dialect: NcDialect,
+    /// Largest distance of the written path from the planned one, before rounding (mm).
+    pub tolerance_mm: f64,
+    pub linear_segments: bool,
+    pub coolant: bool,
+    /// Cutting depth below the stock top Z0 (mm).
+    pub depth_mm: f64,
+    pub spindle_rpm: f64,
+}
+
+impl Default for CornerNcSettings {
+    /// The defaults of `trochoplan corner --export`.
+    fn default() -> Self {
+        let cut = CutSetup::default();
+        CornerNcSettings {
+            open: false,
+            dialect: NcDialect::LinuxCnc,
+            tolerance_mm: DEFAULT_TOLERANCE_MM,
+            linear_segments: false,
+            coolant: false,
+            depth_mm: cut.depth_mm,
+            spindle_rpm: cut.spindle_rpm,
+        }
+    }
+}
+
+impl CornerNcSettings {
+    /// The core's options (validated by the core when the program is written).
+    pub fn options(&self) -> NcOptions {
+        NcOptions {
+            dialect: self.dialect.core(),
+            tolerance_mm: self.tolerance_mm,
+            linear_segments: self.linear_segments,
+            coolant: self.coolant,
+            ..NcOptions::default()
+        }
+    }
+
+    pub fn cut(&self) -> CutSetup {
+        CutSetup { depth_mm: self.depth_mm, spindle_rpm: self.spindle_rpm }
+    }
+}
+
+/// A written program, ready to preview and save.
+#[derive(Clone, Debug)]
+pub struct NcPreview {
+    pub text: String,
+    line_starts: Vec<usize>,
+    pub blocks: usize,
+    /// Default file name without extension ("corner" or "pocket").
+    pub file_stem: &'static str,
+}
+
+/// The plan a program is written from.
+#[derive(Clone)]
+enum Source {
+    Corner(Arc<CornerResult>),
+    Pocket(Arc<PocketResult>),
+}
+
+impl Source {
+    fn same(&self, other: &Source) -> bool {
+        match (self, other) {
+            (Source::Corner(a), Source::Corner(b)) => Arc::ptr_eq(a, b),
+            (Source::Pocket(a), Source::Pocket(b)) => Arc::ptr_eq(a, b),
+            _ => false,
+        }
+    }
+}
+
+/// The program of the shown plan and the export settings, regenerated only when either changed.
+#[derive(Default)]
+pub struct CornerNcCache {
+    key: Option<(Source, CornerNcSettings)>,
+    /// The program, or the core's message.
+    pub result: Option<Result<NcPreview, String>>,
+    /// Programs generated (tests check the cache).
+    pub generated: u64,
+}
+
+impl CornerNcCache {
+    /// Regenerate if the plan shown in `mode` or the settings changed.
+    pub fn update(&mut self, view: &CornerView, mode: CornerMode, settings: &CornerNcSettings) {
+        let source = match mode {
+            CornerMode::Corner => view.last.clone().map(Source::Corner),
+            CornerMode::Pocket => view.last_pocket.clone().map(Source::Pocket),
+            CornerMode::Table => None,
+        };
+        let Some(source) = source else {
+            self.key = None;
+            self.result = None;
+            return;
+        };
+        // showing or hiding the panel does not change the program
+        let settings = CornerNcSettings { open: false, ..settings.clone() };
+        if self.key.as_ref().is_some_and(|(s, k)| s.same(&source) && *k == settings) {
+            return;
+        }
+        self.generated += 1;
+        self.result = Some(generate(&source, &settings));
+        self.key = Some((source, settings));
+    }
+
+    /// The current program, if it was written without error.
+    pub fn preview(&self) -> Option<&NcPreview> {
+        self.result.as_ref().and_then(|r| r.as_ref().ok())
+    }
+}
+
+fn generate(source: &Source, settings: &CornerNcSettings) -> Result<NcPreview, String> {
+    let opts = settings.options();
+    let (program, file_stem) = match source {
+        Source::Corner(r) => (nc::corner_program(&r.plan, &r.settings, r.angle_deg, settings.cut(), &opts), "corner"),
+        Source::Pocket(r) => match &r.plan {
+            PocketPlans::Rings(plan) => (nc::pocket_program(plan, settings.cut(), &opts), "pocket"),
+            PocketPlans::Perforative(plan) => (nc::perforative_program(plan, settings.cut(), &opts), "pocket"),
+        },
+    };
+    let program = program.map_err(|e| e.to_string())?;
+    Ok(NcPreview { line_starts: line_starts(&program.text), text: program.text, blocks: program.blocks, file_stem })
+}
+
+/// The options, the program's size and the save button. `inputs_error`: the tab's inputs are
+/// invalid (the program would be of the last valid plan, so saving is disabled).
+pub fn options(
+    ui: &mut egui::Ui,
+    settings: &mut CornerNcSettings,
+    cache: &CornerNcCache,
+    inputs_error: bool,
+) -> Option<Command> {
+    let mut cmd = None;
+    ui.horizontal_wrapped(|ui| {
+        ui.label(RichText::new("Dialect").strong());
+        for d in NcDialect::ALL {
+            ui.radio_value(&mut settings.dialect, d, d.label());
+        }
+        ui.separator();
+        let l = ui.label(label::TOLERANCE).on_hover_text(
+            "Largest distance of the written path from the planned one before rounding (mm); \
+             curves become biarcs (or chords) within it. Default 0.005 mm (domain-spec §5.4).",
+        );
+        ui.spacing_mut().slider_width = 110.0;
+        ui.add(
+            Slider::new(&mut settings.tolerance_mm, 1e-4..=1.0)
+                .logarithmic(true)
+                .clamping(SliderClamping::Never)
+                .max_decimals(4)
+                .suffix(" mm"),
+        )
+        .labelled_by(l.id);
+    });
+    ui.horizontal_wrapped(|ui| {
+        ui.checkbox(&mut settings.linear_segments, label::LINEAR)
+            .on_hover_text("Write every arc as G1 chords instead of G2/G3 (more blocks).");
+        ui.checkbox(&mut settings.coolant, label::COOLANT);
+        ui.separator();
+        let l = ui.label(label::DEPTH);
+        ui.add(DragValue::new(&mut settings.depth_mm).speed(0.1).suffix(" mm")).labelled_by(l.id).on_hover_text(
+            "Cutting depth below the stock top Z0, 0 < depth ≤ 1000 mm; the tool feeds down at the path start.",
+        );
+        let l = ui.label(label::RPM);
+        ui.add(DragValue::new(&mut settings.spindle_rpm).speed(10.0).suffix(" rpm"))
+            .labelled_by(l.id)
+            .on_hover_text("Spindle speed (M3), 0 < n ≤ 1000000 rpm.");
+    });
+    match &cache.result {
+        None => {
+            ui.label("No plan yet.");
+        }
+        Some(Err(e)) => {
+            ui.add(egui::Label::new(RichText::new(format!("Cannot write the program: {e}")).color(ERROR_COLOR)).wrap());
+        }
+        Some(Ok(p)) => {
+            ui.horizontal(|ui| {
+                if ui
+                    .add_enabled(!inputs_error, egui::Button::new(label::SAVE))
+                    .on_hover_text("Choose a file; it is written atomically (temporary file, then rename).")
+                    .on_disabled_hover_text("The inputs are invalid: fix them first.")
+                    .clicked()
+                {
+                    cmd = Some(Command::ExportCornerNc);
+                }
+                ui.label(format!("{} blocks, {} bytes, {} lines", p.blocks, p.text.len(), p.line_starts.len()));
+            });
+        }
+    }
+    cmd
+}
+
+/// The read-only program text filling `ui`.
+pub fn preview(ui: &mut egui::Ui, cache: &CornerNcCache) {
+    ui.label(RichText::new("Program (read-only)").strong());
+    match cache.preview() {
+        Some(p) => program_text(ui, "corner_nc_preview", &p.text, &p.line_starts),
+        None => {
+            ui.label("No program.");
+        }
+    }
+}
