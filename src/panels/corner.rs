@@ -792,7 +792,9 @@ fn pocket(
             if let Some(r) = view.last_pocket.as_deref() {
                 ui.add_space(6.0);
                 ui.label(format!("method {}", r.method));
-                ui.label(format!("{} rings", r.rings.len()));
+                if matches!(r.plan, PocketPlans::Rings(_)) {
+                    ui.label(format!("{} rings", r.rings.len()));
+                }
                 ui.label(format!("path {:.1} mm, {:.1} s", r.path_length_mm, r.time_s));
                 ui.label(format!("max engagement {:.1}°", r.max_deg));
                 ui.label(&r.detail);

@@ -8,7 +8,9 @@
 //! coordinates of its polygon; the stock top is Z0 in both.
 
 use super::{NcOptions, NcProgram, PathJob, program_for_path};
-use crate::corner::{CornerPlan, CornerSettings, LinkKind, PerforativePlan, PocketPlan, straight_engagement};
+use crate::corner::{
+    CornerPlan, CornerSettings, LinkKind, PerforativePlan, PocketPlan, PocketSettings, straight_engagement,
+};
 use crate::error::JobError;
 
 /// What a corner or pocket plan does not carry: the cutting depth and the spindle speed.
@@ -106,18 +108,28 @@ pub fn pocket_program(plan: &PocketPlan, cut: CutSetup, opts: &NcOptions) -> Res
                 plan.link_length_mm,
                 plan.links.len() - feed_links
             ),
-            format!("polygon file coordinates, depth {:.3} mm below the stock top Z0", cut.depth_mm),
-            format!(
-                "tool T{} D {:.3} mm, {:.0} rpm, feed {:.1} mm/min, a_e {:.4} mm",
-                opts.tool_number,
-                2.0 * s.tool_radius,
-                cut.spindle_rpm,
-                s.feed_mm_per_min,
-                s.step_over
-            ),
+            pocket_frame_line(cut),
+            pocket_tool_line(s, cut, opts),
         ],
     };
     program_for_path(&job, opts)
+}
+
+/// Header line of a pocket program: its frame and depth.
+fn pocket_frame_line(cut: CutSetup) -> String {
+    format!("polygon file coordinates, depth {:.3} mm below the stock top Z0", cut.depth_mm)
+}
+
+/// Header line of a pocket program: tool, spindle, feed and step-over.
+fn pocket_tool_line(s: &PocketSettings, cut: CutSetup, opts: &NcOptions) -> String {
+    format!(
+        "tool T{} D {:.3} mm, {:.0} rpm, feed {:.1} mm/min, a_e {:.4} mm",
+        opts.tool_number,
+        2.0 * s.tool_radius,
+        cut.spindle_rpm,
+        s.feed_mm_per_min,
+        s.step_over
+    )
 }
 
 /// The program of a pocket cleared by perforative trochoids along its medial axis: its path
@@ -145,15 +157,8 @@ pub fn perforative_program(plan: &PerforativePlan, cut: CutSetup, opts: &NcOptio
                 plan.body_max_rad.to_degrees(),
                 plan.target_rad.to_degrees()
             ),
-            format!("polygon file coordinates, depth {:.3} mm below the stock top Z0", cut.depth_mm),
-            format!(
-                "tool T{} D {:.3} mm, {:.0} rpm, feed {:.1} mm/min, a_e {:.4} mm",
-                opts.tool_number,
-                2.0 * s.tool_radius,
-                cut.spindle_rpm,
-                s.feed_mm_per_min,
-                s.step_over
-            ),
+            pocket_frame_line(cut),
+            pocket_tool_line(s, cut, opts),
         ],
     };
     program_for_path(&job, opts)
