@@ -383,16 +383,21 @@ fn transition_along(c1: P2, rho1: f64, c2: P2, rho2: f64, u: P2) -> (P2, f64, f6
 
 /// Fraction t ∈ (0, 1) along a→b where the clearance drops to r (a fits, b does not).
 fn crossing(poly: &Polygon, a: P2, b: P2, r: f64) -> f64 {
-    let (mut lo, mut hi) = (0.0, 1.0);
-    for _ in 0..60 {
-        let t = 0.5 * (lo + hi);
-        if clearance(poly, a + (b - a) * t) >= r {
-            lo = t;
+    edge(0.0, 1.0, 60, |t| clearance(poly, a + (b - a) * t) >= r)
+}
+
+/// Bisection on a predicate that holds at `good` and fails at `bad` (either order): after
+/// `steps` halvings, the end where it still holds.
+fn edge(mut good: f64, mut bad: f64, steps: usize, holds: impl Fn(f64) -> bool) -> f64 {
+    for _ in 0..steps {
+        let m = 0.5 * (good + bad);
+        if holds(m) {
+            good = m;
         } else {
-            hi = t;
+            bad = m;
         }
     }
-    lo
+    good
 }
 
 /// A polyline guide with arc-length parametrisation.
@@ -415,17 +420,21 @@ impl Guide {
         self.cum[self.cum.len() - 1]
     }
 
+    /// Index i of the polyline piece (pts[i − 1], pts[i]) holding arc length s (clamped).
+    fn piece(&self, s: f64) -> usize {
+        self.cum.partition_point(|&c| c <= s).clamp(1, self.pts.len() - 1)
+    }
+
     fn at(&self, s: f64) -> P2 {
         let s = s.clamp(0.0, self.length());
-        let i = self.cum.partition_point(|&c| c <= s).clamp(1, self.pts.len() - 1);
+        let i = self.piece(s);
         let (a, b, l) = (self.pts[i - 1], self.pts[i], self.cum[i] - self.cum[i - 1]);
         if l > 0.0 { a + (b - a) * ((s - self.cum[i - 1]) / l) } else { a }
     }
 
     /// Unit direction at s.
     fn dir(&self, s: f64) -> P2 {
-        let s = s.clamp(0.0, self.length());
-        let i = self.cum.partition_point(|&c| c <= s).clamp(1, self.pts.len() - 1);
+        let i = self.piece(s.clamp(0.0, self.length()));
         let d = self.pts[i] - self.pts[i - 1];
         if d.norm() > 0.0 { d / d.norm() } else { P2::new(1.0, 0.0) }
     }
@@ -703,7 +712,8 @@ impl Planner<'_> {
                 |x: f64| self.engagement(prev_c, Circle::new(c, x + r)).max(self.transition_engagement(c, rho, c, x));
             let mut next = bisect(rho, rho_max, target, eps, m);
             if next.0 <= rho + 1e-6 {
-                next = ((rho + self.cs.r_min()).min(rho_max), m((rho + self.cs.r_min()).min(rho_max)));
+                let x = (rho + self.cs.r_min()).min(rho_max);
+                next = (x, m(x));
             }
             prev_rho = rho;
             rho = next.0;
@@ -854,16 +864,7 @@ impl Planner<'_> {
         for k in 1..=n {
             let s = s0 + (s1 - s0) * k as f64 / n as f64;
             if !ok(s) {
-                let (mut lo, mut hi) = (prev, s);
-                for _ in 0..50 {
-                    let m = 0.5 * (lo + hi);
-                    if ok(m) {
-                        lo = m;
-                    } else {
-                        hi = m;
-                    }
-                }
-                return lo;
+                return edge(prev, s, 50, ok);
             }
             prev = s;
         }
@@ -883,16 +884,7 @@ impl Planner<'_> {
             if !good {
                 left = true;
             } else if left {
-                let (mut lo, mut hi) = (prev, s);
-                for _ in 0..50 {
-                    let m = 0.5 * (lo + hi);
-                    if ok(m) {
-                        hi = m;
-                    } else {
-                        lo = m;
-                    }
-                }
-                return Some(hi);
+                return Some(edge(s, prev, 50, ok));
             }
             prev = s;
         }

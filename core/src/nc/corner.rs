@@ -12,6 +12,7 @@ use crate::corner::{
     CornerPlan, CornerSettings, LinkKind, PerforativePlan, PocketPlan, PocketSettings, straight_engagement,
 };
 use crate::error::JobError;
+use crate::geom::Segment;
 
 /// What a corner or pocket plan does not carry: the cutting depth and the spindle speed.
 /// Checked by [`PathJob::validate`] (errors name `depth` and `rpm`).
@@ -82,83 +83,78 @@ pub fn corner_program(
 /// The program of the whole pocket `plan`: its rings and links ([`PocketPlan::tool_path`]),
 /// retracting before the links that a straight move cannot take.
 pub fn pocket_program(plan: &PocketPlan, cut: CutSetup, opts: &NcOptions) -> Result<NcProgram, JobError> {
-    let s = &plan.settings;
     let (segments, retract_before) = plan.tool_path();
     let feed_links = plan.links.iter().filter(|l| l.kind == LinkKind::Feed).count();
-    let job = PathJob {
-        segments: &segments,
-        retract_before: &retract_before,
-        depth_mm: cut.depth_mm,
-        feed_mm_per_min: s.feed_mm_per_min,
-        spindle_rpm: cut.spindle_rpm,
-        tool_diameter_mm: 2.0 * s.tool_radius,
-        default_title: "TrochoPlan pocket",
-        description: vec![
-            format!(
-                "pocket of {} vertices, method {}, {} rings, {} corner trochoids",
-                plan.polygon.vertices().len(),
-                s.method.name(),
-                plan.rings.len(),
-                plan.trochoid_corners
-            ),
-            format!(
-                "rings {:.3} mm, {} feed links {:.3} mm, {} retract links",
-                plan.path_length_mm,
-                feed_links,
-                plan.link_length_mm,
-                plan.links.len() - feed_links
-            ),
-            pocket_frame_line(cut),
-            pocket_tool_line(s, cut, opts),
-        ],
-    };
-    program_for_path(&job, opts)
-}
-
-/// Header line of a pocket program: its frame and depth.
-fn pocket_frame_line(cut: CutSetup) -> String {
-    format!("polygon file coordinates, depth {:.3} mm below the stock top Z0", cut.depth_mm)
-}
-
-/// Header line of a pocket program: tool, spindle, feed and step-over.
-fn pocket_tool_line(s: &PocketSettings, cut: CutSetup, opts: &NcOptions) -> String {
-    format!(
-        "tool T{} D {:.3} mm, {:.0} rpm, feed {:.1} mm/min, a_e {:.4} mm",
-        opts.tool_number,
-        2.0 * s.tool_radius,
-        cut.spindle_rpm,
-        s.feed_mm_per_min,
-        s.step_over
-    )
+    let summary = [
+        format!(
+            "pocket of {} vertices, method {}, {} rings, {} corner trochoids",
+            plan.polygon.vertices().len(),
+            plan.settings.method.name(),
+            plan.rings.len(),
+            plan.trochoid_corners
+        ),
+        format!(
+            "rings {:.3} mm, {} feed links {:.3} mm, {} retract links",
+            plan.path_length_mm,
+            feed_links,
+            plan.link_length_mm,
+            plan.links.len() - feed_links
+        ),
+    ];
+    pocket_path_program(&segments, &retract_before, &plan.settings, summary, cut, opts)
 }
 
 /// The program of a pocket cleared by perforative trochoids along its medial axis: its path
 /// in machining order, a retract, rapid and plunge at the start of every part but the first.
 pub fn perforative_program(plan: &PerforativePlan, cut: CutSetup, opts: &NcOptions) -> Result<NcProgram, JobError> {
-    let s = &plan.settings;
+    let summary = [
+        format!(
+            "pocket of {} vertices, method medial-axis, {} circles, {} part(s)",
+            plan.polygon.vertices().len(),
+            plan.circles.len(),
+            plan.parts
+        ),
+        format!(
+            "path {:.3} mm, body engagement {:.2} deg (target {:.2} deg)",
+            plan.path_length_mm,
+            plan.body_max_rad.to_degrees(),
+            plan.target_rad.to_degrees()
+        ),
+    ];
+    pocket_path_program(&plan.segments, &plan.retract_before, &plan.settings, summary, cut, opts)
+}
+
+/// A pocket's program in polygon coordinates: two summary lines of the plan, then the frame
+/// and the tool lines shared by every pocket method.
+fn pocket_path_program(
+    segments: &[Segment],
+    retract_before: &[usize],
+    s: &PocketSettings,
+    summary: [String; 2],
+    cut: CutSetup,
+    opts: &NcOptions,
+) -> Result<NcProgram, JobError> {
+    let [first, second] = summary;
     let job = PathJob {
-        segments: &plan.segments,
-        retract_before: &plan.retract_before,
+        segments,
+        retract_before,
         depth_mm: cut.depth_mm,
         feed_mm_per_min: s.feed_mm_per_min,
         spindle_rpm: cut.spindle_rpm,
         tool_diameter_mm: 2.0 * s.tool_radius,
         default_title: "TrochoPlan pocket",
         description: vec![
+            first,
+            second,
+            format!("polygon file coordinates, depth {:.3} mm below the stock top Z0", cut.depth_mm),
             format!(
-                "pocket of {} vertices, method medial-axis, {} circles, {} part(s)",
-                plan.polygon.vertices().len(),
-                plan.circles.len(),
-                plan.parts
+                "tool T{} D {:.3} mm, {:.0} rpm, feed {:.1} mm/min, a_e {:.4} mm",
+                opts.tool_number,
+                2.0 * s.tool_radius,
+                cut.spindle_rpm,
+                s.feed_mm_per_min,
+                s.step_over
             ),
-            format!(
-                "path {:.3} mm, body engagement {:.2} deg (target {:.2} deg)",
-                plan.path_length_mm,
-                plan.body_max_rad.to_degrees(),
-                plan.target_rad.to_degrees()
-            ),
-            pocket_frame_line(cut),
-            pocket_tool_line(s, cut, opts),
         ],
     };
     program_for_path(&job, opts)
