@@ -21,7 +21,7 @@ use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
 use trochoplan_core::JobError;
 use trochoplan_core::corner::{
     Corner, CornerPlan, CornerScenario, CornerSettings, EngagementProfile, EvaluatorOptions, Method, MoveKind,
-    PerforativePlan, PocketPlan, PocketSettings, acceptance_row, engagement_profile, parse_points, plan_corner,
+    PerforativePlan, PocketPlan, PocketSettings, acceptance, engagement_profile, parse_points, plan_corner,
     plan_perforative_pocket, plan_pocket, pocket_polygon, straight_engagement,
 };
 use trochoplan_core::corner::{RingStep, TargetSpec};
@@ -228,7 +228,7 @@ pub fn compute(i: &CornerInputs) -> Result<CornerResult, String> {
     let plain = plan_corner(&sc, Method::Plain).map_err(|e| e.to_string())?;
     let plain_prof = engagement_profile(&sc.stock, &sc.previous_ring, &plain.path, &opts).map_err(|e| e.to_string())?;
     // body / tip split and the tip's stated limit, as the acceptance table reports them
-    let row = acceptance_row(angle, method, s, SPACING_MM).map_err(|e| e.to_string())?;
+    let row = acceptance::row(angle, method, &corner, s, (&plan, &prof), (&plain, &plain_prof));
     let c = sc.corner;
     let wall = |p: trochoplan_core::geom::P2| [p.x, p.y];
     Ok(CornerResult {

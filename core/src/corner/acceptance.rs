@@ -116,8 +116,9 @@ pub fn acceptance_rows_at(
         .collect()
 }
 
-/// The row of a measured plan (body / tip split and the tip's limit, module docs).
-fn row(
+/// The row of a plan and the plain ring, both already measured by the evaluator (body / tip
+/// split and the tip's limit, module docs), for callers that keep the plans and profiles.
+pub fn row(
     angle_deg: f64,
     method: Method,
     corner: &Corner,
