@@ -134,3 +134,26 @@ fn the_harness_catches_interpreter_errors_and_wrong_motion() {
     let result = check_cut("broken", &cut(&m, p.job.depth, 1e-4), &p, 0.005, 1e-4);
     assert!(result.is_err(), "a chord in place of an arc must exceed the tolerance");
 }
+
+#[test]
+fn hostile_titles_cannot_form_active_comments() {
+    // Issue #13: LinuxCNC executes comments that begin with MSG, DEBUG, PRINT, LOG…, ABORT,
+    // PROBEOPEN/PROBECLOSE (any case, after spaces). `ABORT,stop` aborted the program before any
+    // motion; `LOGOPEN,/path` opened a file. The interpreter must run each program silently (any
+    // message on stderr fails `interpret`) and create no file, and the program must still cut.
+    let dir = tempfile::tempdir().expect("tempdir");
+    let log = dir.path().join("controller.log");
+    let logopen = format!("LOGOPEN,{}", log.display());
+    let p = plan(&Job::default()).expect("valid job");
+    for (k, title) in
+        ["ABORT,stop", "  msg,hello operator", "DEBUG,#5220", "Print,x", logopen.as_str(), "logclose", "PROBEOPEN x"]
+            .into_iter()
+            .enumerate()
+    {
+        let f = export(dir.path(), &format!("title{k}.ngc"), &[], &["--dialect", "linuxcnc", "--title", title]);
+        check(&format!("title {title:?}"), &f, &p, 0.005, 4);
+        let first = std::fs::read_to_string(&f).expect("read").lines().next().unwrap_or("").to_string();
+        assert!(first.starts_with("(- "), "{title:?} -> {first}");
+    }
+    assert!(!log.exists(), "the program opened a log file on the controller");
+}

@@ -162,10 +162,20 @@ impl Dialect {
     }
 }
 
+/// Words that make a comment *active* when it begins with them (after spaces, any case):
+/// LinuxCNC executes `(MSG,…)`, `(DEBUG,…)`, `(PRINT,…)`, `(LOG…)`, `(ABORT,…)`,
+/// `(PROBEOPEN …)`/`(PROBECLOSE)` and, with its Python plug-in, `(PY,…)`; GRBL 1.1 shows
+/// `(MSG,…)`. Matched as prefixes of the comment's first word (`LOG` covers `LOGOPEN`,
+/// `LOGAPPEND`, `LOGCLOSE`; `PROBE` both probe words), so no spelling slips through.
+const ACTIVE_COMMENT_WORDS: [&str; 7] = ["MSG", "DEBUG", "PRINT", "LOG", "ABORT", "PROBE", "PY"];
+
 /// Text made safe for a comment of any dialect: one line, printable ASCII, no comment
-/// delimiters. `(`/`)` become `[`/`]` (LinuxCNC rejects a nested "(" and a ")" would end the
-/// comment early), `;` becomes `,`, `%` (Fanuc/LinuxCNC tape mark) becomes `_`, control
-/// characters and newlines become spaces, other characters `?`; at most 70 characters.
+/// delimiters, never an active comment. `(`/`)` become `[`/`]` (LinuxCNC rejects a nested "("
+/// and a ")" would end the comment early), `;` becomes `,`, `%` (Fanuc/LinuxCNC tape mark)
+/// becomes `_`, control characters and newlines become spaces, other characters `?`; text
+/// whose first word begins with one of [`ACTIVE_COMMENT_WORDS`] gets a leading `- ` (issue
+/// #13: `ABORT,stop` aborted the program, `LOGOPEN,/path` opened a file on the controller);
+/// at most 70 characters.
 pub fn sanitize_comment(text: &str) -> String {
     let mapped: String = text
         .chars()
@@ -180,7 +190,12 @@ pub fn sanitize_comment(text: &str) -> String {
         })
         .collect();
     let words: Vec<&str> = mapped.split_whitespace().collect();
-    words.join(" ").chars().take(70).collect()
+    let mut line = words.join(" ");
+    let first_word: String = line.chars().take_while(char::is_ascii_alphabetic).collect::<String>().to_ascii_uppercase();
+    if ACTIVE_COMMENT_WORDS.iter().any(|w| first_word.starts_with(w)) {
+        line.insert_str(0, "- ");
+    }
+    line.chars().take(70).collect()
 }
 
 #[cfg(test)]
@@ -194,6 +209,37 @@ mod tests {
         assert_eq!(s, "a [nested] comment, G0 X0 ] _ ? [");
         assert!(!s.contains(['(', ')', ';', '\n', '\r', '%']));
         assert!(sanitize_comment(&"x".repeat(500)).len() <= 70);
+    }
+
+    #[test]
+    fn no_text_forms_an_active_comment() {
+        // Issue #13: LinuxCNC executes these when a comment begins with them (any case,
+        // leading spaces); each must come out as a plain comment that still shows the text.
+        for evil in [
+            "ABORT,stop",
+            "  abort,stop",
+            "MSG,hello",
+            "msg ,hello",
+            "DEBUG,#<x>",
+            "Print,1",
+            "LOG,x",
+            "LOGOPEN,/tmp/x",
+            "logappend,/tmp/x",
+            "LOGCLOSE",
+            "PROBEOPEN /tmp/p",
+            "probeclose",
+            "PY,import os",
+            "\tMsG,tab first",
+            "(ABORT,stop)",
+        ] {
+            let s = sanitize_comment(evil);
+            let word: String = s.trim_start().chars().take_while(char::is_ascii_alphabetic).collect();
+            assert!(word.is_empty(), "{evil:?} -> {s:?} still begins with a word");
+            assert!(s.to_ascii_uppercase().contains(&evil.trim().trim_start_matches('(').to_ascii_uppercase()[..4]), "{s}");
+        }
+        // ordinary titles are unchanged
+        assert_eq!(sanitize_comment("TrochoPlan slot"), "TrochoPlan slot");
+        assert_eq!(sanitize_comment("Message to the operator"), "Message to the operator");
     }
 
     #[test]

@@ -14,7 +14,7 @@
 use super::dialect::{CommentStyle, DialectSpec, sanitize_comment};
 use crate::error::JobError;
 use crate::geom::{P2, Segment, p2, rot90};
-use std::f64::consts::TAU;
+use std::f64::consts::{PI, TAU};
 
 /// Largest coordinate written (mm); job validation keeps paths far below.
 const MAX_ABS_MM: f64 = 1.0e7;
@@ -27,6 +27,18 @@ pub enum YForm {
     /// Relative to a loop variable: `Y[#<oy>+12.3450]` (LinuxCNC) or `Y=R10+12.345`
     /// (Sinumerik); the string is the variable, the dialect picks the brackets.
     Offset(&'static str),
+}
+
+/// Largest sweep of one arc block (rad). A full circle is one block where the dialect allows
+/// it (it ends where it starts). Any other arc of more than a half turn is split into parts of
+/// at most π. Why: the written centre lies on the perpendicular bisector of the *rounded*
+/// chord (module docs); rounding turns that bisector by δ ≤ q√2/c (c the chord), which moves
+/// the centre along it by Δh ≈ (q/√2)·cot(θ/2) and the arc between its fixed end points by
+/// Δh·(1 − cos(θ/2)) = (q/√2)·cos(θ/2)·tan(θ/4) for a sweep θ. For θ ≤ π that is ≤ q/√2; as
+/// θ → 2π it grows without bound: a near-full circle of a medial-axis pocket was written
+/// 5.5 mm off its plan, into the wall (issue #13).
+fn max_part_sweep(spec: &DialectSpec, full_circle: bool) -> f64 {
+    if full_circle { spec.max_arc_sweep } else { spec.max_arc_sweep.min(PI) }
 }
 
 /// The modal machine writing one program.
@@ -221,13 +233,15 @@ impl Writer {
     }
 
     /// Write a line or arc segment of the XY path at `feed`, starting from the current position
-    /// (the previous segment's end). Arcs longer than the dialect allows are split; an arc
-    /// whose sagitta is below q/2 is written as G1; an arc that rounds to zero length (and is
-    /// not a full circle) writes nothing.
+    /// (the previous segment's end). Arcs longer than the dialect allows are split; so is
+    /// every arc of more than a half turn that is not a full circle (see [`max_part_sweep`]);
+    /// an arc whose sagitta is below q/2 is written as G1; an arc that rounds to zero length
+    /// (and is not a full circle) writes nothing.
     pub fn segment(&mut self, seg: &Segment, feed: f64) {
         match *seg {
             Segment::Arc { center, radius, start_angle, sweep } => {
-                let parts = (sweep.abs() / self.spec.max_arc_sweep - 1e-9).ceil().max(1.0) as usize;
+                let full_circle = sweep.abs() >= TAU - 1e-9;
+                let parts = (sweep.abs() / max_part_sweep(self.spec, full_circle) - 1e-9).ceil().max(1.0) as usize;
                 let part = sweep / parts as f64;
                 for k in 0..parts {
                     let a0 = start_angle + part * k as f64;
@@ -237,7 +251,7 @@ impl Writer {
                     if part.abs() < 0.5 * TAU && sagitta < 0.5 * self.quantum() {
                         self.linear(Some(end.x), Some(end.y), None, Some(feed));
                     } else {
-                        self.arc(end, center, part < 0.0, part.abs() >= TAU - 1e-9, feed);
+                        self.arc(end, center, part < 0.0, full_circle && parts == 1, feed);
                     }
                 }
             }
@@ -342,6 +356,34 @@ mod tests {
         let (text, _) = w.finish().expect("ok");
         let last = text.lines().last().unwrap();
         assert!(last.contains("X14.4688") && last.contains("Y35.0000"), "{text}");
+    }
+
+    #[test]
+    fn near_full_circles_stay_on_their_circle() {
+        // Issue #13: a 23-vertex medial-axis pocket had an arc of sweep 2π − 0.0005 rad, radius
+        // 21.4 mm, written as one block whose centre the rounding moved by 5.5 mm (gouge).
+        // Read back every program through the back-plot: each point must stay on the planned
+        // circle within the rounding budget (3q, see tests/nc_common `budget`).
+        for d in [Dialect::LinuxCnc, Dialect::Fanuc, Dialect::Grbl, Dialect::Sinumerik] {
+            for (gap, start_angle) in [(5e-4, 0.3), (1e-6, 2.0), (3e-3, -1.0), (0.2, 4.0)] {
+                for dir in [1.0, -1.0] {
+                    let c = p2(50.9975, 224.4232);
+                    let r = 21.400 + start_angle * 1e-4;
+                    let start = c + p2(f64::cos(start_angle), f64::sin(start_angle)) * r;
+                    let mut w = Writer::new(d.spec());
+                    w.linear(Some(start.x), Some(start.y), None, Some(600.0));
+                    w.segment(&Segment::Arc { center: c, radius: r, start_angle, sweep: dir * (TAU - gap) }, 600.0);
+                    let q = w.quantum();
+                    let (text, _) = w.finish().expect("ok");
+                    let pts = crate::nc::backplot(&text, d, 1e-4).expect("back-plot");
+                    let worst = pts.iter().map(|p| ((p - c).norm() - r).abs()).fold(0.0, f64::max);
+                    assert!(worst <= 3.0 * q, "{d:?} gap {gap} dir {dir}: {worst} mm off the circle\n{text}");
+                    let end = c + p2(f64::cos(start_angle + dir * (TAU - gap)), f64::sin(start_angle + dir * (TAU - gap))) * r;
+                    let last = pts.last().expect("points");
+                    assert!((last - end).norm() <= q, "{d:?}: ends at {last:?}, planned {end:?}");
+                }
+            }
+        }
     }
 
     #[test]
