@@ -60,9 +60,7 @@ pub fn read_input(path: &Path, what: &str) -> Result<String, String> {
     }
     let mut text = String::new();
     // `take` bounds the read even if the file grows while we read it
-    File::open(path)
-        .and_then(|f| f.take(MAX_INPUT_BYTES + 1).read_to_string(&mut text))
-        .map_err(|e| fail(&e))?;
+    File::open(path).and_then(|f| f.take(MAX_INPUT_BYTES + 1).read_to_string(&mut text)).map_err(|e| fail(&e))?;
     if text.len() as u64 > MAX_INPUT_BYTES {
         return Err(fail(&format!("more than the {MAX_INPUT_BYTES} bytes an input may have")));
     }

@@ -184,15 +184,17 @@ impl Job {
             ));
         }
         let a = (b_w - d_t) / 2.0;
-        let r_e = if self.path.uses_aspect_ratio() {
-            let (lo, hi) = ASPECT_RATIO;
-            if !(self.aspect_ratio.is_finite() && self.aspect_ratio >= lo && self.aspect_ratio <= hi) {
-                return Err(JobError::range("aspect-ratio", self.aspect_ratio, format!("from {lo} to {hi}")));
-            }
-            self.aspect_ratio
-        } else {
-            1.0
-        };
+        // Every given value is checked, also where the path ignores it (issue #13: NaN or
+        // 1e300 were accepted with `--path circular`).
+        let (lo, hi) = ASPECT_RATIO;
+        if !(self.aspect_ratio.is_finite() && self.aspect_ratio >= lo && self.aspect_ratio <= hi) {
+            return Err(JobError::range("aspect-ratio", self.aspect_ratio, format!("from {lo} to {hi}")));
+        }
+        let v = self.linear_distance;
+        if !(v.is_finite() && v >= 0.0 && v <= b_w) {
+            return Err(JobError::range("linear-distance", v, format!("from 0 to the slot width {b_w} mm")));
+        }
+        let r_e = if self.path.uses_aspect_ratio() { self.aspect_ratio } else { 1.0 };
         // The loop must keep turning one way (b > s/2π), else eq. (1) has no loop.
         let b = r_e * a;
         if step >= 0.5 * TAU * b {
@@ -202,15 +204,7 @@ impl Job {
                 format!("smaller than π·b = {} mm (b = r_e·a), so that each cycle is a loop", 0.5 * TAU * b),
             ));
         }
-        let d = if self.path == PathKind::LinearElliptical {
-            let v = self.linear_distance;
-            if !(v.is_finite() && v >= 0.0 && v <= b_w) {
-                return Err(JobError::range("linear-distance", v, format!("from 0 to the slot width {b_w} mm")));
-            }
-            v
-        } else {
-            0.0
-        };
+        let d = if self.path == PathKind::LinearElliptical { v } else { 0.0 };
         let f_z = feed / (rpm * f64::from(self.teeth));
         if f_z < MIN_FZ || f_z > d_t / 8.0 {
             return Err(JobError::range(
@@ -294,6 +288,19 @@ mod tests {
             (Job { path: PathKind::Elliptical, aspect_ratio: 0.0, ..Job::default() }, "aspect-ratio"),
             (Job { feed: f64::INFINITY, ..Job::default() }, "feed"),
         ];
+        // issue #13: values the path ignores are checked too
+        let ignored: [(Job, &str); 6] = [
+            (Job { path: PathKind::Circular, aspect_ratio: f64::NAN, ..Job::default() }, "aspect-ratio"),
+            (Job { path: PathKind::Circular, aspect_ratio: -5.0, ..Job::default() }, "aspect-ratio"),
+            (Job { path: PathKind::CircularType, aspect_ratio: 0.0, ..Job::default() }, "aspect-ratio"),
+            (Job { path: PathKind::Circular, aspect_ratio: 1e300, ..Job::default() }, "aspect-ratio"),
+            (
+                Job { path: PathKind::Elliptical, aspect_ratio: 0.8, linear_distance: f64::NAN, ..Job::default() },
+                "linear-distance",
+            ),
+            (Job { path: PathKind::Circular, linear_distance: -5.0, ..Job::default() }, "linear-distance"),
+        ];
+        let cases: Vec<(Job, &str)> = cases.into_iter().chain(ignored).collect();
         for (job, name) in cases {
             let err = job.validate().expect_err("must be rejected");
             assert_eq!(err.parameter(), Some(name), "{err}");
