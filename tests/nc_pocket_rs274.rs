@@ -256,10 +256,7 @@ fn random_medial_axis_pockets_retrace_their_plan_and_never_gouge() {
             check_path_cut(&label, &c, &e.feed_path, 0.005, q).unwrap_or_else(|err| panic!("{err}"));
             let clearance = wall_clearance(&c, &polygon);
             let allowed = 0.5 * d - budget(0.005, q);
-            assert!(
-                clearance >= allowed,
-                "{label}: tool centre {clearance:.6} mm from a wall < r - budget = {allowed:.6}"
-            );
+            assert!(clearance >= allowed, "{label}: tool centre {clearance:.6} mm from a wall < r - budget = {allowed:.6}");
         }
     }
 }

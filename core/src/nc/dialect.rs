@@ -191,8 +191,7 @@ pub fn sanitize_comment(text: &str) -> String {
         .collect();
     let words: Vec<&str> = mapped.split_whitespace().collect();
     let mut line = words.join(" ");
-    let first_word: String =
-        line.chars().take_while(char::is_ascii_alphabetic).collect::<String>().to_ascii_uppercase();
+    let first_word: String = line.chars().take_while(char::is_ascii_alphabetic).collect::<String>().to_ascii_uppercase();
     if ACTIVE_COMMENT_WORDS.iter().any(|w| first_word.starts_with(w)) {
         line.insert_str(0, "- ");
     }
@@ -236,10 +235,7 @@ mod tests {
             let s = sanitize_comment(evil);
             let word: String = s.trim_start().chars().take_while(char::is_ascii_alphabetic).collect();
             assert!(word.is_empty(), "{evil:?} -> {s:?} still begins with a word");
-            assert!(
-                s.to_ascii_uppercase().contains(&evil.trim().trim_start_matches('(').to_ascii_uppercase()[..4]),
-                "{s}"
-            );
+            assert!(s.to_ascii_uppercase().contains(&evil.trim().trim_start_matches('(').to_ascii_uppercase()[..4]), "{s}");
         }
         // ordinary titles are unchanged
         assert_eq!(sanitize_comment("TrochoPlan slot"), "TrochoPlan slot");

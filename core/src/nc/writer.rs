@@ -378,9 +378,7 @@ mod tests {
                     let pts = crate::nc::backplot(&text, d, 1e-4).expect("back-plot");
                     let worst = pts.iter().map(|p| ((p - c).norm() - r).abs()).fold(0.0, f64::max);
                     assert!(worst <= 3.0 * q, "{d:?} gap {gap} dir {dir}: {worst} mm off the circle\n{text}");
-                    let end =
-                        c + p2(f64::cos(start_angle + dir * (TAU - gap)), f64::sin(start_angle + dir * (TAU - gap)))
-                            * r;
+                    let end = c + p2(f64::cos(start_angle + dir * (TAU - gap)), f64::sin(start_angle + dir * (TAU - gap))) * r;
                     let last = pts.last().expect("points");
                     assert!((last - end).norm() <= q, "{d:?}: ends at {last:?}, planned {end:?}");
                 }
