@@ -495,24 +495,10 @@ fn corner(
                 "Interior angle between the two walls (30°–150°); the apex is at the origin, the bisector along +x.",
             );
         ui.separator();
-        ui.label("Method");
-        for m in CornerMethod::ALL {
-            ui.selectable_value(&mut inputs.method, m, m.label()).on_hover_text(m.tooltip());
-        }
+        method_buttons(ui, &mut inputs.method);
     });
     tool_inputs(ui, inputs);
-    if let Some(e) = &view.error {
-        ui.add(egui::Label::new(RichText::new(format!("invalid: {e}")).color(ERROR_COLOR)).wrap());
-        if view.last.is_some() {
-            ui.label("Showing the last valid corner.");
-        }
-    }
-    if view.pending() {
-        ui.horizontal(|ui| {
-            ui.spinner();
-            ui.label("planning…");
-        });
-    }
+    status(ui, view, view.last.is_some().then_some("Showing the last valid corner."));
     let Some(r) = view.last.as_deref() else {
         if view.error.is_none() {
             ui.label("Planning the corner…");
@@ -543,6 +529,31 @@ fn corner(
         teaching(ui);
     }
     cmd
+}
+
+/// The method buttons; labels and tooltips are the core's.
+fn method_buttons(ui: &mut egui::Ui, method: &mut CornerMethod) {
+    ui.label("Method");
+    for m in CornerMethod::ALL {
+        ui.selectable_value(method, m, m.label()).on_hover_text(m.tooltip());
+    }
+}
+
+/// The core's message when the inputs are invalid (then `kept`, what is shown meanwhile), and
+/// a spinner while a plan is being made.
+fn status(ui: &mut egui::Ui, view: &CornerView, kept: Option<&str>) {
+    if let Some(e) = &view.error {
+        ui.add(egui::Label::new(RichText::new(format!("invalid: {e}")).color(ERROR_COLOR)).wrap());
+        if let Some(text) = kept {
+            ui.label(text);
+        }
+    }
+    if view.pending() {
+        ui.horizontal(|ui| {
+            ui.spinner();
+            ui.label("planning…");
+        });
+    }
 }
 
 /// Height of the teaching text under the plots.
@@ -668,10 +679,7 @@ fn pocket(
     nc_cache: &CornerNcCache,
 ) -> Option<Command> {
     ui.horizontal_wrapped(|ui| {
-        ui.label("Method");
-        for m in CornerMethod::ALL {
-            ui.selectable_value(&mut inputs.method, m, m.label()).on_hover_text(m.tooltip());
-        }
+        method_buttons(ui, &mut inputs.method);
         ui.separator();
         let l = ui.label(label::TOOL_DIAMETER);
         ui.add(DragValue::new(&mut inputs.tool_diameter_mm).speed(0.1).suffix(" mm")).labelled_by(l.id);
@@ -680,15 +688,7 @@ fn pocket(
             .labelled_by(l.id)
             .on_hover_text("Distance between successive contour-parallel rings, 0 < a_e < D.");
     });
-    if let Some(e) = &view.error {
-        ui.add(egui::Label::new(RichText::new(format!("invalid: {e}")).color(ERROR_COLOR)).wrap());
-    }
-    if view.pending() {
-        ui.horizontal(|ui| {
-            ui.spinner();
-            ui.label("planning…");
-        });
-    }
+    status(ui, view, None);
     let mut cmd = None;
     if nc.open {
         ui.separator();
