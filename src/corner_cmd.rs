@@ -4,91 +4,101 @@
 
 use crate::export::DialectArg;
 use crate::files::write_atomic;
-use clap::{Args, ValueEnum};
+use clap::Args;
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use serde::Serialize;
 use std::path::PathBuf;
 use trochoplan_core::JobError;
 use trochoplan_core::corner::acceptance::{acceptance_table, markdown};
 use trochoplan_core::corner::{
-    Corner, CornerScenario, CornerSettings, EvaluatorOptions, Method, PocketSettings, Polygon, engagement_profile,
-    parse_points, plan_pocket, pocket_polygon, polyline, straight_engagement,
+    CornerMethod, CornerReport, CornerRequest, EngagementSample, EvaluatorOptions, engagement_profile, evaluate,
+    finite, parse_points, polyline,
 };
-use trochoplan_core::corner::{
-    CornerPlan, MoveKind, PerforativePlan, PocketPlan, RingStep, TargetSpec, plan_perforative_pocket,
-};
-use trochoplan_core::geom::{P2, Segment};
-use trochoplan_core::nc::{
-    CutSetup, DEFAULT_TOLERANCE_MM, NcOptions, NcProgram, corner_program, perforative_program, pocket_program,
+use trochoplan_core::geom::{P2, Polygon, Segment};
+use trochoplan_core::nc::{CutSetup, DEFAULT_TOLERANCE_MM, NcOptions, NcProgram, corner_program, pocket_program};
+use trochoplan_core::pocket::{
+    self, LinkKind, MoveKind, PerforativePlan, PocketPlan, PocketRequest, PocketStrategy, RingPlan,
 };
 
-/// Corner strategy on the command line.
-#[derive(Clone, Copy, ValueEnum)]
-pub enum MethodArg {
-    /// The plain contour-parallel ring (no corner trochoids), for comparison.
-    Plain,
-    /// Variable circles on the bisector (Wu et al. 2016 eqs. 23–24).
-    Variable,
-    /// Isometric circles (Wu et al. 2016 §4.2.2, eq. 25).
-    Isometric,
-    /// Perforative circles along the medial axis of the pocket (Voronoi, boostvoronoi).
-    MedialAxis,
+/// A value parser accepting the core's names of an enum's values (`all`), each listed with its
+/// help line in `--help`.
+pub(crate) fn core_names<T: Copy + Send + Sync + 'static>(
+    all: &'static [T],
+    name: fn(T) -> &'static str,
+    help: fn(T) -> &'static str,
+) -> impl TypedValueParser<Value = T> {
+    PossibleValuesParser::new(all.iter().map(|&v| PossibleValue::new(name(v)).help(help(v))))
+        .try_map(move |s: String| all.iter().copied().find(|&v| name(v) == s).ok_or("not one of the listed values"))
 }
 
-impl From<MethodArg> for Method {
-    fn from(m: MethodArg) -> Method {
-        match m {
-            MethodArg::Plain => Method::Plain,
-            MethodArg::Variable => Method::Variable,
-            MethodArg::Isometric => Method::Isometric,
-            MethodArg::MedialAxis => Method::MedialAxis,
-        }
-    }
-}
-
-/// Flags of `trochoplan corner`.
+/// Flags of `trochoplan corner` (defaults: [`CornerRequest::DEFAULT`]).
 #[derive(Args)]
 pub struct CornerArgs {
     /// Interior corner angle (degrees).
-    #[arg(long, value_name = "DEG", allow_hyphen_values = true, default_value_t = 90.0)]
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true, default_value_t = CornerRequest::DEFAULT.angle_deg)]
     angle: f64,
     /// Corner strategy.
-    #[arg(long, value_enum, default_value = "variable")]
-    method: MethodArg,
+    #[arg(
+        long,
+        value_parser = core_names(&CornerMethod::ALL, CornerMethod::name, CornerMethod::help),
+        default_value = CornerRequest::DEFAULT.method.name()
+    )]
+    method: CornerMethod,
     /// Tool diameter D (mm).
-    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = 10.0)]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = CornerRequest::DEFAULT.tool_diameter_mm)]
     tool_diameter: f64,
     /// Ring step-over a_e (mm). Default: the step-over giving --straight-engagement.
     #[arg(long, value_name = "MM", allow_hyphen_values = true)]
     step_over: Option<f64>,
     /// Engagement on the straight part of the ring (degrees), used when --step-over is absent.
-    #[arg(long, value_name = "DEG", allow_hyphen_values = true, default_value_t = 46.0)]
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true, default_value_t = CornerRequest::DEFAULT.straight_engagement_deg)]
     straight_engagement: f64,
     /// Target engagement a* (degrees). Default: straight-part engagement × (1 + t1).
     #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
     target: Option<f64>,
     /// Allowed excess over the straight-part engagement, t1 (Wu et al. eq. 23), when --target is absent.
-    #[arg(long, value_name = "FRACTION", allow_hyphen_values = true, default_value_t = 0.15)]
+    #[arg(long, value_name = "FRACTION", allow_hyphen_values = true, default_value_t = CornerRequest::DEFAULT.t1)]
     t1: f64,
     /// Bisection acceptance band ε (degrees).
-    #[arg(long, value_name = "DEG", allow_hyphen_values = true, default_value_t = 0.5)]
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true, default_value_t = CornerRequest::DEFAULT.tolerance_deg)]
     tolerance: f64,
     /// Wall length from the apex (mm).
-    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = 100.0)]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = CornerRequest::DEFAULT.edge_length_mm)]
     edge_length: f64,
     /// Feed rate for the machining time (mm/min).
-    #[arg(long, value_name = "MM_PER_MIN", allow_hyphen_values = true, default_value_t = 600.0)]
+    #[arg(long, value_name = "MM_PER_MIN", allow_hyphen_values = true, default_value_t = CornerRequest::DEFAULT.feed_mm_per_min)]
     feed: f64,
     /// Tool-centre radius rh of isometric circles (mm). Default: the tool radius.
     #[arg(long, value_name = "MM", allow_hyphen_values = true)]
     isometric_radius: Option<f64>,
     /// Spacing of the tool positions measured by the evaluator (mm).
-    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = 0.1)]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = CornerRequest::DEFAULT.spacing_mm)]
     spacing: f64,
     /// Print the acceptance table (corner angles 30°…150° in 15° steps) as Markdown instead.
     #[arg(long)]
     table: bool,
     #[command(flatten)]
     nc: CornerExportArgs,
+}
+
+impl CornerArgs {
+    /// The core's request of these flags.
+    fn request(&self) -> CornerRequest {
+        CornerRequest {
+            angle_deg: self.angle,
+            method: self.method,
+            tool_diameter_mm: self.tool_diameter,
+            step_over_mm: self.step_over,
+            straight_engagement_deg: self.straight_engagement,
+            target_deg: self.target,
+            t1: self.t1,
+            tolerance_deg: self.tolerance,
+            edge_length_mm: self.edge_length,
+            feed_mm_per_min: self.feed,
+            isometric_radius_mm: self.isometric_radius,
+            spacing_mm: self.spacing,
+        }
+    }
 }
 
 /// NC export of `trochoplan corner` and `trochoplan pocket` (same program frame as
@@ -113,10 +123,10 @@ pub struct CornerExportArgs {
     #[arg(long, requires = "export")]
     coolant: bool,
     /// Cutting depth below the stock top Z0 (mm), for --export.
-    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = 6.0, requires = "export")]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = CutSetup::default().depth_mm, requires = "export")]
     depth: f64,
     /// Spindle speed (rpm), for --export.
-    #[arg(long, value_name = "RPM", allow_hyphen_values = true, default_value_t = 2000.0, requires = "export")]
+    #[arg(long, value_name = "RPM", allow_hyphen_values = true, default_value_t = CutSetup::default().spindle_rpm, requires = "export")]
     rpm: f64,
     /// Text for the header comment (--export).
     #[arg(long, value_name = "TEXT", requires = "export")]
@@ -140,39 +150,30 @@ pub struct EngagementArgs {
     spacing: f64,
 }
 
-/// Corner strategy of `trochoplan pocket`.
-#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum PocketMethodArg {
-    /// Plain contour-parallel rings.
-    Plain,
-    /// Variable circles at every convex corner of every ring but the innermost.
-    Variable,
-    /// Isometric circles at every convex corner of every ring but the innermost.
-    Isometric,
-    /// No rings: perforative trochoids along the medial axis of the whole pocket.
-    MedialAxis,
-}
-
-/// Flags of `trochoplan pocket`.
+/// Flags of `trochoplan pocket` (defaults: [`PocketRequest::default`]).
 #[derive(Args)]
 pub struct PocketArgs {
     /// Pocket boundary: one vertex "x,y" per line (mm), '#' comments allowed; a simple polygon.
     #[arg(long, value_name = "FILE")]
     polygon: PathBuf,
     /// Tool diameter D (mm).
-    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = 10.0)]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = PocketRequest::default().tool_diameter_mm)]
     tool_diameter: f64,
     /// Ring step-over a_e (mm), 0 < a_e < D (default 2.5: a_e/D = 0.25 for D = 10, 60° straight engagement).
-    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = 2.5)]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = PocketRequest::default().step_over_mm)]
     step_over: f64,
     /// Feed rate for the machining time (mm/min).
-    #[arg(long, value_name = "MM_PER_MIN", allow_hyphen_values = true, default_value_t = 600.0)]
+    #[arg(long, value_name = "MM_PER_MIN", allow_hyphen_values = true, default_value_t = PocketRequest::default().feed_mm_per_min)]
     feed: f64,
     /// Corner strategy at the ring corners.
-    #[arg(long, value_enum, default_value = "plain")]
-    method: PocketMethodArg,
+    #[arg(
+        long,
+        value_parser = core_names(&PocketStrategy::ALL, PocketStrategy::name, PocketStrategy::help),
+        default_value = PocketRequest::default().strategy.name()
+    )]
+    method: PocketStrategy,
     /// Spacing of the tool positions measured by the evaluator (mm).
-    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = 0.25)]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = PocketRequest::default().spacing_mm)]
     spacing: f64,
     #[command(flatten)]
     nc: CornerExportArgs,
@@ -181,7 +182,7 @@ pub struct PocketArgs {
 #[derive(Serialize)]
 struct LinkOut {
     /// "feed" (G1 at depth) or "retract" (safe Z, rapid, plunge).
-    kind: trochoplan_core::corner::LinkKind,
+    kind: LinkKind,
     from: [f64; 2],
     to: [f64; 2],
     length_mm: f64,
@@ -230,42 +231,42 @@ struct PocketOut {
     nc_export: Option<NcExportOut>,
 }
 
-/// `trochoplan pocket`: contour-parallel rings of a polygonal pocket, measured ring by ring.
+/// `trochoplan pocket`: contour-parallel rings of a polygonal pocket, measured ring by ring, or
+/// perforative trochoids along its medial axis (`--method medial-axis`).
 pub fn pocket(args: &PocketArgs) -> Result<String, String> {
-    let d = finite("tool diameter", args.tool_diameter)?;
     let what = args.polygon.display().to_string();
     let polygon =
-        pocket_polygon(parse_points(&read(&args.polygon)?, &what).map_err(err)?).map_err(|e| format!("{what}: {e}"))?;
-    let settings = PocketSettings {
-        tool_radius: d / 2.0,
-        step_over: args.step_over,
+        Polygon::new(parse_points(&read(&args.polygon)?, &what).map_err(err)?).map_err(|e| format!("{what}: {e}"))?;
+    let req = PocketRequest {
+        polygon,
+        tool_diameter_mm: args.tool_diameter,
+        step_over_mm: args.step_over,
         feed_mm_per_min: args.feed,
-        spacing: args.spacing,
-        method: match args.method {
-            PocketMethodArg::Plain => Method::Plain,
-            PocketMethodArg::Variable => Method::Variable,
-            PocketMethodArg::Isometric => Method::Isometric,
-            PocketMethodArg::MedialAxis => Method::MedialAxis,
-        },
+        strategy: args.method,
+        spacing_mm: args.spacing,
     };
-    if settings.method == Method::MedialAxis {
-        return perforative_pocket(args, &polygon, settings);
-    }
-    settings.validate().map_err(err)?;
-    let plan = plan_pocket(&polygon, settings).map_err(err)?;
+    let plan = pocket::plan(&req).map_err(err)?;
     let nc_export = match &args.nc.export {
         Some(file) => Some(export_pocket(&args.nc, file, &plan)?),
         None => None,
     };
+    match &plan {
+        PocketPlan::Rings(rings) => ring_pocket_json(&req, rings, nc_export),
+        PocketPlan::MedialAxis(perforative) => perforative_pocket_json(perforative, nc_export),
+    }
+}
+
+/// The JSON of a pocket cleared by rings.
+fn ring_pocket_json(req: &PocketRequest, plan: &RingPlan, nc_export: Option<NcExportOut>) -> Result<String, String> {
     let out = PocketOut {
-        method: settings.method.name(),
+        method: plan.method.name(),
         trochoid_corners: plan.trochoid_corners,
         plain_corners: plan.plain_corners,
-        tool_diameter_mm: d,
-        step_over_mm: args.step_over,
-        feed_mm_per_min: args.feed,
-        straight_engagement_deg: straight_engagement(args.step_over, d / 2.0).map_err(err)?.to_degrees(),
-        polygon: polygon.vertices().iter().map(|v| [v.x, v.y]).collect(),
+        tool_diameter_mm: req.tool_diameter_mm,
+        step_over_mm: req.step_over_mm,
+        feed_mm_per_min: req.feed_mm_per_min,
+        straight_engagement_deg: plan.settings.straight_engagement().map_err(err)?.to_degrees(),
+        polygon: plan.polygon.vertices().iter().map(|v| [v.x, v.y]).collect(),
         ring_count: plan.rings.len(),
         rings: plan
             .rings
@@ -297,7 +298,12 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
         max_engagement_deg: plan.max_engagement_rad.to_degrees(),
         nc_export,
     };
-    let mut text = serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?;
+    json_text(&out)
+}
+
+/// Pretty JSON with a final newline.
+fn json_text(out: &impl Serialize) -> Result<String, String> {
+    let mut text = serde_json::to_string_pretty(out).map_err(|e| e.to_string())?;
     text.push('\n');
     Ok(text)
 }
@@ -363,25 +369,19 @@ struct PerforativeOut {
     nc_export: Option<NcExportOut>,
 }
 
-/// `trochoplan pocket --method medial-axis`: perforative trochoids along the medial axis.
-fn perforative_pocket(args: &PocketArgs, polygon: &Polygon, settings: PocketSettings) -> Result<String, String> {
-    let plan = plan_perforative_pocket(polygon, settings).map_err(err)?;
-    let nc_export = match &args.nc.export {
-        Some(file) => Some(export_perforative(&args.nc, file, &plan)?),
-        None => None,
-    };
+/// The JSON of a pocket cleared by perforative trochoids along its medial axis.
+fn perforative_pocket_json(plan: &PerforativePlan, nc_export: Option<NcExportOut>) -> Result<String, String> {
     let xy = |p: P2| [p.x, p.y];
+    let settings = plan.settings;
     let out = PerforativeOut {
-        method: settings.method.name(),
+        method: PocketStrategy::MedialAxis.name(),
         tool_diameter_mm: 2.0 * settings.tool_radius,
         step_over_mm: settings.step_over,
         feed_mm_per_min: settings.feed_mm_per_min,
-        straight_engagement_deg: straight_engagement(settings.step_over, settings.tool_radius)
-            .map_err(err)?
-            .to_degrees(),
+        straight_engagement_deg: settings.straight_engagement().map_err(err)?.to_degrees(),
         target_deg: plan.target_rad.to_degrees(),
         tolerance_deg: plan.tolerance_rad.to_degrees(),
-        polygon: polygon.vertices().iter().map(|&v| xy(v)).collect(),
+        polygon: plan.polygon.vertices().iter().map(|&v| xy(v)).collect(),
         axis: plan.axis.edges.iter().map(|e| e.points.iter().map(|&p| xy(p)).collect()).collect(),
         parts: plan.parts,
         unreachable_axis_mm: plan.unreachable_axis_mm,
@@ -415,48 +415,11 @@ fn perforative_pocket(args: &PocketArgs, polygon: &Polygon, settings: PocketSett
         retract_before: plan.retract_before.clone(),
         nc_export,
     };
-    let mut text = serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?;
-    text.push('\n');
-    Ok(text)
-}
-
-/// Write the perforative pocket ([`PerforativePlan`]) to `file`.
-fn export_perforative(
-    nc: &CornerExportArgs,
-    file: &std::path::Path,
-    plan: &PerforativePlan,
-) -> Result<NcExportOut, String> {
-    let opts = nc_options(nc);
-    let prog = perforative_program(plan, cut_setup(nc), &opts).map_err(err)?;
-    write_program(file, &prog, &opts)
+    json_text(&out)
 }
 
 fn err(e: JobError) -> String {
     e.to_string()
-}
-
-fn finite(name: &'static str, v: f64) -> Result<f64, String> {
-    if v.is_finite() { Ok(v) } else { Err(JobError::range(name, v, "a finite number").to_string()) }
-}
-
-impl CornerArgs {
-    fn settings(&self) -> Result<CornerSettings, String> {
-        let step = match self.step_over {
-            Some(ae) => RingStep::StepOver(ae),
-            None => RingStep::StraightEngagementDeg(self.straight_engagement),
-        };
-        let target = match self.target {
-            Some(t) => TargetSpec::Deg(t),
-            None => TargetSpec::T1(self.t1),
-        };
-        let mut s = CornerSettings::from_inputs(self.tool_diameter, step, target).map_err(err)?;
-        s.tolerance = finite("tolerance", self.tolerance)?.to_radians();
-        s.edge_length = self.edge_length;
-        s.feed_mm_per_min = self.feed;
-        s.isometric_radius = self.isometric_radius;
-        s.validate().map_err(err)?;
-        Ok(s)
-    }
 }
 
 #[derive(Serialize)]
@@ -528,20 +491,14 @@ fn write_program(file: &std::path::Path, prog: &NcProgram, opts: &NcOptions) -> 
     })
 }
 
-/// Write the corner program of `plan` to `file` (see [`CornerExportArgs`]).
-fn export_corner(
-    args: &CornerArgs,
-    file: &std::path::Path,
-    s: &CornerSettings,
-    angle_deg: f64,
-    plan: &CornerPlan,
-) -> Result<NcExportOut, String> {
-    let opts = nc_options(&args.nc);
-    let prog = corner_program(plan, s, angle_deg, cut_setup(&args.nc), &opts).map_err(err)?;
+/// Write the corner program of `report` to `file` (see [`CornerExportArgs`]).
+fn export_corner(nc: &CornerExportArgs, file: &std::path::Path, report: &CornerReport) -> Result<NcExportOut, String> {
+    let opts = nc_options(nc);
+    let prog = corner_program(&report.plan, report.settings(), report.angle_deg, cut_setup(nc), &opts).map_err(err)?;
     write_program(file, &prog, &opts)
 }
 
-/// Write the whole pocket (rings and links, [`PocketPlan::tool_path`]) to `file`.
+/// Write the whole pocket ([`PocketPlan::tool_path`]) to `file`.
 fn export_pocket(nc: &CornerExportArgs, file: &std::path::Path, plan: &PocketPlan) -> Result<NcExportOut, String> {
     let opts = nc_options(nc);
     let prog = pocket_program(plan, cut_setup(nc), &opts).map_err(err)?;
@@ -550,34 +507,27 @@ fn export_pocket(nc: &CornerExportArgs, file: &std::path::Path, plan: &PocketPla
 
 /// `trochoplan corner`: plan one corner (JSON) or print the acceptance table (Markdown).
 pub fn corner(args: &CornerArgs) -> Result<String, String> {
-    let s = args.settings()?;
-    let method: Method = args.method.into();
+    let req = args.request();
     if args.table {
         if args.nc.export.is_some() {
+            req.settings().map_err(err)?; // an invalid input is named first
             return Err("--export writes one corner's program; it cannot be combined with --table".into());
         }
-        let rows = acceptance_table(method, s, args.spacing).map_err(err)?;
-        return Ok(markdown(&rows));
+        return Ok(markdown(&acceptance_table(&req).map_err(err)?));
     }
-    let angle = finite("angle", args.angle)?;
-    let corner = Corner::symmetric(angle.to_radians()).map_err(err)?;
-    let sc = CornerScenario::new(corner, s).map_err(err)?;
-    let opts = EvaluatorOptions::new(s.tool_radius, args.spacing);
-    let plan = trochoplan_core::corner::plan_corner(&sc, method).map_err(err)?;
-    let prof = engagement_profile(&plan.stock, &plan.precut, &plan.path, &opts).map_err(err)?;
-    let plain = trochoplan_core::corner::plan_corner(&sc, Method::Plain).map_err(err)?;
-    let plain_prof = engagement_profile(&sc.stock, &sc.previous_ring, &plain.path, &opts).map_err(err)?;
-    let mx = prof.max();
+    let report = evaluate(&req).map_err(err)?;
     let nc_export = match &args.nc.export {
-        Some(file) => Some(export_corner(args, file, &s, angle, &plan)?),
+        Some(file) => Some(export_corner(&args.nc, file, &report)?),
         None => None,
     };
+    let s = report.settings();
+    let (plan, mx) = (&report.plan, report.profile.max());
     let out = CornerOut {
-        method: method.name(),
-        corner_angle_deg: angle,
+        method: plan.method.name(),
+        corner_angle_deg: report.angle_deg,
         tool_diameter_mm: 2.0 * s.tool_radius,
         step_over_mm: s.step_over,
-        straight_engagement_deg: straight_engagement(s.step_over, s.tool_radius).map_err(err)?.to_degrees(),
+        straight_engagement_deg: s.straight_engagement().map_err(err)?.to_degrees(),
         target_deg: s.target.to_degrees(),
         circles: plan
             .circles
@@ -593,17 +543,15 @@ pub fn corner(args: &CornerArgs) -> Result<String, String> {
             .collect(),
         path_length_mm: plan.path_length_mm,
         time_s: plan.time_s,
-        max_engagement_deg: prof.max_angle().to_degrees(),
+        max_engagement_deg: report.profile.max_angle().to_degrees(),
         max_engagement_at: mx.map_or([f64::NAN; 2], |m| [m.x_mm, m.y_mm]),
-        plain_max_engagement_deg: plain_prof.max_angle().to_degrees(),
-        plain_path_length_mm: plain.path_length_mm,
-        notes: plan.notes,
-        path: plan.path,
+        plain_max_engagement_deg: report.plain_profile.max_angle().to_degrees(),
+        plain_path_length_mm: report.plain.path_length_mm,
+        notes: plan.notes.clone(),
+        path: plan.path.clone(),
         nc_export,
     };
-    let mut text = serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?;
-    text.push('\n');
-    Ok(text)
+    json_text(&out)
 }
 
 #[derive(Serialize)]
@@ -630,7 +578,7 @@ fn read(path: &PathBuf) -> Result<String, String> {
 
 /// `trochoplan engagement`: per-position engagement of a CSV tool path over a stock polygon.
 pub fn engagement(args: &EngagementArgs) -> Result<String, String> {
-    let d = finite("tool diameter", args.tool_diameter)?;
+    let d = finite("tool diameter", args.tool_diameter).map_err(err)?;
     let what_path = args.path_csv.display().to_string();
     let what_stock = args.stock_polygon.display().to_string();
     let path = polyline(&parse_points(&read(&args.path_csv)?, &what_path).map_err(err)?)
@@ -638,7 +586,7 @@ pub fn engagement(args: &EngagementArgs) -> Result<String, String> {
     let stock = Polygon::new(parse_points(&read(&args.stock_polygon)?, &what_stock).map_err(err)?)
         .map_err(|e| format!("{what_stock}: {e}"))?;
     let prof = engagement_profile(&stock, &[], &path, &EvaluatorOptions::new(d / 2.0, args.spacing)).map_err(err)?;
-    let conv = |s: &trochoplan_core::corner::EngagementSample| SampleOut {
+    let conv = |s: &EngagementSample| SampleOut {
         s_mm: s.s_mm,
         x_mm: s.x_mm,
         y_mm: s.y_mm,
@@ -652,9 +600,7 @@ pub fn engagement(args: &EngagementArgs) -> Result<String, String> {
         max_at: prof.max().as_ref().map(conv),
         samples: prof.samples.iter().map(conv).collect(),
     };
-    let mut text = serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?;
-    text.push('\n');
-    Ok(text)
+    json_text(&out)
 }
 
 #[cfg(test)]

@@ -11,11 +11,14 @@
 //!
 //! Modules:
 //! - [`job`]: the job and its validation ([`Job::validate`] → [`ValidJob`]).
-//! - [`geom`]: points, exact segments (line, arc, eq. (1) trochoid piece), numerics.
+//! - [`geom`]: points, exact segments (line, arc, eq. (1) trochoid piece), circles, simple
+//!   polygons, numerics.
 //! - [`path`]: the four slot path types as one repeated cycle.
 //! - [`analysis`]: edge of previous cycles, per-tooth h and engagement, waviness, step limit.
 //! - [`nc`]: NC programs (LinuxCNC, Fanuc-style ISO, GRBL, Sinumerik), biarc output.
-//! - [`corner`]: pocket corners (issue #5): engagement model, corner trochoids, evaluator.
+//! - [`corner`]: pocket corners (issue #5): engagement model, corner trochoids, evaluator;
+//!   [`corner::evaluate`] — corner request in, plans, profiles and acceptance row out.
+//! - [`pocket`]: polygonal pockets by rings or along the medial axis; [`pocket::plan`].
 //! - [`plan`]: [`plan()`] — job in, [`Plan`] out; used by the GUI and the CLI.
 //! - [`error`]: the [`JobError`] type.
 
@@ -27,6 +30,7 @@ pub mod job;
 pub mod nc;
 pub mod path;
 pub mod plan;
+pub mod pocket;
 
 pub use error::JobError;
 pub use job::{Job, PathKind, ValidJob};

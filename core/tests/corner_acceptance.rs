@@ -12,9 +12,11 @@ fn settings() -> CornerSettings {
     CornerSettings::new(r, radial_depth_for_engagement(46f64.to_radians(), r)).unwrap()
 }
 
-fn check(method: Method) {
+fn check(method: CornerMethod) {
     let s = settings();
-    let rows = acceptance_table(method, s, 0.4).unwrap();
+    let req = CornerRequest { method, spacing_mm: 0.4, ..CornerRequest::default() };
+    assert_eq!(req.settings().unwrap(), s, "the default request is the table's setting");
+    let rows = acceptance_table(&req).unwrap();
     println!("{}", markdown(&rows));
     let limit = s.target.to_degrees() + 1.0;
     for r in &rows {
@@ -35,15 +37,15 @@ fn check(method: Method) {
 
 #[test]
 fn variable_circles_meet_the_target() {
-    check(Method::Variable);
+    check(CornerMethod::Variable);
 }
 
 #[test]
 fn isometric_circles_meet_the_target() {
-    check(Method::Isometric);
+    check(CornerMethod::Isometric);
 }
 
 #[test]
 fn medial_axis_circles_meet_the_target() {
-    check(Method::MedialAxis);
+    check(CornerMethod::MedialAxis);
 }

@@ -6,7 +6,7 @@
 
 use std::f64::consts::PI;
 use trochoplan_core::corner::*;
-use trochoplan_core::geom::{P2, Segment, p2};
+use trochoplan_core::geom::{Circle, P2, Polygon, Segment, p2};
 
 /// The two-circle situation as a real cut: the previous circle's tool centre ran once round
 /// (O1, R1 − r) over a large block, then the tool runs CCW on (O2, R2 − r) starting at

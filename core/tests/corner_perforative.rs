@@ -10,10 +10,9 @@ mod nc_common;
 use nc_common::DUMBBELL;
 
 use std::f64::consts::PI;
-use trochoplan_core::corner::{
-    Method, MoveKind, PerforativePlan, PocketSettings, Polygon, plan_perforative_pocket, straight_engagement,
-};
-use trochoplan_core::geom::{P2, Segment, distance_to_piece, p2};
+use trochoplan_core::corner::straight_engagement;
+use trochoplan_core::geom::{P2, Polygon, Segment, distance_to_piece, p2};
+use trochoplan_core::pocket::{MoveKind, PerforativePlan, PocketSettings, plan_perforative};
 
 const R: f64 = 5.0;
 
@@ -23,7 +22,7 @@ fn ae46() -> f64 {
 }
 
 fn settings(r: f64, ae: f64) -> PocketSettings {
-    PocketSettings { tool_radius: r, step_over: ae, feed_mm_per_min: 600.0, spacing: 0.25, method: Method::MedialAxis }
+    PocketSettings { tool_radius: r, step_over: ae, feed_mm_per_min: 600.0, spacing: 0.25 }
 }
 
 fn poly(pts: &[(f64, f64)]) -> Polygon {
@@ -102,7 +101,7 @@ fn radial(d: P2, rad: P2) -> bool {
 
 #[test]
 fn rectangle_is_cleared_within_the_target() {
-    let p = plan_perforative_pocket(&poly(RECT), settings(R, ae46())).unwrap();
+    let p = plan_perforative(&poly(RECT), settings(R, ae46())).unwrap();
     check_plan("rect", &p);
     assert_eq!(p.parts, 1);
     // Derived: the tool cannot reach the part of each 45° corner branch with clearance < r,
@@ -126,7 +125,7 @@ fn first_circle_about_the_plunge_hole_reads_the_derived_engagement() {
     // Derived in the module docs: a tool centre at ρ from the centre of its own plunge hole
     // (radius r) is engaged over π/2 + arcsin(ρ/2r); the first circle has ρ1 = a_e.
     let ae = ae46();
-    let p = plan_perforative_pocket(&poly(RECT), settings(R, ae)).unwrap();
+    let p = plan_perforative(&poly(RECT), settings(R, ae)).unwrap();
     let first = p.circles[0];
     assert_eq!(first.kind, MoveKind::Entry);
     assert!((first.tool_circle.radius - ae).abs() < 1e-12);
@@ -144,7 +143,7 @@ fn first_circle_about_the_plunge_hole_reads_the_derived_engagement() {
 #[test]
 fn l_shape_dumbbell_and_triangle_stay_within_the_target() {
     for (name, pts) in [("L", L_SHAPE), ("dumbbell", DUMBBELL), ("triangle", TRIANGLE)] {
-        let p = plan_perforative_pocket(&poly(pts), settings(R, ae46())).unwrap();
+        let p = plan_perforative(&poly(pts), settings(R, ae46())).unwrap();
         check_plan(name, &p);
         assert_eq!(p.parts, 1, "{name}");
         assert!(p.circles.len() > 20, "{name}: {}", p.circles.len());
@@ -161,7 +160,7 @@ fn walls_are_finished_away_from_the_corners() {
     // measured: rect 0.069 mm, L 0.071 mm (printed).
     for (name, pts) in [("rect", RECT), ("L", L_SHAPE)] {
         let pg = poly(pts);
-        let p = plan_perforative_pocket(&pg, settings(R, ae46())).unwrap();
+        let p = plan_perforative(&pg, settings(R, ae46())).unwrap();
         let v = pg.vertices();
         let n = v.len();
         let mut worst: f64 = 0.0;
@@ -195,7 +194,7 @@ fn a_neck_narrower_than_the_tool_splits_the_pocket() {
     // D = 18 in the dumbbell: the neck is 16 wide (clearance 8 < r = 9), so the axis falls into
     // two parts, each reached by its own plunge; the neck's axis is not reachable.
     let ae = 9.0 * (1.0 - 46f64.to_radians().cos());
-    let p = plan_perforative_pocket(&poly(DUMBBELL), settings(9.0, ae)).unwrap();
+    let p = plan_perforative(&poly(DUMBBELL), settings(9.0, ae)).unwrap();
     assert_eq!(p.parts, 2);
     assert_eq!(p.retract_before.len(), 1);
     // At least the 20 mm of neck spine (clearance 8 all along it) is unreachable.
@@ -205,15 +204,12 @@ fn a_neck_narrower_than_the_tool_splits_the_pocket() {
 
 #[test]
 fn bad_inputs_are_named() {
-    let e = plan_perforative_pocket(&poly(RECT), settings(25.0, 5.0)).unwrap_err();
+    let e = plan_perforative(&poly(RECT), settings(25.0, 5.0)).unwrap_err();
     assert_eq!(e.parameter(), Some("tool diameter"), "{e}");
     assert!(e.to_string().contains("40.000"), "{e}");
-    let e = plan_perforative_pocket(&poly(RECT), PocketSettings { method: Method::Variable, ..settings(R, 1.0) })
-        .unwrap_err();
-    assert_eq!(e.parameter(), Some("method"));
-    let e = plan_perforative_pocket(&poly(RECT), settings(R, 10.0)).unwrap_err();
+    let e = plan_perforative(&poly(RECT), settings(R, 10.0)).unwrap_err();
     assert_eq!(e.parameter(), Some("step-over"), "{e}");
-    let e = plan_perforative_pocket(&poly(RECT), settings(f64::NAN, 1.0)).unwrap_err();
+    let e = plan_perforative(&poly(RECT), settings(f64::NAN, 1.0)).unwrap_err();
     assert!(e.to_string().contains("tool"), "{e}");
 }
 

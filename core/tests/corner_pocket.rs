@@ -8,19 +8,19 @@ mod nc_common;
 
 use nc_common::DUMBBELL;
 use std::f64::consts::PI;
-use trochoplan_core::corner::pocket::LINK_ENGAGEMENT_SLACK_RAD;
 use trochoplan_core::corner::*;
-use trochoplan_core::geom::{P2, Segment, p2};
+use trochoplan_core::geom::{P2, Polygon, Segment, p2};
+use trochoplan_core::pocket::*;
 
 const LEN_TOL: f64 = 1e-9; // mm, offset geometry is exact (lines and arcs)
 const ANGLE_TOL_DEG: f64 = 1e-3; // evaluator refinement is ~1e-8 rad
 
 fn settings(d: f64, ae: f64) -> PocketSettings {
-    PocketSettings { tool_radius: d / 2.0, step_over: ae, feed_mm_per_min: 600.0, spacing: 0.5, method: Method::Plain }
+    PocketSettings { tool_radius: d / 2.0, step_over: ae, feed_mm_per_min: 600.0, spacing: 0.5 }
 }
 
 fn poly(pts: &[(f64, f64)]) -> Polygon {
-    pocket_polygon(pts.iter().map(|&(x, y)| p2(x, y)).collect()).unwrap()
+    Polygon::new(pts.iter().map(|&(x, y)| p2(x, y)).collect()).unwrap()
 }
 
 fn length(segs: &[Segment]) -> f64 {
@@ -35,7 +35,7 @@ fn rectangle_rings_count_and_lengths() {
     // reflex vertices), so ring k is the rectangle [d, 60 − d] × [d, 40 − d] with perimeter
     // 2(60 − 2d) + 2(40 − 2d) = 200 − 8d: d = 17, 13, 9, 5 → 64, 96, 128, 160 (innermost first).
     let pocket = poly(&[(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)]);
-    let plan = plan_pocket(&pocket, settings(10.0, 4.0)).unwrap();
+    let plan = plan_rings(&pocket, settings(10.0, 4.0), CornerMethod::Plain).unwrap();
     assert_eq!(plan.rings.len(), 4);
     for (ring, (d, want)) in plan.rings.iter().zip([(17.0, 64.0), (13.0, 96.0), (9.0, 128.0), (5.0, 160.0)]) {
         assert!((ring.offset_mm - d).abs() < LEN_TOL, "offset {} vs {d}", ring.offset_mm);
@@ -91,7 +91,7 @@ fn triangle_rings_are_similar_triangles() {
     // perimeter is P(ρ − d)/ρ. D = 4 (r = 2), a_e = 3: d = 2, 5, 8 (< ρ), 11 (≥ ρ, vanishes):
     // (ρ − r)/a_e = 8/3 → k = 0..2, three rings with perimeters 96, 60, 24.
     let pocket = poly(&[(0.0, 0.0), (40.0, 0.0), (0.0, 30.0)]);
-    let plan = plan_pocket(&pocket, settings(4.0, 3.0)).unwrap();
+    let plan = plan_rings(&pocket, settings(4.0, 3.0), CornerMethod::Plain).unwrap();
     let got: Vec<(f64, f64)> = plan.rings.iter().map(|g| (g.offset_mm, g.length_mm)).collect();
     assert_eq!(got.len(), 3, "{got:?}");
     for ((d, len), (wd, wl)) in got.iter().zip([(8.0, 24.0), (5.0, 60.0), (2.0, 96.0)]) {
@@ -132,8 +132,18 @@ fn reflex_vertex_gives_an_arc_of_radius_d() {
 #[test]
 fn clockwise_input_gives_the_same_rings() {
     // Metamorphic: the same rectangle listed clockwise.
-    let ccw = plan_pocket(&poly(&[(0.0, 0.0), (30.0, 0.0), (30.0, 20.0), (0.0, 20.0)]), settings(6.0, 2.0)).unwrap();
-    let cw = plan_pocket(&poly(&[(0.0, 0.0), (0.0, 20.0), (30.0, 20.0), (30.0, 0.0)]), settings(6.0, 2.0)).unwrap();
+    let ccw = plan_rings(
+        &poly(&[(0.0, 0.0), (30.0, 0.0), (30.0, 20.0), (0.0, 20.0)]),
+        settings(6.0, 2.0),
+        CornerMethod::Plain,
+    )
+    .unwrap();
+    let cw = plan_rings(
+        &poly(&[(0.0, 0.0), (0.0, 20.0), (30.0, 20.0), (30.0, 0.0)]),
+        settings(6.0, 2.0),
+        CornerMethod::Plain,
+    )
+    .unwrap();
     assert_eq!(ccw.rings.len(), cw.rings.len());
     assert!((ccw.path_length_mm - cw.path_length_mm).abs() < 1e-9);
 }
@@ -141,16 +151,16 @@ fn clockwise_input_gives_the_same_rings() {
 #[test]
 fn bad_input_gives_named_errors() {
     let pts = |v: &[(f64, f64)]| v.iter().map(|&(x, y)| p2(x, y)).collect::<Vec<_>>();
-    let bow = pocket_polygon(pts(&[(0.0, 0.0), (10.0, 10.0), (10.0, 0.0), (0.0, 10.0)])).unwrap_err();
+    let bow = Polygon::new(pts(&[(0.0, 0.0), (10.0, 10.0), (10.0, 0.0), (0.0, 10.0)])).unwrap_err();
     assert_eq!(bow.parameter(), Some("polygon"), "{bow}");
     assert!(bow.to_string().contains("edges #"), "{bow}");
-    let dup = pocket_polygon(pts(&[(0.0, 0.0), (10.0, 0.0), (10.0, 0.0), (0.0, 10.0)])).unwrap_err();
+    let dup = Polygon::new(pts(&[(0.0, 0.0), (10.0, 0.0), (10.0, 0.0), (0.0, 10.0)])).unwrap_err();
     assert_eq!(dup.parameter(), Some("polygon edge length"), "{dup}");
     assert!(dup.to_string().contains("edge #2"), "{dup}");
-    let nan = pocket_polygon(pts(&[(0.0, 0.0), (f64::NAN, 0.0), (0.0, 10.0)])).unwrap_err();
+    let nan = Polygon::new(pts(&[(0.0, 0.0), (f64::NAN, 0.0), (0.0, 10.0)])).unwrap_err();
     assert_eq!(nan.parameter(), Some("polygon vertex"), "{nan}");
     assert!(nan.to_string().contains("#2"), "{nan}");
-    let two = pocket_polygon(pts(&[(0.0, 0.0), (10.0, 0.0)])).unwrap_err();
+    let two = Polygon::new(pts(&[(0.0, 0.0), (10.0, 0.0)])).unwrap_err();
     assert_eq!(two.parameter(), Some("polygon vertices"), "{two}");
 
     let rect = poly(&[(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)]);
@@ -163,12 +173,12 @@ fn bad_input_gives_named_errors() {
         (settings(-2.0, 1.0), "tool diameter"),
         (PocketSettings { feed_mm_per_min: 0.0, ..settings(10.0, 4.0) }, "feed"),
     ] {
-        let e = plan_pocket(&rect, s).unwrap_err();
+        let e = plan_rings(&rect, s, CornerMethod::Plain).unwrap_err();
         assert_eq!(e.parameter(), Some(name), "{e}");
     }
     // A slot 8 mm wide is narrower than a 10 mm tool: the offset by r = 5 > 4 is empty.
     let narrow = poly(&[(0.0, 0.0), (60.0, 0.0), (60.0, 8.0), (0.0, 8.0)]);
-    let e = plan_pocket(&narrow, settings(10.0, 4.0)).unwrap_err();
+    let e = plan_rings(&narrow, settings(10.0, 4.0), CornerMethod::Plain).unwrap_err();
     assert_eq!(e.parameter(), Some("tool diameter"), "{e}");
 }
 
@@ -188,8 +198,8 @@ fn variable_circles_at_ring_corners_where_they_fit() {
     let r1 = (2.0 * r * r * (1.0 - a_t.cos()) - ae * ae) / (2.0 * r * (a_str.cos() - a_t.cos()));
     assert!((40.0 - 2.0 * 6.6 + r >= r1 + 2.0 * r) && (40.0 - 2.0 * 8.2 + r < r1 + 2.0 * r), "R1 = {r1}");
     let pocket = poly(&[(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)]);
-    let plain = plan_pocket(&pocket, settings(10.0, ae)).unwrap();
-    let var = plan_pocket(&pocket, PocketSettings { method: Method::Variable, ..settings(10.0, ae) }).unwrap();
+    let plain = plan_rings(&pocket, settings(10.0, ae), CornerMethod::Plain).unwrap();
+    let var = plan_rings(&pocket, settings(10.0, ae), CornerMethod::Variable).unwrap();
     assert_eq!(plain.rings.len(), 10);
     assert_eq!(var.rings.len(), 10);
     assert_eq!((var.trochoid_corners, var.plain_corners), (8, 28));
@@ -214,7 +224,7 @@ fn variable_circles_at_ring_corners_where_they_fit() {
         }
     }
     // Medial axis is a whole-pocket strategy, not a ring-corner one.
-    let e = plan_pocket(&pocket, PocketSettings { method: Method::MedialAxis, ..settings(10.0, ae) }).unwrap_err();
+    let e = plan_rings(&pocket, settings(10.0, ae), CornerMethod::MedialAxis).unwrap_err();
     assert_eq!(e.parameter(), Some("method"), "{e}");
 }
 
@@ -254,7 +264,7 @@ fn rectangle_links_are_radial_steps_of_one_step_over() {
     // Its engagement: the tool ends with the band's edge a_e beyond the last ring in front,
     // at r − a_e = 2.5 mm from the centre: the arc 2·arccos(2.5/5) = 120°.
     let rect = [(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)];
-    let plan = plan_pocket(&poly(&rect), settings(10.0, 2.5)).unwrap();
+    let plan = plan_rings(&poly(&rect), settings(10.0, 2.5), CornerMethod::Plain).unwrap();
     assert_eq!((plan.rings.len(), plan.links.len()), (7, 6));
     let want = 2.0 * 0.5f64.acos();
     for (i, l) in plan.links.iter().enumerate() {
@@ -281,8 +291,8 @@ fn links_across_uncut_material_or_too_close_to_a_wall_retract() {
     // The dumbbell's inner rings split into one loop per lobe, machined in turn: a straight
     // move from lobe to lobe would slot across the uncut neck (engagement up to 180° > 120°)
     // or pass its corners closer than r. Those links retract; the others feed.
-    for method in [Method::Plain, Method::Variable] {
-        let plan = plan_pocket(&poly(DUMBBELL), PocketSettings { method, ..settings(10.0, 2.5) }).unwrap();
+    for method in [CornerMethod::Plain, CornerMethod::Variable] {
+        let plan = plan_rings(&poly(DUMBBELL), settings(10.0, 2.5), method).unwrap();
         let retracts: Vec<usize> = (0..plan.links.len()).filter(|&i| plan.links[i].kind == LinkKind::Retract).collect();
         assert!(!retracts.is_empty() && retracts.len() < plan.links.len(), "{:?}", plan.links);
         let bound = 2.0 * 0.5f64.acos() + LINK_ENGAGEMENT_SLACK_RAD;
@@ -326,8 +336,8 @@ fn corner_circles_that_would_leave_the_pocket_stay_plain() {
     // of ring d = 10 had centre (23.24, 23.24), radius 13.24: 7.6 mm outside the pocket). Every
     // ring must keep the tool centre r from every edge.
     let pts = [(0.0, 0.0), (60.0, 0.0), (60.0, 25.0), (25.0, 25.0), (25.0, 50.0), (0.0, 50.0)];
-    for method in [Method::Variable, Method::Isometric] {
-        let plan = plan_pocket(&poly(&pts), PocketSettings { method, ..settings(10.0, 2.5) }).unwrap();
+    for method in [CornerMethod::Variable, CornerMethod::Isometric] {
+        let plan = plan_rings(&poly(&pts), settings(10.0, 2.5), method).unwrap();
         let (path, _) = plan.tool_path();
         let c = clearance(&pts, &path);
         assert!(c >= 5.0 - 1e-9, "{method:?}: clearance {c}");

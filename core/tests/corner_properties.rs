@@ -23,7 +23,7 @@ proptest! {
         d in prop_oneof![Just(f64::NAN), Just(-1.0), 1.0f64..30.0],
         ae_frac in prop_oneof![Just(f64::NAN), -0.1f64..1.2],
         t1 in 0.0f64..0.6,
-        method in prop_oneof![Just(Method::Plain), Just(Method::Variable), Just(Method::Isometric)],
+        method in prop_oneof![Just(CornerMethod::Plain), Just(CornerMethod::Variable), Just(CornerMethod::Isometric)],
     ) {
         let r = d / 2.0;
         let settings = CornerSettings::new(r, ae_frac * d).and_then(|mut s| {
@@ -60,7 +60,7 @@ fn engagement_is_invariant_under_rotation_and_translation() {
     let moved =
         Corner::new(rotate(base.apex, turn) + shift, rotate(base.dir_in, turn), rotate(base.dir_out, turn)).unwrap();
     let opts = EvaluatorOptions::new(r, 0.5);
-    for m in [Method::Plain, Method::Variable, Method::Isometric] {
+    for m in [CornerMethod::Plain, CornerMethod::Variable, CornerMethod::Isometric] {
         let measure = |c: Corner| {
             let sc = CornerScenario::new(c, s).unwrap();
             let p = plan_corner(&sc, m).unwrap();

@@ -291,14 +291,14 @@ fn sinumerik_loops_move_like_the_expanded_programs() {
 #[test]
 fn corner_programs_in_every_dialect_retrace_the_corner_path() {
     use trochoplan_core::corner::radial_depth_for_engagement;
-    use trochoplan_core::corner::{Corner, CornerScenario, CornerSettings, Method, plan_corner};
+    use trochoplan_core::corner::{Corner, CornerMethod, CornerScenario, CornerSettings, plan_corner};
     use trochoplan_core::nc::{PathJob, program_for_path};
     let r = 5.0;
     let settings = CornerSettings::new(r, radial_depth_for_engagement(46f64.to_radians(), r)).expect("settings");
     for angle in [60.0f64, 90.0, 120.0] {
         let sc =
             CornerScenario::new(Corner::symmetric(angle.to_radians()).expect("corner"), settings).expect("scenario");
-        for method in [Method::Variable, Method::Isometric, Method::MedialAxis] {
+        for method in [CornerMethod::Variable, CornerMethod::Isometric, CornerMethod::MedialAxis] {
             let plan = plan_corner(&sc, method).expect("corner plan");
             let job = PathJob {
                 segments: &plan.path,

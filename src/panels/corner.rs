@@ -2,8 +2,10 @@
 //! strategies (Wu et al. 2016), the corner drawn with equal axes, and the engagement measured by
 //! the core's independent evaluator along the plain ring and along the strategy's path.
 //!
-//! The inputs mirror `trochoplan corner` (see `corner_cmd.rs`); [`compute`] calls the same core
-//! functions and only converts their results to plot points. Planning takes 0.1–1 s, so the
+//! The inputs are those of `trochoplan corner` and `trochoplan pocket` (the core's
+//! `CornerRequest` and `PocketRequest`, with their defaults); [`compute`] and [`compute_pocket`]
+//! call the same core entry points (`corner::evaluate`, `pocket::plan`) and only convert their
+//! results to plot points. Planning takes 0.1–1 s, so the
 //! window runs it on a worker thread ([`CornerView::threaded`]) that keeps only the newest
 //! request; the tests plan inline ([`CornerView::default`]). The acceptance table
 //! ([`super::corner_table`], always on its own thread) and the NC export
@@ -18,14 +20,9 @@ use egui_plot::{HLine, Legend, Line, Plot, PlotPoints};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
-use trochoplan_core::JobError;
-use trochoplan_core::corner::{
-    Corner, CornerPlan, CornerScenario, CornerSettings, EngagementProfile, EvaluatorOptions, Method, MoveKind,
-    PerforativePlan, PocketPlan, PocketSettings, acceptance, engagement_profile, parse_points, plan_corner,
-    plan_perforative_pocket, plan_pocket, pocket_polygon, straight_engagement,
-};
-use trochoplan_core::corner::{RingStep, TargetSpec};
-use trochoplan_core::geom::Segment;
+use trochoplan_core::corner::{self, CornerMethod, CornerReport, CornerRequest, EngagementProfile, parse_points};
+use trochoplan_core::geom::{Polygon, Segment};
+use trochoplan_core::pocket::{self, MoveKind, PocketPlan, PocketRequest, PocketStrategy};
 
 /// Labels of the inputs (used by the tests' accessibility queries).
 pub mod label {
@@ -38,9 +35,6 @@ pub mod label {
     pub const POCKET_STEP_OVER: &str = "Pocket step-over a_e (mm)";
 }
 
-/// Spacing of the evaluated tool positions in a pocket (mm), as the CLI's default.
-const POCKET_SPACING_MM: f64 = 0.25;
-
 /// What the tab plans: one corner, the acceptance table of all corner angles, or a whole
 /// polygonal pocket.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -51,67 +45,8 @@ pub enum CornerMode {
     Pocket,
 }
 
-/// Spacing of the tool positions measured by the evaluator (mm), as the CLI's default.
-pub const SPACING_MM: f64 = 0.1;
-/// Wall length from the apex (mm), as the CLI's default.
-const EDGE_LENGTH_MM: f64 = 100.0;
-/// Feed for the machining time (mm/min), as the CLI's default.
-const FEED_MM_PER_MIN: f64 = 600.0;
 /// Most points drawn for the tool path.
 const MAX_PATH_POINTS: usize = 6000;
-
-/// Corner strategy as chosen in the tab.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-pub enum CornerMethod {
-    Plain,
-    #[default]
-    Variable,
-    Isometric,
-    MedialAxis,
-}
-
-impl CornerMethod {
-    pub const ALL: [CornerMethod; 4] =
-        [CornerMethod::Plain, CornerMethod::Variable, CornerMethod::Isometric, CornerMethod::MedialAxis];
-
-    pub(super) fn core(self) -> Method {
-        match self {
-            CornerMethod::Plain => Method::Plain,
-            CornerMethod::Variable => Method::Variable,
-            CornerMethod::Isometric => Method::Isometric,
-            CornerMethod::MedialAxis => Method::MedialAxis,
-        }
-    }
-
-    /// Button label.
-    pub fn label(self) -> &'static str {
-        match self {
-            CornerMethod::Plain => "plain ring",
-            CornerMethod::Variable => "variable circles",
-            CornerMethod::Isometric => "isometric circles",
-            CornerMethod::MedialAxis => "medial axis",
-        }
-    }
-
-    fn tooltip(self) -> &'static str {
-        match self {
-            CornerMethod::Plain => "The contour-parallel ring turning at the corner, no trochoids (for comparison).",
-            CornerMethod::Variable => {
-                "Circles tangent to both offset walls, centres on the bisector (eqs. 21–22); each next circle \
-                 found by bisection between the limit points M and N until its engagement lies in \
-                 (a*, a* + ε] (eqs. 23–24)."
-            }
-            CornerMethod::Isometric => {
-                "Circles of one radius rh (default: the tool radius), centre spacing from the engagement \
-                 limit; needs rh above the threshold rh1 (eq. 25)."
-            }
-            CornerMethod::MedialAxis => {
-                "Perforative circles along the medial axis of the corner's remaining material \
-                 (segment Voronoi diagram, §4.2 / domain-spec §3.5)."
-            }
-        }
-    }
-}
 
 /// Inputs of the Corner tab, persisted with the app state.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -138,19 +73,53 @@ pub struct CornerInputs {
 }
 
 impl Default for CornerInputs {
+    /// The defaults of `trochoplan corner` and `trochoplan pocket`; the pocket is the README's
+    /// rectangle.
     fn default() -> Self {
+        let corner = CornerRequest::DEFAULT;
+        let pocket = PocketRequest::default();
         CornerInputs {
-            angle_deg: 90.0,
-            method: CornerMethod::Variable,
-            tool_diameter_mm: 10.0,
-            use_step_over: false,
-            step_over_mm: 2.5,
-            straight_engagement_deg: 46.0,
-            t1: 0.15,
+            angle_deg: corner.angle_deg,
+            method: corner.method,
+            tool_diameter_mm: corner.tool_diameter_mm,
+            use_step_over: corner.step_over_mm.is_some(),
+            step_over_mm: corner.step_over_mm.unwrap_or(pocket.step_over_mm),
+            straight_engagement_deg: corner.straight_engagement_deg,
+            t1: corner.t1,
             mode: CornerMode::Corner,
-            polygon_text: "0,0\n60,0\n60,40\n0,40\n".to_owned(),
-            pocket_step_over_mm: 2.5,
+            polygon_text: pocket.polygon.vertices().iter().map(|v| format!("{},{}\n", v.x, v.y)).collect(),
+            pocket_step_over_mm: pocket.step_over_mm,
         }
+    }
+}
+
+impl CornerInputs {
+    /// The core's corner request of the tab's inputs (the tab has no target, tolerance, wall
+    /// length, feed, isometric radius or spacing fields: the defaults of `trochoplan corner`).
+    pub fn request(&self) -> CornerRequest {
+        CornerRequest {
+            angle_deg: self.angle_deg,
+            method: self.method,
+            tool_diameter_mm: self.tool_diameter_mm,
+            step_over_mm: self.use_step_over.then_some(self.step_over_mm),
+            straight_engagement_deg: self.straight_engagement_deg,
+            t1: self.t1,
+            ..CornerRequest::DEFAULT
+        }
+    }
+
+    /// The core's pocket request of the tab's inputs: the polygon text read and validated, the
+    /// method as a whole-pocket strategy, the other inputs as `trochoplan pocket`'s defaults.
+    pub fn pocket_request(&self) -> Result<PocketRequest, String> {
+        let points = parse_points(&self.polygon_text, "polygon").map_err(|e| e.to_string())?;
+        let polygon = Polygon::new(points).map_err(|e| format!("polygon: {e}"))?;
+        Ok(PocketRequest {
+            polygon,
+            tool_diameter_mm: self.tool_diameter_mm,
+            step_over_mm: self.pocket_step_over_mm,
+            strategy: PocketStrategy::from_method(self.method),
+            ..PocketRequest::default()
+        })
     }
 }
 
@@ -190,68 +159,38 @@ pub struct CornerResult {
     /// Engagement (degrees) against path position (mm).
     pub profile: Vec<[f64; 2]>,
     pub plain_profile: Vec<[f64; 2]>,
-    /// The plan itself and its settings (for the NC program).
-    pub plan: CornerPlan,
-    pub settings: CornerSettings,
+    /// The core's report (plans, profiles, settings; for the NC program).
+    pub report: CornerReport,
 }
 
-/// Core settings from the tab's inputs, as `trochoplan corner` builds them.
-pub fn settings(i: &CornerInputs) -> Result<CornerSettings, String> {
-    let step = if i.use_step_over {
-        RingStep::StepOver(i.step_over_mm)
-    } else {
-        RingStep::StraightEngagementDeg(i.straight_engagement_deg)
-    };
-    let mut s =
-        CornerSettings::from_inputs(i.tool_diameter_mm, step, TargetSpec::T1(i.t1)).map_err(|e| e.to_string())?;
-    s.edge_length = EDGE_LENGTH_MM;
-    s.feed_mm_per_min = FEED_MM_PER_MIN;
-    s.validate().map_err(|e| e.to_string())?;
-    Ok(s)
-}
-
-fn finite(name: &'static str, v: f64) -> Result<f64, String> {
-    if v.is_finite() { Ok(v) } else { Err(JobError::range(name, v, "a finite number").to_string()) }
-}
-
-/// Plan the corner and measure the strategy and the plain ring with the evaluator (the same
-/// calls as `trochoplan corner`).
+/// Plan the corner and measure the strategy and the plain ring with the evaluator
+/// (`corner::evaluate`, as `trochoplan corner`), converted for drawing.
 pub fn compute(i: &CornerInputs) -> Result<CornerResult, String> {
-    let s = settings(i)?;
-    let angle = finite("angle", i.angle_deg)?;
-    let corner = Corner::symmetric(angle.to_radians()).map_err(|e| e.to_string())?;
-    let sc = CornerScenario::new(corner, s).map_err(|e| e.to_string())?;
-    let opts = EvaluatorOptions::new(s.tool_radius, SPACING_MM);
-    let method = i.method.core();
-    let plan = plan_corner(&sc, method).map_err(|e| e.to_string())?;
-    let prof = engagement_profile(&plan.stock, &plan.precut, &plan.path, &opts).map_err(|e| e.to_string())?;
-    let plain = plan_corner(&sc, Method::Plain).map_err(|e| e.to_string())?;
-    let plain_prof = engagement_profile(&sc.stock, &sc.previous_ring, &plain.path, &opts).map_err(|e| e.to_string())?;
-    // body / tip split and the tip's stated limit, as the acceptance table reports them
-    let row = acceptance::row(angle, method, &corner, s, (&plan, &prof), (&plain, &plain_prof));
-    let c = sc.corner;
+    let report = corner::evaluate(&i.request()).map_err(|e| e.to_string())?;
+    let (s, c, row) = (report.settings(), report.scenario.corner, &report.row);
     let wall = |p: trochoplan_core::geom::P2| [p.x, p.y];
     Ok(CornerResult {
-        method: method.name(),
-        angle_deg: angle,
+        method: row.method.name(),
+        angle_deg: report.angle_deg,
         step_over_mm: s.step_over,
-        straight_deg: straight_engagement(s.step_over, s.tool_radius).map_err(|e| e.to_string())?.to_degrees(),
-        target_deg: s.target.to_degrees(),
-        circles: plan.circles.len(),
-        path_length_mm: plan.path_length_mm,
-        time_s: plan.time_s,
-        max_deg: prof.max_angle().to_degrees(),
-        plain_max_deg: plain_prof.max_angle().to_degrees(),
+        straight_deg: s.straight_engagement().map_err(|e| e.to_string())?.to_degrees(),
+        target_deg: row.target_deg,
+        circles: row.circles,
+        path_length_mm: row.path_length_mm,
+        time_s: row.time_s,
+        max_deg: row.max_deg,
+        plain_max_deg: row.plain_max_deg,
         body_max_deg: row.body_max_deg,
         tip_deg: row.tip_deg,
         tip_limit_deg: row.tip_limit_deg,
         passes: row.passes(),
-        plain_length_mm: plain.path_length_mm,
-        plain_time_s: plain.time_s,
-        notes: plan.notes.clone(),
+        plain_length_mm: row.plain_path_length_mm,
+        plain_time_s: row.plain_time_s,
+        notes: report.plan.notes.clone(),
         walls: vec![wall(c.apex - c.dir_in * s.edge_length), wall(c.apex), wall(c.apex + c.dir_out * s.edge_length)],
-        previous_ring: segment_points(&sc.previous_ring, MAX_PATH_POINTS / 4),
-        circle_points: plan
+        previous_ring: segment_points(&report.scenario.previous_ring, MAX_PATH_POINTS / 4),
+        circle_points: report
+            .plan
             .circles
             .iter()
             .map(|cc| {
@@ -264,11 +203,10 @@ pub fn compute(i: &CornerInputs) -> Result<CornerResult, String> {
                 full.sample(72).iter().map(|p| [p.x, p.y]).collect()
             })
             .collect(),
-        path: segment_points(&plan.path, MAX_PATH_POINTS),
-        profile: profile_points(&prof),
-        plain_profile: profile_points(&plain_prof),
-        plan,
-        settings: s,
+        path: segment_points(&report.plan.path, MAX_PATH_POINTS),
+        profile: profile_points(&report.profile),
+        plain_profile: profile_points(&report.plain_profile),
+        report,
     })
 }
 
@@ -285,74 +223,47 @@ pub struct PocketResult {
     /// What the strategy did: corners given trochoids, or circles along the medial axis.
     pub detail: String,
     /// The plan itself (for the NC program).
-    pub plan: PocketPlans,
+    pub plan: PocketPlan,
 }
 
-/// A pocket planned by rings (plain, variable, isometric) or along the medial axis.
-#[derive(Clone, Debug)]
-pub enum PocketPlans {
-    Rings(PocketPlan),
-    Perforative(PerforativePlan),
-}
-
-/// Plan the pocket as `trochoplan pocket` does.
+/// Plan the pocket as `trochoplan pocket` does (`pocket::plan`), converted for drawing.
 pub fn compute_pocket(i: &CornerInputs) -> Result<PocketResult, String> {
-    let d = finite("tool diameter", i.tool_diameter_mm)?;
-    let polygon = pocket_polygon(parse_points(&i.polygon_text, "polygon").map_err(|e| e.to_string())?)
-        .map_err(|e| format!("polygon: {e}"))?;
-    let settings = PocketSettings {
-        tool_radius: d / 2.0,
-        step_over: i.pocket_step_over_mm,
-        feed_mm_per_min: FEED_MM_PER_MIN,
-        spacing: POCKET_SPACING_MM,
-        method: i.method.core(),
-    };
-    let mut boundary: Vec<[f64; 2]> = polygon.vertices().iter().map(|v| [v.x, v.y]).collect();
+    let plan = pocket::plan(&i.pocket_request()?).map_err(|e| e.to_string())?;
+    let mut boundary: Vec<[f64; 2]> = plan.polygon().vertices().iter().map(|v| [v.x, v.y]).collect();
     if let Some(&first) = boundary.first() {
         boundary.push(first);
     }
-    if settings.method == Method::MedialAxis {
+    let (rings, detail) = match &plan {
         // No rings: one pass along the medial axis (shown as one entry of the ring list).
-        let plan = plan_perforative_pocket(&polygon, settings).map_err(|e| e.to_string())?;
-        let body = plan.body_max_rad.to_degrees();
-        return Ok(PocketResult {
-            method: settings.method.name(),
-            boundary,
-            rings: vec![(0, 0.0, body, segment_points(&plan.segments, MAX_PATH_POINTS))],
-            path_length_mm: plan.path_length_mm,
-            time_s: plan.time_s,
-            max_deg: body,
-            detail: format!(
+        PocketPlan::MedialAxis(p) => (
+            vec![(0, 0.0, p.body_max_rad.to_degrees(), segment_points(&p.segments, MAX_PATH_POINTS))],
+            format!(
                 "{} circles along the medial axis, {} part(s); tips up to {:.1}°",
-                plan.circles.len(),
-                plan.parts,
-                plan.max_of(MoveKind::Tip).to_degrees()
+                p.circles.len(),
+                p.parts,
+                p.max_of(MoveKind::Tip).to_degrees()
             ),
-            plan: PocketPlans::Perforative(plan),
-        });
-    }
-    settings.validate().map_err(|e| e.to_string())?;
-    let plan = plan_pocket(&polygon, settings).map_err(|e| e.to_string())?;
+        ),
+        PocketPlan::Rings(p) => (
+            p.rings
+                .iter()
+                .map(|g| {
+                    let pts = segment_points(&g.segments, MAX_PATH_POINTS / 4);
+                    (g.level, g.offset_mm, g.max_engagement_rad.to_degrees(), pts)
+                })
+                .collect(),
+            format!("corners with trochoids {}, plain {}", p.trochoid_corners, p.plain_corners),
+        ),
+    };
     Ok(PocketResult {
-        method: settings.method.name(),
+        method: plan.strategy().name(),
         boundary,
-        rings: plan
-            .rings
-            .iter()
-            .map(|g| {
-                (
-                    g.level,
-                    g.offset_mm,
-                    g.max_engagement_rad.to_degrees(),
-                    segment_points(&g.segments, MAX_PATH_POINTS / 4),
-                )
-            })
-            .collect(),
-        path_length_mm: plan.path_length_mm,
-        time_s: plan.time_s,
-        max_deg: plan.max_engagement_rad.to_degrees(),
-        detail: format!("corners with trochoids {}, plain {}", plan.trochoid_corners, plan.plain_corners),
-        plan: PocketPlans::Rings(plan),
+        rings,
+        path_length_mm: plan.path_length_mm(),
+        time_s: plan.time_s(),
+        max_deg: plan.max_engagement_rad().to_degrees(),
+        detail,
+        plan,
     })
 }
 
@@ -417,7 +328,7 @@ impl CornerView {
     pub fn threaded(repaint: impl Fn() + Send + Sync + 'static) -> CornerView {
         let repaint = Arc::new(repaint);
         let table_repaint = repaint.clone();
-        let table = TableView::new(SPACING_MM, move || table_repaint());
+        let table = TableView::new(CornerRequest::DEFAULT.spacing_mm, move || table_repaint());
         let (req_tx, req_rx) = channel::<CornerInputs>();
         let (ans_tx, ans_rx) = channel::<Answer>();
         let spawned = std::thread::Builder::new().name("corner".into()).spawn(move || {
@@ -461,7 +372,7 @@ impl CornerView {
     /// for the table of their settings instead.
     pub fn update(&mut self, inputs: &CornerInputs) {
         if inputs.mode == CornerMode::Table {
-            self.table.update(settings(inputs));
+            self.table.update(inputs.request().settings().map_err(|e| e.to_string()));
             return;
         }
         let mut answers = Vec::new();
@@ -584,24 +495,10 @@ fn corner(
                 "Interior angle between the two walls (30°–150°); the apex is at the origin, the bisector along +x.",
             );
         ui.separator();
-        ui.label("Method");
-        for m in CornerMethod::ALL {
-            ui.selectable_value(&mut inputs.method, m, m.label()).on_hover_text(m.tooltip());
-        }
+        method_buttons(ui, &mut inputs.method);
     });
     tool_inputs(ui, inputs);
-    if let Some(e) = &view.error {
-        ui.add(egui::Label::new(RichText::new(format!("invalid: {e}")).color(ERROR_COLOR)).wrap());
-        if view.last.is_some() {
-            ui.label("Showing the last valid corner.");
-        }
-    }
-    if view.pending() {
-        ui.horizontal(|ui| {
-            ui.spinner();
-            ui.label("planning…");
-        });
-    }
+    status(ui, view, view.last.is_some().then_some("Showing the last valid corner."));
     let Some(r) = view.last.as_deref() else {
         if view.error.is_none() {
             ui.label("Planning the corner…");
@@ -632,6 +529,31 @@ fn corner(
         teaching(ui);
     }
     cmd
+}
+
+/// The method buttons; labels and tooltips are the core's.
+fn method_buttons(ui: &mut egui::Ui, method: &mut CornerMethod) {
+    ui.label("Method");
+    for m in CornerMethod::ALL {
+        ui.selectable_value(method, m, m.label()).on_hover_text(m.tooltip());
+    }
+}
+
+/// The core's message when the inputs are invalid (then `kept`, what is shown meanwhile), and
+/// a spinner while a plan is being made.
+fn status(ui: &mut egui::Ui, view: &CornerView, kept: Option<&str>) {
+    if let Some(e) = &view.error {
+        ui.add(egui::Label::new(RichText::new(format!("invalid: {e}")).color(ERROR_COLOR)).wrap());
+        if let Some(text) = kept {
+            ui.label(text);
+        }
+    }
+    if view.pending() {
+        ui.horizontal(|ui| {
+            ui.spinner();
+            ui.label("planning…");
+        });
+    }
 }
 
 /// Height of the teaching text under the plots.
@@ -667,8 +589,11 @@ fn numbers(ui: &mut egui::Ui, r: &CornerResult) {
         ui.end_row();
     });
     ui.label(format!(
-        "a_e {:.3} mm · a_str {:.1}° · target a* {:.1}° · feed {FEED_MM_PER_MIN:.0} mm/min",
-        r.step_over_mm, r.straight_deg, r.target_deg
+        "a_e {:.3} mm · a_str {:.1}° · target a* {:.1}° · feed {:.0} mm/min",
+        r.step_over_mm,
+        r.straight_deg,
+        r.target_deg,
+        r.report.settings().feed_mm_per_min
     ));
     for n in &r.notes {
         ui.add(egui::Label::new(RichText::new(n).italics()).wrap());
@@ -754,10 +679,7 @@ fn pocket(
     nc_cache: &CornerNcCache,
 ) -> Option<Command> {
     ui.horizontal_wrapped(|ui| {
-        ui.label("Method");
-        for m in CornerMethod::ALL {
-            ui.selectable_value(&mut inputs.method, m, m.label()).on_hover_text(m.tooltip());
-        }
+        method_buttons(ui, &mut inputs.method);
         ui.separator();
         let l = ui.label(label::TOOL_DIAMETER);
         ui.add(DragValue::new(&mut inputs.tool_diameter_mm).speed(0.1).suffix(" mm")).labelled_by(l.id);
@@ -766,15 +688,7 @@ fn pocket(
             .labelled_by(l.id)
             .on_hover_text("Distance between successive contour-parallel rings, 0 < a_e < D.");
     });
-    if let Some(e) = &view.error {
-        ui.add(egui::Label::new(RichText::new(format!("invalid: {e}")).color(ERROR_COLOR)).wrap());
-    }
-    if view.pending() {
-        ui.horizontal(|ui| {
-            ui.spinner();
-            ui.label("planning…");
-        });
-    }
+    status(ui, view, None);
     let mut cmd = None;
     if nc.open {
         ui.separator();
@@ -792,7 +706,7 @@ fn pocket(
             if let Some(r) = view.last_pocket.as_deref() {
                 ui.add_space(6.0);
                 ui.label(format!("method {}", r.method));
-                if matches!(r.plan, PocketPlans::Rings(_)) {
+                if matches!(r.plan, PocketPlan::Rings(_)) {
                     ui.label(format!("{} rings", r.rings.len()));
                 }
                 ui.label(format!("path {:.1} mm, {:.1} s", r.path_length_mm, r.time_s));

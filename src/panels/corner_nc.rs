@@ -7,7 +7,7 @@
 //! CLI's text. It is generated once per (plan, settings) in [`CornerNcCache`], not per frame.
 
 use super::Command;
-use super::corner::{CornerMode, CornerResult, CornerView, PocketPlans, PocketResult};
+use super::corner::{CornerMode, CornerResult, CornerView, PocketResult};
 use super::export::{NcDialect, line_starts, program_text};
 use super::params::ERROR_COLOR;
 use eframe::egui::{self, DragValue, RichText, Slider, SliderClamping};
@@ -144,11 +144,11 @@ impl CornerNcCache {
 fn generate(source: &Source, settings: &CornerNcSettings) -> Result<NcPreview, String> {
     let opts = settings.options();
     let (program, file_stem) = match source {
-        Source::Corner(r) => (nc::corner_program(&r.plan, &r.settings, r.angle_deg, settings.cut(), &opts), "corner"),
-        Source::Pocket(r) => match &r.plan {
-            PocketPlans::Rings(plan) => (nc::pocket_program(plan, settings.cut(), &opts), "pocket"),
-            PocketPlans::Perforative(plan) => (nc::perforative_program(plan, settings.cut(), &opts), "pocket"),
-        },
+        Source::Corner(r) => {
+            let report = &r.report;
+            (nc::corner_program(&report.plan, report.settings(), report.angle_deg, settings.cut(), &opts), "corner")
+        }
+        Source::Pocket(r) => (nc::pocket_program(&r.plan, settings.cut(), &opts), "pocket"),
     };
     let program = program.map_err(|e| e.to_string())?;
     Ok(NcPreview { line_starts: line_starts(&program.text), text: program.text, blocks: program.blocks, file_stem })

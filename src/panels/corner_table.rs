@@ -9,15 +9,15 @@
 //! newest settings win: a change restarts the table, *Cancel* stops it between two angles.
 
 use super::Command;
-use super::corner::{CornerMethod, PLAIN_COLOR};
+use super::corner::PLAIN_COLOR;
 use super::params::ERROR_COLOR;
 use eframe::egui::{self, Color32, RichText};
 use egui_plot::{HLine, Legend, Line, LineStyle, Plot, PlotPoints, Points};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
-use trochoplan_core::corner::CornerSettings;
 use trochoplan_core::corner::acceptance::{ANGLES_DEG, AcceptanceRow, MARGIN_DEG, STRATEGIES, acceptance_rows_at};
+use trochoplan_core::corner::{CornerRequest, CornerSettings};
 
 /// Colours of the three strategies in the table and the plot (order of `STRATEGIES`).
 pub const STRATEGY_COLORS: [Color32; 3] =
@@ -180,7 +180,7 @@ impl TableView {
 impl Default for TableView {
     /// The tab's table: the CLI's evaluator spacing, no repaint callback.
     fn default() -> Self {
-        TableView::new(super::corner::SPACING_MM, || {})
+        TableView::new(CornerRequest::DEFAULT.spacing_mm, || {})
     }
 }
 
@@ -243,8 +243,7 @@ fn deg_cell(ui: &mut egui::Ui, v: f64, over: bool) {
 
 /// Label of a strategy as the tab's method buttons name it.
 fn strategy_label(i: usize) -> &'static str {
-    let m = STRATEGIES[i];
-    CornerMethod::ALL.iter().find(|c| c.core() == m).map_or(m.name(), |c| c.label())
+    STRATEGIES[i].label()
 }
 
 /// The table (grid) and the plot of peak engagement against the corner angle.
@@ -416,8 +415,7 @@ mod tests {
     const SPACING: f64 = 2.0;
 
     fn settings(t1: f64) -> CornerSettings {
-        use trochoplan_core::corner::{RingStep, TargetSpec};
-        CornerSettings::from_inputs(10.0, RingStep::StraightEngagementDeg(46.0), TargetSpec::T1(t1)).expect("settings")
+        CornerRequest { t1, ..CornerRequest::DEFAULT }.settings().expect("settings")
     }
 
     fn wait(v: &mut TableView) {

@@ -375,6 +375,7 @@ fn corner_tab_opens_and_shows_the_measured_engagement() {
 
 #[test]
 fn corner_angle_and_method_replan_and_change_the_shown_numbers() {
+    use trochoplan_core::corner::CornerMethod;
     let mut h = corner_harness();
     let before = corner_result(&h);
     let replans = h.state().corner.replans;
@@ -386,11 +387,11 @@ fn corner_angle_and_method_replan_and_change_the_shown_numbers() {
     assert_ne!(after.plain_max_deg, before.plain_max_deg);
     assert!(shows(&h, &format!("{:.1}°", after.plain_max_deg)));
 
-    h.get_by_label(panels::corner::CornerMethod::Isometric.label()).click();
+    h.get_by_label(CornerMethod::Isometric.label()).click();
     h.run();
     let iso = corner_result(&h);
     assert_eq!(iso.method, "isometric");
-    assert_eq!(h.state().state.corner.method, panels::corner::CornerMethod::Isometric);
+    assert_eq!(h.state().state.corner.method, CornerMethod::Isometric);
     assert_ne!(iso.path_length_mm, after.path_length_mm);
     assert!(shows(&h, &format!("{:.1} mm", iso.path_length_mm)), "isometric length shown");
 }
@@ -431,8 +432,9 @@ fn pocket_mode_shows_the_rings_and_reports_a_bad_polygon() {
 
 #[test]
 fn pocket_mode_plans_the_medial_axis_strategy_for_the_whole_pocket() {
-    use super::panels::corner::{CornerMethod, PocketPlans};
-    use trochoplan_core::corner::{Method, PocketSettings, parse_points, plan_perforative_pocket, pocket_polygon};
+    use trochoplan_core::corner::{CornerMethod, parse_points};
+    use trochoplan_core::geom::Polygon;
+    use trochoplan_core::pocket::{self, PocketPlan, PocketRequest, PocketStrategy};
     let mut h = corner_harness();
     h.get_by_label("Pocket").click();
     h.run();
@@ -446,12 +448,18 @@ fn pocket_mode_plans_the_medial_axis_strategy_for_the_whole_pocket() {
     h.run();
     assert!(h.state().corner.error.is_none(), "{:?}", h.state().corner.error);
     let p = h.state().corner.last_pocket.clone().expect("a pocket");
-    let PocketPlans::Perforative(plan) = &p.plan else { panic!("medial-axis plan expected, got rings") };
+    let PocketPlan::MedialAxis(plan) = &p.plan else { panic!("medial-axis plan expected, got rings") };
     // The tab shows what the core plans for the same inputs.
     let i = &h.state().state.corner;
-    let polygon = pocket_polygon(parse_points(&i.polygon_text, "polygon").unwrap()).unwrap();
-    let settings = PocketSettings { method: Method::MedialAxis, ..plan.settings };
-    let want = plan_perforative_pocket(&polygon, settings).unwrap();
+    let polygon = Polygon::new(parse_points(&i.polygon_text, "polygon").unwrap()).unwrap();
+    let req = PocketRequest {
+        polygon,
+        tool_diameter_mm: i.tool_diameter_mm,
+        step_over_mm: i.pocket_step_over_mm,
+        strategy: PocketStrategy::MedialAxis,
+        ..PocketRequest::default()
+    };
+    let PocketPlan::MedialAxis(want) = pocket::plan(&req).unwrap() else { panic!("medial-axis plan expected") };
     assert_eq!(want.segments, plan.segments);
     assert!(shows(&h, &p.detail), "{}", p.detail);
     assert!(p.detail.contains(&format!("{} circles along the medial axis", want.circles.len())), "{}", p.detail);
@@ -497,10 +505,11 @@ fn corner_table_lists_every_angle_for_each_strategy_as_the_core_measures_it() {
     assert_eq!(h.query_all_by_label("pass").count(), all.iter().filter(|r| r.passes()).count());
 
     // the 90° rows are the core's, for the tab's settings, and shown as such
-    let settings = panels::corner::settings(&h.state().state.corner).expect("valid settings");
+    let request = h.state().state.corner.request();
+    let settings = request.settings().expect("valid settings");
     let rows90 = table.angles[4].rows.as_ref().expect("rows").clone();
     for (row, &m) in rows90.iter().zip(&STRATEGIES) {
-        let want = acceptance_row(90.0, m, settings, panels::corner::SPACING_MM).expect("core row");
+        let want = acceptance_row(90.0, m, settings, request.spacing_mm).expect("core row");
         assert_eq!(*row, want, "{}", m.name());
         for text in [
             format!("{:.2}", want.body_max_deg),
@@ -540,8 +549,14 @@ fn corner_export_previews_the_core_program_saves_it_and_reports_a_bad_depth() {
     assert!(h.state().state.corner_nc.open);
     let r = corner_result(&h);
     // the CLI's defaults give the CLI's program (`trochoplan corner --export`)
-    let want = corner_program(&r.plan, &r.settings, r.angle_deg, CutSetup::default(), &NcOptions::default())
-        .expect("core program");
+    let want = corner_program(
+        &r.report.plan,
+        r.report.settings(),
+        r.report.angle_deg,
+        CutSetup::default(),
+        &NcOptions::default(),
+    )
+    .expect("core program");
     assert_eq!(h.state().corner_nc.preview().expect("program").text, want.text);
     assert!(shows(&h, "(TrochoPlan corner)"), "preview shows the program");
     let generated = h.state().corner_nc.generated;
@@ -553,7 +568,8 @@ fn corner_export_previews_the_core_program_saves_it_and_reports_a_bad_depth() {
     h.run();
     let fanuc = h.state().corner_nc.preview().expect("program").text.clone();
     let opts = NcOptions { dialect: Dialect::Fanuc, linear_segments: true, ..NcOptions::default() };
-    let want = corner_program(&r.plan, &r.settings, r.angle_deg, CutSetup::default(), &opts).expect("core program");
+    let want = corner_program(&r.report.plan, r.report.settings(), r.report.angle_deg, CutSetup::default(), &opts)
+        .expect("core program");
     assert_eq!(fanuc, want.text);
     assert!(fanuc.starts_with("%\nO1000\n") && !fanuc.contains("\nG3"), "Fanuc, chords only");
 
@@ -562,7 +578,9 @@ fn corner_export_previews_the_core_program_saves_it_and_reports_a_bad_depth() {
     h.run();
     assert_eq!(h.state().state.corner_nc.depth_mm, -1.0);
     let bad = CutSetup { depth_mm: -1.0, ..CutSetup::default() };
-    let msg = corner_program(&r.plan, &r.settings, r.angle_deg, bad, &opts).expect_err("depth").to_string();
+    let msg = corner_program(&r.report.plan, r.report.settings(), r.report.angle_deg, bad, &opts)
+        .expect_err("depth")
+        .to_string();
     assert!(msg.contains("depth"), "{msg}");
     assert!(shows(&h, &format!("Cannot write the program: {msg}")), "error shown: {msg}");
     assert!(h.query_by_label(nc::SAVE).is_none(), "nothing to save");
@@ -582,8 +600,8 @@ fn corner_export_previews_the_core_program_saves_it_and_reports_a_bad_depth() {
     h.run();
     let p = h.state().corner.last_pocket.clone().expect("a pocket");
     let cut = CutSetup { depth_mm: 3.0, ..CutSetup::default() };
-    let super::panels::corner::PocketPlans::Rings(plan) = &p.plan else { panic!("ring pocket expected") };
-    let want = pocket_program(plan, cut, &opts).expect("core pocket program");
+    assert!(matches!(p.plan, trochoplan_core::pocket::PocketPlan::Rings(_)), "ring pocket expected");
+    let want = pocket_program(&p.plan, cut, &opts).expect("core pocket program");
     let preview = h.state().corner_nc.preview().expect("program").text.clone();
     assert_eq!(preview, want.text);
     h.get_by_label(nc::SAVE).click();

@@ -11,9 +11,11 @@
 //! ρ(1/sin α − 1) thick. So the final move is reported separately ("tip") and bounded by
 //! max(a* + 1°, π − 2α + 1°); the rest of the path ("body") must stay within a* + 1°.
 
-use super::evaluator::{EngagementProfile, EvaluatorOptions, engagement_profile};
+use super::evaluator::{EngagementProfile, EvaluatorOptions};
 use super::geometry::Corner;
-use super::strategy::{CornerPlan, CornerScenario, CornerSettings, Method, plan_corner};
+use super::method::CornerMethod;
+use super::request::{CornerRequest, measured, symmetric_scenario};
+use super::strategy::{CornerPlan, CornerSettings};
 use crate::error::JobError;
 use serde::{Deserialize, Serialize};
 
@@ -21,7 +23,7 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct AcceptanceRow {
     pub corner_angle_deg: f64,
-    pub method: Method,
+    pub method: CornerMethod,
     pub target_deg: f64,
     /// Peak engagement of the plain ring.
     pub plain_max_deg: f64,
@@ -48,7 +50,7 @@ pub struct AcceptanceRow {
 pub const ANGLES_DEG: [f64; 9] = [30.0, 45.0, 60.0, 75.0, 90.0, 105.0, 120.0, 135.0, 150.0];
 
 /// The corner strategies of the table (the plain ring is measured in every row).
-pub const STRATEGIES: [Method; 3] = [Method::Variable, Method::Isometric, Method::MedialAxis];
+pub const STRATEGIES: [CornerMethod; 3] = [CornerMethod::Variable, CornerMethod::Isometric, CornerMethod::MedialAxis];
 
 /// Margin over the target a* (and over the tip's stated limit) that still passes (degrees):
 /// issue #5 accepts the measured peak within a* + 1°.
@@ -85,7 +87,7 @@ impl AcceptanceRow {
 /// both with the evaluator at `spacing` mm.
 pub fn acceptance_row(
     angle_deg: f64,
-    method: Method,
+    method: CornerMethod,
     settings: CornerSettings,
     spacing: f64,
 ) -> Result<AcceptanceRow, JobError> {
@@ -94,24 +96,22 @@ pub fn acceptance_row(
 }
 
 /// The rows of several methods at one corner angle, in the order of `methods`: the plain ring
-/// is planned and measured once and shared; each row equals [`acceptance_row`] for its method.
+/// is planned and measured once and shared; each row equals [`acceptance_row`] for its method
+/// (and the row of [`super::evaluate`] for that corner).
 pub fn acceptance_rows_at(
     angle_deg: f64,
-    methods: &[Method],
+    methods: &[CornerMethod],
     settings: CornerSettings,
     spacing: f64,
 ) -> Result<Vec<AcceptanceRow>, JobError> {
-    let corner = Corner::symmetric(angle_deg.to_radians())?;
-    let sc = CornerScenario::new(corner, settings)?;
+    let sc = symmetric_scenario(angle_deg, settings)?;
     let opts = EvaluatorOptions::new(settings.tool_radius, spacing);
-    let plain = plan_corner(&sc, Method::Plain)?;
-    let plain_prof = engagement_profile(&sc.stock, &sc.previous_ring, &plain.path, &opts)?;
+    let (plain, plain_prof) = measured(&sc, CornerMethod::Plain, &opts)?;
     methods
         .iter()
         .map(|&method| {
-            let plan = plan_corner(&sc, method)?;
-            let prof = engagement_profile(&plan.stock, &plan.precut, &plan.path, &opts)?;
-            Ok(row(angle_deg, method, &corner, settings, (&plan, &prof), (&plain, &plain_prof)))
+            let (plan, prof) = measured(&sc, method, &opts)?;
+            Ok(row(angle_deg, method, &sc.corner, settings, (&plan, &prof), (&plain, &plain_prof)))
         })
         .collect()
 }
@@ -120,7 +120,7 @@ pub fn acceptance_rows_at(
 /// split and the tip's limit, module docs), for callers that keep the plans and profiles.
 pub fn row(
     angle_deg: f64,
-    method: Method,
+    method: CornerMethod,
     corner: &Corner,
     settings: CornerSettings,
     (plan, prof): (&CornerPlan, &EngagementProfile),
@@ -171,13 +171,10 @@ pub fn row(
     }
 }
 
-/// All rows for one method.
-pub fn acceptance_table(
-    method: Method,
-    settings: CornerSettings,
-    spacing: f64,
-) -> Result<Vec<AcceptanceRow>, JobError> {
-    ANGLES_DEG.iter().map(|&a| acceptance_row(a, method, settings, spacing)).collect()
+/// All rows for the request's method, settings and evaluator spacing (its angle is not used).
+pub fn acceptance_table(req: &CornerRequest) -> Result<Vec<AcceptanceRow>, JobError> {
+    let settings = req.settings()?;
+    ANGLES_DEG.iter().map(|&a| acceptance_row(a, req.method, settings, req.spacing_mm)).collect()
 }
 
 /// The table as Markdown (for the README and the CLI).
@@ -236,7 +233,7 @@ mod tests {
 
     #[test]
     fn pass_flags_compare_with_the_target_and_the_tip_allowance() {
-        let row = acceptance_row(90.0, Method::Variable, settings(), 1.0).expect("row");
+        let row = acceptance_row(90.0, CornerMethod::Variable, settings(), 1.0).expect("row");
         let at = |body: f64, tip: f64, limit: f64| AcceptanceRow {
             body_max_deg: body,
             tip_deg: tip,

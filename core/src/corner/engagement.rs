@@ -6,25 +6,9 @@
 //! centre runs on (O2, ρ = R2 − r). Angles in radians.
 
 use crate::error::JobError;
-use crate::geom::{P2, cross, golden_min, p2};
+use crate::geom::{Circle, P2, cross, golden_min, p2};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
-
-/// A circle (centre and radius, mm). Used for offset circles and tool-centre circles.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Circle {
-    /// Centre (mm).
-    pub center: P2,
-    /// Radius (mm).
-    pub radius: f64,
-}
-
-impl Circle {
-    /// Shorthand constructor.
-    pub fn new(center: P2, radius: f64) -> Circle {
-        Circle { center, radius }
-    }
-}
 
 /// Direction of travel on a circle: counter-clockwise (G3) or clockwise (G2), seen from +Z.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]

@@ -15,7 +15,7 @@
 //! ([`super::engagement`]): it is the independent check of every corner strategy.
 
 use crate::error::JobError;
-use crate::geom::{P2, Segment, p2};
+use crate::geom::{P2, Polygon, Segment, p2};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
@@ -27,130 +27,6 @@ const REFINE_STEPS: usize = 36;
 const MAX_POSITIONS: f64 = 2.0e6;
 /// Lines used for one trochoid piece (the evaluator works on lines and arcs).
 const TROCHOID_LINES: usize = 256;
-
-/// A simple polygon (no self-intersections, no degenerate edges), stored counter-clockwise.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Polygon {
-    vertices: Vec<P2>,
-}
-
-impl Polygon {
-    /// Validates and stores a polygon: at least 3 finite vertices (a repeated first vertex at
-    /// the end is dropped), no edge shorter than 1e-9 mm, no two edges crossing or overlapping,
-    /// non-zero area. Clockwise input is reversed.
-    pub fn new(mut vertices: Vec<P2>) -> Result<Polygon, JobError> {
-        if let (Some(first), Some(last)) = (vertices.first(), vertices.last())
-            && vertices.len() > 1
-            && (first - last).norm() <= 1e-9
-        {
-            vertices.pop();
-        }
-        let n = vertices.len();
-        if n < 3 {
-            return Err(JobError::range("polygon vertices", n, "at least 3 distinct vertices"));
-        }
-        for (i, v) in vertices.iter().enumerate() {
-            if !(v.x.is_finite() && v.y.is_finite()) {
-                return Err(JobError::range(
-                    "polygon vertex",
-                    format!("#{} ({}, {})", i + 1, v.x, v.y),
-                    "finite coordinates",
-                ));
-            }
-        }
-        for i in 0..n {
-            let len = (vertices[(i + 1) % n] - vertices[i]).norm();
-            if len <= 1e-9 {
-                return Err(JobError::range(
-                    "polygon edge length",
-                    format!("{len} (edge #{})", i + 1),
-                    "> 1e-9 mm (degenerate edge)",
-                ));
-            }
-        }
-        for i in 0..n {
-            for j in i + 1..n {
-                let (a, b) = (vertices[i], vertices[(i + 1) % n]);
-                let (c, d) = (vertices[j], vertices[(j + 1) % n]);
-                let adjacent = j == i + 1 || (i == 0 && j == n - 1);
-                let bad = if adjacent {
-                    // Adjacent edges share one vertex; they may only overlap if they fold back.
-                    let (shared, p, q) = if j == i + 1 { (b, a, d) } else { (a, b, c) };
-                    let (u, v) = (p - shared, q - shared);
-                    crate::geom::cross(u, v).abs() <= 1e-12 * u.norm() * v.norm() && u.dot(&v) > 0.0
-                } else {
-                    segments_intersect(a, b, c, d)
-                };
-                if bad {
-                    return Err(JobError::range(
-                        "polygon",
-                        format!("edges #{} and #{} cross or overlap", i + 1, j + 1),
-                        "a simple polygon (no self-intersections)",
-                    ));
-                }
-            }
-        }
-        let area = signed_area(&vertices);
-        if area.abs() <= 1e-12 {
-            return Err(JobError::range("polygon area", area.abs(), "> 0 mm²"));
-        }
-        if area < 0.0 {
-            vertices.reverse();
-        }
-        Ok(Polygon { vertices })
-    }
-
-    /// Vertices, counter-clockwise.
-    pub fn vertices(&self) -> &[P2] {
-        &self.vertices
-    }
-
-    /// Area (mm²).
-    pub fn area(&self) -> f64 {
-        signed_area(&self.vertices)
-    }
-
-    /// Even-odd point-in-polygon test.
-    pub fn contains(&self, p: P2) -> bool {
-        let v = &self.vertices;
-        let mut inside = false;
-        let mut j = v.len() - 1;
-        for i in 0..v.len() {
-            let (a, b) = (v[i], v[j]);
-            if (a.y > p.y) != (b.y > p.y) && p.x < (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x {
-                inside = !inside;
-            }
-            j = i;
-        }
-        inside
-    }
-}
-
-fn signed_area(v: &[P2]) -> f64 {
-    let n = v.len();
-    0.5 * (0..n).map(|i| crate::geom::cross(v[i], v[(i + 1) % n])).sum::<f64>()
-}
-
-fn orient(a: P2, b: P2, c: P2) -> f64 {
-    crate::geom::cross(b - a, c - a)
-}
-
-/// Closed segments ab and cd share a point.
-fn segments_intersect(a: P2, b: P2, c: P2, d: P2) -> bool {
-    let (d1, d2) = (orient(c, d, a), orient(c, d, b));
-    let (d3, d4) = (orient(a, b, c), orient(a, b, d));
-    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0)) {
-        return true;
-    }
-    let on = |p: P2, q: P2, x: P2, o: f64| {
-        o.abs() <= 1e-12 * (q - p).norm().max(1.0)
-            && x.x >= p.x.min(q.x) - 1e-12
-            && x.x <= p.x.max(q.x) + 1e-12
-            && x.y >= p.y.min(q.y) - 1e-12
-            && x.y <= p.y.max(q.y) + 1e-12
-    };
-    on(c, d, a, d1) || on(c, d, b, d2) || on(a, b, c, d3) || on(a, b, d, d4)
-}
 
 /// Reads points "x,y" (or "x y", "x;y"), one per line. Blank lines and lines starting with '#'
 /// are skipped, and so is a non-numeric first line (a header). `what` names the file in errors.
@@ -498,23 +374,6 @@ mod tests {
         let prof = engagement_profile(&stock, &[], &path, &EvaluatorOptions::new(5.0, 2.0)).unwrap();
         let mid = prof.samples.iter().find(|s| s.s_mm >= 20.0).unwrap();
         assert!((mid.angle_rad.to_degrees() - 180.0).abs() < 1e-3, "{mid:?}");
-    }
-
-    #[test]
-    fn polygon_rejects_bad_shapes_naming_them() {
-        let bow = Polygon::new(vec![p2(0.0, 0.0), p2(1.0, 1.0), p2(1.0, 0.0), p2(0.0, 1.0)]).unwrap_err();
-        assert_eq!(bow.parameter(), Some("polygon"), "{bow}");
-        let dup = Polygon::new(vec![p2(0.0, 0.0), p2(0.0, 0.0), p2(1.0, 0.0), p2(0.0, 1.0)]).unwrap_err();
-        assert_eq!(dup.parameter(), Some("polygon edge length"), "{dup}");
-        let two = Polygon::new(vec![p2(0.0, 0.0), p2(1.0, 0.0)]).unwrap_err();
-        assert_eq!(two.parameter(), Some("polygon vertices"));
-        let nan = Polygon::new(vec![p2(0.0, 0.0), p2(f64::NAN, 0.0), p2(0.0, 1.0)]).unwrap_err();
-        assert_eq!(nan.parameter(), Some("polygon vertex"));
-        let flat = Polygon::new(vec![p2(0.0, 0.0), p2(1.0, 0.0), p2(2.0, 0.0)]).unwrap_err();
-        assert!(flat.parameter().is_some(), "{flat}");
-        // Clockwise input is accepted and turned counter-clockwise.
-        let cw = Polygon::new(vec![p2(0.0, 0.0), p2(0.0, 1.0), p2(1.0, 1.0), p2(1.0, 0.0)]).unwrap();
-        assert!((cw.area() - 1.0).abs() < 1e-12);
     }
 
     #[test]

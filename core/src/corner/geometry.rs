@@ -4,9 +4,8 @@
 //! the pocket interior is on the left of both (counter-clockwise boundary). The interior corner
 //! angle is `2α`; the unit bisector `b̂` points from the apex into the pocket.
 
-use super::engagement::Circle;
 use crate::error::JobError;
-use crate::geom::{P2, cross, p2, rot90};
+use crate::geom::{Circle, P2, cross, p2, rot90};
 use serde::{Deserialize, Serialize};
 
 /// A normalised line `A x + B y + C = 0` (`A² + B² = 1`) with the side factor `F = ±1` such that

@@ -10,9 +10,8 @@
 //! kept as polylines through points of the exact parabola, at most [`CURVE_STEP_MM`] apart
 //! along the directrix (field `points`; `curved` marks them).
 
-use super::evaluator::Polygon;
 use crate::error::JobError;
-use crate::geom::{P2, p2, rot90};
+use crate::geom::{P2, Polygon, p2, rot90};
 use boostvoronoi::prelude::*;
 use serde::{Deserialize, Serialize};
 

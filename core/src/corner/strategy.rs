@@ -17,11 +17,12 @@
 //! The medial-axis strategy has no rings: it cuts the corner of a triangular pocket down the
 //! corner's medial-axis branch (see `medial_axis_plan`).
 
-use super::engagement::{Circle, Turn, TwoCircle, straight_engagement};
-use super::evaluator::Polygon;
+use super::engagement::{Turn, TwoCircle, straight_engagement};
 use super::geometry::Corner;
+use super::method::CornerMethod;
+use super::request::CornerRequest;
 use crate::error::JobError;
-use crate::geom::{P2, Segment};
+use crate::geom::{Circle, P2, Polygon, Segment};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 
@@ -31,32 +32,6 @@ const MAX_BISECTION: usize = 60;
 pub const DEFAULT_T1: f64 = 0.15;
 /// Circles allowed in one corner (guards against a stop rule that never fires).
 const MAX_CIRCLES: usize = 2000;
-
-/// Corner strategy.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Method {
-    /// The plain contour-parallel ring: straight into the tool corner point and out.
-    Plain,
-    /// Variable circles on the bisector (Wu et al. §4.2.1, eqs. 23–24; domain-spec §3.3).
-    Variable,
-    /// Isometric circles along U offset by rh (Wu et al. §4.2.2, eq. 25; domain-spec §3.4).
-    Isometric,
-    /// Perforative circles along the medial axis of the pocket (Wu et al. §4.2; §3.5).
-    MedialAxis,
-}
-
-impl Method {
-    /// CLI / JSON name.
-    pub fn name(self) -> &'static str {
-        match self {
-            Method::Plain => "plain",
-            Method::Variable => "variable",
-            Method::Isometric => "isometric",
-            Method::MedialAxis => "medial-axis",
-        }
-    }
-}
 
 /// Inputs of a corner plan (mm, rad, mm/min).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -79,18 +54,25 @@ pub struct CornerSettings {
 
 impl CornerSettings {
     /// Settings with Wu et al.'s target a* = a_str·(1 + t1), t1 = 15 % (eq. 23 analogue,
-    /// domain-spec §3.3), ε = 0.5°, 100 mm walls, 600 mm/min.
+    /// domain-spec §3.3), and ε, wall length and feed of [`CornerRequest::DEFAULT`] (0.5°,
+    /// 100 mm, 600 mm/min).
     pub fn new(tool_radius: f64, step_over: f64) -> Result<CornerSettings, JobError> {
         let target = straight_engagement(step_over, tool_radius)? * (1.0 + DEFAULT_T1);
+        let d = CornerRequest::DEFAULT;
         Ok(CornerSettings {
             tool_radius,
             step_over,
             target,
-            tolerance: 0.5f64.to_radians(),
-            edge_length: 100.0,
-            feed_mm_per_min: 600.0,
-            isometric_radius: None,
+            tolerance: d.tolerance_deg.to_radians(),
+            edge_length: d.edge_length_mm,
+            feed_mm_per_min: d.feed_mm_per_min,
+            isometric_radius: d.isometric_radius_mm,
         })
+    }
+
+    /// Straight-cut engagement of the ring step, a_str = arccos(1 − a_e/r) (domain-spec §1.1).
+    pub fn straight_engagement(&self) -> Result<f64, JobError> {
+        straight_engagement(self.step_over, self.tool_radius)
     }
 
     /// Smallest tool-centre circle radius worth cutting: max(0.05 r, 0.05 mm) (domain-spec §3.3).
@@ -226,7 +208,7 @@ pub struct CornerCircle {
 /// A planned corner: circles, the connected tool path and its cost.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CornerPlan {
-    pub method: Method,
+    pub method: CornerMethod,
     /// Circles in machining order.
     pub circles: Vec<CornerCircle>,
     /// Tool-centre path of the whole ring piece (U leg, corner, V leg).
@@ -387,16 +369,16 @@ fn first_variable_t(sc: &CornerScenario) -> Result<f64, JobError> {
 }
 
 /// Plan one corner with a strategy.
-pub fn plan_corner(sc: &CornerScenario, method: Method) -> Result<CornerPlan, JobError> {
+pub fn plan_corner(sc: &CornerScenario, method: CornerMethod) -> Result<CornerPlan, JobError> {
     let s = sc.settings;
     let mut notes = Vec::new();
-    if method == Method::MedialAxis {
+    if method == CornerMethod::MedialAxis {
         return medial_axis_plan(sc);
     }
     let (circles, leg_end) = match method {
-        Method::Plain | Method::MedialAxis => (Vec::new(), None),
-        Method::Variable => (variable_circles(sc)?, None),
-        Method::Isometric => isometric_circles(sc, &mut notes)?,
+        CornerMethod::Plain | CornerMethod::MedialAxis => (Vec::new(), None),
+        CornerMethod::Variable => (variable_circles(sc)?, None),
+        CornerMethod::Isometric => isometric_circles(sc, &mut notes)?,
     };
     let path = ring_path(sc, &circles, leg_end);
     let len: f64 = path.iter().map(Segment::length).sum();
@@ -475,7 +457,7 @@ fn medial_axis_plan(sc: &CornerScenario) -> Result<CornerPlan, JobError> {
     )];
     let tip = path.len() - 1;
     Ok(CornerPlan {
-        method: Method::MedialAxis,
+        method: CornerMethod::MedialAxis,
         circles,
         path,
         path_length_mm: len,
@@ -636,67 +618,6 @@ fn ring_path(sc: &CornerScenario, circles: &[CornerCircle], leg_end: Option<P2>)
     path
 }
 
-/// How the user fixes the ring's radial step a_e.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum RingStep {
-    /// a_e itself (mm).
-    StepOver(f64),
-    /// The straight-cut engagement a_str (degrees), a_e = r(1 − cos a_str) (domain-spec §1.1).
-    StraightEngagementDeg(f64),
-}
-
-/// How the user fixes the target engagement a*.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum TargetSpec {
-    /// a* itself (degrees).
-    Deg(f64),
-    /// a* = a_str·(1 + t1) (Wu et al. 2016 eq. 23's analogue for engagement), t1 ∈ [0, 1].
-    T1(f64),
-}
-
-fn finite(name: &'static str, v: f64) -> Result<f64, JobError> {
-    if v.is_finite() { Ok(v) } else { Err(JobError::range(name, v, "a finite number")) }
-}
-
-impl CornerSettings {
-    /// Settings from what a user states (CLI flags, GUI fields): tool diameter (mm), the ring
-    /// step and the target; the other fields keep their defaults. Each error names the input.
-    pub fn from_inputs(tool_diameter: f64, step: RingStep, target: TargetSpec) -> Result<CornerSettings, JobError> {
-        let d = finite("tool diameter", tool_diameter)?;
-        if d <= 0.0 {
-            return Err(JobError::range("tool diameter", d, "a finite number > 0 mm"));
-        }
-        let r = d / 2.0;
-        let step_over = match step {
-            RingStep::StepOver(ae) => finite("step-over", ae)?,
-            RingStep::StraightEngagementDeg(a) => {
-                let a = finite("straight engagement", a)?;
-                if !(a > 0.0 && a < 180.0) {
-                    return Err(JobError::range("straight engagement", a, "greater than 0° and less than 180°"));
-                }
-                super::radial_depth_for_engagement(a.to_radians(), r)
-            }
-        };
-        let mut s = CornerSettings::new(r, step_over).map_err(|e| match e {
-            JobError::OutOfRange { name: "a_e", value, .. } => {
-                JobError::range("step-over", value, format!("greater than 0 and less than the tool diameter {d} mm"))
-            }
-            other => other,
-        })?;
-        s.target = match target {
-            TargetSpec::Deg(t) => finite("target", t)?.to_radians(),
-            TargetSpec::T1(t1) => {
-                let t1 = finite("t1", t1)?;
-                if !(0.0..=1.0).contains(&t1) {
-                    return Err(JobError::range("t1", t1, "from 0 to 1"));
-                }
-                straight_engagement(step_over, r)? * (1.0 + t1)
-            }
-        };
-        Ok(s)
-    }
-}
-
 /// Checks shared by corner and pocket settings: tool radius r (0 < D ≤ 1000 mm) and ring
 /// step-over a_e (0 < a_e < D); each error names the parameter, the value and the range.
 pub fn validate_tool_and_step_over(r: f64, step_over: f64) -> Result<(), JobError> {
@@ -790,14 +711,14 @@ mod tests {
             CornerSettings::new(5.0, crate::corner::radial_depth_for_engagement(46f64.to_radians(), 5.0)).unwrap();
         for angle in [30.0f64, 90.0, 150.0] {
             let sc = CornerScenario::new(Corner::symmetric(angle.to_radians()).unwrap(), settings).unwrap();
-            for m in [Method::Plain, Method::Variable, Method::Isometric] {
+            for m in [CornerMethod::Plain, CornerMethod::Variable, CornerMethod::Isometric] {
                 let p = plan_corner(&sc, m).unwrap();
                 for w in p.path.windows(2) {
                     assert!((w[0].end() - w[1].start()).norm() < 1e-9, "{angle}° {m:?}: gap");
                 }
                 assert!((p.path[0].start() - sc.ring_start).norm() < 1e-12);
                 assert!((p.path.last().unwrap().end() - sc.ring_end).norm() < 1e-12);
-                if m == Method::Variable {
+                if m == CornerMethod::Variable {
                     for w in p.circles.windows(2) {
                         assert!(w[1].offset_radius < w[0].offset_radius, "{angle}°: radii must shrink");
                     }

@@ -1,13 +1,17 @@
-//! Plane geometry: points, exact path segments and numeric helpers.
+//! Plane geometry: points, exact path segments, circles, simple polygons and numeric helpers.
 //!
 //! Conventions: millimetres, radians, right-handed XY plane seen from +Z, counter-clockwise
 //! positive. Points are `nalgebra::Vector2<f64>` (alias [`P2`]).
 
 mod biarc;
+mod circle;
+mod polygon;
 mod quad;
 mod segment;
 
 pub use biarc::{FitPiece, biarc, distance_to_piece, fit_biarcs, polyline};
+pub use circle::Circle;
+pub use polygon::Polygon;
 pub use quad::gauss_legendre;
 pub use segment::{Segment, SegmentPoint};
 

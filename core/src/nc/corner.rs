@@ -1,5 +1,5 @@
 //! NC programs of a planned pocket corner ([`CornerPlan`]) and of a whole pocket
-//! ([`PocketPlan`], [`PerforativePlan`]) (issue #5): the header description of each and the [`PathJob`] written by
+//! ([`PocketPlan`]: rings or the medial axis) (issue #5): the header description of each and the [`PathJob`] written by
 //! the shared program frame [`program_for_path`] (same header, set-up, approach, retract and end
 //! as a slot program). Used by `trochoplan corner/pocket --export` and by the GUI's Corner tab,
 //! so both write the same text.
@@ -8,11 +8,10 @@
 //! coordinates of its polygon; the stock top is Z0 in both.
 
 use super::{NcOptions, NcProgram, PathJob, program_for_path};
-use crate::corner::{
-    CornerPlan, CornerSettings, LinkKind, PerforativePlan, PocketPlan, PocketSettings, straight_engagement,
-};
+use crate::corner::{CornerPlan, CornerSettings};
 use crate::error::JobError;
 use crate::geom::Segment;
+use crate::pocket::{LinkKind, PerforativePlan, PocketPlan, PocketSettings, RingPlan};
 
 /// What a corner or pocket plan does not carry: the cutting depth and the spindle speed.
 /// Checked by [`PathJob::validate`] (errors name `depth` and `rpm`).
@@ -43,7 +42,7 @@ pub fn corner_program(
         return Err(JobError::range("angle", angle_deg, "a finite number between 0 and 180 degrees"));
     }
     let s = settings;
-    let a_str = straight_engagement(s.step_over, s.tool_radius)?;
+    let a_str = s.straight_engagement()?;
     let job = PathJob {
         segments: &plan.path,
         retract_before: &[],
@@ -80,16 +79,24 @@ pub fn corner_program(
     program_for_path(&job, opts)
 }
 
-/// The program of the whole pocket `plan`: its rings and links ([`PocketPlan::tool_path`]),
-/// retracting before the links that a straight move cannot take.
+/// The program of the whole pocket `plan`, rings or medial axis ([`PocketPlan::tool_path`]).
 pub fn pocket_program(plan: &PocketPlan, cut: CutSetup, opts: &NcOptions) -> Result<NcProgram, JobError> {
+    match plan {
+        PocketPlan::Rings(p) => ring_program(p, cut, opts),
+        PocketPlan::MedialAxis(p) => perforative_program(p, cut, opts),
+    }
+}
+
+/// The program of a pocket cleared by rings: its rings and links ([`RingPlan::tool_path`]),
+/// retracting before the links that a straight move cannot take.
+fn ring_program(plan: &RingPlan, cut: CutSetup, opts: &NcOptions) -> Result<NcProgram, JobError> {
     let (segments, retract_before) = plan.tool_path();
     let feed_links = plan.links.iter().filter(|l| l.kind == LinkKind::Feed).count();
     let summary = [
         format!(
             "pocket of {} vertices, method {}, {} rings, {} corner trochoids",
             plan.polygon.vertices().len(),
-            plan.settings.method.name(),
+            plan.method.name(),
             plan.rings.len(),
             plan.trochoid_corners
         ),
@@ -163,16 +170,15 @@ fn pocket_path_program(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::corner::{
-        Corner, CornerScenario, Method, PocketSettings, parse_points, plan_corner, plan_pocket, pocket_polygon,
-    };
-    use crate::geom::P2;
+    use crate::corner::{Corner, CornerMethod, CornerScenario, parse_points, plan_corner};
+    use crate::geom::{P2, Polygon};
     use crate::nc::{Dialect, backplot};
+    use crate::pocket::{PocketRequest, plan};
 
     fn corner_plan(angle_deg: f64) -> (CornerPlan, CornerSettings) {
         let s = CornerSettings::new(5.0, 2.0).expect("settings");
         let sc = CornerScenario::new(Corner::symmetric(angle_deg.to_radians()).expect("corner"), s).expect("scenario");
-        (plan_corner(&sc, Method::Variable).expect("plan"), s)
+        (plan_corner(&sc, CornerMethod::Variable).expect("plan"), s)
     }
 
     fn polyline_length(pts: &[P2]) -> f64 {
@@ -231,15 +237,9 @@ mod tests {
     /// with perimeters 200 − 8d = 160, 128, 96, 64 (448 mm), joined by three feed links of
     /// a_e = 4 mm (12 mm), as in the tests of `trochoplan pocket`.
     fn rectangle_pocket() -> PocketPlan {
-        let poly = pocket_polygon(parse_points("0,0\n60,0\n60,40\n0,40\n", "rect").expect("points")).expect("poly");
-        let s = PocketSettings {
-            tool_radius: 5.0,
-            step_over: 4.0,
-            feed_mm_per_min: 600.0,
-            spacing: 1.0,
-            method: Method::Plain,
-        };
-        plan_pocket(&poly, s).expect("pocket")
+        let polygon = Polygon::new(parse_points("0,0\n60,0\n60,40\n0,40\n", "rect").expect("points")).expect("poly");
+        plan(&PocketRequest { polygon, step_over_mm: 4.0, spacing_mm: 1.0, ..PocketRequest::default() })
+            .expect("pocket")
     }
 
     #[test]
@@ -252,7 +252,8 @@ mod tests {
         assert!(t.contains("(pocket of 4 vertices, method plain, 4 rings, 0 corner trochoids)"), "{t}");
         assert!(t.contains("(rings 448.000 mm, 3 feed links 12.000 mm, 0 retract links)"), "{t}");
         let pts = backplot(t, Dialect::Fanuc, 1e-3).expect("back-plot");
-        let want = plan.path_length_mm + plan.link_length_mm;
+        let PocketPlan::Rings(rings) = &plan else { panic!("rings expected") };
+        let want = rings.path_length_mm + rings.link_length_mm;
         let len = polyline_length(&pts);
         assert!((len - want).abs() < LENGTH_REL * want, "{len} vs {want}");
     }

@@ -1,7 +1,7 @@
 //! Polygonal pocket cleared by contour-parallel rings (issue #5 item 5; Wu et al. 2016 §4,
 //! domain-spec §3.1: the plain contour-parallel path whose corners the strategies replace).
 //!
-//! Conventions as in [`super`]: mm, counter-clockwise pocket boundary, tool-centre rings walked
+//! Conventions as in [`crate::corner`]: mm, counter-clockwise pocket boundary, tool-centre rings walked
 //! counter-clockwise (pocket material on the left: climb milling with M3).
 //!
 //! Rings: ring `k` is the inward offset of the pocket boundary by `d_k = r + k·a_e`
@@ -42,7 +42,7 @@
 //! The first position of each ring (the entry, where the evaluator has no swept path behind
 //! the tool yet) is reported apart from the ring's running maximum.
 //!
-//! Corner strategies (variable / isometric circles, [`super::strategy`]) are applied at every
+//! Corner strategies (variable / isometric circles, [`crate::corner::strategy`]) are applied at every
 //! convex line–line corner of every ring that has a previous (inner) ring, through a small
 //! adapter ([`ring_with_corner_trochoids`]): the strategy's corner scenario assumes the current
 //! ring is the walls offset by r and the previous ring the walls offset by r + a_e with a sharp
@@ -52,7 +52,7 @@
 //! near the corner. The strategy's path from its ring start to U0 is spliced into the ring in
 //! place of the incoming line. Corners where the scenario's preconditions fail (walls too short
 //! for the circles, the circles' entry not on the incoming line, arcs next to the corner) stay
-//! plain and are counted in `PocketPlan::plain_corners`, and so do corners whose circles would
+//! plain and are counted in `RingPlan::plain_corners`, and so do corners whose circles would
 //! take the tool centre closer than r to any pocket edge (a corner's circles only know its two
 //! walls: in an L-shaped pocket the first circles of the corner opposite the reflex vertex grow
 //! along the bisector into the notch). That check ([`piece_is_inside`]) is exact for lines and
@@ -60,11 +60,12 @@
 //! fit). The innermost ring (a full slot, no previous ring) stays plain. The engagement of the
 //! result is measured by the evaluator like the plain rings.
 
-use super::evaluator::{EvaluatorOptions, Polygon, engagement_profile};
-use super::geometry::Corner;
-use super::strategy::{CornerScenario, CornerSettings, Method, plan_corner};
+use super::PocketSettings;
+use crate::corner::{
+    Corner, CornerMethod, CornerScenario, CornerSettings, EvaluatorOptions, engagement_profile, plan_corner,
+};
 use crate::error::JobError;
-use crate::geom::{P2, Segment, p2};
+use crate::geom::{P2, Polygon, Segment, p2};
 use cavalier_contours::polyline::{PlineSource, PlineSourceMut, PlineVertex, Polyline, seg_arc_radius_and_center};
 use serde::{Deserialize, Serialize};
 
@@ -76,40 +77,6 @@ const MIN_RING_LENGTH: f64 = 1e-6;
 /// Rounding allowance of the link engagement bound (rad): far above the evaluator's
 /// refinement (~1e-8 rad), far below any engagement difference that matters (0.006°).
 pub const LINK_ENGAGEMENT_SLACK_RAD: f64 = 1e-4;
-
-/// Inputs of a pocket plan (mm, mm/min).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct PocketSettings {
-    /// Tool radius r (mm).
-    pub tool_radius: f64,
-    /// Radial step-over a_e between rings (mm), 0 < a_e < D.
-    pub step_over: f64,
-    /// Feed rate for the machining time (mm/min).
-    pub feed_mm_per_min: f64,
-    /// Arc-length spacing of the evaluated tool positions (mm).
-    pub spacing: f64,
-    /// Corner strategy at the ring corners: plain, variable or isometric (medial-axis is a
-    /// whole-pocket strategy and is rejected here).
-    pub method: Method,
-}
-
-impl PocketSettings {
-    /// Range checks; each error names the parameter, the value and the allowed range.
-    pub fn validate(&self) -> Result<(), JobError> {
-        let r = self.tool_radius;
-        super::strategy::validate_tool_and_step_over(r, self.step_over)?;
-        if !(self.feed_mm_per_min.is_finite() && self.feed_mm_per_min > 0.0) {
-            return Err(JobError::range("feed", self.feed_mm_per_min, "a finite number > 0 mm/min"));
-        }
-        if !(self.spacing.is_finite() && self.spacing > 0.0 && self.spacing <= r) {
-            return Err(JobError::range("spacing", self.spacing, format!("greater than 0 and at most r = {r} mm")));
-        }
-        if self.method == Method::MedialAxis {
-            return Err(JobError::range("method", "medial-axis", "plain, variable or isometric for pocket rings"));
-        }
-        Ok(())
-    }
-}
 
 /// One closed tool-centre ring.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -130,12 +97,14 @@ pub struct Ring {
     pub entry_engagement_rad: f64,
 }
 
-/// A planned pocket.
+/// A pocket planned as contour-parallel rings.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct PocketPlan {
+pub struct RingPlan {
     /// The validated pocket (counter-clockwise).
     pub polygon: Polygon,
     pub settings: PocketSettings,
+    /// Corner strategy at the ring corners (plain, variable or isometric).
+    pub method: CornerMethod,
     /// Rings in machining order (innermost first).
     pub rings: Vec<Ring>,
     /// Total ring length (mm), links excluded.
@@ -178,7 +147,7 @@ pub struct Link {
     pub max_engagement_rad: f64,
 }
 
-impl PocketPlan {
+impl RingPlan {
     /// The whole pocket as one tool path in machining order: rings and feed links as segments,
     /// and the indices of the segments the tool reaches by a retract link (retract to safe Z,
     /// rapid to the segment's start, plunge). Consecutive segments not at such an index join.
@@ -245,13 +214,6 @@ fn point_segment(p: P2, a: P2, b: P2) -> f64 {
     (p - (a + ab * t)).norm()
 }
 
-/// Validates a pocket boundary: ≥ 3 finite vertices, no zero-length edges, not
-/// self-intersecting, non-zero area; clockwise input is reversed. Errors name the parameter
-/// (`polygon …`) and the offending vertex or edge index (1-based).
-pub fn pocket_polygon(vertices: Vec<P2>) -> Result<Polygon, JobError> {
-    Polygon::new(vertices)
-}
-
 /// The inward offset loops of a validated polygon at distance `d` (> 0, finite), as closed
 /// counter-clockwise segment loops. Empty when the offset vanishes.
 pub fn inward_offset(polygon: &Polygon, d: f64) -> Result<Vec<Vec<Segment>>, JobError> {
@@ -304,10 +266,15 @@ fn to_segments(pl: &Polyline<f64>) -> Vec<Segment> {
     out
 }
 
-/// Plain contour-parallel rings of a pocket, each measured by the independent evaluator.
-/// Errors: settings out of range (named), a pocket too narrow for the tool (`tool diameter`).
-pub fn plan_pocket(polygon: &Polygon, settings: PocketSettings) -> Result<PocketPlan, JobError> {
+/// Contour-parallel rings of a pocket with the corner strategy `method` (plain, variable or
+/// isometric) at their corners, each ring measured by the independent evaluator. Errors:
+/// settings out of range (named), `method` medial-axis (a whole-pocket strategy:
+/// [`super::plan_perforative`]), a pocket too narrow for the tool (`tool diameter`).
+pub fn plan_rings(polygon: &Polygon, settings: PocketSettings, method: CornerMethod) -> Result<RingPlan, JobError> {
     settings.validate()?;
+    if method == CornerMethod::MedialAxis {
+        return Err(JobError::range("method", method.name(), "plain, variable or isometric for pocket rings"));
+    }
     let (r, ae) = (settings.tool_radius, settings.step_over);
     let mut levels: Vec<(usize, f64, Vec<Vec<Segment>>)> = Vec::new();
     for k in 0..MAX_LEVELS {
@@ -335,10 +302,10 @@ pub fn plan_pocket(polygon: &Polygon, settings: PocketSettings) -> Result<Pocket
     let (mut trochoid_corners, mut plain_corners) = (0, 0);
     for (k, d, loops) in levels.into_iter().rev() {
         for plain in loops {
-            let segs = if settings.method == Method::Plain || k == innermost {
+            let segs = if method == CornerMethod::Plain || k == innermost {
                 plain
             } else {
-                let (segs, done, skipped) = ring_with_corner_trochoids(polygon, &plain, settings)?;
+                let (segs, done, skipped) = ring_with_corner_trochoids(polygon, &plain, settings, method)?;
                 trochoid_corners += done;
                 plain_corners += skipped;
                 segs
@@ -398,9 +365,10 @@ pub fn plan_pocket(polygon: &Polygon, settings: PocketSettings) -> Result<Pocket
     let link_length_mm = links.iter().filter(|l| l.kind == LinkKind::Feed).map(|l| l.length_mm).sum();
     let len: f64 = rings.iter().map(|g| g.length_mm).sum();
     let max = rings.iter().map(|g| g.max_engagement_rad).fold(0.0, f64::max);
-    Ok(PocketPlan {
+    Ok(RingPlan {
         polygon: polygon.clone(),
         settings,
+        method,
         rings,
         path_length_mm: len,
         time_s: len / settings.feed_mm_per_min * 60.0,
@@ -436,13 +404,14 @@ fn start_mid_longest_line(ring: Vec<Segment>) -> Vec<Segment> {
 }
 
 /// Adapter from a ring to [`plan_corner`] (see the module docs): every convex line–line corner
-/// of the closed CCW loop `ring` gets the corner trochoids of `settings.method`, spliced in
+/// of the closed CCW loop `ring` gets the corner trochoids of `method`, spliced in
 /// place of the incoming line. Returns the new loop, the number of corners done and the number
 /// of convex corners left plain because the corner scenario's preconditions failed.
 pub fn ring_with_corner_trochoids(
     polygon: &Polygon,
     ring: &[Segment],
     settings: PocketSettings,
+    method: CornerMethod,
 ) -> Result<(Vec<Segment>, usize, usize), JobError> {
     let (r, ae) = (settings.tool_radius, settings.step_over);
     let base = CornerSettings { feed_mm_per_min: settings.feed_mm_per_min, ..CornerSettings::new(r, ae)? };
@@ -460,7 +429,7 @@ pub fn ring_with_corner_trochoids(
             out.push(seg); // straight or reflex (concave-of-pocket) vertex
             continue;
         }
-        match corner_piece(a, u0, c, base, settings.method).filter(|p| piece_is_inside(polygon, p, r)) {
+        match corner_piece(a, u0, c, base, method).filter(|p| piece_is_inside(polygon, p, r)) {
             Some(piece) => {
                 out.extend(piece);
                 done += 1;
@@ -476,7 +445,7 @@ pub fn ring_with_corner_trochoids(
 
 /// The strategy's path from `a` (start of the incoming ring line) to the corner vertex `u0`,
 /// or `None` where the corner scenario does not apply.
-fn corner_piece(a: P2, u0: P2, c: P2, base: CornerSettings, method: Method) -> Option<Vec<Segment>> {
+fn corner_piece(a: P2, u0: P2, c: P2, base: CornerSettings, method: CornerMethod) -> Option<Vec<Segment>> {
     let r = base.tool_radius;
     let at_vertex = Corner::new(u0, u0 - a, c - u0).ok()?;
     let (alpha, b) = (at_vertex.half_angle, at_vertex.bisector);

@@ -6,7 +6,7 @@
 //! The algorithm below is ours (domain-spec §3.5, DERIVED), written so that every choice can be
 //! checked by the independent evaluator.
 //!
-//! 1. **Axis.** The medial axis of the pocket ([`super::medial`], boostvoronoi; parabolic edges
+//! 1. **Axis.** The medial axis of the pocket ([`crate::corner::medial`], boostvoronoi; parabolic edges
 //!    as points of the exact parabola). At an axis point q the clearance Rc(q) (distance to the
 //!    nearest wall) is the radius of the largest circle the walls allow; the tool centre may be
 //!    at q only where Rc(q) ≥ r. The axis is clipped to that part (bisection on Rc = r); a
@@ -42,7 +42,7 @@
 //!    a wall are joined along the axis (centre to centre).
 //! 4. **Narrow parts.** Where ρ < r_min the tool moves along the axis: into a convex corner this
 //!    ends at the tool corner point (Rc = r), reported as the corner's `tip` (see
-//!    [`super::acceptance`] for why its engagement has its own limit); through a neck it is a
+//!    [`crate::corner::acceptance`] for why its engagement has its own limit); through a neck it is a
 //!    `straight` move, after which a circle of radius r_min restarts the chain.
 //! 5. **Back.** After a leaf the tool returns along the axis to the centre of the last circle the
 //!    next guide shares with this one (cleared material), then moves out to that circle's exit
@@ -51,13 +51,12 @@
 //! The whole path is measured by the evaluator over the pocket polygon; samples are classified
 //! by the move they belong to ([`MoveKind`]), and the maximum is reported per class.
 
-use super::engagement::{Circle, Turn, TwoCircle};
-use super::evaluator::{EngagementProfile, EvaluatorOptions, Polygon, engagement_profile};
-use super::medial::{MedialAxis, clearance, medial_axis};
-use super::pocket::{PocketSettings, link_is_inside};
-use super::strategy::{CornerSettings, Method};
+use super::PocketSettings;
+use super::rings::link_is_inside;
+use crate::corner::medial::{MedialAxis, clearance, medial_axis};
+use crate::corner::{CornerSettings, EngagementProfile, EvaluatorOptions, Turn, TwoCircle, engagement_profile};
 use crate::error::JobError;
-use crate::geom::{P2, Segment, golden_min, rot90};
+use crate::geom::{Circle, P2, Polygon, Segment, golden_min, rot90};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 
@@ -493,13 +492,10 @@ struct Current {
     entry: Option<f64>,
 }
 
-/// Plan the pocket `polygon` with perforative trochoids along its medial axis. `settings.method`
-/// must be [`Method::MedialAxis`]; the target is the corner strategies' a* = a_str·(1 + t1).
-pub fn plan_perforative_pocket(polygon: &Polygon, settings: PocketSettings) -> Result<PerforativePlan, JobError> {
-    if settings.method != Method::MedialAxis {
-        return Err(JobError::range("method", settings.method.name(), "medial-axis for a perforative pocket"));
-    }
-    PocketSettings { method: Method::Plain, ..settings }.validate()?;
+/// Plan the pocket `polygon` with perforative trochoids along its medial axis; the target is
+/// the corner strategies' a* = a_str·(1 + t1).
+pub fn plan_perforative(polygon: &Polygon, settings: PocketSettings) -> Result<PerforativePlan, JobError> {
+    settings.validate()?;
     let (r, ae) = (settings.tool_radius, settings.step_over);
     let cs = CornerSettings { feed_mm_per_min: settings.feed_mm_per_min, ..CornerSettings::new(r, ae)? };
     let axis = medial_axis(polygon, VORONOI_RESOLUTION_MM)?;

@@ -1,0 +1,171 @@
+//! The corner job as the front ends state it ([`CornerRequest`]) and its one entry point,
+//! [`evaluate`]: the symmetric corner's scenario, the strategy's plan and the plain ring, both
+//! measured by the independent evaluator, and their acceptance row ([`super::acceptance`]).
+
+use super::acceptance::{self, AcceptanceRow};
+use super::engagement::{radial_depth_for_engagement, straight_engagement};
+use super::evaluator::{EngagementProfile, EvaluatorOptions, engagement_profile};
+use super::geometry::Corner;
+use super::method::CornerMethod;
+use super::strategy::{CornerPlan, CornerScenario, CornerSettings, DEFAULT_T1, plan_corner};
+use crate::error::JobError;
+use serde::{Deserialize, Serialize};
+
+/// One symmetric corner to plan and measure, in the user's units (degrees, mm, mm/min): the
+/// flags of `trochoplan corner` and the fields of the GUI's Corner tab.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CornerRequest {
+    /// Interior corner angle (degrees).
+    pub angle_deg: f64,
+    pub method: CornerMethod,
+    /// Tool diameter D (mm).
+    pub tool_diameter_mm: f64,
+    /// Ring step-over a_e (mm); `None`: the step-over giving `straight_engagement_deg`.
+    pub step_over_mm: Option<f64>,
+    /// Engagement on the straight part of the ring a_str (degrees), when `step_over_mm` is `None`.
+    pub straight_engagement_deg: f64,
+    /// Target engagement a* (degrees); `None`: a* = a_str·(1 + t1).
+    pub target_deg: Option<f64>,
+    /// Allowed excess over the straight-part engagement (Wu et al. eq. 23), when `target_deg`
+    /// is `None`.
+    pub t1: f64,
+    /// Bisection acceptance band ε (degrees).
+    pub tolerance_deg: f64,
+    /// Wall length from the apex (mm).
+    pub edge_length_mm: f64,
+    /// Feed rate for the machining time (mm/min).
+    pub feed_mm_per_min: f64,
+    /// Tool-centre radius rh of isometric circles (mm); `None`: the tool radius.
+    pub isometric_radius_mm: Option<f64>,
+    /// Arc-length spacing of the tool positions measured by the evaluator (mm).
+    pub spacing_mm: f64,
+}
+
+impl CornerRequest {
+    /// The defaults of `trochoplan corner` and of the Corner tab: a 90° corner, variable
+    /// circles, D = 10 mm, a_str = 46°, t1 = 15 %, ε = 0.5°, 100 mm walls, 600 mm/min, the
+    /// evaluator every 0.1 mm.
+    pub const DEFAULT: CornerRequest = CornerRequest {
+        angle_deg: 90.0,
+        method: CornerMethod::Variable,
+        tool_diameter_mm: 10.0,
+        step_over_mm: None,
+        straight_engagement_deg: 46.0,
+        target_deg: None,
+        t1: DEFAULT_T1,
+        tolerance_deg: 0.5,
+        edge_length_mm: 100.0,
+        feed_mm_per_min: 600.0,
+        isometric_radius_mm: None,
+        spacing_mm: 0.1,
+    };
+
+    /// The validated settings of the corner plan. Each error names the input (as the CLI flag
+    /// spells it) and its allowed range.
+    pub fn settings(&self) -> Result<CornerSettings, JobError> {
+        let d = finite("tool diameter", self.tool_diameter_mm)?;
+        if d <= 0.0 {
+            return Err(JobError::range("tool diameter", d, "a finite number > 0 mm"));
+        }
+        let r = d / 2.0;
+        let step_over = match self.step_over_mm {
+            Some(ae) => finite("step-over", ae)?,
+            None => {
+                let a = finite("straight engagement", self.straight_engagement_deg)?;
+                if !(a > 0.0 && a < 180.0) {
+                    return Err(JobError::range("straight engagement", a, "greater than 0° and less than 180°"));
+                }
+                radial_depth_for_engagement(a.to_radians(), r)
+            }
+        };
+        let mut s = CornerSettings::new(r, step_over).map_err(|e| match e {
+            JobError::OutOfRange { name: "a_e", value, .. } => {
+                JobError::range("step-over", value, format!("greater than 0 and less than the tool diameter {d} mm"))
+            }
+            other => other,
+        })?;
+        s.target = match self.target_deg {
+            Some(t) => finite("target", t)?.to_radians(),
+            None => {
+                let t1 = finite("t1", self.t1)?;
+                if !(0.0..=1.0).contains(&t1) {
+                    return Err(JobError::range("t1", t1, "from 0 to 1"));
+                }
+                straight_engagement(step_over, r)? * (1.0 + t1)
+            }
+        };
+        s.tolerance = finite("tolerance", self.tolerance_deg)?.to_radians();
+        s.edge_length = self.edge_length_mm;
+        s.feed_mm_per_min = self.feed_mm_per_min;
+        s.isometric_radius = self.isometric_radius_mm;
+        s.validate()?;
+        Ok(s)
+    }
+}
+
+impl Default for CornerRequest {
+    /// [`CornerRequest::DEFAULT`].
+    fn default() -> Self {
+        CornerRequest::DEFAULT
+    }
+}
+
+/// A corner planned and measured: what `trochoplan corner` prints and the Corner tab shows.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CornerReport {
+    /// Interior corner angle (degrees, as requested).
+    pub angle_deg: f64,
+    /// The corner, its validated settings and the material the previous ring left.
+    pub scenario: CornerScenario,
+    /// The requested strategy's plan and its engagement, measured by the evaluator.
+    pub plan: CornerPlan,
+    pub profile: EngagementProfile,
+    /// The plain ring of the same corner and its engagement.
+    pub plain: CornerPlan,
+    pub plain_profile: EngagementProfile,
+    /// Body / tip split and pass flags of the plan ([`acceptance::row`]).
+    pub row: AcceptanceRow,
+}
+
+impl CornerReport {
+    /// The settings the corner was planned with.
+    pub fn settings(&self) -> &CornerSettings {
+        &self.scenario.settings
+    }
+}
+
+/// Plan the requested corner with its strategy and with the plain ring, measure both with the
+/// evaluator, and make their acceptance row. Errors name the input at fault.
+pub fn evaluate(req: &CornerRequest) -> Result<CornerReport, JobError> {
+    let settings = req.settings()?;
+    let angle_deg = finite("angle", req.angle_deg)?;
+    let scenario = symmetric_scenario(angle_deg, settings)?;
+    let opts = EvaluatorOptions::new(settings.tool_radius, req.spacing_mm);
+    let (plan, profile) = measured(&scenario, req.method, &opts)?;
+    let (plain, plain_profile) = measured(&scenario, CornerMethod::Plain, &opts)?;
+    let row =
+        acceptance::row(angle_deg, req.method, &scenario.corner, settings, (&plan, &profile), (&plain, &plain_profile));
+    Ok(CornerReport { angle_deg, scenario, plan, profile, plain, plain_profile, row })
+}
+
+/// The scenario of the symmetric corner of `angle_deg` (the corner of [`evaluate`] and of
+/// every row of the acceptance table).
+pub(super) fn symmetric_scenario(angle_deg: f64, settings: CornerSettings) -> Result<CornerScenario, JobError> {
+    CornerScenario::new(Corner::symmetric(angle_deg.to_radians())?, settings)
+}
+
+/// The plan of `method` in the scenario and its engagement over the plan's material model.
+pub(super) fn measured(
+    sc: &CornerScenario,
+    method: CornerMethod,
+    opts: &EvaluatorOptions,
+) -> Result<(CornerPlan, EngagementProfile), JobError> {
+    let plan = plan_corner(sc, method)?;
+    let profile = engagement_profile(&plan.stock, &plan.precut, &plan.path, opts)?;
+    Ok((plan, profile))
+}
+
+/// `v` if it is finite, else an error naming `name`.
+pub fn finite(name: &'static str, v: f64) -> Result<f64, JobError> {
+    if v.is_finite() { Ok(v) } else { Err(JobError::range(name, v, "a finite number")) }
+}

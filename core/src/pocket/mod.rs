@@ -1,0 +1,261 @@
+//! Polygonal pockets (issue #5 item 5; Wu et al. 2016 §4): cleared by contour-parallel rings
+//! with a corner strategy at every convex ring corner ([`rings`]), or by perforative trochoids
+//! along the pocket's medial axis ([`perforative`]); both measured by the independent
+//! evaluator ([`crate::corner::evaluator`]).
+//!
+//! Entry point: [`plan`] — a [`PocketRequest`] in, a [`PocketPlan`] out; used by the GUI and the
+//! CLI. Conventions as in [`crate::corner`]: mm, counter-clockwise pocket boundary, tool-centre
+//! circles and rings counter-clockwise (climb milling with M3).
+
+pub mod perforative;
+pub mod rings;
+
+pub use perforative::{AxisCircle, KindMax, MoveKind, PerforativePlan, plan_perforative};
+pub use rings::{LINK_ENGAGEMENT_SLACK_RAD, Link, LinkKind, Ring, RingPlan, inward_offset, link_is_inside, plan_rings};
+
+use crate::corner::CornerMethod;
+use crate::corner::finite;
+use crate::corner::strategy::validate_tool_and_step_over;
+use crate::error::JobError;
+use crate::geom::{Polygon, Segment, p2};
+use serde::{Deserialize, Serialize};
+
+/// How a pocket is cleared.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PocketStrategy {
+    /// Contour-parallel rings with a corner strategy at every convex corner of every ring but
+    /// the innermost: plain, variable or isometric ([`rings`]).
+    Rings(CornerMethod),
+    /// No rings: perforative trochoids along the medial axis of the whole pocket
+    /// ([`perforative`]).
+    MedialAxis,
+}
+
+impl PocketStrategy {
+    /// Every strategy, in the order the front ends list them.
+    pub const ALL: [PocketStrategy; 4] = [
+        PocketStrategy::Rings(CornerMethod::Plain),
+        PocketStrategy::Rings(CornerMethod::Variable),
+        PocketStrategy::Rings(CornerMethod::Isometric),
+        PocketStrategy::MedialAxis,
+    ];
+
+    /// The strategy a corner method stands for in a whole pocket: the medial axis clears the
+    /// pocket along its axis, the other methods shape the rings' corners.
+    pub fn from_method(method: CornerMethod) -> PocketStrategy {
+        match method {
+            CornerMethod::MedialAxis => PocketStrategy::MedialAxis,
+            m => PocketStrategy::Rings(m),
+        }
+    }
+
+    /// The corner method the strategy is named by (the inverse of [`Self::from_method`]).
+    pub fn method(self) -> CornerMethod {
+        match self {
+            PocketStrategy::Rings(m) => m,
+            PocketStrategy::MedialAxis => CornerMethod::MedialAxis,
+        }
+    }
+
+    /// CLI / JSON name: the corner method's.
+    pub fn name(self) -> &'static str {
+        self.method().name()
+    }
+
+    /// The strategy of a CLI / JSON name.
+    pub fn from_name(name: &str) -> Option<PocketStrategy> {
+        CornerMethod::from_name(name).map(PocketStrategy::from_method)
+    }
+
+    /// One line for `trochoplan pocket --help`.
+    pub fn help(self) -> &'static str {
+        match self.method() {
+            CornerMethod::Plain => "Plain contour-parallel rings",
+            CornerMethod::Variable => "Variable circles at every convex corner of every ring but the innermost",
+            CornerMethod::Isometric => "Isometric circles at every convex corner of every ring but the innermost",
+            CornerMethod::MedialAxis => "No rings: perforative trochoids along the medial axis of the whole pocket",
+        }
+    }
+}
+
+/// Numeric inputs of both pocket planners (mm, mm/min).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PocketSettings {
+    /// Tool radius r (mm).
+    pub tool_radius: f64,
+    /// Radial step-over a_e between rings (mm), 0 < a_e < D.
+    pub step_over: f64,
+    /// Feed rate for the machining time (mm/min).
+    pub feed_mm_per_min: f64,
+    /// Arc-length spacing of the evaluated tool positions (mm).
+    pub spacing: f64,
+}
+
+impl PocketSettings {
+    /// Range checks; each error names the parameter, the value and the allowed range.
+    pub fn validate(&self) -> Result<(), JobError> {
+        let r = self.tool_radius;
+        validate_tool_and_step_over(r, self.step_over)?;
+        if !(self.feed_mm_per_min.is_finite() && self.feed_mm_per_min > 0.0) {
+            return Err(JobError::range("feed", self.feed_mm_per_min, "a finite number > 0 mm/min"));
+        }
+        if !(self.spacing.is_finite() && self.spacing > 0.0 && self.spacing <= r) {
+            return Err(JobError::range("spacing", self.spacing, format!("greater than 0 and at most r = {r} mm")));
+        }
+        Ok(())
+    }
+
+    /// Straight-cut engagement of the step-over, a_str = arccos(1 − a_e/r) (domain-spec §1.1).
+    pub fn straight_engagement(&self) -> Result<f64, JobError> {
+        crate::corner::straight_engagement(self.step_over, self.tool_radius)
+    }
+}
+
+/// One pocket to plan, in the user's units: the inputs of `trochoplan pocket` and of the
+/// Corner tab's pocket mode.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PocketRequest {
+    /// The validated pocket boundary.
+    pub polygon: Polygon,
+    /// Tool diameter D (mm).
+    pub tool_diameter_mm: f64,
+    /// Ring step-over a_e (mm), 0 < a_e < D; for the medial axis it sets the target a*.
+    pub step_over_mm: f64,
+    /// Feed rate for the machining time (mm/min).
+    pub feed_mm_per_min: f64,
+    pub strategy: PocketStrategy,
+    /// Arc-length spacing of the tool positions measured by the evaluator (mm).
+    pub spacing_mm: f64,
+}
+
+impl Default for PocketRequest {
+    /// The defaults of `trochoplan pocket`: D = 10 mm, a_e = 2.5 mm (a_e/D = 0.25, 60° on a
+    /// straight wall), 600 mm/min, plain rings, the evaluator every 0.25 mm; the pocket is the
+    /// README's 60 × 40 mm rectangle.
+    fn default() -> Self {
+        let rectangle = [p2(0.0, 0.0), p2(60.0, 0.0), p2(60.0, 40.0), p2(0.0, 40.0)];
+        PocketRequest {
+            polygon: Polygon::from_ccw_vertices(rectangle.to_vec()),
+            tool_diameter_mm: 10.0,
+            step_over_mm: 2.5,
+            feed_mm_per_min: 600.0,
+            strategy: PocketStrategy::Rings(CornerMethod::Plain),
+            spacing_mm: 0.25,
+        }
+    }
+}
+
+impl PocketRequest {
+    /// The validated numeric inputs. Errors name the input and its allowed range.
+    pub fn settings(&self) -> Result<PocketSettings, JobError> {
+        let d = finite("tool diameter", self.tool_diameter_mm)?;
+        let settings = PocketSettings {
+            tool_radius: d / 2.0,
+            step_over: self.step_over_mm,
+            feed_mm_per_min: self.feed_mm_per_min,
+            spacing: self.spacing_mm,
+        };
+        settings.validate()?;
+        Ok(settings)
+    }
+}
+
+/// A planned pocket: rings and their links, or the path along the medial axis.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum PocketPlan {
+    Rings(RingPlan),
+    MedialAxis(PerforativePlan),
+}
+
+impl PocketPlan {
+    /// The strategy the pocket was planned with.
+    pub fn strategy(&self) -> PocketStrategy {
+        match self {
+            PocketPlan::Rings(p) => PocketStrategy::Rings(p.method),
+            PocketPlan::MedialAxis(_) => PocketStrategy::MedialAxis,
+        }
+    }
+
+    /// The validated pocket (counter-clockwise).
+    pub fn polygon(&self) -> &Polygon {
+        match self {
+            PocketPlan::Rings(p) => &p.polygon,
+            PocketPlan::MedialAxis(p) => &p.polygon,
+        }
+    }
+
+    /// The settings it was planned with.
+    pub fn settings(&self) -> &PocketSettings {
+        match self {
+            PocketPlan::Rings(p) => &p.settings,
+            PocketPlan::MedialAxis(p) => &p.settings,
+        }
+    }
+
+    /// The cutting path length (mm): the rings (links excluded), or the whole medial-axis path.
+    pub fn path_length_mm(&self) -> f64 {
+        match self {
+            PocketPlan::Rings(p) => p.path_length_mm,
+            PocketPlan::MedialAxis(p) => p.path_length_mm,
+        }
+    }
+
+    /// Machining time of [`Self::path_length_mm`] at the feed (s).
+    pub fn time_s(&self) -> f64 {
+        match self {
+            PocketPlan::Rings(p) => p.time_s,
+            PocketPlan::MedialAxis(p) => p.time_s,
+        }
+    }
+
+    /// The engagement the plan bounds, measured by the evaluator (rad): the largest running
+    /// engagement of the rings (entries excluded), or the medial-axis path's body maximum.
+    pub fn max_engagement_rad(&self) -> f64 {
+        match self {
+            PocketPlan::Rings(p) => p.max_engagement_rad,
+            PocketPlan::MedialAxis(p) => p.body_max_rad,
+        }
+    }
+
+    /// The whole tool path in machining order, and the indices of the segments reached by
+    /// retract, rapid and plunge ([`RingPlan::tool_path`], [`PerforativePlan::retract_before`]).
+    pub fn tool_path(&self) -> (Vec<Segment>, Vec<usize>) {
+        match self {
+            PocketPlan::Rings(p) => p.tool_path(),
+            PocketPlan::MedialAxis(p) => (p.segments.clone(), p.retract_before.clone()),
+        }
+    }
+}
+
+/// Plan the requested pocket with its strategy. Errors name the input at fault.
+pub fn plan(req: &PocketRequest) -> Result<PocketPlan, JobError> {
+    let settings = req.settings()?;
+    match req.strategy {
+        PocketStrategy::Rings(method) => plan_rings(&req.polygon, settings, method).map(PocketPlan::Rings),
+        PocketStrategy::MedialAxis => plan_perforative(&req.polygon, settings).map(PocketPlan::MedialAxis),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn strategies_are_named_by_their_corner_method() {
+        for s in PocketStrategy::ALL {
+            assert_eq!(PocketStrategy::from_name(s.name()), Some(s));
+            assert_eq!(PocketStrategy::from_method(s.method()), s);
+        }
+        assert_eq!(PocketStrategy::from_name("medial-axis"), Some(PocketStrategy::MedialAxis));
+    }
+
+    #[test]
+    fn default_request_is_a_valid_rectangle_and_ring_planning_rejects_the_medial_axis() {
+        let req = PocketRequest::default();
+        let checked = Polygon::new(req.polygon.vertices().to_vec()).expect("valid");
+        assert_eq!(checked, req.polygon);
+        let bad = PocketRequest { strategy: PocketStrategy::Rings(CornerMethod::MedialAxis), ..req };
+        assert_eq!(plan(&bad).expect_err("rejected").parameter(), Some("method"));
+    }
+}
