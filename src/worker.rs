@@ -257,43 +257,71 @@ mod tests {
         out
     }
 
-    /// A job that waits for a go signal before answering with its request.
-    fn gated() -> (Sender<()>, impl Fn(u32, &Task<u32>) + Send + Sync + 'static) {
+    /// The two ends of a gated job: it reports that it started, then waits for a go signal.
+    struct Gate {
+        started: Receiver<u32>,
+        go: Sender<()>,
+    }
+
+    impl Gate {
+        fn wait_started(&self) -> Option<u32> {
+            self.started.recv_timeout(Duration::from_secs(30)).ok()
+        }
+    }
+
+    /// Requests from this number on are answered at once.
+    const UNGATED: u32 = 100;
+
+    /// A job that answers with its request once the gate says go.
+    fn gated() -> (Gate, impl Fn(u32, &Task<u32>) + Send + Sync + 'static) {
         let (go, wait) = channel::<()>();
-        let wait = Mutex::new(wait);
+        let (started_tx, started) = channel::<u32>();
+        let job = Mutex::new((started_tx, wait));
         let job = move |n: u32, task: &Task<u32>| {
-            if let Ok(w) = wait.lock() {
-                let _ = w.recv_timeout(Duration::from_secs(10));
+            if n < UNGATED
+                && let Ok(ends) = job.lock()
+            {
+                let _ = ends.0.send(n);
+                let _ = ends.1.recv_timeout(Duration::from_secs(30));
             }
             task.send(n);
         };
-        (go, job)
+        (Gate { started, go }, job)
     }
 
     #[test]
     fn the_newest_request_wins_and_stale_outputs_are_dropped() {
-        let (go, job) = gated();
+        let (gate, job) = gated();
         let mut w = Worker::threaded("test", Keep::Newest, job, || {});
         w.request(1);
+        assert_eq!(gate.wait_started(), Some(1));
         for n in 2..=5 {
             w.request(n);
         }
-        for _ in 0..5 {
-            let _ = go.send(());
-        }
-        assert_eq!(drain(&mut w), vec![5], "the busy job's answer 1 is stale, 2–4 are skipped");
+        let _ = gate.go.send(());
+        assert_eq!(gate.wait_started(), Some(5), "2–4 are skipped");
+        let _ = gate.go.send(());
+        assert_eq!(drain(&mut w), vec![5], "the answer to 1 is stale");
         assert!(!w.running());
     }
 
     #[test]
     fn keep_newer_hands_out_an_overtaken_answer_but_never_an_older_one() {
-        let (go, job) = gated();
+        let (gate, job) = gated();
         let mut w = Worker::threaded("test", Keep::Newer, job, || {});
         w.request(1);
+        assert_eq!(gate.wait_started(), Some(1));
         w.request(2);
-        let _ = go.send(());
-        let _ = go.send(());
+        let _ = gate.go.send(());
+        assert_eq!(gate.wait_started(), Some(2));
+        let _ = gate.go.send(());
         assert_eq!(drain(&mut w), vec![1, 2], "1 was overtaken by 2 but is newer than nothing");
+        w.request(3);
+        assert_eq!(gate.wait_started(), Some(3));
+        w.request_inline(UNGATED + 4);
+        assert_eq!(w.poll(), vec![UNGATED + 4]);
+        let _ = gate.go.send(());
+        assert!(drain(&mut w).is_empty(), "3 ends after 4 was shown: older, dropped");
     }
 
     #[test]

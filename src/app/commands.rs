@@ -93,7 +93,8 @@ impl App {
         self.undoer.add_undo(&self.state);
         match cmd {
             Command::Pin => {
-                if !self.pin(self.state.job.clone()) {
+                let pinned = self.pin(self.state.job.clone());
+                if !pinned {
                     self.status = Some(("cannot pin: job invalid or four variants pinned".into(), true));
                 }
             }

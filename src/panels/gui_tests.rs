@@ -259,6 +259,7 @@ fn undo_and_redo_cover_every_input_but_not_the_tab() {
     h.get_by_label("Teach").click();
     settle(&mut h);
     h.get_by_label("Compare").click();
+    h.run();
     h.get_by_label("Pin current job").click();
     settle(&mut h);
     h.get_by_label("Export NC").click();
