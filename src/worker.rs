@@ -111,7 +111,8 @@ impl<Req: Send + 'static, Out: Send + 'static> Worker<Req, Out> {
         let mut w = Worker::inline(keep, job);
         w.repaint = Arc::new(repaint);
         let (tx, rx) = channel::<(u64, Req)>();
-        let (job, latest, reports, repaint) = (w.job.clone(), w.latest.clone(), w.reports_tx.clone(), w.repaint.clone());
+        let (job, latest, reports, repaint) =
+            (w.job.clone(), w.latest.clone(), w.reports_tx.clone(), w.repaint.clone());
         let serve = move || {
             while let Ok(mut request) = rx.recv() {
                 while let Ok(newer) = rx.try_recv() {

@@ -79,7 +79,7 @@ impl App {
             }
             return;
         }
-        let target = match (&self.file, cmd) {
+        let target = match (&self.view.file, cmd) {
             (Some(f), Command::Save) => Some(f.clone()),
             (f, _) => self.dialogs.save_job(f.as_deref()),
         };
@@ -101,7 +101,8 @@ impl App {
             Command::PinPaperSet => {
                 self.state.pinned.clear();
                 self.variants.clear();
-                let failed = compare::paper_set(&self.state.job).into_iter().filter(|job| !self.pin(job.clone())).count();
+                let failed =
+                    compare::paper_set(&self.state.job).into_iter().filter(|job| !self.pin(job.clone())).count();
                 if failed > 0 {
                     self.status = Some((format!("{failed} of the paper's variants are invalid for this job"), true));
                 }
@@ -145,7 +146,7 @@ impl App {
         match read {
             Ok(job) => {
                 self.set_job(job);
-                self.file = Some(path.to_owned());
+                self.view.file = Some(path.to_owned());
                 self.status = Some((format!("opened {}", path.display()), false));
             }
             Err(e) => self.status = Some((format!("cannot open {}: {e}", path.display()), true)),
@@ -156,7 +157,7 @@ impl App {
     pub fn save_to(&mut self, path: &Path) {
         match write_atomic(path, self.state.job.to_toml().as_bytes()) {
             Ok(()) => {
-                self.file = Some(path.to_owned());
+                self.view.file = Some(path.to_owned());
                 self.status = Some((format!("saved {}", path.display()), false));
             }
             Err(e) => self.status = Some((e, true)),

@@ -34,7 +34,7 @@ impl App {
             ui.menu_button("Edit", |ui| self.undo_buttons(ui, cmds, ["Undo  (Ctrl+Z)", "Redo  (Ctrl+Shift+Z)"]));
             ui.menu_button("View", |ui| {
                 for t in &TABS {
-                    ui.radio_value(&mut self.tab, t.tab, t.label).on_hover_text(t.tooltip);
+                    ui.radio_value(&mut self.view.tab, t.tab, t.label).on_hover_text(t.tooltip);
                 }
                 ui.separator();
                 ui.checkbox(&mut self.state.teach, "Teaching: explanations under the plots");
@@ -42,7 +42,7 @@ impl App {
             });
             ui.separator();
             for t in &TABS {
-                ui.selectable_value(&mut self.tab, t.tab, t.label).on_hover_text(t.tooltip);
+                ui.selectable_value(&mut self.view.tab, t.tab, t.label).on_hover_text(t.tooltip);
             }
             ui.separator();
             ui.toggle_value(&mut self.state.teach, "Teach")
@@ -63,7 +63,7 @@ impl App {
         ui.separator();
         let export = Tab::Export.spec();
         if ui.button(format!("{}…", export.label)).on_hover_text(export.tooltip).clicked() {
-            self.tab = Tab::Export;
+            self.view.tab = Tab::Export;
         }
         ui.separator();
         if ui.button("Reset to the paper's default job").clicked() {
@@ -89,7 +89,10 @@ impl App {
             ui.add_space(8.0);
             ui.horizontal(|ui| {
                 self.undo_buttons(ui, cmds, ["Undo", "Redo"]);
-                if ui.button("Reset to paper defaults").on_hover_text("Wagih et al. (2023) Table 1 conditions").clicked()
+                if ui
+                    .button("Reset to paper defaults")
+                    .on_hover_text("Wagih et al. (2023) Table 1 conditions")
+                    .clicked()
                 {
                     cmds.push(Command::ResetJob);
                 }
@@ -120,7 +123,7 @@ impl App {
                     ui.label(format!("ui {:.1} ms", self.frames.ui_ms));
                 }
             }
-            if let Some(f) = &self.file {
+            if let Some(f) = &self.view.file {
                 ui.separator();
                 ui.label(format!("file: {}", f.display()));
             }

@@ -1,7 +1,7 @@
 //! The planner window (eframe/egui).
 //!
-//! Architecture (see `../shared/design.md`): the user's [`Inputs`] are persisted by eframe (as
-//! one [`State`] with the tab and the file) and one undo history covers them; [`App`] keeps the
+//! Architecture (see `../shared/design.md`): the user's [`Inputs`] and the [`View`] are
+//! persisted by eframe ([`State`]), and one undo history covers the inputs; [`App`] keeps the
 //! last plan ([`Planner`], on a [`crate::worker::Worker`]) and replans only when the job
 //! changed, keeping the last *valid* plan on screen while the job is invalid. The tabs are
 //! listed once ([`tabs::TABS`]). Panels (`src/panels/`) are functions that edit the inputs or
@@ -26,7 +26,7 @@ mod tabs;
 pub use commands::Command;
 pub use dialogs::{FileDialogs, NativeDialogs};
 pub use planner::{Planned, Planner};
-pub use state::{Inputs, PinnedJob, State, Tab};
+pub use state::{Inputs, PinnedJob, State, Tab, View};
 
 use eframe::egui;
 use egui::util::undoer::Undoer;
@@ -40,8 +40,6 @@ use std::path::PathBuf;
 use std::time::Instant;
 use trochoplan_core::{Job, plan};
 
-/// eframe storage key of [`State`].
-const STORAGE_KEY: &str = "trochoplan-state";
 /// Environment variable: when set, every frame's time is printed to stderr (frame-time
 /// measurement, see the README).
 const FRAME_LOG_ENV: &str = "TROCHOPLAN_FRAME_LOG";
@@ -60,8 +58,8 @@ pub fn run(job: Job) -> eframe::Result<()> {
         "TrochoPlan",
         options,
         Box::new(move |cc| {
-            let stored = cc.storage.and_then(|s| eframe::get_value::<State>(s, STORAGE_KEY));
-            let stored = stored.map(|s| if job == Job::default() { s } else { State { job: job.clone(), ..s } });
+            let stored = cc.storage.and_then(State::load);
+            let stored = stored.map(|s| if job == Job::default() { s } else { s.with_job(job.clone()) });
             let ctx = cc.egui_ctx.clone();
             let planner = Planner::threaded(move || ctx.request_repaint());
             let mut app = App::with_planner(job, stored, Box::new(NativeDialogs), planner);
@@ -96,10 +94,8 @@ impl Variant {
 pub struct App {
     /// The user's inputs; undo and redo restore them.
     pub state: Inputs,
-    /// The selected tab.
-    pub tab: Tab,
-    /// The job file last opened or saved.
-    pub file: Option<PathBuf>,
+    /// The selected tab and the job file.
+    pub view: View,
     pub planner: Planner,
     /// The plans of `state.pinned`.
     pub variants: Vec<Variant>,
@@ -131,11 +127,10 @@ impl App {
 
     /// [`App::new`] with a given planner (the window uses [`Planner::threaded`]).
     pub fn with_planner(job: Job, stored: Option<State>, dialogs: Box<dyn FileDialogs>, planner: Planner) -> App {
-        let (state, tab, file) = stored.unwrap_or_else(|| State { job, ..State::default() }).split();
+        let State { inputs, view } = stored.unwrap_or_else(|| State::default().with_job(job));
         let mut app = App {
-            state,
-            tab,
-            file,
+            state: inputs,
+            view,
             variants: Vec::new(),
             planner,
             undoer: Undoer::default(),
@@ -189,7 +184,7 @@ impl App {
 
         egui::Panel::top("menu_bar").show(ui, |ui| self.menu_bar(ui, &mut cmds));
         egui::Panel::bottom("status_bar").show(ui, |ui| self.status_bar(ui));
-        let slot_panels = self.tab.spec().slot_panels;
+        let slot_panels = self.view.tab.spec().slot_panels;
         if slot_panels {
             egui::Panel::left("parameters")
                 .resizable(true)
@@ -206,7 +201,7 @@ impl App {
                 .show(ui, |ui| self.derived_panel(ui));
         }
         self.animate(ui);
-        egui::CentralPanel::default().show(ui, |ui| (self.tab.spec().show)(self, ui, &mut cmds));
+        egui::CentralPanel::default().show(ui, |ui| (self.view.tab.spec().show)(self, ui, &mut cmds));
 
         for c in cmds {
             self.apply(c, ui.ctx());
@@ -235,15 +230,15 @@ impl App {
 
     /// Show the job file's name in the window title when it changed.
     fn update_title(&mut self, ctx: &egui::Context) {
-        if self.titled.as_ref() == Some(&self.file) {
+        if self.titled.as_ref() == Some(&self.view.file) {
             return;
         }
-        let title = match self.file.as_ref().and_then(|f| f.file_name()) {
+        let title = match self.view.file.as_ref().and_then(|f| f.file_name()) {
             Some(name) => format!("TrochoPlan - {}", name.to_string_lossy()),
             None => "TrochoPlan".to_owned(),
         };
         ctx.send_viewport_cmd(egui::ViewportCommand::Title(title));
-        self.titled = Some(self.file.clone());
+        self.titled = Some(self.view.file.clone());
     }
 
     /// Collect the Corner tab's plans, ask for new ones if its inputs changed, and regenerate
@@ -268,7 +263,7 @@ impl eframe::App for App {
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
-        eframe::set_value(storage, STORAGE_KEY, &State::new(self.state.clone(), self.tab, self.file.clone()));
+        State::save(&self.state, &self.view, storage);
     }
 }
 

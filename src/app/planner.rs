@@ -94,7 +94,11 @@ impl Planner {
         self.error = None;
         self.replans += 1;
         let request = (job.clone(), cycles_shown);
-        if self.last.is_none() { self.worker.request_inline(request) } else { self.worker.request(request) }
+        if self.last.is_none() {
+            self.worker.request_inline(request)
+        } else {
+            self.worker.request(request)
+        }
         self.poll();
         true
     }

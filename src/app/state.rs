@@ -1,5 +1,5 @@
-//! What the window keeps between sessions: the user's [`Inputs`] (one undo history covers them
-//! all), the selected [`Tab`] and the job file, stored together as one [`State`].
+//! What the window keeps between sessions ([`State`]): the user's [`Inputs`] (one undo history
+//! covers them all) and the [`View`] (the selected tab and the job file).
 
 use super::panels::corner::CornerInputs;
 use super::panels::corner_nc::CornerNcSettings;
@@ -30,7 +30,12 @@ pub struct PinnedJob {
 }
 
 /// Everything the user chose except the tab and the file name: undo and redo restore it whole.
-#[derive(Clone, Debug, PartialEq)]
+///
+/// Stored under [`INPUTS_KEY`], the key and flat record of earlier versions (which also held
+/// the view's fields: they are ignored here); fields missing from a stored record take their
+/// defaults.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
 pub struct Inputs {
     pub job: Job,
     /// Show the explanation text under every plot.
@@ -69,59 +74,46 @@ impl Default for Inputs {
     }
 }
 
-/// Everything persisted between sessions (eframe storage key `trochoplan-state`): the
-/// [`Inputs`], the tab and the file, as one flat record — the shape earlier versions stored, so
-/// their saved state still loads; fields missing from it take their defaults.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+/// What the window shows, persisted but not undone: stored under [`VIEW_KEY`], or read from the
+/// record under [`INPUTS_KEY`] where earlier versions kept it.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
-pub struct State {
-    pub job: Job,
+pub struct View {
     pub tab: Tab,
-    pub teach: bool,
-    pub cycles_shown: usize,
-    pub chip_close_up: bool,
-    pub overlay_pins: bool,
-    pub pinned: Vec<PinnedJob>,
-    pub sweep: SweepSettings,
-    pub export: ExportSettings,
-    pub corner: CornerInputs,
-    pub corner_nc: CornerNcSettings,
     /// The job file last opened or saved.
     pub file: Option<PathBuf>,
 }
 
-impl Default for State {
-    fn default() -> Self {
-        State::new(Inputs::default(), Tab::default(), None)
-    }
+/// eframe storage key of [`Inputs`].
+pub const INPUTS_KEY: &str = "trochoplan-state";
+/// eframe storage key of [`View`].
+pub const VIEW_KEY: &str = "trochoplan-view";
+
+/// Everything persisted between sessions.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct State {
+    pub inputs: Inputs,
+    pub view: View,
 }
 
 impl State {
-    /// The record of `inputs`, `tab` and `file`.
-    pub fn new(inputs: Inputs, tab: Tab, file: Option<PathBuf>) -> State {
-        let Inputs { job, teach, cycles_shown, chip_close_up, overlay_pins, pinned, sweep, export, corner, corner_nc } =
-            inputs;
-        State {
-            job,
-            tab,
-            teach,
-            cycles_shown,
-            chip_close_up,
-            overlay_pins,
-            pinned,
-            sweep,
-            export,
-            corner,
-            corner_nc,
-            file,
-        }
+    /// The state stored in `storage`, if there is one.
+    pub fn load(storage: &dyn eframe::Storage) -> Option<State> {
+        let inputs = eframe::get_value::<Inputs>(storage, INPUTS_KEY)?;
+        let view = eframe::get_value::<View>(storage, VIEW_KEY)
+            .or_else(|| eframe::get_value::<View>(storage, INPUTS_KEY))
+            .unwrap_or_default();
+        Some(State { inputs, view })
     }
 
-    /// The inputs, tab and file of the record.
-    pub fn split(self) -> (Inputs, Tab, Option<PathBuf>) {
-        let State { job, tab, teach, cycles_shown, chip_close_up, overlay_pins, pinned, sweep, export, corner, corner_nc, file } =
-            self;
-        let inputs = Inputs { job, teach, cycles_shown, chip_close_up, overlay_pins, pinned, sweep, export, corner, corner_nc };
-        (inputs, tab, file)
+    /// This state editing `job`.
+    pub fn with_job(self, job: Job) -> State {
+        State { inputs: Inputs { job, ..self.inputs }, view: self.view }
+    }
+
+    /// Store `inputs` and `view` in `storage`.
+    pub fn save(inputs: &Inputs, view: &View, storage: &mut dyn eframe::Storage) {
+        eframe::set_value(storage, INPUTS_KEY, inputs);
+        eframe::set_value(storage, VIEW_KEY, view);
     }
 }

@@ -7,7 +7,6 @@ use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use panels::compare;
-use panels::sweep::SweepSettings;
 use std::path::Path;
 use trochoplan_core::JobError;
 
@@ -117,7 +116,7 @@ fn compare_mode_adds_variants_and_shows_percent_changes() {
     let mut h = harness();
     h.get_by_label("Compare").click();
     h.run();
-    assert_eq!(h.state().tab, Tab::Compare);
+    assert_eq!(h.state().view.tab, Tab::Compare);
     h.get_by_label("Pin current job").click();
     h.run();
     assert_eq!(h.state().variants.len(), 1);
@@ -196,33 +195,60 @@ fn sweep_tab_runs_in_the_background_and_teaching_animates() {
     assert!(h.state().anim.t_s.is_some());
 }
 
-#[test]
-fn persisted_state_round_trips() {
-    let state = State { job: Job { step: 0.6, ..Job::default() }, tab: Tab::Sweep, ..State::default() };
-    let text = serde_json::to_string(&state).expect("ser");
-    let back: State = serde_json::from_str(&text).expect("de");
-    assert_eq!(back, state);
-    let app = App::new(Job::default(), Some(back), Box::new(NativeDialogs));
-    assert!((app.planner.last.as_ref().expect("plan").plan.metrics.step_mm - 0.6).abs() < 1e-12);
-    assert_eq!(app.tab, Tab::Sweep);
-    let (inputs, tab, file) = state.clone().split();
-    assert_eq!(State::new(inputs, tab, file), state, "split and new are inverse");
+/// eframe storage in memory.
+#[derive(Default)]
+struct MemoryStorage(std::collections::HashMap<String, String>);
+
+impl eframe::Storage for MemoryStorage {
+    fn get_string(&self, key: &str) -> Option<String> {
+        self.0.get(key).cloned()
+    }
+    fn set_string(&mut self, key: &str, value: String) {
+        self.0.insert(key.to_owned(), value);
+    }
+    fn remove_string(&mut self, key: &str) {
+        self.0.remove(key);
+    }
+    fn flush(&mut self) {}
 }
 
 #[test]
-fn an_older_saved_state_still_loads_with_its_pins() {
-    // A record as an earlier version wrote it: no corner fields, one pinned job, one invalid.
+fn persisted_state_round_trips() {
+    let mut state = State::default().with_job(Job { step: 0.6, ..Job::default() });
+    state.view.tab = Tab::Sweep;
+    let mut storage = MemoryStorage::default();
+    State::save(&state.inputs, &state.view, &mut storage);
+    let back = State::load(&storage).expect("stored");
+    assert_eq!(back, state);
+    let app = App::new(Job::default(), Some(back), Box::new(NativeDialogs));
+    assert!((app.planner.last.as_ref().expect("plan").plan.metrics.step_mm - 0.6).abs() < 1e-12);
+    assert_eq!(app.view.tab, Tab::Sweep);
+}
+
+/// Part of the one flat record that versions before the undoable [`Inputs`] stored.
+#[derive(serde::Serialize)]
+struct EarlierState {
+    job: Job,
+    tab: Tab,
+    teach: bool,
+    cycles_shown: usize,
+    pinned: Vec<PinnedJob>,
+    file: Option<PathBuf>,
+}
+
+#[test]
+fn an_earlier_saved_state_still_loads_with_its_pins() {
     let job = Job { step: 0.7, ..Job::default() };
     let bad = Job { tool_diameter: 25.0, ..Job::default() };
-    let old = serde_json::json!({
-        "job": job, "tab": "Compare", "teach": true, "cycles_shown": 4, "chip_close_up": false,
-        "overlay_pins": false, "pinned": [{"label": "a", "job": job}, {"label": "bad", "job": bad}],
-        "sweep": SweepSettings::default(), "file": null,
-    });
-    let state: State = serde_json::from_value(old).expect("old state loads");
-    let app = App::new(Job::default(), Some(state), Box::new(NativeDialogs));
-    assert_eq!((app.tab, app.state.teach, app.state.cycles_shown), (Tab::Compare, true, 4));
-    assert_eq!(app.state.corner, panels::corner::CornerInputs::default());
+    let pinned = vec![PinnedJob { label: "a".into(), job: job.clone() }, PinnedJob { label: "bad".into(), job: bad }];
+    let file = Some(PathBuf::from("/tmp/job.toml"));
+    let earlier = EarlierState { job, tab: Tab::Compare, teach: true, cycles_shown: 4, pinned, file: file.clone() };
+    let mut storage = MemoryStorage::default();
+    eframe::set_value(&mut storage, state::INPUTS_KEY, &earlier);
+    let app = App::new(Job::default(), State::load(&storage), Box::new(NativeDialogs));
+    assert_eq!(app.view, View { tab: Tab::Compare, file });
+    assert_eq!((app.state.teach, app.state.cycles_shown), (true, 4));
+    assert_eq!(app.state.corner, Inputs::default().corner, "missing fields take their defaults");
     assert_eq!(app.variants.len(), 1, "the valid pin is planned, the invalid one dropped");
     assert_eq!(app.state.pinned.len(), 1);
     assert!((app.variants[0].planned.plan.metrics.step_mm - 0.7).abs() < 1e-12);
@@ -235,14 +261,14 @@ fn the_menu_and_the_tab_bar_list_every_tab_once_with_one_label() {
         assert_eq!(t.tab.spec().label, t.label);
         h.get_by_label(t.label).click();
         h.run();
-        assert_eq!(h.state().tab, t.tab, "tab bar: {}", t.label);
+        assert_eq!(h.state().view.tab, t.tab, "tab bar: {}", t.label);
     }
     h.get_by_label("View").click();
     h.run();
     assert_eq!(h.query_all_by_label("Plots").count(), 2, "menu and tab bar");
     h.get_by_role_and_label(Role::RadioButton, "Sweep").click();
     h.run();
-    assert_eq!(h.state().tab, Tab::Sweep, "View menu");
+    assert_eq!(h.state().view.tab, Tab::Sweep, "View menu");
 }
 
 /// Let the undo history settle: the harness advances 0.25 s a step, the undoer records a state
@@ -289,7 +315,7 @@ fn undo_and_redo_cover_every_input_but_not_the_tab() {
     h.get_by_label("Undo").click();
     h.run();
     assert_eq!(h.state().state, initial, "back to the start");
-    assert_eq!(h.state().tab, Tab::Export, "the tab is no input");
+    assert_eq!(h.state().view.tab, Tab::Export, "the tab is no input");
 
     for _ in 0..3 {
         h.key_press_modifiers(egui::Modifiers::COMMAND | egui::Modifiers::SHIFT, egui::Key::Z);
@@ -375,7 +401,7 @@ fn export_panel_previews_each_dialect_reports_errors_and_saves_the_previewed_tex
     h.run();
     h.get_by_label("Export NC…").click();
     h.run();
-    assert_eq!(h.state().tab, Tab::Export);
+    assert_eq!(h.state().view.tab, Tab::Export);
     let linuxcnc = export_text(&h);
     assert!(linuxcnc.contains("G21") && linuxcnc.contains("G64 P"), "{linuxcnc}");
     assert!(shows(&h, "G17 G21 G40 G49 G80 G90 G91.1 G94"), "preview shows the set-up block");
@@ -458,7 +484,7 @@ fn corner_result(h: &Harness<'_, App>) -> std::sync::Arc<panels::corner::CornerR
 #[test]
 fn corner_tab_opens_and_shows_the_measured_engagement() {
     let h = corner_harness();
-    assert_eq!(h.state().tab, Tab::Corner);
+    assert_eq!(h.state().view.tab, Tab::Corner);
     assert!(h.state().corner.error.is_none(), "{:?}", h.state().corner.error);
     let r = corner_result(&h);
     assert_eq!(r.method, "variable");

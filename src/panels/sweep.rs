@@ -3,10 +3,10 @@
 //! cancel; the window never waits for it.
 
 use super::Command;
+use crate::worker::{Keep, Task, Worker};
 use eframe::egui::{self, Color32, RichText};
 use egui_plot::{AxisHints, Corner, Legend, Line, Plot, Points, VLine};
 use serde::{Deserialize, Serialize};
-use crate::worker::{Keep, Task, Worker};
 use trochoplan_core::{Job, Metrics, PathKind, plan};
 
 /// The swept parameter.
