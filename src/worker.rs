@@ -268,6 +268,12 @@ mod tests {
         fn wait_started(&self) -> Option<u32> {
             self.started.recv_timeout(Duration::from_secs(30)).ok()
         }
+
+        /// Let the waiting job answer; the request the job starts next.
+        fn release(&self) -> Option<u32> {
+            let _ = self.go.send(());
+            self.wait_started()
+        }
     }
 
     /// Requests from this number on are answered at once.
@@ -290,17 +296,22 @@ mod tests {
         (Gate { started, go }, job)
     }
 
-    #[test]
-    fn the_newest_request_wins_and_stale_outputs_are_dropped() {
+    /// A gated worker busy with request 1.
+    fn busy_with_1(keep: Keep) -> (Gate, Worker<u32, u32>) {
         let (gate, job) = gated();
-        let mut w = Worker::threaded("test", Keep::Newest, job, || {});
+        let mut w = Worker::threaded("test", keep, job, || {});
         w.request(1);
         assert_eq!(gate.wait_started(), Some(1));
+        (gate, w)
+    }
+
+    #[test]
+    fn the_newest_request_wins_and_stale_outputs_are_dropped() {
+        let (gate, mut w) = busy_with_1(Keep::Newest);
         for n in 2..=5 {
             w.request(n);
         }
-        let _ = gate.go.send(());
-        assert_eq!(gate.wait_started(), Some(5), "2–4 are skipped");
+        assert_eq!(gate.release(), Some(5), "2–4 are skipped");
         let _ = gate.go.send(());
         assert_eq!(drain(&mut w), vec![5], "the answer to 1 is stale");
         assert!(!w.running());
@@ -308,13 +319,9 @@ mod tests {
 
     #[test]
     fn keep_newer_hands_out_an_overtaken_answer_but_never_an_older_one() {
-        let (gate, job) = gated();
-        let mut w = Worker::threaded("test", Keep::Newer, job, || {});
-        w.request(1);
-        assert_eq!(gate.wait_started(), Some(1));
+        let (gate, mut w) = busy_with_1(Keep::Newer);
         w.request(2);
-        let _ = gate.go.send(());
-        assert_eq!(gate.wait_started(), Some(2));
+        assert_eq!(gate.release(), Some(2));
         let _ = gate.go.send(());
         assert_eq!(drain(&mut w), vec![1, 2], "1 was overtaken by 2 but is newer than nothing");
         w.request(3);
@@ -322,7 +329,8 @@ mod tests {
         w.request_inline(UNGATED + 4);
         assert_eq!(w.poll(), vec![UNGATED + 4]);
         let _ = gate.go.send(());
-        assert!(drain(&mut w).is_empty(), "3 ends after 4 was shown: older, dropped");
+        w.request(UNGATED + 5); // the thread answers it after 3
+        assert_eq!(drain(&mut w), vec![UNGATED + 5], "3 ended after 4 was shown: older, dropped");
     }
 
     #[test]
