@@ -6,6 +6,9 @@ use super::*;
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
+use panels::compare;
+use std::path::Path;
+use trochoplan_core::JobError;
 
 /// Dialogs answering from fixed paths: tests never open a real dialog.
 struct FakeDialogs {
@@ -113,7 +116,7 @@ fn compare_mode_adds_variants_and_shows_percent_changes() {
     let mut h = harness();
     h.get_by_label("Compare").click();
     h.run();
-    assert_eq!(h.state().state.tab, Tab::Compare);
+    assert_eq!(h.state().view.tab, Tab::Compare);
     h.get_by_label("Pin current job").click();
     h.run();
     assert_eq!(h.state().variants.len(), 1);
@@ -192,14 +195,134 @@ fn sweep_tab_runs_in_the_background_and_teaching_animates() {
     assert!(h.state().anim.t_s.is_some());
 }
 
+/// eframe storage in memory.
+#[derive(Default)]
+struct MemoryStorage(std::collections::HashMap<String, String>);
+
+impl eframe::Storage for MemoryStorage {
+    fn get_string(&self, key: &str) -> Option<String> {
+        self.0.get(key).cloned()
+    }
+    fn set_string(&mut self, key: &str, value: String) {
+        self.0.insert(key.to_owned(), value);
+    }
+    fn remove_string(&mut self, key: &str) {
+        self.0.remove(key);
+    }
+    fn flush(&mut self) {}
+}
+
 #[test]
 fn persisted_state_round_trips() {
-    let state = State { job: Job { step: 0.6, ..Job::default() }, tab: Tab::Sweep, ..State::default() };
-    let text = serde_json::to_string(&state).expect("ser");
-    let back: State = serde_json::from_str(&text).expect("de");
+    let mut state = State::default().with_job(Job { step: 0.6, ..Job::default() });
+    state.view.tab = Tab::Sweep;
+    let mut storage = MemoryStorage::default();
+    State::save(&state.inputs, &state.view, &mut storage);
+    let back = State::load(&storage).expect("stored");
     assert_eq!(back, state);
     let app = App::new(Job::default(), Some(back), Box::new(NativeDialogs));
     assert!((app.planner.last.as_ref().expect("plan").plan.metrics.step_mm - 0.6).abs() < 1e-12);
+    assert_eq!(app.view.tab, Tab::Sweep);
+}
+
+/// Part of the one flat record that versions before the undoable [`Inputs`] stored.
+#[derive(serde::Serialize)]
+struct EarlierState {
+    job: Job,
+    tab: Tab,
+    teach: bool,
+    cycles_shown: usize,
+    pinned: Vec<PinnedJob>,
+    file: Option<PathBuf>,
+}
+
+#[test]
+fn an_earlier_saved_state_still_loads_with_its_pins() {
+    let job = Job { step: 0.7, ..Job::default() };
+    let bad = Job { tool_diameter: 25.0, ..Job::default() };
+    let pinned = vec![PinnedJob { label: "a".into(), job: job.clone() }, PinnedJob { label: "bad".into(), job: bad }];
+    let file = Some(PathBuf::from("/tmp/job.toml"));
+    let earlier = EarlierState { job, tab: Tab::Compare, teach: true, cycles_shown: 4, pinned, file: file.clone() };
+    let mut storage = MemoryStorage::default();
+    eframe::set_value(&mut storage, state::INPUTS_KEY, &earlier);
+    let app = App::new(Job::default(), State::load(&storage), Box::new(NativeDialogs));
+    assert_eq!(app.view, View { tab: Tab::Compare, file });
+    assert_eq!((app.state.teach, app.state.cycles_shown), (true, 4));
+    assert_eq!(app.state.corner, Inputs::default().corner, "missing fields take their defaults");
+    assert_eq!(app.variants.len(), 1, "the valid pin is planned, the invalid one dropped");
+    assert_eq!(app.state.pinned.len(), 1);
+    assert!((app.variants[0].planned.plan.metrics.step_mm - 0.7).abs() < 1e-12);
+}
+
+#[test]
+fn the_menu_and_the_tab_bar_list_every_tab_once_with_one_label() {
+    let mut h = harness();
+    for t in &tabs::TABS {
+        assert_eq!(t.tab.spec().label, t.label);
+        h.get_by_label(t.label).click();
+        h.run();
+        assert_eq!(h.state().view.tab, t.tab, "tab bar: {}", t.label);
+    }
+    h.get_by_label("View").click();
+    h.run();
+    assert_eq!(h.query_all_by_label("Plots").count(), 2, "menu and tab bar");
+    h.get_by_role_and_label(Role::RadioButton, "Sweep").click();
+    h.run();
+    assert_eq!(h.state().view.tab, Tab::Sweep, "View menu");
+}
+
+/// Let the undo history settle: the harness advances 0.25 s a step, the undoer records a state
+/// that stayed unchanged for 1 s.
+fn settle(h: &mut Harness<'_, App>) {
+    for _ in 0..6 {
+        h.step();
+    }
+}
+
+#[test]
+fn undo_and_redo_cover_every_input_but_not_the_tab() {
+    let mut h = harness();
+    h.get_by_label("Teach").click();
+    settle(&mut h);
+    h.get_by_label("Compare").click();
+    h.run();
+    h.get_by_label("Pin current job").click();
+    settle(&mut h);
+    h.get_by_label("Export NC").click();
+    h.run();
+    h.get_by_label("Fanuc-style ISO").click();
+    h.state_mut().state.sweep.steps = 7;
+    h.state_mut().state.corner_nc.depth_mm = -2.5;
+    settle(&mut h);
+    let edited = h.state().state.clone();
+    assert!(edited.teach && edited.pinned.len() == 1 && h.state().variants.len() == 1);
+    assert_ne!(edited.export, Inputs::default().export, "dialect chosen");
+    let initial = Inputs::default();
+
+    // Ctrl+Z: the export, sweep and corner settings; the Edit menu: the pin; the button: Teach.
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+    h.run();
+    let s = &h.state().state;
+    assert_eq!((s.sweep.steps, s.corner_nc.depth_mm), (initial.sweep.steps, initial.corner_nc.depth_mm));
+    assert_eq!(s.export, initial.export, "dialect undone");
+    assert_eq!(s.pinned.len(), 1);
+    h.get_by_label("Edit").click();
+    h.run();
+    h.get_by_label("Undo  (Ctrl+Z)").click();
+    h.run();
+    assert!(h.state().state.pinned.is_empty() && h.state().variants.is_empty(), "pin undone");
+    assert!(h.state().state.teach);
+    h.get_by_label("Undo").click();
+    h.run();
+    assert_eq!(h.state().state, initial, "back to the start");
+    assert_eq!(h.state().view.tab, Tab::Export, "the tab is no input");
+
+    for _ in 0..3 {
+        h.key_press_modifiers(egui::Modifiers::COMMAND | egui::Modifiers::SHIFT, egui::Key::Z);
+        h.run();
+    }
+    assert_eq!(h.state().state, edited, "redone");
+    assert_eq!(h.state().variants.len(), 1, "the pin's plan is back");
 }
 
 #[test]
@@ -278,7 +401,7 @@ fn export_panel_previews_each_dialect_reports_errors_and_saves_the_previewed_tex
     h.run();
     h.get_by_label("Export NC…").click();
     h.run();
-    assert_eq!(h.state().state.tab, Tab::Export);
+    assert_eq!(h.state().view.tab, Tab::Export);
     let linuxcnc = export_text(&h);
     assert!(linuxcnc.contains("G21") && linuxcnc.contains("G64 P"), "{linuxcnc}");
     assert!(shows(&h, "G17 G21 G40 G49 G80 G90 G91.1 G94"), "preview shows the set-up block");
@@ -361,7 +484,7 @@ fn corner_result(h: &Harness<'_, App>) -> std::sync::Arc<panels::corner::CornerR
 #[test]
 fn corner_tab_opens_and_shows_the_measured_engagement() {
     let h = corner_harness();
-    assert_eq!(h.state().state.tab, Tab::Corner);
+    assert_eq!(h.state().view.tab, Tab::Corner);
     assert!(h.state().corner.error.is_none(), "{:?}", h.state().corner.error);
     let r = corner_result(&h);
     assert_eq!(r.method, "variable");

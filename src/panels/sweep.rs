@@ -3,12 +3,10 @@
 //! cancel; the window never waits for it.
 
 use super::Command;
+use crate::worker::{Keep, Task, Worker};
 use eframe::egui::{self, Color32, RichText};
 use egui_plot::{AxisHints, Corner, Legend, Line, Plot, Points, VLine};
 use serde::{Deserialize, Serialize};
-use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::mpsc::{Receiver, TryRecvError, channel};
 use trochoplan_core::{Job, Metrics, PathKind, plan};
 
 /// The swept parameter.
@@ -83,94 +81,70 @@ pub struct SweepPoint {
     pub result: Result<Metrics, String>,
 }
 
+/// The sweep's worker: the jobs in, one point per job out, with progress and cancel.
+type SweepWorker = Worker<Vec<(f64, Job)>, SweepPoint>;
+
+/// Plan the jobs one by one, sending each point, until done or cancelled.
+fn sweep_job(jobs: Vec<(f64, Job)>, task: &Task<SweepPoint>) {
+    let total = jobs.len().max(1) as f32;
+    for (i, (value, job)) in jobs.into_iter().enumerate() {
+        if task.cancelled() {
+            break;
+        }
+        let result = plan(&job).map(|p| p.metrics).map_err(|e| e.to_string());
+        if !task.send(SweepPoint { value, result }) {
+            break;
+        }
+        task.progress((i + 1) as f32 / total, None);
+    }
+}
+
 /// A running or finished sweep.
 pub struct SweepRun {
     pub settings: SweepSettings,
     pub base_path: PathKind,
     pub total: usize,
     pub points: Vec<SweepPoint>,
-    done: Arc<AtomicUsize>,
-    cancel: Arc<AtomicBool>,
-    rx: Option<Receiver<SweepPoint>>,
+    worker: SweepWorker,
     pub cancelled: bool,
 }
 
 impl SweepRun {
     /// Start the sweep on a worker thread; `repaint` is called after each point.
-    pub fn start(settings: &SweepSettings, base: &Job, repaint: impl Fn() + Send + 'static) -> SweepRun {
+    pub fn start(settings: &SweepSettings, base: &Job, repaint: impl Fn() + Send + Sync + 'static) -> SweepRun {
         let jobs = settings.jobs(base);
         let total = jobs.len();
-        let (tx, rx) = channel();
-        let done = Arc::new(AtomicUsize::new(0));
-        let cancel = Arc::new(AtomicBool::new(false));
-        let (done2, cancel2) = (done.clone(), cancel.clone());
-        let spawned = std::thread::Builder::new().name("sweep".into()).spawn(move || {
-            for (value, job) in jobs {
-                if cancel2.load(Ordering::Relaxed) {
-                    break;
-                }
-                let result = plan(&job).map(|p| p.metrics).map_err(|e| e.to_string());
-                done2.fetch_add(1, Ordering::Relaxed);
-                if tx.send(SweepPoint { value, result }).is_err() {
-                    break;
-                }
-                repaint();
-            }
-            repaint();
-        });
-        let path = jobs_path(settings, base);
-        let mut run = SweepRun {
+        let mut worker = Worker::threaded("sweep", Keep::Newest, sweep_job, repaint);
+        worker.request(jobs);
+        SweepRun {
             settings: settings.clone(),
-            base_path: path,
+            base_path: jobs_path(settings, base),
             total,
             points: Vec::with_capacity(total),
-            done,
-            cancel,
-            rx: Some(rx),
+            worker,
             cancelled: false,
-        };
-        if spawned.is_err() {
-            run.rx = None;
         }
-        run
     }
 
     /// Collect the points computed since the last call.
     pub fn poll(&mut self) {
-        if let Some(rx) = &self.rx {
-            loop {
-                match rx.try_recv() {
-                    Ok(p) => self.points.push(p),
-                    Err(TryRecvError::Empty) => break,
-                    Err(TryRecvError::Disconnected) => {
-                        self.rx = None;
-                        break;
-                    }
-                }
-            }
-        }
+        self.points.extend(self.worker.poll());
     }
 
     /// Whether the worker is still computing.
     pub fn running(&self) -> bool {
-        self.rx.is_some()
+        self.worker.running()
     }
 
     /// Fraction done, 0–1.
     pub fn progress(&self) -> f32 {
-        self.done.load(Ordering::Relaxed) as f32 / self.total.max(1) as f32
+        self.worker.progress().map_or(0.0, |p| p.fraction)
     }
 
     /// Ask the worker to stop after the current point.
     pub fn cancel(&mut self) {
-        self.cancel.store(true, Ordering::Relaxed);
+        self.worker.cancel();
         self.cancelled = true;
-    }
-}
-
-impl Drop for SweepRun {
-    fn drop(&mut self) {
-        self.cancel.store(true, Ordering::Relaxed);
     }
 }
 

@@ -1,0 +1,211 @@
+//! Commands: what panels ask for that touches files, dialogs, the undo history, pins or
+//! threads. They run after all panels have drawn ([`App::apply`]).
+
+use super::panels::compare::{self, MAX_VARIANTS};
+use super::panels::sweep::SweepRun;
+use super::{App, PinnedJob, Variant};
+use crate::files::write_atomic;
+use eframe::egui;
+use std::path::Path;
+use trochoplan_core::Job;
+
+/// Something a panel asks for that touches files, dialogs, the undo history, pins or threads.
+#[must_use]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Command {
+    Open,
+    Save,
+    SaveAs,
+    ResetJob,
+    Undo,
+    Redo,
+    Pin,
+    PinPaperSet,
+    Unpin(usize),
+    ClearPins,
+    LoadPinned(usize),
+    StartSweep,
+    CancelSweep,
+    /// Ask for a file and write the previewed NC program.
+    ExportNc,
+    /// Stop the Corner tab's acceptance table.
+    CancelCornerTable,
+    /// Compute the acceptance table again.
+    RestartCornerTable,
+    /// Ask for a file and write the Corner tab's previewed NC program.
+    ExportCornerNc,
+}
+
+impl App {
+    /// Run `cmd`; `ctx` is the window's (threads ask it to repaint).
+    pub(super) fn apply(&mut self, cmd: Command, ctx: &egui::Context) {
+        match cmd {
+            Command::Open | Command::Save | Command::SaveAs => self.file_command(cmd),
+            Command::ResetJob => self.set_job(Job::default()),
+            Command::Undo => {
+                if let Some(inputs) = self.undoer.undo(&self.state).cloned() {
+                    self.state = inputs;
+                }
+            }
+            Command::Redo => {
+                if let Some(inputs) = self.undoer.redo(&self.state).cloned() {
+                    self.state = inputs;
+                }
+            }
+            Command::Pin | Command::PinPaperSet | Command::Unpin(_) | Command::ClearPins | Command::LoadPinned(_) => {
+                self.pin_command(cmd);
+            }
+            Command::StartSweep => {
+                let ctx = ctx.clone();
+                self.sweep = Some(SweepRun::start(&self.state.sweep, &self.state.job, move || ctx.request_repaint()));
+            }
+            Command::CancelSweep => {
+                if let Some(run) = &mut self.sweep {
+                    run.cancel();
+                }
+            }
+            Command::ExportNc => self.export_nc(),
+            Command::CancelCornerTable => self.corner.table.cancel(),
+            Command::RestartCornerTable => self.corner.table.restart(),
+            Command::ExportCornerNc => self.export_corner_nc(),
+        }
+    }
+
+    /// Open, Save and Save as (through the dialogs).
+    fn file_command(&mut self, cmd: Command) {
+        if cmd == Command::Open {
+            if let Some(path) = self.dialogs.open_job() {
+                self.open(&path);
+            }
+            return;
+        }
+        let target = match (&self.view.file, cmd) {
+            (Some(f), Command::Save) => Some(f.clone()),
+            (f, _) => self.dialogs.save_job(f.as_deref()),
+        };
+        if let Some(path) = target {
+            self.save_to(&path);
+        }
+    }
+
+    /// The commands of the Compare tab's pins (each one undo step).
+    fn pin_command(&mut self, cmd: Command) {
+        self.undoer.add_undo(&self.state);
+        match cmd {
+            Command::Pin => {
+                let pinned = self.pin(self.state.job.clone());
+                if !pinned {
+                    self.status = Some(("cannot pin: job invalid or four variants pinned".into(), true));
+                }
+            }
+            Command::PinPaperSet => {
+                self.state.pinned.clear();
+                self.variants.clear();
+                let failed =
+                    compare::paper_set(&self.state.job).into_iter().filter(|job| !self.pin(job.clone())).count();
+                if failed > 0 {
+                    self.status = Some((format!("{failed} of the paper's variants are invalid for this job"), true));
+                }
+            }
+            Command::Unpin(i) if i < self.state.pinned.len() => {
+                self.state.pinned.remove(i);
+            }
+            Command::ClearPins => self.state.pinned.clear(),
+            Command::LoadPinned(i) => {
+                if let Some(p) = self.state.pinned.get(i) {
+                    self.state.job = p.job.clone();
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// Pin `job` (up to [`MAX_VARIANTS`]); false if it is invalid or the list is full.
+    fn pin(&mut self, job: Job) -> bool {
+        if self.state.pinned.len() >= MAX_VARIANTS {
+            return false;
+        }
+        let pinned = PinnedJob { label: compare::variant_label(&job), job };
+        let Some(variant) = Variant::planned(&pinned, self.state.cycles_shown) else { return false };
+        self.state.pinned.push(pinned);
+        self.variants.push(variant);
+        true
+    }
+
+    /// Replace the edited job (one undo step).
+    pub(super) fn set_job(&mut self, job: Job) {
+        self.undoer.add_undo(&self.state);
+        self.state.job = job;
+    }
+
+    /// Read a job file into the edited job (one undo step).
+    pub fn open(&mut self, path: &Path) {
+        let read = std::fs::read_to_string(path)
+            .map_err(|e| e.to_string())
+            .and_then(|text| Job::from_toml(&text).map_err(|e| e.to_string()));
+        match read {
+            Ok(job) => {
+                self.set_job(job);
+                self.view.file = Some(path.to_owned());
+                self.status = Some((format!("opened {}", path.display()), false));
+            }
+            Err(e) => self.status = Some((format!("cannot open {}: {e}", path.display()), true)),
+        }
+    }
+
+    /// Write the edited job as TOML (atomically).
+    pub fn save_to(&mut self, path: &Path) {
+        match write_atomic(path, self.state.job.to_toml().as_bytes()) {
+            Ok(()) => {
+                self.view.file = Some(path.to_owned());
+                self.status = Some((format!("saved {}", path.display()), false));
+            }
+            Err(e) => self.status = Some((e, true)),
+        }
+    }
+
+    /// Ask for a file and write the previewed NC program to it (atomically).
+    fn export_nc(&mut self) {
+        if let Some(e) = &self.planner.error {
+            self.status = Some((format!("cannot export: job invalid: {e}"), true));
+            return;
+        }
+        self.refresh_export();
+        if let Some(Err(e)) = &self.export.result {
+            self.status = Some((format!("cannot export: {e}"), true));
+            return;
+        }
+        let Some(text) = self.export.view().map(|v| v.text.clone()) else { return };
+        self.write_nc("slot", self.state.export.dialect.extension(), &text);
+    }
+
+    /// Ask for a file and write the Corner tab's previewed NC program to it (atomically).
+    fn export_corner_nc(&mut self) {
+        self.refresh_corner();
+        if let Some(e) = &self.corner.error {
+            self.status = Some((format!("cannot export: corner inputs invalid: {e}"), true));
+            return;
+        }
+        let (text, stem) = match &self.corner_nc.result {
+            Some(Ok(p)) => (p.text.clone(), p.file_stem),
+            Some(Err(e)) => {
+                self.status = Some((format!("cannot export: {e}"), true));
+                return;
+            }
+            None => {
+                self.status = Some(("cannot export: no corner or pocket planned yet".into(), true));
+                return;
+            }
+        };
+        self.write_nc(stem, self.state.corner_nc.dialect.extension(), &text);
+    }
+
+    /// Ask where to save an NC program (`stem`.`extension` proposed) and write `text` there.
+    fn write_nc(&mut self, stem: &str, extension: &str, text: &str) {
+        let Some(path) = self.dialogs.save_nc(stem, extension) else { return };
+        match write_atomic(&path, text.as_bytes()) {
+            Ok(()) => self.status = Some((format!("exported {} ({} bytes)", path.display(), text.len()), false)),
+            Err(e) => self.status = Some((e, true)),
+        }
+    }
+}

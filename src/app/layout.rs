@@ -1,0 +1,137 @@
+//! The window's frame around the tabs: keyboard shortcuts, menu and tab bar, status bar, and the
+//! slot's parameter and derived-value panels.
+
+use super::tabs::TABS;
+use super::{App, Command, Tab, panels};
+use eframe::egui;
+
+impl App {
+    /// The keyboard shortcuts (unless a text field has the keyboard).
+    pub(super) fn shortcuts(&self, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
+        use egui::{Key, KeyboardShortcut, Modifiers};
+        if ui.ctx().memory(|m| m.focused().is_some()) {
+            return; // a text field owns the keyboard (and its own undo)
+        }
+        let table = [
+            (KeyboardShortcut::new(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z), Command::Redo),
+            (KeyboardShortcut::new(Modifiers::COMMAND, Key::Z), Command::Undo),
+            (KeyboardShortcut::new(Modifiers::COMMAND, Key::Y), Command::Redo),
+            (KeyboardShortcut::new(Modifiers::COMMAND, Key::O), Command::Open),
+            (KeyboardShortcut::new(Modifiers::COMMAND | Modifiers::SHIFT, Key::S), Command::SaveAs),
+            (KeyboardShortcut::new(Modifiers::COMMAND, Key::S), Command::Save),
+        ];
+        for (shortcut, cmd) in table {
+            if ui.input_mut(|i| i.consume_shortcut(&shortcut)) {
+                cmds.push(cmd);
+            }
+        }
+    }
+
+    /// The menus, then the tab bar and the teaching toggle.
+    pub(super) fn menu_bar(&mut self, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
+        egui::MenuBar::new().ui(ui, |ui| {
+            ui.menu_button("File", |ui| self.file_menu(ui, cmds));
+            ui.menu_button("Edit", |ui| self.undo_buttons(ui, cmds, ["Undo  (Ctrl+Z)", "Redo  (Ctrl+Shift+Z)"]));
+            ui.menu_button("View", |ui| {
+                for t in &TABS {
+                    ui.radio_value(&mut self.view.tab, t.tab, t.label).on_hover_text(t.tooltip);
+                }
+                ui.separator();
+                ui.checkbox(&mut self.state.teach, "Teaching: explanations under the plots");
+                ui.checkbox(&mut self.state.overlay_pins, "Overlay pinned variants in Plots");
+            });
+            ui.separator();
+            for t in &TABS {
+                ui.selectable_value(&mut self.view.tab, t.tab, t.label).on_hover_text(t.tooltip);
+            }
+            ui.separator();
+            ui.toggle_value(&mut self.state.teach, "Teach")
+                .on_hover_text("Explanations with formula and source equation under each plot");
+        });
+    }
+
+    fn file_menu(&mut self, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
+        if ui.button("Open job…  (Ctrl+O)").clicked() {
+            cmds.push(Command::Open);
+        }
+        if ui.button("Save job  (Ctrl+S)").clicked() {
+            cmds.push(Command::Save);
+        }
+        if ui.button("Save job as…  (Ctrl+Shift+S)").clicked() {
+            cmds.push(Command::SaveAs);
+        }
+        ui.separator();
+        let export = Tab::Export.spec();
+        if ui.button(format!("{}…", export.label)).on_hover_text(export.tooltip).clicked() {
+            self.view.tab = Tab::Export;
+        }
+        ui.separator();
+        if ui.button("Reset to the paper's default job").clicked() {
+            cmds.push(Command::ResetJob);
+        }
+    }
+
+    /// The Undo and Redo buttons labelled `labels`, enabled when there is something to undo or
+    /// redo.
+    fn undo_buttons(&self, ui: &mut egui::Ui, cmds: &mut Vec<Command>, labels: [&str; 2]) {
+        if ui.add_enabled(self.undoer.has_undo(&self.state), egui::Button::new(labels[0])).clicked() {
+            cmds.push(Command::Undo);
+        }
+        if ui.add_enabled(self.undoer.has_redo(&self.state), egui::Button::new(labels[1])).clicked() {
+            cmds.push(Command::Redo);
+        }
+    }
+
+    /// The slot's parameters with the Undo, Redo and Reset buttons.
+    pub(super) fn parameters_panel(&mut self, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
+        egui::ScrollArea::vertical().show(ui, |ui| {
+            panels::params::show(ui, &mut self.state.job, self.planner.error.as_ref());
+            ui.add_space(8.0);
+            ui.horizontal(|ui| {
+                self.undo_buttons(ui, cmds, ["Undo", "Redo"]);
+                if ui
+                    .button("Reset to paper defaults")
+                    .on_hover_text("Wagih et al. (2023) Table 1 conditions")
+                    .clicked()
+                {
+                    cmds.push(Command::ResetJob);
+                }
+            });
+        });
+    }
+
+    /// The derived values of the edited job.
+    pub(super) fn derived_panel(&self, ui: &mut egui::Ui) {
+        egui::ScrollArea::vertical().show(ui, |ui| {
+            panels::metrics::show(ui, self.planner.last.as_ref().map(|p| &p.plan), self.planner.error.is_some());
+        });
+    }
+
+    /// Plan time, frame time, file and the last message.
+    pub(super) fn status_bar(&self, ui: &mut egui::Ui) {
+        ui.horizontal(|ui| {
+            let planning = if self.planner.pending() { " (planning…)" } else { "" };
+            ui.label(format!("plan {:.1} ms{planning}", self.planner.plan_ms))
+                .on_hover_text(format!("Time of the last core plan() call; {} calls so far.", self.planner.replans));
+            ui.separator();
+            match self.frames.summary() {
+                Some((last, max)) => {
+                    ui.label(format!("frame {last:.1} ms (max {max:.1} ms in 2 s)"))
+                        .on_hover_text("CPU time of a frame as eframe reports it (UI, tessellation, painting).");
+                }
+                None => {
+                    ui.label(format!("ui {:.1} ms", self.frames.ui_ms));
+                }
+            }
+            if let Some(f) = &self.view.file {
+                ui.separator();
+                ui.label(format!("file: {}", f.display()));
+            }
+            if let Some((msg, is_err)) = &self.status {
+                ui.separator();
+                let color = if *is_err { panels::params::ERROR_COLOR } else { ui.visuals().text_color() };
+                ui.colored_label(color, msg);
+            }
+        });
+    }
+}
