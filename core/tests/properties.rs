@@ -179,7 +179,7 @@ fn chip_outline_has_the_measured_thickness() {
         let k = p.series.iter().enumerate().max_by(|a, b| a.1.h_mm.total_cmp(&b.1.h_mm)).map(|x| x.0).expect("teeth");
         let outline = p.chip_outline(k);
         assert!(outline.len() > 10);
-        let t = p.series[k];
+        let t = &p.series[k];
         let c = trochoplan_core::geom::p2(t.x_mm, t.y_mm);
         let r = job.tool_diameter / 2.0;
         let depth = outline.iter().map(|q| r - (q - c).norm()).fold(0.0, f64::max);

@@ -6,7 +6,7 @@ pub mod edge;
 pub mod step;
 pub mod waviness;
 
-pub use chip::{H_CUT_MM, ToothSample, tooth_series};
+pub use chip::{ARC_SAMPLE_STEP_RAD, EngagedArc, H_CUT_MM, ToothSample, tooth_series};
 pub use edge::PreviousEdge;
 pub use waviness::{Wall, WallProfile, wall_profile};
 
