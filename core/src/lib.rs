@@ -17,6 +17,8 @@
 //! - [`nc`]: NC programs (LinuxCNC, Fanuc-style ISO, GRBL, Sinumerik), biarc output.
 //! - [`corner`]: pocket corners (issue #5): engagement model, corner trochoids, evaluator.
 //! - [`plan`]: [`plan()`] — job in, [`Plan`] out; used by the GUI and the CLI.
+//! - [`quantity`]: every metric and per-tooth series column as data (key, label, unit, source).
+//! - [`sweep`]: the swept parameters and their rules (which path, which values).
 //! - [`error`]: the [`JobError`] type.
 
 pub mod analysis;
@@ -27,6 +29,8 @@ pub mod job;
 pub mod nc;
 pub mod path;
 pub mod plan;
+pub mod quantity;
+pub mod sweep;
 
 pub use error::JobError;
 pub use job::{Job, PathKind, ValidJob};

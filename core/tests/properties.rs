@@ -3,7 +3,8 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use proptest::prelude::*;
-use trochoplan_core::analysis::step::{engagement_limited_step, step_for_engagement};
+use trochoplan_core::analysis::step::step_for_engagement;
+use trochoplan_core::plan::engagement_limited_step;
 use trochoplan_core::{Job, PathKind, plan};
 
 fn kind() -> impl Strategy<Value = PathKind> {
