@@ -1,8 +1,8 @@
 //! `trochoplan export`: the NC program of one job, written atomically (temporary file, then
 //! rename), so an existing program is never left half-written.
 
-use crate::files::write_atomic;
 use crate::cli::names_parser;
+use crate::files::write_atomic;
 use clap::Args;
 use std::path::PathBuf;
 use trochoplan_core::nc::{DEFAULT_TOLERANCE_MM, Dialect, NcOptions, program};

@@ -33,6 +33,33 @@ pub struct Metric {
 }
 
 impl Metric {
+    /// A metric that is no count and neither better larger nor smaller.
+    pub const fn new(
+        key: &'static str,
+        symbol: &'static str,
+        unit: &'static str,
+        decimals: usize,
+        value: fn(&Metrics) -> f64,
+        about: &'static str,
+    ) -> Metric {
+        Metric { key, symbol, unit, about, decimals, whole: false, higher_is_better: None, value }
+    }
+
+    /// The same metric, a count.
+    pub const fn whole(self) -> Metric {
+        Metric { whole: true, ..self }
+    }
+
+    /// The same metric, better when larger.
+    pub const fn higher_is_better(self) -> Metric {
+        Metric { higher_is_better: Some(true), ..self }
+    }
+
+    /// The same metric, better when smaller.
+    pub const fn lower_is_better(self) -> Metric {
+        Metric { higher_is_better: Some(false), ..self }
+    }
+
     /// The value in `m`.
     pub fn of(&self, m: &Metrics) -> f64 {
         (self.value)(m)
@@ -54,216 +81,127 @@ impl Metric {
     }
 }
 
-pub const CYCLE_LENGTH: Metric = Metric {
-    key: "cycle_length_mm",
-    symbol: "cycle length",
-    unit: "mm",
-    about: "Path length of one cycle (Fig. 5).",
-    decimals: 3,
-    whole: false,
-    higher_is_better: Some(false),
-    value: |m| m.cycle_length_mm,
-};
-pub const T_CYCLE: Metric = Metric {
-    key: "t_cycle_s",
-    symbol: "t_cycle",
-    unit: "s",
-    about: "t_cycle = cycle length / f_r (Table 2).",
-    decimals: 3,
-    whole: false,
-    higher_is_better: Some(false),
-    value: |m| m.t_cycle_s,
-};
-pub const MRR: Metric = Metric {
-    key: "mrr_mm3_per_min",
-    symbol: "MRR",
-    unit: "mm³/min",
-    about: "MRR = B·s·a_p / t_cycle (Table 2).",
-    decimals: 0,
-    whole: false,
-    higher_is_better: Some(true),
-    value: |m| m.mrr_mm3_per_min,
-};
-pub const F_Z: Metric = Metric {
-    key: "f_z_mm",
-    symbol: "f_z",
-    unit: "mm",
-    about: "Feed per tooth f_z = f_r/(n·z).",
-    decimals: 4,
-    whole: false,
-    higher_is_better: None,
-    value: |m| m.f_z_mm,
-};
-pub const H_MAX: Metric = Metric {
-    key: "h_max_mm",
-    symbol: "h_max",
-    unit: "mm",
-    about: "Largest local maximum chip thickness over a steady-state cycle, eqs. (3)–(6) (Table 2).",
-    decimals: 4,
-    whole: false,
-    higher_is_better: Some(false),
-    value: |m| m.h_max_mm,
-};
-pub const T_HMAX: Metric = Metric {
-    key: "t_hmax_s",
-    symbol: "t_hmax",
-    unit: "s",
-    about: "Time from the start of cutting to h_max (Table 2).",
-    decimals: 3,
-    whole: false,
-    higher_is_better: None,
-    value: |m| m.t_hmax_s,
-};
-pub const T_COOLING: Metric = Metric {
-    key: "t_cooling_s",
-    symbol: "t_cooling",
-    unit: "s",
-    about: "Time per cycle in which no tooth cuts (Table 2).",
-    decimals: 3,
-    whole: false,
-    higher_is_better: Some(true),
-    value: |m| m.t_cooling_s,
-};
-pub const ENGAGEMENT_MAX: Metric = Metric {
-    key: "engagement_max_deg",
-    symbol: "max engagement",
-    unit: "°",
-    about: "Largest engagement angle; recommended ≤ 46° (Grechishnikov et al. 2017).",
-    decimals: 1,
-    whole: false,
-    higher_is_better: Some(false),
-    value: |m| m.engagement_max_deg,
-};
-pub const WAVINESS_LEFT: Metric = Metric {
-    key: "waviness_left_mm",
-    symbol: "W_l",
-    unit: "mm",
-    about: "Left (−x) wall waviness, peak to valley (section 2.3, Fig. 9).",
-    decimals: 4,
-    whole: false,
-    higher_is_better: Some(false),
-    value: |m| m.waviness_left_mm,
-};
-pub const WAVINESS_RIGHT: Metric = Metric {
-    key: "waviness_right_mm",
-    symbol: "W_r",
-    unit: "mm",
-    about: "Right (+x) wall waviness, peak to valley (section 2.3, Fig. 9).",
-    decimals: 4,
-    whole: false,
-    higher_is_better: Some(false),
-    value: |m| m.waviness_right_mm,
-};
-pub const A: Metric = Metric {
-    key: "a_mm",
-    symbol: "a",
-    unit: "mm",
-    about: "Trochoidal radius a = (B − D)/2 (major semi-axis).",
-    decimals: 3,
-    whole: false,
-    higher_is_better: None,
-    value: |m| m.a_mm,
-};
-pub const B: Metric = Metric {
-    key: "b_mm",
-    symbol: "b",
-    unit: "mm",
-    about: "b = r_e·a, eq. (2) (minor semi-axis along the slot).",
-    decimals: 3,
-    whole: false,
-    higher_is_better: None,
-    value: |m| m.b_mm,
-};
-pub const ASPECT_RATIO: Metric = Metric {
-    key: "aspect_ratio",
-    symbol: "r_e",
-    unit: "",
-    about: "Aspect ratio r_e = b/a, eq. (2).",
-    decimals: 2,
-    whole: false,
-    higher_is_better: None,
-    value: |m| m.aspect_ratio,
-};
-pub const LINEAR_DISTANCE: Metric = Metric {
-    key: "linear_distance_mm",
-    symbol: "d",
-    unit: "mm",
-    about: "Linear distance d along each wall (section 3, linear-elliptical path).",
-    decimals: 2,
-    whole: false,
-    higher_is_better: None,
-    value: |m| m.linear_distance_mm,
-};
-pub const STEP: Metric = Metric {
-    key: "step_mm",
-    symbol: "s",
-    unit: "mm",
-    about: "Trochoidal step s: advance per cycle.",
-    decimals: 3,
-    whole: false,
-    higher_is_better: None,
-    value: |m| m.step_mm,
-};
-pub const CYCLES: Metric = Metric {
-    key: "cycles",
-    symbol: "cycles",
-    unit: "",
-    about: "Number of cycles from outside the stock to beyond the slot end.",
-    decimals: 0,
-    whole: true,
-    higher_is_better: None,
-    value: |m| m.cycles as f64,
-};
-pub const PATH_LENGTH: Metric = Metric {
-    key: "path_length_mm",
-    symbol: "path length",
-    unit: "mm",
-    about: "Whole tool-centre path length.",
-    decimals: 1,
-    whole: false,
-    higher_is_better: None,
-    value: |m| m.path_length_mm,
-};
-pub const MACHINING_TIME: Metric = Metric {
-    key: "machining_time_s",
-    symbol: "machining time",
-    unit: "s",
-    about: "Whole path at the feed rate f_r.",
-    decimals: 1,
-    whole: false,
-    higher_is_better: None,
-    value: |m| m.machining_time_s,
-};
-pub const TEETH_PER_CYCLE: Metric = Metric {
-    key: "teeth_per_cycle",
-    symbol: "teeth per cycle",
-    unit: "",
-    about: "Tooth positions per cycle: cycle length / f_z.",
-    decimals: 1,
-    whole: false,
-    higher_is_better: None,
-    value: |m| m.teeth_per_cycle,
-};
-pub const STEP_LIMIT_46DEG: Metric = Metric {
-    key: "step_limit_46deg_mm",
-    symbol: "step for 46°",
-    unit: "mm",
-    about: "Largest step keeping the engagement ≤ 46° (two-circle model, Wu et al. 2016 eqs. 2–6).",
-    decimals: 3,
-    whole: false,
-    higher_is_better: None,
-    value: |m| m.step_limit_46deg_mm,
-};
-pub const STEP_LIMIT_15PCT_DEPTH: Metric = Metric {
-    key: "step_limit_15pct_depth_mm",
-    symbol: "step for 15 % D",
-    unit: "mm",
-    about: "Largest step for a straight-cut-equivalent depth of 15 % of D (Grechishnikov et al. 2017).",
-    decimals: 3,
-    whole: false,
-    higher_is_better: None,
-    value: |m| m.step_limit_15pct_depth_mm,
-};
+pub const CYCLE_LENGTH: Metric = Metric::new(
+    "cycle_length_mm",
+    "cycle length",
+    "mm",
+    3,
+    |m| m.cycle_length_mm,
+    "Path length of one cycle (Fig. 5).",
+)
+.lower_is_better();
+pub const T_CYCLE: Metric =
+    Metric::new("t_cycle_s", "t_cycle", "s", 3, |m| m.t_cycle_s, "t_cycle = cycle length / f_r (Table 2).")
+        .lower_is_better();
+pub const MRR: Metric =
+    Metric::new("mrr_mm3_per_min", "MRR", "mm³/min", 0, |m| m.mrr_mm3_per_min, "MRR = B·s·a_p / t_cycle (Table 2).")
+        .higher_is_better();
+pub const F_Z: Metric = Metric::new("f_z_mm", "f_z", "mm", 4, |m| m.f_z_mm, "Feed per tooth f_z = f_r/(n·z).");
+pub const H_MAX: Metric = Metric::new(
+    "h_max_mm",
+    "h_max",
+    "mm",
+    4,
+    |m| m.h_max_mm,
+    "Largest local maximum chip thickness over a steady-state cycle, eqs. (3)–(6) (Table 2).",
+)
+.lower_is_better();
+pub const T_HMAX: Metric =
+    Metric::new("t_hmax_s", "t_hmax", "s", 3, |m| m.t_hmax_s, "Time from the start of cutting to h_max (Table 2).");
+pub const T_COOLING: Metric = Metric::new(
+    "t_cooling_s",
+    "t_cooling",
+    "s",
+    3,
+    |m| m.t_cooling_s,
+    "Time per cycle in which no tooth cuts (Table 2).",
+)
+.higher_is_better();
+pub const ENGAGEMENT_MAX: Metric = Metric::new(
+    "engagement_max_deg",
+    "max engagement",
+    "°",
+    1,
+    |m| m.engagement_max_deg,
+    "Largest engagement angle; recommended ≤ 46° (Grechishnikov et al. 2017).",
+)
+.lower_is_better();
+pub const WAVINESS_LEFT: Metric = Metric::new(
+    "waviness_left_mm",
+    "W_l",
+    "mm",
+    4,
+    |m| m.waviness_left_mm,
+    "Left (−x) wall waviness, peak to valley (section 2.3, Fig. 9).",
+)
+.lower_is_better();
+pub const WAVINESS_RIGHT: Metric = Metric::new(
+    "waviness_right_mm",
+    "W_r",
+    "mm",
+    4,
+    |m| m.waviness_right_mm,
+    "Right (+x) wall waviness, peak to valley (section 2.3, Fig. 9).",
+)
+.lower_is_better();
+pub const A: Metric =
+    Metric::new("a_mm", "a", "mm", 3, |m| m.a_mm, "Trochoidal radius a = (B − D)/2 (major semi-axis).");
+pub const B: Metric =
+    Metric::new("b_mm", "b", "mm", 3, |m| m.b_mm, "b = r_e·a, eq. (2) (minor semi-axis along the slot).");
+pub const ASPECT_RATIO: Metric =
+    Metric::new("aspect_ratio", "r_e", "", 2, |m| m.aspect_ratio, "Aspect ratio r_e = b/a, eq. (2).");
+pub const LINEAR_DISTANCE: Metric = Metric::new(
+    "linear_distance_mm",
+    "d",
+    "mm",
+    2,
+    |m| m.linear_distance_mm,
+    "Linear distance d along each wall (section 3, linear-elliptical path).",
+);
+pub const STEP: Metric = Metric::new("step_mm", "s", "mm", 3, |m| m.step_mm, "Trochoidal step s: advance per cycle.");
+pub const CYCLES: Metric = Metric::new(
+    "cycles",
+    "cycles",
+    "",
+    0,
+    |m| m.cycles as f64,
+    "Number of cycles from outside the stock to beyond the slot end.",
+)
+.whole();
+pub const PATH_LENGTH: Metric =
+    Metric::new("path_length_mm", "path length", "mm", 1, |m| m.path_length_mm, "Whole tool-centre path length.");
+pub const MACHINING_TIME: Metric = Metric::new(
+    "machining_time_s",
+    "machining time",
+    "s",
+    1,
+    |m| m.machining_time_s,
+    "Whole path at the feed rate f_r.",
+);
+pub const TEETH_PER_CYCLE: Metric = Metric::new(
+    "teeth_per_cycle",
+    "teeth per cycle",
+    "",
+    1,
+    |m| m.teeth_per_cycle,
+    "Tooth positions per cycle: cycle length / f_z.",
+);
+pub const STEP_LIMIT_46DEG: Metric = Metric::new(
+    "step_limit_46deg_mm",
+    "step for 46°",
+    "mm",
+    3,
+    |m| m.step_limit_46deg_mm,
+    "Largest step keeping the engagement ≤ 46° (two-circle model, Wu et al. 2016 eqs. 2–6).",
+);
+pub const STEP_LIMIT_15PCT_DEPTH: Metric = Metric::new(
+    "step_limit_15pct_depth_mm",
+    "step for 15 % D",
+    "mm",
+    3,
+    |m| m.step_limit_15pct_depth_mm,
+    "Largest step for a straight-cut-equivalent depth of 15 % of D (Grechishnikov et al. 2017).",
+);
 
 /// Every numeric metric of [`Metrics`] (all its fields but the path kind), in field order.
 pub const METRICS: [&Metric; 21] = [
@@ -290,6 +228,11 @@ pub const METRICS: [&Metric; 21] = [
     &STEP_LIMIT_15PCT_DEPTH,
 ];
 
+/// The results of a steady-state cycle the paper compares paths by (Table 2, Figs. 5, 9):
+/// cycle length and time, MRR, chip thickness and its timing, engagement, wall waviness.
+pub const CYCLE_RESULTS: [&Metric; 9] =
+    [&CYCLE_LENGTH, &T_CYCLE, &MRR, &H_MAX, &T_HMAX, &T_COOLING, &ENGAGEMENT_MAX, &WAVINESS_LEFT, &WAVINESS_RIGHT];
+
 /// One column of the per-tooth series of a steady-state cycle.
 #[derive(Debug)]
 pub struct SeriesColumn {
@@ -308,6 +251,18 @@ pub struct SeriesColumn {
 }
 
 impl SeriesColumn {
+    /// A column.
+    pub const fn new(
+        key: &'static str,
+        symbol: &'static str,
+        unit: &'static str,
+        decimals: usize,
+        value: fn(&ToothSample) -> f64,
+        about: &'static str,
+    ) -> SeriesColumn {
+        SeriesColumn { key, symbol, unit, about, decimals, value }
+    }
+
     /// The value for `t`.
     pub fn of(&self, t: &ToothSample) -> f64 {
         (self.value)(t)
@@ -319,62 +274,38 @@ impl SeriesColumn {
     }
 }
 
-pub const TIME: SeriesColumn = SeriesColumn {
-    key: "time_s",
-    symbol: "t",
-    unit: "s",
-    about: "Time from the start of the cycle.",
-    decimals: 6,
-    value: |t| t.time_s,
-};
-pub const H: SeriesColumn = SeriesColumn {
-    key: "h_mm",
-    symbol: "h",
-    unit: "mm",
-    about: "Local maximum chip thickness of the tooth, eqs. (3)–(6), Fig. 6.",
-    decimals: 7,
-    value: |t| t.h_mm,
-};
-pub const ENGAGEMENT: SeriesColumn = SeriesColumn {
-    key: "engagement_deg",
-    symbol: "engagement",
-    unit: "°",
-    about: "Engagement angle: angular extent of the tool edge in uncut material.",
-    decimals: 4,
-    value: |t| t.engagement_rad.to_degrees(),
-};
-pub const CUTTING: SeriesColumn = SeriesColumn {
-    key: "cutting",
-    symbol: "cutting",
-    unit: "",
-    about: "1 if the tooth removes material (h above the numeric noise floor), else 0.",
-    decimals: 0,
-    value: |t| f64::from(u8::from(t.cutting)),
-};
-pub const S: SeriesColumn = SeriesColumn {
-    key: "s_mm",
-    symbol: "s",
-    unit: "mm",
-    about: "Arc length from the start of the cycle.",
-    decimals: 6,
-    value: |t| t.s_mm,
-};
-pub const X: SeriesColumn = SeriesColumn {
-    key: "x_mm",
-    symbol: "x",
-    unit: "mm",
-    about: "Tool centre x, cycle origin at (0, 0).",
-    decimals: 6,
-    value: |t| t.x_mm,
-};
-pub const Y: SeriesColumn = SeriesColumn {
-    key: "y_mm",
-    symbol: "y",
-    unit: "mm",
-    about: "Tool centre y, cycle origin at (0, 0).",
-    decimals: 6,
-    value: |t| t.y_mm,
-};
+pub const TIME: SeriesColumn =
+    SeriesColumn::new("time_s", "t", "s", 6, |t| t.time_s, "Time from the start of the cycle.");
+pub const H: SeriesColumn = SeriesColumn::new(
+    "h_mm",
+    "h",
+    "mm",
+    7,
+    |t| t.h_mm,
+    "Local maximum chip thickness of the tooth, eqs. (3)–(6), Fig. 6.",
+);
+pub const ENGAGEMENT: SeriesColumn = SeriesColumn::new(
+    "engagement_deg",
+    "engagement",
+    "°",
+    4,
+    |t| t.engagement_rad.to_degrees(),
+    "Engagement angle: angular extent of the tool edge in uncut material.",
+);
+pub const CUTTING: SeriesColumn = SeriesColumn::new(
+    "cutting",
+    "cutting",
+    "",
+    0,
+    |t| f64::from(u8::from(t.cutting)),
+    "1 if the tooth removes material (h above the numeric noise floor), else 0.",
+);
+pub const S: SeriesColumn =
+    SeriesColumn::new("s_mm", "s", "mm", 6, |t| t.s_mm, "Arc length from the start of the cycle.");
+pub const X: SeriesColumn =
+    SeriesColumn::new("x_mm", "x", "mm", 6, |t| t.x_mm, "Tool centre x, cycle origin at (0, 0).");
+pub const Y: SeriesColumn =
+    SeriesColumn::new("y_mm", "y", "mm", 6, |t| t.y_mm, "Tool centre y, cycle origin at (0, 0).");
 
 /// The columns of the series CSV, in order.
 pub const SERIES: [&SeriesColumn; 7] = [&TIME, &H, &ENGAGEMENT, &CUTTING, &S, &X, &Y];

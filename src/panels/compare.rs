@@ -16,20 +16,10 @@ pub struct VariantView<'a> {
     pub metrics: &'a Metrics,
 }
 
-/// The compared quantities, in order (the core's quantity table).
-const QUANTITIES: [&Metric; 11] = [
-    &quantity::ASPECT_RATIO,
-    &quantity::LINEAR_DISTANCE,
-    &quantity::CYCLE_LENGTH,
-    &quantity::T_CYCLE,
-    &quantity::MRR,
-    &quantity::H_MAX,
-    &quantity::T_HMAX,
-    &quantity::T_COOLING,
-    &quantity::ENGAGEMENT_MAX,
-    &quantity::WAVINESS_LEFT,
-    &quantity::WAVINESS_RIGHT,
-];
+/// The compared quantities, in order: the path's shape, then the core's cycle results.
+fn quantities() -> impl Iterator<Item = &'static Metric> {
+    [&quantity::ASPECT_RATIO, &quantity::LINEAR_DISTANCE].into_iter().chain(quantity::CYCLE_RESULTS)
+}
 
 /// Percentage change of `v` against `base` (None when the base is zero).
 pub fn percent_change(v: f64, base: f64) -> Option<f64> {
@@ -103,7 +93,7 @@ pub fn show(ui: &mut egui::Ui, variants: &[VariantView], can_pin: bool) -> Optio
                 });
             }
             ui.end_row();
-            for q in QUANTITIES {
+            for q in quantities() {
                 ui.label(q.heading()).on_hover_text(q.about);
                 let base = q.of(variants[0].metrics);
                 for (i, v) in variants.iter().enumerate() {

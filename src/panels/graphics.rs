@@ -9,8 +9,8 @@
 
 use egui_plot::PlotPoint;
 use trochoplan_core::analysis::edge::outer_offset_points;
-use trochoplan_core::{Plan, ValidJob};
 use trochoplan_core::quantity::{self, SeriesColumn};
+use trochoplan_core::{Plan, ValidJob};
 
 /// Most points of a time series handed to egui_plot (min/max decimation above this).
 pub const MAX_SERIES_POINTS: usize = 2000;

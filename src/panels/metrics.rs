@@ -4,26 +4,19 @@ use eframe::egui::{self, Color32, RichText};
 use trochoplan_core::Plan;
 use trochoplan_core::quantity::{self, Metric};
 
-/// The derived values shown, in order (the core's quantity table).
-pub const SHOWN: [&Metric; 17] = [
-    &quantity::F_Z,
-    &quantity::A,
-    &quantity::B,
-    &quantity::CYCLE_LENGTH,
-    &quantity::T_CYCLE,
-    &quantity::MRR,
-    &quantity::H_MAX,
-    &quantity::T_HMAX,
-    &quantity::T_COOLING,
-    &quantity::ENGAGEMENT_MAX,
-    &quantity::WAVINESS_LEFT,
-    &quantity::WAVINESS_RIGHT,
-    &quantity::STEP_LIMIT_46DEG,
-    &quantity::STEP_LIMIT_15PCT_DEPTH,
-    &quantity::CYCLES,
-    &quantity::PATH_LENGTH,
-    &quantity::MACHINING_TIME,
-];
+/// The derived values shown, in order: feed and path shape, the core's cycle results, step
+/// limits and the whole job.
+pub fn shown() -> impl Iterator<Item = &'static Metric> {
+    let shape = [&quantity::F_Z, &quantity::A, &quantity::B];
+    let whole_job = [
+        &quantity::STEP_LIMIT_46DEG,
+        &quantity::STEP_LIMIT_15PCT_DEPTH,
+        &quantity::CYCLES,
+        &quantity::PATH_LENGTH,
+        &quantity::MACHINING_TIME,
+    ];
+    shape.into_iter().chain(quantity::CYCLE_RESULTS).chain(whole_job)
+}
 
 /// Draw the derived values of `plan`; `stale` when the current job is invalid and the values
 /// belong to the last valid job.
@@ -38,7 +31,7 @@ pub fn show(ui: &mut egui::Ui, plan: Option<&Plan>, stale: bool) {
     }
     let m = &plan.metrics;
     egui::Grid::new("metrics_grid").num_columns(2).striped(true).spacing([10.0, 3.0]).show(ui, |ui| {
-        for q in SHOWN {
+        for q in shown() {
             ui.label(q.symbol).on_hover_text(q.about);
             let mut text = RichText::new(q.display(m)).monospace();
             if q.key == quantity::ENGAGEMENT_MAX.key && q.of(m) > trochoplan_core::plan::ENGAGEMENT_LIMIT_DEG {

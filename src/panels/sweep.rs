@@ -312,12 +312,8 @@ mod tests {
         }
         assert_eq!(run.points.len(), 5);
         assert!(run.points.iter().all(|p| p.result.is_ok()));
-        let mrr: Vec<f64> = run
-            .points
-            .iter()
-            .filter_map(|p| p.result.as_ref().ok())
-            .map(|m| quantity::MRR.of(m))
-            .collect();
+        let mrr: Vec<f64> =
+            run.points.iter().filter_map(|p| p.result.as_ref().ok()).map(|m| quantity::MRR.of(m)).collect();
         assert!(mrr.windows(2).all(|w| w[0] > w[1]), "MRR falls as r_e grows: {mrr:?}");
 
         let big = SweepSettings { steps: 400, ..SweepSettings::default() };

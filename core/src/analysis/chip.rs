@@ -397,10 +397,17 @@ fn sampled_thickness(swept: &Swept, f: &Frame, prev: Option<&PrevTooth>, r: f64,
 }
 
 /// The engaged intervals of one tool position with h(φ) sampled along each ([`EngagedArc`]).
-fn engaged_arcs(swept: &Swept, f: &Frame, prev: Option<&PrevTooth>, r: f64, intervals: &[(f64, f64)]) -> Vec<EngagedArc> {
+fn engaged_arcs(
+    swept: &Swept,
+    f: &Frame,
+    prev: Option<&PrevTooth>,
+    r: f64,
+    intervals: &[(f64, f64)],
+) -> Vec<EngagedArc> {
     let centre_swept = swept.margin(f.c) <= 0.0;
     let kinks = prev.map_or_else(Vec::new, |p| p.end_angles(f, r));
-    let h = |phi: f64, u: P2| ThicknessSample { phi_rad: phi, h_mm: sampled_thickness(swept, f, prev, r, centre_swept, u) };
+    let h =
+        |phi: f64, u: P2| ThicknessSample { phi_rad: phi, h_mm: sampled_thickness(swept, f, prev, r, centre_swept, u) };
     intervals
         .iter()
         .map(|&(a, b)| {
@@ -415,7 +422,11 @@ fn engaged_arcs(swept: &Swept, f: &Frame, prev: Option<&PrevTooth>, r: f64, inte
                 // Where the arc begins or ends on the edge of swept material (not at the ends
                 // 0 and π of the scanned half circle) the chip has no thickness.
                 let on_edge = (i == 0 && a > 0.0) || (i == n && b < PI);
-                samples.push(if on_edge { ThicknessSample { phi_rad: phi, h_mm: 0.0 } } else { h(phi, f.n * c + f.t * s) });
+                samples.push(if on_edge {
+                    ThicknessSample { phi_rad: phi, h_mm: 0.0 }
+                } else {
+                    h(phi, f.n * c + f.t * s)
+                });
                 (c, s) = (c * cd - s * sd, s * cd + c * sd);
             }
             for &k in kinks.iter().filter(|&&k| k > a && k < b) {
