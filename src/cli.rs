@@ -1,15 +1,18 @@
 //! Headless command-line interface. The subcommand and flag names are a fixed contract that
 //! scripts rely on: `analyze`, `sweep`, and the job flags below (same names as job-file keys).
 
-use crate::files::write_atomic;
+use crate::files::{read_input, write_atomic};
 // Pocket-corner commands (issue #5) live in their own file next to this one.
 #[path = "corner_cmd.rs"]
 mod corner_cmd;
-use clap::{Args, Parser, Subcommand, ValueEnum};
+use clap::builder::{PossibleValuesParser, TypedValueParser};
+use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
 use std::process::ExitCode;
-use trochoplan_core::analysis::step::engagement_limited_step;
-use trochoplan_core::{Job, JobError, Metrics, PathKind, Plan, plan};
+use trochoplan_core::plan::engagement_limited_step;
+use trochoplan_core::quantity::{self, METRICS, Metric, SERIES};
+use trochoplan_core::sweep::{self, SweepParam};
+use trochoplan_core::{Job, JobError, PathKind, Plan, plan};
 
 #[derive(Parser)]
 #[command(name = "trochoplan", version, about = "Trochoidal milling planner (no subcommand: open the GUI)")]
@@ -36,7 +39,7 @@ enum Command {
         #[command(flatten)]
         job: JobArgs,
         /// The parameter to vary.
-        #[arg(long, value_enum)]
+        #[arg(long, value_parser = names_parser(SweepParam::ALL.map(SweepParam::name), SweepParam::from_name))]
         param: SweepParam,
         /// First value.
         #[arg(long, allow_hyphen_values = true)]
@@ -74,30 +77,13 @@ enum Command {
     },
 }
 
-#[derive(Clone, Copy, ValueEnum)]
-enum SweepParam {
-    AspectRatio,
-    LinearDistance,
-    Step,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum PathArg {
-    Circular,
-    CircularType,
-    Elliptical,
-    LinearElliptical,
-}
-
-impl From<PathArg> for PathKind {
-    fn from(p: PathArg) -> PathKind {
-        match p {
-            PathArg::Circular => PathKind::Circular,
-            PathArg::CircularType => PathKind::CircularType,
-            PathArg::Elliptical => PathKind::Elliptical,
-            PathArg::LinearElliptical => PathKind::LinearElliptical,
-        }
-    }
+/// Parser of a core enum given by name: `names` are the possible values (listed by `--help`
+/// and in errors), `parse` the core's `from_name`.
+pub fn names_parser<T: Clone + Send + Sync + 'static>(
+    names: impl IntoIterator<Item = &'static str>,
+    parse: fn(&str) -> Result<T, JobError>,
+) -> impl TypedValueParser<Value = T> {
+    PossibleValuesParser::new(names).try_map(move |s: String| parse(&s))
 }
 
 /// Job flags: each overrides the job file, which overrides the defaults (paper Table 1).
@@ -107,8 +93,8 @@ pub struct JobArgs {
     #[arg(long, value_name = "FILE.toml")]
     job: Option<PathBuf>,
     /// Path type.
-    #[arg(long, value_enum)]
-    path: Option<PathArg>,
+    #[arg(long, value_parser = names_parser(PathKind::ALL.map(PathKind::name), PathKind::from_name))]
+    path: Option<PathKind>,
     /// Slot width B (mm).
     #[arg(long, value_name = "MM", allow_hyphen_values = true)]
     slot_width: Option<f64>,
@@ -146,14 +132,13 @@ impl JobArgs {
     pub fn job(&self) -> Result<Job, String> {
         let mut job = match &self.job {
             Some(p) => {
-                let text =
-                    std::fs::read_to_string(p).map_err(|e| format!("cannot read job file {}: {e}", p.display()))?;
+                let text = read_input(p, "job file")?;
                 Job::from_toml(&text).map_err(|e| format!("{}: {e}", p.display()))?
             }
             None => Job::default(),
         };
         if let Some(v) = self.path {
-            job.path = v.into();
+            job.path = v;
         }
         let set = |dst: &mut f64, v: Option<f64>| {
             if let Some(v) = v {
@@ -200,11 +185,9 @@ fn run(cmd: Command) -> Result<String, String> {
             if let Some(file) = series {
                 write_atomic(&file, series_csv(&p).as_bytes())?;
             }
-            let mut value = serde_json::to_value(&p.metrics).map_err(|e| e.to_string())?;
-            if let Some(obj) = value.as_object_mut() {
-                obj.insert("engagement_limit_deg".into(), engagement_limit.into());
-                obj.insert("engagement_limited_step_mm".into(), limited.into());
-            }
+            let mut value = metrics_json(&p);
+            value.insert("engagement_limit_deg".into(), engagement_limit.into());
+            value.insert("engagement_limited_step_mm".into(), limited.into());
             let mut text = serde_json::to_string_pretty(&value).map_err(|e| e.to_string())?;
             text.push('\n');
             Ok(text)
@@ -217,101 +200,58 @@ fn run(cmd: Command) -> Result<String, String> {
     }
 }
 
-/// Per-tooth series of the steady-state cycle as CSV.
+/// The metrics of `p` as one JSON object: the path kind and every entry of the core's
+/// quantity table under its key (serde_json sorts the keys).
+fn metrics_json(p: &Plan) -> serde_json::Map<String, serde_json::Value> {
+    let m = &p.metrics;
+    let mut obj = serde_json::Map::new();
+    obj.insert("path".into(), m.path.name().into());
+    for q in METRICS {
+        let v = q.of(m);
+        obj.insert(q.key.into(), if q.whole { (v as u64).into() } else { v.into() });
+    }
+    obj
+}
+
+/// Per-tooth series of the steady-state cycle as CSV (the core's series columns).
 fn series_csv(p: &Plan) -> String {
-    let mut s = String::from("time_s,h_mm,engagement_deg,cutting,s_mm,x_mm,y_mm\n");
+    let header: Vec<&str> = SERIES.iter().map(|c| c.key).collect();
+    let mut s = header.join(",") + "\n";
     for t in &p.series {
-        s.push_str(&format!(
-            "{:.6},{:.7},{:.4},{},{:.6},{:.6},{:.6}\n",
-            t.time_s,
-            t.h_mm,
-            t.engagement_rad.to_degrees(),
-            u8::from(t.cutting),
-            t.s_mm,
-            t.x_mm,
-            t.y_mm
-        ));
+        let cells: Vec<String> = SERIES.iter().map(|c| c.csv(t)).collect();
+        s.push_str(&cells.join(","));
+        s.push('\n');
     }
     s
 }
 
-/// Metric columns of the sweep table (the `analyze` JSON names).
-const COLUMNS: [&str; 10] = [
-    "cycle_length_mm",
-    "t_cycle_s",
-    "mrr_mm3_per_min",
-    "f_z_mm",
-    "h_max_mm",
-    "t_hmax_s",
-    "t_cooling_s",
-    "engagement_max_deg",
-    "waviness_left_mm",
-    "waviness_right_mm",
+/// Metric columns of the sweep table.
+const COLUMNS: [&Metric; 10] = [
+    &quantity::CYCLE_LENGTH,
+    &quantity::T_CYCLE,
+    &quantity::MRR,
+    &quantity::F_Z,
+    &quantity::H_MAX,
+    &quantity::T_HMAX,
+    &quantity::T_COOLING,
+    &quantity::ENGAGEMENT_MAX,
+    &quantity::WAVINESS_LEFT,
+    &quantity::WAVINESS_RIGHT,
 ];
 
-fn row(m: &Metrics) -> [f64; 10] {
-    [
-        m.cycle_length_mm,
-        m.t_cycle_s,
-        m.mrr_mm3_per_min,
-        m.f_z_mm,
-        m.h_max_mm,
-        m.t_hmax_s,
-        m.t_cooling_s,
-        m.engagement_max_deg,
-        m.waviness_left_mm,
-        m.waviness_right_mm,
-    ]
-}
-
+/// The sweep table: one row per value, under the core's sweep rules ([`sweep`]).
 fn sweep(mut job: Job, param: SweepParam, from: f64, to: f64, steps: usize) -> Result<String, String> {
-    if steps == 0 || steps > 10_000 {
-        return Err(JobError::range("steps", steps, "a whole number from 1 to 10000").to_string());
-    }
-    for (name, v) in [("from", from), ("to", to)] {
-        if !v.is_finite() {
-            return Err(JobError::range(name, v, "a finite number").to_string());
-        }
-    }
-    // Sweeping r_e or d only makes sense on a path that has it: the circular path is the
-    // elliptical one at r_e = 1, the elliptical one the linear-elliptical at d = 0.
-    let name = match param {
-        SweepParam::AspectRatio => {
-            if job.path == PathKind::Circular {
-                job.path = PathKind::Elliptical;
-            }
-            if !job.path.uses_aspect_ratio() {
-                return Err(format!(
-                    "--param aspect-ratio needs an elliptical or linear-elliptical path, not {}",
-                    job.path.name()
-                ));
-            }
-            "aspect_ratio"
-        }
-        SweepParam::LinearDistance => {
-            if matches!(job.path, PathKind::Circular | PathKind::Elliptical) {
-                job.path = PathKind::LinearElliptical;
-            }
-            if job.path != PathKind::LinearElliptical {
-                return Err(format!("--param linear-distance needs a linear-elliptical path, not {}", job.path.name()));
-            }
-            "linear_distance_mm"
-        }
-        SweepParam::Step => "step_mm",
-    };
-    let mut out = format!("path,{name},{}\n", COLUMNS.join(","));
-    for i in 0..steps {
-        let v = if steps == 1 { from } else { from + (to - from) * i as f64 / (steps - 1) as f64 };
-        // Round away binary noise such as 0.7000000000000001 so the table reads as typed.
-        let v = (v * 1e9).round() / 1e9;
+    let values = sweep::values(from, to, steps).map_err(|e| e.to_string())?;
+    job.path = param
+        .path_for(job.path)
+        .ok_or_else(|| format!("--param {} needs {}, not {}", param.name(), param.needs(), job.path.name()))?;
+    let keys: Vec<&str> = COLUMNS.iter().map(|q| q.key).collect();
+    let mut out = format!("path,{},{}\n", param.metric().key, keys.join(","));
+    for v in values {
         let mut j = job.clone();
-        match param {
-            SweepParam::AspectRatio => j.aspect_ratio = v,
-            SweepParam::LinearDistance => j.linear_distance = v,
-            SweepParam::Step => j.step = v,
-        }
+        param.set(&mut j, v);
         let m = plan(&j).map_err(|e| e.to_string())?.metrics;
-        let cells: Vec<String> = row(&m).iter().map(|x| format!("{x:.6}")).collect();
+        let cells: Vec<String> = COLUMNS.iter().map(|q| format!("{:.6}", q.of(&m))).collect();
         out.push_str(&format!("{},{v},{}\n", j.path.name(), cells.join(",")));
     }
     Ok(out)

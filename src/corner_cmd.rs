@@ -2,7 +2,6 @@
 //! Degrees at this edge, radians in the core. Output is JSON (or a Markdown table with
 //! `corner --table`).
 
-use crate::export::DialectArg;
 use crate::files::write_atomic;
 use clap::Args;
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
@@ -15,7 +14,9 @@ use trochoplan_core::corner::{
     finite, parse_points, polyline,
 };
 use trochoplan_core::geom::{P2, Polygon, Segment};
-use trochoplan_core::nc::{CutSetup, DEFAULT_TOLERANCE_MM, NcOptions, NcProgram, corner_program, pocket_program};
+use trochoplan_core::nc::{
+    CutSetup, DEFAULT_TOLERANCE_MM, Dialect, NcOptions, NcProgram, corner_program, pocket_program,
+};
 use trochoplan_core::pocket::{
     self, LinkKind, MoveKind, PerforativePlan, PocketPlan, PocketRequest, PocketStrategy, RingPlan,
 };
@@ -110,8 +111,13 @@ pub struct CornerExportArgs {
     #[arg(long, value_name = "FILE")]
     export: Option<PathBuf>,
     /// Controller dialect of --export.
-    #[arg(long, value_enum, default_value = "linuxcnc", requires = "export")]
-    dialect: DialectArg,
+    #[arg(
+        long,
+        value_parser = super::names_parser(Dialect::ALL.map(Dialect::name), Dialect::from_name),
+        default_value = "linuxcnc",
+        requires = "export"
+    )]
+    dialect: Dialect,
     /// Largest distance of the written path from the planned one, before rounding (mm), for
     /// --export (--tolerance is the bisection band).
     #[arg(long, value_name = "MM", default_value_t = DEFAULT_TOLERANCE_MM, allow_hyphen_values = true, requires = "export")]
@@ -466,7 +472,7 @@ struct NcExportOut {
 /// The NC options of the shared export flags.
 fn nc_options(nc: &CornerExportArgs) -> NcOptions {
     NcOptions {
-        dialect: nc.dialect.into(),
+        dialect: nc.dialect,
         tolerance_mm: nc.nc_tolerance,
         linear_segments: nc.linear_segments,
         coolant: nc.coolant,

@@ -1,37 +1,19 @@
 //! `trochoplan export`: the NC program of one job, written atomically (temporary file, then
 //! rename), so an existing program is never left half-written.
 
+use crate::cli::names_parser;
 use crate::files::write_atomic;
-use clap::{Args, ValueEnum};
+use clap::Args;
 use std::path::PathBuf;
 use trochoplan_core::nc::{DEFAULT_TOLERANCE_MM, Dialect, NcOptions, program};
 use trochoplan_core::{Job, plan};
-
-#[derive(Clone, Copy, ValueEnum)]
-pub enum DialectArg {
-    Linuxcnc,
-    Fanuc,
-    Grbl,
-    Sinumerik,
-}
-
-impl From<DialectArg> for Dialect {
-    fn from(d: DialectArg) -> Dialect {
-        match d {
-            DialectArg::Linuxcnc => Dialect::LinuxCnc,
-            DialectArg::Fanuc => Dialect::Fanuc,
-            DialectArg::Grbl => Dialect::Grbl,
-            DialectArg::Sinumerik => Dialect::Sinumerik,
-        }
-    }
-}
 
 /// NC options of `export`.
 #[derive(Args)]
 pub struct ExportArgs {
     /// Controller dialect.
-    #[arg(long, value_enum)]
-    dialect: DialectArg,
+    #[arg(long, value_parser = names_parser(Dialect::ALL.map(Dialect::name), Dialect::from_name))]
+    dialect: Dialect,
     /// Loop form (LinuxCNC O-word while loop, Sinumerik R-parameter loop).
     #[arg(long)]
     compact: bool,
@@ -59,7 +41,7 @@ pub struct ExportArgs {
 pub fn run(job: &Job, args: &ExportArgs) -> Result<String, String> {
     let p = plan(job).map_err(|e| e.to_string())?;
     let opts = NcOptions {
-        dialect: args.dialect.into(),
+        dialect: args.dialect,
         tolerance_mm: args.tolerance,
         linear_segments: args.linear_segments,
         coolant: args.coolant,

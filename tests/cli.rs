@@ -155,6 +155,26 @@ fn corrupt_job_file_is_a_clear_error() {
 }
 
 #[test]
+fn job_files_must_be_regular_files_and_devices_stay_devices() {
+    // Issue #13: `--job /dev/zero` read without bound and a FIFO hung; `-o /dev/null` replaced
+    // /dev/null by a regular file (as root).
+    let (ok, _, err) = run(&["analyze", "--job", "/dev/zero"]);
+    assert!(!ok && err.contains("/dev/zero") && err.contains("regular file"), "{err}");
+    let dir = tempfile::tempdir().expect("tempdir");
+    let fifo = dir.path().join("job.fifo");
+    assert!(Command::new("mkfifo").arg(&fifo).status().expect("mkfifo").success());
+    let (ok, _, err) = run(&["analyze", "--job", fifo.to_str().expect("utf8")]);
+    assert!(!ok && err.contains("regular file"), "{err}");
+    let (ok, _, err) = run(&["export", "-o", "/dev/null"]);
+    assert!(ok, "{err}");
+    assert!(!std::fs::metadata("/dev/null").expect("meta").is_file(), "/dev/null is still a device");
+    // the longest legal file name (255 bytes) is written
+    let long = dir.path().join(format!("{}.ngc", "p".repeat(251)));
+    let (ok, _, err) = run(&["export", "-o", long.to_str().expect("utf8")]);
+    assert!(ok && long.is_file(), "{err}");
+}
+
+#[test]
 fn series_csv_is_written_whole_or_not_at_all() {
     let dir = tempfile::tempdir().expect("tempdir");
     let csv = dir.path().join("series.csv");

@@ -5,9 +5,9 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
-use trochoplan_core::analysis::step::engagement_limited_step;
 use trochoplan_core::analysis::{PreviousEdge, Wall, tooth_series, wall_profile};
 use trochoplan_core::path::{Cycle, SlotPath};
+use trochoplan_core::plan::engagement_limited_step;
 use trochoplan_core::{Job, PathKind, plan};
 
 fn plans(c: &mut Criterion) {

@@ -40,6 +40,40 @@ impl PathKind {
         }
     }
 
+    /// Label for people (GUI radio buttons).
+    pub fn label(self) -> &'static str {
+        match self {
+            PathKind::Circular => "Circular (true trochoid)",
+            PathKind::CircularType => "Circular-type (line + circle)",
+            PathKind::Elliptical => "Elliptical",
+            PathKind::LinearElliptical => "Linear-elliptical",
+        }
+    }
+
+    /// What the path is and what it does, with the paper's figures (GUI tooltip).
+    pub fn about(self) -> &'static str {
+        match self {
+            PathKind::Circular => {
+                "True trochoid, Wagih et al. (2023) eq. (1) with r_e = 1: the usual \
+                trochoidal path. Waviness on both walls (Fig. 8a)."
+            }
+            PathKind::CircularType => {
+                "A straight step s along the left wall, then a full circle of \
+                radius a (Fig. 8b). Waviness only on the right wall; longer path, lower MRR."
+            }
+            PathKind::Elliptical => {
+                "Eq. (1) with aspect ratio r_e = b/a (eq. 2). r_e < 1 shortens the \
+                path (up to 23 % at r_e = 0.5, Fig. 5) and raises MRR with h_max almost unchanged \
+                (Table 2), but raises the wall waviness (Fig. 9)."
+            }
+            PathKind::LinearElliptical => {
+                "Paper section 3: +d along the left wall, front \
+                half-ellipse, −d along the right wall, back half-ellipse. The straight pieces along the \
+                walls cut the waviness (d = 0.75·s: about three times less, Figs. 25–28)."
+            }
+        }
+    }
+
     /// Parse a CLI / job-file name.
     pub fn from_name(s: &str) -> Result<PathKind, JobError> {
         PathKind::ALL

@@ -20,6 +20,8 @@
 //!   [`corner::evaluate`] — corner request in, plans, profiles and acceptance row out.
 //! - [`pocket`]: polygonal pockets by rings or along the medial axis; [`pocket::plan`].
 //! - [`plan`]: [`plan()`] — job in, [`Plan`] out; used by the GUI and the CLI.
+//! - [`quantity`]: every metric and per-tooth series column as data (key, label, unit, source).
+//! - [`sweep`]: the swept parameters and their rules (which path, which values).
 //! - [`error`]: the [`JobError`] type.
 
 pub mod analysis;
@@ -31,6 +33,8 @@ pub mod nc;
 pub mod path;
 pub mod plan;
 pub mod pocket;
+pub mod quantity;
+pub mod sweep;
 
 pub use error::JobError;
 pub use job::{Job, PathKind, ValidJob};

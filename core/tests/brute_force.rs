@@ -145,7 +145,7 @@ fn check_job(job: Job) {
     let last_cut = p.series.iter().rposition(|t| t.cutting).expect("cutting teeth");
     teeth.push(last_cut);
     for k in teeth.into_iter().filter(|&k| k >= 1 && k < p.series.len()) {
-        let t = p.series[k];
+        let t = &p.series[k];
         // The tooth positions themselves: arc length by the analysis vs chord sum here.
         let c = d.at(t.s_mm);
         assert!(

@@ -3,7 +3,8 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use proptest::prelude::*;
-use trochoplan_core::analysis::step::{engagement_limited_step, step_for_engagement};
+use trochoplan_core::analysis::step::step_for_engagement;
+use trochoplan_core::plan::engagement_limited_step;
 use trochoplan_core::{Job, PathKind, plan};
 
 fn kind() -> impl Strategy<Value = PathKind> {
@@ -179,7 +180,7 @@ fn chip_outline_has_the_measured_thickness() {
         let k = p.series.iter().enumerate().max_by(|a, b| a.1.h_mm.total_cmp(&b.1.h_mm)).map(|x| x.0).expect("teeth");
         let outline = p.chip_outline(k);
         assert!(outline.len() > 10);
-        let t = p.series[k];
+        let t = &p.series[k];
         let c = trochoplan_core::geom::p2(t.x_mm, t.y_mm);
         let r = job.tool_diameter / 2.0;
         let depth = outline.iter().map(|q| r - (q - c).norm()).fold(0.0, f64::max);

@@ -140,8 +140,7 @@ impl App {
 
     /// Read a job file into the edited job (one undo step).
     pub fn open(&mut self, path: &Path) {
-        let read = std::fs::read_to_string(path)
-            .map_err(|e| e.to_string())
+        let read = crate::files::read_input(path, "job file")
             .and_then(|text| Job::from_toml(&text).map_err(|e| e.to_string()));
         match read {
             Ok(job) => {

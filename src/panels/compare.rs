@@ -3,6 +3,7 @@
 
 use super::Command;
 use eframe::egui::{self, Color32, RichText};
+use trochoplan_core::quantity::{self, Metric};
 use trochoplan_core::{Job, Metrics, PathKind};
 
 /// Most pinned variants.
@@ -15,40 +16,10 @@ pub struct VariantView<'a> {
     pub metrics: &'a Metrics,
 }
 
-/// A compared quantity: name, unit, value, decimals, and whether larger is better (for colour).
-struct Quantity {
-    name: &'static str,
-    unit: &'static str,
-    value: fn(&Metrics) -> f64,
-    decimals: usize,
-    higher_is_better: Option<bool>,
+/// The compared quantities, in order: the path's shape, then the core's cycle results.
+fn quantities() -> impl Iterator<Item = &'static Metric> {
+    [&quantity::ASPECT_RATIO, &quantity::LINEAR_DISTANCE].into_iter().chain(quantity::CYCLE_RESULTS)
 }
-
-const QUANTITIES: [Quantity; 11] = [
-    Quantity { name: "r_e", unit: "", value: |m| m.aspect_ratio, decimals: 2, higher_is_better: None },
-    Quantity { name: "d", unit: "mm", value: |m| m.linear_distance_mm, decimals: 2, higher_is_better: None },
-    Quantity {
-        name: "cycle length",
-        unit: "mm",
-        value: |m| m.cycle_length_mm,
-        decimals: 2,
-        higher_is_better: Some(false),
-    },
-    Quantity { name: "t_cycle", unit: "s", value: |m| m.t_cycle_s, decimals: 3, higher_is_better: Some(false) },
-    Quantity { name: "MRR", unit: "mm³/min", value: |m| m.mrr_mm3_per_min, decimals: 0, higher_is_better: Some(true) },
-    Quantity { name: "h_max", unit: "mm", value: |m| m.h_max_mm, decimals: 4, higher_is_better: Some(false) },
-    Quantity { name: "t_hmax", unit: "s", value: |m| m.t_hmax_s, decimals: 3, higher_is_better: None },
-    Quantity { name: "t_cooling", unit: "s", value: |m| m.t_cooling_s, decimals: 3, higher_is_better: Some(true) },
-    Quantity {
-        name: "max engagement",
-        unit: "°",
-        value: |m| m.engagement_max_deg,
-        decimals: 1,
-        higher_is_better: Some(false),
-    },
-    Quantity { name: "W_l", unit: "mm", value: |m| m.waviness_left_mm, decimals: 4, higher_is_better: Some(false) },
-    Quantity { name: "W_r", unit: "mm", value: |m| m.waviness_right_mm, decimals: 4, higher_is_better: Some(false) },
-];
 
 /// Percentage change of `v` against `base` (None when the base is zero).
 pub fn percent_change(v: f64, base: f64) -> Option<f64> {
@@ -58,8 +29,7 @@ pub fn percent_change(v: f64, base: f64) -> Option<f64> {
 /// A short label for a job, as the paper names its variants.
 pub fn variant_label(job: &Job) -> String {
     match job.path {
-        PathKind::Circular => "circular".to_owned(),
-        PathKind::CircularType => "circular-type".to_owned(),
+        PathKind::Circular | PathKind::CircularType => job.path.name().to_owned(),
         PathKind::Elliptical => format!("elliptical r_e = {}", job.aspect_ratio),
         PathKind::LinearElliptical => {
             format!("lin.-elliptical r_e = {}, d = {}", job.aspect_ratio, job.linear_distance)
@@ -123,12 +93,11 @@ pub fn show(ui: &mut egui::Ui, variants: &[VariantView], can_pin: bool) -> Optio
                 });
             }
             ui.end_row();
-            for q in &QUANTITIES {
-                let unit = if q.unit.is_empty() { String::new() } else { format!(" [{}]", q.unit) };
-                ui.label(format!("{}{unit}", q.name));
-                let base = (q.value)(variants[0].metrics);
+            for q in quantities() {
+                ui.label(q.heading()).on_hover_text(q.about);
+                let base = q.of(variants[0].metrics);
                 for (i, v) in variants.iter().enumerate() {
-                    let x = (q.value)(v.metrics);
+                    let x = q.of(v.metrics);
                     let mut text = format!("{x:.*}", q.decimals);
                     let mut color = None;
                     if i > 0

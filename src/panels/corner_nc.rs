@@ -8,12 +8,12 @@
 
 use super::Command;
 use super::corner::{CornerMode, CornerResult, CornerView, PocketResult};
-use super::export::{NcDialect, line_starts, program_text};
+use super::export::{line_starts, program_text};
 use super::params::ERROR_COLOR;
 use eframe::egui::{self, DragValue, RichText, Slider, SliderClamping};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
-use trochoplan_core::nc::{self, CutSetup, DEFAULT_TOLERANCE_MM, NcOptions};
+use trochoplan_core::nc::{self, CutSetup, DEFAULT_TOLERANCE_MM, Dialect, NcOptions};
 
 /// Accessible names of the inputs (tests find them by these).
 pub mod label {
@@ -32,7 +32,7 @@ pub mod label {
 pub struct CornerNcSettings {
     /// Show the export options and the program preview.
     pub open: bool,
-    pub dialect: NcDialect,
+    pub dialect: Dialect,
     /// Largest distance of the written path from the planned one, before rounding (mm).
     pub tolerance_mm: f64,
     pub linear_segments: bool,
@@ -48,7 +48,7 @@ impl Default for CornerNcSettings {
         let cut = CutSetup::default();
         CornerNcSettings {
             open: false,
-            dialect: NcDialect::LinuxCnc,
+            dialect: Dialect::LinuxCnc,
             tolerance_mm: DEFAULT_TOLERANCE_MM,
             linear_segments: false,
             coolant: false,
@@ -62,7 +62,7 @@ impl CornerNcSettings {
     /// The core's options (validated by the core when the program is written).
     pub fn options(&self) -> NcOptions {
         NcOptions {
-            dialect: self.dialect.core(),
+            dialect: self.dialect,
             tolerance_mm: self.tolerance_mm,
             linear_segments: self.linear_segments,
             coolant: self.coolant,
@@ -165,7 +165,7 @@ pub fn options(
     let mut cmd = None;
     ui.horizontal_wrapped(|ui| {
         ui.label(RichText::new("Dialect").strong());
-        for d in NcDialect::ALL {
+        for d in Dialect::ALL {
             ui.radio_value(&mut settings.dialect, d, d.label());
         }
         ui.separator();

@@ -33,63 +33,11 @@ const MAX_BACKPLOT_POINTS: usize = 60_000;
 /// Points per path segment of the planned path under the back-plot.
 const PLANNED_POINTS_PER_SEGMENT: usize = 48;
 
-/// The four dialects as the GUI persists them.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-pub enum NcDialect {
-    #[default]
-    LinuxCnc,
-    Fanuc,
-    Grbl,
-    Sinumerik,
-}
-
-impl NcDialect {
-    pub const ALL: [NcDialect; 4] = [NcDialect::LinuxCnc, NcDialect::Fanuc, NcDialect::Grbl, NcDialect::Sinumerik];
-
-    pub fn core(self) -> Dialect {
-        match self {
-            NcDialect::LinuxCnc => Dialect::LinuxCnc,
-            NcDialect::Fanuc => Dialect::Fanuc,
-            NcDialect::Grbl => Dialect::Grbl,
-            NcDialect::Sinumerik => Dialect::Sinumerik,
-        }
-    }
-
-    /// Radio-button label.
-    pub fn label(self) -> &'static str {
-        match self {
-            NcDialect::LinuxCnc => "LinuxCNC",
-            NcDialect::Fanuc => "Fanuc-style ISO",
-            NcDialect::Grbl => "GRBL",
-            NcDialect::Sinumerik => "Sinumerik 840D",
-        }
-    }
-
-    fn tooltip(self) -> &'static str {
-        match self {
-            NcDialect::LinuxCnc => "RS274NGC: G64 P blending at the tolerance, O-word while loop available.",
-            NcDialect::Fanuc => "Fanuc-style ISO: % tape marks, program number O1000, 3 decimals.",
-            NcDialect::Grbl => "GRBL 1.1: no tool change or loops; arcs split into half circles at most.",
-            NcDialect::Sinumerik => "Siemens Sinumerik 840D: ; comments, G71, R-parameter loop available.",
-        }
-    }
-
-    /// File extension offered by the save dialog.
-    pub fn extension(self) -> &'static str {
-        match self {
-            NcDialect::LinuxCnc => "ngc",
-            NcDialect::Fanuc => "nc",
-            NcDialect::Grbl => "gcode",
-            NcDialect::Sinumerik => "mpf",
-        }
-    }
-}
-
 /// The export options the user chose (persisted with the rest of the state).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct ExportSettings {
-    pub dialect: NcDialect,
+    pub dialect: Dialect,
     pub tolerance_mm: f64,
     pub linear_segments: bool,
     pub compact: bool,
@@ -101,7 +49,7 @@ pub struct ExportSettings {
 impl Default for ExportSettings {
     fn default() -> Self {
         ExportSettings {
-            dialect: NcDialect::LinuxCnc,
+            dialect: Dialect::LinuxCnc,
             tolerance_mm: DEFAULT_TOLERANCE_MM,
             linear_segments: false,
             compact: false,
@@ -115,9 +63,8 @@ impl Default for ExportSettings {
 impl ExportSettings {
     /// The core's options (validated by the core when the program is written).
     pub fn options(&self) -> NcOptions {
-        let dialect = self.dialect.core();
         NcOptions {
-            dialect,
+            dialect: self.dialect,
             tolerance_mm: self.tolerance_mm,
             linear_segments: self.linear_segments,
             coolant: self.coolant,
@@ -261,8 +208,8 @@ pub fn show(
     let mut cmd = None;
     ui.horizontal_wrapped(|ui| {
         ui.label(RichText::new("Dialect").strong());
-        for d in NcDialect::ALL {
-            ui.radio_value(&mut settings.dialect, d, d.label()).on_hover_text(d.tooltip());
+        for d in Dialect::ALL {
+            ui.radio_value(&mut settings.dialect, d, d.label()).on_hover_text(d.about());
         }
     });
     ui.horizontal_wrapped(|ui| {
@@ -281,7 +228,7 @@ pub fn show(
         .labelled_by(l.id);
         ui.checkbox(&mut settings.linear_segments, label::LINEAR)
             .on_hover_text("Write every curve as G1 chords instead of G2/G3 arcs (many more blocks).");
-        let loops = settings.dialect.core().spec().loop_style.is_some();
+        let loops = settings.dialect.spec().loop_style.is_some();
         if !loops {
             settings.compact = false;
         }
@@ -390,7 +337,7 @@ mod tests {
         assert_eq!(c.generated, 2);
         let e = c.result.as_ref().expect("result").as_ref().expect_err("invalid tolerance");
         assert!(e.contains("tolerance"), "{e}");
-        c.update(&plan, &ExportSettings { compact: true, dialect: NcDialect::Sinumerik, ..s });
+        c.update(&plan, &ExportSettings { compact: true, dialect: Dialect::Sinumerik, ..s });
         let v = c.view().expect("compact program");
         assert!(v.text.contains("GOTOB"));
         assert!(v.backplot_note.is_some() && !v.backplot.is_empty());

@@ -9,6 +9,7 @@
 
 use egui_plot::PlotPoint;
 use trochoplan_core::analysis::edge::outer_offset_points;
+use trochoplan_core::quantity::{self, SeriesColumn};
 use trochoplan_core::{Plan, ValidJob};
 
 /// Most points of a time series handed to egui_plot (min/max decimation above this).
@@ -92,8 +93,8 @@ impl Graphics {
             .step_by(stride)
             .map(|t| (t.time_s, PlotPoint::new(origin.x + t.x_mm, origin.y + t.y_mm)))
             .collect();
-        let h: Vec<[f64; 2]> = series.iter().map(|t| [t.time_s, t.h_mm]).collect();
-        let eng: Vec<[f64; 2]> = series.iter().map(|t| [t.time_s, t.engagement_rad.to_degrees()]).collect();
+        let against_time = |c: &SeriesColumn| -> Vec<[f64; 2]> { series.iter().map(|t| [t.time_s, c.of(t)]).collect() };
+        let (h, eng) = (against_time(&quantity::H), against_time(&quantity::ENGAGEMENT));
         let mut cooling = Vec::new();
         let mut start = None;
         for t in series {

@@ -77,7 +77,7 @@ fn changing_the_step_in_the_ui_replans_and_updates_the_shown_metrics() {
 #[test]
 fn lowering_the_aspect_ratio_moves_mrr_and_waviness_as_the_paper_describes() {
     let mut h = harness();
-    h.get_by_label(panels::params::path_label(trochoplan_core::PathKind::Elliptical)).click();
+    h.get_by_label(trochoplan_core::PathKind::Elliptical.label()).click();
     h.run();
     assert_eq!(h.state().state.job.path, trochoplan_core::PathKind::Elliptical);
     let r1 = metrics(&h);
@@ -120,7 +120,7 @@ fn compare_mode_adds_variants_and_shows_percent_changes() {
     h.get_by_label("Pin current job").click();
     h.run();
     assert_eq!(h.state().variants.len(), 1);
-    h.get_by_label(panels::params::path_label(trochoplan_core::PathKind::Elliptical)).click();
+    h.get_by_label(trochoplan_core::PathKind::Elliptical.label()).click();
     h.run();
     h.get_by_role_and_label(Role::Slider, label::ASPECT_RATIO).set_value_accesskit(0.8);
     h.run();

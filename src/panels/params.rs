@@ -22,39 +22,6 @@ pub mod label {
     pub const LINEAR_DISTANCE: &str = "Linear distance d";
 }
 
-/// Label shown for a path kind (radio buttons).
-pub fn path_label(kind: PathKind) -> &'static str {
-    match kind {
-        PathKind::Circular => "Circular (true trochoid)",
-        PathKind::CircularType => "Circular-type (line + circle)",
-        PathKind::Elliptical => "Elliptical",
-        PathKind::LinearElliptical => "Linear-elliptical",
-    }
-}
-
-fn path_tooltip(kind: PathKind) -> &'static str {
-    match kind {
-        PathKind::Circular => {
-            "True trochoid, Wagih et al. (2023) eq. (1) with r_e = 1: the usual \
-            trochoidal path. Waviness on both walls (Fig. 8a)."
-        }
-        PathKind::CircularType => {
-            "A straight step s along the left wall, then a full circle of \
-            radius a (Fig. 8b). Waviness only on the right wall; longer path, lower MRR."
-        }
-        PathKind::Elliptical => {
-            "Eq. (1) with aspect ratio r_e = b/a (eq. 2). r_e < 1 shortens the \
-            path (up to 23 % at r_e = 0.5, Fig. 5) and raises MRR with h_max almost unchanged \
-            (Table 2), but raises the wall waviness (Fig. 9)."
-        }
-        PathKind::LinearElliptical => {
-            "Paper section 3: +d along the left wall, front \
-            half-ellipse, −d along the right wall, back half-ellipse. The straight pieces along the \
-            walls cut the waviness (d = 0.75·s: about three times less, Figs. 25–28)."
-        }
-    }
-}
-
 struct Field<'a> {
     label: &'static str,
     /// Core parameter name (kebab-case) whose errors belong here.
@@ -232,7 +199,7 @@ pub fn show(ui: &mut egui::Ui, job: &mut Job, error: Option<&JobError>) {
     ui.add_space(6.0);
     ui.heading("Path");
     for kind in PathKind::ALL {
-        ui.radio_value(&mut job.path, kind, path_label(kind)).on_hover_text(path_tooltip(kind));
+        ui.radio_value(&mut job.path, kind, kind.label()).on_hover_text(kind.about());
     }
     field_error_line(ui, "path", error);
     egui::Grid::new("path_grid").num_columns(2).spacing([8.0, 4.0]).show(ui, |ui| {

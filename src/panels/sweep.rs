@@ -7,25 +7,9 @@ use crate::worker::{Keep, Task, Worker};
 use eframe::egui::{self, Color32, RichText};
 use egui_plot::{AxisHints, Corner, Legend, Line, Plot, Points, VLine};
 use serde::{Deserialize, Serialize};
+use trochoplan_core::quantity::{self, Metric};
+use trochoplan_core::sweep::{self, SweepParam};
 use trochoplan_core::{Job, Metrics, PathKind, plan};
-
-/// The swept parameter.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub enum SweepParam {
-    /// Aspect ratio r_e (elliptical path; linear-elliptical keeps its d).
-    AspectRatio,
-    /// Linear distance d (linear-elliptical path).
-    LinearDistance,
-}
-
-impl SweepParam {
-    fn label(self) -> &'static str {
-        match self {
-            SweepParam::AspectRatio => "aspect ratio r_e",
-            SweepParam::LinearDistance => "linear distance d [mm]",
-        }
-    }
-}
 
 /// Persisted sweep settings.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -43,31 +27,31 @@ impl Default for SweepSettings {
 }
 
 impl SweepSettings {
-    /// The paper's range for the parameter.
-    pub fn paper_range(param: SweepParam) -> (f64, f64) {
-        match param {
-            SweepParam::AspectRatio => (0.5, 1.2),
-            SweepParam::LinearDistance => (0.0, 1.5),
+    /// Why the sweep cannot run on `base` (the core's rules, as the CLI applies them), if it
+    /// cannot: an r_e or d sweep needs a path that has the parameter.
+    pub fn refusal(&self, base: &Job) -> Option<String> {
+        if let Err(e) = sweep::values(self.from, self.to, self.steps) {
+            return Some(e.to_string());
         }
+        let p = self.param;
+        p.path_for(base.path)
+            .is_none()
+            .then(|| format!("Sweeping {} needs {}, not {}.", p.metric().symbol, p.needs(), base.path.name()))
     }
 
-    /// The jobs of the sweep, built on `base`: the path is switched to one that uses the
-    /// parameter (elliptical for r_e unless already linear-elliptical; linear-elliptical for d).
+    /// The jobs of the sweep, built on `base` with the path the core's rules give
+    /// ([`SweepParam::path_for`]: elliptical for r_e on the circular path, linear-elliptical
+    /// for d); none when the sweep is refused ([`SweepSettings::refusal`]).
     pub fn jobs(&self, base: &Job) -> Vec<(f64, Job)> {
-        let n = self.steps.max(2);
-        (0..n)
-            .map(|i| {
-                let v = self.from + (self.to - self.from) * i as f64 / (n - 1) as f64;
-                let job = match self.param {
-                    SweepParam::AspectRatio => Job {
-                        path: if base.path == PathKind::LinearElliptical { base.path } else { PathKind::Elliptical },
-                        aspect_ratio: v,
-                        ..base.clone()
-                    },
-                    SweepParam::LinearDistance => {
-                        Job { path: PathKind::LinearElliptical, linear_distance: v, ..base.clone() }
-                    }
-                };
+        let (Ok(values), Some(path)) = (sweep::values(self.from, self.to, self.steps), self.param.path_for(base.path))
+        else {
+            return Vec::new();
+        };
+        values
+            .into_iter()
+            .map(|v| {
+                let mut job = Job { path, ..base.clone() };
+                self.param.set(&mut job, v);
                 (v, job)
             })
             .collect()
@@ -163,8 +147,10 @@ pub fn show(ui: &mut egui::Ui, settings: &mut SweepSettings, run: Option<&SweepR
             ui.selectable_value(&mut settings.param, SweepParam::AspectRatio, "r_e (Figs. 5, 9, Table 2)");
             ui.selectable_value(&mut settings.param, SweepParam::LinearDistance, "d (Figs. 12, 28)");
         });
-        if settings.param != before {
-            (settings.from, settings.to) = SweepSettings::paper_range(settings.param);
+        if settings.param != before
+            && let Some(range) = settings.param.paper_range()
+        {
+            (settings.from, settings.to) = range;
         }
         let l = ui.label("from");
         ui.add(egui::DragValue::new(&mut settings.from).speed(0.01).max_decimals(3)).labelled_by(l.id);
@@ -172,23 +158,28 @@ pub fn show(ui: &mut egui::Ui, settings: &mut SweepSettings, run: Option<&SweepR
         ui.add(egui::DragValue::new(&mut settings.to).speed(0.01).max_decimals(3)).labelled_by(l.id);
         let l = ui.label("values");
         ui.add(egui::DragValue::new(&mut settings.steps).range(2..=400)).labelled_by(l.id);
+        let refusal = settings.refusal(current);
         if running {
             if ui.button("Cancel").clicked() {
                 cmd = Some(Command::CancelSweep);
             }
         } else if ui
-            .button("Run sweep")
+            .add_enabled(refusal.is_none(), egui::Button::new("Run sweep"))
             .on_hover_text("Plan the current job once per value on a background thread.")
+            .on_disabled_hover_text(refusal.as_deref().unwrap_or_default())
             .clicked()
         {
             cmd = Some(Command::StartSweep);
+        }
+        if let Some(why) = refusal {
+            ui.label(RichText::new(why).color(Color32::from_rgb(200, 50, 40)));
         }
     });
     let Some(run) = run else {
         ui.label(
             "Runs the core planner for each value with the current slot, tool and cutting data; the r_e \
              sweep uses the elliptical path (or keeps linear-elliptical), the d sweep the \
-             linear-elliptical path with the current r_e.",
+             linear-elliptical path with the current r_e; neither runs on the circular-type path.",
         );
         return cmd;
     };
@@ -211,38 +202,28 @@ pub fn show(ui: &mut egui::Ui, settings: &mut SweepSettings, run: Option<&SweepR
     });
     let ok: Vec<(f64, &Metrics)> =
         run.points.iter().filter_map(|p| p.result.as_ref().ok().map(|m| (p.value, m))).collect();
-    let marker = match run.settings.param {
-        SweepParam::AspectRatio => current.path.uses_aspect_ratio().then_some(current.aspect_ratio),
-        SweepParam::LinearDistance => (current.path == PathKind::LinearElliptical).then_some(current.linear_distance),
-    };
+    let param = run.settings.param;
+    let marker = (param.path_for(current.path) == Some(current.path)).then(|| param.get(current));
     let xlabel = run.settings.param.label();
-    type Series = (&'static str, fn(&Metrics) -> f64, Color32);
-    let panels: [(&str, &str, Vec<Series>); 4] = [
-        (
-            "h_max",
-            "h_max [mm]",
-            vec![("h_max", (|m: &Metrics| m.h_max_mm) as fn(&Metrics) -> f64, Color32::from_rgb(30, 110, 220))],
-        ),
-        (
-            "mrr",
-            "MRR [mm³/min]",
-            vec![("MRR", (|m: &Metrics| m.mrr_mm3_per_min) as fn(&Metrics) -> f64, Color32::from_rgb(40, 160, 70))],
-        ),
+    type Series = Vec<(&'static Metric, Color32)>;
+    let panels: [(&str, &str, Series); 4] = [
+        ("h_max", "h_max [mm]", vec![(&quantity::H_MAX, Color32::from_rgb(30, 110, 220))]),
+        ("mrr", "MRR [mm³/min]", vec![(&quantity::MRR, Color32::from_rgb(40, 160, 70))]),
         (
             "waviness",
             "waviness [mm]",
             vec![
-                ("W_l", (|m: &Metrics| m.waviness_left_mm) as fn(&Metrics) -> f64, Color32::from_rgb(220, 90, 30)),
-                ("W_r", (|m: &Metrics| m.waviness_right_mm) as fn(&Metrics) -> f64, Color32::from_rgb(170, 60, 190)),
+                (&quantity::WAVINESS_LEFT, Color32::from_rgb(220, 90, 30)),
+                (&quantity::WAVINESS_RIGHT, Color32::from_rgb(170, 60, 190)),
             ],
         ),
         (
             "times",
             "time [s]",
             vec![
-                ("t_cooling", (|m: &Metrics| m.t_cooling_s) as fn(&Metrics) -> f64, Color32::from_rgb(30, 110, 220)),
-                ("t_hmax", (|m: &Metrics| m.t_hmax_s) as fn(&Metrics) -> f64, Color32::from_rgb(40, 160, 70)),
-                ("t_cycle", (|m: &Metrics| m.t_cycle_s) as fn(&Metrics) -> f64, Color32::from_rgb(120, 120, 120)),
+                (&quantity::T_COOLING, Color32::from_rgb(30, 110, 220)),
+                (&quantity::T_HMAX, Color32::from_rgb(40, 160, 70)),
+                (&quantity::T_CYCLE, Color32::from_rgb(120, 120, 120)),
             ],
         ),
     ];
@@ -259,10 +240,10 @@ pub fn show(ui: &mut egui::Ui, settings: &mut SweepSettings, run: Option<&SweepR
                     .y_axis_label(*ylabel)
                     .allow_scroll(false)
                     .show(ui, |p| {
-                        for &(name, f, color) in series {
-                            let pts: Vec<[f64; 2]> = ok.iter().map(|&(v, m)| [v, f(m)]).collect();
-                            p.line(Line::new(name, pts.clone()).color(color).width(1.5));
-                            p.points(Points::new(name, pts).color(color).radius(2.5));
+                        for &(q, color) in series {
+                            let pts: Vec<[f64; 2]> = ok.iter().map(|&(v, m)| [v, q.of(m)]).collect();
+                            p.line(Line::new(q.symbol, pts.clone()).color(color).width(1.5));
+                            p.points(Points::new(q.symbol, pts).color(color).radius(2.5));
                         }
                         if let Some(x) = marker {
                             p.vline(VLine::new("current job", x).color(Color32::from_rgb(220, 30, 30)));
@@ -282,6 +263,19 @@ mod tests {
     use super::*;
 
     #[test]
+    fn sweeps_follow_the_core_rules_and_say_why_they_refuse() {
+        let settings = SweepSettings::default();
+        let circular_type = Job { path: PathKind::CircularType, ..Job::default() };
+        assert!(settings.jobs(&circular_type).is_empty(), "no silent switch to the elliptical path");
+        let why = settings.refusal(&circular_type).unwrap_or_default();
+        assert!(why.contains("circular-type") && why.contains("elliptical"), "{why}");
+        let jobs = settings.jobs(&Job::default());
+        assert_eq!(jobs.len(), settings.steps);
+        assert!(jobs.iter().all(|(v, j)| j.path == PathKind::Elliptical && j.aspect_ratio == *v));
+        assert_eq!(settings.refusal(&Job::default()), None);
+    }
+
+    #[test]
     fn sweep_runs_in_background_and_can_be_cancelled() {
         let settings = SweepSettings { steps: 5, ..SweepSettings::default() };
         let mut run = SweepRun::start(&settings, &Job::default(), || {});
@@ -292,12 +286,8 @@ mod tests {
         }
         assert_eq!(run.points.len(), 5);
         assert!(run.points.iter().all(|p| p.result.is_ok()));
-        let mrr: Vec<f64> = run
-            .points
-            .iter()
-            .filter_map(|p| p.result.as_ref().ok())
-            .map((|m: &Metrics| m.mrr_mm3_per_min) as fn(&Metrics) -> f64)
-            .collect();
+        let mrr: Vec<f64> =
+            run.points.iter().filter_map(|p| p.result.as_ref().ok()).map(|m| quantity::MRR.of(m)).collect();
         assert!(mrr.windows(2).all(|w| w[0] > w[1]), "MRR falls as r_e grows: {mrr:?}");
 
         let big = SweepSettings { steps: 400, ..SweepSettings::default() };

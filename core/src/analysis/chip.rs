@@ -20,6 +20,9 @@
 //!   radial thickness R − max(t₁, t_s) of the chip over the engaged arc, found by ray sampling
 //!   and golden-section refinement ([`ray_thickness`]).
 //! - A tooth **cuts** when h > [`H_CUT_MM`].
+//! - **Engaged arcs** ([`EngagedArc`]): each engaged interval is kept with the radial chip
+//!   thickness h(φ) = R − max(t₁, t_s) sampled along it at most 1° apart, so later models
+//!   (forces, imprints, variable feed) read h(φ) without recomputing the geometry.
 
 use super::edge::PreviousEdge;
 use crate::geom::{P2, bracketed_root, golden_min, rot90};
@@ -35,8 +38,69 @@ pub const H_CUT_MM: f64 = 1e-6;
 /// Coarse samples across the forward half circle before refinement.
 const COARSE: usize = 17;
 
-/// Analysis of one tooth position.
+/// Largest angular spacing of the thickness samples of an [`EngagedArc`] (rad): 1°.
+pub const ARC_SAMPLE_STEP_RAD: f64 = PI / 180.0;
+
+/// The chip thickness at one angle of an engaged arc.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ThicknessSample {
+    /// Angle φ on the tool circle (rad), see [`EngagedArc`].
+    pub phi_rad: f64,
+    /// Radial chip thickness h(φ) (mm).
+    pub h_mm: f64,
+}
+
+/// One contact arc of the tool edge with uncut material at a tool position, and the chip
+/// thickness along it.
+///
+/// Angles φ are measured on the tool circle from the material-side normal N (the left normal
+/// of the feed direction T) towards T, 0 ≤ φ ≤ π: the edge point at φ is c + R·(N cos φ +
+/// T sin φ), i.e. in the direction `feed_angle_rad + π/2 − φ` of [`ToothSample`].
+///
+/// The thickness is kept as samples, not as a closed form: h(φ) = R − max(t₁(φ), t_s(φ)), the
+/// radial thickness of the chip disc(c_k) \ (disc(c_{k−1}) ∪ swept) along the ray at φ (t₁:
+/// the ray's exit from the previous tooth's disc, t_s: from swept material), the function
+/// whose largest value is the paper's h (eqs. 3–6). Samples lie on an equally spaced grid
+/// from entry to exit at most [`ARC_SAMPLE_STEP_RAD`] apart, plus the angles where the inner
+/// boundary of the chip switches between the previous tooth's circle and the swept edge (the
+/// rays through the previous tooth's engaged-arc ends, point B of Fig. 6), so h(φ) is smooth
+/// between neighbouring samples and the paper's h is one of them.
+/// [`EngagedArc::thickness_at`] interpolates linearly.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct EngagedArc {
+    /// Entry angle φ_in (rad), where the edge enters the material.
+    pub entry_rad: f64,
+    /// Exit angle φ_out (rad), ≥ φ_in.
+    pub exit_rad: f64,
+    /// h(φ) from φ_in to φ_out, by increasing φ (the first at φ_in, the last at φ_out).
+    pub samples: Vec<ThicknessSample>,
+}
+
+impl EngagedArc {
+    /// Angular extent φ_out − φ_in (rad).
+    pub fn sweep_rad(&self) -> f64 {
+        self.exit_rad - self.entry_rad
+    }
+
+    /// h(φ) (mm) by linear interpolation between the samples; 0 outside the arc.
+    pub fn thickness_at(&self, phi: f64) -> f64 {
+        let s = &self.samples;
+        let i = s.partition_point(|x| x.phi_rad < phi);
+        match (i.checked_sub(1).and_then(|j| s.get(j)), s.get(i)) {
+            (_, Some(b)) if b.phi_rad == phi => b.h_mm,
+            (Some(a), Some(b)) => a.h_mm + (b.h_mm - a.h_mm) * (phi - a.phi_rad) / (b.phi_rad - a.phi_rad),
+            _ => 0.0,
+        }
+    }
+
+    /// Largest sampled thickness (mm).
+    pub fn max_thickness_mm(&self) -> f64 {
+        self.samples.iter().map(|x| x.h_mm).fold(0.0, f64::max)
+    }
+}
+
+/// Analysis of one tooth position.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ToothSample {
     /// Time from the start of the cycle (s).
     pub time_s: f64,
@@ -51,6 +115,11 @@ pub struct ToothSample {
     pub engagement_rad: f64,
     /// Whether this tooth removes material (h > [`H_CUT_MM`]).
     pub cutting: bool,
+    /// Direction of the feed T (rad from +x, counter-clockwise).
+    pub feed_angle_rad: f64,
+    /// The engaged arcs in order of φ, with the chip thickness along each (empty when the
+    /// edge touches no material).
+    pub arcs: Vec<EngagedArc>,
 }
 
 /// Engaged arc of one tool position.
@@ -261,12 +330,112 @@ fn radial_thickness(swept: &Swept, f: &Frame, prev_c: Option<P2>, r: f64, centre
         return 0.0;
     }
     let t_s = if centre_swept { bracketed_root(0.0, r, 1e-10, |t| swept.margin(f.c + u * t)) } else { 0.0 };
-    let t_1 = prev_c.map_or(0.0, |pc| {
+    let t_1 = previous_disc_exit(f, prev_c, r, u);
+    (r - t_s.max(t_1)).max(0.0)
+}
+
+/// t₁: distance from the tool centre along the unit direction `u` to the exit from the
+/// previous tooth's disc (0 if there is no previous tooth or the ray starts outside it).
+fn previous_disc_exit(f: &Frame, prev_c: Option<P2>, r: f64, u: P2) -> f64 {
+    prev_c.map_or(0.0, |pc| {
         let d = f.c - pc;
         let b = d.dot(&u);
         (-b + (b * b - d.norm_squared() + r * r).max(0.0).sqrt()).max(0.0)
-    });
+    })
+}
+
+/// The previous tooth as the thickness samples of the current one need it.
+struct PrevTooth {
+    /// Its frame (centre c_{k−1}, feed direction, normal).
+    frame: Frame,
+    /// Its engaged intervals against the current tooth's swept material.
+    intervals: Vec<(f64, f64)>,
+    /// (cos φ'_end, cos φ'_start) of those intervals.
+    cos_intervals: Vec<(f64, f64)>,
+}
+
+impl PrevTooth {
+    fn new(frame: Frame, intervals: Vec<(f64, f64)>) -> PrevTooth {
+        let cos_intervals = intervals.iter().map(|&(a, b)| (b.cos(), a.cos())).collect();
+        PrevTooth { frame, intervals, cos_intervals }
+    }
+
+    /// Whether the point `p` of the previous tooth's circle lies in material that tooth
+    /// engaged: then no swept material lies beyond it on the ray, and t₁ wins.
+    fn engaged_at(&self, p: P2, r: f64) -> bool {
+        let w = (p - self.frame.c) / r;
+        // On the forward half (w·T ≥ 0) cos φ' = w·N falls monotonically with φ'.
+        let cos_phi = w.dot(&self.frame.n);
+        w.dot(&self.frame.t) >= 0.0 && self.cos_intervals.iter().any(|&(lo, hi)| lo <= cos_phi && cos_phi <= hi)
+    }
+
+    /// Angles (rad, in frame `f`) of the rays from `f.c` through the ends of the previous
+    /// tooth's engaged intervals inside the half circle (the points B and their like).
+    fn end_angles(&self, f: &Frame, r: f64) -> Vec<f64> {
+        let ends = self.intervals.iter().flat_map(|&(a, b)| [a, b]).filter(|&x| x > 0.0 && x < PI);
+        ends.map(|x| {
+            let v = self.frame.c + self.frame.dir(x) * r - f.c;
+            v.dot(&f.t).atan2(v.dot(&f.n))
+        })
+        .collect()
+    }
+}
+
+/// [`radial_thickness`] along the unit direction `u` of an angle inside an engaged interval
+/// (so the edge point is in uncut material and that test is skipped), with the same value
+/// where the ray leaves swept material once: t_s is only looked for beyond t₁ (where it can
+/// win) and not where the previous tooth engaged the ray's exit from its disc.
+fn sampled_thickness(swept: &Swept, f: &Frame, prev: Option<&PrevTooth>, r: f64, centre_swept: bool, u: P2) -> f64 {
+    let t_1 = previous_disc_exit(f, prev.map(|p| p.frame.c), r, u);
+    let exit = f.c + u * t_1;
+    let t_s = if centre_swept && !prev.is_some_and(|p| p.engaged_at(exit, r)) && swept.margin(exit) <= 0.0 {
+        bracketed_root(t_1, r, 1e-10, |t| swept.margin(f.c + u * t))
+    } else {
+        0.0
+    };
     (r - t_s.max(t_1)).max(0.0)
+}
+
+/// The engaged intervals of one tool position with h(φ) sampled along each ([`EngagedArc`]).
+fn engaged_arcs(
+    swept: &Swept,
+    f: &Frame,
+    prev: Option<&PrevTooth>,
+    r: f64,
+    intervals: &[(f64, f64)],
+) -> Vec<EngagedArc> {
+    let centre_swept = swept.margin(f.c) <= 0.0;
+    let kinks = prev.map_or_else(Vec::new, |p| p.end_angles(f, r));
+    let h =
+        |phi: f64, u: P2| ThicknessSample { phi_rad: phi, h_mm: sampled_thickness(swept, f, prev, r, centre_swept, u) };
+    intervals
+        .iter()
+        .map(|&(a, b)| {
+            let n = (((b - a) / ARC_SAMPLE_STEP_RAD).ceil() as usize).max(1);
+            let dphi = (b - a) / n as f64;
+            // Directions by repeated rotation through Δφ: (cos φ, sin φ) in (N, T).
+            let (sd, cd) = dphi.sin_cos();
+            let (mut s, mut c) = a.sin_cos();
+            let mut samples = Vec::with_capacity(n + 1 + kinks.len());
+            for i in 0..=n {
+                let phi = a + dphi * i as f64;
+                // Where the arc begins or ends on the edge of swept material (not at the ends
+                // 0 and π of the scanned half circle) the chip has no thickness.
+                let on_edge = (i == 0 && a > 0.0) || (i == n && b < PI);
+                samples.push(if on_edge {
+                    ThicknessSample { phi_rad: phi, h_mm: 0.0 }
+                } else {
+                    h(phi, f.n * c + f.t * s)
+                });
+                (c, s) = (c * cd - s * sd, s * cd + c * sd);
+            }
+            for &k in kinks.iter().filter(|&&k| k > a && k < b) {
+                let at = samples.partition_point(|x| x.phi_rad < k);
+                samples.insert(at, h(k, f.dir(k)));
+            }
+            EngagedArc { entry_rad: a, exit_rad: b, samples }
+        })
+        .collect()
 }
 
 /// Outline of the chip cut by the tooth at arc length `s` (mm from the cycle start, steady
@@ -323,8 +492,30 @@ pub fn tooth_series(cycle: &Cycle, edge: &PreviousEdge, r: f64, f_z: f64, feed_m
     let frames: Vec<(f64, Frame)> =
         positions.into_iter().map(|(s, pos)| (s, Frame::at(cycle, pos, P2::zeros()))).collect();
     let engaged: Vec<Engagement> = frames.par_iter().map(|(s, f)| engagement(&swept(*s, &early), f, r)).collect();
+    // The engaged arcs with h(φ) along them: independent given the previous tooth's frame and
+    // intervals, so again in parallel.
+    let half = |s: f64| s >= 0.5 * len;
+    let arcs: Vec<Vec<EngagedArc>> = (0..frames.len())
+        .into_par_iter()
+        .map(|i| {
+            let (s, f) = &frames[i];
+            if engaged[i].intervals.is_empty() {
+                return Vec::new();
+            }
+            let swept = swept(*s, &early);
+            // The previous tooth's intervals against this tooth's swept material: its own,
+            // except across the switch to the early sweep (and for tooth −1) found again.
+            let prev = match i.checked_sub(1) {
+                Some(j) if half(frames[j].0) == half(*s) => Some((frames[j].1, engaged[j].intervals.clone())),
+                Some(j) => Some((frames[j].1, engagement(&swept, &frames[j].1, r).intervals)),
+                None => prev.as_ref().map(|(pf, _)| (*pf, engagement(&swept, pf, r).intervals)),
+            };
+            let prev = prev.map(|(frame, iv)| PrevTooth::new(frame, iv));
+            engaged_arcs(&swept, f, prev.as_ref(), r, &engaged[i].intervals)
+        })
+        .collect();
     let mut out = Vec::with_capacity(frames.len());
-    for ((s, f), e) in frames.iter().zip(engaged) {
+    for (((s, f), e), arcs) in frames.iter().zip(engaged).zip(arcs) {
         let (s, f) = (*s, *f);
         let mut h: f64 = 0.0;
         if e.angle > 0.0 {
@@ -351,8 +542,79 @@ pub fn tooth_series(cycle: &Cycle, edge: &PreviousEdge, r: f64, f_z: f64, feed_m
             h_mm: h,
             engagement_rad: e.angle,
             cutting: h > H_CUT_MM,
+            feed_angle_rad: f.t.y.atan2(f.t.x),
+            arcs,
         });
         prev = Some((f, e));
     }
     out
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+mod tests {
+    use super::*;
+    use crate::{Job, PathKind};
+
+    /// The engaged arcs against the h computation: samples at most 1° apart, each equal to
+    /// [`radial_thickness`] at its angle, and h (eqs. 3–6) the largest radial thickness over
+    /// the arcs (found on a 0.01° grid), so the samples' maximum is h up to the 1° sampling.
+    #[test]
+    fn engaged_arcs_sample_the_radial_thickness_whose_maximum_is_h() {
+        for job in [
+            Job::default(),
+            Job { path: PathKind::Elliptical, aspect_ratio: 0.6, ..Job::default() },
+            Job { path: PathKind::LinearElliptical, aspect_ratio: 0.8, linear_distance: 0.75, ..Job::default() },
+            Job { path: PathKind::CircularType, ..Job::default() },
+        ] {
+            let job = job.validate().expect("valid");
+            let cycle = Cycle::for_job(&job);
+            let (r, f_z) = (job.tool_radius(), job.f_z());
+            let edge = PreviousEdge::new(&cycle, r);
+            let series = tooth_series(&cycle, &edge, r, f_z, job.feed / 60.0);
+            let early = EarlySweep::new(&cycle, P2::zeros(), r, 0.25);
+            let len = cycle.length();
+            let positions = cycle.positions(0.0, f_z);
+            let (mut checked, mut agree) = (0, 0);
+            for k in 1..series.len() {
+                let t = &series[k];
+                if t.arcs.is_empty() || t.h_mm < 1e-3 {
+                    continue;
+                }
+                let f = Frame::at(&cycle, positions[k].1, P2::zeros());
+                let prev = Frame::at(&cycle, positions[k - 1].1, P2::zeros()).c;
+                let swept = Swept { edge: &edge, early: (t.s_mm >= 0.5 * len).then_some(&early) };
+                let centre_swept = swept.margin(f.c) <= 0.0;
+                let exact = |phi| radial_thickness(&swept, &f, Some(prev), r, centre_swept, phi);
+                let (mut sampled_max, mut fine_max) = (0.0f64, 0.0f64);
+                for arc in &t.arcs {
+                    let grid = arc.samples.iter().filter(|x| x.phi_rad > arc.entry_rad && x.phi_rad < arc.exit_rad);
+                    for x in grid {
+                        let h = exact(x.phi_rad);
+                        assert!((x.h_mm - h).abs() < 1e-9, "tooth {k} φ {}: {} vs {h}", x.phi_rad, x.h_mm);
+                        assert!((arc.thickness_at(x.phi_rad) - x.h_mm).abs() < 1e-12);
+                    }
+                    for w in arc.samples.windows(2) {
+                        assert!(w[1].phi_rad - w[0].phi_rad <= ARC_SAMPLE_STEP_RAD + 1e-12, "spacing");
+                    }
+                    sampled_max = sampled_max.max(arc.max_thickness_mm());
+                    let m = (arc.sweep_rad() / 0.01f64.to_radians()).ceil() as usize;
+                    for i in 0..=m {
+                        fine_max = fine_max.max(exact(arc.entry_rad + arc.sweep_rad() * i as f64 / m as f64));
+                    }
+                }
+                // Tolerance: 0.2 % or 10 nm.
+                let tol = (2e-3 * t.h_mm).max(1e-5);
+                assert!(sampled_max <= fine_max + tol, "tooth {k}: a sample above the largest thickness");
+                if (fine_max - t.h_mm).abs() <= tol && (sampled_max - t.h_mm).abs() <= tol {
+                    agree += 1;
+                } else {
+                    eprintln!("{:?} tooth {k}: h {} sampled {sampled_max} fine {fine_max}", job.path, t.h_mm);
+                }
+                checked += 1;
+            }
+            assert!(checked > 50, "{:?}: {checked} teeth checked", job.path);
+            assert!(agree * 100 >= 95 * checked, "{:?}: h is the sampled maximum for {agree} of {checked}", job.path);
+        }
+    }
 }

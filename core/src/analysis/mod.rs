@@ -1,12 +1,13 @@
 //! Analysis of a slot path in the steady state: chip thickness and engagement per tooth,
-//! cycle metrics, wall waviness and the engagement-limited step.
+//! cycle metrics, wall waviness and the two-circle step limits (the engagement-limited step of
+//! a job's own path plans the job again, so it lives in [`crate::plan`]).
 
 pub mod chip;
 pub mod edge;
 pub mod step;
 pub mod waviness;
 
-pub use chip::{H_CUT_MM, ToothSample, tooth_series};
+pub use chip::{ARC_SAMPLE_STEP_RAD, EngagedArc, H_CUT_MM, ToothSample, tooth_series};
 pub use edge::PreviousEdge;
 pub use waviness::{Wall, WallProfile, wall_profile};
 

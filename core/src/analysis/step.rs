@@ -30,34 +30,6 @@ pub fn max_engagement_for_step(b_w: f64, d: f64, p: f64) -> f64 {
     ((k * k - rho * rho - r * r) / (2.0 * rho * r)).clamp(-1.0, 1.0).acos()
 }
 
-/// Largest step s (mm) for which the job's own path keeps the maximum engagement over a
-/// steady-state cycle at or below `limit_rad`, by bisection on s with the full analysis
-/// (the engagement grows with s). Works for every path type; for the circular-type path it
-/// reproduces [`step_for_engagement`] (tested). Returns the bracket's lower end after 30
-/// halvings (|error| < upper bound · 2⁻³⁰).
-pub fn engagement_limited_step(job: &crate::Job, limit_rad: f64) -> Result<f64, crate::JobError> {
-    use crate::JobError;
-    if !(limit_rad.is_finite() && limit_rad > 0.0 && limit_rad < std::f64::consts::PI) {
-        return Err(JobError::range("engagement-limit", limit_rad.to_degrees(), "between 0° and 180° (exclusive)"));
-    }
-    let valid = job.validate()?;
-    // Upper end: the validation limits for s (below D and below π·b).
-    let hi_limit = valid.tool_diameter.min(std::f64::consts::PI * valid.b()) * 0.999;
-    let engagement = |s: f64| -> Result<f64, JobError> {
-        let j = crate::Job { step: s, slot_length: job.slot_length.max(s), ..job.clone() };
-        Ok(crate::plan(&j)?.metrics.engagement_max_deg.to_radians())
-    };
-    let (mut lo, mut hi) = (0.0, hi_limit);
-    if engagement(hi)? <= limit_rad {
-        return Ok(hi);
-    }
-    for _ in 0..30 {
-        let mid = 0.5 * (lo + hi);
-        if engagement(mid)? <= limit_rad { lo = mid } else { hi = mid }
-    }
-    Ok(lo)
-}
-
 #[cfg(test)]
 #[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 mod tests {

@@ -2,18 +2,25 @@
 //! emitter ([`super::writer`]) reads it (design.md "dialects as data").
 
 use crate::error::JobError;
+use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 
-/// Target controller family.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+/// Target controller family. Serialised by its CLI name; the GUI's older spellings (the
+/// variant names) still load.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum Dialect {
     /// LinuxCNC RS274NGC (named parameters, O-word loops).
+    #[default]
+    #[serde(rename = "linuxcnc", alias = "LinuxCnc")]
     LinuxCnc,
     /// Fanuc-style ISO: `%`, program number, I/J incremental, decimal points always written.
+    #[serde(rename = "fanuc", alias = "Fanuc")]
     Fanuc,
     /// GRBL 1.1: no O-words, no tool change, at most a half circle per arc block.
+    #[serde(rename = "grbl", alias = "Grbl")]
     Grbl,
     /// Siemens Sinumerik 840D: `;` comments, G71 metric, R-parameters, labels and GOTOB.
+    #[serde(rename = "sinumerik", alias = "Sinumerik")]
     Sinumerik,
 }
 
@@ -51,6 +58,12 @@ pub enum LoopStyle {
 pub struct DialectSpec {
     /// CLI name.
     pub name: &'static str,
+    /// Name for people (GUI).
+    pub label: &'static str,
+    /// What marks the dialect's programs (GUI tooltip).
+    pub about: &'static str,
+    /// File extension of its programs, without the dot.
+    pub extension: &'static str,
     /// Decimals of coordinates (mm); the quantum is 10^-decimals.
     pub decimals: u32,
     pub comment: CommentStyle,
@@ -78,6 +91,9 @@ pub struct DialectSpec {
 
 const LINUXCNC: DialectSpec = DialectSpec {
     name: "linuxcnc",
+    label: "LinuxCNC",
+    about: "RS274NGC: G64 P blending at the tolerance, O-word while loop available.",
+    extension: "ngc",
     decimals: 4,
     comment: CommentStyle::Parens,
     program_start: &[],
@@ -93,6 +109,9 @@ const LINUXCNC: DialectSpec = DialectSpec {
 
 const FANUC: DialectSpec = DialectSpec {
     name: "fanuc",
+    label: "Fanuc-style ISO",
+    about: "Fanuc-style ISO: % tape marks, program number O1000, 3 decimals.",
+    extension: "nc",
     decimals: 3,
     comment: CommentStyle::Parens,
     program_start: &["%", "O1000"],
@@ -107,6 +126,9 @@ const FANUC: DialectSpec = DialectSpec {
 
 const GRBL: DialectSpec = DialectSpec {
     name: "grbl",
+    label: "GRBL",
+    about: "GRBL 1.1: no tool change or loops; arcs split into half circles at most.",
+    extension: "gcode",
     decimals: 3,
     comment: CommentStyle::Parens,
     program_start: &[],
@@ -121,6 +143,9 @@ const GRBL: DialectSpec = DialectSpec {
 
 const SINUMERIK: DialectSpec = DialectSpec {
     name: "sinumerik",
+    label: "Sinumerik 840D",
+    about: "Siemens Sinumerik 840D: ; comments, G71, R-parameter loop available.",
+    extension: "mpf",
     decimals: 3,
     comment: CommentStyle::Semicolon,
     program_start: &[],
@@ -151,6 +176,21 @@ impl Dialect {
     /// CLI name.
     pub fn name(self) -> &'static str {
         self.spec().name
+    }
+
+    /// Name for people (GUI radio buttons).
+    pub fn label(self) -> &'static str {
+        self.spec().label
+    }
+
+    /// What marks the dialect's programs (GUI tooltip).
+    pub fn about(self) -> &'static str {
+        self.spec().about
+    }
+
+    /// File extension of its programs, without the dot.
+    pub fn extension(self) -> &'static str {
+        self.spec().extension
     }
 
     /// Parse a CLI name.
@@ -253,5 +293,15 @@ mod tests {
         }
         let err = Dialect::from_name("heidenhain").expect_err("unknown");
         assert_eq!(err.parameter(), Some("dialect"));
+    }
+
+    #[test]
+    fn dialects_serialise_by_name_and_old_gui_spellings_load() {
+        for (d, old) in Dialect::ALL.into_iter().zip(["\"LinuxCnc\"", "\"Fanuc\"", "\"Grbl\"", "\"Sinumerik\""]) {
+            assert_eq!(serde_json::to_string(&d).expect("json"), format!("\"{}\"", d.name()));
+            assert_eq!(serde_json::from_str::<Dialect>(old).expect("old spelling"), d);
+            assert_eq!(serde_json::from_str::<Dialect>(&format!("\"{}\"", d.name())).expect("name"), d);
+        }
+        assert_eq!(Dialect::Sinumerik.extension(), "mpf");
     }
 }

@@ -1,0 +1,343 @@
+//! Quantities as data: every metric of a plan ([`Metric`], read from [`Metrics`]) and every
+//! column of the per-tooth series ([`SeriesColumn`], read from [`ToothSample`]) with its key
+//! (the CLI's JSON and CSV name), label, unit, explanation and source, once.
+//!
+//! The front ends read these tables: the CLI's `analyze` JSON writes [`METRICS`], its sweep
+//! table and series CSV the entries they list, the GUI's metrics, compare and sweep panels
+//! the entries they show. Adding a quantity: its field in [`Metrics`] (or [`ToothSample`]),
+//! one entry here (a `const` and its line in [`METRICS`] or [`SERIES`]), and one line in each
+//! front end that shows it.
+
+use crate::analysis::ToothSample;
+use crate::plan::Metrics;
+
+/// One metric of a plan.
+#[derive(Debug)]
+pub struct Metric {
+    /// Name in the CLI's `analyze` JSON and sweep CSV (the [`Metrics`] field).
+    pub key: &'static str,
+    /// Short label as the paper writes it (GUI rows, legends, table headers).
+    pub symbol: &'static str,
+    /// Unit ("" for a pure number); "°" is written without a space.
+    pub unit: &'static str,
+    /// What it is and where it comes from (paper equation, figure or table): the tooltip.
+    pub about: &'static str,
+    /// Decimals shown in the GUI.
+    pub decimals: usize,
+    /// A count: written as a whole number (JSON integer).
+    pub whole: bool,
+    /// Whether a larger value is better (`None`: neither), for colouring comparisons.
+    pub higher_is_better: Option<bool>,
+    /// Its value in a plan's metrics.
+    pub value: fn(&Metrics) -> f64,
+}
+
+impl Metric {
+    /// A metric that is no count and neither better larger nor smaller.
+    pub const fn new(
+        key: &'static str,
+        symbol: &'static str,
+        unit: &'static str,
+        decimals: usize,
+        value: fn(&Metrics) -> f64,
+        about: &'static str,
+    ) -> Metric {
+        Metric { key, symbol, unit, about, decimals, whole: false, higher_is_better: None, value }
+    }
+
+    /// The same metric, a count.
+    pub const fn whole(self) -> Metric {
+        Metric { whole: true, ..self }
+    }
+
+    /// The same metric, better when larger.
+    pub const fn higher_is_better(self) -> Metric {
+        Metric { higher_is_better: Some(true), ..self }
+    }
+
+    /// The same metric, better when smaller.
+    pub const fn lower_is_better(self) -> Metric {
+        Metric { higher_is_better: Some(false), ..self }
+    }
+
+    /// The value in `m`.
+    pub fn of(&self, m: &Metrics) -> f64 {
+        (self.value)(m)
+    }
+
+    /// The value in `m` with the GUI's decimals and the unit, e.g. "0.0581 mm", "51.5°", "32".
+    pub fn display(&self, m: &Metrics) -> String {
+        let v = format!("{:.*}", self.decimals, self.of(m));
+        match self.unit {
+            "" => v,
+            "°" => format!("{v}°"),
+            unit => format!("{v} {unit}"),
+        }
+    }
+
+    /// "symbol [unit]", or the symbol alone for a pure number (table headers, axis labels).
+    pub fn heading(&self) -> String {
+        if self.unit.is_empty() { self.symbol.to_owned() } else { format!("{} [{}]", self.symbol, self.unit) }
+    }
+}
+
+pub const CYCLE_LENGTH: Metric = Metric::new(
+    "cycle_length_mm",
+    "cycle length",
+    "mm",
+    3,
+    |m| m.cycle_length_mm,
+    "Path length of one cycle (Fig. 5).",
+)
+.lower_is_better();
+pub const T_CYCLE: Metric =
+    Metric::new("t_cycle_s", "t_cycle", "s", 3, |m| m.t_cycle_s, "t_cycle = cycle length / f_r (Table 2).")
+        .lower_is_better();
+pub const MRR: Metric =
+    Metric::new("mrr_mm3_per_min", "MRR", "mm³/min", 0, |m| m.mrr_mm3_per_min, "MRR = B·s·a_p / t_cycle (Table 2).")
+        .higher_is_better();
+pub const F_Z: Metric = Metric::new("f_z_mm", "f_z", "mm", 4, |m| m.f_z_mm, "Feed per tooth f_z = f_r/(n·z).");
+pub const H_MAX: Metric = Metric::new(
+    "h_max_mm",
+    "h_max",
+    "mm",
+    4,
+    |m| m.h_max_mm,
+    "Largest local maximum chip thickness over a steady-state cycle, eqs. (3)–(6) (Table 2).",
+)
+.lower_is_better();
+pub const T_HMAX: Metric =
+    Metric::new("t_hmax_s", "t_hmax", "s", 3, |m| m.t_hmax_s, "Time from the start of cutting to h_max (Table 2).");
+pub const T_COOLING: Metric = Metric::new(
+    "t_cooling_s",
+    "t_cooling",
+    "s",
+    3,
+    |m| m.t_cooling_s,
+    "Time per cycle in which no tooth cuts (Table 2).",
+)
+.higher_is_better();
+pub const ENGAGEMENT_MAX: Metric = Metric::new(
+    "engagement_max_deg",
+    "max engagement",
+    "°",
+    1,
+    |m| m.engagement_max_deg,
+    "Largest engagement angle; recommended ≤ 46° (Grechishnikov et al. 2017).",
+)
+.lower_is_better();
+pub const WAVINESS_LEFT: Metric = Metric::new(
+    "waviness_left_mm",
+    "W_l",
+    "mm",
+    4,
+    |m| m.waviness_left_mm,
+    "Left (−x) wall waviness, peak to valley (section 2.3, Fig. 9).",
+)
+.lower_is_better();
+pub const WAVINESS_RIGHT: Metric = Metric::new(
+    "waviness_right_mm",
+    "W_r",
+    "mm",
+    4,
+    |m| m.waviness_right_mm,
+    "Right (+x) wall waviness, peak to valley (section 2.3, Fig. 9).",
+)
+.lower_is_better();
+pub const A: Metric =
+    Metric::new("a_mm", "a", "mm", 3, |m| m.a_mm, "Trochoidal radius a = (B − D)/2 (major semi-axis).");
+pub const B: Metric =
+    Metric::new("b_mm", "b", "mm", 3, |m| m.b_mm, "b = r_e·a, eq. (2) (minor semi-axis along the slot).");
+pub const ASPECT_RATIO: Metric =
+    Metric::new("aspect_ratio", "r_e", "", 2, |m| m.aspect_ratio, "Aspect ratio r_e = b/a, eq. (2).");
+pub const LINEAR_DISTANCE: Metric = Metric::new(
+    "linear_distance_mm",
+    "d",
+    "mm",
+    2,
+    |m| m.linear_distance_mm,
+    "Linear distance d along each wall (section 3, linear-elliptical path).",
+);
+pub const STEP: Metric = Metric::new("step_mm", "s", "mm", 3, |m| m.step_mm, "Trochoidal step s: advance per cycle.");
+pub const CYCLES: Metric = Metric::new(
+    "cycles",
+    "cycles",
+    "",
+    0,
+    |m| m.cycles as f64,
+    "Number of cycles from outside the stock to beyond the slot end.",
+)
+.whole();
+pub const PATH_LENGTH: Metric =
+    Metric::new("path_length_mm", "path length", "mm", 1, |m| m.path_length_mm, "Whole tool-centre path length.");
+pub const MACHINING_TIME: Metric = Metric::new(
+    "machining_time_s",
+    "machining time",
+    "s",
+    1,
+    |m| m.machining_time_s,
+    "Whole path at the feed rate f_r.",
+);
+pub const TEETH_PER_CYCLE: Metric = Metric::new(
+    "teeth_per_cycle",
+    "teeth per cycle",
+    "",
+    1,
+    |m| m.teeth_per_cycle,
+    "Tooth positions per cycle: cycle length / f_z.",
+);
+pub const STEP_LIMIT_46DEG: Metric = Metric::new(
+    "step_limit_46deg_mm",
+    "step for 46°",
+    "mm",
+    3,
+    |m| m.step_limit_46deg_mm,
+    "Largest step keeping the engagement ≤ 46° (two-circle model, Wu et al. 2016 eqs. 2–6).",
+);
+pub const STEP_LIMIT_15PCT_DEPTH: Metric = Metric::new(
+    "step_limit_15pct_depth_mm",
+    "step for 15 % D",
+    "mm",
+    3,
+    |m| m.step_limit_15pct_depth_mm,
+    "Largest step for a straight-cut-equivalent depth of 15 % of D (Grechishnikov et al. 2017).",
+);
+
+/// Every numeric metric of [`Metrics`] (all its fields but the path kind), in field order.
+pub const METRICS: [&Metric; 21] = [
+    &CYCLE_LENGTH,
+    &T_CYCLE,
+    &MRR,
+    &F_Z,
+    &H_MAX,
+    &T_HMAX,
+    &T_COOLING,
+    &ENGAGEMENT_MAX,
+    &WAVINESS_LEFT,
+    &WAVINESS_RIGHT,
+    &A,
+    &B,
+    &ASPECT_RATIO,
+    &LINEAR_DISTANCE,
+    &STEP,
+    &CYCLES,
+    &PATH_LENGTH,
+    &MACHINING_TIME,
+    &TEETH_PER_CYCLE,
+    &STEP_LIMIT_46DEG,
+    &STEP_LIMIT_15PCT_DEPTH,
+];
+
+/// The results of a steady-state cycle the paper compares paths by (Table 2, Figs. 5, 9):
+/// cycle length and time, MRR, chip thickness and its timing, engagement, wall waviness.
+pub const CYCLE_RESULTS: [&Metric; 9] =
+    [&CYCLE_LENGTH, &T_CYCLE, &MRR, &H_MAX, &T_HMAX, &T_COOLING, &ENGAGEMENT_MAX, &WAVINESS_LEFT, &WAVINESS_RIGHT];
+
+/// One column of the per-tooth series of a steady-state cycle.
+#[derive(Debug)]
+pub struct SeriesColumn {
+    /// Column name in the CLI's series CSV.
+    pub key: &'static str,
+    /// Short label (GUI axes and legends).
+    pub symbol: &'static str,
+    /// Unit ("" for a pure number or a flag).
+    pub unit: &'static str,
+    /// What it is and where it comes from.
+    pub about: &'static str,
+    /// Decimals written in the CSV.
+    pub decimals: usize,
+    /// Its value for one tooth (a flag as 0 or 1).
+    pub value: fn(&ToothSample) -> f64,
+}
+
+impl SeriesColumn {
+    /// A column.
+    pub const fn new(
+        key: &'static str,
+        symbol: &'static str,
+        unit: &'static str,
+        decimals: usize,
+        value: fn(&ToothSample) -> f64,
+        about: &'static str,
+    ) -> SeriesColumn {
+        SeriesColumn { key, symbol, unit, about, decimals, value }
+    }
+
+    /// The value for `t`.
+    pub fn of(&self, t: &ToothSample) -> f64 {
+        (self.value)(t)
+    }
+
+    /// The value for `t` as the CSV writes it.
+    pub fn csv(&self, t: &ToothSample) -> String {
+        format!("{:.*}", self.decimals, self.of(t))
+    }
+}
+
+pub const TIME: SeriesColumn =
+    SeriesColumn::new("time_s", "t", "s", 6, |t| t.time_s, "Time from the start of the cycle.");
+pub const H: SeriesColumn = SeriesColumn::new(
+    "h_mm",
+    "h",
+    "mm",
+    7,
+    |t| t.h_mm,
+    "Local maximum chip thickness of the tooth, eqs. (3)–(6), Fig. 6.",
+);
+pub const ENGAGEMENT: SeriesColumn = SeriesColumn::new(
+    "engagement_deg",
+    "engagement",
+    "°",
+    4,
+    |t| t.engagement_rad.to_degrees(),
+    "Engagement angle: angular extent of the tool edge in uncut material.",
+);
+pub const CUTTING: SeriesColumn = SeriesColumn::new(
+    "cutting",
+    "cutting",
+    "",
+    0,
+    |t| f64::from(u8::from(t.cutting)),
+    "1 if the tooth removes material (h above the numeric noise floor), else 0.",
+);
+pub const S: SeriesColumn =
+    SeriesColumn::new("s_mm", "s", "mm", 6, |t| t.s_mm, "Arc length from the start of the cycle.");
+pub const X: SeriesColumn =
+    SeriesColumn::new("x_mm", "x", "mm", 6, |t| t.x_mm, "Tool centre x, cycle origin at (0, 0).");
+pub const Y: SeriesColumn =
+    SeriesColumn::new("y_mm", "y", "mm", 6, |t| t.y_mm, "Tool centre y, cycle origin at (0, 0).");
+
+/// The columns of the series CSV, in order.
+pub const SERIES: [&SeriesColumn; 7] = [&TIME, &H, &ENGAGEMENT, &CUTTING, &S, &X, &Y];
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+mod tests {
+    use super::*;
+    use crate::{Job, plan};
+
+    /// The table covers every numeric field of [`Metrics`] under its serialised name, with
+    /// the value of that field.
+    #[test]
+    fn metrics_table_is_the_metrics_struct() {
+        let m = plan(&Job::default()).expect("plan").metrics;
+        let json = serde_json::to_value(&m).expect("json");
+        let fields = json.as_object().expect("object");
+        assert_eq!(fields.len(), METRICS.len() + 1, "every field but `path` has an entry");
+        for q in METRICS {
+            let v = fields.get(q.key).and_then(serde_json::Value::as_f64);
+            assert_eq!(v, Some(q.of(&m)), "{}", q.key);
+            assert_eq!(q.whole, fields[q.key].is_u64(), "{}", q.key);
+        }
+    }
+
+    #[test]
+    fn display_and_heading_follow_the_unit() {
+        let m = plan(&Job::default()).expect("plan").metrics;
+        assert_eq!(F_Z.display(&m), "0.0750 mm");
+        assert_eq!(CYCLES.display(&m), m.cycles.to_string());
+        assert!(ENGAGEMENT_MAX.display(&m).ends_with('°'));
+        assert_eq!(MRR.heading(), "MRR [mm³/min]");
+        assert_eq!(ASPECT_RATIO.heading(), "r_e");
+    }
+}
