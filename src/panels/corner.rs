@@ -18,8 +18,8 @@ use super::params::ERROR_COLOR;
 use eframe::egui::{self, Color32, DragValue, RichText, Slider, SliderClamping};
 use egui_plot::{HLine, Legend, Line, Plot, PlotPoints};
 use serde::{Deserialize, Serialize};
+use crate::worker::{Keep, Task, Worker};
 use std::sync::Arc;
-use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
 use trochoplan_core::corner::{self, CornerMethod, CornerReport, CornerRequest, EngagementProfile, parse_points};
 use trochoplan_core::geom::{Polygon, Segment};
 use trochoplan_core::pocket::{self, MoveKind, PocketPlan, PocketRequest, PocketStrategy};
@@ -301,10 +301,15 @@ fn profile_points(p: &EngagementProfile) -> Vec<[f64; 2]> {
     p.samples.iter().map(|s| [s.s_mm, s.angle_rad.to_degrees()]).collect()
 }
 
-type Answer = (CornerInputs, Result<Outcome, String>);
+/// The corner tab's worker: inputs in, their plan (or why they are invalid) out.
+type CornerWorker = Worker<CornerInputs, Result<Outcome, String>>;
 
-/// The last corner result, its error, and (in the window) the worker thread computing it.
-#[derive(Default)]
+/// Plan `inputs` in their mode.
+fn plan_job(inputs: CornerInputs, task: &Task<Result<Outcome, String>>) {
+    task.send(compute_any(&inputs));
+}
+
+/// The last corner result, its error, and the worker computing it.
 pub struct CornerView {
     /// The acceptance table (its own worker thread).
     pub table: TableView,
@@ -316,11 +321,19 @@ pub struct CornerView {
     pub error: Option<String>,
     /// Inputs of the newest request.
     requested: Option<CornerInputs>,
-    /// Inputs whose answer is shown.
-    answered: Option<CornerInputs>,
     /// Completed plans (for the tests and the status line).
     pub replans: usize,
-    worker: Option<(Sender<CornerInputs>, Receiver<Answer>)>,
+    /// Plans inline or on its own thread; an answer overtaken by a newer request is still shown
+    /// if it is newer than the one on screen ([`Keep::Newer`]), so the view follows a dragged
+    /// slider.
+    worker: CornerWorker,
+}
+
+impl Default for CornerView {
+    /// A view planning inline (the tests).
+    fn default() -> Self {
+        CornerView::with_worker(Worker::inline(Keep::Newer, plan_job), TableView::default())
+    }
 }
 
 impl CornerView {
@@ -329,43 +342,34 @@ impl CornerView {
         let repaint = Arc::new(repaint);
         let table_repaint = repaint.clone();
         let table = TableView::new(CornerRequest::DEFAULT.spacing_mm, move || table_repaint());
-        let (req_tx, req_rx) = channel::<CornerInputs>();
-        let (ans_tx, ans_rx) = channel::<Answer>();
-        let spawned = std::thread::Builder::new().name("corner".into()).spawn(move || {
-            while let Ok(mut inputs) = req_rx.recv() {
-                // keep only the newest request
-                while let Ok(newer) = req_rx.try_recv() {
-                    inputs = newer;
-                }
-                let result = compute_any(&inputs);
-                if ans_tx.send((inputs, result)).is_err() {
-                    break;
-                }
-                repaint();
-            }
-        });
-        CornerView { worker: spawned.ok().map(|_| (req_tx, ans_rx)), table, ..CornerView::default() }
+        CornerView::with_worker(Worker::threaded("corner", Keep::Newer, plan_job, move || repaint()), table)
+    }
+
+    fn with_worker(worker: CornerWorker, table: TableView) -> CornerView {
+        CornerView { table, last: None, last_pocket: None, error: None, requested: None, replans: 0, worker }
     }
 
     /// True while a request is being planned.
     pub fn pending(&self) -> bool {
-        self.requested.is_some() && self.requested != self.answered
+        self.worker.running()
     }
 
-    fn accept(&mut self, (inputs, result): Answer) {
-        self.replans += 1;
-        match result {
-            Ok(Outcome::Corner(r)) => {
-                self.last = Some(r);
-                self.error = None;
-            }
-            Ok(Outcome::Pocket(r)) => {
-                self.last_pocket = Some(r);
-                self.error = None;
-            }
-            Err(e) => self.error = Some(e),
+    /// Show the answers that arrived.
+    fn poll(&mut self) {
+        for answer in self.worker.poll() {
+            self.replans += 1;
+            self.error = match answer {
+                Ok(Outcome::Corner(r)) => {
+                    self.last = Some(r);
+                    None
+                }
+                Ok(Outcome::Pocket(r)) => {
+                    self.last_pocket = Some(r);
+                    None
+                }
+                Err(e) => Some(e),
+            };
         }
-        self.answered = Some(inputs);
     }
 
     /// Collect answers and ask for a plan of `inputs` if they changed; in the table mode, ask
@@ -375,33 +379,13 @@ impl CornerView {
             self.table.update(inputs.request().settings().map_err(|e| e.to_string()));
             return;
         }
-        let mut answers = Vec::new();
-        if let Some((_, rx)) = &self.worker {
-            loop {
-                match rx.try_recv() {
-                    Ok(a) => answers.push(a),
-                    Err(TryRecvError::Empty) => break,
-                    Err(TryRecvError::Disconnected) => {
-                        self.worker = None;
-                        break;
-                    }
-                }
-            }
-        }
-        for a in answers {
-            self.accept(a);
-        }
+        self.poll();
         if self.requested.as_ref() == Some(inputs) {
             return;
         }
         self.requested = Some(inputs.clone());
-        match &self.worker {
-            Some((tx, _)) if tx.send(inputs.clone()).is_ok() => {}
-            _ => {
-                let r = compute_any(inputs);
-                self.accept((inputs.clone(), r));
-            }
-        }
+        self.worker.request(inputs.clone());
+        self.poll();
     }
 }
 

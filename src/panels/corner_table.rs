@@ -5,7 +5,7 @@
 //!
 //! The core computes each angle's rows (`acceptance_rows_at`, the plain ring measured once and
 //! shared) and says whether they pass (`AcceptanceRow::passes`); this module only runs it on a
-//! worker thread, angle by angle, and draws the rows. A whole table takes about 10 s, so the
+//! [`Worker`] thread, angle by angle, and draws the rows. A whole table takes about 10 s, so the
 //! newest settings win: a change restarts the table, *Cancel* stops it between two angles.
 
 use super::Command;
@@ -13,9 +13,7 @@ use super::corner::PLAIN_COLOR;
 use super::params::ERROR_COLOR;
 use eframe::egui::{self, Color32, RichText};
 use egui_plot::{HLine, Legend, Line, LineStyle, Plot, PlotPoints, Points};
-use std::sync::Arc;
-use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
+use crate::worker::{Keep, Task, Worker};
 use trochoplan_core::corner::acceptance::{ANGLES_DEG, AcceptanceRow, MARGIN_DEG, STRATEGIES, acceptance_rows_at};
 use trochoplan_core::corner::{CornerRequest, CornerSettings};
 
@@ -38,14 +36,22 @@ pub struct AngleRows {
     pub rows: Result<Vec<AcceptanceRow>, String>,
 }
 
-struct Request {
-    generation: u64,
-    settings: CornerSettings,
-    spacing_mm: f64,
-}
+/// The table's request: the settings and the spacing of the evaluated tool positions (mm).
+type Request = (CornerSettings, f64);
 
-type Message = (u64, AngleRows);
-type Repaint = Arc<dyn Fn() + Send + Sync>;
+/// Measure angle after angle, one [`AngleRows`] each, stopping between two angles as soon as a
+/// newer request (or a cancel) supersedes this one.
+fn measure((settings, spacing_mm): Request, task: &Task<AngleRows>) {
+    for &angle_deg in &ANGLES_DEG {
+        if task.cancelled() {
+            return;
+        }
+        let rows = acceptance_rows_at(angle_deg, &STRATEGIES, settings, spacing_mm).map_err(|e| e.to_string());
+        if !task.send(AngleRows { angle_deg, rows }) {
+            return;
+        }
+    }
+}
 
 /// The table for the newest settings: rows as they arrive, progress, cancel.
 pub struct TableView {
@@ -61,16 +67,14 @@ pub struct TableView {
     pub error: Option<String>,
     /// The user stopped the table before it was complete.
     pub cancelled: bool,
-    generation: u64,
-    /// Generation the worker should be computing; it stops an older one between two angles.
-    latest: Arc<AtomicU64>,
-    worker: Option<(Sender<Request>, Receiver<Message>)>,
-    repaint: Repaint,
+    /// Measures the newest request's angles on its own thread ([`Keep::Newest`]: no row of an
+    /// older request joins the table).
+    worker: Worker<Request, AngleRows>,
 }
 
 impl TableView {
-    /// A table measuring every `spacing_mm` along the paths; `repaint` is called after each
-    /// angle. The worker thread starts with the first request.
+    /// A table measuring every `spacing_mm` along the paths on its own thread; `repaint` is
+    /// called after each angle.
     pub fn new(spacing_mm: f64, repaint: impl Fn() + Send + Sync + 'static) -> TableView {
         TableView {
             spacing_mm,
@@ -79,10 +83,7 @@ impl TableView {
             angles: Vec::new(),
             error: None,
             cancelled: false,
-            generation: 0,
-            latest: Arc::new(AtomicU64::new(0)),
-            worker: None,
-            repaint: Arc::new(repaint),
+            worker: Worker::threaded("corner-table", Keep::Newest, measure, repaint),
         }
     }
 
@@ -98,23 +99,7 @@ impl TableView {
 
     /// Collect the angles computed since the last call.
     pub fn poll(&mut self) {
-        let Some((_, rx)) = &self.worker else { return };
-        let mut received = Vec::new();
-        loop {
-            match rx.try_recv() {
-                Ok(m) => received.push(m),
-                Err(TryRecvError::Empty) => break,
-                Err(TryRecvError::Disconnected) => {
-                    self.worker = None;
-                    break;
-                }
-            }
-        }
-        for (generation, rows) in received {
-            if generation == self.generation && !self.complete() {
-                self.angles.push(rows);
-            }
-        }
+        self.angles.extend(self.worker.poll());
     }
 
     /// Collect rows, and start a new table if `settings` changed (an invalid input stops the
@@ -128,7 +113,7 @@ impl TableView {
         match settings {
             Err(e) => {
                 self.error = Some(e);
-                self.stop();
+                self.worker.cancel();
             }
             Ok(s) => {
                 self.error = None;
@@ -140,31 +125,17 @@ impl TableView {
         }
     }
 
-    fn stop(&mut self) {
-        self.generation += 1;
-        self.latest.store(self.generation, Ordering::SeqCst);
-    }
-
     fn start(&mut self, settings: CornerSettings) {
-        self.stop();
         self.cancelled = false;
         self.shown = Some(settings);
         self.angles.clear();
-        if self.worker.is_none() {
-            self.worker = spawn(self.latest.clone(), self.repaint.clone());
-        }
-        let req = Request { generation: self.generation, settings, spacing_mm: self.spacing_mm };
-        let sent = self.worker.as_ref().is_some_and(|(tx, _)| tx.send(req).is_ok());
-        if !sent {
-            self.worker = None;
-            self.error = Some("cannot start the table's worker thread".to_owned());
-        }
+        self.worker.request((settings, self.spacing_mm));
     }
 
     /// Stop the running table between two angles; its rows so far stay.
     pub fn cancel(&mut self) {
         if self.running() {
-            self.stop();
+            self.worker.cancel();
             self.cancelled = true;
         }
     }
@@ -182,35 +153,6 @@ impl Default for TableView {
     fn default() -> Self {
         TableView::new(CornerRequest::DEFAULT.spacing_mm, || {})
     }
-}
-
-/// The worker: takes the newest request, measures angle after angle, and stops as soon as a
-/// newer generation is asked for.
-fn spawn(latest: Arc<AtomicU64>, repaint: Repaint) -> Option<(Sender<Request>, Receiver<Message>)> {
-    let (req_tx, req_rx) = channel::<Request>();
-    let (ans_tx, ans_rx) = channel::<Message>();
-    std::thread::Builder::new()
-        .name("corner-table".into())
-        .spawn(move || {
-            while let Ok(mut req) = req_rx.recv() {
-                while let Ok(newer) = req_rx.try_recv() {
-                    req = newer;
-                }
-                for &angle_deg in &ANGLES_DEG {
-                    if latest.load(Ordering::SeqCst) != req.generation {
-                        break;
-                    }
-                    let rows = acceptance_rows_at(angle_deg, &STRATEGIES, req.settings, req.spacing_mm)
-                        .map_err(|e| e.to_string());
-                    if ans_tx.send((req.generation, AngleRows { angle_deg, rows })).is_err() {
-                        return;
-                    }
-                    repaint();
-                }
-            }
-        })
-        .ok()?;
-    Some((req_tx, ans_rx))
 }
 
 /// Tooltips of the columns (module docs of `core/src/corner/acceptance.rs`).
