@@ -11,9 +11,9 @@
 use super::Command;
 use super::corner::PLAIN_COLOR;
 use super::params::ERROR_COLOR;
+use crate::worker::{Keep, Task, Worker};
 use eframe::egui::{self, Color32, RichText};
 use egui_plot::{HLine, Legend, Line, LineStyle, Plot, PlotPoints, Points};
-use crate::worker::{Keep, Task, Worker};
 use trochoplan_core::corner::acceptance::{ANGLES_DEG, AcceptanceRow, MARGIN_DEG, STRATEGIES, acceptance_rows_at};
 use trochoplan_core::corner::{CornerRequest, CornerSettings};
 
