@@ -141,6 +141,13 @@ impl CornerNcCache {
     }
 }
 
+/// The export as the tab's panels see it: the settings they edit and the program of the shown
+/// plan.
+pub struct NcExport<'a> {
+    pub settings: &'a mut CornerNcSettings,
+    pub cache: &'a CornerNcCache,
+}
+
 fn generate(source: &Source, settings: &CornerNcSettings) -> Result<NcPreview, String> {
     let opts = settings.options();
     let (program, file_stem) = match source {
