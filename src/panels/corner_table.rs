@@ -188,35 +188,16 @@ fn strategy_label(i: usize) -> &'static str {
     STRATEGIES[i].label()
 }
 
+/// What the table's body and tip columns mean (under the grid).
+const BODY_AND_TIP: &str = "Body and tip: every strategy ends its chain of wall-tangent circles when the next circle \
+    gets too small and then moves into the tool's corner point, where the tool touches both walls. That last move \
+    engages about 180° minus the corner angle over a thin sliver, whatever the strategy, so it is reported apart \
+    (tip, dashed in the plot) with its own stated limit; the rest of the path (body) must stay within a* + 1°. \
+    Hover the column titles for details.";
+
 /// The table (grid) and the plot of peak engagement against the corner angle.
 pub fn show(ui: &mut egui::Ui, view: &TableView) -> Option<Command> {
-    let mut cmd = None;
-    let n = ANGLES_DEG.len();
-    ui.horizontal(|ui| {
-        if view.running() {
-            let done = view.angles.len();
-            let next = ANGLES_DEG.get(done).copied().unwrap_or(0.0);
-            ui.add(
-                egui::ProgressBar::new(done as f32 / n as f32)
-                    .desired_width(220.0)
-                    .text(format!("{done} of {n} angles, measuring {next:.0}°…")),
-            );
-            if ui.button(label::CANCEL).on_hover_text("Stop after the angle being measured").clicked() {
-                cmd = Some(Command::CancelCornerTable);
-            }
-        } else if view.cancelled {
-            ui.label(format!("Cancelled after {} of {n} angles.", view.angles.len()));
-            if ui.button(label::RESTART).clicked() {
-                cmd = Some(Command::RestartCornerTable);
-            }
-        } else if view.complete() {
-            ui.label(format!(
-                "{n} corner angles × 3 strategies, measured by the evaluator every {} mm — the rows of \
-                 `trochoplan corner --method M --table`.",
-                view.spacing_mm
-            ));
-        }
-    });
+    let cmd = ui.horizontal(|ui| progress(ui, view)).inner;
     if let Some(e) = &view.error {
         ui.add(egui::Label::new(RichText::new(format!("invalid: {e}")).color(ERROR_COLOR)).wrap());
         if !view.angles.is_empty() {
@@ -237,19 +218,7 @@ pub fn show(ui: &mut egui::Ui, view: &TableView) -> Option<Command> {
     ui.add_space(4.0);
     grid(ui, view);
     ui.add_space(6.0);
-    ui.add(
-        egui::Label::new(
-            RichText::new(
-                "Body and tip: every strategy ends its chain of wall-tangent circles when the next circle gets too \
-                 small and then moves into the tool's corner point, where the tool touches both walls. That last \
-                 move engages about 180° minus the corner angle over a thin sliver, whatever the strategy, so it \
-                 is reported apart (tip, dashed in the plot) with its own stated limit; the rest of the path \
-                 (body) must stay within a* + 1°. Hover the column titles for details.",
-            )
-            .weak(),
-        )
-        .wrap(),
-    );
+    ui.add(egui::Label::new(RichText::new(BODY_AND_TIP).weak()).wrap());
     ui.add_space(4.0);
     ui.label(RichText::new("Peak engagement against the corner angle (evaluator)").strong());
     let (w, h) = (ui.available_width(), (ui.available_height() - 8.0).max(200.0));
@@ -257,28 +226,40 @@ pub fn show(ui: &mut egui::Ui, view: &TableView) -> Option<Command> {
     cmd
 }
 
+/// The progress bar and *Cancel* while the table runs, *Restart* after a cancel, what the rows
+/// are once it is complete.
+fn progress(ui: &mut egui::Ui, view: &TableView) -> Option<Command> {
+    let n = ANGLES_DEG.len();
+    if view.running() {
+        let done = view.angles.len();
+        let next = ANGLES_DEG.get(done).copied().unwrap_or(0.0);
+        ui.add(
+            egui::ProgressBar::new(done as f32 / n as f32)
+                .desired_width(220.0)
+                .text(format!("{done} of {n} angles, measuring {next:.0}°…")),
+        );
+        let cancel = ui.button(label::CANCEL).on_hover_text("Stop after the angle being measured").clicked();
+        return cancel.then_some(Command::CancelCornerTable);
+    }
+    if view.cancelled {
+        ui.label(format!("Cancelled after {} of {n} angles.", view.angles.len()));
+        return ui.button(label::RESTART).clicked().then_some(Command::RestartCornerTable);
+    }
+    if view.complete() {
+        ui.label(format!(
+            "{n} corner angles × 3 strategies, measured by the evaluator every {} mm — the rows of \
+             `trochoplan corner --method M --table`.",
+            view.spacing_mm
+        ));
+    }
+    None
+}
+
+/// One row per corner angle: the plain ring's peak and, per strategy, body, tip, limit,
+/// verdict, length and time.
 fn grid(ui: &mut egui::Ui, view: &TableView) {
     egui::Grid::new("corner_acceptance_table").striped(true).spacing(egui::vec2(10.0, 3.0)).show(ui, |ui| {
-        ui.label("");
-        ui.label("");
-        for (i, color) in STRATEGY_COLORS.iter().enumerate() {
-            ui.label(RichText::new(strategy_label(i)).strong().color(*color));
-            for _ in 0..5 {
-                ui.label("");
-            }
-        }
-        ui.end_row();
-        header(ui, "corner", tip::ANGLE);
-        header(ui, "plain max °", tip::PLAIN);
-        for _ in STRATEGIES {
-            header(ui, "body °", tip::BODY);
-            header(ui, "tip °", tip::TIP);
-            header(ui, "limit °", tip::LIMIT);
-            header(ui, "pass?", tip::PASS);
-            header(ui, "length mm", tip::LENGTH);
-            header(ui, "time s", tip::TIME);
-        }
-        ui.end_row();
+        grid_header(ui);
         for a in &view.angles {
             ui.label(format!("{:.0}°", a.angle_deg));
             match &a.rows {
@@ -286,21 +267,7 @@ fn grid(ui: &mut egui::Ui, view: &TableView) {
                     let plain = rows.first().map_or(f64::NAN, |r| r.plain_max_deg);
                     deg_cell(ui, plain, false);
                     for r in rows {
-                        deg_cell(ui, r.body_max_deg, !r.body_passes());
-                        deg_cell(ui, r.tip_deg, !r.tip_passes());
-                        ui.label(RichText::new(format!("{:.2}", r.tip_limit_deg)).monospace().weak());
-                        let (text, color) = if r.passes() { ("pass", PASS_COLOR) } else { ("fail", ERROR_COLOR) };
-                        ui.label(RichText::new(text).color(color)).on_hover_text(format!(
-                            "body {:.2}° ≤ {:.2}°: {}; tip {:.2}° ≤ {:.2}°: {}",
-                            r.body_max_deg,
-                            r.body_limit_deg(),
-                            r.body_passes(),
-                            r.tip_deg,
-                            r.tip_allowed_deg(),
-                            r.tip_passes()
-                        ));
-                        ui.label(RichText::new(format!("{:.1}", r.path_length_mm)).monospace());
-                        ui.label(RichText::new(format!("{:.1}", r.time_s)).monospace());
+                        row_cells(ui, r);
                     }
                 }
                 Err(e) => {
@@ -310,6 +277,49 @@ fn grid(ui: &mut egui::Ui, view: &TableView) {
             ui.end_row();
         }
     });
+}
+
+/// The two header rows: the strategies' names over their columns, then the column titles.
+fn grid_header(ui: &mut egui::Ui) {
+    ui.label("");
+    ui.label("");
+    for (i, color) in STRATEGY_COLORS.iter().enumerate() {
+        ui.label(RichText::new(strategy_label(i)).strong().color(*color));
+        for _ in 0..5 {
+            ui.label("");
+        }
+    }
+    ui.end_row();
+    header(ui, "corner", tip::ANGLE);
+    header(ui, "plain max °", tip::PLAIN);
+    for _ in STRATEGIES {
+        header(ui, "body °", tip::BODY);
+        header(ui, "tip °", tip::TIP);
+        header(ui, "limit °", tip::LIMIT);
+        header(ui, "pass?", tip::PASS);
+        header(ui, "length mm", tip::LENGTH);
+        header(ui, "time s", tip::TIME);
+    }
+    ui.end_row();
+}
+
+/// One strategy's cells of a row: body, tip, limit, verdict (why, on hover), length, time.
+fn row_cells(ui: &mut egui::Ui, r: &AcceptanceRow) {
+    deg_cell(ui, r.body_max_deg, !r.body_passes());
+    deg_cell(ui, r.tip_deg, !r.tip_passes());
+    ui.label(RichText::new(format!("{:.2}", r.tip_limit_deg)).monospace().weak());
+    let (text, color) = if r.passes() { ("pass", PASS_COLOR) } else { ("fail", ERROR_COLOR) };
+    ui.label(RichText::new(text).color(color)).on_hover_text(format!(
+        "body {:.2}° ≤ {:.2}°: {}; tip {:.2}° ≤ {:.2}°: {}",
+        r.body_max_deg,
+        r.body_limit_deg(),
+        r.body_passes(),
+        r.tip_deg,
+        r.tip_allowed_deg(),
+        r.tip_passes()
+    ));
+    ui.label(RichText::new(format!("{:.1}", r.path_length_mm)).monospace());
+    ui.label(RichText::new(format!("{:.1}", r.time_s)).monospace());
 }
 
 fn plot(ui: &mut egui::Ui, view: &TableView, target_deg: f64, width: f32, height: f32) {
