@@ -5,9 +5,9 @@
 //! The inputs are those of `trochoplan corner` and `trochoplan pocket` (the core's
 //! `CornerRequest` and `PocketRequest`, with their defaults); [`compute`] and [`compute_pocket`]
 //! call the same core entry points (`corner::evaluate`, `pocket::plan`) and only convert their
-//! results to plot points. Planning takes 0.1–1 s, so the
-//! window runs it on a worker thread ([`CornerView::threaded`]) that keeps only the newest
-//! request; the tests plan inline ([`CornerView::default`]). The acceptance table
+//! results to plot points. Planning takes 0.1–1 s, so the window runs it on a [`Worker`] thread
+//! ([`CornerView::threaded`]; the newest request wins); the tests plan inline
+//! ([`CornerView::default`]). The acceptance table
 //! ([`super::corner_table`], always on its own thread) and the NC export
 //! ([`super::corner_nc`]) are sub-views of the tab.
 

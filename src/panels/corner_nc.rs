@@ -196,14 +196,17 @@ fn format_options(ui: &mut egui::Ui, settings: &mut CornerNcSettings) {
          curves become biarcs (or chords) within it. Default 0.005 mm (domain-spec §5.4).",
     );
     ui.spacing_mut().slider_width = 110.0;
-    ui.add(
-        Slider::new(&mut settings.tolerance_mm, 1e-4..=1.0)
-            .logarithmic(true)
-            .clamping(SliderClamping::Never)
-            .max_decimals(4)
-            .suffix(" mm"),
-    )
-    .labelled_by(l.id);
+    ui.add(tolerance_slider(&mut settings.tolerance_mm)).labelled_by(l.id);
+}
+
+/// The slider of an NC tolerance: 0.1 µm to 1 mm on a logarithmic scale, typed values outside
+/// kept (the core rejects them with its message).
+pub(super) fn tolerance_slider(tolerance_mm: &mut f64) -> Slider<'_> {
+    Slider::new(tolerance_mm, 1e-4..=1.0)
+        .logarithmic(true)
+        .clamping(SliderClamping::Never)
+        .max_decimals(4)
+        .suffix(" mm")
 }
 
 /// How it cuts: chords or arcs, coolant, depth and spindle speed.
