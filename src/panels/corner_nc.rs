@@ -141,6 +141,13 @@ impl CornerNcCache {
     }
 }
 
+/// The export as the tab's panels see it: the settings they edit and the program of the shown
+/// plan.
+pub struct NcExport<'a> {
+    pub settings: &'a mut CornerNcSettings,
+    pub cache: &'a CornerNcCache,
+}
+
 fn generate(source: &Source, settings: &CornerNcSettings) -> Result<NcPreview, String> {
     let opts = settings.options();
     let (program, file_stem) = match source {
@@ -162,63 +169,71 @@ pub fn options(
     cache: &CornerNcCache,
     inputs_error: bool,
 ) -> Option<Command> {
-    let mut cmd = None;
-    ui.horizontal_wrapped(|ui| {
-        ui.label(RichText::new("Dialect").strong());
-        for d in Dialect::ALL {
-            ui.radio_value(&mut settings.dialect, d, d.label());
-        }
-        ui.separator();
-        let l = ui.label(label::TOLERANCE).on_hover_text(
-            "Largest distance of the written path from the planned one before rounding (mm); \
-             curves become biarcs (or chords) within it. Default 0.005 mm (domain-spec §5.4).",
-        );
-        ui.spacing_mut().slider_width = 110.0;
-        ui.add(
-            Slider::new(&mut settings.tolerance_mm, 1e-4..=1.0)
-                .logarithmic(true)
-                .clamping(SliderClamping::Never)
-                .max_decimals(4)
-                .suffix(" mm"),
-        )
-        .labelled_by(l.id);
-    });
-    ui.horizontal_wrapped(|ui| {
-        ui.checkbox(&mut settings.linear_segments, label::LINEAR)
-            .on_hover_text("Write every arc as G1 chords instead of G2/G3 (more blocks).");
-        ui.checkbox(&mut settings.coolant, label::COOLANT);
-        ui.separator();
-        let l = ui.label(label::DEPTH);
-        ui.add(DragValue::new(&mut settings.depth_mm).speed(0.1).suffix(" mm")).labelled_by(l.id).on_hover_text(
-            "Cutting depth below the stock top Z0, 0 < depth ≤ 1000 mm; the tool feeds down at the path start.",
-        );
-        let l = ui.label(label::RPM);
-        ui.add(DragValue::new(&mut settings.spindle_rpm).speed(10.0).suffix(" rpm"))
-            .labelled_by(l.id)
-            .on_hover_text("Spindle speed (M3), 0 < n ≤ 1000000 rpm.");
-    });
+    ui.horizontal_wrapped(|ui| format_options(ui, settings));
+    ui.horizontal_wrapped(|ui| cut_options(ui, settings));
     match &cache.result {
         None => {
             ui.label("No plan yet.");
+            None
         }
         Some(Err(e)) => {
             ui.add(egui::Label::new(RichText::new(format!("Cannot write the program: {e}")).color(ERROR_COLOR)).wrap());
+            None
         }
-        Some(Ok(p)) => {
-            ui.horizontal(|ui| {
-                if ui
-                    .add_enabled(!inputs_error, egui::Button::new(label::SAVE))
-                    .on_hover_text("Choose a file; it is written atomically (temporary file, then rename).")
-                    .on_disabled_hover_text("The inputs are invalid: fix them first.")
-                    .clicked()
-                {
-                    cmd = Some(Command::ExportCornerNc);
-                }
-                ui.label(format!("{} blocks, {} bytes, {} lines", p.blocks, p.text.len(), p.line_starts.len()));
-            });
-        }
+        Some(Ok(p)) => ui.horizontal(|ui| save_row(ui, p, inputs_error)).inner,
     }
-    cmd
+}
+
+/// How the program is written: the dialect and the tolerance.
+fn format_options(ui: &mut egui::Ui, settings: &mut CornerNcSettings) {
+    ui.label(RichText::new("Dialect").strong());
+    for d in Dialect::ALL {
+        ui.radio_value(&mut settings.dialect, d, d.label());
+    }
+    ui.separator();
+    let l = ui.label(label::TOLERANCE).on_hover_text(
+        "Largest distance of the written path from the planned one before rounding (mm); \
+         curves become biarcs (or chords) within it. Default 0.005 mm (domain-spec §5.4).",
+    );
+    ui.spacing_mut().slider_width = 110.0;
+    ui.add(tolerance_slider(&mut settings.tolerance_mm)).labelled_by(l.id);
+}
+
+/// The slider of an NC tolerance: 0.1 µm to 1 mm on a logarithmic scale, typed values outside
+/// kept (the core rejects them with its message).
+pub(super) fn tolerance_slider(tolerance_mm: &mut f64) -> Slider<'_> {
+    Slider::new(tolerance_mm, 1e-4..=1.0)
+        .logarithmic(true)
+        .clamping(SliderClamping::Never)
+        .max_decimals(4)
+        .suffix(" mm")
+}
+
+/// How it cuts: chords or arcs, coolant, depth and spindle speed.
+fn cut_options(ui: &mut egui::Ui, settings: &mut CornerNcSettings) {
+    ui.checkbox(&mut settings.linear_segments, label::LINEAR)
+        .on_hover_text("Write every arc as G1 chords instead of G2/G3 (more blocks).");
+    ui.checkbox(&mut settings.coolant, label::COOLANT);
+    ui.separator();
+    let l = ui.label(label::DEPTH);
+    ui.add(DragValue::new(&mut settings.depth_mm).speed(0.1).suffix(" mm")).labelled_by(l.id).on_hover_text(
+        "Cutting depth below the stock top Z0, 0 < depth ≤ 1000 mm; the tool feeds down at the path start.",
+    );
+    let l = ui.label(label::RPM);
+    ui.add(DragValue::new(&mut settings.spindle_rpm).speed(10.0).suffix(" rpm"))
+        .labelled_by(l.id)
+        .on_hover_text("Spindle speed (M3), 0 < n ≤ 1000000 rpm.");
+}
+
+/// The save button (disabled while the inputs are invalid) and the program's size.
+fn save_row(ui: &mut egui::Ui, p: &NcPreview, inputs_error: bool) -> Option<Command> {
+    let save = ui
+        .add_enabled(!inputs_error, egui::Button::new(label::SAVE))
+        .on_hover_text("Choose a file; it is written atomically (temporary file, then rename).")
+        .on_disabled_hover_text("The inputs are invalid: fix them first.")
+        .clicked();
+    ui.label(format!("{} blocks, {} bytes, {} lines", p.blocks, p.text.len(), p.line_starts.len()));
+    save.then_some(Command::ExportCornerNc)
 }
 
 /// The read-only program text filling `ui`.
