@@ -165,12 +165,12 @@ fn job_files_must_be_regular_files_and_devices_stay_devices() {
     assert!(Command::new("mkfifo").arg(&fifo).status().expect("mkfifo").success());
     let (ok, _, err) = run(&["analyze", "--job", fifo.to_str().expect("utf8")]);
     assert!(!ok && err.contains("regular file"), "{err}");
-    let (ok, _, err) = run(&["export", "-o", "/dev/null"]);
+    let (ok, _, err) = run(&["export", "--dialect", "linuxcnc", "-o", "/dev/null"]);
     assert!(ok, "{err}");
     assert!(!std::fs::metadata("/dev/null").expect("meta").is_file(), "/dev/null is still a device");
     // the longest legal file name (255 bytes) is written
     let long = dir.path().join(format!("{}.ngc", "p".repeat(251)));
-    let (ok, _, err) = run(&["export", "-o", long.to_str().expect("utf8")]);
+    let (ok, _, err) = run(&["export", "--dialect", "linuxcnc", "-o", long.to_str().expect("utf8")]);
     assert!(ok && long.is_file(), "{err}");
 }
 
