@@ -14,10 +14,12 @@
 //! This module deliberately shares nothing with the analytic two-circle model
 //! ([`super::engagement`]): it is the independent check of every corner strategy.
 
+use super::nearby::{CutGrid, Cutter, LocalStock};
 use crate::error::JobError;
 use crate::geom::{P2, Polygon, Segment, p2};
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
-use std::f64::consts::TAU;
+use std::f64::consts::{PI, TAU};
 
 /// Distance tolerance of the material test (mm).
 const DIST_TOL: f64 = 1e-11;
@@ -147,34 +149,9 @@ impl EngagementProfile {
     }
 }
 
-/// Cut segment with an axis-aligned box grown by the tool radius.
-struct Cutter {
-    seg: Segment,
-    lo: P2,
-    hi: P2,
-}
-
-impl Cutter {
-    fn new(seg: Segment, r: f64) -> Cutter {
-        let (lo, hi) = match seg {
-            Segment::Arc { center, radius, .. } => (center - p2(radius, radius), center + p2(radius, radius)),
-            _ => {
-                let (a, b) = (seg.start(), seg.end());
-                (p2(a.x.min(b.x), a.y.min(b.y)), p2(a.x.max(b.x), a.y.max(b.y)))
-            }
-        };
-        Cutter { seg, lo: lo - p2(r, r), hi: hi + p2(r, r) }
-    }
-
-    /// Whether a disc of radius `r` around `c` can reach this segment's grown box.
-    fn near(&self, c: P2, r: f64) -> bool {
-        c.x + r >= self.lo.x && c.x - r <= self.hi.x && c.y + r >= self.lo.y && c.y - r <= self.hi.y
-    }
-}
-
-/// Exact distance from `p` to a line or arc segment.
-fn distance(p: P2, seg: &Segment) -> f64 {
-    match *seg {
+/// Exact distance from `p` to the line or arc of `k` (its end points precomputed).
+fn distance(p: P2, k: &Cutter) -> f64 {
+    match k.seg {
         Segment::Line { start, end } => {
             let d = end - start;
             let l2 = d.norm_squared();
@@ -187,18 +164,17 @@ fn distance(p: P2, seg: &Segment) -> f64 {
             // Parameter of p's direction along the sweep, in [0, 2π) measured in sweep sense.
             let rel =
                 if sweep >= 0.0 { (ang - start_angle).rem_euclid(TAU) } else { (start_angle - ang).rem_euclid(TAU) };
-            if rel <= sweep.abs() {
-                (v.norm() - radius).abs()
-            } else {
-                (p - seg.start()).norm().min((p - seg.end()).norm())
-            }
+            if rel <= sweep.abs() { (v.norm() - radius).abs() } else { (p - k.start).norm().min((p - k.end).norm()) }
         }
-        Segment::Trochoid { .. } => {
-            // Not reached: trochoid pieces are flattened to lines before evaluation.
-            let pts = seg.sample(TROCHOID_LINES);
-            pts.windows(2).map(|w| distance(p, &Segment::Line { start: w[0], end: w[1] })).fold(f64::INFINITY, f64::min)
-        }
+        // Not reached: trochoid pieces are flattened to lines before evaluation.
+        Segment::Trochoid { .. } => f64::INFINITY,
     }
+}
+
+/// Whether `p` is at least `r − tol` from the segment of `k` (not cut by it). A point more
+/// than r·(1 + 1e-9) outside the segment's box is, without computing the distance.
+fn leaves(p: P2, k: &Cutter, r: f64, tol: f64) -> bool {
+    !k.within(p, r * (1.0 + 1e-9)) || distance(p, k) >= r - tol
 }
 
 /// Lines and arcs only: trochoid pieces become `TROCHOID_LINES` chords each.
@@ -263,8 +239,11 @@ pub fn engagement_profile(
             format!("≥ path length / {MAX_POSITIONS} = {} mm", total / MAX_POSITIONS),
         ));
     }
-    let before: Vec<Cutter> = flatten(before).into_iter().map(|s| Cutter::new(s, r)).collect();
-    let cutters: Vec<Cutter> = path.iter().map(|s| Cutter::new(*s, r)).collect();
+    let tol = DIST_TOL * r.min(1.0);
+    let before = flatten(before);
+    let nb = before.len();
+    let cutters: Vec<Cutter> = before.into_iter().chain(path.iter().copied()).map(Cutter::new).collect();
+    let grid = CutGrid::new(cutters, 2.0 * r);
     // Arc lengths of the evaluated positions: 0, spacing, 2·spacing, …, and the end of every
     // segment (the engagement peaks at kinks, e.g. where a move ends in a corner point, and
     // can fall by tens of degrees within 0.1 mm before it).
@@ -282,35 +261,71 @@ pub fn engagement_profile(
     targets.push(total);
     targets.sort_by(f64::total_cmp);
     targets.dedup_by(|a, b| (*a - *b).abs() <= 1e-9);
-    let mut samples = Vec::with_capacity(targets.len());
+    // (arc length, segment index, local parameter) of every position.
+    let mut at = Vec::with_capacity(targets.len());
     let (mut i, mut s0) = (0usize, 0.0); // current segment and the arc length at its start
-    let mut near: Vec<Segment> = Vec::new();
     for s in targets {
         while i + 1 < path.len() && s > s0 + lengths[i] {
             s0 += lengths[i];
             i += 1;
         }
-        let seg = &path[i];
         let local = if lengths[i] > 0.0 { ((s - s0) / lengths[i]).clamp(0.0, 1.0) } else { 1.0 };
-        let c = seg.point(local);
-        near.clear();
-        near.push(head(seg, local));
-        near.extend(cutters[..i].iter().rev().filter(|k| k.near(c, r)).map(|k| k.seg));
-        near.extend(before.iter().filter(|k| k.near(c, r)).map(|k| k.seg));
-        let angle = engaged_angle(stock, c, r, &near, opts.samples);
-        samples.push(EngagementSample { s_mm: s, x_mm: c.x, y_mm: c.y, angle_rad: angle });
+        at.push((s, i, local));
     }
+    let periphery = Periphery::new(opts.samples);
+    let samples = at
+        .into_par_iter()
+        .map(|(s, i, local)| {
+            let seg = &path[i];
+            let c = seg.point(local);
+            let head = Cutter::new(head(seg, local));
+            // The cut segments that can reach the periphery: the path before segment i and the
+            // `before` paths (grid indices below nb).
+            let mut near = vec![head];
+            near.extend(grid.near(c, 2.0 * r).filter(|(j, _)| *j < nb + i).map(|(_, k)| *k));
+            let stock = LocalStock::new(stock, c, r);
+            let mut angle = engaged_angle(&stock, c, r, tol, &near, &periphery);
+            // Behind a tool that has moved, every point of the periphery is nearer than r to the
+            // path just travelled: the engaged arc lies in the front half. Only the tolerance of
+            // the material test at the two side points can make it read more than π.
+            if s > 0.0 {
+                angle = angle.min(PI);
+            }
+            EngagementSample { s_mm: s, x_mm: c.x, y_mm: c.y, angle_rad: angle }
+        })
+        .collect();
     Ok(EngagementProfile { samples, path_length_mm: total })
 }
 
-/// Measure (rad) of the periphery of the tool at `c` that lies in material.
-fn engaged_angle(stock: &Polygon, c: P2, r: f64, cut: &[Segment], n: usize) -> f64 {
-    let in_material = |th: f64| {
-        let p = c + p2(th.cos(), th.sin()) * r;
-        stock.contains(p) && cut.iter().all(|s| distance(p, s) >= r - DIST_TOL)
-    };
-    let step = TAU / n as f64;
-    let flags: Vec<bool> = (0..n).map(|k| in_material(k as f64 * step)).collect();
+/// The unit directions of the periphery samples, θ_k = k·2π/n.
+struct Periphery {
+    step: f64,
+    dirs: Vec<P2>,
+}
+
+impl Periphery {
+    fn new(n: usize) -> Periphery {
+        let step = TAU / n as f64;
+        let dirs = (0..n)
+            .map(|k| {
+                let th = k as f64 * step;
+                p2(th.cos(), th.sin())
+            })
+            .collect();
+        Periphery { step, dirs }
+    }
+}
+
+/// Measure (rad) of the periphery of the tool at `c` that lies in material: inside the stock
+/// and at least `r − tol` from every segment of `cut`.
+fn engaged_angle(stock: &LocalStock, c: P2, r: f64, tol: f64, cut: &[Cutter], periphery: &Periphery) -> f64 {
+    if matches!(stock, LocalStock::Outside) {
+        return 0.0;
+    }
+    let in_material = |p: P2| cut.iter().all(|k| leaves(p, k, r, tol)) && stock.contains(p);
+    let at = |th: f64| c + p2(th.cos(), th.sin()) * r;
+    let (n, step) = (periphery.dirs.len(), periphery.step);
+    let flags: Vec<bool> = periphery.dirs.iter().map(|&d| in_material(c + d * r)).collect();
     let count = flags.iter().filter(|&&f| f).count();
     if count == 0 {
         return 0.0;
@@ -328,7 +343,7 @@ fn engaged_angle(stock: &Polygon, c: P2, r: f64, cut: &[Segment], n: usize) -> f
         let (mut lo, mut hi) = (k as f64 * step, (k + 1) as f64 * step);
         for _ in 0..REFINE_STEPS {
             let mid = 0.5 * (lo + hi);
-            if in_material(mid) == a {
+            if in_material(at(mid)) == a {
                 lo = mid;
             } else {
                 hi = mid;
