@@ -243,7 +243,9 @@ pub fn engagement_profile(
     let before = flatten(before);
     let nb = before.len();
     let cutters: Vec<Cutter> = before.into_iter().chain(path.iter().copied()).map(Cutter::new).collect();
-    let grid = CutGrid::new(cutters, 2.0 * r);
+    // Reach r·(1 + 1e-9): every segment within r of a periphery point (see `leaves`).
+    let reach = r * (1.0 + 1e-9);
+    let grid = CutGrid::new(cutters, reach);
     // Arc lengths of the evaluated positions: 0, spacing, 2·spacing, …, and the end of every
     // segment (the engagement peaks at kinks, e.g. where a move ends in a corner point, and
     // can fall by tens of degrees within 0.1 mm before it).
@@ -278,13 +280,25 @@ pub fn engagement_profile(
         .map(|(s, i, local)| {
             let seg = &path[i];
             let c = seg.point(local);
+            // Cut so far: the `before` paths (grid indices below nb), the path before segment i,
+            // and segment i up to the position.
+            // The segment that cut the last point tried is tried first (neighbouring points of
+            // the periphery are mostly cut by the same segment).
             let head = Cutter::new(head(seg, local));
-            // The cut segments that can reach the periphery: the path before segment i and the
-            // `before` paths (grid indices below nb).
-            let mut near = vec![head];
-            near.extend(grid.near(c, 2.0 * r).filter(|(j, _)| *j < nb + i).map(|(_, k)| *k));
+            let last = std::cell::Cell::new(head);
+            let cut = |p: P2| {
+                !leaves(p, &head, r, tol)
+                    || !leaves(p, &last.get(), r, tol)
+                    || grid.near(p, reach).any(|(j, k)| {
+                        let hit = j < nb + i && !leaves(p, k, r, tol);
+                        if hit {
+                            last.set(*k);
+                        }
+                        hit
+                    })
+            };
             let stock = LocalStock::new(stock, c, r);
-            let mut angle = engaged_angle(&stock, c, r, tol, &near, &periphery);
+            let mut angle = engaged_angle(&stock, c, r, cut, &periphery);
             // Behind a tool that has moved, every point of the periphery is nearer than r to the
             // path just travelled: the engaged arc lies in the front half. Only the tolerance of
             // the material test at the two side points can make it read more than π.
@@ -317,12 +331,12 @@ impl Periphery {
 }
 
 /// Measure (rad) of the periphery of the tool at `c` that lies in material: inside the stock
-/// and at least `r − tol` from every segment of `cut`.
-fn engaged_angle(stock: &LocalStock, c: P2, r: f64, tol: f64, cut: &[Cutter], periphery: &Periphery) -> f64 {
+/// and not `cut` (nearer than r to the swept path).
+fn engaged_angle(stock: &LocalStock, c: P2, r: f64, cut: impl Fn(P2) -> bool, periphery: &Periphery) -> f64 {
     if matches!(stock, LocalStock::Outside) {
         return 0.0;
     }
-    let in_material = |p: P2| cut.iter().all(|k| leaves(p, k, r, tol)) && stock.contains(p);
+    let in_material = |p: P2| !cut(p) && stock.contains(p);
     let at = |th: f64| c + p2(th.cos(), th.sin()) * r;
     let (n, step) = (periphery.dirs.len(), periphery.step);
     let flags: Vec<bool> = periphery.dirs.iter().map(|&d| in_material(c + d * r)).collect();

@@ -8,9 +8,9 @@
 use crate::geom::{P2, Polygon, Segment, p2};
 
 /// Cells per side of a [`CutGrid`] at most.
-const MAX_CELLS_PER_SIDE: f64 = 256.0;
-/// A segment whose box covers more cells than this is kept in a list checked everywhere.
-const MAX_CELLS_PER_SEGMENT: usize = 64;
+const MAX_CELLS_PER_SIDE: f64 = 512.0;
+/// A segment whose grown box covers more cells than this is kept in a list checked everywhere.
+const MAX_CELLS_PER_SEGMENT: usize = 4096;
 
 /// A cut segment (line or arc) with its bounding box and end points.
 #[derive(Clone, Copy, Debug)]
@@ -54,7 +54,7 @@ pub struct CutGrid {
 }
 
 impl CutGrid {
-    /// Bins `cutters` by their boxes grown by `reach` (> 0).
+    /// Bins `cutters` by their boxes grown by `reach` (> 0), in cells of at least `reach / 4`.
     pub fn new(cutters: Vec<Cutter>, reach: f64) -> CutGrid {
         let inf = p2(f64::INFINITY, f64::INFINITY);
         let (lo, hi) = cutters.iter().fold((inf, -inf), |(lo, hi), k| {
@@ -62,7 +62,7 @@ impl CutGrid {
         });
         let lo = lo - p2(reach, reach);
         let extent = (hi.x - lo.x).max(hi.y - lo.y) + reach;
-        let cell = reach.max(extent / MAX_CELLS_PER_SIDE);
+        let cell = (0.25 * reach).max(extent / MAX_CELLS_PER_SIDE);
         let cells = |d: f64| if d.is_finite() { (d / cell).floor() as usize + 1 } else { 1 };
         let (nx, ny) = (cells(hi.x + reach - lo.x), cells(hi.y + reach - lo.y));
         let mut grid = CutGrid { cutters: Vec::new(), lo, cell, nx, ny, bins: vec![Vec::new(); nx * ny], big: Vec::new() };
