@@ -171,6 +171,12 @@ fn distance(p: P2, k: &Cutter) -> f64 {
     }
 }
 
+/// A lower bound of the distance from `p` to the segment of `k`: exact within `reach` of its
+/// box, the distance to the box beyond.
+fn lower_distance(p: P2, k: &Cutter, reach: f64) -> f64 {
+    if k.within(p, reach) { distance(p, k) } else { k.box_distance(p) }
+}
+
 /// Whether `p` is at least `r − tol` from the segment of `k` (not cut by it). A point more
 /// than r·(1 + 1e-9) outside the segment's box is, without computing the distance.
 fn leaves(p: P2, k: &Cutter, r: f64, tol: f64) -> bool {
@@ -286,19 +292,23 @@ pub fn engagement_profile(
             // the periphery are mostly cut by the same segment).
             let head = Cutter::new(head(seg, local));
             let last = std::cell::Cell::new(head);
-            let cut = |p: P2| {
-                !leaves(p, &head, r, tol)
-                    || !leaves(p, &last.get(), r, tol)
-                    || grid.near(p, reach).any(|(j, k)| {
-                        let hit = j < nb + i && !leaves(p, k, r, tol);
-                        if hit {
-                            last.set(*k);
-                        }
-                        hit
-                    })
+            let room = |p: P2| {
+                if !leaves(p, &head, r, tol) || !leaves(p, &last.get(), r, tol) {
+                    return None;
+                }
+                let (near, gap) = grid.near(p);
+                let mut room = lower_distance(p, &head, reach).min(r + gap);
+                for (_, k) in near.filter(|(j, _)| *j < nb + i) {
+                    if !leaves(p, k, r, tol) {
+                        last.set(*k);
+                        return None;
+                    }
+                    room = room.min(lower_distance(p, k, reach));
+                }
+                Some(room - r)
             };
             let stock = LocalStock::new(stock, c, r);
-            let mut angle = engaged_angle(&stock, c, r, cut, &periphery);
+            let mut angle = engaged_angle(&stock, c, r, room, &periphery);
             // Behind a tool that has moved, every point of the periphery is nearer than r to the
             // path just travelled: the engaged arc lies in the front half. Only the tolerance of
             // the material test at the two side points can make it read more than π.
@@ -331,15 +341,31 @@ impl Periphery {
 }
 
 /// Measure (rad) of the periphery of the tool at `c` that lies in material: inside the stock
-/// and not `cut` (nearer than r to the swept path).
-fn engaged_angle(stock: &LocalStock, c: P2, r: f64, cut: impl Fn(P2) -> bool, periphery: &Periphery) -> f64 {
+/// and not cut. `room(p)` is `None` where p is cut (nearer than r − tol to the swept path),
+/// else a lower bound of its distance from the swept path minus r: the next samples closer
+/// to p than that (less a rounding margin) are not cut either, without asking again.
+fn engaged_angle(stock: &LocalStock, c: P2, r: f64, room: impl Fn(P2) -> Option<f64>, periphery: &Periphery) -> f64 {
     if matches!(stock, LocalStock::Outside) {
         return 0.0;
     }
-    let in_material = |p: P2| !cut(p) && stock.contains(p);
+    let in_material = |p: P2| room(p).is_some() && stock.contains(p);
     let at = |th: f64| c + p2(th.cos(), th.sin()) * r;
     let (n, step) = (periphery.dirs.len(), periphery.step);
-    let flags: Vec<bool> = periphery.dirs.iter().map(|&d| in_material(c + d * r)).collect();
+    let mut flags: Vec<bool> = Vec::with_capacity(n);
+    while flags.len() < n {
+        let p = c + periphery.dirs[flags.len()] * r;
+        let Some(free) = room(p) else {
+            flags.push(false);
+            continue;
+        };
+        // Sample k + j is at most r·j·step from sample k.
+        let same = (free - 1e-9 * (1.0 + r)) / (r * step);
+        let more = if same.is_finite() && same > 1.0 { same.ceil() as usize - 1 } else { 0 };
+        let k = flags.len();
+        for j in k..(k + 1 + more).min(n) {
+            flags.push(stock.contains(c + periphery.dirs[j] * r));
+        }
+    }
     let count = flags.iter().filter(|&&f| f).count();
     if count == 0 {
         return 0.0;

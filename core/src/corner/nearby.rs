@@ -34,6 +34,12 @@ impl Cutter {
         Cutter { seg, lo, hi, start, end }
     }
 
+    /// Largest of the x and y distances from `p` to the box (0 inside): a lower bound of the
+    /// distance to the segment.
+    pub fn box_distance(&self, p: P2) -> f64 {
+        (self.lo.x - p.x).max(p.x - self.hi.x).max(self.lo.y - p.y).max(p.y - self.hi.y).max(0.0)
+    }
+
     /// Whether the box grown by `reach` contains `c`.
     pub fn within(&self, c: P2, reach: f64) -> bool {
         c.x >= self.lo.x - reach && c.x <= self.hi.x + reach && c.y >= self.lo.y - reach && c.y <= self.hi.y + reach
@@ -88,15 +94,15 @@ impl CutGrid {
         (at(p.x - self.lo.x, self.nx), at(p.y - self.lo.y, self.ny))
     }
 
-    /// The cutters (with their index) whose box grown by `reach` contains `c` (`reach` at most
-    /// the grid's).
-    pub fn near(&self, c: P2, reach: f64) -> impl Iterator<Item = (usize, &Cutter)> {
+    /// The cutters (with their index) that may have a box grown by the grid's reach containing
+    /// `c`, and `gap`: every other cutter's box is more than reach + gap from `c` (gap is the
+    /// distance from c to the edge of its cell, 0 outside the grid).
+    pub fn near(&self, c: P2) -> (impl Iterator<Item = (usize, &Cutter)>, f64) {
         let (x, y) = self.cell_of(c);
         let bin: &[u32] = if self.cutters.is_empty() { &[] } else { &self.bins[y * self.nx + x] };
-        bin.iter()
-            .chain(&self.big)
-            .map(|&i| (i as usize, &self.cutters[i as usize]))
-            .filter(move |(_, k)| k.within(c, reach))
+        let (x0, y0) = (self.lo.x + x as f64 * self.cell, self.lo.y + y as f64 * self.cell);
+        let gap = (c.x - x0).min(x0 + self.cell - c.x).min(c.y - y0).min(y0 + self.cell - c.y).max(0.0);
+        (bin.iter().chain(&self.big).map(|&i| (i as usize, &self.cutters[i as usize])), gap)
     }
 }
 
