@@ -26,14 +26,22 @@ const DIST_TOL: f64 = 1e-11;
 /// Bisection steps refining one in/out transition on the periphery.
 const REFINE_STEPS: usize = 36;
 /// Upper bound of tool positions in one evaluation (keeps run time bounded).
-const MAX_POSITIONS: f64 = 2.0e6;
+const MAX_POSITIONS: f64 = 2.0e5;
 /// Lines used for one trochoid piece (the evaluator works on lines and arcs).
 const TROCHOID_LINES: usize = 256;
 
-/// Reads points "x,y" (or "x y", "x;y"), one per line. Blank lines and lines starting with '#'
-/// are skipped, and so is a non-numeric first line (a header). `what` names the file in errors.
+/// Reads points "x,y" (or "x y", "x;y"), one per line; `what` names the file in errors.
+///
+/// Every line either parses completely or is an error naming the line: a point is exactly two
+/// fields, both finite numbers (`0,5;25` and `0,0 # note` are errors, not (0, 5) and (0, 0)).
+/// Skipped: a byte-order mark at the start, blank lines, lines starting with '#', and one
+/// header line — only the first line with content, and only when it is clearly a header: at
+/// least two fields, each a word of letters, digits or '_' that starts with a letter (`x,y`,
+/// `X_mm Y_mm`). A first line such as `O,0` (letter O) is not a header but an error.
 pub fn parse_points(text: &str, what: &str) -> Result<Vec<P2>, JobError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut pts = Vec::new();
+    let mut first = true;
     for (i, line) in text.lines().enumerate() {
         let line = line.trim();
         if line.is_empty() || line.starts_with('#') {
@@ -41,22 +49,28 @@ pub fn parse_points(text: &str, what: &str) -> Result<Vec<P2>, JobError> {
         }
         let fields: Vec<&str> =
             line.split(|c: char| c == ',' || c == ';' || c.is_whitespace()).filter(|f| !f.is_empty()).collect();
-        let nums: Option<Vec<f64>> = fields.iter().map(|f| f.parse::<f64>().ok()).collect();
-        match nums {
-            Some(v) if v.len() >= 2 => {
-                if !(v[0].is_finite() && v[1].is_finite()) {
-                    return Err(JobError::File(format!(
-                        "{what} line {}: x and y must be finite numbers, got {line:?}",
-                        i + 1
-                    )));
-                }
-                pts.push(p2(v[0], v[1]));
-            }
-            _ if pts.is_empty() && i == 0 => {} // header
-            _ => return Err(JobError::File(format!("{what} line {}: expected two numbers x,y, got {line:?}", i + 1))),
+        let header = first && fields.len() >= 2 && fields.iter().all(|f| is_word(f));
+        first = false;
+        if header {
+            continue;
+        }
+        let bad = |why: &str| JobError::File(format!("{what} line {}: {why}, got {line:?}", i + 1));
+        let [x, y] = fields[..] else { return Err(bad("expected two numbers x,y")) };
+        match (x.parse::<f64>(), y.parse::<f64>()) {
+            (Ok(x), Ok(y)) if x.is_finite() && y.is_finite() => pts.push(p2(x, y)),
+            (Ok(_), Ok(_)) => return Err(bad("x and y must be finite numbers")),
+            _ => return Err(bad("expected two numbers x,y")),
         }
     }
     Ok(pts)
+}
+
+/// A header field: letters, digits or '_', starting with a letter, and not a number's name
+/// (`inf`, `NaN`).
+fn is_word(field: &str) -> bool {
+    field.chars().next().is_some_and(char::is_alphabetic)
+        && field.chars().all(|c| c.is_alphanumeric() || c == '_')
+        && field.parse::<f64>().is_err()
 }
 
 /// A tool-centre polyline from points; consecutive duplicate points are skipped.

@@ -228,9 +228,40 @@ impl PocketPlan {
     }
 }
 
-/// Plan the requested pocket with its strategy. Errors name the input at fault.
+/// Most tool positions a pocket plan may measure, as estimated before planning by
+/// [`estimated_positions`]: at this bound a plan takes seconds, not minutes.
+pub const MAX_ESTIMATED_POSITIONS: f64 = 1.0e5;
+
+/// Tool positions the evaluator will measure, estimated before planning: the path clears the
+/// pocket's area A in bands of the step-over a_e, so it is about k·A/a_e long, measured every
+/// `spacing` mm: k = 1 for rings; k = 6 for the medial axis, whose trochoid circles overlap
+/// (about 2·A/a_e of path) and each cost a bisection of their own (counted as 4·A/a_e more).
+pub fn estimated_positions(polygon: &Polygon, strategy: PocketStrategy, settings: &PocketSettings) -> f64 {
+    let k = match strategy {
+        PocketStrategy::Rings(_) => 1.0,
+        PocketStrategy::MedialAxis => 6.0,
+    };
+    k * polygon.area().abs() / (settings.step_over * settings.spacing)
+}
+
+/// Plan the requested pocket with its strategy. Errors name the input at fault; a step-over
+/// (or spacing) so small that the plan would measure more than [`MAX_ESTIMATED_POSITIONS`]
+/// tool positions is rejected before planning, naming the smallest step-over allowed.
 pub fn plan(req: &PocketRequest) -> Result<PocketPlan, JobError> {
     let settings = req.settings()?;
+    let positions = estimated_positions(&req.polygon, req.strategy, &settings);
+    if positions > MAX_ESTIMATED_POSITIONS {
+        let least = settings.step_over * positions / MAX_ESTIMATED_POSITIONS;
+        return Err(JobError::range(
+            "step-over",
+            settings.step_over,
+            format!(
+                "at least {least:.4} mm for this pocket with --spacing {} mm (its area / (step-over × spacing) \
+                 estimates the tool positions measured, at most {MAX_ESTIMATED_POSITIONS})",
+                settings.spacing
+            ),
+        ));
+    }
     match req.strategy {
         PocketStrategy::Rings(method) => plan_rings(&req.polygon, settings, method).map(PocketPlan::Rings),
         PocketStrategy::MedialAxis => plan_perforative(&req.polygon, settings).map(PocketPlan::MedialAxis),
