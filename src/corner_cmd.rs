@@ -235,8 +235,8 @@ struct PocketOut {
 /// perforative trochoids along its medial axis (`--method medial-axis`).
 pub fn pocket(args: &PocketArgs) -> Result<String, String> {
     let what = args.polygon.display().to_string();
-    let polygon =
-        Polygon::new(parse_points(&read_input(&args.polygon, "polygon file")?, &what).map_err(err)?).map_err(|e| format!("{what}: {e}"))?;
+    let polygon = Polygon::new(parse_points(&read_input(&args.polygon, "polygon file")?, &what).map_err(err)?)
+        .map_err(|e| format!("{what}: {e}"))?;
     let req = PocketRequest {
         polygon,
         tool_diameter_mm: args.tool_diameter,
@@ -579,8 +579,9 @@ pub fn engagement(args: &EngagementArgs) -> Result<String, String> {
     let what_stock = args.stock_polygon.display().to_string();
     let path = polyline(&parse_points(&read_input(&args.path_csv, "path file")?, &what_path).map_err(err)?)
         .map_err(|e| format!("{what_path}: {e}"))?;
-    let stock = Polygon::new(parse_points(&read_input(&args.stock_polygon, "stock polygon file")?, &what_stock).map_err(err)?)
-        .map_err(|e| format!("{what_stock}: {e}"))?;
+    let stock =
+        Polygon::new(parse_points(&read_input(&args.stock_polygon, "stock polygon file")?, &what_stock).map_err(err)?)
+            .map_err(|e| format!("{what_stock}: {e}"))?;
     let prof = engagement_profile(&stock, &[], &path, &EvaluatorOptions::new(d / 2.0, args.spacing)).map_err(err)?;
     let conv = |s: &EngagementSample| SampleOut {
         s_mm: s.s_mm,
@@ -638,7 +639,8 @@ mod tests {
             std::fs::write(&f, text).expect("write");
             f.to_str().expect("utf-8").to_string()
         };
-        let pocket_of = |f: &str| pocket(&P::try_parse_from(["t", "--polygon", f, "--step-over", "5"]).expect("parse").p);
+        let pocket_of =
+            |f: &str| pocket(&P::try_parse_from(["t", "--polygon", f, "--step-over", "5"]).expect("parse").p);
         let bom = file("bom.txt", "\u{feff}0,0\n60,0\n60,40\n0,40\n");
         let v: serde_json::Value = serde_json::from_str(&pocket_of(&bom).expect("BOM accepted")).expect("json");
         assert_eq!(v["polygon"].as_array().map(Vec::len), Some(4));

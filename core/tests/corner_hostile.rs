@@ -204,7 +204,8 @@ fn distance(p: P2, seg: &Segment) -> f64 {
 #[test]
 fn many_sided_circle_is_one_medial_axis_part() {
     let polygon = circle(1000, 50.0);
-    let req = PocketRequest { polygon: polygon.clone(), strategy: PocketStrategy::MedialAxis, ..PocketRequest::default() };
+    let req =
+        PocketRequest { polygon: polygon.clone(), strategy: PocketStrategy::MedialAxis, ..PocketRequest::default() };
     let PocketPlan::MedialAxis(plan) = pocket::plan(&req).unwrap() else { panic!("medial axis") };
     assert_eq!(plan.parts, 1);
     let bound = 2.0 * polygon.area() / req.step_over_mm;

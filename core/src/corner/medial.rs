@@ -76,7 +76,9 @@ impl Walls {
         let n = v.len();
         let edges: Vec<(P2, P2)> = (0..n).map(|i| (v[i], v[(i + 1) % n])).collect();
         let inf = p2(f64::INFINITY, f64::INFINITY);
-        let (lo, hi) = v.iter().fold((inf, -inf), |(lo, hi), q| (p2(lo.x.min(q.x), lo.y.min(q.y)), p2(hi.x.max(q.x), hi.y.max(q.y))));
+        let (lo, hi) = v
+            .iter()
+            .fold((inf, -inf), |(lo, hi), q| (p2(lo.x.min(q.x), lo.y.min(q.y)), p2(hi.x.max(q.x), hi.y.max(q.y))));
         let (w, h) = ((hi.x - lo.x).max(1e-9), (hi.y - lo.y).max(1e-9));
         let cell = (4.0 * w * h / n as f64).sqrt().max(w.max(h) / 1024.0);
         let (nx, ny) = ((w / cell) as usize + 1, (h / cell) as usize + 1);
@@ -108,7 +110,8 @@ impl Walls {
             if best <= (k as f64 - 1.0) * self.cell {
                 break;
             }
-            let (x0, x1, y0, y1) = (cx.saturating_sub(k), (cx + k).min(self.nx - 1), cy.saturating_sub(k), (cy + k).min(self.ny - 1));
+            let (x0, x1, y0, y1) =
+                (cx.saturating_sub(k), (cx + k).min(self.nx - 1), cy.saturating_sub(k), (cy + k).min(self.ny - 1));
             for y in y0..=y1 {
                 for x in x0..=x1 {
                     if x.abs_diff(cx).max(y.abs_diff(cy)) != k {

@@ -71,7 +71,8 @@ impl CutGrid {
         let cell = (0.25 * reach).max(extent / MAX_CELLS_PER_SIDE);
         let cells = |d: f64| if d.is_finite() { (d / cell).floor() as usize + 1 } else { 1 };
         let (nx, ny) = (cells(hi.x + reach - lo.x), cells(hi.y + reach - lo.y));
-        let mut grid = CutGrid { cutters: Vec::new(), lo, cell, nx, ny, bins: vec![Vec::new(); nx * ny], big: Vec::new() };
+        let mut grid =
+            CutGrid { cutters: Vec::new(), lo, cell, nx, ny, bins: vec![Vec::new(); nx * ny], big: Vec::new() };
         for (i, k) in cutters.iter().enumerate() {
             let (x0, y0) = grid.cell_of(k.lo - p2(reach, reach));
             let (x1, y1) = grid.cell_of(k.hi + p2(reach, reach));
