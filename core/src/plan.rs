@@ -3,7 +3,7 @@
 use crate::analysis::{self, PreviousEdge, ToothSample, Wall, WallProfile, chip_timing, tooth_series, wall_profile};
 use crate::error::JobError;
 use crate::job::{Job, PathKind, ValidJob};
-use crate::path::SlotPath;
+use crate::path::{Cycle, SlotPath};
 use serde::Serialize;
 
 /// Grechishnikov et al. (2017): optimal engaged sector 46°.
@@ -53,6 +53,12 @@ pub struct Metrics {
     pub machining_time_s: f64,
     /// Tooth positions per cycle (cycle length / f_z).
     pub teeth_per_cycle: f64,
+    /// Resolution of the per-tooth analysis: every `tooth_stride`-th tooth position of the
+    /// cycle is analysed (1: every one; above 1 past
+    /// [`MAX_TOOTH_SAMPLES`](crate::job::limits::MAX_TOOTH_SAMPLES) positions per cycle).
+    /// h_max, the engagement and the times then come from those teeth alone, t_hmax and
+    /// t_cooling in units of `tooth_stride` tooth periods.
+    pub tooth_stride: usize,
     /// Largest step keeping the engagement ≤ 46° (two-circle model, mm).
     pub step_limit_46deg_mm: f64,
     /// Largest step for a straight-cut-equivalent depth of 15 % of D (mm).
@@ -65,7 +71,8 @@ pub struct Plan {
     pub job: ValidJob,
     pub path: SlotPath,
     pub metrics: Metrics,
-    /// One steady-state cycle, tooth by tooth (cycle origin at (0, 0)).
+    /// One steady-state cycle, tooth by tooth (every [`Metrics::tooth_stride`]-th tooth; cycle
+    /// origin at (0, 0)).
     pub series: Vec<ToothSample>,
     pub left_wall: WallProfile,
     pub right_wall: WallProfile,
@@ -103,8 +110,9 @@ pub fn plan_valid(job: ValidJob) -> Plan {
         || tooth_series(&path.cycle, &edge, r, f_z, feed_mm_per_s),
         || rayon::join(|| wall_profile(&path.cycle, r, Wall::Left), || wall_profile(&path.cycle, r, Wall::Right)),
     );
-    let timing = chip_timing(&series, f_z / feed_mm_per_s);
     let cycle_length = path.cycle.length();
+    let stride = analysis::chip::tooth_stride(cycle_length, f_z);
+    let timing = chip_timing(&series, stride as f64 * f_z / feed_mm_per_s);
     let t_cycle = cycle_length / feed_mm_per_s;
     let metrics = Metrics {
         path: job.path,
@@ -127,6 +135,7 @@ pub fn plan_valid(job: ValidJob) -> Plan {
         path_length_mm: path.length(),
         machining_time_s: path.length() / feed_mm_per_s,
         teeth_per_cycle: cycle_length / f_z,
+        tooth_stride: stride,
         step_limit_46deg_mm: analysis::step::step_for_engagement(
             job.slot_width,
             job.tool_diameter,
@@ -142,11 +151,12 @@ pub fn plan_valid(job: ValidJob) -> Plan {
 }
 
 /// Largest step s (mm) for which the job's own path keeps the maximum engagement over a
-/// steady-state cycle at or below `limit_rad`, by bisection on s with the full analysis
-/// (the engagement grows with s). Works for every path type; for the circular-type path it
+/// steady-state cycle at or below `limit_rad`, by bisection on s (the engagement grows with
+/// s), each trial analysing the engagement of the same teeth as [`plan`] (not the chip
+/// thickness or the walls). Works for every path type; for the circular-type path it
 /// reproduces [`step_for_engagement`] (tested). Returns the bracket's lower end after 30
-/// halvings (|error| < upper bound · 2⁻³⁰). Lives here, not in [`analysis`], because it plans
-/// the job again for each trial step.
+/// halvings (|error| < upper bound · 2⁻³⁰). Lives here, not in [`analysis`], because it builds
+/// the job's path again for each trial step.
 ///
 /// [`step_for_engagement`]: analysis::step::step_for_engagement
 pub fn engagement_limited_step(job: &Job, limit_rad: f64) -> Result<f64, JobError> {
@@ -157,8 +167,12 @@ pub fn engagement_limited_step(job: &Job, limit_rad: f64) -> Result<f64, JobErro
     // Upper end: the validation limits for s (below D and below π·b).
     let hi_limit = valid.tool_diameter.min(std::f64::consts::PI * valid.b()) * 0.999;
     let engagement = |s: f64| -> Result<f64, JobError> {
-        let j = Job { step: s, slot_length: job.slot_length.max(s), ..job.clone() };
-        Ok(plan(&j)?.metrics.engagement_max_deg.to_radians())
+        let j = Job { step: s, slot_length: job.slot_length.max(s), ..job.clone() }.validate()?;
+        let (cycle, r) = (Cycle::for_job(&j), j.tool_radius());
+        let max = analysis::chip::max_engagement(&cycle, &PreviousEdge::new(&cycle, r), r, j.f_z());
+        // Through degrees as `Metrics::engagement_max_deg`, so the bisection compares the
+        // very numbers a plan reports.
+        Ok(max.to_degrees().to_radians())
     };
     let (mut lo, mut hi) = (0.0, hi_limit);
     if engagement(hi)? <= limit_rad {
