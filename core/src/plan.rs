@@ -122,7 +122,8 @@ pub fn plan_valid(job: ValidJob) -> Plan {
         f_z_mm: f_z,
         h_max_mm: timing.h_max_mm,
         t_hmax_s: timing.t_hmax_s,
-        t_cooling_s: timing.t_cooling_s,
+        // Each analysed tooth counts for `stride` periods, the last one partly beyond the cycle.
+        t_cooling_s: timing.t_cooling_s.min(t_cycle),
         engagement_max_deg: timing.engagement_max_rad.to_degrees(),
         waviness_left_mm: left_wall.waviness_mm,
         waviness_right_mm: right_wall.waviness_mm,
@@ -167,7 +168,9 @@ pub fn engagement_limited_step(job: &Job, limit_rad: f64) -> Result<f64, JobErro
     // Upper end: the validation limits for s (below D and below π·b).
     let hi_limit = valid.tool_diameter.min(std::f64::consts::PI * valid.b()) * 0.999;
     let engagement = |s: f64| -> Result<f64, JobError> {
-        let j = Job { step: s, slot_length: job.slot_length.max(s), ..job.clone() }.validate()?;
+        // One cycle long: the steady-state engagement does not depend on the slot length, and
+        // a trial step below slot-length / MAX_CYCLES must not be refused for it.
+        let j = Job { step: s, slot_length: s, ..job.clone() }.validate()?;
         let (cycle, r) = (Cycle::for_job(&j), j.tool_radius());
         let max = analysis::chip::max_engagement(&cycle, &PreviousEdge::new(&cycle, r), r, j.f_z());
         // Through degrees as `Metrics::engagement_max_deg`, so the bisection compares the

@@ -669,6 +669,57 @@ mod tests {
     use super::*;
     use crate::{Job, PathKind};
 
+    /// A strided series analyses exactly the teeth it names: with stride k its i-th sample is
+    /// tooth k·i of the full series (same h, engagement, arcs), each against its own previous
+    /// tooth f_z behind (issue #13: bounded analysis of jobs with very many teeth per cycle).
+    #[test]
+    fn strided_series_is_every_kth_tooth_of_the_full_one() {
+        for job in [
+            Job::default(),
+            Job { path: PathKind::LinearElliptical, aspect_ratio: 0.8, linear_distance: 0.75, ..Job::default() },
+        ] {
+            let job = job.validate().expect("valid");
+            let cycle = Cycle::for_job(&job);
+            let (r, f_z, feed) = (job.tool_radius(), job.f_z(), job.feed / 60.0);
+            let edge = PreviousEdge::new(&cycle, r);
+            let full = strided_series(&cycle, &edge, r, f_z, feed, 1);
+            assert_eq!(full, tooth_series(&cycle, &edge, r, f_z, feed), "stride 1 below the limit");
+            for k in [2, 7, 50] {
+                let strided = strided_series(&cycle, &edge, r, f_z, feed, k);
+                assert_eq!(strided.len(), full.len().div_ceil(k), "stride {k}");
+                for (i, t) in strided.iter().enumerate() {
+                    let u = &full[k * i];
+                    let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * (1.0 + b.abs());
+                    assert!(close(t.s_mm, u.s_mm) && close(t.x_mm, u.x_mm), "stride {k} tooth {i}");
+                    assert!(close(t.h_mm, u.h_mm), "stride {k} tooth {i}: h {} vs {}", t.h_mm, u.h_mm);
+                    assert!(close(t.engagement_rad, u.engagement_rad), "stride {k} tooth {i}: engagement");
+                    assert_eq!(t.arcs.len(), u.arcs.len(), "stride {k} tooth {i}: arcs");
+                    for (a, b) in t.arcs.iter().zip(&u.arcs) {
+                        assert!(close(a.max_thickness_mm(), b.max_thickness_mm()), "stride {k} tooth {i}");
+                    }
+                }
+                let max = strided.iter().map(|t| t.engagement_rad).fold(0.0, f64::max);
+                assert!(max <= full.iter().map(|t| t.engagement_rad).fold(0.0, f64::max) + 1e-12);
+            }
+            let max = full.iter().map(|t| t.engagement_rad).fold(0.0, f64::max);
+            assert_eq!(max_engagement(&cycle, &edge, r, f_z), max, "engagement alone, same teeth");
+        }
+    }
+
+    /// The stride keeps the analysed teeth within the limit and is 1 below it.
+    #[test]
+    fn tooth_stride_bounds_the_analysed_teeth() {
+        let max = MAX_TOOTH_SAMPLES as f64;
+        assert_eq!(tooth_stride(31.4, 0.075), 1);
+        assert_eq!(tooth_stride(max * 0.1, 0.1), 1);
+        assert_eq!(tooth_stride(max * 0.1 + 1e-9, 0.1), 2);
+        for (len, f_z) in [(157_079.6, 1e-4), (31.4, 1.5e-4), (1e6, 1e-4), (0.03, 1e-4)] {
+            let k = tooth_stride(len, f_z);
+            assert!(len / (k as f64 * f_z) <= max, "{len} {f_z}: stride {k}");
+            assert!(k == 1 || len / ((k - 1) as f64 * f_z) > max, "{len} {f_z}: stride {k} not the smallest");
+        }
+    }
+
     /// The engaged arcs against the h computation: samples at most 1° apart, each equal to
     /// [`radial_thickness`] at its angle, and h (eqs. 3–6) the largest radial thickness over
     /// the arcs (found on a 0.01° grid), so the samples' maximum is h up to the 1° sampling.
