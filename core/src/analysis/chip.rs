@@ -272,11 +272,28 @@ fn no_poke_out_mm(r: f64) -> f64 {
     -r * dphi * dphi / 4.0
 }
 
+/// The coarse angles φ across the forward half circle with their sine and cosine, computed
+/// once ([`Frame::dir`] of each is N·cos φ + T·sin φ).
+fn coarse_angles() -> &'static [(f64, f64, f64)] {
+    static ANGLES: std::sync::OnceLock<Vec<(f64, f64, f64)>> = std::sync::OnceLock::new();
+    ANGLES.get_or_init(|| {
+        (0..COARSE)
+            .map(|i| {
+                let phi = PI * i as f64 / (COARSE - 1) as f64;
+                let (s, c) = phi.sin_cos();
+                (phi, s, c)
+            })
+            .collect()
+    })
+}
+
+/// The engaged intervals of the tool edge at frame `f`: coarse samples of the forward half
+/// circle, crossings refined to 1e-10 rad, a poke-out between samples found by golden section.
 fn engagement(swept: &Swept, f: &Frame, r: f64) -> Engagement {
     let g = |phi: f64| swept.margin(f.c + f.dir(phi) * r);
-    let phis: Vec<f64> = (0..COARSE).map(|i| PI * i as f64 / (COARSE - 1) as f64).collect();
-    let mut vals: Vec<f64> = phis.iter().map(|&p| g(p)).collect();
-    let mut phis = phis;
+    let coarse = coarse_angles();
+    let mut phis: Vec<f64> = coarse.iter().map(|a| a.0).collect();
+    let mut vals: Vec<f64> = coarse.iter().map(|&(_, s, c)| swept.margin(f.c + (f.n * c + f.t * s) * r)).collect();
     // A small poke-out between coarse samples: refine the best sample's neighbourhood.
     if vals.iter().all(|&v| v <= 0.0) {
         let (ibest, vbest) =
