@@ -53,12 +53,6 @@ pub struct Metrics {
     pub machining_time_s: f64,
     /// Tooth positions per cycle (cycle length / f_z).
     pub teeth_per_cycle: f64,
-    /// Resolution of the per-tooth analysis: every `tooth_stride`-th tooth position of the
-    /// cycle is analysed (1: every one; above 1 past
-    /// [`MAX_TOOTH_SAMPLES`](crate::job::limits::MAX_TOOTH_SAMPLES) positions per cycle).
-    /// h_max, the engagement and the times then come from those teeth alone, t_hmax and
-    /// t_cooling in units of `tooth_stride` tooth periods.
-    pub tooth_stride: usize,
     /// Largest step keeping the engagement ≤ 46° (two-circle model, mm).
     pub step_limit_46deg_mm: f64,
     /// Largest step for a straight-cut-equivalent depth of 15 % of D (mm).
@@ -71,9 +65,15 @@ pub struct Plan {
     pub job: ValidJob,
     pub path: SlotPath,
     pub metrics: Metrics,
-    /// One steady-state cycle, tooth by tooth (every [`Metrics::tooth_stride`]-th tooth; cycle
+    /// One steady-state cycle, tooth by tooth (every [`Plan::tooth_stride`]-th tooth; cycle
     /// origin at (0, 0)).
     pub series: Vec<ToothSample>,
+    /// Resolution of the per-tooth analysis: every `tooth_stride`-th tooth position of the
+    /// cycle is analysed (1: every one; above 1 past
+    /// [`MAX_TOOTH_SAMPLES`](crate::job::limits::MAX_TOOTH_SAMPLES) positions per cycle).
+    /// h_max, the engagement and the times then come from those teeth alone, t_hmax and
+    /// t_cooling in units of `tooth_stride` tooth periods.
+    pub tooth_stride: usize,
     pub left_wall: WallProfile,
     pub right_wall: WallProfile,
     /// Edge of the material left by previous cycles (for drawing chips and edges).
@@ -136,7 +136,6 @@ pub fn plan_valid(job: ValidJob) -> Plan {
         path_length_mm: path.length(),
         machining_time_s: path.length() / feed_mm_per_s,
         teeth_per_cycle: cycle_length / f_z,
-        tooth_stride: stride,
         step_limit_46deg_mm: analysis::step::step_for_engagement(
             job.slot_width,
             job.tool_diameter,
@@ -148,7 +147,7 @@ pub fn plan_valid(job: ValidJob) -> Plan {
             DEPTH_LIMIT_FRACTION * job.tool_diameter,
         ),
     };
-    Plan { job, path, metrics, series, left_wall, right_wall, edge }
+    Plan { job, path, metrics, series, tooth_stride: stride, left_wall, right_wall, edge }
 }
 
 /// Largest step s (mm) for which the job's own path keeps the maximum engagement over a

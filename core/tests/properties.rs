@@ -157,7 +157,6 @@ fn any_job() -> impl Strategy<Value = Job> {
                 feed: f_z * rpm * f64::from(teeth),
                 slot_length: (step * 1e6).min(MAX_SIZE_MM).powf(len_frac) * step.powf(1.0 - len_frac),
                 depth,
-                ..Job::default()
             }
         })
 }
@@ -183,8 +182,8 @@ proptest! {
         };
         let m = &p.metrics;
         prop_assert!(p.series.len() <= MAX_TOOTH_SAMPLES + 1, "{} teeth analysed", p.series.len());
-        let analysed = m.teeth_per_cycle / m.tooth_stride as f64;
-        prop_assert!(analysed <= MAX_TOOTH_SAMPLES as f64 && (m.tooth_stride == 1 || 2.0 * analysed > MAX_TOOTH_SAMPLES as f64));
+        let analysed = m.teeth_per_cycle / p.tooth_stride as f64;
+        prop_assert!(analysed <= MAX_TOOTH_SAMPLES as f64 && (p.tooth_stride == 1 || 2.0 * analysed > MAX_TOOTH_SAMPLES as f64));
         for v in [m.cycle_length_mm, m.t_cycle_s, m.mrr_mm3_per_min, m.h_max_mm, m.t_hmax_s, m.t_cooling_s,
                   m.engagement_max_deg, m.waviness_left_mm, m.waviness_right_mm, m.path_length_mm] {
             prop_assert!(v.is_finite() && v >= 0.0, "{v}");
@@ -228,14 +227,15 @@ fn issue_13_jobs_plan_with_bounded_teeth() {
     for job in [&big, &mid, &coarse, &fast] {
         let p = plan(job).expect("valid");
         let m = &p.metrics;
-        assert!(m.tooth_stride > 1 && p.series.len() <= MAX_TOOTH_SAMPLES + 1, "{} teeth", p.series.len());
+        assert!(p.tooth_stride > 1 && p.series.len() <= MAX_TOOTH_SAMPLES + 1, "{} teeth", p.series.len());
         assert!(m.h_max_mm > 0.0 && m.h_max_mm <= m.f_z_mm && m.engagement_max_deg > 0.0, "{m:?}");
         engagement_limited_step(job, 46f64.to_radians()).expect("valid");
     }
     // Every tooth of the fast job (209 493 per cycle), analysed before the bound.
-    let m = plan(&fast).expect("valid").metrics;
-    let dt = m.tooth_stride as f64 * m.f_z_mm / (fast.feed / 60.0);
-    assert_eq!(m.tooth_stride, 52);
+    let p = plan(&fast).expect("valid");
+    let m = &p.metrics;
+    let dt = p.tooth_stride as f64 * m.f_z_mm / (fast.feed / 60.0);
+    assert_eq!(p.tooth_stride, 52);
     assert!((m.h_max_mm - 0.000_117_327_389_790_311_54).abs() < 1e-6 * m.h_max_mm, "{}", m.h_max_mm);
     assert!((m.engagement_max_deg - 51.462_222_373_194_75).abs() < 1e-3, "{}", m.engagement_max_deg);
     assert!((m.t_cooling_s - 1.498_545).abs() <= dt, "{}", m.t_cooling_s);
