@@ -148,6 +148,14 @@ pub mod limits {
     pub const MIN_FZ: f64 = 1.0e-4;
     /// Most teeth.
     pub const MAX_TEETH: u32 = 64;
+    /// Most tooth positions analysed per cycle. A cycle holds (cycle length)/f_z tooth
+    /// positions — up to ~10⁹ within the limits above (a cycle of ~10⁵ mm at f_z = 10⁻⁴ mm) —
+    /// and each costs a fixed amount of work and memory (engagement, h, engaged arcs). Past
+    /// this number only every k-th tooth is analysed, k the smallest stride that keeps the
+    /// count at or below it (the plan reports k as its resolution); each analysed tooth is
+    /// still analysed exactly, against its own previous tooth f_z behind. Keeps one plan of
+    /// any valid job within ~0.1 s and ~20 MB; the paper's jobs have a few hundred positions.
+    pub const MAX_TOOTH_SAMPLES: usize = 4096;
 }
 
 /// A job that passed validation; everything downstream takes this type.
