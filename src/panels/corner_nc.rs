@@ -9,22 +9,13 @@
 use super::Command;
 use super::corner::{CornerMode, CornerResult, CornerView, PocketResult};
 use super::export::{line_starts, program_text};
+use super::label;
 use super::params::ERROR_COLOR;
 use eframe::egui::{self, DragValue, RichText, Slider, SliderClamping};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 use trochoplan_core::nc::{self, CutSetup, DEFAULT_TOLERANCE_MM, Dialect, NcOptions};
 
-/// Accessible names of the inputs (tests find them by these).
-pub mod label {
-    pub const OPEN: &str = "NC export";
-    pub const TOLERANCE: &str = "Corner NC tolerance";
-    pub const LINEAR: &str = "G1 chords only";
-    pub const COOLANT: &str = "Coolant (M8/M9)";
-    pub const DEPTH: &str = "Depth below Z0";
-    pub const RPM: &str = "Spindle";
-    pub const SAVE: &str = "Save program as…";
-}
 
 /// The export options of the Corner tab (persisted with the app state).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -191,7 +182,7 @@ fn format_options(ui: &mut egui::Ui, settings: &mut CornerNcSettings) {
         ui.radio_value(&mut settings.dialect, d, d.label());
     }
     ui.separator();
-    let l = ui.label(label::TOLERANCE).on_hover_text(
+    let l = ui.label(label::CORNER_NC_TOLERANCE).on_hover_text(
         "Largest distance of the written path from the planned one before rounding (mm); \
          curves become biarcs (or chords) within it. Default 0.005 mm (domain-spec §5.4).",
     );
@@ -211,15 +202,15 @@ pub(super) fn tolerance_slider(tolerance_mm: &mut f64) -> Slider<'_> {
 
 /// How it cuts: chords or arcs, coolant, depth and spindle speed.
 fn cut_options(ui: &mut egui::Ui, settings: &mut CornerNcSettings) {
-    ui.checkbox(&mut settings.linear_segments, label::LINEAR)
+    ui.checkbox(&mut settings.linear_segments, label::G1_CHORDS_ONLY)
         .on_hover_text("Write every arc as G1 chords instead of G2/G3 (more blocks).");
     ui.checkbox(&mut settings.coolant, label::COOLANT);
     ui.separator();
-    let l = ui.label(label::DEPTH);
+    let l = ui.label(label::DEPTH_BELOW_Z0);
     ui.add(DragValue::new(&mut settings.depth_mm).speed(0.1).suffix(" mm")).labelled_by(l.id).on_hover_text(
         "Cutting depth below the stock top Z0, 0 < depth ≤ 1000 mm; the tool feeds down at the path start.",
     );
-    let l = ui.label(label::RPM);
+    let l = ui.label(label::SPINDLE);
     ui.add(DragValue::new(&mut settings.spindle_rpm).speed(10.0).suffix(" rpm"))
         .labelled_by(l.id)
         .on_hover_text("Spindle speed (M3), 0 < n ≤ 1000000 rpm.");
@@ -228,7 +219,7 @@ fn cut_options(ui: &mut egui::Ui, settings: &mut CornerNcSettings) {
 /// The save button (disabled while the inputs are invalid) and the program's size.
 fn save_row(ui: &mut egui::Ui, p: &NcPreview, inputs_error: bool) -> Option<Command> {
     let save = ui
-        .add_enabled(!inputs_error, egui::Button::new(label::SAVE))
+        .add_enabled(!inputs_error, egui::Button::new(label::SAVE_PROGRAM_AS))
         .on_hover_text("Choose a file; it is written atomically (temporary file, then rename).")
         .on_disabled_hover_text("The inputs are invalid: fix them first.")
         .clicked();

@@ -7,6 +7,7 @@
 //! with the same options (the core guarantees the same motion), and the panel says so.
 
 use super::Command;
+use super::label;
 use super::params::ERROR_COLOR;
 use eframe::egui::{self, Color32, RichText, Slider, SliderClamping};
 use egui_plot::{Corner, Legend, Line, Plot, PlotPoint, PlotPoints};
@@ -15,16 +16,6 @@ use trochoplan_core::Plan;
 use trochoplan_core::job::ValidJob;
 use trochoplan_core::nc::{self, DEFAULT_TOLERANCE_MM, Dialect, NcOptions};
 
-/// Accessible names of the panel's inputs (tests find them by these).
-pub mod label {
-    pub const TOLERANCE: &str = "NC tolerance";
-    pub const LINEAR: &str = "Linear segments (G1 chords only)";
-    pub const COMPACT: &str = "Compact loop";
-    pub const COOLANT: &str = "Coolant (M8/M9)";
-    pub const RETURN_FEED: &str = "Faster return feed";
-    pub const RETURN_FEED_VALUE: &str = "Return feed";
-    pub const SAVE: &str = "Save NC program…";
-}
 
 /// Chord tolerance of the drawn back-plot (mm), raised for very long programs.
 const BACKPLOT_CHORD_MM: f64 = 0.002;
@@ -213,7 +204,7 @@ pub fn show(
         }
     });
     ui.horizontal_wrapped(|ui| {
-        let l = ui.label(label::TOLERANCE).on_hover_text(
+        let l = ui.label(label::NC_TOLERANCE).on_hover_text(
             "Largest distance of the written path from the planned one before rounding (mm). \
              Curves become biarcs (or chords) within it; domain-spec §5.4 default 0.005 mm.",
         );
@@ -226,19 +217,19 @@ pub fn show(
                 .suffix(" mm"),
         )
         .labelled_by(l.id);
-        ui.checkbox(&mut settings.linear_segments, label::LINEAR)
+        ui.checkbox(&mut settings.linear_segments, label::LINEAR_SEGMENTS)
             .on_hover_text("Write every curve as G1 chords instead of G2/G3 arcs (many more blocks).");
         let loops = settings.dialect.spec().loop_style.is_some();
         if !loops {
             settings.compact = false;
         }
-        ui.add_enabled(loops, egui::Checkbox::new(&mut settings.compact, label::COMPACT))
+        ui.add_enabled(loops, egui::Checkbox::new(&mut settings.compact, label::COMPACT_LOOP))
             .on_hover_text("LinuxCNC O-word while loop / Sinumerik R-parameter loop: one cycle's blocks, repeated.")
             .on_disabled_hover_text("Only LinuxCNC and Sinumerik have a loop form.");
         ui.checkbox(&mut settings.coolant, label::COOLANT);
-        ui.checkbox(&mut settings.return_feed, label::RETURN_FEED)
+        ui.checkbox(&mut settings.return_feed, label::FASTER_RETURN_FEED)
             .on_hover_text("A faster feed on the moves where no tooth cuts in the steady state.");
-        let l = ui.label(label::RETURN_FEED_VALUE);
+        let l = ui.label(label::RETURN_FEED);
         ui.add_enabled(
             settings.return_feed,
             egui::DragValue::new(&mut settings.return_feed_mm_per_min).speed(10.0).suffix(" mm/min"),
@@ -262,7 +253,7 @@ pub fn show(
     ui.horizontal(|ui| {
         let ok = job_error.is_none();
         if ui
-            .add_enabled(ok, egui::Button::new(label::SAVE))
+            .add_enabled(ok, egui::Button::new(label::SAVE_NC_PROGRAM))
             .on_hover_text("Choose a file; it is written atomically (temporary file, then rename).")
             .clicked()
         {
