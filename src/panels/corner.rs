@@ -25,7 +25,6 @@ use trochoplan_core::corner::{self, CornerMethod, CornerReport, CornerRequest, E
 use trochoplan_core::geom::{Polygon, Segment};
 use trochoplan_core::pocket::{self, MoveKind, PocketPlan, PocketRequest, PocketStrategy};
 
-
 /// What the tab plans: one corner, the acceptance table of all corner angles, or a whole
 /// polygonal pocket.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]

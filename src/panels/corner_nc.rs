@@ -16,7 +16,6 @@ use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 use trochoplan_core::nc::{self, CutSetup, DEFAULT_TOLERANCE_MM, Dialect, NcOptions};
 
-
 /// The export options of the Corner tab (persisted with the app state).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default)]

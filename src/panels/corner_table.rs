@@ -24,7 +24,6 @@ pub const STRATEGY_COLORS: [Color32; 3] =
 /// Colour of the passes and fails.
 const PASS_COLOR: Color32 = Color32::from_rgb(70, 170, 80);
 
-
 /// The rows of one corner angle, in the order of `STRATEGIES`, or why they could not be made.
 #[derive(Clone, Debug)]
 pub struct AngleRows {

@@ -16,7 +16,6 @@ use trochoplan_core::Plan;
 use trochoplan_core::job::ValidJob;
 use trochoplan_core::nc::{self, DEFAULT_TOLERANCE_MM, Dialect, NcOptions};
 
-
 /// Chord tolerance of the drawn back-plot (mm), raised for very long programs.
 const BACKPLOT_CHORD_MM: f64 = 0.002;
 /// Most back-plot points drawn before the chord tolerance is raised.

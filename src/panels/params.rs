@@ -9,7 +9,6 @@ use trochoplan_core::{Job, JobError, PathKind};
 /// Colour of validation messages.
 pub const ERROR_COLOR: Color32 = Color32::from_rgb(210, 40, 40);
 
-
 struct Field<'a> {
     label: &'static str,
     /// Core parameter name (kebab-case) whose errors belong here.
