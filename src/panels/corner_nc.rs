@@ -8,9 +8,10 @@
 
 use super::Command;
 use super::corner::{CornerMode, CornerResult, CornerView, PocketResult};
-use super::export::{line_starts, program_text};
+use super::export::{ProgramCache, line_starts, program_text};
 use super::label;
 use super::params::ERROR_COLOR;
+use crate::export::nc_options;
 use eframe::egui::{self, DragValue, RichText, Slider, SliderClamping};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
@@ -51,13 +52,7 @@ impl Default for CornerNcSettings {
 impl CornerNcSettings {
     /// The core's options (validated by the core when the program is written).
     pub fn options(&self) -> NcOptions {
-        NcOptions {
-            dialect: self.dialect,
-            tolerance_mm: self.tolerance_mm,
-            linear_segments: self.linear_segments,
-            coolant: self.coolant,
-            ..NcOptions::default()
-        }
+        nc_options(self.dialect, self.tolerance_mm, self.linear_segments, self.coolant)
     }
 
     pub fn cut(&self) -> CutSetup {
@@ -75,15 +70,15 @@ pub struct NcPreview {
     pub file_stem: &'static str,
 }
 
-/// The plan a program is written from.
+/// The plan a program is written from (the same plan: the same `Arc`).
 #[derive(Clone)]
-enum Source {
+pub enum Source {
     Corner(Arc<CornerResult>),
     Pocket(Arc<PocketResult>),
 }
 
-impl Source {
-    fn same(&self, other: &Source) -> bool {
+impl PartialEq for Source {
+    fn eq(&self, other: &Source) -> bool {
         match (self, other) {
             (Source::Corner(a), Source::Corner(b)) => Arc::ptr_eq(a, b),
             (Source::Pocket(a), Source::Pocket(b)) => Arc::ptr_eq(a, b),
@@ -93,14 +88,7 @@ impl Source {
 }
 
 /// The program of the shown plan and the export settings, regenerated only when either changed.
-#[derive(Default)]
-pub struct CornerNcCache {
-    key: Option<(Source, CornerNcSettings)>,
-    /// The program, or the core's message.
-    pub result: Option<Result<NcPreview, String>>,
-    /// Programs generated (tests check the cache).
-    pub generated: u64,
-}
+pub type CornerNcCache = ProgramCache<(Source, CornerNcSettings), NcPreview>;
 
 impl CornerNcCache {
     /// Regenerate if the plan shown in `mode` or the settings changed.
@@ -111,23 +99,12 @@ impl CornerNcCache {
             CornerMode::Table => None,
         };
         let Some(source) = source else {
-            self.key = None;
-            self.result = None;
+            self.clear();
             return;
         };
         // showing or hiding the panel does not change the program
         let settings = CornerNcSettings { open: false, ..settings.clone() };
-        if self.key.as_ref().is_some_and(|(s, k)| s.same(&source) && *k == settings) {
-            return;
-        }
-        self.generated += 1;
-        self.result = Some(generate(&source, &settings));
-        self.key = Some((source, settings));
-    }
-
-    /// The current program, if it was written without error.
-    pub fn preview(&self) -> Option<&NcPreview> {
-        self.result.as_ref().and_then(|r| r.as_ref().ok())
+        self.update_with((source, settings), |(source, settings)| generate(source, settings));
     }
 }
 
@@ -229,7 +206,7 @@ fn save_row(ui: &mut egui::Ui, p: &NcPreview, inputs_error: bool) -> Option<Comm
 /// The read-only program text filling `ui`.
 pub fn preview(ui: &mut egui::Ui, cache: &CornerNcCache) {
     ui.label(RichText::new("Program (read-only)").strong());
-    match cache.preview() {
+    match cache.view() {
         Some(p) => program_text(ui, "corner_nc_preview", &p.text, &p.line_starts),
         None => {
             ui.label("No program.");

@@ -39,6 +39,11 @@ fn harness() -> Harness<'static, App> {
     harness_with(App::new(Job::default(), None, Box::new(FakeDialogs { open: None, save: None })))
 }
 
+/// The default job's window whose save dialog answers `file`.
+fn harness_saving_to(file: &std::path::Path) -> Harness<'static, App> {
+    harness_with(App::new(Job::default(), None, Box::new(FakeDialogs { open: None, save: Some(file.to_owned()) })))
+}
+
 fn metrics(h: &Harness<'_, App>) -> trochoplan_core::Metrics {
     h.state().planner.last.as_ref().expect("a plan").plan.metrics.clone()
 }
@@ -394,8 +399,7 @@ fn export_text(h: &Harness<'_, App>) -> String {
 fn export_panel_previews_each_dialect_reports_errors_and_saves_the_previewed_text() {
     let dir = tempfile::tempdir().expect("tempdir");
     let file = dir.path().join("slot.ngc");
-    let app = App::new(Job::default(), None, Box::new(FakeDialogs { open: None, save: Some(file.clone()) }));
-    let mut h = harness_with(app);
+    let mut h = harness_saving_to(&file);
     h.get_by_label("File").click();
     h.run();
     h.get_by_label("Export NC…").click();
@@ -660,8 +664,7 @@ fn corner_export_previews_the_core_program_saves_it_and_reports_a_bad_depth() {
     use trochoplan_core::nc::{CutSetup, Dialect, NcOptions, corner_program, pocket_program};
     let dir = tempfile::tempdir().expect("tempdir");
     let file = dir.path().join("corner.nc");
-    let app = App::new(Job::default(), None, Box::new(FakeDialogs { open: None, save: Some(file.clone()) }));
-    let mut h = harness_with(app);
+    let mut h = harness_saving_to(&file);
     h.get_by_label("Corner").click();
     h.run();
     assert!(h.query_by_label(label::SAVE_PROGRAM_AS).is_none(), "export closed by default");
@@ -678,7 +681,7 @@ fn corner_export_previews_the_core_program_saves_it_and_reports_a_bad_depth() {
         &NcOptions::default(),
     )
     .expect("core program");
-    assert_eq!(h.state().corner_nc.preview().expect("program").text, want.text);
+    assert_eq!(h.state().corner_nc.view().expect("program").text, want.text);
     assert!(shows(&h, "(TrochoPlan corner)"), "preview shows the program");
     let generated = h.state().corner_nc.generated;
     h.run();
@@ -687,7 +690,7 @@ fn corner_export_previews_the_core_program_saves_it_and_reports_a_bad_depth() {
     h.get_by_label("Fanuc-style ISO").click();
     h.get_by_label(label::G1_CHORDS_ONLY).click();
     h.run();
-    let fanuc = h.state().corner_nc.preview().expect("program").text.clone();
+    let fanuc = h.state().corner_nc.view().expect("program").text.clone();
     let opts = NcOptions { dialect: Dialect::Fanuc, linear_segments: true, ..NcOptions::default() };
     let want = corner_program(&r.report.plan, r.report.settings(), r.report.angle_deg, CutSetup::default(), &opts)
         .expect("core program");
@@ -708,7 +711,7 @@ fn corner_export_previews_the_core_program_saves_it_and_reports_a_bad_depth() {
 
     h.get_by_role_and_label(Role::SpinButton, label::DEPTH_BELOW_Z0).set_value_accesskit(3.0);
     h.run();
-    let preview = h.state().corner_nc.preview().expect("program").text.clone();
+    let preview = h.state().corner_nc.view().expect("program").text.clone();
     assert!(preview.contains("\nG1 Z-3.000 F600.0\n"), "depth 3 mm: {preview}");
     h.get_by_label(label::SAVE_PROGRAM_AS).click();
     h.run();
@@ -723,7 +726,7 @@ fn corner_export_previews_the_core_program_saves_it_and_reports_a_bad_depth() {
     let cut = CutSetup { depth_mm: 3.0, ..CutSetup::default() };
     assert!(matches!(p.plan, trochoplan_core::pocket::PocketPlan::Rings(_)), "ring pocket expected");
     let want = pocket_program(&p.plan, cut, &opts).expect("core pocket program");
-    let preview = h.state().corner_nc.preview().expect("program").text.clone();
+    let preview = h.state().corner_nc.view().expect("program").text.clone();
     assert_eq!(preview, want.text);
     h.get_by_label(label::SAVE_PROGRAM_AS).click();
     h.run();
