@@ -472,12 +472,8 @@ struct NcExportOut {
 /// The NC options of the shared export flags.
 fn nc_options(nc: &CornerExportArgs) -> NcOptions {
     NcOptions {
-        dialect: nc.dialect,
-        tolerance_mm: nc.nc_tolerance,
-        linear_segments: nc.linear_segments,
-        coolant: nc.coolant,
         title: nc.title.clone().unwrap_or_default(),
-        ..NcOptions::default()
+        ..crate::export::nc_options(nc.dialect, nc.nc_tolerance, nc.linear_segments, nc.coolant)
     }
 }
 

@@ -14,6 +14,7 @@
 use super::Command;
 use super::corner_nc::{self, CornerNcCache, CornerNcSettings, NcExport};
 use super::corner_table::{self, TableView};
+use super::label;
 use super::params::ERROR_COLOR;
 use crate::worker::{Keep, Task, Worker};
 use eframe::egui::{self, Color32, DragValue, RichText, Slider, SliderClamping};
@@ -23,17 +24,6 @@ use std::sync::Arc;
 use trochoplan_core::corner::{self, CornerMethod, CornerReport, CornerRequest, EngagementProfile, parse_points};
 use trochoplan_core::geom::{Polygon, Segment};
 use trochoplan_core::pocket::{self, MoveKind, PocketPlan, PocketRequest, PocketStrategy};
-
-/// Labels of the inputs (used by the tests' accessibility queries).
-pub mod label {
-    pub const ANGLE: &str = "Corner angle (°)";
-    pub const TOOL_DIAMETER: &str = "Corner tool diameter D (mm)";
-    pub const STEP_OVER: &str = "Ring step-over a_e (mm)";
-    pub const STRAIGHT: &str = "Straight engagement a_str (°)";
-    pub const T1: &str = "Allowed excess t1";
-    pub const POLYGON: &str = "Pocket vertices (x,y per line)";
-    pub const POCKET_STEP_OVER: &str = "Pocket step-over a_e (mm)";
-}
 
 /// What the tab plans: one corner, the acceptance table of all corner angles, or a whole
 /// polygonal pocket.
@@ -427,7 +417,7 @@ fn mode_bar(ui: &mut egui::Ui, inputs: &mut CornerInputs, nc: &mut CornerNcSetti
             .on_hover_text("A polygonal pocket cleared by contour-parallel rings, the strategy at every ring corner");
         ui.separator();
         ui.add_enabled_ui(inputs.mode != CornerMode::Table, |ui| {
-            ui.toggle_value(&mut nc.open, corner_nc::label::OPEN)
+            ui.toggle_value(&mut nc.open, label::NC_EXPORT)
                 .on_hover_text("Options, preview and save of the NC program of the corner or the pocket")
                 .on_disabled_hover_text("Export one corner or a pocket; the table has no single tool path.");
         });
@@ -437,7 +427,7 @@ fn mode_bar(ui: &mut egui::Ui, inputs: &mut CornerInputs, nc: &mut CornerNcSetti
 /// Tool, step-over (or straight engagement) and t1: the inputs of the corner and the table.
 fn tool_inputs(ui: &mut egui::Ui, inputs: &mut CornerInputs) {
     ui.horizontal_wrapped(|ui| {
-        let l = ui.label(label::TOOL_DIAMETER);
+        let l = ui.label(label::CORNER_TOOL_DIAMETER);
         ui.add(DragValue::new(&mut inputs.tool_diameter_mm).speed(0.1).suffix(" mm"))
             .labelled_by(l.id)
             .on_hover_text("Tool diameter D = 2r.");
@@ -445,12 +435,12 @@ fn tool_inputs(ui: &mut egui::Ui, inputs: &mut CornerInputs) {
         ui.checkbox(&mut inputs.use_step_over, "give step-over")
             .on_hover_text("On: enter the ring step-over a_e. Off: a_e follows from the straight engagement.");
         if inputs.use_step_over {
-            let l = ui.label(label::STEP_OVER);
+            let l = ui.label(label::RING_STEP_OVER);
             ui.add(DragValue::new(&mut inputs.step_over_mm).speed(0.05).suffix(" mm"))
                 .labelled_by(l.id)
                 .on_hover_text("Distance between successive contour-parallel rings, 0 < a_e < D.");
         } else {
-            let l = ui.label(label::STRAIGHT);
+            let l = ui.label(label::STRAIGHT_ENGAGEMENT);
             ui.add(DragValue::new(&mut inputs.straight_engagement_deg).speed(0.5).suffix("°"))
                 .labelled_by(l.id)
                 .on_hover_text(
@@ -459,7 +449,7 @@ fn tool_inputs(ui: &mut egui::Ui, inputs: &mut CornerInputs) {
                 );
         }
         ui.separator();
-        let l = ui.label(label::T1);
+        let l = ui.label(label::ALLOWED_EXCESS_T1);
         ui.add(DragValue::new(&mut inputs.t1).speed(0.01).range(-1.0..=2.0)).labelled_by(l.id).on_hover_text(
             "Wu et al. 2016 eq. 23: the target engagement of the corner circles is a* = a_str·(1 + t1); \
                  the variable circles are bisected until their engagement lies in (a*, a* + ε] (eq. 24); \
@@ -493,7 +483,7 @@ fn corner(ui: &mut egui::Ui, inputs: &mut CornerInputs, view: &CornerView, nc: &
 /// The corner angle, the method and the tool inputs.
 fn corner_inputs(ui: &mut egui::Ui, inputs: &mut CornerInputs) {
     ui.horizontal_wrapped(|ui| {
-        let l = ui.label(label::ANGLE);
+        let l = ui.label(label::CORNER_ANGLE);
         ui.add(Slider::new(&mut inputs.angle_deg, 30.0..=150.0).step_by(1.0).clamping(SliderClamping::Never))
             .labelled_by(l.id)
             .on_hover_text(
@@ -706,7 +696,7 @@ fn pocket_inputs(ui: &mut egui::Ui, inputs: &mut CornerInputs) {
     ui.horizontal_wrapped(|ui| {
         method_buttons(ui, &mut inputs.method);
         ui.separator();
-        let l = ui.label(label::TOOL_DIAMETER);
+        let l = ui.label(label::CORNER_TOOL_DIAMETER);
         ui.add(DragValue::new(&mut inputs.tool_diameter_mm).speed(0.1).suffix(" mm")).labelled_by(l.id);
         let l = ui.label(label::POCKET_STEP_OVER);
         ui.add(DragValue::new(&mut inputs.pocket_step_over_mm).speed(0.05).suffix(" mm"))
@@ -717,7 +707,7 @@ fn pocket_inputs(ui: &mut egui::Ui, inputs: &mut CornerInputs) {
 
 /// The pocket's vertices as editable text.
 fn polygon_editor(ui: &mut egui::Ui, inputs: &mut CornerInputs) {
-    let l = ui.label(label::POLYGON);
+    let l = ui.label(label::POCKET_VERTICES);
     ui.add(egui::TextEdit::multiline(&mut inputs.polygon_text).desired_rows(8).code_editor())
         .labelled_by(l.id)
         .on_hover_text("A simple polygon, lines only, one vertex \"x,y\" (mm) per line; '#' comments allowed.");

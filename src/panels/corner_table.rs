@@ -10,6 +10,7 @@
 
 use super::Command;
 use super::corner::PLAIN_COLOR;
+use super::label;
 use super::params::ERROR_COLOR;
 use crate::worker::{Keep, Task, Worker};
 use eframe::egui::{self, Color32, RichText};
@@ -22,12 +23,6 @@ pub const STRATEGY_COLORS: [Color32; 3] =
     [Color32::from_rgb(40, 110, 200), Color32::from_rgb(60, 160, 90), Color32::from_rgb(150, 80, 190)];
 /// Colour of the passes and fails.
 const PASS_COLOR: Color32 = Color32::from_rgb(70, 170, 80);
-
-/// Labels of the table's buttons (used by the tests).
-pub mod label {
-    pub const CANCEL: &str = "Cancel table";
-    pub const RESTART: &str = "Restart table";
-}
 
 /// The rows of one corner angle, in the order of `STRATEGIES`, or why they could not be made.
 #[derive(Clone, Debug)]
@@ -238,12 +233,12 @@ fn progress(ui: &mut egui::Ui, view: &TableView) -> Option<Command> {
                 .desired_width(220.0)
                 .text(format!("{done} of {n} angles, measuring {next:.0}°…")),
         );
-        let cancel = ui.button(label::CANCEL).on_hover_text("Stop after the angle being measured").clicked();
+        let cancel = ui.button(label::CANCEL_TABLE).on_hover_text("Stop after the angle being measured").clicked();
         return cancel.then_some(Command::CancelCornerTable);
     }
     if view.cancelled {
         ui.label(format!("Cancelled after {} of {n} angles.", view.angles.len()));
-        return ui.button(label::RESTART).clicked().then_some(Command::RestartCornerTable);
+        return ui.button(label::RESTART_TABLE).clicked().then_some(Command::RestartCornerTable);
     }
     if view.complete() {
         ui.label(format!(

@@ -2,25 +2,12 @@
 //! meaning, the effect and the paper's recommended range, and the core's validation message at
 //! the offending field.
 
+use super::label;
 use eframe::egui::{self, Color32, RichText, Slider, SliderClamping};
 use trochoplan_core::{Job, JobError, PathKind};
 
 /// Colour of validation messages.
 pub const ERROR_COLOR: Color32 = Color32::from_rgb(210, 40, 40);
-
-/// Field labels, also the accessible names of the sliders (tests find them by these).
-pub mod label {
-    pub const SLOT_WIDTH: &str = "Slot width B";
-    pub const SLOT_LENGTH: &str = "Slot length L";
-    pub const DEPTH: &str = "Depth a_p";
-    pub const TOOL_DIAMETER: &str = "Tool diameter D";
-    pub const TEETH: &str = "Teeth z";
-    pub const FEED: &str = "Feed f_r";
-    pub const RPM: &str = "Spindle n";
-    pub const STEP: &str = "Step s";
-    pub const ASPECT_RATIO: &str = "Aspect ratio r_e";
-    pub const LINEAR_DISTANCE: &str = "Linear distance d";
-}
 
 struct Field<'a> {
     label: &'static str,
