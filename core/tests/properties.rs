@@ -4,8 +4,8 @@
 
 use proptest::prelude::*;
 use trochoplan_core::analysis::step::step_for_engagement;
-use trochoplan_core::plan::engagement_limited_step;
 use trochoplan_core::job::limits::{MAX_SIZE_MM, MAX_TEETH, MAX_TOOTH_SAMPLES, MIN_FZ};
+use trochoplan_core::plan::engagement_limited_step;
 use trochoplan_core::{Job, PathKind, plan};
 
 fn kind() -> impl Strategy<Value = PathKind> {

@@ -35,9 +35,10 @@ const TROCHOID_LINES: usize = 256;
 /// Every line either parses completely or is an error naming the line: a point is exactly two
 /// fields, both finite numbers (`0,5;25` and `0,0 # note` are errors, not (0, 5) and (0, 0)).
 /// Skipped: a byte-order mark at the start, blank lines, lines starting with '#', and one
-/// header line — only the first line with content, and only when it is clearly a header: at
-/// least two fields, each a word of letters, digits or '_' that starts with a letter (`x,y`,
-/// `X_mm Y_mm`). A first line such as `O,0` (letter O) is not a header but an error.
+/// header line — only the first line with content, and only when it is clearly a header: two
+/// words of letters, digits or '_', the first starting with x, the second with y, in any case
+/// (`x,y`, `X_mm Y_mm`). A first line such as `O,0` or `O,O` (letter O) is not a header but an
+/// error: it would otherwise drop a vertex without a word.
 pub fn parse_points(text: &str, what: &str) -> Result<Vec<P2>, JobError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut pts = Vec::new();
@@ -49,7 +50,7 @@ pub fn parse_points(text: &str, what: &str) -> Result<Vec<P2>, JobError> {
         }
         let fields: Vec<&str> =
             line.split(|c: char| c == ',' || c == ';' || c.is_whitespace()).filter(|f| !f.is_empty()).collect();
-        let header = first && fields.len() >= 2 && fields.iter().all(|f| is_word(f));
+        let header = first && matches!(fields[..], [x, y] if is_word(x, 'x') && is_word(y, 'y'));
         first = false;
         if header {
             continue;
@@ -65,10 +66,10 @@ pub fn parse_points(text: &str, what: &str) -> Result<Vec<P2>, JobError> {
     Ok(pts)
 }
 
-/// A header field: letters, digits or '_', starting with a letter, and not a number's name
-/// (`inf`, `NaN`).
-fn is_word(field: &str) -> bool {
-    field.chars().next().is_some_and(char::is_alphabetic)
+/// A header field: letters, digits or '_', starting with `initial` (either case), and not a
+/// number's name.
+fn is_word(field: &str, initial: char) -> bool {
+    field.chars().next().is_some_and(|c| c.to_ascii_lowercase() == initial)
         && field.chars().all(|c| c.is_alphanumeric() || c == '_')
         && field.parse::<f64>().is_err()
 }

@@ -29,8 +29,8 @@ pub mod engagement;
 pub mod evaluator;
 pub mod geometry;
 pub mod medial;
-pub mod nearby;
 pub mod method;
+pub mod nearby;
 pub mod request;
 pub mod strategy;
 
