@@ -12,7 +12,8 @@ use std::process::ExitCode;
 use trochoplan_core::plan::engagement_limited_step;
 use trochoplan_core::quantity::{self, METRICS, Metric, SERIES};
 use trochoplan_core::sweep::{self, SweepParam};
-use trochoplan_core::{Job, JobError, PathKind, Plan, plan};
+use trochoplan_core::job::teeth_error;
+use trochoplan_core::{Error, Job, PathKind, Plan, plan};
 
 #[derive(Parser)]
 #[command(name = "trochoplan", version, about = "Trochoidal milling planner (no subcommand: open the GUI)")]
@@ -48,8 +49,8 @@ enum Command {
         #[arg(long, allow_hyphen_values = true)]
         to: f64,
         /// Number of values from `from` to `to`, both included.
-        #[arg(long)]
-        steps: usize,
+        #[arg(long, allow_hyphen_values = true)]
+        steps: i64,
     },
     /// Write the NC program of one job (LinuxCNC, Fanuc-style ISO, GRBL or Sinumerik).
     Export {
@@ -81,7 +82,7 @@ enum Command {
 /// and in errors), `parse` the core's `from_name`.
 pub fn names_parser<T: Clone + Send + Sync + 'static>(
     names: impl IntoIterator<Item = &'static str>,
-    parse: fn(&str) -> Result<T, JobError>,
+    parse: fn(&str) -> Result<T, Error>,
 ) -> impl TypedValueParser<Value = T> {
     PossibleValuesParser::new(names).try_map(move |s: String| parse(&s))
 }
@@ -108,8 +109,9 @@ pub struct JobArgs {
     #[arg(long, value_name = "MM", allow_hyphen_values = true)]
     tool_diameter: Option<f64>,
     /// Number of teeth z.
-    #[arg(long, value_name = "N")]
-    teeth: Option<u32>,
+    // signed, so that `--teeth -1` gets the core's message, not clap's
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    teeth: Option<i64>,
     /// Tool-centre feed rate f_r (mm/min).
     #[arg(long, value_name = "MM_PER_MIN", allow_hyphen_values = true)]
     feed: Option<f64>,
@@ -155,7 +157,7 @@ impl JobArgs {
         set(&mut job.aspect_ratio, self.aspect_ratio);
         set(&mut job.linear_distance, self.linear_distance);
         if let Some(t) = self.teeth {
-            job.teeth = t;
+            job.teeth = u32::try_from(t).map_err(|_| teeth_error(t).to_string())?;
         }
         Ok(job)
     }
@@ -240,7 +242,8 @@ const COLUMNS: [&Metric; 10] = [
 ];
 
 /// The sweep table: one row per value, under the core's sweep rules ([`sweep`]).
-fn sweep(mut job: Job, param: SweepParam, from: f64, to: f64, steps: usize) -> Result<String, String> {
+fn sweep(mut job: Job, param: SweepParam, from: f64, to: f64, steps: i64) -> Result<String, String> {
+    let steps = usize::try_from(steps).map_err(|_| sweep::steps_error(steps).to_string())?;
     let values = sweep::values(from, to, steps).map_err(|e| e.to_string())?;
     job.path = param
         .path_for(job.path)

@@ -143,6 +143,42 @@ fn bad_input_names_the_parameter_and_exits_non_zero() {
     }
 }
 
+/// Issue #13 "Messages": the flag as typed, the value short, the allowed range.
+fn fails_with(args: &[&str], message: &str) {
+    let (ok, out, err) = run(args);
+    assert!(!ok && out.is_empty(), "{args:?} must fail: {out}");
+    assert_eq!(err, format!("trochoplan: {message}\n"), "{args:?}");
+}
+
+#[test]
+fn negative_counts_get_the_core_message_not_clap_unexpected_argument() {
+    fails_with(&["analyze", "--teeth", "-1"], "invalid teeth = -1: must be a whole number from 1 to 64");
+    fails_with(
+        &["sweep", "--param", "step", "--from", "0.5", "--to", "1", "--steps", "-1"],
+        "invalid steps = -1: must be a whole number from 1 to 10000",
+    );
+}
+
+#[test]
+fn a_tiny_slot_width_blames_the_slot_width() {
+    fails_with(
+        &["analyze", "--slot-width", "1e-10"],
+        "invalid slot-width = 1e-10: must be a finite number from 0.01 to 100000 mm",
+    );
+}
+
+#[test]
+fn numbers_in_messages_are_short() {
+    fails_with(
+        &["analyze", "--slot-width", "1e308"],
+        "invalid slot-width = 1e308: must be a finite number from 0.01 to 100000 mm",
+    );
+    fails_with(
+        &["analyze", "--engagement-limit", "1000.0000000000001"],
+        "invalid engagement-limit = 1000: must be between 0° and 180° (exclusive)",
+    );
+}
+
 #[test]
 fn corrupt_job_file_is_a_clear_error() {
     let dir = tempfile::tempdir().expect("tempdir");
