@@ -180,6 +180,15 @@ fn numbers_in_messages_are_short() {
 }
 
 #[test]
+fn a_polygon_parse_error_names_the_polygon_file_not_a_job_file() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let poly = dir.path().join("rect.txt");
+    std::fs::write(&poly, "0,0\n60,0\nx,40\n0,40\n").expect("write");
+    let p = poly.to_str().expect("utf8");
+    fails_with(&["pocket", "--polygon", p], &format!("{p} line 3: expected two numbers x,y, got \"x,40\""));
+}
+
+#[test]
 fn corrupt_job_file_is_a_clear_error() {
     let dir = tempfile::tempdir().expect("tempdir");
     let job = dir.path().join("bad.toml");
@@ -201,12 +210,12 @@ fn job_files_must_be_regular_files_and_devices_stay_devices() {
     assert!(Command::new("mkfifo").arg(&fifo).status().expect("mkfifo").success());
     let (ok, _, err) = run(&["analyze", "--job", fifo.to_str().expect("utf8")]);
     assert!(!ok && err.contains("regular file"), "{err}");
-    let (ok, _, err) = run(&["export", "-o", "/dev/null"]);
+    let (ok, _, err) = run(&["export", "--dialect", "linuxcnc", "-o", "/dev/null"]);
     assert!(ok, "{err}");
     assert!(!std::fs::metadata("/dev/null").expect("meta").is_file(), "/dev/null is still a device");
     // the longest legal file name (255 bytes) is written
     let long = dir.path().join(format!("{}.ngc", "p".repeat(251)));
-    let (ok, _, err) = run(&["export", "-o", long.to_str().expect("utf8")]);
+    let (ok, _, err) = run(&["export", "--dialect", "linuxcnc", "-o", long.to_str().expect("utf8")]);
     assert!(ok && long.is_file(), "{err}");
 }
 
