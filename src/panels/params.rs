@@ -9,23 +9,6 @@ use trochoplan_core::{Error, Job, Param, PathKind};
 /// Colour of validation messages.
 pub const ERROR_COLOR: Color32 = Color32::from_rgb(210, 40, 40);
 
-/// Field labels, also the accessible names of the sliders (tests find them by these): the
-/// core's parameter labels.
-#[cfg(test)]
-pub mod label {
-    use trochoplan_core::Param;
-    pub const SLOT_WIDTH: &str = Param::SlotWidth.label();
-    pub const SLOT_LENGTH: &str = Param::SlotLength.label();
-    pub const DEPTH: &str = Param::Depth.label();
-    pub const TOOL_DIAMETER: &str = Param::ToolDiameter.label();
-    pub const TEETH: &str = Param::Teeth.label();
-    pub const FEED: &str = Param::Feed.label();
-    pub const RPM: &str = Param::Rpm.label();
-    pub const STEP: &str = Param::Step.label();
-    pub const ASPECT_RATIO: &str = Param::AspectRatio.label();
-    pub const LINEAR_DISTANCE: &str = Param::LinearDistance.label();
-}
-
 /// One numeric input: the core parameter it edits (its label, and the errors shown under it).
 struct Field<'a> {
     param: Param,
