@@ -212,6 +212,10 @@ fn metrics_json(p: &Plan) -> serde_json::Map<String, serde_json::Value> {
         let v = q.of(m);
         obj.insert(q.key.into(), if q.whole { (v as u64).into() } else { v.into() });
     }
+    // The resolution of the per-tooth analysis where it is not every tooth (issue #13).
+    if p.tooth_stride > 1 {
+        obj.insert("tooth_stride".into(), p.tooth_stride.into());
+    }
     obj
 }
 

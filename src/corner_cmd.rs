@@ -2,7 +2,7 @@
 //! Degrees at this edge, radians in the core. Output is JSON (or a Markdown table with
 //! `corner --table`).
 
-use crate::files::write_atomic;
+use crate::files::{read_input, write_atomic};
 use clap::Args;
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use serde::Serialize;
@@ -241,8 +241,8 @@ struct PocketOut {
 /// perforative trochoids along its medial axis (`--method medial-axis`).
 pub fn pocket(args: &PocketArgs) -> Result<String, String> {
     let what = args.polygon.display().to_string();
-    let polygon =
-        Polygon::new(parse_points(&read(&args.polygon)?, &what).map_err(err)?).map_err(|e| format!("{what}: {e}"))?;
+    let polygon = Polygon::new(parse_points(&read_input(&args.polygon, "polygon file")?, &what).map_err(err)?)
+        .map_err(|e| format!("{what}: {e}"))?;
     let req = PocketRequest {
         polygon,
         tool_diameter_mm: args.tool_diameter,
@@ -472,12 +472,8 @@ struct NcExportOut {
 /// The NC options of the shared export flags.
 fn nc_options(nc: &CornerExportArgs) -> NcOptions {
     NcOptions {
-        dialect: nc.dialect,
-        tolerance_mm: nc.nc_tolerance,
-        linear_segments: nc.linear_segments,
-        coolant: nc.coolant,
         title: nc.title.clone().unwrap_or_default(),
-        ..NcOptions::default()
+        ..crate::export::nc_options(nc.dialect, nc.nc_tolerance, nc.linear_segments, nc.coolant)
     }
 }
 
@@ -578,19 +574,16 @@ struct EngagementOut {
     samples: Vec<SampleOut>,
 }
 
-fn read(path: &PathBuf) -> Result<String, String> {
-    std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))
-}
-
 /// `trochoplan engagement`: per-position engagement of a CSV tool path over a stock polygon.
 pub fn engagement(args: &EngagementArgs) -> Result<String, String> {
     let d = finite("tool diameter", args.tool_diameter).map_err(err)?;
     let what_path = args.path_csv.display().to_string();
     let what_stock = args.stock_polygon.display().to_string();
-    let path = polyline(&parse_points(&read(&args.path_csv)?, &what_path).map_err(err)?)
+    let path = polyline(&parse_points(&read_input(&args.path_csv, "path file")?, &what_path).map_err(err)?)
         .map_err(|e| format!("{what_path}: {e}"))?;
-    let stock = Polygon::new(parse_points(&read(&args.stock_polygon)?, &what_stock).map_err(err)?)
-        .map_err(|e| format!("{what_stock}: {e}"))?;
+    let stock =
+        Polygon::new(parse_points(&read_input(&args.stock_polygon, "stock polygon file")?, &what_stock).map_err(err)?)
+            .map_err(|e| format!("{what_stock}: {e}"))?;
     let prof = engagement_profile(&stock, &[], &path, &EvaluatorOptions::new(d / 2.0, args.spacing)).map_err(err)?;
     let conv = |s: &EngagementSample| SampleOut {
         s_mm: s.s_mm,
@@ -624,6 +617,49 @@ mod tests {
         let mut v = vec!["t"];
         v.extend_from_slice(flags);
         T::try_parse_from(v).expect("parse").c
+    }
+
+    #[derive(Parser)]
+    struct P {
+        #[command(flatten)]
+        p: PocketArgs,
+    }
+
+    #[derive(Parser)]
+    struct E {
+        #[command(flatten)]
+        e: EngagementArgs,
+    }
+
+    /// Issue #13 item 5: polygon and path files are read as input files (regular, bounded) and
+    /// every line parses or the error names the file and the line; a BOM is accepted.
+    #[test]
+    fn input_files_name_the_file_and_line() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let file = |name: &str, text: &str| {
+            let f = dir.path().join(name);
+            std::fs::write(&f, text).expect("write");
+            f.to_str().expect("utf-8").to_string()
+        };
+        let pocket_of =
+            |f: &str| pocket(&P::try_parse_from(["t", "--polygon", f, "--step-over", "5"]).expect("parse").p);
+        let bom = file("bom.txt", "\u{feff}0,0\n60,0\n60,40\n0,40\n");
+        let v: serde_json::Value = serde_json::from_str(&pocket_of(&bom).expect("BOM accepted")).expect("json");
+        assert_eq!(v["polygon"].as_array().map(Vec::len), Some(4));
+        for (name, text) in [("note.txt", "0,0 # note\n60,0\n60,40\n0,40\n"), ("oh.txt", "O,0\n60,0\n60,40\n0,40\n")] {
+            let f = file(name, text);
+            let err = pocket_of(&f).expect_err("a bad first line is an error, not a header");
+            assert!(err.contains(&format!("{f} line 1")), "{err}");
+        }
+        let missing = dir.path().join("missing.txt");
+        let err = pocket_of(missing.to_str().expect("utf-8")).expect_err("missing");
+        assert!(err.contains("polygon file") && err.contains("missing.txt"), "{err}");
+        let err = pocket_of(dir.path().to_str().expect("utf-8")).expect_err("a folder");
+        assert!(err.contains("not a regular file"), "{err}");
+        let (path, stock) = (file("p.csv", "x,y\n0,5;25\n10,0\n"), file("s.txt", "-50,-50\n50,-50\n50,50\n-50,50\n"));
+        let args = E::try_parse_from(["t", "--path-csv", &path, "--stock-polygon", &stock]).expect("parse").e;
+        let err = engagement(&args).expect_err("three fields");
+        assert!(err.contains(&format!("{path} line 2")), "{err}");
     }
 
     #[test]

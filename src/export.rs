@@ -37,18 +37,20 @@ pub struct ExportArgs {
     output: PathBuf,
 }
 
+/// The NC options of the choices every export offers (`export`, `corner --export`,
+/// `pocket --export` and the GUI's two export panels); the others are the core's defaults.
+pub fn nc_options(dialect: Dialect, tolerance_mm: f64, linear_segments: bool, coolant: bool) -> NcOptions {
+    NcOptions { dialect, tolerance_mm, linear_segments, coolant, ..NcOptions::default() }
+}
+
 /// Plan `job`, write its program to the output file; returns a one-line summary.
 pub fn run(job: &Job, args: &ExportArgs) -> Result<String, String> {
     let p = plan(job).map_err(|e| e.to_string())?;
     let opts = NcOptions {
-        dialect: args.dialect,
-        tolerance_mm: args.tolerance,
-        linear_segments: args.linear_segments,
-        coolant: args.coolant,
         return_feed_mm_per_min: args.return_feed,
         compact: args.compact,
         title: args.title.clone().unwrap_or_default(),
-        ..NcOptions::default()
+        ..nc_options(args.dialect, args.tolerance, args.linear_segments, args.coolant)
     };
     let prog = program(&p, &opts).map_err(|e| e.to_string())?;
     write_atomic(&args.output, prog.text.as_bytes())?;

@@ -12,16 +12,13 @@
 
 #[path = "../core/tests/nc_common/mod.rs"]
 mod nc_common;
+mod pocket_common;
 
-use nc_common::{DUMBBELL, Motion, budget, check_path_cut, cut, interpret, motions, sample};
-use std::path::{Path, PathBuf};
-use std::process::Command;
-use trochoplan_core::geom::{P2, Segment, p2};
+use nc_common::{DUMBBELL, budget, check_path_cut, cut, interpret, motions};
+use pocket_common::{DEPTH, check_pocket_program, export, star_polygon, wall_clearance};
 
-/// Tool radius (the `pocket` default D = 10 mm), depth and safe Z (the defaults) in mm.
+/// Tool radius (the `pocket` default D = 10 mm).
 const R: f64 = 5.0;
-const DEPTH: f64 = 6.0;
-const SAFE_Z: f64 = 5.0;
 
 const RECT: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)];
 /// An L: 100 × 90 minus the 60 × 50 block at the top right, arms 40 wide; one reflex vertex
@@ -29,99 +26,6 @@ const RECT: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)
 const L_SHAPE: &[(f64, f64)] = &[(0.0, 0.0), (100.0, 0.0), (100.0, 40.0), (40.0, 40.0), (40.0, 90.0), (0.0, 90.0)];
 
 const DIALECTS: [(&str, &str, i32); 3] = [("linuxcnc", "ngc", 4), ("fanuc", "nc", 3), ("grbl", "gcode", 3)];
-
-struct Exported {
-    file: PathBuf,
-    /// Rings and feed links in machining order, as the command printed them.
-    feed_path: Vec<Segment>,
-    json: serde_json::Value,
-}
-
-fn export(dir: &Path, name: &str, polygon: &[(f64, f64)], args: &[&str]) -> Exported {
-    let poly_file = dir.join(format!("{name}.poly"));
-    let text: String = polygon.iter().map(|(x, y)| format!("{x},{y}\n")).collect();
-    std::fs::write(&poly_file, text).expect("write polygon");
-    let file = dir.join(name);
-    let mut all: Vec<&str> = vec!["pocket", "--spacing", "1", "--polygon"];
-    all.push(poly_file.to_str().expect("utf-8"));
-    all.push("--export");
-    all.push(file.to_str().expect("utf-8"));
-    all.extend_from_slice(args);
-    let out = Command::new(env!("CARGO_BIN_EXE_trochoplan")).args(&all).output().expect("run trochoplan");
-    assert!(out.status.success(), "trochoplan {all:?}: {}", String::from_utf8_lossy(&out.stderr));
-    let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
-    assert!(json["nc_export"]["blocks"].as_u64().is_some_and(|b| b > 20), "{}", json["nc_export"]);
-    if let Some(segs) = json.get("segments") {
-        // medial-axis: the whole path, with jumps only where the program retracts
-        let feed_path: Vec<Segment> = serde_json::from_value(segs.clone()).expect("segments");
-        return Exported { file, feed_path, json };
-    }
-    let rings = json["rings"].as_array().expect("rings");
-    let links = json["links"].as_array().expect("links");
-    assert_eq!(links.len() + 1, rings.len(), "{name}: one link between consecutive rings");
-    let mut feed_path = Vec::new();
-    for (i, ring) in rings.iter().enumerate() {
-        let segs: Vec<Segment> = serde_json::from_value(ring["segments"].clone()).expect("segments");
-        feed_path.extend(segs);
-        if let Some(l) = links.get(i)
-            && l["kind"] == "feed"
-        {
-            let pt = |v: &serde_json::Value| p2(v[0].as_f64().expect("x"), v[1].as_f64().expect("y"));
-            feed_path.push(Segment::Line { start: pt(&l["from"]), end: pt(&l["to"]) });
-        }
-    }
-    Exported { file, feed_path, json }
-}
-
-fn dist_to_edge(p: P2, a: P2, b: P2) -> f64 {
-    let ab = b - a;
-    let t = ((p - a).dot(&ab) / ab.dot(&ab)).clamp(0.0, 1.0);
-    (p - (a + ab * t)).norm()
-}
-
-/// Even–odd ray casting along +x.
-fn inside(p: P2, poly: &[P2]) -> bool {
-    let mut c = false;
-    for i in 0..poly.len() {
-        let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
-        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) {
-            c = !c;
-        }
-    }
-    c
-}
-
-/// Smallest signed clearance of the cut from the pocket walls: distance to the nearest edge,
-/// negative outside the polygon.
-fn wall_clearance(cut: &[Motion], polygon: &[(f64, f64)]) -> f64 {
-    let poly: Vec<P2> = polygon.iter().map(|&(x, y)| p2(x, y)).collect();
-    sample(cut, 0.02)
-        .iter()
-        .map(|&p| {
-            let d = (0..poly.len())
-                .map(|i| dist_to_edge(p, poly[i], poly[(i + 1) % poly.len()]))
-                .fold(f64::INFINITY, f64::min);
-            if inside(p, &poly) { d } else { -d }
-        })
-        .fold(f64::INFINITY, f64::min)
-}
-
-fn check(label: &str, e: &Exported, polygon: &[(f64, f64)], tol: f64, decimals: i32) {
-    let canon = interpret(&e.file).unwrap_or_else(|err| panic!("{label}: {err}"));
-    let q = 10f64.powi(-decimals);
-    let all = motions(&canon);
-    for m in &all {
-        if let Motion::Rapid { start, end } = m {
-            assert!(start[2] >= SAFE_Z - 1e-4 || end[2] >= SAFE_Z - 1e-4, "{label}: rapid below safe Z: {m:?}");
-            assert!(end[2] >= SAFE_Z - 1e-4 || (end[0] == start[0] && end[1] == start[1]), "{label}: {m:?}");
-        }
-    }
-    let c = cut(&all, DEPTH, 1e-4);
-    check_path_cut(label, &c, &e.feed_path, tol, q).unwrap_or_else(|err| panic!("{err}"));
-    let clearance = wall_clearance(&c, polygon);
-    let allowed = R - budget(tol, q);
-    assert!(clearance >= allowed, "{label}: tool centre {clearance:.6} mm from a wall < r - budget = {allowed:.6} mm");
-}
 
 #[test]
 fn pocket_programs_pass_rs274_and_stay_inside_the_offset() {
@@ -136,7 +40,7 @@ fn pocket_programs_pass_rs274_and_stay_inside_the_offset() {
                     polygon,
                     &["--method", method, "--dialect", dialect, "--coolant"],
                 );
-                check(&label, &e, polygon, 0.005, decimals);
+                check_pocket_program(&label, &e, polygon, R, 0.005, decimals);
                 if method == "variable" {
                     assert!(e.json["trochoid_corners"].as_u64().is_some_and(|n| n > 0), "{label}: {}", e.json);
                 }
@@ -159,7 +63,7 @@ fn rectangle_pocket_program_is_one_connected_cut() {
     let text = std::fs::read_to_string(&e.file).expect("read");
     // one plunge, one final retract: the approach's G0 Z and the end's
     assert_eq!(text.matches("G0 Z").count() + text.matches("\nZ5.0000").count(), 2, "{text}");
-    check("rect plain linuxcnc chords", &e, RECT, 0.005, 4);
+    check_pocket_program("rect plain linuxcnc chords", &e, RECT, R, 0.005, 4);
 }
 
 #[test]
@@ -175,7 +79,7 @@ fn retract_links_pass_rs274_and_the_cut_skips_them() {
         // every retract link is one more plunge: the approach's, one per retract
         let plunges = text.lines().filter(|l| l.contains("Z-6.000")).count();
         assert_eq!(plunges, 1 + retracts, "{dialect}:\n{text}");
-        check(&format!("dumbbell variable {dialect}"), &e, DUMBBELL, 0.005, decimals);
+        check_pocket_program(&format!("dumbbell variable {dialect}"), &e, DUMBBELL, R, 0.005, decimals);
     }
 }
 
@@ -193,7 +97,7 @@ fn medial_axis_pocket_programs_pass_rs274_and_stay_inside_the_offset() {
                 &["--method", "medial-axis", "--dialect", dialect],
             );
             assert_eq!(e.json["parts"], 1, "{shape}");
-            check(&format!("{shape} medial-axis {dialect}"), &e, polygon, 0.005, decimals);
+            check_pocket_program(&format!("{shape} medial-axis {dialect}"), &e, polygon, R, 0.005, decimals);
         }
     }
     let e = export(
@@ -209,26 +113,6 @@ fn medial_axis_pocket_programs_pass_rs274_and_stay_inside_the_offset() {
     let c = cut(&motions(&canon), DEPTH, 1e-4);
     check_path_cut("dumbbell D18", &c, &e.feed_path, 0.005, 1e-4).unwrap_or_else(|err| panic!("{err}"));
     assert!(wall_clearance(&c, DUMBBELL) >= 9.0 - budget(0.005, 1e-4));
-}
-
-/// A random simple polygon: star-shaped about the origin (vertices at increasing angles, each
-/// at its own radius), so it never crosses itself; reflex vertices wherever a radius dips.
-fn star_polygon(seed: u64, n: usize) -> Vec<(f64, f64)> {
-    let mut s = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
-    let mut next = move || {
-        // xorshift64*: deterministic, good enough for test shapes
-        s ^= s >> 12;
-        s ^= s << 25;
-        s ^= s >> 27;
-        (s.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    };
-    (0..n)
-        .map(|k| {
-            let a = std::f64::consts::TAU * (k as f64 + 0.8 * next()) / n as f64;
-            let r = 30.0 + 40.0 * next();
-            (100.0 + r * a.cos(), 200.0 + r * a.sin())
-        })
-        .collect()
 }
 
 #[test]
@@ -250,16 +134,7 @@ fn random_medial_axis_pockets_retrace_their_plan_and_never_gouge() {
             let args =
                 ["--method", "medial-axis", "--tool-diameter", &d_s, "--step-over", &a_e_s, "--dialect", dialect];
             let e = export(dir.path(), &format!("star{seed}.{ext}"), &polygon, &args);
-            let canon = interpret(&e.file).unwrap_or_else(|err| panic!("{label}: {err}"));
-            let q = 10f64.powi(-decimals);
-            let c = cut(&motions(&canon), DEPTH, 1e-4);
-            check_path_cut(&label, &c, &e.feed_path, 0.005, q).unwrap_or_else(|err| panic!("{err}"));
-            let clearance = wall_clearance(&c, &polygon);
-            let allowed = 0.5 * d - budget(0.005, q);
-            assert!(
-                clearance >= allowed,
-                "{label}: tool centre {clearance:.6} mm from a wall < r - budget = {allowed:.6}"
-            );
+            check_pocket_program(&label, &e, &polygon, 0.5 * d, 0.005, decimals);
         }
     }
 }

@@ -144,13 +144,21 @@ pub mod limits {
     pub const MAX_CYCLES: f64 = 1.0e6;
     /// Largest dimension accepted (mm).
     pub const MAX_SIZE_MM: f64 = 1.0e5;
-    /// Smallest slot width, slot length, depth and tool diameter accepted (mm): below it a
+    /// Smallest slot width, depth and tool diameter accepted (mm): below it a
     /// value is a typing error, and the message must blame it, not the next check it breaks.
     pub const MIN_SIZE_MM: f64 = 0.01;
     /// Smallest feed per tooth (mm): keeps a cycle below ~10⁶ tooth positions.
     pub const MIN_FZ: f64 = 1.0e-4;
     /// Most teeth.
     pub const MAX_TEETH: u32 = 64;
+    /// Most tooth positions analysed per cycle. A cycle holds (cycle length)/f_z tooth
+    /// positions — up to ~10⁹ within the limits above (a cycle of ~10⁵ mm at f_z = 10⁻⁴ mm) —
+    /// and each costs a fixed amount of work and memory (engagement, h, engaged arcs). Past
+    /// this number only every k-th tooth is analysed, k the smallest stride that keeps the
+    /// count at or below it (the plan reports k as its resolution); each analysed tooth is
+    /// still analysed exactly, against its own previous tooth f_z behind. Keeps one plan of
+    /// any valid job within ~0.1 s and ~20 MB; the paper's jobs have a few hundred positions.
+    pub const MAX_TOOTH_SAMPLES: usize = 4096;
 }
 
 /// A job that passed validation; everything downstream takes this type.
@@ -200,7 +208,7 @@ impl Job {
     pub fn validate(&self) -> Result<ValidJob, Error> {
         use limits::*;
         let b_w = size(Param::SlotWidth, self.slot_width)?;
-        let len = size(Param::SlotLength, self.slot_length)?;
+        let len = positive(Param::SlotLength, self.slot_length, MAX_SIZE_MM)?;
         let depth = size(Param::Depth, self.depth)?;
         let d_t = size(Param::ToolDiameter, self.tool_diameter)?;
         if d_t >= b_w {

@@ -3,7 +3,7 @@
 use crate::analysis::{self, PreviousEdge, ToothSample, Wall, WallProfile, chip_timing, tooth_series, wall_profile};
 use crate::error::{Error, Param, num};
 use crate::job::{Job, PathKind, ValidJob};
-use crate::path::SlotPath;
+use crate::path::{Cycle, SlotPath};
 use serde::Serialize;
 
 /// Grechishnikov et al. (2017): optimal engaged sector 46°.
@@ -65,8 +65,15 @@ pub struct Plan {
     pub job: ValidJob,
     pub path: SlotPath,
     pub metrics: Metrics,
-    /// One steady-state cycle, tooth by tooth (cycle origin at (0, 0)).
+    /// One steady-state cycle, tooth by tooth (every [`Plan::tooth_stride`]-th tooth; cycle
+    /// origin at (0, 0)).
     pub series: Vec<ToothSample>,
+    /// Resolution of the per-tooth analysis: every `tooth_stride`-th tooth position of the
+    /// cycle is analysed (1: every one; above 1 past
+    /// [`MAX_TOOTH_SAMPLES`](crate::job::limits::MAX_TOOTH_SAMPLES) positions per cycle).
+    /// h_max, the engagement and the times then come from those teeth alone, t_hmax and
+    /// t_cooling in units of `tooth_stride` tooth periods.
+    pub tooth_stride: usize,
     pub left_wall: WallProfile,
     pub right_wall: WallProfile,
     /// Edge of the material left by previous cycles (for drawing chips and edges).
@@ -103,8 +110,9 @@ pub fn plan_valid(job: ValidJob) -> Plan {
         || tooth_series(&path.cycle, &edge, r, f_z, feed_mm_per_s),
         || rayon::join(|| wall_profile(&path.cycle, r, Wall::Left), || wall_profile(&path.cycle, r, Wall::Right)),
     );
-    let timing = chip_timing(&series, f_z / feed_mm_per_s);
     let cycle_length = path.cycle.length();
+    let stride = analysis::chip::tooth_stride(cycle_length, f_z);
+    let timing = chip_timing(&series, stride as f64 * f_z / feed_mm_per_s);
     let t_cycle = cycle_length / feed_mm_per_s;
     let metrics = Metrics {
         path: job.path,
@@ -114,7 +122,8 @@ pub fn plan_valid(job: ValidJob) -> Plan {
         f_z_mm: f_z,
         h_max_mm: timing.h_max_mm,
         t_hmax_s: timing.t_hmax_s,
-        t_cooling_s: timing.t_cooling_s,
+        // Each analysed tooth counts for `stride` periods, the last one partly beyond the cycle.
+        t_cooling_s: timing.t_cooling_s.min(t_cycle),
         engagement_max_deg: timing.engagement_max_rad.to_degrees(),
         waviness_left_mm: left_wall.waviness_mm,
         waviness_right_mm: right_wall.waviness_mm,
@@ -138,15 +147,16 @@ pub fn plan_valid(job: ValidJob) -> Plan {
             DEPTH_LIMIT_FRACTION * job.tool_diameter,
         ),
     };
-    Plan { job, path, metrics, series, left_wall, right_wall, edge }
+    Plan { job, path, metrics, series, tooth_stride: stride, left_wall, right_wall, edge }
 }
 
 /// Largest step s (mm) for which the job's own path keeps the maximum engagement over a
-/// steady-state cycle at or below `limit_rad`, by bisection on s with the full analysis
-/// (the engagement grows with s). Works for every path type; for the circular-type path it
+/// steady-state cycle at or below `limit_rad`, by bisection on s (the engagement grows with
+/// s), each trial analysing the engagement of the same teeth as [`plan`] (not the chip
+/// thickness or the walls). Works for every path type; for the circular-type path it
 /// reproduces [`step_for_engagement`] (tested). Returns the bracket's lower end after 30
-/// halvings (|error| < upper bound · 2⁻³⁰). Lives here, not in [`analysis`], because it plans
-/// the job again for each trial step.
+/// halvings (|error| < upper bound · 2⁻³⁰). Lives here, not in [`analysis`], because it builds
+/// the job's path again for each trial step.
 ///
 /// [`step_for_engagement`]: analysis::step::step_for_engagement
 pub fn engagement_limited_step(job: &Job, limit_rad: f64) -> Result<f64, Error> {
@@ -161,8 +171,14 @@ pub fn engagement_limited_step(job: &Job, limit_rad: f64) -> Result<f64, Error> 
     // Upper end: the validation limits for s (below D and below π·b).
     let hi_limit = valid.tool_diameter.min(std::f64::consts::PI * valid.b()) * 0.999;
     let engagement = |s: f64| -> Result<f64, Error> {
-        let j = Job { step: s, slot_length: job.slot_length.max(s), ..job.clone() };
-        Ok(plan(&j)?.metrics.engagement_max_deg.to_radians())
+        // One cycle long: the steady-state engagement does not depend on the slot length, and
+        // a trial step below slot-length / MAX_CYCLES must not be refused for it.
+        let j = Job { step: s, slot_length: s, ..job.clone() }.validate()?;
+        let (cycle, r) = (Cycle::for_job(&j), j.tool_radius());
+        let max = analysis::chip::max_engagement(&cycle, &PreviousEdge::new(&cycle, r), r, j.f_z());
+        // Through degrees as `Metrics::engagement_max_deg`, so the bisection compares the
+        // very numbers a plan reports.
+        Ok(max.to_degrees().to_radians())
     };
     let (mut lo, mut hi) = (0.0, hi_limit);
     if engagement(hi)? <= limit_rad {

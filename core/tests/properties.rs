@@ -5,6 +5,7 @@
 use proptest::prelude::*;
 use trochoplan_core::analysis::step::step_for_engagement;
 use trochoplan_core::plan::engagement_limited_step;
+use trochoplan_core::job::limits::{MAX_SIZE_MM, MAX_TEETH, MAX_TOOTH_SAMPLES, MIN_FZ};
 use trochoplan_core::{Job, PathKind, plan};
 
 fn kind() -> impl Strategy<Value = PathKind> {
@@ -119,6 +120,126 @@ proptest! {
         prop_assert!((b.waviness_left_mm - k * a.waviness_left_mm).abs() < 1e-6 * k);
         prop_assert!((b.waviness_right_mm - k * a.waviness_right_mm).abs() < 1e-6 * k);
     }
+}
+
+/// log-uniform number from `lo` to `hi`.
+fn log_uniform(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
+    (lo.ln()..=hi.ln()).prop_map(f64::exp)
+}
+
+/// Jobs from the whole allowed range (issue #13): slot widths from 10 µm to the largest size,
+/// tools from half the slot to just below it, steps from 10⁻⁶ of the loop limit up to it,
+/// slot lengths up to the largest size or the most cycles, rpm up to the largest, any teeth,
+/// and the feed per tooth at either end of its range or between. Most are valid; the rest
+/// must be rejected by name.
+fn any_job() -> impl Strategy<Value = Job> {
+    let f_z_end = prop_oneof![Just(0.0), Just(1.0), 0.0..=1.0f64];
+    (
+        (kind(), log_uniform(1e-2, MAX_SIZE_MM), 0.5..0.99999f64, log_uniform(1e-6, 0.999)),
+        (log_uniform(1e-6, 1.0), 0.2..=3.0f64, 0.0..=1.0f64, log_uniform(1e-3, MAX_SIZE_MM)),
+        (1..=MAX_TEETH, log_uniform(1.0, 1e6), f_z_end),
+    )
+        .prop_map(|((path, b_w, frac, step_frac), (len_frac, r_e, d_frac, depth), (teeth, rpm, f_z_end))| {
+            let d = b_w * frac;
+            let a = (b_w - d) / 2.0;
+            let step = step_frac * d.min(std::f64::consts::PI * r_e * a);
+            // f_z from MIN_FZ to D/8 (log scale), a hair inside so rounding keeps it valid.
+            let f_z = MIN_FZ * (d / 8.0 / MIN_FZ).max(1.0).powf(f_z_end) * (1.0 + 1e-9 - 2e-9 * f_z_end);
+            Job {
+                path,
+                slot_width: b_w,
+                tool_diameter: d,
+                step,
+                aspect_ratio: r_e,
+                linear_distance: d_frac * b_w,
+                teeth,
+                rpm,
+                feed: f_z * rpm * f64::from(teeth),
+                slot_length: (step * 1e6).min(MAX_SIZE_MM).powf(len_frac) * step.powf(1.0 - len_frac),
+                depth,
+            }
+        })
+}
+
+proptest! {
+    // Each case plans once and bisects the engagement-limited step (31 engagement analyses),
+    // each bounded by MAX_TOOTH_SAMPLES teeth: the cases bound the test's time.
+    #![proptest_config(ProptestConfig { cases: 40, ..ProptestConfig::default() })]
+
+    /// Every job of the allowed range plans — with at most MAX_TOOTH_SAMPLES analysed teeth
+    /// per cycle and finite numbers inside their physical bounds — or is rejected by name,
+    /// and so does the CLI's engagement-limited step (issue #13: valid jobs aborted on a
+    /// 38 GB allocation or ran for minutes).
+    #[test]
+    fn every_job_of_the_allowed_range_plans_within_bounds(job in any_job()) {
+        let p = match plan(&job) {
+            Ok(p) => p,
+            Err(e) => {
+                let name = e.parameter().expect("a parameter error");
+                prop_assert!(e.to_string().contains(name), "{e}");
+                return Ok(());
+            }
+        };
+        let m = &p.metrics;
+        prop_assert!(p.series.len() <= MAX_TOOTH_SAMPLES + 1, "{} teeth analysed", p.series.len());
+        let analysed = m.teeth_per_cycle / p.tooth_stride as f64;
+        prop_assert!(analysed <= MAX_TOOTH_SAMPLES as f64 && (p.tooth_stride == 1 || 2.0 * analysed > MAX_TOOTH_SAMPLES as f64));
+        for v in [m.cycle_length_mm, m.t_cycle_s, m.mrr_mm3_per_min, m.h_max_mm, m.t_hmax_s, m.t_cooling_s,
+                  m.engagement_max_deg, m.waviness_left_mm, m.waviness_right_mm, m.path_length_mm] {
+            prop_assert!(v.is_finite() && v >= 0.0, "{v}");
+        }
+        let r = job.tool_diameter / 2.0;
+        // Rounding of lengths of size R: a few ulps of R.
+        let ulps = 1e-12 * r;
+        prop_assert!(m.h_max_mm <= m.f_z_mm * (1.0 + 1e-9) + ulps, "h {} f_z {}", m.h_max_mm, m.f_z_mm);
+        prop_assert!((0.0..=180.0 + 1e-9).contains(&m.engagement_max_deg));
+        let w_bound = r - (r * r - (job.step / 2.0).powi(2)).sqrt();
+        for w in [m.waviness_left_mm, m.waviness_right_mm] {
+            prop_assert!(w <= w_bound * (1.0 + 1e-6) + 1e-9 * r, "W {w} bound {w_bound}");
+        }
+        prop_assert!(m.t_cooling_s <= m.t_cycle_s * (1.0 + 1e-9));
+        let limited = engagement_limited_step(&job, 46f64.to_radians());
+        if let Err(e) = &limited {
+            prop_assert!(e.parameter().is_some(), "{e}");
+        }
+    }
+}
+
+/// The four jobs of issue #13 item 2: the big slot (aborted on a 37.7 GB allocation), a
+/// 1 m slot (10 min, 6.2 GB), the big slot at s = 100 mm (hung), and the default job at
+/// 10⁶ rpm (15 s). Each plans with a bounded number of analysed teeth, and the last one agrees
+/// with its full analysis of every tooth (the values before the bound) within the resolution.
+#[test]
+fn issue_13_jobs_plan_with_bounded_teeth() {
+    let big = Job {
+        slot_width: 100_000.0,
+        tool_diameter: 50_000.0,
+        slot_length: 100_000.0,
+        step: 1.0,
+        feed: 80.0,
+        rpm: 100_000.0,
+        teeth: 8,
+        ..Job::default()
+    };
+    let mid = Job { slot_width: 1000.0, tool_diameter: 500.0, slot_length: 1000.0, ..big.clone() };
+    let coarse = Job { step: 100.0, ..big.clone() };
+    let fast = Job { rpm: 1e6, ..Job::default() };
+    for job in [&big, &mid, &coarse, &fast] {
+        let p = plan(job).expect("valid");
+        let m = &p.metrics;
+        assert!(p.tooth_stride > 1 && p.series.len() <= MAX_TOOTH_SAMPLES + 1, "{} teeth", p.series.len());
+        assert!(m.h_max_mm > 0.0 && m.h_max_mm <= m.f_z_mm && m.engagement_max_deg > 0.0, "{m:?}");
+        engagement_limited_step(job, 46f64.to_radians()).expect("valid");
+    }
+    // Every tooth of the fast job (209 493 per cycle), analysed before the bound.
+    let p = plan(&fast).expect("valid");
+    let m = &p.metrics;
+    let dt = p.tooth_stride as f64 * m.f_z_mm / (fast.feed / 60.0);
+    assert_eq!(p.tooth_stride, 52);
+    assert!((m.h_max_mm - 0.000_117_327_389_790_311_54).abs() < 1e-6 * m.h_max_mm, "{}", m.h_max_mm);
+    assert!((m.engagement_max_deg - 51.462_222_373_194_75).abs() < 1e-3, "{}", m.engagement_max_deg);
+    assert!((m.t_cooling_s - 1.498_545).abs() <= dt, "{}", m.t_cooling_s);
+    assert!((m.t_hmax_s - 0.657_42).abs() <= dt, "{}", m.t_hmax_s);
 }
 
 /// Metamorphic: only f_z = f_r/(n·z) matters for h — 4 teeth at 2000 rpm equal 2 at 4000.

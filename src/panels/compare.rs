@@ -49,28 +49,7 @@ pub fn paper_set(job: &Job) -> Vec<Job> {
 
 /// Draw the pin list and the metrics table.
 pub fn show(ui: &mut egui::Ui, variants: &[VariantView], can_pin: bool) -> Option<Command> {
-    let mut cmd = None;
-    ui.horizontal_wrapped(|ui| {
-        let full = variants.len() >= MAX_VARIANTS;
-        if ui
-            .add_enabled(can_pin && !full, egui::Button::new("Pin current job"))
-            .on_hover_text("Add the current job as a variant (up to four); it is overlaid in every plot.")
-            .on_disabled_hover_text("Needs a valid job and fewer than four pinned variants.")
-            .clicked()
-        {
-            cmd = Some(Command::Pin);
-        }
-        if ui
-            .button("Pin the paper's set")
-            .on_hover_text("Replace the pins by: circular (r_e = 1), elliptical r_e = 0.8 and linear-elliptical r_e = 0.8 with d = s, all with the current slot, tool and cutting data.")
-            .clicked()
-        {
-            cmd = Some(Command::PinPaperSet);
-        }
-        if ui.add_enabled(!variants.is_empty(), egui::Button::new("Clear pins")).clicked() {
-            cmd = Some(Command::ClearPins);
-        }
-    });
+    let mut cmd = ui.horizontal_wrapped(|ui| pin_buttons(ui, variants, can_pin)).inner;
     if variants.is_empty() {
         ui.label(
             "No variants pinned. Pin the current job, change a parameter, pin again: every plot overlays the pins.",
@@ -80,45 +59,9 @@ pub fn show(ui: &mut egui::Ui, variants: &[VariantView], can_pin: bool) -> Optio
     ui.add_space(4.0);
     egui::ScrollArea::horizontal().show(ui, |ui| {
         egui::Grid::new("compare_table").striped(true).spacing([14.0, 4.0]).show(ui, |ui| {
-            ui.label(RichText::new("variant").strong());
-            for (i, v) in variants.iter().enumerate() {
-                ui.horizontal(|ui| {
-                    ui.label(RichText::new(format!("#{} {}", i + 1, v.label)).color(v.color).strong());
-                    if ui.small_button("load").on_hover_text("Make this the job being edited (undoable).").clicked() {
-                        cmd = Some(Command::LoadPinned(i));
-                    }
-                    if ui.small_button("unpin").on_hover_text("Unpin").clicked() {
-                        cmd = Some(Command::Unpin(i));
-                    }
-                });
-            }
-            ui.end_row();
+            cmd = header_row(ui, variants).or(cmd);
             for q in quantities() {
-                ui.label(q.heading()).on_hover_text(q.about);
-                let base = q.of(variants[0].metrics);
-                for (i, v) in variants.iter().enumerate() {
-                    let x = q.of(v.metrics);
-                    let mut text = format!("{x:.*}", q.decimals);
-                    let mut color = None;
-                    if i > 0
-                        && let Some(p) = percent_change(x, base)
-                    {
-                        text.push_str(&format!("  ({p:+.1} %)"));
-                        if p.abs() >= 0.05
-                            && let Some(up) = q.higher_is_better
-                        {
-                            let good = (p > 0.0) == up;
-                            color = Some(if good {
-                                Color32::from_rgb(30, 140, 60)
-                            } else {
-                                Color32::from_rgb(200, 50, 40)
-                            });
-                        }
-                    }
-                    let rt = RichText::new(text).monospace();
-                    ui.label(if let Some(c) = color { rt.color(c) } else { rt });
-                }
-                ui.end_row();
+                quantity_row(ui, q, variants);
             }
         });
     });
@@ -134,6 +77,78 @@ pub fn show(ui: &mut egui::Ui, variants: &[VariantView], can_pin: bool) -> Optio
         .wrap(),
     );
     cmd
+}
+
+/// Pin the current job, pin the paper's set, clear the pins.
+fn pin_buttons(ui: &mut egui::Ui, variants: &[VariantView], can_pin: bool) -> Option<Command> {
+    let mut cmd = None;
+    let full = variants.len() >= MAX_VARIANTS;
+    if ui
+        .add_enabled(can_pin && !full, egui::Button::new("Pin current job"))
+        .on_hover_text("Add the current job as a variant (up to four); it is overlaid in every plot.")
+        .on_disabled_hover_text("Needs a valid job and fewer than four pinned variants.")
+        .clicked()
+    {
+        cmd = Some(Command::Pin);
+    }
+    if ui
+        .button("Pin the paper's set")
+        .on_hover_text("Replace the pins by: circular (r_e = 1), elliptical r_e = 0.8 and linear-elliptical r_e = 0.8 with d = s, all with the current slot, tool and cutting data.")
+        .clicked()
+    {
+        cmd = Some(Command::PinPaperSet);
+    }
+    if ui.add_enabled(!variants.is_empty(), egui::Button::new("Clear pins")).clicked() {
+        cmd = Some(Command::ClearPins);
+    }
+    cmd
+}
+
+/// The table's first row: each variant's name with its load and unpin buttons.
+fn header_row(ui: &mut egui::Ui, variants: &[VariantView]) -> Option<Command> {
+    let mut cmd = None;
+    ui.label(RichText::new("variant").strong());
+    for (i, v) in variants.iter().enumerate() {
+        ui.horizontal(|ui| {
+            ui.label(RichText::new(format!("#{} {}", i + 1, v.label)).color(v.color).strong());
+            if ui.small_button("load").on_hover_text("Make this the job being edited (undoable).").clicked() {
+                cmd = Some(Command::LoadPinned(i));
+            }
+            if ui.small_button("unpin").on_hover_text("Unpin").clicked() {
+                cmd = Some(Command::Unpin(i));
+            }
+        });
+    }
+    ui.end_row();
+    cmd
+}
+
+/// One quantity of every variant, with the % change against the first coloured by whether it
+/// is better.
+fn quantity_row(ui: &mut egui::Ui, q: &Metric, variants: &[VariantView]) {
+    ui.label(q.heading()).on_hover_text(q.about);
+    let base = q.of(variants[0].metrics);
+    for (i, v) in variants.iter().enumerate() {
+        let x = q.of(v.metrics);
+        let change = if i > 0 { percent_change(x, base) } else { None };
+        let text = match change {
+            Some(p) => format!("{x:.*}  ({p:+.1} %)", q.decimals),
+            None => format!("{x:.*}", q.decimals),
+        };
+        let text = RichText::new(text).monospace();
+        ui.label(match change.and_then(|p| change_color(q, p)) {
+            Some(c) => text.color(c),
+            None => text,
+        });
+    }
+    ui.end_row();
+}
+
+/// Green for a change of at least 0.05 % for the better, red for the worse; none for a small
+/// change or a quantity that is neither better high nor low.
+fn change_color(q: &Metric, percent: f64) -> Option<Color32> {
+    let up = q.higher_is_better.filter(|_| percent.abs() >= 0.05)?;
+    Some(if (percent > 0.0) == up { Color32::from_rgb(30, 140, 60) } else { Color32::from_rgb(200, 50, 40) })
 }
 
 #[cfg(test)]

@@ -5,35 +5,25 @@
 //! The inputs are those of `trochoplan corner` and `trochoplan pocket` (the core's
 //! `CornerRequest` and `PocketRequest`, with their defaults); [`compute`] and [`compute_pocket`]
 //! call the same core entry points (`corner::evaluate`, `pocket::plan`) and only convert their
-//! results to plot points. Planning takes 0.1–1 s, so the
-//! window runs it on a worker thread ([`CornerView::threaded`]) that keeps only the newest
-//! request; the tests plan inline ([`CornerView::default`]). The acceptance table
+//! results to plot points. Planning takes 0.1–1 s, so the window runs it on a [`Worker`] thread
+//! ([`CornerView::threaded`]; the newest request wins); the tests plan inline
+//! ([`CornerView::default`]). The acceptance table
 //! ([`super::corner_table`], always on its own thread) and the NC export
 //! ([`super::corner_nc`]) are sub-views of the tab.
 
 use super::Command;
-use super::corner_nc::{self, CornerNcCache, CornerNcSettings};
+use super::corner_nc::{self, CornerNcCache, CornerNcSettings, NcExport};
 use super::corner_table::{self, TableView};
+use super::label;
 use super::params::ERROR_COLOR;
+use crate::worker::{Keep, Task, Worker};
 use eframe::egui::{self, Color32, DragValue, RichText, Slider, SliderClamping};
 use egui_plot::{HLine, Legend, Line, Plot, PlotPoints};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
-use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
 use trochoplan_core::corner::{self, CornerMethod, CornerReport, CornerRequest, EngagementProfile, parse_points};
 use trochoplan_core::geom::{Polygon, Segment};
 use trochoplan_core::pocket::{self, MoveKind, PocketPlan, PocketRequest, PocketStrategy};
-
-/// Labels of the inputs (used by the tests' accessibility queries).
-pub mod label {
-    pub const ANGLE: &str = "Corner angle (°)";
-    pub const TOOL_DIAMETER: &str = "Corner tool diameter D (mm)";
-    pub const STEP_OVER: &str = "Ring step-over a_e (mm)";
-    pub const STRAIGHT: &str = "Straight engagement a_str (°)";
-    pub const T1: &str = "Allowed excess t1";
-    pub const POLYGON: &str = "Pocket vertices (x,y per line)";
-    pub const POCKET_STEP_OVER: &str = "Pocket step-over a_e (mm)";
-}
 
 /// What the tab plans: one corner, the acceptance table of all corner angles, or a whole
 /// polygonal pocket.
@@ -301,10 +291,15 @@ fn profile_points(p: &EngagementProfile) -> Vec<[f64; 2]> {
     p.samples.iter().map(|s| [s.s_mm, s.angle_rad.to_degrees()]).collect()
 }
 
-type Answer = (CornerInputs, Result<Outcome, String>);
+/// The corner tab's worker: inputs in, their plan (or why they are invalid) out.
+type CornerWorker = Worker<CornerInputs, Result<Outcome, String>>;
 
-/// The last corner result, its error, and (in the window) the worker thread computing it.
-#[derive(Default)]
+/// Plan `inputs` in their mode.
+fn plan_job(inputs: CornerInputs, task: &Task<Result<Outcome, String>>) {
+    task.send(compute_any(&inputs));
+}
+
+/// The last corner result, its error, and the worker computing it.
 pub struct CornerView {
     /// The acceptance table (its own worker thread).
     pub table: TableView,
@@ -316,11 +311,19 @@ pub struct CornerView {
     pub error: Option<String>,
     /// Inputs of the newest request.
     requested: Option<CornerInputs>,
-    /// Inputs whose answer is shown.
-    answered: Option<CornerInputs>,
     /// Completed plans (for the tests and the status line).
     pub replans: usize,
-    worker: Option<(Sender<CornerInputs>, Receiver<Answer>)>,
+    /// Plans inline or on its own thread; an answer overtaken by a newer request is still shown
+    /// if it is newer than the one on screen ([`Keep::Newer`]), so the view follows a dragged
+    /// slider.
+    worker: CornerWorker,
+}
+
+impl Default for CornerView {
+    /// A view planning inline (the tests).
+    fn default() -> Self {
+        CornerView::with_worker(Worker::inline(Keep::Newer, plan_job), TableView::default())
+    }
 }
 
 impl CornerView {
@@ -329,43 +332,34 @@ impl CornerView {
         let repaint = Arc::new(repaint);
         let table_repaint = repaint.clone();
         let table = TableView::new(CornerRequest::DEFAULT.spacing_mm, move || table_repaint());
-        let (req_tx, req_rx) = channel::<CornerInputs>();
-        let (ans_tx, ans_rx) = channel::<Answer>();
-        let spawned = std::thread::Builder::new().name("corner".into()).spawn(move || {
-            while let Ok(mut inputs) = req_rx.recv() {
-                // keep only the newest request
-                while let Ok(newer) = req_rx.try_recv() {
-                    inputs = newer;
-                }
-                let result = compute_any(&inputs);
-                if ans_tx.send((inputs, result)).is_err() {
-                    break;
-                }
-                repaint();
-            }
-        });
-        CornerView { worker: spawned.ok().map(|_| (req_tx, ans_rx)), table, ..CornerView::default() }
+        CornerView::with_worker(Worker::threaded("corner", Keep::Newer, plan_job, move || repaint()), table)
+    }
+
+    fn with_worker(worker: CornerWorker, table: TableView) -> CornerView {
+        CornerView { table, last: None, last_pocket: None, error: None, requested: None, replans: 0, worker }
     }
 
     /// True while a request is being planned.
     pub fn pending(&self) -> bool {
-        self.requested.is_some() && self.requested != self.answered
+        self.worker.running()
     }
 
-    fn accept(&mut self, (inputs, result): Answer) {
-        self.replans += 1;
-        match result {
-            Ok(Outcome::Corner(r)) => {
-                self.last = Some(r);
-                self.error = None;
-            }
-            Ok(Outcome::Pocket(r)) => {
-                self.last_pocket = Some(r);
-                self.error = None;
-            }
-            Err(e) => self.error = Some(e),
+    /// Show the answers that arrived.
+    fn poll(&mut self) {
+        for answer in self.worker.poll() {
+            self.replans += 1;
+            self.error = match answer {
+                Ok(Outcome::Corner(r)) => {
+                    self.last = Some(r);
+                    None
+                }
+                Ok(Outcome::Pocket(r)) => {
+                    self.last_pocket = Some(r);
+                    None
+                }
+                Err(e) => Some(e),
+            };
         }
-        self.answered = Some(inputs);
     }
 
     /// Collect answers and ask for a plan of `inputs` if they changed; in the table mode, ask
@@ -375,33 +369,13 @@ impl CornerView {
             self.table.update(inputs.request().settings().map_err(|e| e.to_string()));
             return;
         }
-        let mut answers = Vec::new();
-        if let Some((_, rx)) = &self.worker {
-            loop {
-                match rx.try_recv() {
-                    Ok(a) => answers.push(a),
-                    Err(TryRecvError::Empty) => break,
-                    Err(TryRecvError::Disconnected) => {
-                        self.worker = None;
-                        break;
-                    }
-                }
-            }
-        }
-        for a in answers {
-            self.accept(a);
-        }
+        self.poll();
         if self.requested.as_ref() == Some(inputs) {
             return;
         }
         self.requested = Some(inputs.clone());
-        match &self.worker {
-            Some((tx, _)) if tx.send(inputs.clone()).is_ok() => {}
-            _ => {
-                let r = compute_any(inputs);
-                self.accept((inputs.clone(), r));
-            }
-        }
+        self.worker.request(inputs.clone());
+        self.poll();
     }
 }
 
@@ -418,6 +392,20 @@ pub fn show(
     nc: &mut CornerNcSettings,
     nc_cache: &CornerNcCache,
 ) -> Option<Command> {
+    mode_bar(ui, inputs, nc);
+    let nc = &mut NcExport { settings: nc, cache: nc_cache };
+    match inputs.mode {
+        CornerMode::Table => {
+            tool_inputs(ui, inputs);
+            corner_table::show(ui, &view.table)
+        }
+        CornerMode::Pocket => pocket(ui, inputs, view, nc),
+        CornerMode::Corner => corner(ui, inputs, view, nc),
+    }
+}
+
+/// The mode buttons and the NC export's toggle (off in the table mode).
+fn mode_bar(ui: &mut egui::Ui, inputs: &mut CornerInputs, nc: &mut CornerNcSettings) {
     ui.horizontal(|ui| {
         ui.selectable_value(&mut inputs.mode, CornerMode::Corner, "One corner")
             .on_hover_text("A single line–line corner between two walls, apex at the origin");
@@ -429,25 +417,17 @@ pub fn show(
             .on_hover_text("A polygonal pocket cleared by contour-parallel rings, the strategy at every ring corner");
         ui.separator();
         ui.add_enabled_ui(inputs.mode != CornerMode::Table, |ui| {
-            ui.toggle_value(&mut nc.open, corner_nc::label::OPEN)
+            ui.toggle_value(&mut nc.open, label::NC_EXPORT)
                 .on_hover_text("Options, preview and save of the NC program of the corner or the pocket")
                 .on_disabled_hover_text("Export one corner or a pocket; the table has no single tool path.");
         });
     });
-    match inputs.mode {
-        CornerMode::Table => {
-            tool_inputs(ui, inputs);
-            corner_table::show(ui, &view.table)
-        }
-        CornerMode::Pocket => pocket(ui, inputs, view, nc, nc_cache),
-        CornerMode::Corner => corner(ui, inputs, view, nc, nc_cache),
-    }
 }
 
 /// Tool, step-over (or straight engagement) and t1: the inputs of the corner and the table.
 fn tool_inputs(ui: &mut egui::Ui, inputs: &mut CornerInputs) {
     ui.horizontal_wrapped(|ui| {
-        let l = ui.label(label::TOOL_DIAMETER);
+        let l = ui.label(label::CORNER_TOOL_DIAMETER);
         ui.add(DragValue::new(&mut inputs.tool_diameter_mm).speed(0.1).suffix(" mm"))
             .labelled_by(l.id)
             .on_hover_text("Tool diameter D = 2r.");
@@ -455,12 +435,12 @@ fn tool_inputs(ui: &mut egui::Ui, inputs: &mut CornerInputs) {
         ui.checkbox(&mut inputs.use_step_over, "give step-over")
             .on_hover_text("On: enter the ring step-over a_e. Off: a_e follows from the straight engagement.");
         if inputs.use_step_over {
-            let l = ui.label(label::STEP_OVER);
+            let l = ui.label(label::RING_STEP_OVER);
             ui.add(DragValue::new(&mut inputs.step_over_mm).speed(0.05).suffix(" mm"))
                 .labelled_by(l.id)
                 .on_hover_text("Distance between successive contour-parallel rings, 0 < a_e < D.");
         } else {
-            let l = ui.label(label::STRAIGHT);
+            let l = ui.label(label::STRAIGHT_ENGAGEMENT);
             ui.add(DragValue::new(&mut inputs.straight_engagement_deg).speed(0.5).suffix("°"))
                 .labelled_by(l.id)
                 .on_hover_text(
@@ -469,7 +449,7 @@ fn tool_inputs(ui: &mut egui::Ui, inputs: &mut CornerInputs) {
                 );
         }
         ui.separator();
-        let l = ui.label(label::T1);
+        let l = ui.label(label::ALLOWED_EXCESS_T1);
         ui.add(DragValue::new(&mut inputs.t1).speed(0.01).range(-1.0..=2.0)).labelled_by(l.id).on_hover_text(
             "Wu et al. 2016 eq. 23: the target engagement of the corner circles is a* = a_str·(1 + t1); \
                  the variable circles are bisected until their engagement lies in (a*, a* + ε] (eq. 24); \
@@ -480,24 +460,8 @@ fn tool_inputs(ui: &mut egui::Ui, inputs: &mut CornerInputs) {
 
 /// One corner: angle, method, tool inputs, numbers; the corner view beside the engagement plot,
 /// or beside the program when the NC export is open.
-fn corner(
-    ui: &mut egui::Ui,
-    inputs: &mut CornerInputs,
-    view: &CornerView,
-    nc: &mut CornerNcSettings,
-    nc_cache: &CornerNcCache,
-) -> Option<Command> {
-    ui.horizontal_wrapped(|ui| {
-        let l = ui.label(label::ANGLE);
-        ui.add(Slider::new(&mut inputs.angle_deg, 30.0..=150.0).step_by(1.0).clamping(SliderClamping::Never))
-            .labelled_by(l.id)
-            .on_hover_text(
-                "Interior angle between the two walls (30°–150°); the apex is at the origin, the bisector along +x.",
-            );
-        ui.separator();
-        method_buttons(ui, &mut inputs.method);
-    });
-    tool_inputs(ui, inputs);
+fn corner(ui: &mut egui::Ui, inputs: &mut CornerInputs, view: &CornerView, nc: &mut NcExport) -> Option<Command> {
+    corner_inputs(ui, inputs);
     status(ui, view, view.last.is_some().then_some("Showing the last valid corner."));
     let Some(r) = view.last.as_deref() else {
         if view.error.is_none() {
@@ -507,28 +471,55 @@ fn corner(
     };
     numbers(ui, r);
     ui.separator();
-    let mut cmd = None;
-    if nc.open {
-        cmd = corner_nc::options(ui, nc, nc_cache, view.error.is_some());
+    let cmd = nc_options(ui, view, nc);
+    corner_plots(ui, r, nc.settings.open, nc.cache);
+    if !nc.settings.open {
         ui.separator();
+        teaching(ui);
     }
-    let teach = if nc.open { 0.0 } else { TEACH_HEIGHT + 16.0 };
+    cmd
+}
+
+/// The corner angle, the method and the tool inputs.
+fn corner_inputs(ui: &mut egui::Ui, inputs: &mut CornerInputs) {
+    ui.horizontal_wrapped(|ui| {
+        let l = ui.label(label::CORNER_ANGLE);
+        ui.add(Slider::new(&mut inputs.angle_deg, 30.0..=150.0).step_by(1.0).clamping(SliderClamping::Never))
+            .labelled_by(l.id)
+            .on_hover_text(
+                "Interior angle between the two walls (30°–150°); the apex is at the origin, the bisector along +x.",
+            );
+        ui.separator();
+        method_buttons(ui, &mut inputs.method);
+    });
+    tool_inputs(ui, inputs);
+}
+
+/// The NC export's options and a separator, when the export is open.
+fn nc_options(ui: &mut egui::Ui, view: &CornerView, nc: &mut NcExport) -> Option<Command> {
+    if !nc.settings.open {
+        return None;
+    }
+    let cmd = corner_nc::options(ui, nc.settings, nc.cache, view.error.is_some());
+    ui.separator();
+    cmd
+}
+
+/// The corner view beside the engagement plot, or beside the program when `nc_open`; they leave
+/// room for the teaching text when the program is not shown.
+fn corner_plots(ui: &mut egui::Ui, r: &CornerResult, nc_open: bool, nc_cache: &CornerNcCache) {
+    let teach = if nc_open { 0.0 } else { TEACH_HEIGHT + 16.0 };
     let h = (ui.available_height() - teach).max(220.0);
     ui.columns(2, |cols| {
         cols[0].label(RichText::new(format!("Corner {:.0}°: walls, circles, tool path", r.angle_deg)).strong());
         corner_plot(&mut cols[0], r, h - 20.0);
-        if nc.open {
+        if nc_open {
             cols[1].allocate_ui(egui::vec2(cols[1].available_width(), h), |ui| corner_nc::preview(ui, nc_cache));
         } else {
             cols[1].label(RichText::new("Engagement along the path (evaluator)").strong());
             engagement_plot(&mut cols[1], r, h - 20.0);
         }
     });
-    if !nc.open {
-        ui.separator();
-        teaching(ui);
-    }
-    cmd
 }
 
 /// The method buttons; labels and tooltips are the core's.
@@ -604,19 +595,24 @@ fn line(name: &str, pts: &[[f64; 2]]) -> Line<'static> {
     Line::new(name.to_owned(), PlotPoints::from(pts.to_vec()))
 }
 
+/// A plot of the plane, `height` high, with equal axis scale and a legend.
+fn plane_plot(id: impl egui::AsIdSalt, height: f32) -> Plot<'static> {
+    Plot::new(id)
+        .data_aspect(1.0)
+        .height(height)
+        .legend(Legend::default())
+        .x_axis_label("x (mm)")
+        .y_axis_label("y (mm)")
+}
+
 fn corner_plot(ui: &mut egui::Ui, r: &CornerResult, height: f32) {
     // start on the corner region (the circles and a margin); the whole walls after a zoom-out.
     // A new corner or method gets a new plot memory, so the view follows the plan.
     let reach = r.circle_points.iter().flatten().map(|p| p[0]).fold(0.0f64, f64::max);
     let x_max = (reach * 1.5).max(30.0);
-    Plot::new(("corner_geometry", r.angle_deg.to_bits(), r.method))
-        .data_aspect(1.0)
+    plane_plot(("corner_geometry", r.angle_deg.to_bits(), r.method), height)
         .default_x_bounds(-5.0, x_max)
         .default_y_bounds(-0.5 * (x_max + 5.0), 0.5 * (x_max + 5.0))
-        .height(height)
-        .legend(Legend::default())
-        .x_axis_label("x (mm)")
-        .y_axis_label("y (mm)")
         .show(ui, |p| {
             p.line(line("walls", &r.walls).color(Color32::GRAY).width(2.5));
             p.line(
@@ -671,89 +667,93 @@ fn teaching(ui: &mut egui::Ui) {
 
 /// The Pocket sub-mode: vertices as text, tool, step-over, method; the rings and their numbers,
 /// and the program beside the rings when the NC export is open.
-fn pocket(
-    ui: &mut egui::Ui,
-    inputs: &mut CornerInputs,
-    view: &CornerView,
-    nc: &mut CornerNcSettings,
-    nc_cache: &CornerNcCache,
-) -> Option<Command> {
+fn pocket(ui: &mut egui::Ui, inputs: &mut CornerInputs, view: &CornerView, nc: &mut NcExport) -> Option<Command> {
+    pocket_inputs(ui, inputs);
+    status(ui, view, None);
+    if nc.settings.open {
+        ui.separator();
+    }
+    let cmd = nc_options(ui, view, nc);
+    let h = (ui.available_height() - 10.0).max(220.0);
+    ui.horizontal_top(|ui| {
+        ui.vertical(|ui| {
+            ui.set_width(230.0);
+            polygon_editor(ui, inputs);
+            if let Some(r) = view.last_pocket.as_deref() {
+                ui.add_space(6.0);
+                pocket_numbers(ui, r);
+            }
+        });
+        if let Some(r) = view.last_pocket.as_deref() {
+            pocket_view(ui, r, nc.settings.open, nc.cache, h);
+        }
+    });
+    cmd
+}
+
+/// The method, the tool diameter and the pocket's step-over.
+fn pocket_inputs(ui: &mut egui::Ui, inputs: &mut CornerInputs) {
     ui.horizontal_wrapped(|ui| {
         method_buttons(ui, &mut inputs.method);
         ui.separator();
-        let l = ui.label(label::TOOL_DIAMETER);
+        let l = ui.label(label::CORNER_TOOL_DIAMETER);
         ui.add(DragValue::new(&mut inputs.tool_diameter_mm).speed(0.1).suffix(" mm")).labelled_by(l.id);
         let l = ui.label(label::POCKET_STEP_OVER);
         ui.add(DragValue::new(&mut inputs.pocket_step_over_mm).speed(0.05).suffix(" mm"))
             .labelled_by(l.id)
             .on_hover_text("Distance between successive contour-parallel rings, 0 < a_e < D.");
     });
-    status(ui, view, None);
-    let mut cmd = None;
-    if nc.open {
-        ui.separator();
-        cmd = corner_nc::options(ui, nc, nc_cache, view.error.is_some());
-        ui.separator();
+}
+
+/// The pocket's vertices as editable text.
+fn polygon_editor(ui: &mut egui::Ui, inputs: &mut CornerInputs) {
+    let l = ui.label(label::POCKET_VERTICES);
+    ui.add(egui::TextEdit::multiline(&mut inputs.polygon_text).desired_rows(8).code_editor())
+        .labelled_by(l.id)
+        .on_hover_text("A simple polygon, lines only, one vertex \"x,y\" (mm) per line; '#' comments allowed.");
+}
+
+/// The pocket's method, length, time and engagement, and its rings' offsets and engagement.
+fn pocket_numbers(ui: &mut egui::Ui, r: &PocketResult) {
+    ui.label(format!("method {}", r.method));
+    if matches!(r.plan, PocketPlan::Rings(_)) {
+        ui.label(format!("{} rings", r.rings.len()));
     }
-    let h = (ui.available_height() - 10.0).max(220.0);
-    ui.horizontal_top(|ui| {
-        ui.vertical(|ui| {
-            ui.set_width(230.0);
-            let l = ui.label(label::POLYGON);
-            ui.add(egui::TextEdit::multiline(&mut inputs.polygon_text).desired_rows(8).code_editor())
-                .labelled_by(l.id)
-                .on_hover_text("A simple polygon, lines only, one vertex \"x,y\" (mm) per line; '#' comments allowed.");
-            if let Some(r) = view.last_pocket.as_deref() {
-                ui.add_space(6.0);
-                ui.label(format!("method {}", r.method));
-                if matches!(r.plan, PocketPlan::Rings(_)) {
-                    ui.label(format!("{} rings", r.rings.len()));
-                }
-                ui.label(format!("path {:.1} mm, {:.1} s", r.path_length_mm, r.time_s));
-                ui.label(format!("max engagement {:.1}°", r.max_deg));
-                ui.label(&r.detail);
-                egui::ScrollArea::vertical().id_salt("pocket_rings_scroll").show(ui, |ui| {
-                    egui::Grid::new("pocket_rings").striped(true).show(ui, |ui| {
-                        ui.label("ring");
-                        ui.label("offset");
-                        ui.label("max eng.");
-                        ui.end_row();
-                        for (level, off, mx, _) in &r.rings {
-                            ui.label(format!("{level}"));
-                            ui.label(format!("{off:.2} mm"));
-                            ui.label(format!("{mx:.1}°"));
-                            ui.end_row();
-                        }
-                    });
-                });
+    ui.label(format!("path {:.1} mm, {:.1} s", r.path_length_mm, r.time_s));
+    ui.label(format!("max engagement {:.1}°", r.max_deg));
+    ui.label(&r.detail);
+    egui::ScrollArea::vertical().id_salt("pocket_rings_scroll").show(ui, |ui| {
+        egui::Grid::new("pocket_rings").striped(true).show(ui, |ui| {
+            ui.label("ring");
+            ui.label("offset");
+            ui.label("max eng.");
+            ui.end_row();
+            for (level, off, mx, _) in &r.rings {
+                ui.label(format!("{level}"));
+                ui.label(format!("{off:.2} mm"));
+                ui.label(format!("{mx:.1}°"));
+                ui.end_row();
             }
         });
-        let Some(r) = view.last_pocket.as_deref() else {
-            return;
-        };
-        let w = ui.available_width();
-        let plot_w = if nc.open { 0.5 * w } else { w };
-        Plot::new("pocket_rings_plot")
-            .data_aspect(1.0)
-            .width(plot_w)
-            .height(h)
-            .legend(Legend::default())
-            .x_axis_label("x (mm)")
-            .y_axis_label("y (mm)")
-            .show(ui, |p| {
-                p.line(line("pocket", &r.boundary).color(Color32::GRAY).width(2.5));
-                for (_, _, _, pts) in &r.rings {
-                    p.line(line("rings", pts).color(STRATEGY_COLOR).width(1.0));
-                }
-            });
-        if nc.open {
-            ui.vertical(|ui| {
-                ui.set_min_size(egui::vec2(ui.available_width(), h));
-                corner_nc::preview(ui, nc_cache);
-            });
+    });
+}
+
+/// The pocket and its rings, `h` high; half as wide, beside the program, when `nc_open`.
+fn pocket_view(ui: &mut egui::Ui, r: &PocketResult, nc_open: bool, nc_cache: &CornerNcCache, h: f32) {
+    let w = ui.available_width();
+    let plot_w = if nc_open { 0.5 * w } else { w };
+    plane_plot("pocket_rings_plot", h).width(plot_w).show(ui, |p| {
+        p.line(line("pocket", &r.boundary).color(Color32::GRAY).width(2.5));
+        for (_, _, _, pts) in &r.rings {
+            p.line(line("rings", pts).color(STRATEGY_COLOR).width(1.0));
         }
     });
-    cmd
+    if nc_open {
+        ui.vertical(|ui| {
+            ui.set_min_size(egui::vec2(ui.available_width(), h));
+            corner_nc::preview(ui, nc_cache);
+        });
+    }
 }
 
 #[cfg(test)]

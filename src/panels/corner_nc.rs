@@ -8,23 +8,14 @@
 
 use super::Command;
 use super::corner::{CornerMode, CornerResult, CornerView, PocketResult};
-use super::export::{line_starts, program_text};
+use super::export::{ProgramCache, line_starts, program_text};
+use super::label;
 use super::params::ERROR_COLOR;
+use crate::export::nc_options;
 use eframe::egui::{self, DragValue, RichText, Slider, SliderClamping};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 use trochoplan_core::nc::{self, CutSetup, DEFAULT_TOLERANCE_MM, Dialect, NcOptions};
-
-/// Accessible names of the inputs (tests find them by these).
-pub mod label {
-    pub const OPEN: &str = "NC export";
-    pub const TOLERANCE: &str = "Corner NC tolerance";
-    pub const LINEAR: &str = "G1 chords only";
-    pub const COOLANT: &str = "Coolant (M8/M9)";
-    pub const DEPTH: &str = "Depth below Z0";
-    pub const RPM: &str = "Spindle";
-    pub const SAVE: &str = "Save program as…";
-}
 
 /// The export options of the Corner tab (persisted with the app state).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -61,13 +52,7 @@ impl Default for CornerNcSettings {
 impl CornerNcSettings {
     /// The core's options (validated by the core when the program is written).
     pub fn options(&self) -> NcOptions {
-        NcOptions {
-            dialect: self.dialect,
-            tolerance_mm: self.tolerance_mm,
-            linear_segments: self.linear_segments,
-            coolant: self.coolant,
-            ..NcOptions::default()
-        }
+        nc_options(self.dialect, self.tolerance_mm, self.linear_segments, self.coolant)
     }
 
     pub fn cut(&self) -> CutSetup {
@@ -85,15 +70,15 @@ pub struct NcPreview {
     pub file_stem: &'static str,
 }
 
-/// The plan a program is written from.
+/// The plan a program is written from (the same plan: the same `Arc`).
 #[derive(Clone)]
-enum Source {
+pub enum Source {
     Corner(Arc<CornerResult>),
     Pocket(Arc<PocketResult>),
 }
 
-impl Source {
-    fn same(&self, other: &Source) -> bool {
+impl PartialEq for Source {
+    fn eq(&self, other: &Source) -> bool {
         match (self, other) {
             (Source::Corner(a), Source::Corner(b)) => Arc::ptr_eq(a, b),
             (Source::Pocket(a), Source::Pocket(b)) => Arc::ptr_eq(a, b),
@@ -103,14 +88,7 @@ impl Source {
 }
 
 /// The program of the shown plan and the export settings, regenerated only when either changed.
-#[derive(Default)]
-pub struct CornerNcCache {
-    key: Option<(Source, CornerNcSettings)>,
-    /// The program, or the core's message.
-    pub result: Option<Result<NcPreview, String>>,
-    /// Programs generated (tests check the cache).
-    pub generated: u64,
-}
+pub type CornerNcCache = ProgramCache<(Source, CornerNcSettings), NcPreview>;
 
 impl CornerNcCache {
     /// Regenerate if the plan shown in `mode` or the settings changed.
@@ -121,24 +99,20 @@ impl CornerNcCache {
             CornerMode::Table => None,
         };
         let Some(source) = source else {
-            self.key = None;
-            self.result = None;
+            self.clear();
             return;
         };
         // showing or hiding the panel does not change the program
         let settings = CornerNcSettings { open: false, ..settings.clone() };
-        if self.key.as_ref().is_some_and(|(s, k)| s.same(&source) && *k == settings) {
-            return;
-        }
-        self.generated += 1;
-        self.result = Some(generate(&source, &settings));
-        self.key = Some((source, settings));
+        self.update_with((source, settings), |(source, settings)| generate(source, settings));
     }
+}
 
-    /// The current program, if it was written without error.
-    pub fn preview(&self) -> Option<&NcPreview> {
-        self.result.as_ref().and_then(|r| r.as_ref().ok())
-    }
+/// The export as the tab's panels see it: the settings they edit and the program of the shown
+/// plan.
+pub struct NcExport<'a> {
+    pub settings: &'a mut CornerNcSettings,
+    pub cache: &'a CornerNcCache,
 }
 
 fn generate(source: &Source, settings: &CornerNcSettings) -> Result<NcPreview, String> {
@@ -162,69 +136,77 @@ pub fn options(
     cache: &CornerNcCache,
     inputs_error: bool,
 ) -> Option<Command> {
-    let mut cmd = None;
-    ui.horizontal_wrapped(|ui| {
-        ui.label(RichText::new("Dialect").strong());
-        for d in Dialect::ALL {
-            ui.radio_value(&mut settings.dialect, d, d.label());
-        }
-        ui.separator();
-        let l = ui.label(label::TOLERANCE).on_hover_text(
-            "Largest distance of the written path from the planned one before rounding (mm); \
-             curves become biarcs (or chords) within it. Default 0.005 mm (domain-spec §5.4).",
-        );
-        ui.spacing_mut().slider_width = 110.0;
-        ui.add(
-            Slider::new(&mut settings.tolerance_mm, 1e-4..=1.0)
-                .logarithmic(true)
-                .clamping(SliderClamping::Never)
-                .max_decimals(4)
-                .suffix(" mm"),
-        )
-        .labelled_by(l.id);
-    });
-    ui.horizontal_wrapped(|ui| {
-        ui.checkbox(&mut settings.linear_segments, label::LINEAR)
-            .on_hover_text("Write every arc as G1 chords instead of G2/G3 (more blocks).");
-        ui.checkbox(&mut settings.coolant, label::COOLANT);
-        ui.separator();
-        let l = ui.label(label::DEPTH);
-        ui.add(DragValue::new(&mut settings.depth_mm).speed(0.1).suffix(" mm")).labelled_by(l.id).on_hover_text(
-            "Cutting depth below the stock top Z0, 0 < depth ≤ 1000 mm; the tool feeds down at the path start.",
-        );
-        let l = ui.label(label::RPM);
-        ui.add(DragValue::new(&mut settings.spindle_rpm).speed(10.0).suffix(" rpm"))
-            .labelled_by(l.id)
-            .on_hover_text("Spindle speed (M3), 0 < n ≤ 1000000 rpm.");
-    });
+    ui.horizontal_wrapped(|ui| format_options(ui, settings));
+    ui.horizontal_wrapped(|ui| cut_options(ui, settings));
     match &cache.result {
         None => {
             ui.label("No plan yet.");
+            None
         }
         Some(Err(e)) => {
             ui.add(egui::Label::new(RichText::new(format!("Cannot write the program: {e}")).color(ERROR_COLOR)).wrap());
+            None
         }
-        Some(Ok(p)) => {
-            ui.horizontal(|ui| {
-                if ui
-                    .add_enabled(!inputs_error, egui::Button::new(label::SAVE))
-                    .on_hover_text("Choose a file; it is written atomically (temporary file, then rename).")
-                    .on_disabled_hover_text("The inputs are invalid: fix them first.")
-                    .clicked()
-                {
-                    cmd = Some(Command::ExportCornerNc);
-                }
-                ui.label(format!("{} blocks, {} bytes, {} lines", p.blocks, p.text.len(), p.line_starts.len()));
-            });
-        }
+        Some(Ok(p)) => ui.horizontal(|ui| save_row(ui, p, inputs_error)).inner,
     }
-    cmd
+}
+
+/// How the program is written: the dialect and the tolerance.
+fn format_options(ui: &mut egui::Ui, settings: &mut CornerNcSettings) {
+    ui.label(RichText::new("Dialect").strong());
+    for d in Dialect::ALL {
+        ui.radio_value(&mut settings.dialect, d, d.label());
+    }
+    ui.separator();
+    let l = ui.label(label::CORNER_NC_TOLERANCE).on_hover_text(
+        "Largest distance of the written path from the planned one before rounding (mm); \
+         curves become biarcs (or chords) within it. Default 0.005 mm (domain-spec §5.4).",
+    );
+    ui.spacing_mut().slider_width = 110.0;
+    ui.add(tolerance_slider(&mut settings.tolerance_mm)).labelled_by(l.id);
+}
+
+/// The slider of an NC tolerance: 0.1 µm to 1 mm on a logarithmic scale, typed values outside
+/// kept (the core rejects them with its message).
+pub(super) fn tolerance_slider(tolerance_mm: &mut f64) -> Slider<'_> {
+    Slider::new(tolerance_mm, 1e-4..=1.0)
+        .logarithmic(true)
+        .clamping(SliderClamping::Never)
+        .max_decimals(4)
+        .suffix(" mm")
+}
+
+/// How it cuts: chords or arcs, coolant, depth and spindle speed.
+fn cut_options(ui: &mut egui::Ui, settings: &mut CornerNcSettings) {
+    ui.checkbox(&mut settings.linear_segments, label::G1_CHORDS_ONLY)
+        .on_hover_text("Write every arc as G1 chords instead of G2/G3 (more blocks).");
+    ui.checkbox(&mut settings.coolant, label::COOLANT);
+    ui.separator();
+    let l = ui.label(label::DEPTH_BELOW_Z0);
+    ui.add(DragValue::new(&mut settings.depth_mm).speed(0.1).suffix(" mm")).labelled_by(l.id).on_hover_text(
+        "Cutting depth below the stock top Z0, 0 < depth ≤ 1000 mm; the tool feeds down at the path start.",
+    );
+    let l = ui.label(label::SPINDLE);
+    ui.add(DragValue::new(&mut settings.spindle_rpm).speed(10.0).suffix(" rpm"))
+        .labelled_by(l.id)
+        .on_hover_text("Spindle speed (M3), 0 < n ≤ 1000000 rpm.");
+}
+
+/// The save button (disabled while the inputs are invalid) and the program's size.
+fn save_row(ui: &mut egui::Ui, p: &NcPreview, inputs_error: bool) -> Option<Command> {
+    let save = ui
+        .add_enabled(!inputs_error, egui::Button::new(label::SAVE_PROGRAM_AS))
+        .on_hover_text("Choose a file; it is written atomically (temporary file, then rename).")
+        .on_disabled_hover_text("The inputs are invalid: fix them first.")
+        .clicked();
+    ui.label(format!("{} blocks, {} bytes, {} lines", p.blocks, p.text.len(), p.line_starts.len()));
+    save.then_some(Command::ExportCornerNc)
 }
 
 /// The read-only program text filling `ui`.
 pub fn preview(ui: &mut egui::Ui, cache: &CornerNcCache) {
     ui.label(RichText::new("Program (read-only)").strong());
-    match cache.preview() {
+    match cache.view() {
         Some(p) => program_text(ui, "corner_nc_preview", &p.text, &p.line_starts),
         None => {
             ui.label("No program.");

@@ -5,17 +5,16 @@
 //!
 //! The core computes each angle's rows (`acceptance_rows_at`, the plain ring measured once and
 //! shared) and says whether they pass (`AcceptanceRow::passes`); this module only runs it on a
-//! worker thread, angle by angle, and draws the rows. A whole table takes about 10 s, so the
+//! [`Worker`] thread, angle by angle, and draws the rows. A whole table takes about 10 s, so the
 //! newest settings win: a change restarts the table, *Cancel* stops it between two angles.
 
 use super::Command;
 use super::corner::PLAIN_COLOR;
+use super::label;
 use super::params::ERROR_COLOR;
+use crate::worker::{Keep, Task, Worker};
 use eframe::egui::{self, Color32, RichText};
 use egui_plot::{HLine, Legend, Line, LineStyle, Plot, PlotPoints, Points};
-use std::sync::Arc;
-use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
 use trochoplan_core::corner::acceptance::{ANGLES_DEG, AcceptanceRow, MARGIN_DEG, STRATEGIES, acceptance_rows_at};
 use trochoplan_core::corner::{CornerRequest, CornerSettings};
 
@@ -25,12 +24,6 @@ pub const STRATEGY_COLORS: [Color32; 3] =
 /// Colour of the passes and fails.
 const PASS_COLOR: Color32 = Color32::from_rgb(70, 170, 80);
 
-/// Labels of the table's buttons (used by the tests).
-pub mod label {
-    pub const CANCEL: &str = "Cancel table";
-    pub const RESTART: &str = "Restart table";
-}
-
 /// The rows of one corner angle, in the order of `STRATEGIES`, or why they could not be made.
 #[derive(Clone, Debug)]
 pub struct AngleRows {
@@ -38,14 +31,22 @@ pub struct AngleRows {
     pub rows: Result<Vec<AcceptanceRow>, String>,
 }
 
-struct Request {
-    generation: u64,
-    settings: CornerSettings,
-    spacing_mm: f64,
-}
+/// The table's request: the settings and the spacing of the evaluated tool positions (mm).
+type Request = (CornerSettings, f64);
 
-type Message = (u64, AngleRows);
-type Repaint = Arc<dyn Fn() + Send + Sync>;
+/// Measure angle after angle, one [`AngleRows`] each, stopping between two angles as soon as a
+/// newer request (or a cancel) supersedes this one.
+fn measure((settings, spacing_mm): Request, task: &Task<AngleRows>) {
+    for &angle_deg in &ANGLES_DEG {
+        if task.cancelled() {
+            return;
+        }
+        let rows = acceptance_rows_at(angle_deg, &STRATEGIES, settings, spacing_mm).map_err(|e| e.to_string());
+        if !task.send(AngleRows { angle_deg, rows }) {
+            return;
+        }
+    }
+}
 
 /// The table for the newest settings: rows as they arrive, progress, cancel.
 pub struct TableView {
@@ -61,16 +62,14 @@ pub struct TableView {
     pub error: Option<String>,
     /// The user stopped the table before it was complete.
     pub cancelled: bool,
-    generation: u64,
-    /// Generation the worker should be computing; it stops an older one between two angles.
-    latest: Arc<AtomicU64>,
-    worker: Option<(Sender<Request>, Receiver<Message>)>,
-    repaint: Repaint,
+    /// Measures the newest request's angles on its own thread ([`Keep::Newest`]: no row of an
+    /// older request joins the table).
+    worker: Worker<Request, AngleRows>,
 }
 
 impl TableView {
-    /// A table measuring every `spacing_mm` along the paths; `repaint` is called after each
-    /// angle. The worker thread starts with the first request.
+    /// A table measuring every `spacing_mm` along the paths on its own thread; `repaint` is
+    /// called after each angle.
     pub fn new(spacing_mm: f64, repaint: impl Fn() + Send + Sync + 'static) -> TableView {
         TableView {
             spacing_mm,
@@ -79,10 +78,7 @@ impl TableView {
             angles: Vec::new(),
             error: None,
             cancelled: false,
-            generation: 0,
-            latest: Arc::new(AtomicU64::new(0)),
-            worker: None,
-            repaint: Arc::new(repaint),
+            worker: Worker::threaded("corner-table", Keep::Newest, measure, repaint),
         }
     }
 
@@ -98,23 +94,7 @@ impl TableView {
 
     /// Collect the angles computed since the last call.
     pub fn poll(&mut self) {
-        let Some((_, rx)) = &self.worker else { return };
-        let mut received = Vec::new();
-        loop {
-            match rx.try_recv() {
-                Ok(m) => received.push(m),
-                Err(TryRecvError::Empty) => break,
-                Err(TryRecvError::Disconnected) => {
-                    self.worker = None;
-                    break;
-                }
-            }
-        }
-        for (generation, rows) in received {
-            if generation == self.generation && !self.complete() {
-                self.angles.push(rows);
-            }
-        }
+        self.angles.extend(self.worker.poll());
     }
 
     /// Collect rows, and start a new table if `settings` changed (an invalid input stops the
@@ -128,7 +108,7 @@ impl TableView {
         match settings {
             Err(e) => {
                 self.error = Some(e);
-                self.stop();
+                self.worker.cancel();
             }
             Ok(s) => {
                 self.error = None;
@@ -140,31 +120,17 @@ impl TableView {
         }
     }
 
-    fn stop(&mut self) {
-        self.generation += 1;
-        self.latest.store(self.generation, Ordering::SeqCst);
-    }
-
     fn start(&mut self, settings: CornerSettings) {
-        self.stop();
         self.cancelled = false;
         self.shown = Some(settings);
         self.angles.clear();
-        if self.worker.is_none() {
-            self.worker = spawn(self.latest.clone(), self.repaint.clone());
-        }
-        let req = Request { generation: self.generation, settings, spacing_mm: self.spacing_mm };
-        let sent = self.worker.as_ref().is_some_and(|(tx, _)| tx.send(req).is_ok());
-        if !sent {
-            self.worker = None;
-            self.error = Some("cannot start the table's worker thread".to_owned());
-        }
+        self.worker.request((settings, self.spacing_mm));
     }
 
     /// Stop the running table between two angles; its rows so far stay.
     pub fn cancel(&mut self) {
         if self.running() {
-            self.stop();
+            self.worker.cancel();
             self.cancelled = true;
         }
     }
@@ -182,35 +148,6 @@ impl Default for TableView {
     fn default() -> Self {
         TableView::new(CornerRequest::DEFAULT.spacing_mm, || {})
     }
-}
-
-/// The worker: takes the newest request, measures angle after angle, and stops as soon as a
-/// newer generation is asked for.
-fn spawn(latest: Arc<AtomicU64>, repaint: Repaint) -> Option<(Sender<Request>, Receiver<Message>)> {
-    let (req_tx, req_rx) = channel::<Request>();
-    let (ans_tx, ans_rx) = channel::<Message>();
-    std::thread::Builder::new()
-        .name("corner-table".into())
-        .spawn(move || {
-            while let Ok(mut req) = req_rx.recv() {
-                while let Ok(newer) = req_rx.try_recv() {
-                    req = newer;
-                }
-                for &angle_deg in &ANGLES_DEG {
-                    if latest.load(Ordering::SeqCst) != req.generation {
-                        break;
-                    }
-                    let rows = acceptance_rows_at(angle_deg, &STRATEGIES, req.settings, req.spacing_mm)
-                        .map_err(|e| e.to_string());
-                    if ans_tx.send((req.generation, AngleRows { angle_deg, rows })).is_err() {
-                        return;
-                    }
-                    repaint();
-                }
-            }
-        })
-        .ok()?;
-    Some((req_tx, ans_rx))
 }
 
 /// Tooltips of the columns (module docs of `core/src/corner/acceptance.rs`).
@@ -246,35 +183,16 @@ fn strategy_label(i: usize) -> &'static str {
     STRATEGIES[i].label()
 }
 
+/// What the table's body and tip columns mean (under the grid).
+const BODY_AND_TIP: &str = "Body and tip: every strategy ends its chain of wall-tangent circles when the next circle \
+    gets too small and then moves into the tool's corner point, where the tool touches both walls. That last move \
+    engages about 180° minus the corner angle over a thin sliver, whatever the strategy, so it is reported apart \
+    (tip, dashed in the plot) with its own stated limit; the rest of the path (body) must stay within a* + 1°. \
+    Hover the column titles for details.";
+
 /// The table (grid) and the plot of peak engagement against the corner angle.
 pub fn show(ui: &mut egui::Ui, view: &TableView) -> Option<Command> {
-    let mut cmd = None;
-    let n = ANGLES_DEG.len();
-    ui.horizontal(|ui| {
-        if view.running() {
-            let done = view.angles.len();
-            let next = ANGLES_DEG.get(done).copied().unwrap_or(0.0);
-            ui.add(
-                egui::ProgressBar::new(done as f32 / n as f32)
-                    .desired_width(220.0)
-                    .text(format!("{done} of {n} angles, measuring {next:.0}°…")),
-            );
-            if ui.button(label::CANCEL).on_hover_text("Stop after the angle being measured").clicked() {
-                cmd = Some(Command::CancelCornerTable);
-            }
-        } else if view.cancelled {
-            ui.label(format!("Cancelled after {} of {n} angles.", view.angles.len()));
-            if ui.button(label::RESTART).clicked() {
-                cmd = Some(Command::RestartCornerTable);
-            }
-        } else if view.complete() {
-            ui.label(format!(
-                "{n} corner angles × 3 strategies, measured by the evaluator every {} mm — the rows of \
-                 `trochoplan corner --method M --table`.",
-                view.spacing_mm
-            ));
-        }
-    });
+    let cmd = ui.horizontal(|ui| progress(ui, view)).inner;
     if let Some(e) = &view.error {
         ui.add(egui::Label::new(RichText::new(format!("invalid: {e}")).color(ERROR_COLOR)).wrap());
         if !view.angles.is_empty() {
@@ -295,19 +213,7 @@ pub fn show(ui: &mut egui::Ui, view: &TableView) -> Option<Command> {
     ui.add_space(4.0);
     grid(ui, view);
     ui.add_space(6.0);
-    ui.add(
-        egui::Label::new(
-            RichText::new(
-                "Body and tip: every strategy ends its chain of wall-tangent circles when the next circle gets too \
-                 small and then moves into the tool's corner point, where the tool touches both walls. That last \
-                 move engages about 180° minus the corner angle over a thin sliver, whatever the strategy, so it \
-                 is reported apart (tip, dashed in the plot) with its own stated limit; the rest of the path \
-                 (body) must stay within a* + 1°. Hover the column titles for details.",
-            )
-            .weak(),
-        )
-        .wrap(),
-    );
+    ui.add(egui::Label::new(RichText::new(BODY_AND_TIP).weak()).wrap());
     ui.add_space(4.0);
     ui.label(RichText::new("Peak engagement against the corner angle (evaluator)").strong());
     let (w, h) = (ui.available_width(), (ui.available_height() - 8.0).max(200.0));
@@ -315,28 +221,40 @@ pub fn show(ui: &mut egui::Ui, view: &TableView) -> Option<Command> {
     cmd
 }
 
+/// The progress bar and *Cancel* while the table runs, *Restart* after a cancel, what the rows
+/// are once it is complete.
+fn progress(ui: &mut egui::Ui, view: &TableView) -> Option<Command> {
+    let n = ANGLES_DEG.len();
+    if view.running() {
+        let done = view.angles.len();
+        let next = ANGLES_DEG.get(done).copied().unwrap_or(0.0);
+        ui.add(
+            egui::ProgressBar::new(done as f32 / n as f32)
+                .desired_width(220.0)
+                .text(format!("{done} of {n} angles, measuring {next:.0}°…")),
+        );
+        let cancel = ui.button(label::CANCEL_TABLE).on_hover_text("Stop after the angle being measured").clicked();
+        return cancel.then_some(Command::CancelCornerTable);
+    }
+    if view.cancelled {
+        ui.label(format!("Cancelled after {} of {n} angles.", view.angles.len()));
+        return ui.button(label::RESTART_TABLE).clicked().then_some(Command::RestartCornerTable);
+    }
+    if view.complete() {
+        ui.label(format!(
+            "{n} corner angles × 3 strategies, measured by the evaluator every {} mm — the rows of \
+             `trochoplan corner --method M --table`.",
+            view.spacing_mm
+        ));
+    }
+    None
+}
+
+/// One row per corner angle: the plain ring's peak and, per strategy, body, tip, limit,
+/// verdict, length and time.
 fn grid(ui: &mut egui::Ui, view: &TableView) {
     egui::Grid::new("corner_acceptance_table").striped(true).spacing(egui::vec2(10.0, 3.0)).show(ui, |ui| {
-        ui.label("");
-        ui.label("");
-        for (i, color) in STRATEGY_COLORS.iter().enumerate() {
-            ui.label(RichText::new(strategy_label(i)).strong().color(*color));
-            for _ in 0..5 {
-                ui.label("");
-            }
-        }
-        ui.end_row();
-        header(ui, "corner", tip::ANGLE);
-        header(ui, "plain max °", tip::PLAIN);
-        for _ in STRATEGIES {
-            header(ui, "body °", tip::BODY);
-            header(ui, "tip °", tip::TIP);
-            header(ui, "limit °", tip::LIMIT);
-            header(ui, "pass?", tip::PASS);
-            header(ui, "length mm", tip::LENGTH);
-            header(ui, "time s", tip::TIME);
-        }
-        ui.end_row();
+        grid_header(ui);
         for a in &view.angles {
             ui.label(format!("{:.0}°", a.angle_deg));
             match &a.rows {
@@ -344,21 +262,7 @@ fn grid(ui: &mut egui::Ui, view: &TableView) {
                     let plain = rows.first().map_or(f64::NAN, |r| r.plain_max_deg);
                     deg_cell(ui, plain, false);
                     for r in rows {
-                        deg_cell(ui, r.body_max_deg, !r.body_passes());
-                        deg_cell(ui, r.tip_deg, !r.tip_passes());
-                        ui.label(RichText::new(format!("{:.2}", r.tip_limit_deg)).monospace().weak());
-                        let (text, color) = if r.passes() { ("pass", PASS_COLOR) } else { ("fail", ERROR_COLOR) };
-                        ui.label(RichText::new(text).color(color)).on_hover_text(format!(
-                            "body {:.2}° ≤ {:.2}°: {}; tip {:.2}° ≤ {:.2}°: {}",
-                            r.body_max_deg,
-                            r.body_limit_deg(),
-                            r.body_passes(),
-                            r.tip_deg,
-                            r.tip_allowed_deg(),
-                            r.tip_passes()
-                        ));
-                        ui.label(RichText::new(format!("{:.1}", r.path_length_mm)).monospace());
-                        ui.label(RichText::new(format!("{:.1}", r.time_s)).monospace());
+                        row_cells(ui, r);
                     }
                 }
                 Err(e) => {
@@ -368,6 +272,49 @@ fn grid(ui: &mut egui::Ui, view: &TableView) {
             ui.end_row();
         }
     });
+}
+
+/// The two header rows: the strategies' names over their columns, then the column titles.
+fn grid_header(ui: &mut egui::Ui) {
+    ui.label("");
+    ui.label("");
+    for (i, color) in STRATEGY_COLORS.iter().enumerate() {
+        ui.label(RichText::new(strategy_label(i)).strong().color(*color));
+        for _ in 0..5 {
+            ui.label("");
+        }
+    }
+    ui.end_row();
+    header(ui, "corner", tip::ANGLE);
+    header(ui, "plain max °", tip::PLAIN);
+    for _ in STRATEGIES {
+        header(ui, "body °", tip::BODY);
+        header(ui, "tip °", tip::TIP);
+        header(ui, "limit °", tip::LIMIT);
+        header(ui, "pass?", tip::PASS);
+        header(ui, "length mm", tip::LENGTH);
+        header(ui, "time s", tip::TIME);
+    }
+    ui.end_row();
+}
+
+/// One strategy's cells of a row: body, tip, limit, verdict (why, on hover), length, time.
+fn row_cells(ui: &mut egui::Ui, r: &AcceptanceRow) {
+    deg_cell(ui, r.body_max_deg, !r.body_passes());
+    deg_cell(ui, r.tip_deg, !r.tip_passes());
+    ui.label(RichText::new(format!("{:.2}", r.tip_limit_deg)).monospace().weak());
+    let (text, color) = if r.passes() { ("pass", PASS_COLOR) } else { ("fail", ERROR_COLOR) };
+    ui.label(RichText::new(text).color(color)).on_hover_text(format!(
+        "body {:.2}° ≤ {:.2}°: {}; tip {:.2}° ≤ {:.2}°: {}",
+        r.body_max_deg,
+        r.body_limit_deg(),
+        r.body_passes(),
+        r.tip_deg,
+        r.tip_allowed_deg(),
+        r.tip_passes()
+    ));
+    ui.label(RichText::new(format!("{:.1}", r.path_length_mm)).monospace());
+    ui.label(RichText::new(format!("{:.1}", r.time_s)).monospace());
 }
 
 fn plot(ui: &mut egui::Ui, view: &TableView, target_deg: f64, width: f32, height: f32) {

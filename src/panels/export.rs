@@ -7,24 +7,16 @@
 //! with the same options (the core guarantees the same motion), and the panel says so.
 
 use super::Command;
+use super::corner_nc::tolerance_slider;
+use super::label;
 use super::params::ERROR_COLOR;
-use eframe::egui::{self, Color32, RichText, Slider, SliderClamping};
+use crate::export::nc_options;
+use eframe::egui::{self, Color32, RichText};
 use egui_plot::{Corner, Legend, Line, Plot, PlotPoint, PlotPoints};
 use serde::{Deserialize, Serialize};
 use trochoplan_core::Plan;
 use trochoplan_core::job::ValidJob;
 use trochoplan_core::nc::{self, DEFAULT_TOLERANCE_MM, Dialect, NcOptions};
-
-/// Accessible names of the panel's inputs (tests find them by these).
-pub mod label {
-    pub const TOLERANCE: &str = "NC tolerance";
-    pub const LINEAR: &str = "Linear segments (G1 chords only)";
-    pub const COMPACT: &str = "Compact loop";
-    pub const COOLANT: &str = "Coolant (M8/M9)";
-    pub const RETURN_FEED: &str = "Faster return feed";
-    pub const RETURN_FEED_VALUE: &str = "Return feed";
-    pub const SAVE: &str = "Save NC program…";
-}
 
 /// Chord tolerance of the drawn back-plot (mm), raised for very long programs.
 const BACKPLOT_CHORD_MM: f64 = 0.002;
@@ -64,13 +56,9 @@ impl ExportSettings {
     /// The core's options (validated by the core when the program is written).
     pub fn options(&self) -> NcOptions {
         NcOptions {
-            dialect: self.dialect,
-            tolerance_mm: self.tolerance_mm,
-            linear_segments: self.linear_segments,
-            coolant: self.coolant,
             return_feed_mm_per_min: self.return_feed.then_some(self.return_feed_mm_per_min),
             compact: self.compact,
-            ..NcOptions::default()
+            ..nc_options(self.dialect, self.tolerance_mm, self.linear_segments, self.coolant)
         }
     }
 }
@@ -128,30 +116,53 @@ pub(super) fn program_text(ui: &mut egui::Ui, id: &str, text: &str, starts: &[us
     });
 }
 
-/// The program of the last (plan, settings), recomputed only when either changed.
-#[derive(Default)]
-pub struct ExportCache {
-    key: Option<(ValidJob, ExportSettings)>,
-    /// The program and back-plot, or the core's message.
-    pub result: Option<Result<ExportView, String>>,
-    /// Number of programs generated (tests check the cache).
+/// A program generated once per key (the plan it is written from and the export settings),
+/// not per frame: the slot's ([`ExportCache`]) and the Corner tab's
+/// (`corner_nc::CornerNcCache`).
+pub struct ProgramCache<K, V> {
+    key: Option<K>,
+    /// The program, or the core's message.
+    pub result: Option<Result<V, String>>,
+    /// Programs generated (tests check the cache).
     pub generated: u64,
 }
+
+impl<K, V> Default for ProgramCache<K, V> {
+    fn default() -> Self {
+        ProgramCache { key: None, result: None, generated: 0 }
+    }
+}
+
+impl<K: PartialEq, V> ProgramCache<K, V> {
+    /// Generate the program of `key` unless it is the key of the last call.
+    pub fn update_with(&mut self, key: K, generate: impl FnOnce(&K) -> Result<V, String>) {
+        if self.key.as_ref() == Some(&key) {
+            return;
+        }
+        self.generated += 1;
+        self.result = Some(generate(&key));
+        self.key = Some(key);
+    }
+
+    /// Forget the program (there is no plan to write one from).
+    pub fn clear(&mut self) {
+        self.key = None;
+        self.result = None;
+    }
+
+    /// The current program, if it was written without error.
+    pub fn view(&self) -> Option<&V> {
+        self.result.as_ref().and_then(|r| r.as_ref().ok())
+    }
+}
+
+/// The slot's program and back-plot of the last (plan, settings).
+pub type ExportCache = ProgramCache<(ValidJob, ExportSettings), ExportView>;
 
 impl ExportCache {
     /// Regenerate if `plan` or `settings` changed since the last call.
     pub fn update(&mut self, plan: &Plan, settings: &ExportSettings) {
-        if self.key.as_ref().is_some_and(|(j, s)| *j == plan.job && s == settings) {
-            return;
-        }
-        self.key = Some((plan.job.clone(), settings.clone()));
-        self.generated += 1;
-        self.result = Some(generate(plan, settings));
-    }
-
-    /// The current program, if it was written without error.
-    pub fn view(&self) -> Option<&ExportView> {
-        self.result.as_ref().and_then(|r| r.as_ref().ok())
+        self.update_with((plan.job.clone(), settings.clone()), |(_, settings)| generate(plan, settings));
     }
 }
 
@@ -205,72 +216,76 @@ pub fn show(
     cache: &ExportCache,
     job_error: Option<&str>,
 ) -> Option<Command> {
-    let mut cmd = None;
-    ui.horizontal_wrapped(|ui| {
-        ui.label(RichText::new("Dialect").strong());
-        for d in Dialect::ALL {
-            ui.radio_value(&mut settings.dialect, d, d.label()).on_hover_text(d.about());
-        }
-    });
-    ui.horizontal_wrapped(|ui| {
-        let l = ui.label(label::TOLERANCE).on_hover_text(
-            "Largest distance of the written path from the planned one before rounding (mm). \
-             Curves become biarcs (or chords) within it; domain-spec §5.4 default 0.005 mm.",
-        );
-        ui.spacing_mut().slider_width = 140.0;
-        ui.add(
-            Slider::new(&mut settings.tolerance_mm, 1e-4..=1.0)
-                .logarithmic(true)
-                .clamping(SliderClamping::Never)
-                .max_decimals(4)
-                .suffix(" mm"),
-        )
-        .labelled_by(l.id);
-        ui.checkbox(&mut settings.linear_segments, label::LINEAR)
-            .on_hover_text("Write every curve as G1 chords instead of G2/G3 arcs (many more blocks).");
-        let loops = settings.dialect.spec().loop_style.is_some();
-        if !loops {
-            settings.compact = false;
-        }
-        ui.add_enabled(loops, egui::Checkbox::new(&mut settings.compact, label::COMPACT))
-            .on_hover_text("LinuxCNC O-word while loop / Sinumerik R-parameter loop: one cycle's blocks, repeated.")
-            .on_disabled_hover_text("Only LinuxCNC and Sinumerik have a loop form.");
-        ui.checkbox(&mut settings.coolant, label::COOLANT);
-        ui.checkbox(&mut settings.return_feed, label::RETURN_FEED)
-            .on_hover_text("A faster feed on the moves where no tooth cuts in the steady state.");
-        let l = ui.label(label::RETURN_FEED_VALUE);
-        ui.add_enabled(
-            settings.return_feed,
-            egui::DragValue::new(&mut settings.return_feed_mm_per_min).speed(10.0).suffix(" mm/min"),
-        )
-        .labelled_by(l.id);
-    });
+    ui.horizontal_wrapped(|ui| dialect_row(ui, settings));
+    ui.horizontal_wrapped(|ui| options_row(ui, settings));
     if let Some(e) = job_error {
         ui.colored_label(ERROR_COLOR, format!("Job invalid ({e}): fix it before exporting."));
     }
     let view = match &cache.result {
         None => {
             ui.label("No valid job yet: fix the marked parameter.");
-            return cmd;
+            return None;
         }
         Some(Err(e)) => {
             ui.colored_label(ERROR_COLOR, format!("Cannot write the program: {e}"));
-            return cmd;
+            return None;
         }
         Some(Ok(v)) => v,
     };
-    ui.horizontal(|ui| {
-        let ok = job_error.is_none();
-        if ui
-            .add_enabled(ok, egui::Button::new(label::SAVE))
-            .on_hover_text("Choose a file; it is written atomically (temporary file, then rename).")
-            .clicked()
-        {
-            cmd = Some(Command::ExportNc);
-        }
-        ui.label(format!("{} blocks, {} bytes, {} lines", view.blocks, view.text.len(), view.lines()));
-    });
+    let cmd = ui.horizontal(|ui| save_row(ui, view, job_error.is_none())).inner;
     ui.separator();
+    program_and_backplot(ui, view);
+    cmd
+}
+
+/// The controller dialects, one radio button each.
+fn dialect_row(ui: &mut egui::Ui, settings: &mut ExportSettings) {
+    ui.label(RichText::new("Dialect").strong());
+    for d in Dialect::ALL {
+        ui.radio_value(&mut settings.dialect, d, d.label()).on_hover_text(d.about());
+    }
+}
+
+/// Tolerance, chords, loop form, coolant and return feed.
+fn options_row(ui: &mut egui::Ui, settings: &mut ExportSettings) {
+    let l = ui.label(label::NC_TOLERANCE).on_hover_text(
+        "Largest distance of the written path from the planned one before rounding (mm). \
+         Curves become biarcs (or chords) within it; domain-spec §5.4 default 0.005 mm.",
+    );
+    ui.spacing_mut().slider_width = 140.0;
+    ui.add(tolerance_slider(&mut settings.tolerance_mm)).labelled_by(l.id);
+    ui.checkbox(&mut settings.linear_segments, label::LINEAR_SEGMENTS)
+        .on_hover_text("Write every curve as G1 chords instead of G2/G3 arcs (many more blocks).");
+    let loops = settings.dialect.spec().loop_style.is_some();
+    if !loops {
+        settings.compact = false;
+    }
+    ui.add_enabled(loops, egui::Checkbox::new(&mut settings.compact, label::COMPACT_LOOP))
+        .on_hover_text("LinuxCNC O-word while loop / Sinumerik R-parameter loop: one cycle's blocks, repeated.")
+        .on_disabled_hover_text("Only LinuxCNC and Sinumerik have a loop form.");
+    ui.checkbox(&mut settings.coolant, label::COOLANT);
+    ui.checkbox(&mut settings.return_feed, label::FASTER_RETURN_FEED)
+        .on_hover_text("A faster feed on the moves where no tooth cuts in the steady state.");
+    let l = ui.label(label::RETURN_FEED);
+    ui.add_enabled(
+        settings.return_feed,
+        egui::DragValue::new(&mut settings.return_feed_mm_per_min).speed(10.0).suffix(" mm/min"),
+    )
+    .labelled_by(l.id);
+}
+
+/// The save button (enabled when the job is valid, `ok`) and the program's size.
+fn save_row(ui: &mut egui::Ui, view: &ExportView, ok: bool) -> Option<Command> {
+    let save = ui
+        .add_enabled(ok, egui::Button::new(label::SAVE_NC_PROGRAM))
+        .on_hover_text("Choose a file; it is written atomically (temporary file, then rename).")
+        .clicked();
+    ui.label(format!("{} blocks, {} bytes, {} lines", view.blocks, view.text.len(), view.lines()));
+    save.then_some(Command::ExportNc)
+}
+
+/// The program text (left) and its back-plot over the planned path (right).
+fn program_and_backplot(ui: &mut egui::Ui, view: &ExportView) {
     let avail = ui.available_size();
     let left = (avail.x * 0.42).max(260.0);
     ui.horizontal_top(|ui| {
@@ -290,7 +305,6 @@ pub fn show(
             backplot_plot(ui, view);
         });
     });
-    cmd
 }
 
 fn backplot_plot(ui: &mut egui::Ui, view: &ExportView) {

@@ -9,6 +9,8 @@
 
 use egui_plot::PlotPoint;
 use trochoplan_core::analysis::edge::outer_offset_points;
+use trochoplan_core::analysis::{ToothSample, WallProfile};
+use trochoplan_core::geom::P2;
 use trochoplan_core::quantity::{self, SeriesColumn};
 use trochoplan_core::{Plan, ValidJob};
 
@@ -63,29 +65,18 @@ impl Graphics {
     /// Plot data for `plan`, showing `cycles_shown` cycles around a steady-state cycle.
     pub fn new(plan: &Plan, cycles_shown: usize) -> Graphics {
         let path = &plan.path;
-        let m = &plan.metrics;
         let r = plan.job.tool_radius();
-        let step = plan.job.step;
-        let cycles_shown = cycles_shown.clamp(2, 40);
-        // The current cycle: a few steps into the stock (steady state), never past the end.
-        let first_in_stock = (-path.first_origin_y / step).ceil().max(0.0) as usize;
-        let current = (first_in_stock + 2).min(path.cycles.saturating_sub(1));
-        let before = (cycles_shown - 2).min(current);
-        let first = current - before;
+        let (first, current) = shown_cycles(plan, cycles_shown);
         let origin = path.origin(current);
-        let to_pts =
-            |v: Vec<trochoplan_core::geom::P2>| v.into_iter().map(|p| PlotPoint::new(p.x, p.y)).collect::<Vec<_>>();
-        let path_before = to_pts(path.sample_cycles(first, before, POINTS_PER_SEGMENT));
-        let path_current = to_pts(path.sample_cycles(current, 1, POINTS_PER_SEGMENT));
-        let path_after = to_pts(path.sample_cycles(current + 1, 1, POINTS_PER_SEGMENT));
+        let path_before = to_points(path.sample_cycles(first, current - first, POINTS_PER_SEGMENT));
+        let path_current = to_points(path.sample_cycles(current, 1, POINTS_PER_SEGMENT));
+        let path_after = to_points(path.sample_cycles(current + 1, 1, POINTS_PER_SEGMENT));
         let previous_edge = outer_offset_points(&path.cycle, r, EDGE_POINTS)
             .into_iter()
-            .map(|p| PlotPoint::new(p.x + origin.x, p.y + origin.y - step))
+            .map(|p| PlotPoint::new(p.x + origin.x, p.y + origin.y - plan.job.step))
             .collect();
         let ys = path_before.iter().chain(&path_current).chain(&path_after).map(|p| p.y);
         let (lo, hi) = ys.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), y| (lo.min(y), hi.max(y)));
-        let y_range = (lo - r, hi + r);
-
         let series = &plan.series;
         let stride = series.len().div_ceil(MAX_SERIES_POINTS).max(1);
         let teeth = series
@@ -93,35 +84,7 @@ impl Graphics {
             .step_by(stride)
             .map(|t| (t.time_s, PlotPoint::new(origin.x + t.x_mm, origin.y + t.y_mm)))
             .collect();
-        let against_time = |c: &SeriesColumn| -> Vec<[f64; 2]> { series.iter().map(|t| [t.time_s, c.of(t)]).collect() };
-        let (h, eng) = (against_time(&quantity::H), against_time(&quantity::ENGAGEMENT));
-        let mut cooling = Vec::new();
-        let mut start = None;
-        for t in series {
-            match (t.cutting, start) {
-                (false, None) => start = Some(t.time_s),
-                (true, Some(s0)) => {
-                    cooling.push((s0, t.time_s));
-                    start = None;
-                }
-                _ => {}
-            }
-        }
-        if let Some(s0) = start {
-            cooling.push((s0, m.t_cycle_s));
-        }
-        let imax = series.iter().enumerate().max_by(|a, b| a.1.h_mm.total_cmp(&b.1.h_mm)).map_or(0, |(i, _)| i);
-        let h_max_at = series.get(imax).map_or((0.0, 0.0), |t| (t.time_s, t.h_mm));
-        let t_start = h_max_at.0 - m.t_hmax_s;
-        let t_hmax_spans = if t_start >= 0.0 {
-            vec![(t_start, h_max_at.0)]
-        } else {
-            vec![(0.0, h_max_at.0), (m.t_cycle_s + t_start, m.t_cycle_s)]
-        };
-
-        let dev = |w: &trochoplan_core::analysis::WallProfile| -> Vec<PlotPoint> {
-            w.samples.iter().map(|&(y, x)| PlotPoint::new(y, (x - w.extreme_x_mm).abs())).collect()
-        };
+        let (h_max_at, t_hmax_spans) = h_max_spans(plan);
         Graphics {
             tool_r: r,
             half_width: plan.job.slot_width / 2.0,
@@ -132,16 +95,77 @@ impl Graphics {
             path_after,
             previous_edge,
             teeth,
-            y_range,
-            h: decimate(&h, MAX_SERIES_POINTS),
-            engagement: decimate(&eng, MAX_SERIES_POINTS),
-            cooling,
+            y_range: (lo - r, hi + r),
+            h: against_time(series, &quantity::H),
+            engagement: against_time(series, &quantity::ENGAGEMENT),
+            cooling: cooling_intervals(series, plan.metrics.t_cycle_s),
             h_max_at,
             t_hmax_spans,
-            wall_left: dev(&plan.left_wall),
-            wall_right: dev(&plan.right_wall),
+            wall_left: wall_deviation(&plan.left_wall),
+            wall_right: wall_deviation(&plan.right_wall),
         }
     }
+}
+
+/// The first shown cycle and the current one: a few steps into the stock (steady state),
+/// never past the end, with up to `cycles_shown - 2` cycles before it.
+fn shown_cycles(plan: &Plan, cycles_shown: usize) -> (usize, usize) {
+    let path = &plan.path;
+    let cycles_shown = cycles_shown.clamp(2, 40);
+    let first_in_stock = (-path.first_origin_y / plan.job.step).ceil().max(0.0) as usize;
+    let current = (first_in_stock + 2).min(path.cycles.saturating_sub(1));
+    let before = (cycles_shown - 2).min(current);
+    (current - before, current)
+}
+
+fn to_points(v: Vec<P2>) -> Vec<PlotPoint> {
+    v.into_iter().map(|p| PlotPoint::new(p.x, p.y)).collect()
+}
+
+/// Column `c` of the per-tooth series against time, decimated.
+fn against_time(series: &[ToothSample], c: &SeriesColumn) -> Vec<PlotPoint> {
+    let pts: Vec<[f64; 2]> = series.iter().map(|t| [t.time_s, c.of(t)]).collect();
+    decimate(&pts, MAX_SERIES_POINTS)
+}
+
+/// The intervals of the cycle (length `t_cycle_s`) in which no tooth cuts (s).
+fn cooling_intervals(series: &[ToothSample], t_cycle_s: f64) -> Vec<(f64, f64)> {
+    let mut cooling = Vec::new();
+    let mut start = None;
+    for t in series {
+        match (t.cutting, start) {
+            (false, None) => start = Some(t.time_s),
+            (true, Some(s0)) => {
+                cooling.push((s0, t.time_s));
+                start = None;
+            }
+            _ => {}
+        }
+    }
+    if let Some(s0) = start {
+        cooling.push((s0, t_cycle_s));
+    }
+    cooling
+}
+
+/// Time and value of h_max (s, mm), and t_hmax as the intervals ending at it (wrapped at the
+/// cycle start).
+fn h_max_spans(plan: &Plan) -> ((f64, f64), Vec<(f64, f64)>) {
+    let (series, m) = (&plan.series, &plan.metrics);
+    let imax = series.iter().enumerate().max_by(|a, b| a.1.h_mm.total_cmp(&b.1.h_mm)).map_or(0, |(i, _)| i);
+    let h_max_at = series.get(imax).map_or((0.0, 0.0), |t| (t.time_s, t.h_mm));
+    let t_start = h_max_at.0 - m.t_hmax_s;
+    let spans = if t_start >= 0.0 {
+        vec![(t_start, h_max_at.0)]
+    } else {
+        vec![(0.0, h_max_at.0), (m.t_cycle_s + t_start, m.t_cycle_s)]
+    };
+    (h_max_at, spans)
+}
+
+/// A wall as (y mm, deviation from its valley into the slot, mm).
+fn wall_deviation(w: &WallProfile) -> Vec<PlotPoint> {
+    w.samples.iter().map(|&(y, x)| PlotPoint::new(y, (x - w.extreme_x_mm).abs())).collect()
 }
 
 /// The chip of the animated tooth (`Plan::chip_outline`) in the path view's absolute

@@ -1,6 +1,7 @@
 //! Headless GUI tests (egui_kittest, no display): drive the real window contents through the
 //! accessibility tree and check the plan and the shown values.
 
+use super::panels::label;
 use super::*;
 use egui::accesskit::Role;
 use egui_kittest::Harness;
@@ -36,6 +37,11 @@ fn harness_with(app: App) -> Harness<'static, App> {
 
 fn harness() -> Harness<'static, App> {
     harness_with(App::new(Job::default(), None, Box::new(FakeDialogs { open: None, save: None })))
+}
+
+/// The default job's window whose save dialog answers `file`.
+fn harness_saving_to(file: &std::path::Path) -> Harness<'static, App> {
+    harness_with(App::new(Job::default(), None, Box::new(FakeDialogs { open: None, save: Some(file.to_owned()) })))
 }
 
 fn metrics(h: &Harness<'_, App>) -> trochoplan_core::Metrics {
@@ -391,11 +397,9 @@ fn export_text(h: &Harness<'_, App>) -> String {
 
 #[test]
 fn export_panel_previews_each_dialect_reports_errors_and_saves_the_previewed_text() {
-    use panels::export::label as nc;
     let dir = tempfile::tempdir().expect("tempdir");
     let file = dir.path().join("slot.ngc");
-    let app = App::new(Job::default(), None, Box::new(FakeDialogs { open: None, save: Some(file.clone()) }));
-    let mut h = harness_with(app);
+    let mut h = harness_saving_to(&file);
     h.get_by_label("File").click();
     h.run();
     h.get_by_label("Export NC…").click();
@@ -418,21 +422,21 @@ fn export_panel_previews_each_dialect_reports_errors_and_saves_the_previewed_tex
     assert!(shows(&h, "G17 G40 G71 G90 G94"), "preview follows the dialect");
 
     // an invalid tolerance: the core's message in the panel, no panic, nothing to save
-    h.get_by_role_and_label(Role::Slider, nc::TOLERANCE).set_value_accesskit(5.0);
+    h.get_by_role_and_label(Role::Slider, label::NC_TOLERANCE).set_value_accesskit(5.0);
     h.run();
     assert_eq!(h.state().state.export.tolerance_mm, 5.0);
     let opts = trochoplan_core::nc::NcOptions { tolerance_mm: 5.0, ..Default::default() };
     let msg = opts.validate().expect_err("invalid").to_string();
     assert!(shows(&h, &format!("Cannot write the program: {msg}")), "error shown: {msg}");
-    assert!(h.query_by_label(nc::SAVE).is_none(), "no save button without a program");
+    assert!(h.query_by_label(label::SAVE_NC_PROGRAM).is_none(), "no save button without a program");
 
-    h.get_by_role_and_label(Role::Slider, nc::TOLERANCE).set_value_accesskit(0.01);
-    h.get_by_label(nc::COMPACT).click();
+    h.get_by_role_and_label(Role::Slider, label::NC_TOLERANCE).set_value_accesskit(0.01);
+    h.get_by_label(label::COMPACT_LOOP).click();
     h.run();
     let view = h.state().export.view().expect("program").clone();
     assert!(view.text.contains("GOTOB"), "compact Sinumerik loop");
     assert!(view.backplot_note.is_some() && !view.backplot.is_empty(), "loop back-plotted as expanded");
-    h.get_by_label(nc::SAVE).click();
+    h.get_by_label(label::SAVE_NC_PROGRAM).click();
     h.run();
     let saved = std::fs::read_to_string(&file).expect("saved");
     assert_eq!(saved, view.text, "the file holds the previewed text");
@@ -501,7 +505,7 @@ fn corner_angle_and_method_replan_and_change_the_shown_numbers() {
     let mut h = corner_harness();
     let before = corner_result(&h);
     let replans = h.state().corner.replans;
-    h.get_by_role_and_label(Role::Slider, panels::corner::label::ANGLE).set_value_accesskit(60.0);
+    h.get_by_role_and_label(Role::Slider, label::CORNER_ANGLE).set_value_accesskit(60.0);
     h.run();
     let after = corner_result(&h);
     assert!(h.state().corner.replans > replans, "replanned");
@@ -531,7 +535,7 @@ fn invalid_corner_input_shows_the_core_error_and_keeps_the_last_result() {
     assert!(shows(&h, &format!("invalid: {err}")), "error shown at the panel");
     let kept = corner_result(&h);
     assert_eq!(kept.angle_deg, before.angle_deg, "last result kept");
-    h.get_by_role_and_label(Role::Slider, panels::corner::label::ANGLE).set_value_accesskit(200.0);
+    h.get_by_role_and_label(Role::Slider, label::CORNER_ANGLE).set_value_accesskit(200.0);
     h.run();
     assert!(h.state().corner.error.is_some());
 }
@@ -605,7 +609,7 @@ fn corner_table_lists_every_angle_for_each_strategy_as_the_core_measures_it() {
     h.step(); // the click: the table is asked for after the panels drew
     h.step();
     assert!(h.state().corner.table.running(), "measured on the worker thread");
-    assert!(h.query_by_label(panels::corner_table::label::CANCEL).is_some(), "progress with a cancel button");
+    assert!(h.query_by_label(label::CANCEL_TABLE).is_some(), "progress with a cancel button");
     wait_for_table(&mut h);
     let table = &h.state().corner.table;
     assert!(table.complete() && table.error.is_none(), "{:?}", table.error);
@@ -657,16 +661,14 @@ fn corner_table_lists_every_angle_for_each_strategy_as_the_core_measures_it() {
 
 #[test]
 fn corner_export_previews_the_core_program_saves_it_and_reports_a_bad_depth() {
-    use panels::corner_nc::label as nc;
     use trochoplan_core::nc::{CutSetup, Dialect, NcOptions, corner_program, pocket_program};
     let dir = tempfile::tempdir().expect("tempdir");
     let file = dir.path().join("corner.nc");
-    let app = App::new(Job::default(), None, Box::new(FakeDialogs { open: None, save: Some(file.clone()) }));
-    let mut h = harness_with(app);
+    let mut h = harness_saving_to(&file);
     h.get_by_label("Corner").click();
     h.run();
-    assert!(h.query_by_label(nc::SAVE).is_none(), "export closed by default");
-    h.get_by_label(nc::OPEN).click();
+    assert!(h.query_by_label(label::SAVE_PROGRAM_AS).is_none(), "export closed by default");
+    h.get_by_label(label::NC_EXPORT).click();
     h.run();
     assert!(h.state().state.corner_nc.open);
     let r = corner_result(&h);
@@ -679,16 +681,16 @@ fn corner_export_previews_the_core_program_saves_it_and_reports_a_bad_depth() {
         &NcOptions::default(),
     )
     .expect("core program");
-    assert_eq!(h.state().corner_nc.preview().expect("program").text, want.text);
+    assert_eq!(h.state().corner_nc.view().expect("program").text, want.text);
     assert!(shows(&h, "(TrochoPlan corner)"), "preview shows the program");
     let generated = h.state().corner_nc.generated;
     h.run();
     assert_eq!(h.state().corner_nc.generated, generated, "not regenerated per frame");
 
     h.get_by_label("Fanuc-style ISO").click();
-    h.get_by_label(nc::LINEAR).click();
+    h.get_by_label(label::G1_CHORDS_ONLY).click();
     h.run();
-    let fanuc = h.state().corner_nc.preview().expect("program").text.clone();
+    let fanuc = h.state().corner_nc.view().expect("program").text.clone();
     let opts = NcOptions { dialect: Dialect::Fanuc, linear_segments: true, ..NcOptions::default() };
     let want = corner_program(&r.report.plan, r.report.settings(), r.report.angle_deg, CutSetup::default(), &opts)
         .expect("core program");
@@ -696,7 +698,7 @@ fn corner_export_previews_the_core_program_saves_it_and_reports_a_bad_depth() {
     assert!(fanuc.starts_with("%\nO1000\n") && !fanuc.contains("\nG3"), "Fanuc, chords only");
 
     // a bad depth: the core's message in the tab, no save button, no panic
-    h.get_by_role_and_label(Role::SpinButton, nc::DEPTH).set_value_accesskit(-1.0);
+    h.get_by_role_and_label(Role::SpinButton, label::DEPTH_BELOW_Z0).set_value_accesskit(-1.0);
     h.run();
     assert_eq!(h.state().state.corner_nc.depth_mm, -1.0);
     let bad = CutSetup { depth_mm: -1.0, ..CutSetup::default() };
@@ -705,13 +707,13 @@ fn corner_export_previews_the_core_program_saves_it_and_reports_a_bad_depth() {
         .to_string();
     assert!(msg.contains("depth"), "{msg}");
     assert!(shows(&h, &format!("Cannot write the program: {msg}")), "error shown: {msg}");
-    assert!(h.query_by_label(nc::SAVE).is_none(), "nothing to save");
+    assert!(h.query_by_label(label::SAVE_PROGRAM_AS).is_none(), "nothing to save");
 
-    h.get_by_role_and_label(Role::SpinButton, nc::DEPTH).set_value_accesskit(3.0);
+    h.get_by_role_and_label(Role::SpinButton, label::DEPTH_BELOW_Z0).set_value_accesskit(3.0);
     h.run();
-    let preview = h.state().corner_nc.preview().expect("program").text.clone();
+    let preview = h.state().corner_nc.view().expect("program").text.clone();
     assert!(preview.contains("\nG1 Z-3.000 F600.0\n"), "depth 3 mm: {preview}");
-    h.get_by_label(nc::SAVE).click();
+    h.get_by_label(label::SAVE_PROGRAM_AS).click();
     h.run();
     assert_eq!(std::fs::read_to_string(&file).expect("saved"), preview, "the file holds the previewed text");
     let (status, is_err) = h.state().status.clone().expect("status");
@@ -724,9 +726,9 @@ fn corner_export_previews_the_core_program_saves_it_and_reports_a_bad_depth() {
     let cut = CutSetup { depth_mm: 3.0, ..CutSetup::default() };
     assert!(matches!(p.plan, trochoplan_core::pocket::PocketPlan::Rings(_)), "ring pocket expected");
     let want = pocket_program(&p.plan, cut, &opts).expect("core pocket program");
-    let preview = h.state().corner_nc.preview().expect("program").text.clone();
+    let preview = h.state().corner_nc.view().expect("program").text.clone();
     assert_eq!(preview, want.text);
-    h.get_by_label(nc::SAVE).click();
+    h.get_by_label(label::SAVE_PROGRAM_AS).click();
     h.run();
     assert_eq!(std::fs::read_to_string(&file).expect("saved"), preview);
 }

@@ -7,6 +7,7 @@ pub mod corner_nc;
 pub mod corner_table;
 pub mod export;
 pub mod graphics;
+pub mod label;
 pub mod metrics;
 pub mod params;
 pub mod plots;

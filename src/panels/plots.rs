@@ -110,10 +110,16 @@ fn base_plot_at(ui: &egui::Ui, id: &str, corner: Corner) -> Plot<'static> {
         .allow_scroll(false)
 }
 
-fn circle(c: [f64; 2], r: f64) -> Vec<[f64; 2]> {
-    (0..=72)
+/// Points of a circle drawn at the path view's scale.
+const CIRCLE_POINTS: usize = 72;
+/// Points of a circle that looks round when zoomed onto a chip (0.1 mm view of a 5 mm radius).
+const FINE_CIRCLE_POINTS: usize = 1440;
+
+/// `n + 1` points around the circle of centre `c` and radius `r` (the first repeated last).
+fn circle(c: [f64; 2], r: f64, n: usize) -> Vec<[f64; 2]> {
+    (0..=n)
         .map(|i| {
-            let a = i as f64 / 72.0 * std::f64::consts::TAU;
+            let a = i as f64 / n as f64 * std::f64::consts::TAU;
             [c[0] + r * a.cos(), c[1] + r * a.sin()]
         })
         .collect()
@@ -135,82 +141,98 @@ pub fn path_view(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, ch
         .custom_x_axes(x_axis("x [mm]"))
         .y_axis_label("y [mm]")
         .show(ui, |p| {
-            for (k, l) in layers.iter().enumerate() {
-                let g = l.g;
-                if k == 0 {
-                    let (y0, y1) = (g.y_range.0.max(0.0), g.y_range.1.min(g.slot_length));
-                    let (y0, y1) = if y0 < y1 { (y0, y1) } else { g.y_range };
-                    let wall = Stroke::new(2.0, Color32::GRAY);
-                    for x in [-g.half_width, g.half_width] {
-                        p.line(Line::new("slot walls", vec![[x, y0], [x, y1]]).stroke(wall));
-                    }
-                    if g.y_range.0 < 0.0 && g.y_range.1 > 0.0 {
-                        p.line(
-                            Line::new("stock face y = 0", vec![[-g.half_width, 0.0], [g.half_width, 0.0]])
-                                .stroke(Stroke::new(1.0, Color32::GRAY))
-                                .style(LineStyle::dashed_dense()),
-                        );
-                    }
-                }
-                let faint = l.color.gamma_multiply(0.45);
-                let label = |what: &str| named(layers, l, what);
-                p.line(
-                    Line::new(label("current cycle"), PlotPoints::Borrowed(&g.path_current)).color(l.color).width(2.0),
-                );
-                p.line(Line::new(label("other cycles"), PlotPoints::Borrowed(&g.path_before)).color(faint).width(1.0));
-                p.line(Line::new(label("other cycles"), PlotPoints::Borrowed(&g.path_after)).color(faint).width(1.0));
-                if l.primary {
-                    // The previous cycle's sweep is convex (core: analysis::edge), so its edge
-                    // closed by the step chord fills correctly as a convex polygon.
-                    p.polygon(
-                        Polygon::new("swept by the previous cycle", PlotPoints::Borrowed(&g.previous_edge))
-                            .fill_color(l.color.gamma_multiply(0.07))
-                            .stroke(Stroke::new(0.0, l.color)),
-                    );
-                }
-                p.line(
-                    Line::new(label("previous cycle's edge C₂"), PlotPoints::Borrowed(&g.previous_edge))
-                        .color(l.color)
-                        .style(LineStyle::dashed_loose())
-                        .width(1.2),
-                );
+            if let Some(first) = layers.first() {
+                slot_walls(p, first.g);
+            }
+            for l in layers {
+                layer_path(p, layers, l);
                 if l.primary
                     && let Some(c) = cursor
                 {
-                    let centre = [g.origin[0] + c.centre[0], g.origin[1] + c.centre[1]];
-                    let mut trail: Vec<[f64; 2]> =
-                        g.teeth.iter().take_while(|(t, _)| *t <= c.t_s).map(|(_, p)| [p.x, p.y]).collect();
-                    trail.push(centre);
-                    p.line(Line::new("path so far this cycle", trail).color(CHIP_COLOR).width(3.0));
-                    let (stroke, fill) = if c.cutting {
-                        (Stroke::new(2.5, CHIP_COLOR), CHIP_COLOR.gamma_multiply(0.18))
-                    } else {
-                        (Stroke::new(2.0, Color32::DARK_GRAY), Color32::from_gray(128).gamma_multiply(0.12))
-                    };
-                    p.polygon(
-                        Polygon::new("tool at current tooth", circle(centre, g.tool_r)).stroke(stroke).fill_color(fill),
-                    );
-                    p.points(Points::new("", vec![centre]).radius(4.0).color(stroke.color));
-                    draw_chip(p, chip, "chip of the current tooth", 0.9, 1.5);
-                    p.text(
-                        Text::new(
-                            "",
-                            PlotPoint::new(centre[0], centre[1] + g.tool_r),
-                            format!("h = {:.4} mm, {:.1}°", c.h_mm, c.engagement_deg),
-                        )
-                        .anchor(egui::Align2::CENTER_BOTTOM)
-                        .color(stroke.color),
-                    );
+                    tool_at_cursor(p, l.g, c, chip);
                 }
             }
         });
 }
 
+/// The slot walls over the drawn range (within the slot), and the stock face y = 0 where the
+/// range reaches it.
+fn slot_walls(p: &mut egui_plot::PlotUi<'_>, g: &Graphics) {
+    let (y0, y1) = (g.y_range.0.max(0.0), g.y_range.1.min(g.slot_length));
+    let (y0, y1) = if y0 < y1 { (y0, y1) } else { g.y_range };
+    let wall = Stroke::new(2.0, Color32::GRAY);
+    for x in [-g.half_width, g.half_width] {
+        p.line(Line::new("slot walls", vec![[x, y0], [x, y1]]).stroke(wall));
+    }
+    if g.y_range.0 < 0.0 && g.y_range.1 > 0.0 {
+        p.line(
+            Line::new("stock face y = 0", vec![[-g.half_width, 0.0], [g.half_width, 0.0]])
+                .stroke(Stroke::new(1.0, Color32::GRAY))
+                .style(LineStyle::dashed_dense()),
+        );
+    }
+}
+
+/// One layer's tool-centre path (the current cycle bold, the others faint) and the previous
+/// cycle's edge; for the edited plan also the region that cycle swept.
+fn layer_path<'a>(p: &mut egui_plot::PlotUi<'a>, layers: &[Layer], l: &Layer<'a>) {
+    let g = l.g;
+    let faint = l.color.gamma_multiply(0.45);
+    let label = |what: &str| named(layers, l, what);
+    p.line(Line::new(label("current cycle"), PlotPoints::Borrowed(&g.path_current)).color(l.color).width(2.0));
+    p.line(Line::new(label("other cycles"), PlotPoints::Borrowed(&g.path_before)).color(faint).width(1.0));
+    p.line(Line::new(label("other cycles"), PlotPoints::Borrowed(&g.path_after)).color(faint).width(1.0));
+    if l.primary {
+        // The previous cycle's sweep is convex (core: analysis::edge), so its edge
+        // closed by the step chord fills correctly as a convex polygon.
+        p.polygon(
+            Polygon::new("swept by the previous cycle", PlotPoints::Borrowed(&g.previous_edge))
+                .fill_color(l.color.gamma_multiply(0.07))
+                .stroke(Stroke::new(0.0, l.color)),
+        );
+    }
+    p.line(
+        Line::new(label("previous cycle's edge C₂"), PlotPoints::Borrowed(&g.previous_edge))
+            .color(l.color)
+            .style(LineStyle::dashed_loose())
+            .width(1.2),
+    );
+}
+
+/// The tool at the cursor (red while it cuts), the path it took this cycle, its chip and a
+/// readout of h and the engagement above it.
+fn tool_at_cursor<'a>(p: &mut egui_plot::PlotUi<'a>, g: &Graphics, c: Cursor, chip: &'a Chip) {
+    let centre = [g.origin[0] + c.centre[0], g.origin[1] + c.centre[1]];
+    let mut trail: Vec<[f64; 2]> = g.teeth.iter().take_while(|(t, _)| *t <= c.t_s).map(|(_, p)| [p.x, p.y]).collect();
+    trail.push(centre);
+    p.line(Line::new("path so far this cycle", trail).color(CHIP_COLOR).width(3.0));
+    let (stroke, fill) = if c.cutting {
+        (Stroke::new(2.5, CHIP_COLOR), CHIP_COLOR.gamma_multiply(0.18))
+    } else {
+        (Stroke::new(2.0, Color32::DARK_GRAY), Color32::from_gray(128).gamma_multiply(0.12))
+    };
+    p.polygon(
+        Polygon::new("tool at current tooth", circle(centre, g.tool_r, CIRCLE_POINTS)).stroke(stroke).fill_color(fill),
+    );
+    p.points(Points::new("", vec![centre]).radius(4.0).color(stroke.color));
+    draw_chip(p, chip, "chip of the current tooth", 0.9, 1.5);
+    p.text(
+        Text::new(
+            "",
+            PlotPoint::new(centre[0], centre[1] + g.tool_r),
+            format!("h = {:.4} mm, {:.1}°", c.h_mm, c.engagement_deg),
+        )
+        .anchor(egui::Align2::CENTER_BOTTOM)
+        .color(stroke.color),
+    );
+}
+
+/// Lower and upper corner of a plot's bounds (mm).
+type Bounds = ([f64; 2], [f64; 2]);
+
 /// Chip view: the path view zoomed onto the chip of the current tooth (a chip is ~0.06 mm thick
-/// and a few mm long: invisible at the path view's scale). The bounds follow the chip: its whole
-/// outline, or with `close_up` a square of 8·h around the middle of the chip (halfway between
-/// the middle points of its outer and inner side, which is where h usually is); while no tooth
-/// cuts, the view shows the tool and says so. Equal axis scale.
+/// and a few mm long: invisible at the path view's scale). The bounds follow the chip
+/// ([`chip_bounds`]); while no tooth cuts, the view shows the tool and says so. Equal axis scale.
 pub fn chip_view(
     ui: &mut egui::Ui,
     layers: &[Layer],
@@ -224,25 +246,7 @@ pub fn chip_view(
     let Some(l) = layers.iter().find(|l| l.primary) else { return };
     let g = l.g;
     let centre = cursor.map(|c| [g.origin[0] + c.centre[0], g.origin[1] + c.centre[1]]);
-    // bounds: the chip's box with a margin, or the tool when there is no chip
-    let bounds = if chip.outline.is_empty() {
-        centre.map(|c| ([c[0] - 1.2 * g.tool_r, c[1] - 1.2 * g.tool_r], [c[0] + 1.2 * g.tool_r, c[1] + 1.2 * g.tool_r]))
-    } else if close_up {
-        let pts = &chip.outline[..chip.outline.len() - 1];
-        let n = pts.len();
-        let (a, b) = (pts[n / 4], pts[n - 1 - n / 4]);
-        let mid = [0.5 * (a.x + b.x), 0.5 * (a.y + b.y)];
-        let half = cursor.map_or(0.1, |c| (4.0 * c.h_mm).max(0.1));
-        Some(([mid[0] - half, mid[1] - half], [mid[0] + half, mid[1] + half]))
-    } else {
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for p in &chip.outline {
-            lo = [lo[0].min(p.x), lo[1].min(p.y)];
-            hi = [hi[0].max(p.x), hi[1].max(p.y)];
-        }
-        let m = 0.15 * (hi[0] - lo[0]).max(hi[1] - lo[1]).max(0.05);
-        Some(([lo[0] - m, lo[1] - m], [hi[0] + m, hi[1] + m]))
-    };
+    let bounds = chip_bounds(g, centre, cursor, chip, close_up);
     // about square (equal scale), with room below for the readout
     let side = ui.available_width().min(ui.available_height() - 40.0).max(80.0);
     // no legend: it would hide the chip in this small view; the readout below names the lines
@@ -259,51 +263,97 @@ pub fn chip_view(
             if let Some((lo, hi)) = bounds {
                 p.set_plot_bounds(egui_plot::PlotBounds::from_min_max(lo, hi));
             }
-            p.line(
-                Line::new("previous cycle's edge C₂", PlotPoints::Borrowed(&g.previous_edge))
-                    .color(l.color)
-                    .style(LineStyle::dashed_loose())
-                    .width(1.2),
-            );
-            if let Some(c) = centre {
-                p.line(
-                    Line::new("tool edge at current tooth", circle_fine(c, g.tool_r))
-                        .color(Color32::DARK_GRAY)
-                        .width(1.5),
-                );
-            }
-            if chip.outline.is_empty() {
-                if let Some(c) = centre {
-                    p.text(
-                        Text::new("", PlotPoint::new(c[0], c[1]), "no chip: this tooth cuts nothing (cooling)")
-                            .color(Color32::DARK_GRAY),
-                    );
-                }
-            } else {
-                draw_chip(p, chip, "chip", 0.6, 2.0);
-                if let Some(c) = cursor {
-                    let outline = &chip.outline;
-                    let top = outline.iter().map(|p| p.y).fold(f64::NEG_INFINITY, f64::max);
-                    let xs = outline.iter().map(|p| p.x).sum::<f64>() / outline.len() as f64;
-                    p.text(
-                        Text::new("", PlotPoint::new(xs, top), format!("h = {:.4} mm", c.h_mm))
-                            .anchor(egui::Align2::CENTER_BOTTOM)
-                            .color(CHIP_COLOR),
-                    );
-                }
-            }
+            chip_items(p, l, centre, cursor, chip);
         });
     if let Some(c) = cursor {
-        let text = if chip.outline.is_empty() {
-            format!("tooth {}: no chip (cooling)", c.tooth)
-        } else {
-            format!(
-                "tooth {}: h = {:.4} mm, {:.1}° engaged. True scale; red: chip, grey: tool edge, \
-                 dashed: previous cycle's edge",
-                c.tooth, c.h_mm, c.engagement_deg
-            )
-        };
-        ui.add(egui::Label::new(RichText::new(text).small()).wrap());
+        ui.add(egui::Label::new(RichText::new(chip_readout(c, chip)).small()).wrap());
+    }
+}
+
+/// Bounds of the chip view: the chip's box with a margin, or with `close_up` a square of 8·h
+/// around the middle of the chip (halfway between the middle points of its outer and inner side,
+/// which is where h usually is); the tool at `centre` when there is no chip.
+fn chip_bounds(
+    g: &Graphics,
+    centre: Option<[f64; 2]>,
+    cursor: Option<Cursor>,
+    chip: &Chip,
+    close_up: bool,
+) -> Option<Bounds> {
+    let square = |mid: [f64; 2], half: f64| ([mid[0] - half, mid[1] - half], [mid[0] + half, mid[1] + half]);
+    if chip.outline.is_empty() {
+        centre.map(|c| square(c, 1.2 * g.tool_r))
+    } else if close_up {
+        let pts = &chip.outline[..chip.outline.len() - 1];
+        let n = pts.len();
+        let (a, b) = (pts[n / 4], pts[n - 1 - n / 4]);
+        let half = cursor.map_or(0.1, |c| (4.0 * c.h_mm).max(0.1));
+        Some(square([0.5 * (a.x + b.x), 0.5 * (a.y + b.y)], half))
+    } else {
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in &chip.outline {
+            lo = [lo[0].min(p.x), lo[1].min(p.y)];
+            hi = [hi[0].max(p.x), hi[1].max(p.y)];
+        }
+        let m = 0.15 * (hi[0] - lo[0]).max(hi[1] - lo[1]).max(0.05);
+        Some(([lo[0] - m, lo[1] - m], [hi[0] + m, hi[1] + m]))
+    }
+}
+
+/// The chip view's items: the previous cycle's edge, the tool edge at `centre`, and the chip
+/// with its h (or a note that the tooth cuts nothing).
+fn chip_items<'a>(
+    p: &mut egui_plot::PlotUi<'a>,
+    l: &Layer<'a>,
+    centre: Option<[f64; 2]>,
+    cursor: Option<Cursor>,
+    chip: &'a Chip,
+) {
+    p.line(
+        Line::new("previous cycle's edge C₂", PlotPoints::Borrowed(&l.g.previous_edge))
+            .color(l.color)
+            .style(LineStyle::dashed_loose())
+            .width(1.2),
+    );
+    if let Some(c) = centre {
+        p.line(
+            Line::new("tool edge at current tooth", circle(c, l.g.tool_r, FINE_CIRCLE_POINTS))
+                .color(Color32::DARK_GRAY)
+                .width(1.5),
+        );
+    }
+    if chip.outline.is_empty() {
+        if let Some(c) = centre {
+            p.text(
+                Text::new("", PlotPoint::new(c[0], c[1]), "no chip: this tooth cuts nothing (cooling)")
+                    .color(Color32::DARK_GRAY),
+            );
+        }
+        return;
+    }
+    draw_chip(p, chip, "chip", 0.6, 2.0);
+    if let Some(c) = cursor {
+        let outline = &chip.outline;
+        let top = outline.iter().map(|p| p.y).fold(f64::NEG_INFINITY, f64::max);
+        let xs = outline.iter().map(|p| p.x).sum::<f64>() / outline.len() as f64;
+        p.text(
+            Text::new("", PlotPoint::new(xs, top), format!("h = {:.4} mm", c.h_mm))
+                .anchor(egui::Align2::CENTER_BOTTOM)
+                .color(CHIP_COLOR),
+        );
+    }
+}
+
+/// The line under the chip view: the tooth, its h and engagement, and what the lines are.
+fn chip_readout(c: Cursor, chip: &Chip) -> String {
+    if chip.outline.is_empty() {
+        format!("tooth {}: no chip (cooling)", c.tooth)
+    } else {
+        format!(
+            "tooth {}: h = {:.4} mm, {:.1}° engaged. True scale; red: chip, grey: tool edge, \
+             dashed: previous cycle's edge",
+            c.tooth, c.h_mm, c.engagement_deg
+        )
     }
 }
 
@@ -321,17 +371,6 @@ fn draw_chip<'a>(p: &mut egui_plot::PlotUi<'a>, chip: &'a Chip, name: &str, fill
         );
     }
     p.line(Line::new(name, PlotPoints::Borrowed(&chip.outline)).color(CHIP_COLOR).width(width));
-}
-
-/// A circle with enough points to look round when zoomed onto a chip (0.1 mm view of a 5 mm
-/// radius).
-fn circle_fine(c: [f64; 2], r: f64) -> Vec<[f64; 2]> {
-    (0..=1440)
-        .map(|i| {
-            let a = i as f64 / 1440.0 * std::f64::consts::TAU;
-            [c[0] + r * a.cos(), c[1] + r * a.sin()]
-        })
-        .collect()
 }
 
 /// h over one steady-state cycle with h_max, t_hmax and the cooling intervals.

@@ -138,43 +138,8 @@ fn jobs_path(settings: &SweepSettings, base: &Job) -> PathKind {
 
 /// Draw the sweep settings, progress and plots.
 pub fn show(ui: &mut egui::Ui, settings: &mut SweepSettings, run: Option<&SweepRun>, current: &Job) -> Option<Command> {
-    let mut cmd = None;
     let running = run.is_some_and(SweepRun::running);
-    ui.horizontal_wrapped(|ui| {
-        ui.label("Sweep parameter:");
-        let before = settings.param;
-        ui.add_enabled_ui(!running, |ui| {
-            ui.selectable_value(&mut settings.param, SweepParam::AspectRatio, "r_e (Figs. 5, 9, Table 2)");
-            ui.selectable_value(&mut settings.param, SweepParam::LinearDistance, "d (Figs. 12, 28)");
-        });
-        if settings.param != before
-            && let Some(range) = settings.param.paper_range()
-        {
-            (settings.from, settings.to) = range;
-        }
-        let l = ui.label("from");
-        ui.add(egui::DragValue::new(&mut settings.from).speed(0.01).max_decimals(3)).labelled_by(l.id);
-        let l = ui.label("to");
-        ui.add(egui::DragValue::new(&mut settings.to).speed(0.01).max_decimals(3)).labelled_by(l.id);
-        let l = ui.label("values");
-        ui.add(egui::DragValue::new(&mut settings.steps).range(2..=400)).labelled_by(l.id);
-        let refusal = settings.refusal(current);
-        if running {
-            if ui.button("Cancel").clicked() {
-                cmd = Some(Command::CancelSweep);
-            }
-        } else if ui
-            .add_enabled(refusal.is_none(), egui::Button::new("Run sweep"))
-            .on_hover_text("Plan the current job once per value on a background thread.")
-            .on_disabled_hover_text(refusal.as_deref().unwrap_or_default())
-            .clicked()
-        {
-            cmd = Some(Command::StartSweep);
-        }
-        if let Some(why) = refusal {
-            ui.label(RichText::new(why).color(Color32::from_rgb(200, 50, 40)));
-        }
-    });
+    let cmd = ui.horizontal_wrapped(|ui| settings_row(ui, settings, running, current)).inner;
     let Some(run) = run else {
         ui.label(
             "Runs the core planner for each value with the current slot, tool and cutting data; the r_e \
@@ -183,30 +148,77 @@ pub fn show(ui: &mut egui::Ui, settings: &mut SweepSettings, run: Option<&SweepR
         );
         return cmd;
     };
-    ui.horizontal(|ui| {
-        let n = run.points.len();
-        let bar = egui::ProgressBar::new(run.progress()).desired_width(260.0).text(format!("{n} / {}", run.total));
-        ui.add(bar);
-        let failed = run.points.iter().filter(|p| p.result.is_err()).count();
-        if run.cancelled {
-            ui.label(RichText::new("cancelled").color(Color32::from_rgb(200, 120, 0)));
-        } else if !running {
-            ui.label("done");
-        }
-        if failed > 0 {
-            let first = run.points.iter().find_map(|p| p.result.as_ref().err()).cloned().unwrap_or_default();
-            ui.label(RichText::new(format!("{failed} values invalid")).color(Color32::from_rgb(200, 50, 40)))
-                .on_hover_text(first);
-        }
-        ui.label(format!("path: {}", run.base_path.name()));
+    ui.horizontal(|ui| status_row(ui, run, running));
+    plots(ui, run, current);
+    cmd
+}
+
+/// Colour of the refusal and of the count of invalid values.
+const REFUSAL_COLOR: Color32 = Color32::from_rgb(200, 50, 40);
+
+/// The swept parameter and its range, and the run or cancel button.
+fn settings_row(ui: &mut egui::Ui, settings: &mut SweepSettings, running: bool, current: &Job) -> Option<Command> {
+    ui.label("Sweep parameter:");
+    let before = settings.param;
+    ui.add_enabled_ui(!running, |ui| {
+        ui.selectable_value(&mut settings.param, SweepParam::AspectRatio, "r_e (Figs. 5, 9, Table 2)");
+        ui.selectable_value(&mut settings.param, SweepParam::LinearDistance, "d (Figs. 12, 28)");
     });
-    let ok: Vec<(f64, &Metrics)> =
-        run.points.iter().filter_map(|p| p.result.as_ref().ok().map(|m| (p.value, m))).collect();
-    let param = run.settings.param;
-    let marker = (param.path_for(current.path) == Some(current.path)).then(|| param.get(current));
-    let xlabel = run.settings.param.label();
-    type Series = Vec<(&'static Metric, Color32)>;
-    let panels: [(&str, &str, Series); 4] = [
+    if settings.param != before
+        && let Some(range) = settings.param.paper_range()
+    {
+        (settings.from, settings.to) = range;
+    }
+    let l = ui.label("from");
+    ui.add(egui::DragValue::new(&mut settings.from).speed(0.01).max_decimals(3)).labelled_by(l.id);
+    let l = ui.label("to");
+    ui.add(egui::DragValue::new(&mut settings.to).speed(0.01).max_decimals(3)).labelled_by(l.id);
+    let l = ui.label("values");
+    ui.add(egui::DragValue::new(&mut settings.steps).range(2..=400)).labelled_by(l.id);
+    let refusal = settings.refusal(current);
+    let cmd = run_button(ui, running, refusal.as_deref());
+    if let Some(why) = refusal {
+        ui.label(RichText::new(why).color(REFUSAL_COLOR));
+    }
+    cmd
+}
+
+/// "Cancel" while running, else "Run sweep" (disabled with the reason when refused).
+fn run_button(ui: &mut egui::Ui, running: bool, refusal: Option<&str>) -> Option<Command> {
+    if running {
+        return ui.button("Cancel").clicked().then_some(Command::CancelSweep);
+    }
+    ui.add_enabled(refusal.is_none(), egui::Button::new("Run sweep"))
+        .on_hover_text("Plan the current job once per value on a background thread.")
+        .on_disabled_hover_text(refusal.unwrap_or_default())
+        .clicked()
+        .then_some(Command::StartSweep)
+}
+
+/// Progress, state, the invalid values and the swept path.
+fn status_row(ui: &mut egui::Ui, run: &SweepRun, running: bool) {
+    let n = run.points.len();
+    let bar = egui::ProgressBar::new(run.progress()).desired_width(260.0).text(format!("{n} / {}", run.total));
+    ui.add(bar);
+    let failed = run.points.iter().filter(|p| p.result.is_err()).count();
+    if run.cancelled {
+        ui.label(RichText::new("cancelled").color(Color32::from_rgb(200, 120, 0)));
+    } else if !running {
+        ui.label("done");
+    }
+    if failed > 0 {
+        let first = run.points.iter().find_map(|p| p.result.as_ref().err()).cloned().unwrap_or_default();
+        ui.label(RichText::new(format!("{failed} values invalid")).color(REFUSAL_COLOR)).on_hover_text(first);
+    }
+    ui.label(format!("path: {}", run.base_path.name()));
+}
+
+/// The quantities of one sweep plot, each with its colour.
+type Series = Vec<(&'static Metric, Color32)>;
+
+/// The four sweep plots: id, y-axis label and the quantities drawn.
+fn sweep_plots() -> [(&'static str, &'static str, Series); 4] {
+    [
         ("h_max", "h_max [mm]", vec![(&quantity::H_MAX, Color32::from_rgb(30, 110, 220))]),
         ("mrr", "MRR [mm³/min]", vec![(&quantity::MRR, Color32::from_rgb(40, 160, 70))]),
         (
@@ -226,36 +238,48 @@ pub fn show(ui: &mut egui::Ui, settings: &mut SweepSettings, run: Option<&SweepR
                 (&quantity::T_CYCLE, Color32::from_rgb(120, 120, 120)),
             ],
         ),
-    ];
+    ]
+}
+
+/// The four plots in a 2 × 2 grid, with the current job's value marked when the sweep's path
+/// is its path.
+fn plots(ui: &mut egui::Ui, run: &SweepRun, current: &Job) {
+    let ok: Vec<(f64, &Metrics)> =
+        run.points.iter().filter_map(|p| p.result.as_ref().ok().map(|m| (p.value, m))).collect();
+    let param = run.settings.param;
+    let marker = (param.path_for(current.path) == Some(current.path)).then(|| param.get(current));
     let avail = ui.available_size();
     let cell = egui::vec2((avail.x - 12.0) / 2.0, (avail.y - 12.0) / 2.0);
     egui::Grid::new("sweep_grid").num_columns(2).spacing([8.0, 8.0]).show(ui, |ui| {
-        for (k, (id, ylabel, series)) in panels.iter().enumerate() {
+        for (k, (id, ylabel, series)) in sweep_plots().iter().enumerate() {
             ui.allocate_ui(cell, |ui| {
+                let axis = AxisHints::new_x().label(param.label()).label_spacing(28.0..=44.0);
                 Plot::new(format!("sweep_{id}"))
                     .width(cell.x)
                     .height(cell.y)
                     .legend(Legend::default().position(Corner::RightTop))
-                    .custom_x_axes(vec![AxisHints::new_x().label(xlabel).label_spacing(28.0..=44.0)])
+                    .custom_x_axes(vec![axis])
                     .y_axis_label(*ylabel)
                     .allow_scroll(false)
-                    .show(ui, |p| {
-                        for &(q, color) in series {
-                            let pts: Vec<[f64; 2]> = ok.iter().map(|&(v, m)| [v, q.of(m)]).collect();
-                            p.line(Line::new(q.symbol, pts.clone()).color(color).width(1.5));
-                            p.points(Points::new(q.symbol, pts).color(color).radius(2.5));
-                        }
-                        if let Some(x) = marker {
-                            p.vline(VLine::new("current job", x).color(Color32::from_rgb(220, 30, 30)));
-                        }
-                    });
+                    .show(ui, |p| draw_series(p, series, &ok, marker));
             });
             if k % 2 == 1 {
                 ui.end_row();
             }
         }
     });
-    cmd
+}
+
+/// One plot's curves (line and points per quantity) and the current job's marker.
+fn draw_series(p: &mut egui_plot::PlotUi<'_>, series: &Series, ok: &[(f64, &Metrics)], marker: Option<f64>) {
+    for &(q, color) in series {
+        let pts: Vec<[f64; 2]> = ok.iter().map(|&(v, m)| [v, q.of(m)]).collect();
+        p.line(Line::new(q.symbol, pts.clone()).color(color).width(1.5));
+        p.points(Points::new(q.symbol, pts).color(color).radius(2.5));
+    }
+    if let Some(x) = marker {
+        p.vline(VLine::new("current job", x).color(Color32::from_rgb(220, 30, 30)));
+    }
 }
 
 #[cfg(test)]

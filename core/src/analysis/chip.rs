@@ -26,6 +26,7 @@
 
 use super::edge::PreviousEdge;
 use crate::geom::{P2, bracketed_root, golden_min, rot90};
+use crate::job::limits::MAX_TOOTH_SAMPLES;
 use crate::path::{Cycle, CyclePos};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -175,59 +176,73 @@ impl Swept<'_> {
     }
 }
 
-/// Sample spacing of [`EarlySweep`] along the path (mm).
+/// Sample spacing of [`EarlySweep`] along the path (mm) for tools of ordinary size.
 const SPACING: f64 = 0.05;
+/// Most centre samples of one [`EarlySweep`]: past SPACING times this (a quarter cycle longer
+/// than ~50 mm, tools over ~60 mm) the spacing grows with the size, so the cost of a margin
+/// test does not.
+const MAX_SWEEP_SAMPLES: f64 = 1024.0;
 
 /// Region swept by the first quarter of a cycle: dense centre samples with exact refinement
-/// near the boundary (distance from the analytic segments to 1e-10 in the parameter).
+/// near the boundary (distance from the analytic segments to 1e-8 in the parameter).
 pub struct EarlySweep<'a> {
     cycle: &'a Cycle,
     shift: P2,
     r: f64,
+    /// Largest arc length between neighbouring samples (mm).
+    spacing: f64,
+    /// Sampled margins closer to 0 than this are refined (mm): at least the most the sampled
+    /// distance can exceed the exact one, spacing²/(8R), with a factor 8 to spare.
+    refine_within: f64,
     /// (segment, t, centre) samples.
     pts: Vec<(usize, f64, P2)>,
 }
 
 impl<'a> EarlySweep<'a> {
     /// The first `fraction` of `cycle` (by arc length), moved by `shift`.
+    ///
+    /// Samples are [`SPACING`] apart, closer for small tools (R/20, so the sampled distance
+    /// stays within R/3200 of the exact one) and further for large ones (at most
+    /// [`MAX_SWEEP_SAMPLES`] samples).
     pub fn new(cycle: &'a Cycle, shift: P2, r: f64, fraction: f64) -> EarlySweep<'a> {
         let mut left = fraction * cycle.length();
+        let spacing = SPACING.min(r / 20.0).max(left / MAX_SWEEP_SAMPLES);
         let mut pts = Vec::new();
         for (k, (seg, &len)) in cycle.segments.iter().zip(&cycle.lengths).enumerate() {
             if left <= 0.0 {
                 break;
             }
-            // Uniform steps in t whose arc length is ≤ SPACING: bound the speed by sampling it
+            // Uniform steps in t whose arc length is ≤ spacing: bound the speed by sampling it
             // (speeds of our segments vary smoothly; 1.25 covers the sampling gap).
             let vmax = (0..=32).map(|i| seg.speed(i as f64 / 32.0)).fold(0.0, f64::max) * 1.25;
             let t_end = if left >= len { 1.0 } else { seg.param_after_length(0.0, left) };
-            let n = ((vmax * t_end / SPACING).ceil() as usize).max(1);
+            let n = ((vmax * t_end / spacing).ceil() as usize).max(1);
             for i in 0..=n {
                 let t = t_end * i as f64 / n as f64;
                 pts.push((k, t, seg.point(t) + shift));
             }
             left -= len;
         }
-        EarlySweep { cycle, shift, r, pts }
+        let refine_within = 2e-3_f64.max(spacing * spacing / r);
+        EarlySweep { cycle, shift, r, spacing, refine_within, pts }
     }
 
     /// Distance from `p` to the swept part's centre path minus R (≤ 0: swept).
     pub fn margin(&self, p: P2) -> f64 {
-        // Samples are at most SPACING apart along the path, so the distance from p changes by
-        // at most SPACING per sample. Scan every BLOCK-th sample, then scan in full only the
-        // blocks whose lower bound (coarse distance − BLOCK/2·SPACING) can beat the best.
+        // Samples are at most `spacing` apart along the path, so the distance from p changes
+        // by at most that per sample. Scan every BLOCK-th sample, then scan in full only the
+        // blocks whose lower bound (coarse distance − (BLOCK/2 + 1)·spacing) can beat the best.
         const BLOCK: usize = 16;
-        let reach = (BLOCK / 2 + 1) as f64 * SPACING;
+        let reach = (BLOCK / 2 + 1) as f64 * self.spacing;
         let n = self.pts.len();
-        let coarse: Vec<(usize, f64)> =
-            (0..n).step_by(BLOCK).chain(n.checked_sub(1)).map(|i| (i, (self.pts[i].2 - p).norm())).collect();
-        let mut best = coarse.iter().fold((f64::INFINITY, 0), |b, &(i, d)| if d < b.0 { (d, i) } else { b });
-        for &(i, d) in &coarse {
+        let coarse = || (0..n).step_by(BLOCK).chain(n.checked_sub(1)).map(|i| (i, (self.pts[i].2 - p).norm()));
+        let mut best = coarse().fold((f64::INFINITY, 0), |b, (i, d)| if d < b.0 { (d, i) } else { b });
+        for (i, d) in coarse() {
             if d - reach >= best.0 {
                 continue;
             }
             let lo = i.saturating_sub(BLOCK / 2);
-            let hi = (i + BLOCK / 2 + 1).min(self.pts.len());
+            let hi = (i + BLOCK / 2 + 1).min(n);
             for k in lo..hi {
                 let dk = (self.pts[k].2 - p).norm();
                 if dk < best.0 {
@@ -236,8 +251,7 @@ impl<'a> EarlySweep<'a> {
             }
         }
         let d = best.0 - self.r;
-        // The sampled distance exceeds the exact one by < SPACING²/(8R); refine near R only.
-        if d.abs() > 2e-3 {
+        if d.abs() > self.refine_within {
             return d;
         }
         let i = best.1;
@@ -258,11 +272,28 @@ fn no_poke_out_mm(r: f64) -> f64 {
     -r * dphi * dphi / 4.0
 }
 
+/// The coarse angles φ across the forward half circle with their sine and cosine, computed
+/// once ([`Frame::dir`] of each is N·cos φ + T·sin φ).
+fn coarse_angles() -> &'static [(f64, f64, f64)] {
+    static ANGLES: std::sync::OnceLock<Vec<(f64, f64, f64)>> = std::sync::OnceLock::new();
+    ANGLES.get_or_init(|| {
+        (0..COARSE)
+            .map(|i| {
+                let phi = PI * i as f64 / (COARSE - 1) as f64;
+                let (s, c) = phi.sin_cos();
+                (phi, s, c)
+            })
+            .collect()
+    })
+}
+
+/// The engaged intervals of the tool edge at frame `f`: coarse samples of the forward half
+/// circle, crossings refined to 1e-10 rad, a poke-out between samples found by golden section.
 fn engagement(swept: &Swept, f: &Frame, r: f64) -> Engagement {
     let g = |phi: f64| swept.margin(f.c + f.dir(phi) * r);
-    let phis: Vec<f64> = (0..COARSE).map(|i| PI * i as f64 / (COARSE - 1) as f64).collect();
-    let mut vals: Vec<f64> = phis.iter().map(|&p| g(p)).collect();
-    let mut phis = phis;
+    let coarse = coarse_angles();
+    let mut phis: Vec<f64> = coarse.iter().map(|a| a.0).collect();
+    let mut vals: Vec<f64> = coarse.iter().map(|&(_, s, c)| swept.margin(f.c + (f.n * c + f.t * s) * r)).collect();
     // A small poke-out between coarse samples: refine the best sample's neighbourhood.
     if vals.iter().all(|&v| v <= 0.0) {
         let (ibest, vbest) =
@@ -472,82 +503,181 @@ pub fn chip_outline(cycle: &Cycle, edge: &PreviousEdge, r: f64, f_z: f64, s: f64
 /// Engaged arcs shorter than this (rad) give no usable point B for the next tooth.
 const DEGENERATE_ARC: f64 = 1.0 * PI / 180.0;
 
-/// Per-tooth series of one steady-state cycle (tooth 0 at the cycle start).
+/// Stride k between the analysed tooth positions of a cycle of length `len` (mm) at feed per
+/// tooth `f_z` (mm): 1 (every tooth) while the cycle has at most
+/// [`MAX_TOOTH_SAMPLES`] positions, else the smallest k
+/// with len/(k·f_z) ≤ that many.
+pub fn tooth_stride(len: f64, f_z: f64) -> usize {
+    let per_cycle = len / f_z / MAX_TOOTH_SAMPLES as f64;
+    if per_cycle.is_finite() { per_cycle.ceil().max(1.0) as usize } else { 1 }
+}
+
+/// One analysed tooth position: arc length from the cycle start (mm), frame, engagement.
+struct Tooth {
+    s: f64,
+    frame: Frame,
+    engagement: Engagement,
+}
+
+/// The teeth of one steady-state cycle that [`tooth_series`] analyses, every `stride`-th from
+/// the cycle start, with the tooth f_z before each (for h and the engaged arcs).
+struct CycleTeeth<'a> {
+    cycle: &'a Cycle,
+    edge: &'a PreviousEdge,
+    r: f64,
+    stride: usize,
+    /// The first quarter of this cycle (swept again in its second half).
+    early: EarlySweep<'a>,
+    /// The analysed teeth.
+    teeth: Vec<Tooth>,
+    /// Tooth −1: f_z before the cycle start, on the previous cycle.
+    before_start: Option<Tooth>,
+    /// With a stride above 1: the tooth f_z before each analysed tooth but the first.
+    previous: Vec<Tooth>,
+}
+
+impl<'a> CycleTeeth<'a> {
+    fn new(cycle: &'a Cycle, edge: &'a PreviousEdge, r: f64, f_z: f64, stride: usize) -> CycleTeeth<'a> {
+        let len = cycle.length();
+        let back = P2::new(0.0, -cycle.step);
+        let early = EarlySweep::new(cycle, P2::zeros(), r, 0.25);
+        // The first quarter of the previous cycle, for tooth −1.
+        let early_prev = EarlySweep::new(cycle, back, r, 0.25);
+        let first = cycle.positions(len - f_z, f_z).into_iter().take(1).collect();
+        let before_start = teeth_at(cycle, edge, r, &early_prev, back, first).pop();
+        let spacing = stride as f64 * f_z;
+        let teeth = teeth_at(cycle, edge, r, &early, P2::zeros(), cycle.positions(0.0, spacing));
+        let previous = if stride > 1 {
+            teeth_at(cycle, edge, r, &early, P2::zeros(), cycle.positions(spacing - f_z, spacing))
+        } else {
+            Vec::new()
+        };
+        CycleTeeth { cycle, edge, r, stride, early, teeth, before_start, previous }
+    }
+
+    /// The material before a tooth at arc length `s`: the first quarter of the cycle counts as
+    /// swept in its second half.
+    fn swept(&self, s: f64) -> Swept<'_> {
+        Swept { edge: self.edge, early: (s >= 0.5 * self.cycle.length()).then_some(&self.early) }
+    }
+
+    /// The tooth f_z before analysed tooth `i`.
+    fn previous_of(&self, i: usize) -> Option<&Tooth> {
+        match i.checked_sub(1) {
+            None => self.before_start.as_ref(),
+            Some(j) if self.stride == 1 => self.teeth.get(j),
+            Some(j) => self.previous.get(j),
+        }
+    }
+
+    /// h (eqs. 3–6) of analysed tooth `i`: from the previous tooth's points B where it has
+    /// them, else the largest radial thickness of the chip ([`ray_thickness`]).
+    fn chip_thickness(&self, i: usize) -> f64 {
+        let Tooth { s, frame: f, engagement: e } = &self.teeth[i];
+        if e.angle <= 0.0 {
+            return 0.0;
+        }
+        let r = self.r;
+        match self.previous_of(i) {
+            Some(p) if p.engagement.angle > DEGENERATE_ARC => {
+                let mut h = p.engagement.ends.iter().map(|b| r - (f.c - b).norm()).fold(0.0, f64::max);
+                if e.reaches_back {
+                    h = h.max((f.c - p.frame.c).norm());
+                }
+                h
+            }
+            other => ray_thickness(&self.swept(*s), f, other.map(|p| p.frame.c), r, &e.intervals),
+        }
+    }
+
+    /// The engaged arcs of analysed tooth `i` with h(φ) along them ([`engaged_arcs`]).
+    fn arcs(&self, i: usize) -> Vec<EngagedArc> {
+        let Tooth { s, frame: f, engagement: e } = &self.teeth[i];
+        if e.intervals.is_empty() {
+            return Vec::new();
+        }
+        let swept = self.swept(*s);
+        let half = |s: f64| s >= 0.5 * self.cycle.length();
+        // The previous tooth's intervals against this tooth's swept material: its own, except
+        // across the switch to the early sweep (and for tooth −1) found again.
+        let prev = self.previous_of(i).map(|p| {
+            let intervals = if i > 0 && half(p.s) == half(*s) {
+                p.engagement.intervals.clone()
+            } else {
+                engagement(&swept, &p.frame, self.r).intervals
+            };
+            PrevTooth::new(p.frame, intervals)
+        });
+        engaged_arcs(&swept, f, prev.as_ref(), self.r, &e.intervals)
+    }
+}
+
+/// Per-tooth series of one steady-state cycle (tooth 0 at the cycle start): every tooth, or
+/// every k-th past [`MAX_TOOTH_SAMPLES`] tooth
+/// positions per cycle (k = [`tooth_stride`]).
 pub fn tooth_series(cycle: &Cycle, edge: &PreviousEdge, r: f64, f_z: f64, feed_mm_per_s: f64) -> Vec<ToothSample> {
-    let positions = cycle.positions(0.0, f_z);
-    let len = cycle.length();
-    let back = P2::new(0.0, -cycle.step);
-    // The first quarter of this cycle (and of the previous one, for tooth −1).
-    let early = EarlySweep::new(cycle, P2::zeros(), r, 0.25);
-    let early_prev = EarlySweep::new(cycle, back, r, 0.25);
-    let swept = |s: f64, e| Swept { edge, early: (s >= 0.5 * len).then_some(e) };
-    // Tooth −1: f_z before the cycle start, i.e. on the previous cycle.
-    let mut prev: Option<(Frame, Engagement)> = cycle.positions(len - f_z, f_z).first().map(|&(s, p)| {
-        let f = Frame::at(cycle, p, back);
-        let e = engagement(&swept(s, &early_prev), &f, r);
-        (f, e)
-    });
-    // Engagement of each tooth is independent of the others: compute it in parallel; h needs
-    // the previous tooth's crossings and is a cheap sequential pass afterwards.
-    let frames: Vec<(f64, Frame)> =
-        positions.into_iter().map(|(s, pos)| (s, Frame::at(cycle, pos, P2::zeros()))).collect();
-    let engaged: Vec<Engagement> = frames.par_iter().map(|(s, f)| engagement(&swept(*s, &early), f, r)).collect();
-    // The engaged arcs with h(φ) along them: independent given the previous tooth's frame and
-    // intervals, so again in parallel.
-    let half = |s: f64| s >= 0.5 * len;
-    let arcs: Vec<Vec<EngagedArc>> = (0..frames.len())
+    strided_series(cycle, edge, r, f_z, feed_mm_per_s, tooth_stride(cycle.length(), f_z))
+}
+
+/// [`tooth_series`] of every `stride`-th tooth.
+fn strided_series(
+    cycle: &Cycle,
+    edge: &PreviousEdge,
+    r: f64,
+    f_z: f64,
+    feed_mm_per_s: f64,
+    stride: usize,
+) -> Vec<ToothSample> {
+    let teeth = CycleTeeth::new(cycle, edge, r, f_z, stride);
+    // Given the previous tooth, each tooth's h and arcs are independent: in parallel.
+    (0..teeth.teeth.len())
         .into_par_iter()
         .map(|i| {
-            let (s, f) = &frames[i];
-            if engaged[i].intervals.is_empty() {
-                return Vec::new();
+            let Tooth { s, frame: f, engagement: e } = &teeth.teeth[i];
+            let h = teeth.chip_thickness(i);
+            ToothSample {
+                time_s: s / feed_mm_per_s,
+                s_mm: *s,
+                x_mm: f.c.x,
+                y_mm: f.c.y,
+                h_mm: h,
+                engagement_rad: e.angle,
+                cutting: h > H_CUT_MM,
+                feed_angle_rad: f.t.y.atan2(f.t.x),
+                arcs: teeth.arcs(i),
             }
-            let swept = swept(*s, &early);
-            // The previous tooth's intervals against this tooth's swept material: its own,
-            // except across the switch to the early sweep (and for tooth −1) found again.
-            let prev = match i.checked_sub(1) {
-                Some(j) if half(frames[j].0) == half(*s) => Some((frames[j].1, engaged[j].intervals.clone())),
-                Some(j) => Some((frames[j].1, engagement(&swept, &frames[j].1, r).intervals)),
-                None => prev.as_ref().map(|(pf, _)| (*pf, engagement(&swept, pf, r).intervals)),
-            };
-            let prev = prev.map(|(frame, iv)| PrevTooth::new(frame, iv));
-            engaged_arcs(&swept, f, prev.as_ref(), r, &engaged[i].intervals)
         })
-        .collect();
-    let mut out = Vec::with_capacity(frames.len());
-    for (((s, f), e), arcs) in frames.iter().zip(engaged).zip(arcs) {
-        let (s, f) = (*s, *f);
-        let mut h: f64 = 0.0;
-        if e.angle > 0.0 {
-            match &prev {
-                Some((pf, pe)) if pe.angle > DEGENERATE_ARC => {
-                    for b in &pe.ends {
-                        h = h.max(r - (f.c - b).norm());
-                    }
-                    if e.reaches_back {
-                        h = h.max((f.c - pf.c).norm());
-                    }
-                }
-                other => {
-                    let pc = other.as_ref().map(|(pf, _)| pf.c);
-                    h = ray_thickness(&swept(s, &early), &f, pc, r, &e.intervals);
-                }
-            }
-        }
-        out.push(ToothSample {
-            time_s: s / feed_mm_per_s,
-            s_mm: s,
-            x_mm: f.c.x,
-            y_mm: f.c.y,
-            h_mm: h,
-            engagement_rad: e.angle,
-            cutting: h > H_CUT_MM,
-            feed_angle_rad: f.t.y.atan2(f.t.x),
-            arcs,
-        });
-        prev = Some((f, e));
-    }
-    out
+        .collect()
+}
+
+/// Largest engagement angle (rad) over the teeth [`tooth_series`] analyses — the same value
+/// as the largest `engagement_rad` of its series, without the chip thickness and arcs.
+pub fn max_engagement(cycle: &Cycle, edge: &PreviousEdge, r: f64, f_z: f64) -> f64 {
+    let early = EarlySweep::new(cycle, P2::zeros(), r, 0.25);
+    let spacing = tooth_stride(cycle.length(), f_z) as f64 * f_z;
+    let teeth = teeth_at(cycle, edge, r, &early, P2::zeros(), cycle.positions(0.0, spacing));
+    teeth.iter().map(|t| t.engagement.angle).fold(0.0, f64::max)
+}
+
+/// The teeth at `positions` of `cycle` moved by `shift`, against `edge` and, in the second half
+/// of the cycle, the `early` sweep. Each tooth's engagement is independent: in parallel.
+fn teeth_at(
+    cycle: &Cycle,
+    edge: &PreviousEdge,
+    r: f64,
+    early: &EarlySweep,
+    shift: P2,
+    positions: Vec<(f64, CyclePos)>,
+) -> Vec<Tooth> {
+    let len = cycle.length();
+    positions
+        .into_par_iter()
+        .map(|(s, pos)| {
+            let frame = Frame::at(cycle, pos, shift);
+            let swept = Swept { edge, early: (s >= 0.5 * len).then_some(early) };
+            Tooth { s, frame, engagement: engagement(&swept, &frame, r) }
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -555,6 +685,57 @@ pub fn tooth_series(cycle: &Cycle, edge: &PreviousEdge, r: f64, f_z: f64, feed_m
 mod tests {
     use super::*;
     use crate::{Job, PathKind};
+
+    /// A strided series analyses exactly the teeth it names: with stride k its i-th sample is
+    /// tooth k·i of the full series (same h, engagement, arcs), each against its own previous
+    /// tooth f_z behind (issue #13: bounded analysis of jobs with very many teeth per cycle).
+    #[test]
+    fn strided_series_is_every_kth_tooth_of_the_full_one() {
+        for job in [
+            Job::default(),
+            Job { path: PathKind::LinearElliptical, aspect_ratio: 0.8, linear_distance: 0.75, ..Job::default() },
+        ] {
+            let job = job.validate().expect("valid");
+            let cycle = Cycle::for_job(&job);
+            let (r, f_z, feed) = (job.tool_radius(), job.f_z(), job.feed / 60.0);
+            let edge = PreviousEdge::new(&cycle, r);
+            let full = strided_series(&cycle, &edge, r, f_z, feed, 1);
+            assert_eq!(full, tooth_series(&cycle, &edge, r, f_z, feed), "stride 1 below the limit");
+            for k in [2, 7, 50] {
+                let strided = strided_series(&cycle, &edge, r, f_z, feed, k);
+                assert_eq!(strided.len(), full.len().div_ceil(k), "stride {k}");
+                for (i, t) in strided.iter().enumerate() {
+                    let u = &full[k * i];
+                    let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * (1.0 + b.abs());
+                    assert!(close(t.s_mm, u.s_mm) && close(t.x_mm, u.x_mm), "stride {k} tooth {i}");
+                    assert!(close(t.h_mm, u.h_mm), "stride {k} tooth {i}: h {} vs {}", t.h_mm, u.h_mm);
+                    assert!(close(t.engagement_rad, u.engagement_rad), "stride {k} tooth {i}: engagement");
+                    assert_eq!(t.arcs.len(), u.arcs.len(), "stride {k} tooth {i}: arcs");
+                    for (a, b) in t.arcs.iter().zip(&u.arcs) {
+                        assert!(close(a.max_thickness_mm(), b.max_thickness_mm()), "stride {k} tooth {i}");
+                    }
+                }
+                let max = strided.iter().map(|t| t.engagement_rad).fold(0.0, f64::max);
+                assert!(max <= full.iter().map(|t| t.engagement_rad).fold(0.0, f64::max) + 1e-12);
+            }
+            let max = full.iter().map(|t| t.engagement_rad).fold(0.0, f64::max);
+            assert_eq!(max_engagement(&cycle, &edge, r, f_z), max, "engagement alone, same teeth");
+        }
+    }
+
+    /// The stride keeps the analysed teeth within the limit and is 1 below it.
+    #[test]
+    fn tooth_stride_bounds_the_analysed_teeth() {
+        let max = MAX_TOOTH_SAMPLES as f64;
+        assert_eq!(tooth_stride(31.4, 0.075), 1);
+        assert_eq!(tooth_stride(max * 0.1, 0.1), 1);
+        assert_eq!(tooth_stride(max * 0.1 + 1e-9, 0.1), 2);
+        for (len, f_z) in [(157_079.6, 1e-4), (31.4, 1.5e-4), (1e6, 1e-4), (0.03, 1e-4)] {
+            let k = tooth_stride(len, f_z);
+            assert!(len / (k as f64 * f_z) <= max, "{len} {f_z}: stride {k}");
+            assert!(k == 1 || len / ((k - 1) as f64 * f_z) > max, "{len} {f_z}: stride {k} not the smallest");
+        }
+    }
 
     /// The engaged arcs against the h computation: samples at most 1° apart, each equal to
     /// [`radial_thickness`] at its angle, and h (eqs. 3–6) the largest radial thickness over

@@ -115,7 +115,8 @@ pub fn wall_profile(cycle: &Cycle, r: f64, wall: Wall) -> WallProfile {
         }
     }
     // Extreme of the path towards the wall: best sample, then golden refinement on its segment.
-    let Some(&(k, t, _)) = all.iter().min_by(|p, q| (sign * p.2.x).total_cmp(&(sign * q.2.x))) else {
+    let Some((ibest, &(k, t, _))) = all.iter().enumerate().min_by(|p, q| (sign * p.1.2.x).total_cmp(&(sign * q.1.2.x)))
+    else {
         return WallProfile { wall, waviness_mm: 0.0, extreme_x_mm: 0.0, samples: vec![] };
     };
     let seg = &cycle.segments[k];
@@ -127,7 +128,12 @@ pub fn wall_profile(cycle: &Cycle, r: f64, wall: Wall) -> WallProfile {
     // |dy| ≤ s/2 (DERIVED: R² − dy² ≥ (R − W_bound)² ⇔ dy² ≤ (s/2)²).
     let half = cycle.step / 2.0;
     let w_bound = r - (r * r - half * half).sqrt();
-    let near: Vec<_> = all.into_iter().filter(|&(_, _, c)| sign * c.x <= extreme + w_bound + 1e-9).collect();
+    // The best sample and its neighbours always count: where a stretch of path shorter than
+    // the sample spacing shapes the wall (steps far below the tool size) no sample may lie
+    // within W_bound, and the extreme needs a bracket all the same.
+    let bracket = all[ibest.saturating_sub(1)..(ibest + 2).min(all.len())].iter().map(|&(_, _, c)| sign * c.x);
+    let limit = bracket.fold(extreme + w_bound + 1e-9, f64::max);
+    let near: Vec<_> = all.into_iter().filter(|&(_, _, c)| sign * c.x <= limit).collect();
     let y_ext =
         near.iter().filter(|&&(_, _, c)| sign * c.x <= extreme + 1e-9).map(|&(_, _, c)| c.y).next().unwrap_or(0.0);
     // Samples are at most `gap` apart, so a sampled value exceeds the exact one by at most

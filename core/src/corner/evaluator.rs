@@ -14,24 +14,34 @@
 //! This module deliberately shares nothing with the analytic two-circle model
 //! ([`super::engagement`]): it is the independent check of every corner strategy.
 
+use super::nearby::{CutGrid, Cutter, LocalStock};
 use crate::error::JobError;
 use crate::geom::{P2, Polygon, Segment, p2};
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
-use std::f64::consts::TAU;
+use std::f64::consts::{PI, TAU};
 
 /// Distance tolerance of the material test (mm).
 const DIST_TOL: f64 = 1e-11;
 /// Bisection steps refining one in/out transition on the periphery.
 const REFINE_STEPS: usize = 36;
 /// Upper bound of tool positions in one evaluation (keeps run time bounded).
-const MAX_POSITIONS: f64 = 2.0e6;
+const MAX_POSITIONS: f64 = 2.0e5;
 /// Lines used for one trochoid piece (the evaluator works on lines and arcs).
 const TROCHOID_LINES: usize = 256;
 
-/// Reads points "x,y" (or "x y", "x;y"), one per line. Blank lines and lines starting with '#'
-/// are skipped, and so is a non-numeric first line (a header). `what` names the file in errors.
+/// Reads points "x,y" (or "x y", "x;y"), one per line; `what` names the file in errors.
+///
+/// Every line either parses completely or is an error naming the line: a point is exactly two
+/// fields, both finite numbers (`0,5;25` and `0,0 # note` are errors, not (0, 5) and (0, 0)).
+/// Skipped: a byte-order mark at the start, blank lines, lines starting with '#', and one
+/// header line — only the first line with content, and only when it is clearly a header: at
+/// least two fields, each a word of letters, digits or '_' that starts with a letter (`x,y`,
+/// `X_mm Y_mm`). A first line such as `O,0` (letter O) is not a header but an error.
 pub fn parse_points(text: &str, what: &str) -> Result<Vec<P2>, JobError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut pts = Vec::new();
+    let mut first = true;
     for (i, line) in text.lines().enumerate() {
         let line = line.trim();
         if line.is_empty() || line.starts_with('#') {
@@ -39,22 +49,28 @@ pub fn parse_points(text: &str, what: &str) -> Result<Vec<P2>, JobError> {
         }
         let fields: Vec<&str> =
             line.split(|c: char| c == ',' || c == ';' || c.is_whitespace()).filter(|f| !f.is_empty()).collect();
-        let nums: Option<Vec<f64>> = fields.iter().map(|f| f.parse::<f64>().ok()).collect();
-        match nums {
-            Some(v) if v.len() >= 2 => {
-                if !(v[0].is_finite() && v[1].is_finite()) {
-                    return Err(JobError::File(format!(
-                        "{what} line {}: x and y must be finite numbers, got {line:?}",
-                        i + 1
-                    )));
-                }
-                pts.push(p2(v[0], v[1]));
-            }
-            _ if pts.is_empty() && i == 0 => {} // header
-            _ => return Err(JobError::File(format!("{what} line {}: expected two numbers x,y, got {line:?}", i + 1))),
+        let header = first && fields.len() >= 2 && fields.iter().all(|f| is_word(f));
+        first = false;
+        if header {
+            continue;
+        }
+        let bad = |why: &str| JobError::File(format!("{what} line {}: {why}, got {line:?}", i + 1));
+        let [x, y] = fields[..] else { return Err(bad("expected two numbers x,y")) };
+        match (x.parse::<f64>(), y.parse::<f64>()) {
+            (Ok(x), Ok(y)) if x.is_finite() && y.is_finite() => pts.push(p2(x, y)),
+            (Ok(_), Ok(_)) => return Err(bad("x and y must be finite numbers")),
+            _ => return Err(bad("expected two numbers x,y")),
         }
     }
     Ok(pts)
+}
+
+/// A header field: letters, digits or '_', starting with a letter, and not a number's name
+/// (`inf`, `NaN`).
+fn is_word(field: &str) -> bool {
+    field.chars().next().is_some_and(char::is_alphabetic)
+        && field.chars().all(|c| c.is_alphanumeric() || c == '_')
+        && field.parse::<f64>().is_err()
 }
 
 /// A tool-centre polyline from points; consecutive duplicate points are skipped.
@@ -147,34 +163,9 @@ impl EngagementProfile {
     }
 }
 
-/// Cut segment with an axis-aligned box grown by the tool radius.
-struct Cutter {
-    seg: Segment,
-    lo: P2,
-    hi: P2,
-}
-
-impl Cutter {
-    fn new(seg: Segment, r: f64) -> Cutter {
-        let (lo, hi) = match seg {
-            Segment::Arc { center, radius, .. } => (center - p2(radius, radius), center + p2(radius, radius)),
-            _ => {
-                let (a, b) = (seg.start(), seg.end());
-                (p2(a.x.min(b.x), a.y.min(b.y)), p2(a.x.max(b.x), a.y.max(b.y)))
-            }
-        };
-        Cutter { seg, lo: lo - p2(r, r), hi: hi + p2(r, r) }
-    }
-
-    /// Whether a disc of radius `r` around `c` can reach this segment's grown box.
-    fn near(&self, c: P2, r: f64) -> bool {
-        c.x + r >= self.lo.x && c.x - r <= self.hi.x && c.y + r >= self.lo.y && c.y - r <= self.hi.y
-    }
-}
-
-/// Exact distance from `p` to a line or arc segment.
-fn distance(p: P2, seg: &Segment) -> f64 {
-    match *seg {
+/// Exact distance from `p` to the line or arc of `k` (its end points precomputed).
+fn distance(p: P2, k: &Cutter) -> f64 {
+    match k.seg {
         Segment::Line { start, end } => {
             let d = end - start;
             let l2 = d.norm_squared();
@@ -187,18 +178,23 @@ fn distance(p: P2, seg: &Segment) -> f64 {
             // Parameter of p's direction along the sweep, in [0, 2π) measured in sweep sense.
             let rel =
                 if sweep >= 0.0 { (ang - start_angle).rem_euclid(TAU) } else { (start_angle - ang).rem_euclid(TAU) };
-            if rel <= sweep.abs() {
-                (v.norm() - radius).abs()
-            } else {
-                (p - seg.start()).norm().min((p - seg.end()).norm())
-            }
+            if rel <= sweep.abs() { (v.norm() - radius).abs() } else { (p - k.start).norm().min((p - k.end).norm()) }
         }
-        Segment::Trochoid { .. } => {
-            // Not reached: trochoid pieces are flattened to lines before evaluation.
-            let pts = seg.sample(TROCHOID_LINES);
-            pts.windows(2).map(|w| distance(p, &Segment::Line { start: w[0], end: w[1] })).fold(f64::INFINITY, f64::min)
-        }
+        // Not reached: trochoid pieces are flattened to lines before evaluation.
+        Segment::Trochoid { .. } => f64::INFINITY,
     }
+}
+
+/// A lower bound of the distance from `p` to the segment of `k`: exact within `reach` of its
+/// box, the distance to the box beyond.
+fn lower_distance(p: P2, k: &Cutter, reach: f64) -> f64 {
+    if k.within(p, reach) { distance(p, k) } else { k.box_distance(p) }
+}
+
+/// Whether `p` is at least `r − tol` from the segment of `k` (not cut by it). A point more
+/// than r·(1 + 1e-9) outside the segment's box is, without computing the distance.
+fn leaves(p: P2, k: &Cutter, r: f64, tol: f64) -> bool {
+    !k.within(p, r * (1.0 + 1e-9)) || distance(p, k) >= r - tol
 }
 
 /// Lines and arcs only: trochoid pieces become `TROCHOID_LINES` chords each.
@@ -263,8 +259,13 @@ pub fn engagement_profile(
             format!("≥ path length / {MAX_POSITIONS} = {} mm", total / MAX_POSITIONS),
         ));
     }
-    let before: Vec<Cutter> = flatten(before).into_iter().map(|s| Cutter::new(s, r)).collect();
-    let cutters: Vec<Cutter> = path.iter().map(|s| Cutter::new(*s, r)).collect();
+    let tol = DIST_TOL * r.min(1.0);
+    let before = flatten(before);
+    let nb = before.len();
+    let cutters: Vec<Cutter> = before.into_iter().chain(path.iter().copied()).map(Cutter::new).collect();
+    // Reach r·(1 + 1e-9): every segment within r of a periphery point (see `leaves`).
+    let reach = r * (1.0 + 1e-9);
+    let grid = CutGrid::new(cutters, reach);
     // Arc lengths of the evaluated positions: 0, spacing, 2·spacing, …, and the end of every
     // segment (the engagement peaks at kinks, e.g. where a move ends in a corner point, and
     // can fall by tens of degrees within 0.1 mm before it).
@@ -282,35 +283,103 @@ pub fn engagement_profile(
     targets.push(total);
     targets.sort_by(f64::total_cmp);
     targets.dedup_by(|a, b| (*a - *b).abs() <= 1e-9);
-    let mut samples = Vec::with_capacity(targets.len());
+    // (arc length, segment index, local parameter) of every position.
+    let mut at = Vec::with_capacity(targets.len());
     let (mut i, mut s0) = (0usize, 0.0); // current segment and the arc length at its start
-    let mut near: Vec<Segment> = Vec::new();
     for s in targets {
         while i + 1 < path.len() && s > s0 + lengths[i] {
             s0 += lengths[i];
             i += 1;
         }
-        let seg = &path[i];
         let local = if lengths[i] > 0.0 { ((s - s0) / lengths[i]).clamp(0.0, 1.0) } else { 1.0 };
-        let c = seg.point(local);
-        near.clear();
-        near.push(head(seg, local));
-        near.extend(cutters[..i].iter().rev().filter(|k| k.near(c, r)).map(|k| k.seg));
-        near.extend(before.iter().filter(|k| k.near(c, r)).map(|k| k.seg));
-        let angle = engaged_angle(stock, c, r, &near, opts.samples);
-        samples.push(EngagementSample { s_mm: s, x_mm: c.x, y_mm: c.y, angle_rad: angle });
+        at.push((s, i, local));
     }
+    let periphery = Periphery::new(opts.samples);
+    let samples = at
+        .into_par_iter()
+        .map(|(s, i, local)| {
+            let seg = &path[i];
+            let c = seg.point(local);
+            // Cut so far: the `before` paths (grid indices below nb), the path before segment i,
+            // and segment i up to the position.
+            // The segment that cut the last point tried is tried first (neighbouring points of
+            // the periphery are mostly cut by the same segment).
+            let head = Cutter::new(head(seg, local));
+            let last = std::cell::Cell::new(head);
+            let room = |p: P2| {
+                if !leaves(p, &head, r, tol) || !leaves(p, &last.get(), r, tol) {
+                    return None;
+                }
+                let (near, gap) = grid.near(p);
+                let mut room = lower_distance(p, &head, reach).min(r + gap);
+                for (_, k) in near.filter(|(j, _)| *j < nb + i) {
+                    if !leaves(p, k, r, tol) {
+                        last.set(*k);
+                        return None;
+                    }
+                    room = room.min(lower_distance(p, k, reach));
+                }
+                Some(room - r)
+            };
+            let stock = LocalStock::new(stock, c, r);
+            let mut angle = engaged_angle(&stock, c, r, room, &periphery);
+            // Behind a tool that has moved, every point of the periphery is nearer than r to the
+            // path just travelled: the engaged arc lies in the front half. Only the tolerance of
+            // the material test at the two side points can make it read more than π.
+            if s > 0.0 {
+                angle = angle.min(PI);
+            }
+            EngagementSample { s_mm: s, x_mm: c.x, y_mm: c.y, angle_rad: angle }
+        })
+        .collect();
     Ok(EngagementProfile { samples, path_length_mm: total })
 }
 
-/// Measure (rad) of the periphery of the tool at `c` that lies in material.
-fn engaged_angle(stock: &Polygon, c: P2, r: f64, cut: &[Segment], n: usize) -> f64 {
-    let in_material = |th: f64| {
-        let p = c + p2(th.cos(), th.sin()) * r;
-        stock.contains(p) && cut.iter().all(|s| distance(p, s) >= r - DIST_TOL)
-    };
-    let step = TAU / n as f64;
-    let flags: Vec<bool> = (0..n).map(|k| in_material(k as f64 * step)).collect();
+/// The unit directions of the periphery samples, θ_k = k·2π/n.
+struct Periphery {
+    step: f64,
+    dirs: Vec<P2>,
+}
+
+impl Periphery {
+    fn new(n: usize) -> Periphery {
+        let step = TAU / n as f64;
+        let dirs = (0..n)
+            .map(|k| {
+                let th = k as f64 * step;
+                p2(th.cos(), th.sin())
+            })
+            .collect();
+        Periphery { step, dirs }
+    }
+}
+
+/// Measure (rad) of the periphery of the tool at `c` that lies in material: inside the stock
+/// and not cut. `room(p)` is `None` where p is cut (nearer than r − tol to the swept path),
+/// else a lower bound of its distance from the swept path minus r: the next samples closer
+/// to p than that (less a rounding margin) are not cut either, without asking again.
+fn engaged_angle(stock: &LocalStock, c: P2, r: f64, room: impl Fn(P2) -> Option<f64>, periphery: &Periphery) -> f64 {
+    if matches!(stock, LocalStock::Outside) {
+        return 0.0;
+    }
+    let in_material = |p: P2| room(p).is_some() && stock.contains(p);
+    let at = |th: f64| c + p2(th.cos(), th.sin()) * r;
+    let (n, step) = (periphery.dirs.len(), periphery.step);
+    let mut flags: Vec<bool> = Vec::with_capacity(n);
+    while flags.len() < n {
+        let p = c + periphery.dirs[flags.len()] * r;
+        let Some(free) = room(p) else {
+            flags.push(false);
+            continue;
+        };
+        // Sample k + j is at most r·j·step from sample k.
+        let same = (free - 1e-9 * (1.0 + r)) / (r * step);
+        let more = if same.is_finite() && same > 1.0 { same.ceil() as usize - 1 } else { 0 };
+        let k = flags.len();
+        for j in k..(k + 1 + more).min(n) {
+            flags.push(stock.contains(c + periphery.dirs[j] * r));
+        }
+    }
     let count = flags.iter().filter(|&&f| f).count();
     if count == 0 {
         return 0.0;
@@ -328,7 +397,7 @@ fn engaged_angle(stock: &Polygon, c: P2, r: f64, cut: &[Segment], n: usize) -> f
         let (mut lo, mut hi) = (k as f64 * step, (k + 1) as f64 * step);
         for _ in 0..REFINE_STEPS {
             let mid = 0.5 * (lo + hi);
-            if in_material(mid) == a {
+            if in_material(at(mid)) == a {
                 lo = mid;
             } else {
                 hi = mid;

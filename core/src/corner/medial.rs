@@ -17,6 +17,10 @@ use serde::{Deserialize, Serialize};
 
 /// Largest spacing of the points of a parabolic axis edge, measured along its directrix (mm).
 pub const CURVE_STEP_MM: f64 = 0.5;
+/// Axis edges shorter than this are dropped (mm). Short edges are kept: where many Voronoi
+/// vertices fall within a few grid steps (the centre of a regular polygon with many sides),
+/// dropping them would cut the axis into parts that are planned one by one.
+const MIN_EDGE_MM: f64 = 1e-9;
 
 /// One edge of the medial axis with the clearance (distance to the nearest polygon edge) at
 /// both ends.
@@ -43,14 +47,85 @@ pub struct MedialAxis {
 pub fn clearance(poly: &Polygon, p: P2) -> f64 {
     let v = poly.vertices();
     let n = v.len();
-    (0..n)
-        .map(|i| {
-            let (a, b) = (v[i], v[(i + 1) % n]);
-            let d = b - a;
-            let t = ((p - a).dot(&d) / d.norm_squared()).clamp(0.0, 1.0);
-            (p - (a + d * t)).norm()
-        })
-        .fold(f64::INFINITY, f64::min)
+    (0..n).map(|i| edge_distance(p, v[i], v[(i + 1) % n])).fold(f64::INFINITY, f64::min)
+}
+
+/// Distance from `p` to the edge a–b (of non-zero length).
+fn edge_distance(p: P2, a: P2, b: P2) -> f64 {
+    let d = b - a;
+    let t = ((p - a).dot(&d) / d.norm_squared()).clamp(0.0, 1.0);
+    (p - (a + d * t)).norm()
+}
+
+/// The walls of a polygon binned on a uniform grid, for [`clearance`] in time that grows with
+/// the edges near the point instead of all of them (the same value: the minimum over the same
+/// distances).
+pub struct Walls {
+    edges: Vec<(P2, P2)>,
+    lo: P2,
+    cell: f64,
+    nx: usize,
+    ny: usize,
+    bins: Vec<Vec<u32>>,
+}
+
+impl Walls {
+    /// About one cell per four edges (few cells: a point far from every wall searches them all).
+    pub fn new(poly: &Polygon) -> Walls {
+        let v = poly.vertices();
+        let n = v.len();
+        let edges: Vec<(P2, P2)> = (0..n).map(|i| (v[i], v[(i + 1) % n])).collect();
+        let inf = p2(f64::INFINITY, f64::INFINITY);
+        let (lo, hi) = v
+            .iter()
+            .fold((inf, -inf), |(lo, hi), q| (p2(lo.x.min(q.x), lo.y.min(q.y)), p2(hi.x.max(q.x), hi.y.max(q.y))));
+        let (w, h) = ((hi.x - lo.x).max(1e-9), (hi.y - lo.y).max(1e-9));
+        let cell = (4.0 * w * h / n as f64).sqrt().max(w.max(h) / 1024.0);
+        let (nx, ny) = ((w / cell) as usize + 1, (h / cell) as usize + 1);
+        let mut walls = Walls { edges, lo, cell, nx, ny, bins: vec![Vec::new(); nx * ny] };
+        for (i, &(a, b)) in walls.edges.iter().enumerate() {
+            let (x0, y0) = walls.cell_of(p2(a.x.min(b.x), a.y.min(b.y)));
+            let (x1, y1) = walls.cell_of(p2(a.x.max(b.x), a.y.max(b.y)));
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    walls.bins[y * nx + x].push(i as u32);
+                }
+            }
+        }
+        walls
+    }
+
+    fn cell_of(&self, p: P2) -> (usize, usize) {
+        let at = |v: f64, n: usize| (((v / self.cell).floor().max(0.0)) as usize).min(n - 1);
+        (at(p.x - self.lo.x, self.nx), at(p.y - self.lo.y, self.ny))
+    }
+
+    /// [`clearance`]: the rings of cells around p's cell are searched until the nearest edge
+    /// found is no farther than the next ring can be (k cells).
+    pub fn clearance(&self, p: P2) -> f64 {
+        let (cx, cy) = self.cell_of(p);
+        let mut best = f64::INFINITY;
+        for k in 0..self.nx.max(self.ny) {
+            // Every cell of ring k is at least k − 1 cells from p (p is in, or outside, its cell).
+            if best <= (k as f64 - 1.0) * self.cell {
+                break;
+            }
+            let (x0, x1, y0, y1) =
+                (cx.saturating_sub(k), (cx + k).min(self.nx - 1), cy.saturating_sub(k), (cy + k).min(self.ny - 1));
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    if x.abs_diff(cx).max(y.abs_diff(cy)) != k {
+                        continue;
+                    }
+                    for &i in &self.bins[y * self.nx + x] {
+                        let (a, b) = self.edges[i as usize];
+                        best = best.min(edge_distance(p, a, b));
+                    }
+                }
+            }
+        }
+        best
+    }
 }
 
 /// Medial axis of `poly` on a grid of `resolution` mm (e.g. 1e-4).
@@ -97,7 +172,7 @@ pub fn medial_axis(poly: &Polygon, resolution: f64) -> Result<MedialAxis, JobErr
         let (q0, q1) = (diagram.vertex(v0).map_err(fail)?, diagram.vertex(v1).map_err(fail)?);
         let (a, b) = (from_grid(q0.x(), q0.y()), from_grid(q1.x(), q1.y()));
         let inside = |q: P2| poly.contains(q) || clearance(poly, q) <= tol;
-        if !(inside(a) && inside(b) && poly.contains((a + b) / 2.0)) || (a - b).norm() <= tol {
+        if !(inside(a) && inside(b) && poly.contains((a + b) / 2.0)) || (a - b).norm() <= MIN_EDGE_MM {
             continue;
         }
         let points = if e.is_curved() {

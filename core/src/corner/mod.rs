@@ -29,6 +29,7 @@ pub mod engagement;
 pub mod evaluator;
 pub mod geometry;
 pub mod medial;
+pub mod nearby;
 pub mod method;
 pub mod request;
 pub mod strategy;

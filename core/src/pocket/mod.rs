@@ -228,9 +228,55 @@ impl PocketPlan {
     }
 }
 
-/// Plan the requested pocket with its strategy. Errors name the input at fault.
+/// Most tool positions a pocket plan may measure, as estimated before planning by
+/// [`estimated_positions`]: at this bound a plan takes seconds, not minutes.
+pub const MAX_ESTIMATED_POSITIONS: f64 = 1.0e5;
+
+/// Tool positions the evaluator will measure, estimated before planning: the path clears the
+/// pocket's area A in bands of the step-over a_e, so it is about k·A/a_e long, measured every
+/// `spacing` mm: k = 1 for rings; k = 3 for the medial axis, whose trochoid circles overlap
+/// (measured: 2·A/a_e for a rectangle, 3.6·A/a_e for random star-shaped pockets).
+pub fn estimated_positions(polygon: &Polygon, strategy: PocketStrategy, settings: &PocketSettings) -> f64 {
+    let k = match strategy {
+        PocketStrategy::Rings(_) => 1.0,
+        PocketStrategy::MedialAxis => 3.0,
+    };
+    k * polygon.area().abs() / (settings.step_over * settings.spacing)
+}
+
+/// Smallest step-over of the medial axis as a fraction of the tool diameter, a_e/D: the lowest
+/// radial depth of the papers' range (25.8° of straight engagement). Below it the number of
+/// circles and of their bisection steps grows without a useful gain.
+pub const MEDIAL_AXIS_MIN_STEP_OVER_RATIO: f64 = 0.05;
+
+/// Plan the requested pocket with its strategy. Errors name the input at fault. Checked before
+/// planning, so that no plan runs for minutes: a medial-axis step-over below
+/// [`MEDIAL_AXIS_MIN_STEP_OVER_RATIO`] × D, and a step-over (or spacing) so small that the plan
+/// would measure more than [`MAX_ESTIMATED_POSITIONS`] tool positions; the error names the
+/// smallest step-over allowed.
 pub fn plan(req: &PocketRequest) -> Result<PocketPlan, JobError> {
     let settings = req.settings()?;
+    let least = MEDIAL_AXIS_MIN_STEP_OVER_RATIO * 2.0 * settings.tool_radius;
+    if req.strategy == PocketStrategy::MedialAxis && settings.step_over < least {
+        return Err(JobError::range(
+            "step-over",
+            settings.step_over,
+            format!("at least {MEDIAL_AXIS_MIN_STEP_OVER_RATIO} × the tool diameter = {least} mm for the medial axis"),
+        ));
+    }
+    let positions = estimated_positions(&req.polygon, req.strategy, &settings);
+    if positions > MAX_ESTIMATED_POSITIONS {
+        let least = settings.step_over * positions / MAX_ESTIMATED_POSITIONS;
+        return Err(JobError::range(
+            "step-over",
+            settings.step_over,
+            format!(
+                "at least {least:.4} mm for this pocket with --spacing {} mm (its area / (step-over × spacing) \
+                 estimates the tool positions measured, at most {MAX_ESTIMATED_POSITIONS})",
+                settings.spacing
+            ),
+        ));
+    }
     match req.strategy {
         PocketStrategy::Rings(method) => plan_rings(&req.polygon, settings, method).map(PocketPlan::Rings),
         PocketStrategy::MedialAxis => plan_perforative(&req.polygon, settings).map(PocketPlan::MedialAxis),

@@ -53,7 +53,7 @@
 
 use super::PocketSettings;
 use super::rings::link_is_inside;
-use crate::corner::medial::{MedialAxis, clearance, medial_axis};
+use crate::corner::medial::{MedialAxis, Walls, medial_axis};
 use crate::corner::{CornerSettings, EngagementProfile, EvaluatorOptions, Turn, TwoCircle, engagement_profile};
 use crate::error::JobError;
 use crate::geom::{Circle, P2, Polygon, Segment, golden_min, rot90};
@@ -70,6 +70,11 @@ const MAX_BISECTION: usize = 60;
 const MAX_CIRCLES: usize = 20_000;
 /// Points of the axis closer than this are one node (mm).
 const NODE_TOL_MM: f64 = 1e-6;
+/// A disc counts as cleared by a circle when it reaches at most this far beyond it (mm): a
+/// sliver thinner than this (a fifth of the NC export's default tolerance) is not worth a
+/// circle, e.g. the corners of a polygon with many short sides, 2.5e-4 mm beyond the inscribed
+/// circle for 1000 sides of radius 50 mm.
+const COVER_TOL_MM: f64 = 1e-3;
 /// A circle ends this far short of a full turn at most when its exit precedes its entry (rad).
 const SHORT_TURN_RAD: f64 = PI / 6.0;
 
@@ -167,18 +172,18 @@ struct AxisGraph {
 }
 
 impl AxisGraph {
-    fn new(poly: &Polygon, axis: &MedialAxis, r: f64) -> AxisGraph {
+    fn new(poly: &Walls, axis: &MedialAxis, r: f64) -> AxisGraph {
         let mut g = AxisGraph { nodes: Vec::new(), adj: Vec::new(), edges: Vec::new(), unreachable_mm: 0.0 };
-        let fits = |q: P2| clearance(poly, q) >= r;
         for e in &axis.edges {
             // Dense samples with the original points kept; runs where the tool fits.
             let mut run: Vec<P2> = Vec::new();
             for w in e.points.windows(2) {
                 let (p, q) = (w[0], w[1]);
                 let n = ((q - p).norm() / CLEARANCE_STEP_MM).ceil().max(1.0) as usize;
+                let fits = fit_flags(poly, p, q, n, r);
                 for k in 0..n {
                     let (a, b) = (p + (q - p) * (k as f64 / n as f64), p + (q - p) * ((k + 1) as f64 / n as f64));
-                    match (fits(a), fits(b)) {
+                    match (fits[k], fits[k + 1]) {
                         (true, true) => {
                             if run.is_empty() {
                                 run.push(a);
@@ -238,7 +243,7 @@ impl AxisGraph {
     }
 
     /// Connected parts: node lists, each starting at its node of largest clearance.
-    fn parts(&self, poly: &Polygon) -> Vec<Vec<usize>> {
+    fn parts(&self, poly: &Walls) -> Vec<Vec<usize>> {
         let mut seen = vec![false; self.nodes.len()];
         let mut parts = Vec::new();
         for start in 0..self.nodes.len() {
@@ -259,7 +264,7 @@ impl AxisGraph {
             let root = part
                 .iter()
                 .copied()
-                .max_by(|&a, &b| clearance(poly, self.nodes[a]).total_cmp(&clearance(poly, self.nodes[b])))
+                .max_by(|&a, &b| poly.clearance(self.nodes[a]).total_cmp(&poly.clearance(self.nodes[b])))
                 .unwrap_or(start);
             let k = part.iter().position(|&i| i == root).unwrap_or(0);
             part.swap(0, k);
@@ -380,9 +385,27 @@ fn transition_along(c1: P2, rho1: f64, c2: P2, rho2: f64, u: P2) -> (P2, f64, f6
     ((a + b) / 2.0, (a - b).norm() / 2.0, u.y.atan2(u.x))
 }
 
+/// Whether the tool (radius r) fits at the points p + (q − p)·k/n, k = 0…n (clearance ≥ r).
+/// The clearance changes no faster than the distance along the line, so after a point whose
+/// clearance is c the next |c − r| (less a rounding margin) of length have the same answer
+/// without computing it.
+fn fit_flags(walls: &Walls, p: P2, q: P2, n: usize, r: f64) -> Vec<bool> {
+    let step = (q - p).norm() / n as f64;
+    let mut flags = Vec::with_capacity(n + 1);
+    while flags.len() <= n {
+        let k = flags.len();
+        let c = walls.clearance(p + (q - p) * (k as f64 / n as f64));
+        let same = ((c - r).abs() - 1e-9 * (1.0 + c)) / step;
+        let more = if same.is_finite() && same > 1.0 { same.ceil() as usize - 1 } else { 0 };
+        let count = (1 + more).min(n + 1 - k);
+        flags.extend(std::iter::repeat_n(c >= r, count));
+    }
+    flags
+}
+
 /// Fraction t ∈ (0, 1) along a→b where the clearance drops to r (a fits, b does not).
-fn crossing(poly: &Polygon, a: P2, b: P2, r: f64) -> f64 {
-    edge(0.0, 1.0, 60, |t| clearance(poly, a + (b - a) * t) >= r)
+fn crossing(poly: &Walls, a: P2, b: P2, r: f64) -> f64 {
+    edge(0.0, 1.0, 60, |t| poly.clearance(a + (b - a) * t) >= r)
 }
 
 /// Bisection on a predicate that holds at `good` and fails at `bad` (either order): after
@@ -492,6 +515,14 @@ struct Current {
     entry: Option<f64>,
 }
 
+impl Current {
+    /// Whether the disc of radius `radius` about `q` lies in this circle's cleared disc (up to
+    /// [`COVER_TOL_MM`]).
+    fn covers(&self, q: P2, radius: f64) -> bool {
+        (q - self.center).norm() + radius <= self.offset_radius + COVER_TOL_MM
+    }
+}
+
 /// Plan the pocket `polygon` with perforative trochoids along its medial axis; the target is
 /// the corner strategies' a* = a_str·(1 + t1).
 pub fn plan_perforative(polygon: &Polygon, settings: PocketSettings) -> Result<PerforativePlan, JobError> {
@@ -499,8 +530,9 @@ pub fn plan_perforative(polygon: &Polygon, settings: PocketSettings) -> Result<P
     let (r, ae) = (settings.tool_radius, settings.step_over);
     let cs = CornerSettings { feed_mm_per_min: settings.feed_mm_per_min, ..CornerSettings::new(r, ae)? };
     let axis = medial_axis(polygon, VORONOI_RESOLUTION_MM)?;
-    let graph = AxisGraph::new(polygon, &axis, r);
-    let parts = graph.parts(polygon);
+    let walls = Walls::new(polygon);
+    let graph = AxisGraph::new(&walls, &axis, r);
+    let parts = graph.parts(&walls);
     if parts.is_empty() {
         let widest = axis.edges.iter().map(|e| e.clearance_a.max(e.clearance_b)).fold(0.0, f64::max);
         return Err(JobError::range(
@@ -511,6 +543,7 @@ pub fn plan_perforative(polygon: &Polygon, settings: PocketSettings) -> Result<P
     }
     let mut p = Planner {
         poly: polygon,
+        walls: &walls,
         cs,
         b: Builder { segments: Vec::new(), kinds: Vec::new(), pos: graph.nodes[parts[0][0]] },
         circles: Vec::new(),
@@ -595,6 +628,7 @@ fn maxima(
 
 struct Planner<'a> {
     poly: &'a Polygon,
+    walls: &'a Walls,
     cs: CornerSettings,
     b: Builder,
     circles: Vec<AxisCircle>,
@@ -606,7 +640,7 @@ impl Planner<'_> {
     }
 
     fn rho(&self, q: P2) -> f64 {
-        clearance(self.poly, q) - self.r()
+        self.walls.clearance(q) - self.r()
     }
 
     fn engagement(&self, prev: Circle, cur: Circle) -> f64 {
@@ -659,22 +693,22 @@ impl Planner<'_> {
         let entry = self.spiral(center, rho_root)?;
         let mut cur = Current { s: 0.0, center, offset_radius: rho_root.max(0.0) + self.r(), entry };
         let walks = g.leaf_walks(root);
-        let mut prev: Option<(Vec<usize>, Guide, Vec<Current>)> = None;
+        let mut prev: Option<(Vec<usize>, Guide, Vec<Current>, f64)> = None;
         for walk in walks {
             let guide = g.guide(&walk);
             // Circles of the previous walk on the shared prefix; the chain restarts at the last.
             let mut placed = vec![cur];
-            if let Some((pw, pg, pc)) = &prev {
+            if let Some((pw, pg, pc, stop)) = &prev {
                 let common = walk.iter().zip(pw).take_while(|(a, b)| a == b).count();
                 let s_lca = guide.node_s[common - 1];
                 placed = pc.iter().copied().filter(|c| c.s <= s_lca + 1e-9).collect();
                 let restart = placed[placed.len() - 1];
-                let back = pg.walk(pg.length(), restart.s);
+                let back = pg.walk(*stop, restart.s);
                 self.b.polyline(&back, MoveKind::Return);
                 cur = Current { entry: None, ..restart };
             }
-            self.chain(&guide, cur, &mut placed)?;
-            prev = Some((walk, guide, placed));
+            let stop = self.chain(&guide, cur, &mut placed)?;
+            prev = Some((walk, guide, placed, stop));
         }
         Ok(())
     }
@@ -719,18 +753,21 @@ impl Planner<'_> {
     }
 
     /// Circles and axis moves along `guide` from the circle `start` to the guide's end.
-    /// `placed` collects the circles (with their arc length) for the next restart.
-    fn chain(&mut self, guide: &Guide, start: Current, placed: &mut Vec<Current>) -> Result<(), JobError> {
+    /// `placed` collects the circles (with their arc length) for the next restart. A circle
+    /// the search finds inside the current circle's cleared disc cuts nothing: it is skipped
+    /// and the search goes on from there (`from`). Returns the arc length where the tool stops.
+    fn chain(&mut self, guide: &Guide, start: Current, placed: &mut Vec<Current>) -> Result<f64, JobError> {
         let (r, target, eps, r_min) = (self.r(), self.cs.target, self.cs.tolerance, self.cs.r_min());
         let end = guide.length();
         let mut cur = start;
+        let mut from = cur.s;
         loop {
             let rho_cur = cur.offset_radius - r;
             // Search range: up to 2·R ahead, not past the first point where ρ < r_min.
             // Not past the next Voronoi vertex either: its circle touches three walls.
-            let node = guide.node_s.iter().copied().find(|&n| n > cur.s + 1e-6).unwrap_or(end);
-            let reach = (cur.s + 2.0 * cur.offset_radius).min(end).min(node);
-            let zone_end = self.zone_end(guide, cur.s, reach);
+            let node = guide.node_s.iter().copied().find(|&n| n > from + 1e-6).unwrap_or(end);
+            let reach = (from + 2.0 * cur.offset_radius).min(end).min(node);
+            let zone_end = self.zone_end(guide, from, reach);
             let m = |s: f64| {
                 let q = guide.at(s);
                 let rho = self.rho(q).max(r_min);
@@ -741,19 +778,30 @@ impl Planner<'_> {
                     circle
                 }
             };
-            let next = if zone_end > cur.s + 1e-6 {
-                Some(bisect(cur.s, zone_end, target, eps, m)).filter(|n| n.0 > cur.s + 1e-6)
+            let next = if zone_end > from + 1e-6 {
+                Some(bisect(from, zone_end, target, eps, m)).filter(|n| n.0 > from + 1e-6)
             } else {
                 None
             };
             match next {
+                Some((s, _)) if cur.covers(guide.at(s), self.rho(guide.at(s)).max(r_min) + r) => from = s,
                 Some((s, v)) => {
                     let q = guide.at(s);
                     let rho = self.rho(q).max(r_min);
                     self.link(guide, &cur, rho_cur, s, q, rho);
                     self.push_circle(q, rho, Some(v), MoveKind::Circle)?;
                     cur = Current { s, center: q, offset_radius: rho + r, entry: Some(self.angle_of(q)) };
+                    from = s;
                     placed.push(cur);
+                }
+                None if self.zone_start(guide, from, end).is_none()
+                    && guide.walk(cur.s, end).iter().all(|&q| cur.covers(q, r)) =>
+                {
+                    // The tip move would run in the cleared disc (which is convex: so does the
+                    // axis polyline between points that do).
+                    self.finish(&cur, rho_cur);
+                    self.b.line(cur.center, MoveKind::Link);
+                    return Ok(cur.s);
                 }
                 None => {
                     // ρ < r_min ahead: finish the circle, go along the axis to where circles
@@ -770,11 +818,12 @@ impl Planner<'_> {
                             let a0 = self.angle_of(q);
                             self.push_circle(q, rho, None, MoveKind::Circle)?;
                             cur = Current { s, center: q, offset_radius: rho + r, entry: Some(a0) };
+                            from = s;
                             placed.push(cur);
                         }
                         None => {
                             self.b.polyline(&guide.walk(cur.s, end), MoveKind::Tip);
-                            return Ok(());
+                            return Ok(end);
                         }
                     }
                 }
@@ -852,17 +901,22 @@ impl Planner<'_> {
 
     /// The first arc length in (s0, s1] where ρ < r_min, or s1 if there is none. Sampled every
     /// [`CLEARANCE_STEP_MM`], the crossing refined by bisection.
+    /// Samples where ρ is well above r_min are followed by as many as the clearance's slope
+    /// (at most 1 along the guide) cannot bring below it; those are not computed.
     fn zone_end(&self, guide: &Guide, s0: f64, s1: f64) -> f64 {
         let r_min = self.cs.r_min();
         let ok = |s: f64| self.rho(guide.at(s)) >= r_min;
         let n = ((s1 - s0) / CLEARANCE_STEP_MM).ceil().max(1.0) as usize;
-        let mut prev = s0;
-        for k in 1..=n {
-            let s = s0 + (s1 - s0) * k as f64 / n as f64;
-            if !ok(s) {
-                return edge(prev, s, 50, ok);
+        let at = |k: usize| s0 + (s1 - s0) * k as f64 / n as f64;
+        let mut k = 1;
+        while k <= n {
+            let s = at(k);
+            let above = self.rho(guide.at(s)) - r_min;
+            if above < 0.0 {
+                return edge(at(k - 1), s, 50, ok);
             }
-            prev = s;
+            let same = (above - 1e-9 * (1.0 + above + r_min)) / ((s1 - s0) / n as f64);
+            k += 1 + if same.is_finite() && same > 1.0 { same.ceil() as usize - 1 } else { 0 };
         }
         s1
     }

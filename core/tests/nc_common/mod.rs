@@ -174,15 +174,39 @@ pub fn deviation_from_plan(cut: &[Motion], plan: &Plan) -> f64 {
 }
 
 /// Two-sided ordered deviation between a cut and any planned path given as exact segments
-/// in machining order (a pocket corner, for instance).
+/// in machining order (a pocket corner, for instance). Both are split where they jump (a
+/// retract between two pieces of a pocket): the pieces are compared in order, one to one, so a
+/// jump can never be matched against a cut that runs along it; a different number of pieces is
+/// a structural mismatch (infinite deviation).
 pub fn deviation_from_segments(cut: &[Motion], segments: impl IntoIterator<Item = Segment>) -> f64 {
     const H: f64 = 0.02;
-    let prog = sample(cut, H);
-    let planned = segment_samples(segments, H);
+    let mut planned: Vec<Vec<Segment>> = Vec::new();
+    for seg in segments {
+        match planned.last_mut() {
+            Some(piece) if piece.last().is_some_and(|l: &Segment| (seg.start() - l.end()).norm() <= 1e-6) => {
+                piece.push(seg)
+            }
+            _ => planned.push(vec![seg]),
+        }
+    }
+    let mut moves: Vec<Vec<Motion>> = Vec::new();
+    for m in cut {
+        match moves.last_mut() {
+            Some(piece) if piece.last().is_some_and(|l: &Motion| xy(l.end()) == xy(m.start())) => piece.push(*m),
+            _ => moves.push(vec![*m]),
+        }
+    }
+    if planned.len() != moves.len() {
+        return f64::INFINITY;
+    }
     // both are sampled at ≤ H, so the match moves a sample or two per step; 0.4 mm of path
     // ahead is far more than that and than any deviation we accept
     let window = (0.4 / H) as usize;
-    ordered_deviation(&prog, &planned, window).max(ordered_deviation(&planned, &prog, window))
+    planned.into_iter().zip(&moves).fold(0.0, |worst: f64, (segs, piece)| {
+        let prog = sample(piece, H);
+        let plan = segment_samples(segs, H);
+        worst.max(ordered_deviation(&prog, &plan, window)).max(ordered_deviation(&plan, &prog, window))
+    })
 }
 
 /// Allowed distance from the planned path: the fit tolerance, plus rounding to the quantum q

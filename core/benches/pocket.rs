@@ -1,0 +1,47 @@
+//! Speed of pocket planning (criterion). Target from issue #13: a 1000-vertex pocket plans in
+//! under 2 s — a circle of radius 50 mm and a random star-shaped polygon, D = 10 mm,
+//! a_e = 2.5 mm, evaluator every 0.25 mm (the `trochoplan pocket` defaults), every strategy.
+
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use std::f64::consts::TAU;
+use std::hint::black_box;
+use std::time::Duration;
+use trochoplan_core::geom::{Polygon, p2};
+use trochoplan_core::pocket::{self, PocketRequest, PocketStrategy};
+
+/// Regular n-gon of circumradius `radius` about the origin.
+fn circle(n: usize, radius: f64) -> Polygon {
+    let at = |k: usize| TAU * k as f64 / n as f64;
+    Polygon::new((0..n).map(|k| p2(at(k).cos(), at(k).sin()) * radius).collect()).unwrap()
+}
+
+/// Star-shaped n-gon: vertex k at angle 2πk/n with a radius from 20 to 120 mm drawn by a fixed
+/// linear congruential sequence (reproducible without a random crate).
+fn star(n: usize) -> Polygon {
+    let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
+    let mut next = || {
+        seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let at = |k: usize| TAU * k as f64 / n as f64;
+    Polygon::new((0..n).map(|k| p2(at(k).cos(), at(k).sin()) * (20.0 + 100.0 * next())).collect()).unwrap()
+}
+
+fn pockets(c: &mut Criterion) {
+    let mut group = c.benchmark_group("pocket/1000 vertices");
+    group.sample_size(10).measurement_time(Duration::from_secs(20));
+    for (shape, polygon) in [("circle r=50", circle(1000, 50.0)), ("star", star(1000))] {
+        for strategy in PocketStrategy::ALL {
+            let req = PocketRequest { polygon: polygon.clone(), strategy, ..PocketRequest::default() };
+            group.bench_function(format!("{shape} {}", strategy.name()), |b| {
+                b.iter(|| pocket::plan(black_box(&req)).unwrap())
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, pockets);
+criterion_main!(benches);

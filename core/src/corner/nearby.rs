@@ -1,0 +1,164 @@
+//! What the evaluator ([`super::evaluator`]) needs near one tool position, found without
+//! scanning the whole pocket: the cut segments within reach ([`CutGrid`]) and the stock
+//! boundary's edges that can decide whether a point of the tool periphery is inside the stock
+//! ([`LocalStock`]). Both only leave out what cannot change the material test's answer, so the
+//! evaluator gives the same numbers as a scan of everything, in time that grows with what is
+//! near the tool rather than with the size of the pocket.
+
+use crate::geom::{P2, Polygon, Segment, p2};
+
+/// Cells per side of a [`CutGrid`] at most.
+const MAX_CELLS_PER_SIDE: f64 = 512.0;
+/// A segment whose grown box covers more cells than this is kept in a list checked everywhere.
+const MAX_CELLS_PER_SEGMENT: usize = 4096;
+
+/// A cut segment (line or arc) with its bounding box and end points.
+#[derive(Clone, Copy, Debug)]
+pub struct Cutter {
+    pub seg: Segment,
+    /// Bounding box (mm): tight for a line, the full circle's for an arc.
+    pub lo: P2,
+    pub hi: P2,
+    pub start: P2,
+    pub end: P2,
+}
+
+impl Cutter {
+    /// A line or arc segment (trochoid pieces are flattened before).
+    pub fn new(seg: Segment) -> Cutter {
+        let (start, end) = (seg.start(), seg.end());
+        let (lo, hi) = match seg {
+            Segment::Arc { center, radius, .. } => (center - p2(radius, radius), center + p2(radius, radius)),
+            _ => (p2(start.x.min(end.x), start.y.min(end.y)), p2(start.x.max(end.x), start.y.max(end.y))),
+        };
+        Cutter { seg, lo, hi, start, end }
+    }
+
+    /// Largest of the x and y distances from `p` to the box (0 inside): a lower bound of the
+    /// distance to the segment.
+    pub fn box_distance(&self, p: P2) -> f64 {
+        (self.lo.x - p.x).max(p.x - self.hi.x).max(self.lo.y - p.y).max(p.y - self.hi.y).max(0.0)
+    }
+
+    /// Whether the box grown by `reach` contains `c`.
+    pub fn within(&self, c: P2, reach: f64) -> bool {
+        c.x >= self.lo.x - reach && c.x <= self.hi.x + reach && c.y >= self.lo.y - reach && c.y <= self.hi.y + reach
+    }
+}
+
+/// Cut segments binned on a uniform grid by their boxes grown by a reach: the segments whose
+/// grown box contains a point are among those of the point's cell (or of the list of segments
+/// too big to bin).
+pub struct CutGrid {
+    cutters: Vec<Cutter>,
+    lo: P2,
+    cell: f64,
+    nx: usize,
+    ny: usize,
+    bins: Vec<Vec<u32>>,
+    big: Vec<u32>,
+}
+
+impl CutGrid {
+    /// Bins `cutters` by their boxes grown by `reach` (> 0), in cells of at least `reach / 4`.
+    pub fn new(cutters: Vec<Cutter>, reach: f64) -> CutGrid {
+        let inf = p2(f64::INFINITY, f64::INFINITY);
+        let (lo, hi) = cutters.iter().fold((inf, -inf), |(lo, hi), k| {
+            (p2(lo.x.min(k.lo.x), lo.y.min(k.lo.y)), p2(hi.x.max(k.hi.x), hi.y.max(k.hi.y)))
+        });
+        let lo = lo - p2(reach, reach);
+        let extent = (hi.x - lo.x).max(hi.y - lo.y) + reach;
+        let cell = (0.25 * reach).max(extent / MAX_CELLS_PER_SIDE);
+        let cells = |d: f64| if d.is_finite() { (d / cell).floor() as usize + 1 } else { 1 };
+        let (nx, ny) = (cells(hi.x + reach - lo.x), cells(hi.y + reach - lo.y));
+        let mut grid =
+            CutGrid { cutters: Vec::new(), lo, cell, nx, ny, bins: vec![Vec::new(); nx * ny], big: Vec::new() };
+        for (i, k) in cutters.iter().enumerate() {
+            let (x0, y0) = grid.cell_of(k.lo - p2(reach, reach));
+            let (x1, y1) = grid.cell_of(k.hi + p2(reach, reach));
+            if (x1 - x0 + 1) * (y1 - y0 + 1) > MAX_CELLS_PER_SEGMENT {
+                grid.big.push(i as u32);
+                continue;
+            }
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    grid.bins[y * nx + x].push(i as u32);
+                }
+            }
+        }
+        grid.cutters = cutters;
+        grid
+    }
+
+    fn cell_of(&self, p: P2) -> (usize, usize) {
+        let at = |v: f64, n: usize| (((v / self.cell).floor().max(0.0)) as usize).min(n - 1);
+        (at(p.x - self.lo.x, self.nx), at(p.y - self.lo.y, self.ny))
+    }
+
+    /// The cutters (with their index) that may have a box grown by the grid's reach containing
+    /// `c`, and `gap`: every other cutter's box is more than reach + gap from `c` (gap is the
+    /// distance from c to the edge of its cell, 0 outside the grid).
+    pub fn near(&self, c: P2) -> (impl Iterator<Item = (usize, &Cutter)>, f64) {
+        let (x, y) = self.cell_of(c);
+        let bin: &[u32] = if self.cutters.is_empty() { &[] } else { &self.bins[y * self.nx + x] };
+        let (x0, y0) = (self.lo.x + x as f64 * self.cell, self.lo.y + y as f64 * self.cell);
+        let gap = (c.x - x0).min(x0 + self.cell - c.x).min(c.y - y0).min(y0 + self.cell - c.y).max(0.0);
+        (bin.iter().chain(&self.big).map(|&i| (i as usize, &self.cutters[i as usize])), gap)
+    }
+}
+
+/// The stock near a tool position c of radius r, for points p with |p − c| ≤ r: wholly inside
+/// or outside the stock (c more than r from every edge), or the edges that can decide the
+/// crossing test of [`Polygon::contains`] for such points — those whose y-range meets the band
+/// |y − c.y| ≤ r and that do not lie wholly left of c.x − r (the test casts its ray towards +x).
+/// The margin `m` keeps rounding of either test on the safe side.
+pub enum LocalStock {
+    Inside,
+    Outside,
+    Edges(Vec<(P2, P2)>),
+}
+
+impl LocalStock {
+    pub fn new(stock: &Polygon, c: P2, r: f64) -> LocalStock {
+        let v = stock.vertices();
+        let scale = v.iter().fold(c.x.abs().max(c.y.abs()), |m, q| m.max(q.x.abs()).max(q.y.abs()));
+        let m = 1e-9 * (scale + r);
+        let mut edges = Vec::new();
+        let mut far = true;
+        let mut j = v.len() - 1;
+        for i in 0..v.len() {
+            // (a, b) as Polygon::contains pairs them, so the crossing test is the same.
+            let (a, b) = (v[i], v[j]);
+            j = i;
+            if a.y.max(b.y) < c.y - r - m || a.y.min(b.y) > c.y + r + m || a.x.max(b.x) < c.x - r - m {
+                continue;
+            }
+            edges.push((a, b));
+            far = far && point_segment(c, a, b) > r + m;
+        }
+        match (far, stock.contains(c)) {
+            (true, true) => LocalStock::Inside,
+            (true, false) => LocalStock::Outside,
+            (false, _) => LocalStock::Edges(edges),
+        }
+    }
+
+    /// [`Polygon::contains`] for a point p with |p − c| ≤ r.
+    pub fn contains(&self, p: P2) -> bool {
+        match self {
+            LocalStock::Inside => true,
+            LocalStock::Outside => false,
+            LocalStock::Edges(edges) => edges.iter().fold(false, |inside, &(a, b)| {
+                inside ^ ((a.y > p.y) != (b.y > p.y) && p.x < (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x)
+            }),
+        }
+    }
+}
+
+/// Distance from p to the segment a–b.
+fn point_segment(p: P2, a: P2, b: P2) -> f64 {
+    let d = b - a;
+    let l2 = d.norm_squared();
+    let t = if l2 > 0.0 { ((p - a).dot(&d) / l2).clamp(0.0, 1.0) } else { 0.0 };
+    (p - (a + d * t)).norm()
+}

@@ -1,0 +1,35 @@
+//! The widget labels of every panel, in one place: each is also the widget's accessible name,
+//! which is how the GUI tests (`gui_tests.rs`, egui_kittest) find it. A constant is named after
+//! its text.
+
+// Parameter panel (the slot job): each field's label is the core's `Param::label`.
+
+// Export NC panel (the slot's program).
+pub const NC_TOLERANCE: &str = "NC tolerance";
+pub const LINEAR_SEGMENTS: &str = "Linear segments (G1 chords only)";
+pub const COMPACT_LOOP: &str = "Compact loop";
+pub const COOLANT: &str = "Coolant (M8/M9)";
+pub const FASTER_RETURN_FEED: &str = "Faster return feed";
+pub const RETURN_FEED: &str = "Return feed";
+pub const SAVE_NC_PROGRAM: &str = "Save NC program…";
+
+// Corner tab: one corner and the pocket.
+pub const CORNER_ANGLE: &str = "Corner angle (°)";
+pub const CORNER_TOOL_DIAMETER: &str = "Corner tool diameter D (mm)";
+pub const RING_STEP_OVER: &str = "Ring step-over a_e (mm)";
+pub const STRAIGHT_ENGAGEMENT: &str = "Straight engagement a_str (°)";
+pub const ALLOWED_EXCESS_T1: &str = "Allowed excess t1";
+pub const POCKET_VERTICES: &str = "Pocket vertices (x,y per line)";
+pub const POCKET_STEP_OVER: &str = "Pocket step-over a_e (mm)";
+
+// Corner tab: the acceptance table.
+pub const CANCEL_TABLE: &str = "Cancel table";
+pub const RESTART_TABLE: &str = "Restart table";
+
+// Corner tab: the NC export (its coolant box is [`COOLANT`]).
+pub const NC_EXPORT: &str = "NC export";
+pub const CORNER_NC_TOLERANCE: &str = "Corner NC tolerance";
+pub const G1_CHORDS_ONLY: &str = "G1 chords only";
+pub const DEPTH_BELOW_Z0: &str = "Depth below Z0";
+pub const SPINDLE: &str = "Spindle";
+pub const SAVE_PROGRAM_AS: &str = "Save program as…";
