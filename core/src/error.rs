@@ -208,8 +208,6 @@ pub enum Error {
     Nc { what: &'static str, value: String, allowed: String },
     /// A job, polygon or CSV file that does not parse; the message names the file and line.
     File(String),
-    /// Temporary: an error of code not yet converted to the variants above.
-    OutOfRange { name: &'static str, value: String, allowed: String },
 }
 
 impl Error {
@@ -228,32 +226,17 @@ impl Error {
         Error::Nc { what, value: value.shown(), allowed: allowed.into() }
     }
 
-    /// Temporary bridge for code not yet converted: a parameter found by its flag name, else
-    /// [`Error::OutOfRange`].
-    pub fn range(name: &'static str, value: impl Shown, allowed: impl Into<String>) -> Error {
-        let flag = Param::ALL.into_iter().find(|p| p.cli_name() == name && *p != Param::Tolerance);
-        match flag {
-            Some(param) => Error::param(param, value, allowed),
-            None => Error::OutOfRange { name, value: value.shown(), allowed: allowed.into() },
-        }
-    }
-
-    /// Temporary bridge: [`Error::subject`], as before the typed errors.
-    pub fn parameter(&self) -> Option<&'static str> {
-        self.subject()
-    }
-
     /// What the message is about: a parameter's flag, a geometry or NC item (none for a file).
     pub fn subject(&self) -> Option<&'static str> {
         match self {
             Error::Param { param, .. } => Some(param.cli_name()),
-            Error::Geometry { what, .. } | Error::Nc { what, .. } | Error::OutOfRange { name: what, .. } => Some(what),
+            Error::Geometry { what, .. } | Error::Nc { what, .. } => Some(what),
             Error::File(_) => None,
         }
     }
 
     /// The user parameter this error is about, if any.
-    pub fn param_of(&self) -> Option<Param> {
+    pub fn parameter(&self) -> Option<Param> {
         match self {
             Error::Param { param, .. } => Some(*param),
             _ => None,
@@ -265,9 +248,7 @@ impl Error {
     pub fn message(&self, flag: impl Fn(Param) -> &'static str) -> String {
         match self {
             Error::Param { param, value, allowed } => format!("invalid {} = {value}: must be {allowed}", flag(*param)),
-            Error::Geometry { what, value, allowed }
-            | Error::Nc { what, value, allowed }
-            | Error::OutOfRange { name: what, value, allowed } => {
+            Error::Geometry { what, value, allowed } | Error::Nc { what, value, allowed } => {
                 format!("invalid {what} = {value}: must be {allowed}")
             }
             Error::File(m) => m.clone(),
@@ -282,9 +263,6 @@ impl fmt::Display for Error {
 }
 
 impl std::error::Error for Error {}
-
-/// Temporary name of [`Error`].
-pub type JobError = Error;
 
 /// A number as messages show it: the shortest text that reads back to the value rounded to 12
 /// significant digits (`1000`, not `1000.0000000000001`), in scientific form outside
@@ -379,7 +357,7 @@ mod tests {
         assert_eq!(e.to_string(), "invalid tolerance = 0: must be from 0.0001 to 1 mm");
         let nc = |p: Param| if p == Param::Tolerance { "nc-tolerance" } else { p.cli_name() };
         assert_eq!(e.message(nc), "invalid nc-tolerance = 0: must be from 0.0001 to 1 mm");
-        assert_eq!(e.param_of(), Some(Param::Tolerance));
-        assert_eq!(Error::geometry("polygon", "x", "y").param_of(), None);
+        assert_eq!(e.parameter(), Some(Param::Tolerance));
+        assert_eq!(Error::geometry("polygon", "x", "y").parameter(), None);
     }
 }

@@ -374,7 +374,7 @@ mod tests {
         let cases: Vec<(Job, Param)> = cases.into_iter().chain(ignored).collect();
         for (job, name) in cases {
             let err = job.validate().expect_err("must be rejected");
-            assert_eq!(err.param_of(), Some(name), "{err}");
+            assert_eq!(err.parameter(), Some(name), "{err}");
             assert!(err.to_string().contains(name.cli_name()), "{err}");
         }
     }

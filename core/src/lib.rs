@@ -36,6 +36,6 @@ pub mod pocket;
 pub mod quantity;
 pub mod sweep;
 
-pub use error::{Error, JobError, Param};
+pub use error::{Error, Param};
 pub use job::{Job, PathKind, ValidJob};
 pub use plan::{Metrics, Plan, plan};

@@ -172,9 +172,9 @@ mod tests {
     fn values_are_checked_and_rounded() {
         assert_eq!(values(0.5, 1.2, 8).expect("valid")[2], 0.7);
         assert_eq!(values(0.5, 1.2, 1).expect("valid"), vec![0.5]);
-        assert_eq!(values(0.5, 1.0, 0).expect_err("zero").param_of(), Some(Param::Steps));
-        assert_eq!(values(f64::NAN, 1.0, 2).expect_err("nan").param_of(), Some(Param::From));
-        assert_eq!(values(0.0, f64::INFINITY, 2).expect_err("inf").param_of(), Some(Param::To));
+        assert_eq!(values(0.5, 1.0, 0).expect_err("zero").parameter(), Some(Param::Steps));
+        assert_eq!(values(f64::NAN, 1.0, 2).expect_err("nan").parameter(), Some(Param::From));
+        assert_eq!(values(0.0, f64::INFINITY, 2).expect_err("inf").parameter(), Some(Param::To));
         assert_eq!(steps_error(-1).to_string(), "invalid steps = -1: must be a whole number from 1 to 10000");
     }
 

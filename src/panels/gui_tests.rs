@@ -105,7 +105,7 @@ fn an_invalid_value_is_marked_at_the_field_and_the_last_plan_is_kept() {
     let app = h.state();
     assert_eq!(app.state.job.tool_diameter, 25.0);
     let err = app.planner.error.clone().expect("invalid job");
-    assert_eq!(err.param_of(), Some(Param::ToolDiameter));
+    assert_eq!(err.parameter(), Some(Param::ToolDiameter));
     assert!(shows(&h, &err.to_string()), "the core's message is shown");
     assert!(shows(&h, "Job invalid: showing the last valid plan."));
     assert_eq!(metrics(&h), before, "last valid plan kept");
@@ -346,7 +346,7 @@ fn threaded_planner_delivers_the_newest_plan_and_validates_at_once() {
     assert!(!p.pending());
     assert!((p.last.as_ref().expect("plan").plan.metrics.step_mm - 0.7).abs() < 1e-12, "newest plan wins");
     assert!(!p.update(&Job { tool_diameter: 25.0, ..Job::default() }, 5), "invalid: nothing planned");
-    assert_eq!(p.error.as_ref().and_then(Error::param_of), Some(Param::ToolDiameter));
+    assert_eq!(p.error.as_ref().and_then(Error::parameter), Some(Param::ToolDiameter));
     assert!((p.last.as_ref().expect("plan").plan.metrics.step_mm - 0.7).abs() < 1e-12, "last valid plan kept");
 }
 

@@ -63,7 +63,7 @@ impl<'a> Field<'a> {
 
 /// The core's message under the field of `param` (a grid row).
 fn field_error(ui: &mut egui::Ui, param: Param, error: Option<&Error>) {
-    if let Some(e) = error.filter(|e| e.param_of() == Some(param)) {
+    if let Some(e) = error.filter(|e| e.parameter() == Some(param)) {
         ui.label(RichText::new("invalid").color(ERROR_COLOR));
         ui.add(egui::Label::new(RichText::new(e.to_string()).color(ERROR_COLOR)).wrap());
         ui.end_row();
@@ -72,14 +72,14 @@ fn field_error(ui: &mut egui::Ui, param: Param, error: Option<&Error>) {
 
 /// The core's message about `param` on a line of its own (outside a grid).
 fn field_error_line(ui: &mut egui::Ui, param: Param, error: Option<&Error>) {
-    if let Some(e) = error.filter(|e| e.param_of() == Some(param)) {
+    if let Some(e) = error.filter(|e| e.parameter() == Some(param)) {
         ui.colored_label(ERROR_COLOR, format!("invalid: {e}"));
     }
 }
 
 /// Draw the parameter panel; edits `job` in place.
 pub fn show(ui: &mut egui::Ui, job: &mut Job, error: Option<&Error>) {
-    if let Some(e) = error.filter(|e| e.param_of().is_none()) {
+    if let Some(e) = error.filter(|e| e.parameter().is_none()) {
         ui.colored_label(ERROR_COLOR, e.to_string());
     }
     ui.spacing_mut().slider_width = (ui.available_width() - 215.0).clamp(80.0, 220.0);

@@ -292,7 +292,7 @@ mod tests {
             assert_eq!(Dialect::from_name(d.name()), Ok(d));
         }
         let err = Dialect::from_name("heidenhain").expect_err("unknown");
-        assert_eq!(err.param_of(), Some(Param::Dialect));
+        assert_eq!(err.parameter(), Some(Param::Dialect));
     }
 
     #[test]
