@@ -658,10 +658,10 @@ mod tests {
         for (flags, name) in [
             (vec!["--step-over", "10"], "step-over"),
             (vec!["--step-over", "12"], "step-over"),
-            (vec!["--tool-diameter", "NaN"], "tool diameter"),
+            (vec!["--tool-diameter", "NaN"], "tool-diameter"),
             (vec!["--angle", "NaN"], "angle"),
-            (vec!["--angle", "3"], "corner angle"),
-            (vec!["--angle", "180"], "corner angle"),
+            (vec!["--angle", "3"], "angle"),
+            (vec!["--angle", "180"], "angle"),
             (vec!["--target", "40"], "target"),
         ] {
             let e = corner(&corner_args(&flags)).expect_err("must fail");
@@ -748,8 +748,8 @@ mod tests {
         assert!(v["max_engagement_deg"].as_f64().is_some_and(|m| (m - 180.0).abs() < 1e-3));
         for (flags, name) in [
             (vec!["--step-over", "10"], "step-over"),
-            (vec!["--tool-diameter", "NaN"], "tool diameter"),
-            (vec!["--tool-diameter", "50"], "tool diameter"),
+            (vec!["--tool-diameter", "NaN"], "tool-diameter"),
+            (vec!["--tool-diameter", "50"], "tool-diameter"),
         ] {
             let e = pocket(&args(&flags)).expect_err("must fail");
             assert!(e.contains(name), "{flags:?}: {e}");

@@ -180,6 +180,34 @@ fn numbers_in_messages_are_short() {
 }
 
 #[test]
+fn corner_messages_name_the_flag_the_user_typed() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let nc = dir.path().join("c.ngc");
+    let nc = nc.to_str().expect("utf8");
+    fails_with(
+        &["corner", "--nc-tolerance", "0", "--export", nc],
+        "invalid nc-tolerance = 0: must be from 0.0001 to 1 mm",
+    );
+    fails_with(
+        &["corner", "--tool-diameter", "1e-9"],
+        "invalid tool-diameter = 1e-9: must be a finite number from 0.01 to 1000 mm",
+    );
+}
+
+#[test]
+fn engagement_names_the_tool_diameter_as_typed() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let (path, stock) = (dir.path().join("p.csv"), dir.path().join("s.txt"));
+    std::fs::write(&path, "x,y\n-20,0\n20,0\n").expect("write");
+    std::fs::write(&stock, "-50,2.5\n50,2.5\n50,40\n-50,40\n").expect("write");
+    let (p, s) = (path.to_str().expect("utf8"), stock.to_str().expect("utf8"));
+    fails_with(
+        &["engagement", "--path-csv", p, "--stock-polygon", s, "--tool-diameter", "-10"],
+        "invalid tool-diameter = -10: must be a finite number > 0 mm",
+    );
+}
+
+#[test]
 fn a_polygon_parse_error_names_the_polygon_file_not_a_job_file() {
     let dir = tempfile::tempdir().expect("tempdir");
     let poly = dir.path().join("rect.txt");

@@ -197,9 +197,9 @@ mod tests {
     fn straight_cut_rejects_bad_depth_naming_it() {
         for ae in [-0.1, 10.1, f64::NAN] {
             let e = straight_engagement(ae, 5.0).unwrap_err();
-            assert_eq!(e.parameter(), Some("a_e"), "{e}");
+            assert_eq!(e.subject(), Some("step-over"), "{e}");
         }
-        assert_eq!(straight_engagement(1.0, 0.0).unwrap_err().parameter(), Some("tool radius"));
+        assert_eq!(straight_engagement(1.0, 0.0).unwrap_err().subject(), Some("tool-diameter"));
     }
 
     fn equal_radii() -> TwoCircle {
@@ -273,8 +273,8 @@ mod tests {
     #[test]
     fn validate_names_the_bad_radius() {
         let bad = TwoCircle { current: Circle::new(p2(1.0, 0.0), 4.0), ..equal_radii() };
-        assert_eq!(bad.validate().unwrap_err().parameter(), Some("R2"));
+        assert_eq!(bad.validate().unwrap_err().subject(), Some("R2"));
         let nan = TwoCircle { previous: Circle::new(p2(0.0, 0.0), f64::NAN), ..equal_radii() };
-        assert_eq!(nan.validate().unwrap_err().parameter(), Some("R1"));
+        assert_eq!(nan.validate().unwrap_err().subject(), Some("R1"));
     }
 }

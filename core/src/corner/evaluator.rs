@@ -452,7 +452,7 @@ mod tests {
         let err = parse_points("0,0\n1,abc\n", "path").unwrap_err().to_string();
         assert!(err.contains("line 2"), "{err}");
         assert!(parse_points("0,0\nNaN,1\n", "path").is_err());
-        assert_eq!(polyline(&[p2(0.0, 0.0), p2(0.0, 0.0)]).unwrap_err().parameter(), Some("path points"));
+        assert_eq!(polyline(&[p2(0.0, 0.0), p2(0.0, 0.0)]).unwrap_err().subject(), Some("path points"));
     }
 
     #[test]
@@ -460,13 +460,13 @@ mod tests {
         let stock = square(0.0, 0.0, 1.0, 1.0);
         let path = [Segment::Line { start: p2(0.0, 0.0), end: p2(1.0, 0.0) }];
         for (o, name) in [
-            (EvaluatorOptions::new(0.0, 1.0), "tool radius"),
+            (EvaluatorOptions::new(0.0, 1.0), "tool-diameter"),
             (EvaluatorOptions::new(1.0, f64::NAN), "spacing"),
             (EvaluatorOptions { samples: 2, ..EvaluatorOptions::new(1.0, 1.0) }, "samples"),
         ] {
-            assert_eq!(engagement_profile(&stock, &[], &path, &o).unwrap_err().parameter(), Some(name));
+            assert_eq!(engagement_profile(&stock, &[], &path, &o).unwrap_err().subject(), Some(name));
         }
         let empty = engagement_profile(&stock, &[], &[], &EvaluatorOptions::new(1.0, 1.0)).unwrap_err();
-        assert_eq!(empty.parameter(), Some("path"));
+        assert_eq!(empty.subject(), Some("path"));
     }
 }

@@ -207,13 +207,13 @@ mod tests {
 
     #[test]
     fn bad_corners_are_named_errors() {
-        assert_eq!(Corner::symmetric(0.0).unwrap_err().parameter(), Some("corner angle"));
-        assert_eq!(Corner::symmetric(f64::NAN).unwrap_err().parameter(), Some("corner angle"));
-        assert_eq!(Corner::symmetric(std::f64::consts::PI).unwrap_err().parameter(), Some("corner angle"));
-        assert_eq!(Corner::new(p2(0.0, 0.0), p2(0.0, 0.0), p2(1.0, 0.0)).unwrap_err().parameter(), Some("edge length"));
+        assert_eq!(Corner::symmetric(0.0).unwrap_err().subject(), Some("angle"));
+        assert_eq!(Corner::symmetric(f64::NAN).unwrap_err().subject(), Some("angle"));
+        assert_eq!(Corner::symmetric(std::f64::consts::PI).unwrap_err().subject(), Some("angle"));
+        assert_eq!(Corner::new(p2(0.0, 0.0), p2(0.0, 0.0), p2(1.0, 0.0)).unwrap_err().subject(), Some("edge length"));
         // A right turn is a reflex (outside) corner for a CCW pocket.
         assert_eq!(
-            Corner::new(p2(0.0, 0.0), p2(1.0, 0.0), p2(0.0, -1.0)).unwrap_err().parameter(),
+            Corner::new(p2(0.0, 0.0), p2(1.0, 0.0), p2(0.0, -1.0)).unwrap_err().subject(),
             Some("corner angle")
         );
     }

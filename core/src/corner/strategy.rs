@@ -748,18 +748,18 @@ mod tests {
         for (s, name) in [
             (CornerSettings { step_over: 10.0, ..ok }, "step-over"),
             (CornerSettings { step_over: f64::NAN, ..ok }, "step-over"),
-            (CornerSettings { tool_radius: -1.0, ..ok }, "tool diameter"),
+            (CornerSettings { tool_radius: -1.0, ..ok }, "tool-diameter"),
             (CornerSettings { target: 0.0, ..ok }, "target"),
             (CornerSettings { feed_mm_per_min: 0.0, ..ok }, "feed"),
-            (CornerSettings { edge_length: 5.0, ..ok }, "edge length"),
+            (CornerSettings { edge_length: 5.0, ..ok }, "edge-length"),
         ] {
-            assert_eq!(s.validate().unwrap_err().parameter(), Some(name));
+            assert_eq!(s.validate().unwrap_err().subject(), Some(name));
         }
         // Target not above the straight-part engagement: no first circle exists.
         let flat = CornerSettings { target: straight_engagement(1.5, 5.0).unwrap(), ..ok };
-        assert_eq!(first_circle_radius(&flat).unwrap_err().parameter(), Some("target"));
+        assert_eq!(first_circle_radius(&flat).unwrap_err().subject(), Some("target"));
         // A 5° corner with 100 mm walls cannot be entered by a 10 mm tool.
         let e = CornerScenario::new(Corner::symmetric(5f64.to_radians()).unwrap(), ok).unwrap_err();
-        assert_eq!(e.parameter(), Some("corner angle"), "{e}");
+        assert_eq!(e.subject(), Some("angle"), "{e}");
     }
 }

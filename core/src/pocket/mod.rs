@@ -301,6 +301,6 @@ mod tests {
         let checked = Polygon::new(req.polygon.vertices().to_vec()).expect("valid");
         assert_eq!(checked, req.polygon);
         let bad = PocketRequest { strategy: PocketStrategy::Rings(CornerMethod::MedialAxis), ..req };
-        assert_eq!(plan(&bad).expect_err("rejected").parameter(), Some("method"));
+        assert_eq!(plan(&bad).expect_err("rejected").subject(), Some("method"));
     }
 }
