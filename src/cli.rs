@@ -5,14 +5,15 @@ use crate::files::{read_input, write_atomic};
 // Pocket-corner commands (issue #5) live in their own file next to this one.
 #[path = "corner_cmd.rs"]
 mod corner_cmd;
-use clap::builder::{PossibleValuesParser, TypedValueParser};
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use trochoplan_core::plan::engagement_limited_step;
 use trochoplan_core::quantity::{self, METRICS, Metric, SERIES};
 use trochoplan_core::sweep::{self, SweepParam};
-use trochoplan_core::{Job, JobError, PathKind, Plan, plan};
+use trochoplan_core::job::teeth_error;
+use trochoplan_core::{Job, PathKind, Plan, plan};
 
 #[derive(Parser)]
 #[command(name = "trochoplan", version, about = "Trochoidal milling planner (no subcommand: open the GUI)")]
@@ -39,7 +40,7 @@ enum Command {
         #[command(flatten)]
         job: JobArgs,
         /// The parameter to vary.
-        #[arg(long, value_parser = names_parser(SweepParam::ALL.map(SweepParam::name), SweepParam::from_name))]
+        #[arg(long, value_parser = core_names(&SweepParam::ALL, SweepParam::name, None))]
         param: SweepParam,
         /// First value.
         #[arg(long, allow_hyphen_values = true)]
@@ -48,8 +49,8 @@ enum Command {
         #[arg(long, allow_hyphen_values = true)]
         to: f64,
         /// Number of values from `from` to `to`, both included.
-        #[arg(long)]
-        steps: usize,
+        #[arg(long, allow_hyphen_values = true)]
+        steps: i64,
     },
     /// Write the NC program of one job (LinuxCNC, Fanuc-style ISO, GRBL or Sinumerik).
     Export {
@@ -77,13 +78,23 @@ enum Command {
     },
 }
 
-/// Parser of a core enum given by name: `names` are the possible values (listed by `--help`
-/// and in errors), `parse` the core's `from_name`.
-pub fn names_parser<T: Clone + Send + Sync + 'static>(
-    names: impl IntoIterator<Item = &'static str>,
-    parse: fn(&str) -> Result<T, JobError>,
+/// The value parser of every core enum given by name: `all` its values, `name` the core's name
+/// of each (listed by `--help` and in errors), `help` an optional help line per value (then
+/// `--help` lists each value on its own line with it).
+pub fn core_names<T: Copy + Send + Sync + 'static>(
+    all: &'static [T],
+    name: fn(T) -> &'static str,
+    help: Option<fn(T) -> &'static str>,
 ) -> impl TypedValueParser<Value = T> {
-    PossibleValuesParser::new(names).try_map(move |s: String| parse(&s))
+    let values = all.iter().map(move |&v| {
+        let value = PossibleValue::new(name(v));
+        match help {
+            Some(help) => value.help(help(v)),
+            None => value,
+        }
+    });
+    PossibleValuesParser::new(values)
+        .try_map(move |s: String| all.iter().copied().find(|&v| name(v) == s).ok_or("not one of the listed values"))
 }
 
 /// Job flags: each overrides the job file, which overrides the defaults (paper Table 1).
@@ -93,7 +104,7 @@ pub struct JobArgs {
     #[arg(long, value_name = "FILE.toml")]
     job: Option<PathBuf>,
     /// Path type.
-    #[arg(long, value_parser = names_parser(PathKind::ALL.map(PathKind::name), PathKind::from_name))]
+    #[arg(long, value_parser = core_names(&PathKind::ALL, PathKind::name, None))]
     path: Option<PathKind>,
     /// Slot width B (mm).
     #[arg(long, value_name = "MM", allow_hyphen_values = true)]
@@ -108,8 +119,9 @@ pub struct JobArgs {
     #[arg(long, value_name = "MM", allow_hyphen_values = true)]
     tool_diameter: Option<f64>,
     /// Number of teeth z.
-    #[arg(long, value_name = "N")]
-    teeth: Option<u32>,
+    // signed, so that `--teeth -1` gets the core's message, not clap's
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    teeth: Option<i64>,
     /// Tool-centre feed rate f_r (mm/min).
     #[arg(long, value_name = "MM_PER_MIN", allow_hyphen_values = true)]
     feed: Option<f64>,
@@ -155,7 +167,7 @@ impl JobArgs {
         set(&mut job.aspect_ratio, self.aspect_ratio);
         set(&mut job.linear_distance, self.linear_distance);
         if let Some(t) = self.teeth {
-            job.teeth = t;
+            job.teeth = u32::try_from(t).map_err(|_| teeth_error(t).to_string())?;
         }
         Ok(job)
     }
@@ -244,7 +256,8 @@ const COLUMNS: [&Metric; 10] = [
 ];
 
 /// The sweep table: one row per value, under the core's sweep rules ([`sweep`]).
-fn sweep(mut job: Job, param: SweepParam, from: f64, to: f64, steps: usize) -> Result<String, String> {
+fn sweep(mut job: Job, param: SweepParam, from: f64, to: f64, steps: i64) -> Result<String, String> {
+    let steps = usize::try_from(steps).map_err(|_| sweep::steps_error(steps).to_string())?;
     let values = sweep::values(from, to, steps).map_err(|e| e.to_string())?;
     job.path = param
         .path_for(job.path)

@@ -4,10 +4,10 @@
 
 use crate::files::{read_input, write_atomic};
 use clap::Args;
-use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use serde::Serialize;
 use std::path::PathBuf;
-use trochoplan_core::JobError;
+use super::core_names;
+use trochoplan_core::{Error, Param};
 use trochoplan_core::corner::acceptance::{acceptance_table, markdown};
 use trochoplan_core::corner::{
     CornerMethod, CornerReport, CornerRequest, EngagementSample, EvaluatorOptions, engagement_profile, evaluate,
@@ -21,17 +21,6 @@ use trochoplan_core::pocket::{
     self, LinkKind, MoveKind, PerforativePlan, PocketPlan, PocketRequest, PocketStrategy, RingPlan,
 };
 
-/// A value parser accepting the core's names of an enum's values (`all`), each listed with its
-/// help line in `--help`.
-pub(crate) fn core_names<T: Copy + Send + Sync + 'static>(
-    all: &'static [T],
-    name: fn(T) -> &'static str,
-    help: fn(T) -> &'static str,
-) -> impl TypedValueParser<Value = T> {
-    PossibleValuesParser::new(all.iter().map(|&v| PossibleValue::new(name(v)).help(help(v))))
-        .try_map(move |s: String| all.iter().copied().find(|&v| name(v) == s).ok_or("not one of the listed values"))
-}
-
 /// Flags of `trochoplan corner` (defaults: [`CornerRequest::DEFAULT`]).
 #[derive(Args)]
 pub struct CornerArgs {
@@ -41,7 +30,7 @@ pub struct CornerArgs {
     /// Corner strategy.
     #[arg(
         long,
-        value_parser = core_names(&CornerMethod::ALL, CornerMethod::name, CornerMethod::help),
+        value_parser = core_names(&CornerMethod::ALL, CornerMethod::name, Some(CornerMethod::help)),
         default_value = CornerRequest::DEFAULT.method.name()
     )]
     method: CornerMethod,
@@ -113,7 +102,7 @@ pub struct CornerExportArgs {
     /// Controller dialect of --export.
     #[arg(
         long,
-        value_parser = super::names_parser(Dialect::ALL.map(Dialect::name), Dialect::from_name),
+        value_parser = core_names(&Dialect::ALL, Dialect::name, None),
         default_value = "linuxcnc",
         requires = "export"
     )]
@@ -174,7 +163,7 @@ pub struct PocketArgs {
     /// Corner strategy at the ring corners.
     #[arg(
         long,
-        value_parser = core_names(&PocketStrategy::ALL, PocketStrategy::name, PocketStrategy::help),
+        value_parser = core_names(&PocketStrategy::ALL, PocketStrategy::name, Some(PocketStrategy::help)),
         default_value = PocketRequest::default().strategy.name()
     )]
     method: PocketStrategy,
@@ -424,8 +413,10 @@ fn perforative_pocket_json(plan: &PerforativePlan, nc_export: Option<NcExportOut
     json_text(&out)
 }
 
-fn err(e: JobError) -> String {
-    e.to_string()
+/// The message of a core error with each parameter spelled as these commands' flags spell it:
+/// the NC tolerance is `--nc-tolerance` here (`--tolerance` is the bisection band).
+fn err(e: Error) -> String {
+    e.message(|p| if p == Param::Tolerance { "nc-tolerance" } else { p.cli_name() })
 }
 
 #[derive(Serialize)]
@@ -576,7 +567,7 @@ struct EngagementOut {
 
 /// `trochoplan engagement`: per-position engagement of a CSV tool path over a stock polygon.
 pub fn engagement(args: &EngagementArgs) -> Result<String, String> {
-    let d = finite("tool diameter", args.tool_diameter).map_err(err)?;
+    let d = finite(Param::ToolDiameter, args.tool_diameter).map_err(err)?;
     let what_path = args.path_csv.display().to_string();
     let what_stock = args.stock_polygon.display().to_string();
     let path = polyline(&parse_points(&read_input(&args.path_csv, "path file")?, &what_path).map_err(err)?)
@@ -667,10 +658,10 @@ mod tests {
         for (flags, name) in [
             (vec!["--step-over", "10"], "step-over"),
             (vec!["--step-over", "12"], "step-over"),
-            (vec!["--tool-diameter", "NaN"], "tool diameter"),
+            (vec!["--tool-diameter", "NaN"], "tool-diameter"),
             (vec!["--angle", "NaN"], "angle"),
-            (vec!["--angle", "3"], "corner angle"),
-            (vec!["--angle", "180"], "corner angle"),
+            (vec!["--angle", "3"], "angle"),
+            (vec!["--angle", "180"], "angle"),
             (vec!["--target", "40"], "target"),
         ] {
             let e = corner(&corner_args(&flags)).expect_err("must fail");
@@ -757,8 +748,8 @@ mod tests {
         assert!(v["max_engagement_deg"].as_f64().is_some_and(|m| (m - 180.0).abs() < 1e-3));
         for (flags, name) in [
             (vec!["--step-over", "10"], "step-over"),
-            (vec!["--tool-diameter", "NaN"], "tool diameter"),
-            (vec!["--tool-diameter", "50"], "tool diameter"),
+            (vec!["--tool-diameter", "NaN"], "tool-diameter"),
+            (vec!["--tool-diameter", "50"], "tool-diameter"),
         ] {
             let e = pocket(&args(&flags)).expect_err("must fail");
             assert!(e.contains(name), "{flags:?}: {e}");

@@ -1,7 +1,7 @@
 //! `trochoplan export`: the NC program of one job, written atomically (temporary file, then
 //! rename), so an existing program is never left half-written.
 
-use crate::cli::names_parser;
+use crate::cli::core_names;
 use crate::files::write_atomic;
 use clap::Args;
 use std::path::PathBuf;
@@ -12,7 +12,7 @@ use trochoplan_core::{Job, plan};
 #[derive(Args)]
 pub struct ExportArgs {
     /// Controller dialect.
-    #[arg(long, value_parser = names_parser(Dialect::ALL.map(Dialect::name), Dialect::from_name))]
+    #[arg(long, value_parser = core_names(&Dialect::ALL, Dialect::name, None))]
     dialect: Dialect,
     /// Loop form (LinuxCNC O-word while loop, Sinumerik R-parameter loop).
     #[arg(long)]

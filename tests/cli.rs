@@ -143,6 +143,79 @@ fn bad_input_names_the_parameter_and_exits_non_zero() {
     }
 }
 
+/// Issue #13 "Messages": the flag as typed, the value short, the allowed range.
+fn fails_with(args: &[&str], message: &str) {
+    let (ok, out, err) = run(args);
+    assert!(!ok && out.is_empty(), "{args:?} must fail: {out}");
+    assert_eq!(err, format!("trochoplan: {message}\n"), "{args:?}");
+}
+
+#[test]
+fn negative_counts_get_the_core_message_not_clap_unexpected_argument() {
+    fails_with(&["analyze", "--teeth", "-1"], "invalid teeth = -1: must be a whole number from 1 to 64");
+    fails_with(
+        &["sweep", "--param", "step", "--from", "0.5", "--to", "1", "--steps", "-1"],
+        "invalid steps = -1: must be a whole number from 1 to 10000",
+    );
+}
+
+#[test]
+fn a_tiny_slot_width_blames_the_slot_width() {
+    fails_with(
+        &["analyze", "--slot-width", "1e-10"],
+        "invalid slot-width = 1e-10: must be a finite number from 0.01 to 100000 mm",
+    );
+}
+
+#[test]
+fn numbers_in_messages_are_short() {
+    fails_with(
+        &["analyze", "--slot-width", "1e308"],
+        "invalid slot-width = 1e308: must be a finite number from 0.01 to 100000 mm",
+    );
+    fails_with(
+        &["analyze", "--engagement-limit", "1000.0000000000001"],
+        "invalid engagement-limit = 1000: must be between 0° and 180° (exclusive)",
+    );
+}
+
+#[test]
+fn corner_messages_name_the_flag_the_user_typed() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let nc = dir.path().join("c.ngc");
+    let nc = nc.to_str().expect("utf8");
+    fails_with(
+        &["corner", "--nc-tolerance", "0", "--export", nc],
+        "invalid nc-tolerance = 0: must be from 0.0001 to 1 mm",
+    );
+    fails_with(
+        &["corner", "--tool-diameter", "1e-9"],
+        "invalid tool-diameter = 1e-9: must be a finite number from 0.01 to 1000 mm",
+    );
+}
+
+#[test]
+fn engagement_names_the_tool_diameter_as_typed() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let (path, stock) = (dir.path().join("p.csv"), dir.path().join("s.txt"));
+    std::fs::write(&path, "x,y\n-20,0\n20,0\n").expect("write");
+    std::fs::write(&stock, "-50,2.5\n50,2.5\n50,40\n-50,40\n").expect("write");
+    let (p, s) = (path.to_str().expect("utf8"), stock.to_str().expect("utf8"));
+    fails_with(
+        &["engagement", "--path-csv", p, "--stock-polygon", s, "--tool-diameter", "-10"],
+        "invalid tool-diameter = -10: must be a finite number > 0 mm",
+    );
+}
+
+#[test]
+fn a_polygon_parse_error_names_the_polygon_file_not_a_job_file() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let poly = dir.path().join("rect.txt");
+    std::fs::write(&poly, "0,0\n60,0\nx,40\n0,40\n").expect("write");
+    let p = poly.to_str().expect("utf8");
+    fails_with(&["pocket", "--polygon", p], &format!("{p} line 3: expected two numbers x,y, got \"x,40\""));
+}
+
 #[test]
 fn corrupt_job_file_is_a_clear_error() {
     let dir = tempfile::tempdir().expect("tempdir");

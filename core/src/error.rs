@@ -1,36 +1,363 @@
-//! Typed errors: every rejection names the parameter, its value and the allowed range.
+//! Typed errors: every rejection names the parameter (by its command-line flag), its value and
+//! the allowed range; geometry failures and NC-writer invariants have their own variants.
 
-use thiserror::Error;
+use std::fmt;
 
-/// Why a job cannot be planned.
-#[derive(Debug, Clone, PartialEq, Error)]
-pub enum JobError {
-    /// A parameter is outside its allowed range.
-    #[error("invalid {name} = {value}: must be {allowed}")]
-    OutOfRange {
-        /// Parameter name as used in job files and on the command line.
-        name: &'static str,
-        /// The rejected value, as given.
+/// Every parameter a user gives, by the spelling of its command-line flag (without `--`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Param {
+    /// `--job`: the job file.
+    Job,
+    Path,
+    SlotWidth,
+    SlotLength,
+    Depth,
+    ToolDiameter,
+    Teeth,
+    Feed,
+    Rpm,
+    Step,
+    AspectRatio,
+    LinearDistance,
+    /// `analyze --engagement-limit`.
+    EngagementLimit,
+    /// `sweep --param`.
+    SweepParam,
+    From,
+    To,
+    Steps,
+    Dialect,
+    Compact,
+    /// NC fit tolerance: `export --tolerance`, `corner|pocket --nc-tolerance`.
+    Tolerance,
+    ReturnFeed,
+    /// Safe height of the NC program (GUI only).
+    SafeZ,
+    /// Tool number of the NC program (GUI only).
+    ToolNumber,
+    Title,
+    /// `corner --angle`.
+    Angle,
+    /// Corner or pocket strategy.
+    Method,
+    StepOver,
+    StraightEngagement,
+    /// Target engagement a*.
+    Target,
+    /// Allowed excess over the straight-part engagement (Wu et al. eq. 23).
+    T1,
+    /// Bisection acceptance band ε (`corner --tolerance`).
+    Band,
+    EdgeLength,
+    IsometricRadius,
+    Spacing,
+    /// `pocket --polygon`: the pocket boundary file.
+    Polygon,
+    /// `engagement --stock-polygon`.
+    StockPolygon,
+    /// `engagement --path-csv`.
+    PathCsv,
+}
+
+impl Param {
+    /// Every parameter.
+    pub const ALL: [Param; 37] = [
+        Param::Job,
+        Param::Path,
+        Param::SlotWidth,
+        Param::SlotLength,
+        Param::Depth,
+        Param::ToolDiameter,
+        Param::Teeth,
+        Param::Feed,
+        Param::Rpm,
+        Param::Step,
+        Param::AspectRatio,
+        Param::LinearDistance,
+        Param::EngagementLimit,
+        Param::SweepParam,
+        Param::From,
+        Param::To,
+        Param::Steps,
+        Param::Dialect,
+        Param::Compact,
+        Param::Tolerance,
+        Param::ReturnFeed,
+        Param::SafeZ,
+        Param::ToolNumber,
+        Param::Title,
+        Param::Angle,
+        Param::Method,
+        Param::StepOver,
+        Param::StraightEngagement,
+        Param::Target,
+        Param::T1,
+        Param::Band,
+        Param::EdgeLength,
+        Param::IsometricRadius,
+        Param::Spacing,
+        Param::Polygon,
+        Param::StockPolygon,
+        Param::PathCsv,
+    ];
+
+    /// The command-line flag without `--` (also the job-file key). The NC tolerance and the
+    /// corner's bisection band are both `tolerance`: `corner` and `pocket` spell the NC one
+    /// `nc-tolerance` (their front end maps it).
+    pub const fn cli_name(self) -> &'static str {
+        match self {
+            Param::Job => "job",
+            Param::Path => "path",
+            Param::SlotWidth => "slot-width",
+            Param::SlotLength => "slot-length",
+            Param::Depth => "depth",
+            Param::ToolDiameter => "tool-diameter",
+            Param::Teeth => "teeth",
+            Param::Feed => "feed",
+            Param::Rpm => "rpm",
+            Param::Step => "step",
+            Param::AspectRatio => "aspect-ratio",
+            Param::LinearDistance => "linear-distance",
+            Param::EngagementLimit => "engagement-limit",
+            Param::SweepParam => "param",
+            Param::From => "from",
+            Param::To => "to",
+            Param::Steps => "steps",
+            Param::Dialect => "dialect",
+            Param::Compact => "compact",
+            Param::Tolerance | Param::Band => "tolerance",
+            Param::ReturnFeed => "return-feed",
+            Param::SafeZ => "safe-z",
+            Param::ToolNumber => "tool-number",
+            Param::Title => "title",
+            Param::Angle => "angle",
+            Param::Method => "method",
+            Param::StepOver => "step-over",
+            Param::StraightEngagement => "straight-engagement",
+            Param::Target => "target",
+            Param::T1 => "t1",
+            Param::EdgeLength => "edge-length",
+            Param::IsometricRadius => "isometric-radius",
+            Param::Spacing => "spacing",
+            Param::Polygon => "polygon",
+            Param::StockPolygon => "stock-polygon",
+            Param::PathCsv => "path-csv",
+        }
+    }
+
+    /// Label for people (GUI field names, also their accessible names).
+    pub const fn label(self) -> &'static str {
+        match self {
+            Param::Job => "Job file",
+            Param::Path => "Path type",
+            Param::SlotWidth => "Slot width B",
+            Param::SlotLength => "Slot length L",
+            Param::Depth => "Depth a_p",
+            Param::ToolDiameter => "Tool diameter D",
+            Param::Teeth => "Teeth z",
+            Param::Feed => "Feed f_r",
+            Param::Rpm => "Spindle n",
+            Param::Step => "Step s",
+            Param::AspectRatio => "Aspect ratio r_e",
+            Param::LinearDistance => "Linear distance d",
+            Param::EngagementLimit => "Engagement limit",
+            Param::SweepParam => "Swept parameter",
+            Param::From => "From",
+            Param::To => "To",
+            Param::Steps => "Steps",
+            Param::Dialect => "Dialect",
+            Param::Compact => "Compact loop form",
+            Param::Tolerance => "NC tolerance",
+            Param::ReturnFeed => "Return feed",
+            Param::SafeZ => "Safe Z",
+            Param::ToolNumber => "Tool number",
+            Param::Title => "Title",
+            Param::Angle => "Corner angle",
+            Param::Method => "Method",
+            Param::StepOver => "Step-over a_e",
+            Param::StraightEngagement => "Straight engagement",
+            Param::Target => "Target engagement a*",
+            Param::T1 => "Allowed excess t1",
+            Param::Band => "Bisection band ε",
+            Param::EdgeLength => "Edge length",
+            Param::IsometricRadius => "Isometric radius rh",
+            Param::Spacing => "Spacing",
+            Param::Polygon => "Pocket polygon",
+            Param::StockPolygon => "Stock polygon",
+            Param::PathCsv => "Path CSV",
+        }
+    }
+}
+
+/// Why a job, a request or a program cannot be made.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Error {
+    /// A user parameter is outside its allowed range.
+    Param {
+        param: Param,
+        /// The rejected value, as given (numbers through [`num`]).
         value: String,
         /// The allowed range, in words, with the limits computed for this job.
         allowed: String,
     },
-    /// A job file could not be read as a job.
-    #[error("job file: {0}")]
+    /// Every parameter is valid on its own but the geometry fails (a polygon that crosses
+    /// itself, a corner with no room for a circle, a medial axis that cannot be built).
+    Geometry { what: &'static str, value: String, allowed: String },
+    /// An invariant of the NC writer (a non-finite or huge coordinate, an arc whose written
+    /// radii differ, a path with gaps).
+    Nc { what: &'static str, value: String, allowed: String },
+    /// A job, polygon or CSV file that does not parse; the message names the file and line.
     File(String),
 }
 
-impl JobError {
-    /// Shorthand for [`JobError::OutOfRange`].
-    pub fn range(name: &'static str, value: impl ToString, allowed: impl Into<String>) -> JobError {
-        JobError::OutOfRange { name, value: value.to_string(), allowed: allowed.into() }
+impl Error {
+    /// A parameter error; `value` is shown through [`Shown`] (numbers short, see [`num`]).
+    pub fn param(param: Param, value: impl Shown, allowed: impl Into<String>) -> Error {
+        Error::Param { param, value: value.shown(), allowed: allowed.into() }
     }
 
-    /// The parameter this error is about, if any.
-    pub fn parameter(&self) -> Option<&'static str> {
+    /// A geometry error.
+    pub fn geometry(what: &'static str, value: impl Shown, allowed: impl Into<String>) -> Error {
+        Error::Geometry { what, value: value.shown(), allowed: allowed.into() }
+    }
+
+    /// An NC-writer error.
+    pub fn nc(what: &'static str, value: impl Shown, allowed: impl Into<String>) -> Error {
+        Error::Nc { what, value: value.shown(), allowed: allowed.into() }
+    }
+
+    /// What the message is about: a parameter's flag, a geometry or NC item (none for a file).
+    pub fn subject(&self) -> Option<&'static str> {
         match self {
-            JobError::OutOfRange { name, .. } => Some(name),
-            JobError::File(_) => None,
+            Error::Param { param, .. } => Some(param.cli_name()),
+            Error::Geometry { what, .. } | Error::Nc { what, .. } => Some(what),
+            Error::File(_) => None,
         }
+    }
+
+    /// The user parameter this error is about, if any.
+    pub fn parameter(&self) -> Option<Param> {
+        match self {
+            Error::Param { param, .. } => Some(*param),
+            _ => None,
+        }
+    }
+
+    /// The message with each parameter spelled by `flag` (a front end whose flag differs from
+    /// [`Param::cli_name`] passes its own spelling).
+    pub fn message(&self, flag: impl Fn(Param) -> &'static str) -> String {
+        match self {
+            Error::Param { param, value, allowed } => format!("invalid {} = {value}: must be {allowed}", flag(*param)),
+            Error::Geometry { what, value, allowed } | Error::Nc { what, value, allowed } => {
+                format!("invalid {what} = {value}: must be {allowed}")
+            }
+            Error::File(m) => m.clone(),
+        }
+    }
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.message(Param::cli_name))
+    }
+}
+
+impl std::error::Error for Error {}
+
+/// A number as messages show it: the shortest text that reads back to the value rounded to 12
+/// significant digits (`1000`, not `1000.0000000000001`), in scientific form outside
+/// 1e-4 ≤ |v| < 1e7 (`1e308`, `1e-10`); `NaN`, `inf` and `-inf` as such.
+pub fn num(v: f64) -> String {
+    if !v.is_finite() {
+        return v.to_string();
+    }
+    // `{:.11e}` keeps 12 significant digits; reading it back drops the binary noise beyond them.
+    let rounded: f64 = format!("{v:.11e}").parse().unwrap_or(v);
+    let a = rounded.abs();
+    if a == 0.0 || (1e-4..1e7).contains(&a) { format!("{}", rounded + 0.0) } else { format!("{rounded:e}") }
+}
+
+/// A value shown in a message: numbers through [`num`], whole numbers and text as they are.
+pub trait Shown {
+    fn shown(self) -> String;
+}
+
+impl Shown for f64 {
+    fn shown(self) -> String {
+        num(self)
+    }
+}
+
+impl Shown for &str {
+    fn shown(self) -> String {
+        self.to_owned()
+    }
+}
+
+impl Shown for String {
+    fn shown(self) -> String {
+        self
+    }
+}
+
+macro_rules! shown_as_text {
+    ($($t:ty),*) => {$(
+        impl Shown for $t {
+            fn shown(self) -> String {
+                self.to_string()
+            }
+        }
+    )*};
+}
+shown_as_text!(u32, u64, usize, i64, bool);
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_are_short() {
+        for (v, text) in [
+            (1000.0000000000001, "1000"),
+            (25.0, "25"),
+            (-1.0, "-1"),
+            (0.1 + 0.2, "0.3"),
+            (1e308, "1e308"),
+            (1e-10, "1e-10"),
+            (-1e-9, "-1e-9"),
+            (1.5e7, "1.5e7"),
+            (9999999.0, "9999999"),
+            (0.0001, "0.0001"),
+            (0.0, "0"),
+            (-0.0, "0"),
+            (f64::NAN, "NaN"),
+            (f64::INFINITY, "inf"),
+            (f64::NEG_INFINITY, "-inf"),
+            (0.075, "0.075"),
+            (9.440936402239302, "9.44093640224"),
+        ] {
+            assert_eq!(num(v), text, "{v:?}");
+        }
+    }
+
+    #[test]
+    fn every_parameter_has_one_flag_and_a_label() {
+        let mut seen = std::collections::HashSet::new();
+        for p in Param::ALL {
+            assert!(seen.insert(p), "{p:?} listed twice");
+            assert!(!p.cli_name().is_empty() && !p.label().is_empty());
+            assert!(p.cli_name().chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-'));
+        }
+    }
+
+    #[test]
+    fn message_names_the_flag() {
+        let e = Error::param(Param::Tolerance, 0.0, "from 0.0001 to 1 mm");
+        assert_eq!(e.to_string(), "invalid tolerance = 0: must be from 0.0001 to 1 mm");
+        let nc = |p: Param| if p == Param::Tolerance { "nc-tolerance" } else { p.cli_name() };
+        assert_eq!(e.message(nc), "invalid nc-tolerance = 0: must be from 0.0001 to 1 mm");
+        assert_eq!(e.parameter(), Some(Param::Tolerance));
+        assert_eq!(Error::geometry("polygon", "x", "y").parameter(), None);
     }
 }

@@ -6,7 +6,7 @@
 //! Defaults are the paper's Table 1 conditions (a_p = 6 mm from its section 4) with r_e = 1
 //! and a 20 mm long slot.
 
-use crate::error::JobError;
+use crate::error::{Error, Param, num};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
@@ -75,11 +75,11 @@ impl PathKind {
     }
 
     /// Parse a CLI / job-file name.
-    pub fn from_name(s: &str) -> Result<PathKind, JobError> {
+    pub fn from_name(s: &str) -> Result<PathKind, Error> {
         PathKind::ALL
             .into_iter()
             .find(|k| k.name() == s)
-            .ok_or_else(|| JobError::range("path", s, "one of circular, circular-type, elliptical, linear-elliptical"))
+            .ok_or_else(|| Error::param(Param::Path, s, "one of circular, circular-type, elliptical, linear-elliptical"))
     }
 
     /// Whether the aspect ratio r_e shapes this path.
@@ -144,6 +144,9 @@ pub mod limits {
     pub const MAX_CYCLES: f64 = 1.0e6;
     /// Largest dimension accepted (mm).
     pub const MAX_SIZE_MM: f64 = 1.0e5;
+    /// Smallest slot width, depth and tool diameter accepted (mm): below it a
+    /// value is a typing error, and the message must blame it, not the next check it breaks.
+    pub const MIN_SIZE_MM: f64 = 0.01;
     /// Smallest feed per tooth (mm): keeps a cycle below ~10⁶ tooth positions.
     pub const MIN_FZ: f64 = 1.0e-4;
     /// Most teeth.
@@ -176,53 +179,73 @@ pub struct ValidJob {
     pub linear_distance: f64,
 }
 
-fn positive(name: &'static str, v: f64, max: f64) -> Result<f64, JobError> {
+fn positive(param: Param, v: f64, max: f64) -> Result<f64, Error> {
     if v.is_finite() && v > 0.0 && v <= max {
         Ok(v)
     } else {
-        Err(JobError::range(name, v, format!("a finite number > 0 and ≤ {max}")))
+        Err(Error::param(param, v, format!("a finite number > 0 and ≤ {}", num(max))))
     }
+}
+
+/// A length of the job: from [`limits::MIN_SIZE_MM`] to [`limits::MAX_SIZE_MM`].
+fn size(param: Param, v: f64) -> Result<f64, Error> {
+    use limits::{MAX_SIZE_MM, MIN_SIZE_MM};
+    if v.is_finite() && (MIN_SIZE_MM..=MAX_SIZE_MM).contains(&v) {
+        Ok(v)
+    } else {
+        Err(Error::param(param, v, format!("a finite number from {} to {} mm", num(MIN_SIZE_MM), num(MAX_SIZE_MM))))
+    }
+}
+
+/// The error of a tooth count `z` outside 1…[`limits::MAX_TEETH`] (also for a negative count
+/// typed on the command line).
+pub fn teeth_error(z: i64) -> Error {
+    Error::param(Param::Teeth, z, format!("a whole number from 1 to {}", limits::MAX_TEETH))
 }
 
 impl Job {
     /// Check every parameter once; the error names the first bad one, its value and range.
-    pub fn validate(&self) -> Result<ValidJob, JobError> {
+    pub fn validate(&self) -> Result<ValidJob, Error> {
         use limits::*;
-        let b_w = positive("slot-width", self.slot_width, MAX_SIZE_MM)?;
-        let len = positive("slot-length", self.slot_length, MAX_SIZE_MM)?;
-        let depth = positive("depth", self.depth, MAX_SIZE_MM)?;
-        let d_t = positive("tool-diameter", self.tool_diameter, MAX_SIZE_MM)?;
+        let b_w = size(Param::SlotWidth, self.slot_width)?;
+        let len = positive(Param::SlotLength, self.slot_length, MAX_SIZE_MM)?;
+        let depth = size(Param::Depth, self.depth)?;
+        let d_t = size(Param::ToolDiameter, self.tool_diameter)?;
         if d_t >= b_w {
-            return Err(JobError::range("tool-diameter", d_t, format!("smaller than the slot width {b_w} mm")));
+            return Err(Error::param(
+                Param::ToolDiameter,
+                d_t,
+                format!("smaller than the slot width {} mm", num(b_w)),
+            ));
         }
         if d_t < b_w / 2.0 {
-            return Err(JobError::range(
-                "tool-diameter",
+            return Err(Error::param(
+                Param::ToolDiameter,
                 d_t,
                 format!(
                     "at least half the slot width ({} mm): with a = (B − D)/2 larger than the tool \
                      radius each loop would leave an uncut island",
-                    b_w / 2.0
+                    num(b_w / 2.0)
                 ),
             ));
         }
         if self.teeth == 0 || self.teeth > MAX_TEETH {
-            return Err(JobError::range("teeth", self.teeth, format!("a whole number from 1 to {MAX_TEETH}")));
+            return Err(teeth_error(i64::from(self.teeth)));
         }
-        let feed = positive("feed", self.feed, 1.0e6)?;
-        let rpm = positive("rpm", self.rpm, 1.0e6)?;
-        let step = positive("step", self.step, MAX_SIZE_MM)?;
+        let feed = positive(Param::Feed, self.feed, 1.0e6)?;
+        let rpm = positive(Param::Rpm, self.rpm, 1.0e6)?;
+        let step = positive(Param::Step, self.step, MAX_SIZE_MM)?;
         if step >= d_t {
-            return Err(JobError::range("step", step, format!("smaller than the tool diameter {d_t} mm")));
+            return Err(Error::param(Param::Step, step, format!("smaller than the tool diameter {} mm", num(d_t))));
         }
         if len < step {
-            return Err(JobError::range("slot-length", len, format!("at least one step ({step} mm)")));
+            return Err(Error::param(Param::SlotLength, len, format!("at least one step ({} mm)", num(step))));
         }
         if len / step > MAX_CYCLES {
-            return Err(JobError::range(
-                "step",
+            return Err(Error::param(
+                Param::Step,
                 step,
-                format!("at least slot-length / {MAX_CYCLES} = {} mm", len / MAX_CYCLES),
+                format!("at least slot-length / {} = {} mm", num(MAX_CYCLES), num(len / MAX_CYCLES)),
             ));
         }
         let a = (b_w - d_t) / 2.0;
@@ -230,32 +253,34 @@ impl Job {
         // 1e300 were accepted with `--path circular`).
         let (lo, hi) = ASPECT_RATIO;
         if !(self.aspect_ratio.is_finite() && self.aspect_ratio >= lo && self.aspect_ratio <= hi) {
-            return Err(JobError::range("aspect-ratio", self.aspect_ratio, format!("from {lo} to {hi}")));
+            return Err(Error::param(Param::AspectRatio, self.aspect_ratio, format!("from {} to {}", num(lo), num(hi))));
         }
         let v = self.linear_distance;
         if !(v.is_finite() && v >= 0.0 && v <= b_w) {
-            return Err(JobError::range("linear-distance", v, format!("from 0 to the slot width {b_w} mm")));
+            return Err(Error::param(Param::LinearDistance, v, format!("from 0 to the slot width {} mm", num(b_w))));
         }
         let r_e = if self.path.uses_aspect_ratio() { self.aspect_ratio } else { 1.0 };
         // The loop must keep turning one way (b > s/2π), else eq. (1) has no loop.
         let b = r_e * a;
         if step >= 0.5 * TAU * b {
-            return Err(JobError::range(
-                "step",
+            return Err(Error::param(
+                Param::Step,
                 step,
-                format!("smaller than π·b = {} mm (b = r_e·a), so that each cycle is a loop", 0.5 * TAU * b),
+                format!("smaller than π·b = {} mm (b = r_e·a), so that each cycle is a loop", num(0.5 * TAU * b)),
             ));
         }
         let d = if self.path == PathKind::LinearElliptical { v } else { 0.0 };
         let f_z = feed / (rpm * f64::from(self.teeth));
         if f_z < MIN_FZ || f_z > d_t / 8.0 {
-            return Err(JobError::range(
-                "feed",
+            return Err(Error::param(
+                Param::Feed,
                 feed,
                 format!(
-                    "such that the feed per tooth f_z = feed/(rpm·teeth) is from {MIN_FZ} to D/8 = {} mm \
-                     (now {f_z} mm)",
-                    d_t / 8.0
+                    "such that the feed per tooth f_z = feed/(rpm·teeth) is from {} to D/8 = {} mm \
+                     (now {} mm)",
+                    num(MIN_FZ),
+                    num(d_t / 8.0),
+                    num(f_z)
                 ),
             ));
         }
@@ -275,8 +300,8 @@ impl Job {
     }
 
     /// Read a job from TOML text (missing keys take the defaults).
-    pub fn from_toml(text: &str) -> Result<Job, JobError> {
-        toml::from_str(text).map_err(|e| JobError::File(e.to_string()))
+    pub fn from_toml(text: &str) -> Result<Job, Error> {
+        toml::from_str(text).map_err(|e| Error::File(format!("job file: {e}")))
     }
 
     /// The job as TOML text.
@@ -319,34 +344,38 @@ mod tests {
 
     #[test]
     fn errors_name_the_parameter() {
-        let cases: [(Job, &str); 9] = [
-            (Job { slot_width: -1.0, ..Job::default() }, "slot-width"),
-            (Job { tool_diameter: 25.0, ..Job::default() }, "tool-diameter"),
-            (Job { tool_diameter: 8.0, ..Job::default() }, "tool-diameter"),
-            (Job { teeth: 0, ..Job::default() }, "teeth"),
-            (Job { step: 10.0, ..Job::default() }, "step"),
-            (Job { step: f64::NAN, ..Job::default() }, "step"),
-            (Job { slot_length: 0.5, ..Job::default() }, "slot-length"),
-            (Job { path: PathKind::Elliptical, aspect_ratio: 0.0, ..Job::default() }, "aspect-ratio"),
-            (Job { feed: f64::INFINITY, ..Job::default() }, "feed"),
+        let cases: [(Job, Param); 12] = [
+            // issue #13: a tiny slot blames the slot, not the tool that no longer fits
+            (Job { slot_width: 1e-10, ..Job::default() }, Param::SlotWidth),
+            (Job { tool_diameter: 1e-9, ..Job::default() }, Param::ToolDiameter),
+            (Job { depth: 0.001, ..Job::default() }, Param::Depth),
+            (Job { slot_width: -1.0, ..Job::default() }, Param::SlotWidth),
+            (Job { tool_diameter: 25.0, ..Job::default() }, Param::ToolDiameter),
+            (Job { tool_diameter: 8.0, ..Job::default() }, Param::ToolDiameter),
+            (Job { teeth: 0, ..Job::default() }, Param::Teeth),
+            (Job { step: 10.0, ..Job::default() }, Param::Step),
+            (Job { step: f64::NAN, ..Job::default() }, Param::Step),
+            (Job { slot_length: 0.5, ..Job::default() }, Param::SlotLength),
+            (Job { path: PathKind::Elliptical, aspect_ratio: 0.0, ..Job::default() }, Param::AspectRatio),
+            (Job { feed: f64::INFINITY, ..Job::default() }, Param::Feed),
         ];
         // issue #13: values the path ignores are checked too
-        let ignored: [(Job, &str); 6] = [
-            (Job { path: PathKind::Circular, aspect_ratio: f64::NAN, ..Job::default() }, "aspect-ratio"),
-            (Job { path: PathKind::Circular, aspect_ratio: -5.0, ..Job::default() }, "aspect-ratio"),
-            (Job { path: PathKind::CircularType, aspect_ratio: 0.0, ..Job::default() }, "aspect-ratio"),
-            (Job { path: PathKind::Circular, aspect_ratio: 1e300, ..Job::default() }, "aspect-ratio"),
+        let ignored: [(Job, Param); 6] = [
+            (Job { path: PathKind::Circular, aspect_ratio: f64::NAN, ..Job::default() }, Param::AspectRatio),
+            (Job { path: PathKind::Circular, aspect_ratio: -5.0, ..Job::default() }, Param::AspectRatio),
+            (Job { path: PathKind::CircularType, aspect_ratio: 0.0, ..Job::default() }, Param::AspectRatio),
+            (Job { path: PathKind::Circular, aspect_ratio: 1e300, ..Job::default() }, Param::AspectRatio),
             (
                 Job { path: PathKind::Elliptical, aspect_ratio: 0.8, linear_distance: f64::NAN, ..Job::default() },
-                "linear-distance",
+                Param::LinearDistance,
             ),
-            (Job { path: PathKind::Circular, linear_distance: -5.0, ..Job::default() }, "linear-distance"),
+            (Job { path: PathKind::Circular, linear_distance: -5.0, ..Job::default() }, Param::LinearDistance),
         ];
-        let cases: Vec<(Job, &str)> = cases.into_iter().chain(ignored).collect();
+        let cases: Vec<(Job, Param)> = cases.into_iter().chain(ignored).collect();
         for (job, name) in cases {
             let err = job.validate().expect_err("must be rejected");
             assert_eq!(err.parameter(), Some(name), "{err}");
-            assert!(err.to_string().contains(name), "{err}");
+            assert!(err.to_string().contains(name.cli_name()), "{err}");
         }
     }
 

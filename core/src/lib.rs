@@ -22,7 +22,7 @@
 //! - [`plan`]: [`plan()`] — job in, [`Plan`] out; used by the GUI and the CLI.
 //! - [`quantity`]: every metric and per-tooth series column as data (key, label, unit, source).
 //! - [`sweep`]: the swept parameters and their rules (which path, which values).
-//! - [`error`]: the [`JobError`] type.
+//! - [`error`]: the [`Error`] type and the [`Param`] names of every user parameter.
 
 pub mod analysis;
 pub mod corner;
@@ -36,6 +36,6 @@ pub mod pocket;
 pub mod quantity;
 pub mod sweep;
 
-pub use error::JobError;
+pub use error::{Error, Param};
 pub use job::{Job, PathKind, ValidJob};
 pub use plan::{Metrics, Plan, plan};

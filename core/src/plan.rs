@@ -1,7 +1,7 @@
 //! One entry point for the GUI and the CLI: job in, plan out.
 
 use crate::analysis::{self, PreviousEdge, ToothSample, Wall, WallProfile, chip_timing, tooth_series, wall_profile};
-use crate::error::JobError;
+use crate::error::{Error, Param, num};
 use crate::job::{Job, PathKind, ValidJob};
 use crate::path::{Cycle, SlotPath};
 use serde::Serialize;
@@ -93,7 +93,7 @@ impl Plan {
 }
 
 /// Validate `job`, build its path and analyse a steady-state cycle.
-pub fn plan(job: &Job) -> Result<Plan, JobError> {
+pub fn plan(job: &Job) -> Result<Plan, Error> {
     let job = job.validate()?;
     Ok(plan_valid(job))
 }
@@ -159,14 +159,18 @@ pub fn plan_valid(job: ValidJob) -> Plan {
 /// the job's path again for each trial step.
 ///
 /// [`step_for_engagement`]: analysis::step::step_for_engagement
-pub fn engagement_limited_step(job: &Job, limit_rad: f64) -> Result<f64, JobError> {
+pub fn engagement_limited_step(job: &Job, limit_rad: f64) -> Result<f64, Error> {
     if !(limit_rad.is_finite() && limit_rad > 0.0 && limit_rad < std::f64::consts::PI) {
-        return Err(JobError::range("engagement-limit", limit_rad.to_degrees(), "between 0° and 180° (exclusive)"));
+        return Err(Error::param(
+            Param::EngagementLimit,
+            num(limit_rad.to_degrees()),
+            "between 0° and 180° (exclusive)",
+        ));
     }
     let valid = job.validate()?;
     // Upper end: the validation limits for s (below D and below π·b).
     let hi_limit = valid.tool_diameter.min(std::f64::consts::PI * valid.b()) * 0.999;
-    let engagement = |s: f64| -> Result<f64, JobError> {
+    let engagement = |s: f64| -> Result<f64, Error> {
         // One cycle long: the steady-state engagement does not depend on the slot length, and
         // a trial step below slot-length / MAX_CYCLES must not be refused for it.
         let j = Job { step: s, slot_length: s, ..job.clone() }.validate()?;

@@ -2,7 +2,7 @@
 //! parameter, on which path type, over which values. The rules both front ends follow (the
 //! CLI's `sweep` command and the GUI's sweep panel).
 
-use crate::error::JobError;
+use crate::error::{Error, Param};
 use crate::job::{Job, PathKind};
 use crate::quantity::{self, Metric};
 use serde::{Deserialize, Serialize};
@@ -39,11 +39,11 @@ impl SweepParam {
     }
 
     /// Parse a CLI name.
-    pub fn from_name(s: &str) -> Result<SweepParam, JobError> {
+    pub fn from_name(s: &str) -> Result<SweepParam, Error> {
         SweepParam::ALL
             .into_iter()
             .find(|p| p.name() == s)
-            .ok_or_else(|| JobError::range("param", s, "one of aspect-ratio, linear-distance, step"))
+            .ok_or_else(|| Error::param(Param::SweepParam, s, "one of aspect-ratio, linear-distance, step"))
     }
 
     /// Axis label with unit.
@@ -116,16 +116,22 @@ impl SweepParam {
     }
 }
 
+/// The error of a value count `steps` outside 1…[`MAX_STEPS`] (also for a negative count
+/// typed on the command line).
+pub fn steps_error(steps: i64) -> Error {
+    Error::param(Param::Steps, steps, format!("a whole number from 1 to {MAX_STEPS}"))
+}
+
 /// The `steps` values from `from` to `to`, both included (`from` alone for one step), each
 /// rounded to 1e-9 so binary noise such as 0.7000000000000001 reads as typed. `steps` must be
 /// 1…[`MAX_STEPS`] and both ends finite.
-pub fn values(from: f64, to: f64, steps: usize) -> Result<Vec<f64>, JobError> {
+pub fn values(from: f64, to: f64, steps: usize) -> Result<Vec<f64>, Error> {
     if steps == 0 || steps > MAX_STEPS {
-        return Err(JobError::range("steps", steps, "a whole number from 1 to 10000"));
+        return Err(steps_error(steps as i64));
     }
-    for (name, v) in [("from", from), ("to", to)] {
+    for (param, v) in [(Param::From, from), (Param::To, to)] {
         if !v.is_finite() {
-            return Err(JobError::range(name, v, "a finite number"));
+            return Err(Error::param(param, v, "a finite number"));
         }
     }
     Ok((0..steps)
@@ -166,9 +172,10 @@ mod tests {
     fn values_are_checked_and_rounded() {
         assert_eq!(values(0.5, 1.2, 8).expect("valid")[2], 0.7);
         assert_eq!(values(0.5, 1.2, 1).expect("valid"), vec![0.5]);
-        assert_eq!(values(0.5, 1.0, 0).expect_err("zero").parameter(), Some("steps"));
-        assert_eq!(values(f64::NAN, 1.0, 2).expect_err("nan").parameter(), Some("from"));
-        assert_eq!(values(0.0, f64::INFINITY, 2).expect_err("inf").parameter(), Some("to"));
+        assert_eq!(values(0.5, 1.0, 0).expect_err("zero").parameter(), Some(Param::Steps));
+        assert_eq!(values(f64::NAN, 1.0, 2).expect_err("nan").parameter(), Some(Param::From));
+        assert_eq!(values(0.0, f64::INFINITY, 2).expect_err("inf").parameter(), Some(Param::To));
+        assert_eq!(steps_error(-1).to_string(), "invalid steps = -1: must be a whole number from 1 to 10000");
     }
 
     #[test]

@@ -220,7 +220,7 @@ fn tiny_step_over_is_rejected_before_planning() {
     for strategy in PocketStrategy::ALL {
         let req = PocketRequest { step_over_mm: 1e-4, strategy, ..PocketRequest::default() };
         let err = pocket::plan(&req).unwrap_err();
-        assert_eq!(err.parameter(), Some("step-over"), "{}: {err}", strategy.name());
+        assert_eq!(err.subject(), Some("step-over"), "{}: {err}", strategy.name());
         assert!(err.to_string().contains("at least"), "{err}");
     }
 }

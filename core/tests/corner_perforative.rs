@@ -205,10 +205,10 @@ fn a_neck_narrower_than_the_tool_splits_the_pocket() {
 #[test]
 fn bad_inputs_are_named() {
     let e = plan_perforative(&poly(RECT), settings(25.0, 5.0)).unwrap_err();
-    assert_eq!(e.parameter(), Some("tool diameter"), "{e}");
+    assert_eq!(e.subject(), Some("tool-diameter"), "{e}");
     assert!(e.to_string().contains("40.000"), "{e}");
     let e = plan_perforative(&poly(RECT), settings(R, 10.0)).unwrap_err();
-    assert_eq!(e.parameter(), Some("step-over"), "{e}");
+    assert_eq!(e.subject(), Some("step-over"), "{e}");
     let e = plan_perforative(&poly(RECT), settings(f64::NAN, 1.0)).unwrap_err();
     assert!(e.to_string().contains("tool"), "{e}");
 }

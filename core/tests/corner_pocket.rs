@@ -152,16 +152,16 @@ fn clockwise_input_gives_the_same_rings() {
 fn bad_input_gives_named_errors() {
     let pts = |v: &[(f64, f64)]| v.iter().map(|&(x, y)| p2(x, y)).collect::<Vec<_>>();
     let bow = Polygon::new(pts(&[(0.0, 0.0), (10.0, 10.0), (10.0, 0.0), (0.0, 10.0)])).unwrap_err();
-    assert_eq!(bow.parameter(), Some("polygon"), "{bow}");
+    assert_eq!(bow.subject(), Some("polygon"), "{bow}");
     assert!(bow.to_string().contains("edges #"), "{bow}");
     let dup = Polygon::new(pts(&[(0.0, 0.0), (10.0, 0.0), (10.0, 0.0), (0.0, 10.0)])).unwrap_err();
-    assert_eq!(dup.parameter(), Some("polygon edge length"), "{dup}");
+    assert_eq!(dup.subject(), Some("polygon edge length"), "{dup}");
     assert!(dup.to_string().contains("edge #2"), "{dup}");
     let nan = Polygon::new(pts(&[(0.0, 0.0), (f64::NAN, 0.0), (0.0, 10.0)])).unwrap_err();
-    assert_eq!(nan.parameter(), Some("polygon vertex"), "{nan}");
+    assert_eq!(nan.subject(), Some("polygon vertex"), "{nan}");
     assert!(nan.to_string().contains("#2"), "{nan}");
     let two = Polygon::new(pts(&[(0.0, 0.0), (10.0, 0.0)])).unwrap_err();
-    assert_eq!(two.parameter(), Some("polygon vertices"), "{two}");
+    assert_eq!(two.subject(), Some("polygon vertices"), "{two}");
 
     let rect = poly(&[(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)]);
     for (s, name) in [
@@ -169,17 +169,17 @@ fn bad_input_gives_named_errors() {
         (settings(10.0, 12.0), "step-over"),
         (settings(10.0, 0.0), "step-over"),
         (settings(10.0, f64::NAN), "step-over"),
-        (settings(f64::NAN, 4.0), "tool diameter"),
-        (settings(-2.0, 1.0), "tool diameter"),
+        (settings(f64::NAN, 4.0), "tool-diameter"),
+        (settings(-2.0, 1.0), "tool-diameter"),
         (PocketSettings { feed_mm_per_min: 0.0, ..settings(10.0, 4.0) }, "feed"),
     ] {
         let e = plan_rings(&rect, s, CornerMethod::Plain).unwrap_err();
-        assert_eq!(e.parameter(), Some(name), "{e}");
+        assert_eq!(e.subject(), Some(name), "{e}");
     }
     // A slot 8 mm wide is narrower than a 10 mm tool: the offset by r = 5 > 4 is empty.
     let narrow = poly(&[(0.0, 0.0), (60.0, 0.0), (60.0, 8.0), (0.0, 8.0)]);
     let e = plan_rings(&narrow, settings(10.0, 4.0), CornerMethod::Plain).unwrap_err();
-    assert_eq!(e.parameter(), Some("tool diameter"), "{e}");
+    assert_eq!(e.subject(), Some("tool-diameter"), "{e}");
 }
 
 #[test]
@@ -225,7 +225,7 @@ fn variable_circles_at_ring_corners_where_they_fit() {
     }
     // Medial axis is a whole-pocket strategy, not a ring-corner one.
     let e = plan_rings(&pocket, settings(10.0, ae), CornerMethod::MedialAxis).unwrap_err();
-    assert_eq!(e.parameter(), Some("method"), "{e}");
+    assert_eq!(e.subject(), Some("method"), "{e}");
 }
 
 // ---- links between rings ----

@@ -95,7 +95,7 @@ proptest! {
         prop_assert!(err.to_string().contains(name) || err.parameter().is_some(), "{err}");
         if which == 0 {
             // a bad slot width is reported as such (it is checked first)
-            prop_assert_eq!(err.parameter(), Some("slot-width"));
+            prop_assert_eq!(err.subject(), Some("slot-width"));
         }
     }
 
@@ -175,7 +175,7 @@ proptest! {
         let p = match plan(&job) {
             Ok(p) => p,
             Err(e) => {
-                let name = e.parameter().expect("a parameter error");
+                let name = e.parameter().expect("a parameter error").cli_name();
                 prop_assert!(e.to_string().contains(name), "{e}");
                 return Ok(());
             }

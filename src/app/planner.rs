@@ -4,7 +4,7 @@
 use super::panels::graphics::Graphics;
 use crate::worker::{Keep, Task, Worker};
 use std::time::Instant;
-use trochoplan_core::{Job, JobError, Plan, plan};
+use trochoplan_core::{Error, Job, Plan, plan};
 
 /// A plan and its plot data.
 #[derive(Clone)]
@@ -16,7 +16,7 @@ pub struct Planned {
 /// A request to the planning worker: the job and the cycles drawn.
 type PlanRequest = (Job, usize);
 /// Its answer: the plan (or error) and the time spent in the core and conversion (ms).
-type PlanAnswer = (Result<Planned, JobError>, f64);
+type PlanAnswer = (Result<Planned, Error>, f64);
 
 /// Plan `job` and convert it for drawing.
 fn plan_and_draw((job, cycles_shown): PlanRequest, task: &Task<PlanAnswer>) {
@@ -37,7 +37,7 @@ pub struct Planner {
     /// The last valid plan (kept while the job is invalid).
     pub last: Option<Planned>,
     /// Why the current job is invalid.
-    pub error: Option<JobError>,
+    pub error: Option<Error>,
     /// Number of plans requested from the core.
     pub replans: u64,
     /// Duration of the last plan (ms).

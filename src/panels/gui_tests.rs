@@ -8,7 +8,7 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use panels::compare;
 use std::path::Path;
-use trochoplan_core::JobError;
+use trochoplan_core::{Error, Param};
 
 /// Dialogs answering from fixed paths: tests never open a real dialog.
 struct FakeDialogs {
@@ -66,7 +66,7 @@ fn changing_the_step_in_the_ui_replans_and_updates_the_shown_metrics() {
     let mut h = harness();
     let before = metrics(&h);
     let replans = h.state().planner.replans;
-    h.get_by_role_and_label(Role::Slider, label::STEP).set_value_accesskit(0.7);
+    h.get_by_role_and_label(Role::Slider, Param::Step.label()).set_value_accesskit(0.7);
     h.run();
     let after = metrics(&h);
     assert!((h.state().state.job.step - 0.7).abs() < 1e-9, "job step {}", h.state().state.job.step);
@@ -86,7 +86,7 @@ fn lowering_the_aspect_ratio_moves_mrr_and_waviness_as_the_paper_describes() {
     h.run();
     assert_eq!(h.state().state.job.path, trochoplan_core::PathKind::Elliptical);
     let r1 = metrics(&h);
-    h.get_by_role_and_label(Role::Slider, label::ASPECT_RATIO).set_value_accesskit(0.5);
+    h.get_by_role_and_label(Role::Slider, Param::AspectRatio.label()).set_value_accesskit(0.5);
     h.run();
     let r05 = metrics(&h);
     assert!((r05.aspect_ratio - 0.5).abs() < 1e-9);
@@ -100,17 +100,17 @@ fn lowering_the_aspect_ratio_moves_mrr_and_waviness_as_the_paper_describes() {
 fn an_invalid_value_is_marked_at_the_field_and_the_last_plan_is_kept() {
     let mut h = harness();
     let before = metrics(&h);
-    h.get_by_role_and_label(Role::Slider, label::TOOL_DIAMETER).set_value_accesskit(25.0);
+    h.get_by_role_and_label(Role::Slider, Param::ToolDiameter.label()).set_value_accesskit(25.0);
     h.run();
     let app = h.state();
     assert_eq!(app.state.job.tool_diameter, 25.0);
     let err = app.planner.error.clone().expect("invalid job");
-    assert_eq!(err.parameter(), Some("tool-diameter"));
+    assert_eq!(err.parameter(), Some(Param::ToolDiameter));
     assert!(shows(&h, &err.to_string()), "the core's message is shown");
     assert!(shows(&h, "Job invalid: showing the last valid plan."));
     assert_eq!(metrics(&h), before, "last valid plan kept");
     // Still draws and recovers.
-    h.get_by_role_and_label(Role::Slider, label::TOOL_DIAMETER).set_value_accesskit(11.0);
+    h.get_by_role_and_label(Role::Slider, Param::ToolDiameter.label()).set_value_accesskit(11.0);
     h.run();
     assert!(h.state().planner.error.is_none());
     assert!((metrics(&h).a_mm - 4.5).abs() < 1e-12);
@@ -127,7 +127,7 @@ fn compare_mode_adds_variants_and_shows_percent_changes() {
     assert_eq!(h.state().variants.len(), 1);
     h.get_by_label(trochoplan_core::PathKind::Elliptical.label()).click();
     h.run();
-    h.get_by_role_and_label(Role::Slider, label::ASPECT_RATIO).set_value_accesskit(0.8);
+    h.get_by_role_and_label(Role::Slider, Param::AspectRatio.label()).set_value_accesskit(0.8);
     h.run();
     h.get_by_label("Pin current job").click();
     h.run();
@@ -150,13 +150,13 @@ fn undo_redo_and_open_save_through_the_dialog_trait() {
     let app =
         App::new(Job::default(), None, Box::new(FakeDialogs { open: Some(file.clone()), save: Some(file.clone()) }));
     let mut h = harness_with(app);
-    h.get_by_role_and_label(Role::Slider, label::STEP).set_value_accesskit(0.8);
+    h.get_by_role_and_label(Role::Slider, Param::Step.label()).set_value_accesskit(0.8);
     h.run();
     // Save as (fake dialog), edit, open again.
     h.state_mut().apply(Command::SaveAs, &egui::Context::default());
     let saved = std::fs::read_to_string(&file).expect("saved");
     assert!(saved.contains("step = 0.8"), "{saved}");
-    h.get_by_role_and_label(Role::Slider, label::STEP).set_value_accesskit(0.5);
+    h.get_by_role_and_label(Role::Slider, Param::Step.label()).set_value_accesskit(0.5);
     h.run();
     h.state_mut().apply(Command::Open, &egui::Context::default());
     h.run();
@@ -346,7 +346,7 @@ fn threaded_planner_delivers_the_newest_plan_and_validates_at_once() {
     assert!(!p.pending());
     assert!((p.last.as_ref().expect("plan").plan.metrics.step_mm - 0.7).abs() < 1e-12, "newest plan wins");
     assert!(!p.update(&Job { tool_diameter: 25.0, ..Job::default() }, 5), "invalid: nothing planned");
-    assert_eq!(p.error.as_ref().and_then(JobError::parameter), Some("tool-diameter"));
+    assert_eq!(p.error.as_ref().and_then(Error::parameter), Some(Param::ToolDiameter));
     assert!((p.last.as_ref().expect("plan").plan.metrics.step_mm - 0.7).abs() < 1e-12, "last valid plan kept");
 }
 

@@ -2,17 +2,7 @@
 //! which is how the GUI tests (`gui_tests.rs`, egui_kittest) find it. A constant is named after
 //! its text.
 
-// Parameter panel (the slot job).
-pub const SLOT_WIDTH: &str = "Slot width B";
-pub const SLOT_LENGTH: &str = "Slot length L";
-pub const DEPTH: &str = "Depth a_p";
-pub const TOOL_DIAMETER: &str = "Tool diameter D";
-pub const TEETH: &str = "Teeth z";
-pub const FEED: &str = "Feed f_r";
-pub const RPM: &str = "Spindle n";
-pub const STEP: &str = "Step s";
-pub const ASPECT_RATIO: &str = "Aspect ratio r_e";
-pub const LINEAR_DISTANCE: &str = "Linear distance d";
+// Parameter panel (the slot job): each field's label is the core's `Param::label`.
 
 // Export NC panel (the slot's program).
 pub const NC_TOLERANCE: &str = "NC tolerance";

@@ -16,7 +16,7 @@ use super::geometry::Corner;
 use super::method::CornerMethod;
 use super::request::{CornerRequest, measured, symmetric_scenario};
 use super::strategy::{CornerPlan, CornerSettings};
-use crate::error::JobError;
+use crate::error::{Error, Param};
 use serde::{Deserialize, Serialize};
 
 /// One row of the table (degrees, mm, s).
@@ -90,9 +90,9 @@ pub fn acceptance_row(
     method: CornerMethod,
     settings: CornerSettings,
     spacing: f64,
-) -> Result<AcceptanceRow, JobError> {
+) -> Result<AcceptanceRow, Error> {
     let rows = acceptance_rows_at(angle_deg, &[method], settings, spacing)?;
-    rows.into_iter().next().ok_or_else(|| JobError::range("method", "none", "one corner strategy"))
+    rows.into_iter().next().ok_or_else(|| Error::param(Param::Method, "none", "one corner strategy"))
 }
 
 /// The rows of several methods at one corner angle, in the order of `methods`: the plain ring
@@ -103,7 +103,7 @@ pub fn acceptance_rows_at(
     methods: &[CornerMethod],
     settings: CornerSettings,
     spacing: f64,
-) -> Result<Vec<AcceptanceRow>, JobError> {
+) -> Result<Vec<AcceptanceRow>, Error> {
     let sc = symmetric_scenario(angle_deg, settings)?;
     let opts = EvaluatorOptions::new(settings.tool_radius, spacing);
     let (plain, plain_prof) = measured(&sc, CornerMethod::Plain, &opts)?;
@@ -172,7 +172,7 @@ pub fn row(
 }
 
 /// All rows for the request's method, settings and evaluator spacing (its angle is not used).
-pub fn acceptance_table(req: &CornerRequest) -> Result<Vec<AcceptanceRow>, JobError> {
+pub fn acceptance_table(req: &CornerRequest) -> Result<Vec<AcceptanceRow>, Error> {
     let settings = req.settings()?;
     ANGLES_DEG.iter().map(|&a| acceptance_row(a, req.method, settings, req.spacing_mm)).collect()
 }

@@ -5,7 +5,7 @@
 //! cut, everything outside is assumed to be material; current offset circle (O2, R2); the tool
 //! centre runs on (O2, ρ = R2 − r). Angles in radians.
 
-use crate::error::JobError;
+use crate::error::{Error, Param, num};
 use crate::geom::{Circle, P2, cross, golden_min, p2};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
@@ -21,13 +21,13 @@ pub enum Turn {
 }
 
 /// Straight-cut engagement `a = arccos(1 − a_e/r)` (domain-spec §1.1) for a radial depth
-/// `0 ≤ a_e ≤ 2r`. Errors name `a_e` or `tool radius` and the allowed range.
-pub fn straight_engagement(a_e: f64, r: f64) -> Result<f64, JobError> {
+/// `0 ≤ a_e ≤ 2r`. Errors name the step-over or the tool diameter and the allowed range.
+pub fn straight_engagement(a_e: f64, r: f64) -> Result<f64, Error> {
     if !(r.is_finite() && r > 0.0) {
-        return Err(JobError::range("tool radius", r, "a finite number > 0 mm"));
+        return Err(Error::param(Param::ToolDiameter, 2.0 * r, "a finite number > 0 mm"));
     }
     if !(a_e.is_finite() && (0.0..=2.0 * r).contains(&a_e)) {
-        return Err(JobError::range("a_e", a_e, format!("from 0 to the tool diameter {} mm", 2.0 * r)));
+        return Err(Error::param(Param::StepOver, a_e, format!("from 0 to the tool diameter {} mm", num(2.0 * r))));
     }
     Ok((1.0 - a_e / r).clamp(-1.0, 1.0).acos())
 }
@@ -76,21 +76,21 @@ const SCAN_STEP: f64 = 0.1 * PI / 180.0;
 impl TwoCircle {
     /// Checks that the radii are finite and positive and that the tool fits in the current
     /// circle (`R2 ≥ r`).
-    pub fn validate(&self) -> Result<(), JobError> {
+    pub fn validate(&self) -> Result<(), Error> {
         let r = self.tool_radius;
         if !(r.is_finite() && r > 0.0) {
-            return Err(JobError::range("tool radius", r, "a finite number > 0 mm"));
+            return Err(Error::param(Param::ToolDiameter, 2.0 * r, "a finite number > 0 mm"));
         }
         let (c1, c2) = (self.previous, self.current);
         if !(c1.radius.is_finite() && c1.radius > 0.0) {
-            return Err(JobError::range("R1", c1.radius, "a finite number > 0 mm"));
+            return Err(Error::geometry("R1", c1.radius, "a finite number > 0 mm"));
         }
         if !(c2.radius.is_finite() && c2.radius >= r) {
-            return Err(JobError::range("R2", c2.radius, format!("a finite number ≥ the tool radius {r} mm")));
+            return Err(Error::geometry("R2", c2.radius, format!("a finite number ≥ the tool radius {} mm", num(r))));
         }
         for (name, p) in [("O1", c1.center), ("O2", c2.center)] {
             if !(p.x.is_finite() && p.y.is_finite()) {
-                return Err(JobError::range(name, format!("({}, {})", p.x, p.y), "finite coordinates"));
+                return Err(Error::geometry(name, format!("({}, {})", num(p.x), num(p.y)), "finite coordinates"));
             }
         }
         Ok(())
@@ -197,9 +197,9 @@ mod tests {
     fn straight_cut_rejects_bad_depth_naming_it() {
         for ae in [-0.1, 10.1, f64::NAN] {
             let e = straight_engagement(ae, 5.0).unwrap_err();
-            assert_eq!(e.parameter(), Some("a_e"), "{e}");
+            assert_eq!(e.subject(), Some("step-over"), "{e}");
         }
-        assert_eq!(straight_engagement(1.0, 0.0).unwrap_err().parameter(), Some("tool radius"));
+        assert_eq!(straight_engagement(1.0, 0.0).unwrap_err().subject(), Some("tool-diameter"));
     }
 
     fn equal_radii() -> TwoCircle {
@@ -273,8 +273,8 @@ mod tests {
     #[test]
     fn validate_names_the_bad_radius() {
         let bad = TwoCircle { current: Circle::new(p2(1.0, 0.0), 4.0), ..equal_radii() };
-        assert_eq!(bad.validate().unwrap_err().parameter(), Some("R2"));
+        assert_eq!(bad.validate().unwrap_err().subject(), Some("R2"));
         let nan = TwoCircle { previous: Circle::new(p2(0.0, 0.0), f64::NAN), ..equal_radii() };
-        assert_eq!(nan.validate().unwrap_err().parameter(), Some("R1"));
+        assert_eq!(nan.validate().unwrap_err().subject(), Some("R1"));
     }
 }

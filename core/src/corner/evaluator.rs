@@ -15,7 +15,7 @@
 //! ([`super::engagement`]): it is the independent check of every corner strategy.
 
 use super::nearby::{CutGrid, Cutter, LocalStock};
-use crate::error::JobError;
+use crate::error::{Error, Param, num};
 use crate::geom::{P2, Polygon, Segment, p2};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -39,7 +39,7 @@ const TROCHOID_LINES: usize = 256;
 /// words of letters, digits or '_', the first starting with x, the second with y, in any case
 /// (`x,y`, `X_mm Y_mm`). A first line such as `O,0` or `O,O` (letter O) is not a header but an
 /// error: it would otherwise drop a vertex without a word.
-pub fn parse_points(text: &str, what: &str) -> Result<Vec<P2>, JobError> {
+pub fn parse_points(text: &str, what: &str) -> Result<Vec<P2>, Error> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut pts = Vec::new();
     let mut first = true;
@@ -55,7 +55,7 @@ pub fn parse_points(text: &str, what: &str) -> Result<Vec<P2>, JobError> {
         if header {
             continue;
         }
-        let bad = |why: &str| JobError::File(format!("{what} line {}: {why}, got {line:?}", i + 1));
+        let bad = |why: &str| Error::File(format!("{what} line {}: {why}, got {line:?}", i + 1));
         let [x, y] = fields[..] else { return Err(bad("expected two numbers x,y")) };
         match (x.parse::<f64>(), y.parse::<f64>()) {
             (Ok(x), Ok(y)) if x.is_finite() && y.is_finite() => pts.push(p2(x, y)),
@@ -75,12 +75,12 @@ fn is_word(field: &str, initial: char) -> bool {
 }
 
 /// A tool-centre polyline from points; consecutive duplicate points are skipped.
-pub fn polyline(points: &[P2]) -> Result<Vec<Segment>, JobError> {
+pub fn polyline(points: &[P2]) -> Result<Vec<Segment>, Error> {
     let mut segs = Vec::new();
     let mut last: Option<P2> = None;
     for &p in points {
         if !(p.x.is_finite() && p.y.is_finite()) {
-            return Err(JobError::range("path point", format!("({}, {})", p.x, p.y), "finite coordinates"));
+            return Err(Error::geometry("path point", format!("({}, {})", num(p.x), num(p.y)), "finite coordinates"));
         }
         match last {
             Some(q) if (p - q).norm() <= 1e-12 => {}
@@ -92,7 +92,7 @@ pub fn polyline(points: &[P2]) -> Result<Vec<Segment>, JobError> {
         }
     }
     if segs.is_empty() {
-        return Err(JobError::range("path points", points.len(), "at least 2 distinct points"));
+        return Err(Error::geometry("path points", points.len(), "at least 2 distinct points"));
     }
     Ok(segs)
 }
@@ -114,15 +114,15 @@ impl EvaluatorOptions {
         EvaluatorOptions { tool_radius, spacing, samples: 720 }
     }
 
-    fn validate(&self) -> Result<(), JobError> {
+    fn validate(&self) -> Result<(), Error> {
         if !(self.tool_radius.is_finite() && self.tool_radius > 0.0) {
-            return Err(JobError::range("tool radius", self.tool_radius, "a finite number > 0 mm"));
+            return Err(Error::param(Param::ToolDiameter, 2.0 * self.tool_radius, "a finite number > 0 mm"));
         }
         if !(self.spacing.is_finite() && self.spacing > 0.0) {
-            return Err(JobError::range("spacing", self.spacing, "a finite number > 0 mm"));
+            return Err(Error::param(Param::Spacing, self.spacing, "a finite number > 0 mm"));
         }
         if !(8..=100_000).contains(&self.samples) {
-            return Err(JobError::range("samples", self.samples, "from 8 to 100000"));
+            return Err(Error::geometry("samples", self.samples, "from 8 to 100000"));
         }
         Ok(())
     }
@@ -224,11 +224,11 @@ fn head(seg: &Segment, t: f64) -> Segment {
     }
 }
 
-fn check_segments(path: &[Segment], name: &'static str) -> Result<(), JobError> {
+fn check_segments(path: &[Segment], name: &'static str) -> Result<(), Error> {
     for (i, s) in path.iter().enumerate() {
         let (a, b) = (s.start(), s.end());
         if !(a.x.is_finite() && a.y.is_finite() && b.x.is_finite() && b.y.is_finite() && s.length().is_finite()) {
-            return Err(JobError::range(name, format!("segment #{} is not finite", i + 1), "finite coordinates"));
+            return Err(Error::geometry(name, format!("segment #{} is not finite", i + 1), "finite coordinates"));
         }
     }
     Ok(())
@@ -242,22 +242,22 @@ pub fn engagement_profile(
     before: &[Segment],
     path: &[Segment],
     opts: &EvaluatorOptions,
-) -> Result<EngagementProfile, JobError> {
+) -> Result<EngagementProfile, Error> {
     opts.validate()?;
     check_segments(before, "before path")?;
     check_segments(path, "path")?;
     if path.is_empty() {
-        return Err(JobError::range("path", "empty", "at least one segment"));
+        return Err(Error::geometry("path", "empty", "at least one segment"));
     }
     let r = opts.tool_radius;
     let path = flatten(path);
     let lengths: Vec<f64> = path.iter().map(Segment::length).collect();
     let total: f64 = lengths.iter().sum();
     if total / opts.spacing > MAX_POSITIONS {
-        return Err(JobError::range(
-            "spacing",
+        return Err(Error::param(
+            Param::Spacing,
             opts.spacing,
-            format!("≥ path length / {MAX_POSITIONS} = {} mm", total / MAX_POSITIONS),
+            format!("≥ path length / {} = {} mm", num(MAX_POSITIONS), num(total / MAX_POSITIONS)),
         ));
     }
     let tol = DIST_TOL * r.min(1.0);
@@ -453,7 +453,7 @@ mod tests {
         let err = parse_points("0,0\n1,abc\n", "path").unwrap_err().to_string();
         assert!(err.contains("line 2"), "{err}");
         assert!(parse_points("0,0\nNaN,1\n", "path").is_err());
-        assert_eq!(polyline(&[p2(0.0, 0.0), p2(0.0, 0.0)]).unwrap_err().parameter(), Some("path points"));
+        assert_eq!(polyline(&[p2(0.0, 0.0), p2(0.0, 0.0)]).unwrap_err().subject(), Some("path points"));
     }
 
     #[test]
@@ -461,13 +461,13 @@ mod tests {
         let stock = square(0.0, 0.0, 1.0, 1.0);
         let path = [Segment::Line { start: p2(0.0, 0.0), end: p2(1.0, 0.0) }];
         for (o, name) in [
-            (EvaluatorOptions::new(0.0, 1.0), "tool radius"),
+            (EvaluatorOptions::new(0.0, 1.0), "tool-diameter"),
             (EvaluatorOptions::new(1.0, f64::NAN), "spacing"),
             (EvaluatorOptions { samples: 2, ..EvaluatorOptions::new(1.0, 1.0) }, "samples"),
         ] {
-            assert_eq!(engagement_profile(&stock, &[], &path, &o).unwrap_err().parameter(), Some(name));
+            assert_eq!(engagement_profile(&stock, &[], &path, &o).unwrap_err().subject(), Some(name));
         }
         let empty = engagement_profile(&stock, &[], &[], &EvaluatorOptions::new(1.0, 1.0)).unwrap_err();
-        assert_eq!(empty.parameter(), Some("path"));
+        assert_eq!(empty.subject(), Some("path"));
     }
 }

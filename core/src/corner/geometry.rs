@@ -4,7 +4,7 @@
 //! the pocket interior is on the left of both (counter-clockwise boundary). The interior corner
 //! angle is `2α`; the unit bisector `b̂` points from the apex into the pocket.
 
-use crate::error::JobError;
+use crate::error::{Error, Param, num};
 use crate::geom::{Circle, P2, cross, p2, rot90};
 use serde::{Deserialize, Serialize};
 
@@ -21,17 +21,17 @@ pub struct LineEq {
 impl LineEq {
     /// The line through `p` with direction `dir`, `F` chosen from an interior point `q`:
     /// `F = −sign(A·xq + B·yq + C)` (domain-spec §3.2 sign rule).
-    pub fn through(p: P2, dir: P2, interior: P2) -> Result<LineEq, JobError> {
+    pub fn through(p: P2, dir: P2, interior: P2) -> Result<LineEq, Error> {
         let len = dir.norm();
         if !(len.is_finite() && len > 1e-12) {
-            return Err(JobError::range("edge length", len, "a finite length > 0 mm (degenerate edge)"));
+            return Err(Error::geometry("edge length", len, "a finite length > 0 mm (degenerate edge)"));
         }
         let n = rot90(dir / len);
         let (a, b) = (n.x, n.y);
         let c = -(a * p.x + b * p.y);
         let side = a * interior.x + b * interior.y + c;
         if side.abs() < 1e-12 {
-            return Err(JobError::range("interior point", "on the edge", "strictly inside the pocket"));
+            return Err(Error::geometry("interior point", "on the edge", "strictly inside the pocket"));
         }
         Ok(LineEq { a, b, c, f: -side.signum() })
     }
@@ -50,10 +50,10 @@ impl LineEq {
 /// Intersection of the two lines each moved `d` into the pocket, by Cramer's rule (eq. 22):
 /// `xm = [(B1C2 − B2C1) + d(B1F2 − B2F1)]/T`, `ym = [(A2C1 − A1C2) + d(A2F1 − A1F2)]/T`,
 /// `T = A1B2 − A2B1`. Sweeping `d` traces the bisector. Parallel lines (`T ≈ 0`) are an error.
-pub fn bisector_point(l1: &LineEq, l2: &LineEq, d: f64) -> Result<P2, JobError> {
+pub fn bisector_point(l1: &LineEq, l2: &LineEq, d: f64) -> Result<P2, Error> {
     let t = l1.a * l2.b - l2.a * l1.b;
     if t.abs() < 1e-12 {
-        return Err(JobError::range("corner angle", "0° or 180° (parallel edges)", "strictly between 0° and 180°"));
+        return Err(Error::geometry("corner angle", "0° or 180° (parallel edges)", "strictly between 0° and 180°"));
     }
     let x = ((l1.b * l2.c - l2.b * l1.c) + d * (l1.b * l2.f - l2.b * l1.f)) / t;
     let y = ((l2.a * l1.c - l1.a * l2.c) + d * (l2.a * l1.f - l1.a * l2.f)) / t;
@@ -78,22 +78,22 @@ pub struct Corner {
 impl Corner {
     /// Corner from the apex and the two wall directions (pocket on the left of both, i.e. a
     /// left turn from `dir_in` to `dir_out`). Errors for degenerate, reflex or straight corners.
-    pub fn new(apex: P2, dir_in: P2, dir_out: P2) -> Result<Corner, JobError> {
+    pub fn new(apex: P2, dir_in: P2, dir_out: P2) -> Result<Corner, Error> {
         for (name, v) in [("apex", apex), ("dir_in", dir_in), ("dir_out", dir_out)] {
             if !(v.x.is_finite() && v.y.is_finite()) {
-                return Err(JobError::range(name, format!("({}, {})", v.x, v.y), "finite coordinates"));
+                return Err(Error::geometry(name, format!("({}, {})", num(v.x), num(v.y)), "finite coordinates"));
             }
         }
         let (li, lo) = (dir_in.norm(), dir_out.norm());
         if li < 1e-12 || lo < 1e-12 {
-            return Err(JobError::range("edge length", li.min(lo), "a length > 0 mm (degenerate edge)"));
+            return Err(Error::geometry("edge length", li.min(lo), "a length > 0 mm (degenerate edge)"));
         }
         let (u, v) = (dir_in / li, dir_out / lo);
         let turn = cross(u, v);
         // Interior angle between the walls at the apex: π − (turning angle).
         let interior = std::f64::consts::PI - turn.atan2(u.dot(&v));
         if !(turn > 1e-9 && interior > 1e-9) {
-            return Err(JobError::range(
+            return Err(Error::geometry(
                 "corner angle",
                 format!("{:.3}°", interior.to_degrees()),
                 "a convex corner strictly between 0° and 180° (pocket on the left of both edges)",
@@ -105,11 +105,11 @@ impl Corner {
 
     /// The symmetric corner of interior angle `angle` (rad) with apex at the origin, bisector
     /// along +x: wall 1 comes in from the upper right, wall 2 leaves to the lower right.
-    pub fn symmetric(angle: f64) -> Result<Corner, JobError> {
+    pub fn symmetric(angle: f64) -> Result<Corner, Error> {
         if !(angle.is_finite() && angle > 0.0 && angle < std::f64::consts::PI) {
-            return Err(JobError::range(
-                "corner angle",
-                format!("{}°", angle.to_degrees()),
+            return Err(Error::param(
+                Param::Angle,
+                format!("{}°", num(angle.to_degrees())),
                 "strictly between 0° and 180°",
             ));
         }
@@ -118,7 +118,7 @@ impl Corner {
     }
 
     /// Wall 1 and wall 2 as normalised lines with `F` pointing into the pocket.
-    pub fn wall_lines(&self) -> Result<(LineEq, LineEq), JobError> {
+    pub fn wall_lines(&self) -> Result<(LineEq, LineEq), Error> {
         let q = self.apex + self.bisector;
         Ok((LineEq::through(self.apex, self.dir_in, q)?, LineEq::through(self.apex, self.dir_out, q)?))
     }
@@ -207,13 +207,13 @@ mod tests {
 
     #[test]
     fn bad_corners_are_named_errors() {
-        assert_eq!(Corner::symmetric(0.0).unwrap_err().parameter(), Some("corner angle"));
-        assert_eq!(Corner::symmetric(f64::NAN).unwrap_err().parameter(), Some("corner angle"));
-        assert_eq!(Corner::symmetric(std::f64::consts::PI).unwrap_err().parameter(), Some("corner angle"));
-        assert_eq!(Corner::new(p2(0.0, 0.0), p2(0.0, 0.0), p2(1.0, 0.0)).unwrap_err().parameter(), Some("edge length"));
+        assert_eq!(Corner::symmetric(0.0).unwrap_err().subject(), Some("angle"));
+        assert_eq!(Corner::symmetric(f64::NAN).unwrap_err().subject(), Some("angle"));
+        assert_eq!(Corner::symmetric(std::f64::consts::PI).unwrap_err().subject(), Some("angle"));
+        assert_eq!(Corner::new(p2(0.0, 0.0), p2(0.0, 0.0), p2(1.0, 0.0)).unwrap_err().subject(), Some("edge length"));
         // A right turn is a reflex (outside) corner for a CCW pocket.
         assert_eq!(
-            Corner::new(p2(0.0, 0.0), p2(1.0, 0.0), p2(0.0, -1.0)).unwrap_err().parameter(),
+            Corner::new(p2(0.0, 0.0), p2(1.0, 0.0), p2(0.0, -1.0)).unwrap_err().subject(),
             Some("corner angle")
         );
     }

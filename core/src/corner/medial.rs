@@ -10,7 +10,7 @@
 //! kept as polylines through points of the exact parabola, at most [`CURVE_STEP_MM`] apart
 //! along the directrix (field `points`; `curved` marks them).
 
-use crate::error::JobError;
+use crate::error::{Error, num};
 use crate::geom::{P2, Polygon, p2, rot90};
 use boostvoronoi::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -129,17 +129,17 @@ impl Walls {
 }
 
 /// Medial axis of `poly` on a grid of `resolution` mm (e.g. 1e-4).
-pub fn medial_axis(poly: &Polygon, resolution: f64) -> Result<MedialAxis, JobError> {
+pub fn medial_axis(poly: &Polygon, resolution: f64) -> Result<MedialAxis, Error> {
     if !(resolution.is_finite() && resolution > 0.0) {
-        return Err(JobError::range("resolution", resolution, "a finite number > 0 mm"));
+        return Err(Error::geometry("resolution", resolution, "a finite number > 0 mm"));
     }
     let v = poly.vertices();
     let lo = v.iter().fold(p2(f64::INFINITY, f64::INFINITY), |m, q| p2(m.x.min(q.x), m.y.min(q.y)));
-    let to_grid = |q: P2| -> Result<[i64; 2], JobError> {
+    let to_grid = |q: P2| -> Result<[i64; 2], Error> {
         let (x, y) = (((q.x - lo.x) / resolution).round(), ((q.y - lo.y) / resolution).round());
         // The crate needs |coordinates| well inside i32 for its exact predicates.
         if x > 1.0e9 || y > 1.0e9 {
-            return Err(JobError::range("polygon size / resolution", x.max(y), "at most 1e9 grid steps"));
+            return Err(Error::geometry("polygon size / resolution", x.max(y), "at most 1e9 grid steps"));
         }
         Ok([x as i64, y as i64])
     };
@@ -147,15 +147,15 @@ pub fn medial_axis(poly: &Polygon, resolution: f64) -> Result<MedialAxis, JobErr
     for i in 0..v.len() {
         let (a, b) = (to_grid(v[i])?, to_grid(v[(i + 1) % v.len()])?);
         if a == b {
-            return Err(JobError::range(
+            return Err(Error::geometry(
                 "polygon edge length",
                 (v[(i + 1) % v.len()] - v[i]).norm(),
-                format!("≥ the resolution {resolution} mm"),
+                format!("≥ the resolution {} mm", num(resolution)),
             ));
         }
         segs.push([a[0] as i32, a[1] as i32, b[0] as i32, b[1] as i32]);
     }
-    let fail = |e: BvError| JobError::range("polygon", format!("Voronoi diagram failed: {e}"), "a simple polygon");
+    let fail = |e: BvError| Error::geometry("polygon", format!("Voronoi diagram failed: {e}"), "a simple polygon");
     let diagram = Builder::<i32>::default().with_segments(segs.iter()).map_err(fail)?.build().map_err(fail)?;
     let from_grid = |x: f64, y: f64| p2(lo.x + x * resolution, lo.y + y * resolution);
     let tol = 2.0 * resolution;

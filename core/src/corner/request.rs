@@ -7,8 +7,8 @@ use super::engagement::{radial_depth_for_engagement, straight_engagement};
 use super::evaluator::{EngagementProfile, EvaluatorOptions, engagement_profile};
 use super::geometry::Corner;
 use super::method::CornerMethod;
-use super::strategy::{CornerPlan, CornerScenario, CornerSettings, DEFAULT_T1, plan_corner};
-use crate::error::JobError;
+use super::strategy::{CornerPlan, CornerScenario, CornerSettings, DEFAULT_T1, plan_corner, tool_diameter};
+use crate::error::{Error, Param, num};
 use serde::{Deserialize, Serialize};
 
 /// One symmetric corner to plan and measure, in the user's units (degrees, mm, mm/min): the
@@ -62,39 +62,38 @@ impl CornerRequest {
 
     /// The validated settings of the corner plan. Each error names the input (as the CLI flag
     /// spells it) and its allowed range.
-    pub fn settings(&self) -> Result<CornerSettings, JobError> {
-        let d = finite("tool diameter", self.tool_diameter_mm)?;
-        if d <= 0.0 {
-            return Err(JobError::range("tool diameter", d, "a finite number > 0 mm"));
-        }
+    pub fn settings(&self) -> Result<CornerSettings, Error> {
+        let d = tool_diameter(self.tool_diameter_mm)?;
         let r = d / 2.0;
         let step_over = match self.step_over_mm {
-            Some(ae) => finite("step-over", ae)?,
+            Some(ae) => finite(Param::StepOver, ae)?,
             None => {
-                let a = finite("straight engagement", self.straight_engagement_deg)?;
+                let a = finite(Param::StraightEngagement, self.straight_engagement_deg)?;
                 if !(a > 0.0 && a < 180.0) {
-                    return Err(JobError::range("straight engagement", a, "greater than 0° and less than 180°"));
+                    return Err(Error::param(Param::StraightEngagement, a, "greater than 0° and less than 180°"));
                 }
                 radial_depth_for_engagement(a.to_radians(), r)
             }
         };
         let mut s = CornerSettings::new(r, step_over).map_err(|e| match e {
-            JobError::OutOfRange { name: "a_e", value, .. } => {
-                JobError::range("step-over", value, format!("greater than 0 and less than the tool diameter {d} mm"))
-            }
+            Error::Param { param: Param::StepOver, value, .. } => Error::param(
+                Param::StepOver,
+                value,
+                format!("greater than 0 and less than the tool diameter {} mm", num(d)),
+            ),
             other => other,
         })?;
         s.target = match self.target_deg {
-            Some(t) => finite("target", t)?.to_radians(),
+            Some(t) => finite(Param::Target, t)?.to_radians(),
             None => {
-                let t1 = finite("t1", self.t1)?;
+                let t1 = finite(Param::T1, self.t1)?;
                 if !(0.0..=1.0).contains(&t1) {
-                    return Err(JobError::range("t1", t1, "from 0 to 1"));
+                    return Err(Error::param(Param::T1, t1, "from 0 to 1"));
                 }
                 straight_engagement(step_over, r)? * (1.0 + t1)
             }
         };
-        s.tolerance = finite("tolerance", self.tolerance_deg)?.to_radians();
+        s.tolerance = finite(Param::Band, self.tolerance_deg)?.to_radians();
         s.edge_length = self.edge_length_mm;
         s.feed_mm_per_min = self.feed_mm_per_min;
         s.isometric_radius = self.isometric_radius_mm;
@@ -136,9 +135,9 @@ impl CornerReport {
 
 /// Plan the requested corner with its strategy and with the plain ring, measure both with the
 /// evaluator, and make their acceptance row. Errors name the input at fault.
-pub fn evaluate(req: &CornerRequest) -> Result<CornerReport, JobError> {
+pub fn evaluate(req: &CornerRequest) -> Result<CornerReport, Error> {
     let settings = req.settings()?;
-    let angle_deg = finite("angle", req.angle_deg)?;
+    let angle_deg = finite(Param::Angle, req.angle_deg)?;
     let scenario = symmetric_scenario(angle_deg, settings)?;
     let opts = EvaluatorOptions::new(settings.tool_radius, req.spacing_mm);
     let (plan, profile) = measured(&scenario, req.method, &opts)?;
@@ -150,7 +149,7 @@ pub fn evaluate(req: &CornerRequest) -> Result<CornerReport, JobError> {
 
 /// The scenario of the symmetric corner of `angle_deg` (the corner of [`evaluate`] and of
 /// every row of the acceptance table).
-pub(super) fn symmetric_scenario(angle_deg: f64, settings: CornerSettings) -> Result<CornerScenario, JobError> {
+pub(super) fn symmetric_scenario(angle_deg: f64, settings: CornerSettings) -> Result<CornerScenario, Error> {
     CornerScenario::new(Corner::symmetric(angle_deg.to_radians())?, settings)
 }
 
@@ -159,13 +158,13 @@ pub(super) fn measured(
     sc: &CornerScenario,
     method: CornerMethod,
     opts: &EvaluatorOptions,
-) -> Result<(CornerPlan, EngagementProfile), JobError> {
+) -> Result<(CornerPlan, EngagementProfile), Error> {
     let plan = plan_corner(sc, method)?;
     let profile = engagement_profile(&plan.stock, &plan.precut, &plan.path, opts)?;
     Ok((plan, profile))
 }
 
-/// `v` if it is finite, else an error naming `name`.
-pub fn finite(name: &'static str, v: f64) -> Result<f64, JobError> {
-    if v.is_finite() { Ok(v) } else { Err(JobError::range(name, v, "a finite number")) }
+/// `v` if it is finite, else an error naming `param`.
+pub fn finite(param: Param, v: f64) -> Result<f64, Error> {
+    if v.is_finite() { Ok(v) } else { Err(Error::param(param, v, "a finite number")) }
 }

@@ -21,7 +21,8 @@ use super::engagement::{Turn, TwoCircle, straight_engagement};
 use super::geometry::Corner;
 use super::method::CornerMethod;
 use super::request::CornerRequest;
-use crate::error::JobError;
+use crate::error::{Error, Param, num};
+use crate::job::limits::MIN_SIZE_MM;
 use crate::geom::{Circle, P2, Polygon, Segment};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
@@ -56,7 +57,7 @@ impl CornerSettings {
     /// Settings with Wu et al.'s target a* = a_str·(1 + t1), t1 = 15 % (eq. 23 analogue,
     /// domain-spec §3.3), and ε, wall length and feed of [`CornerRequest::DEFAULT`] (0.5°,
     /// 100 mm, 600 mm/min).
-    pub fn new(tool_radius: f64, step_over: f64) -> Result<CornerSettings, JobError> {
+    pub fn new(tool_radius: f64, step_over: f64) -> Result<CornerSettings, Error> {
         let target = straight_engagement(step_over, tool_radius)? * (1.0 + DEFAULT_T1);
         let d = CornerRequest::DEFAULT;
         Ok(CornerSettings {
@@ -71,7 +72,7 @@ impl CornerSettings {
     }
 
     /// Straight-cut engagement of the ring step, a_str = arccos(1 − a_e/r) (domain-spec §1.1).
-    pub fn straight_engagement(&self) -> Result<f64, JobError> {
+    pub fn straight_engagement(&self) -> Result<f64, Error> {
         straight_engagement(self.step_over, self.tool_radius)
     }
 
@@ -86,39 +87,39 @@ impl CornerSettings {
     }
 
     /// Range checks; each error names the parameter and its allowed range.
-    pub fn validate(&self) -> Result<(), JobError> {
+    pub fn validate(&self) -> Result<(), Error> {
         let r = self.tool_radius;
         validate_tool_and_step_over(r, self.step_over)?;
         if !(self.target.is_finite() && self.target > 0.0 && self.target < PI) {
-            return Err(JobError::range(
-                "target",
-                format!("{}°", self.target.to_degrees()),
+            return Err(Error::param(
+                Param::Target,
+                format!("{}°", num(self.target.to_degrees())),
                 "greater than 0° and less than 180°",
             ));
         }
         if !(self.tolerance.is_finite() && self.tolerance > 0.0 && self.tolerance <= 10f64.to_radians()) {
-            return Err(JobError::range(
-                "tolerance",
-                format!("{}°", self.tolerance.to_degrees()),
+            return Err(Error::param(
+                Param::Band,
+                format!("{}°", num(self.tolerance.to_degrees())),
                 "greater than 0° and at most 10°",
             ));
         }
         if !(self.edge_length.is_finite() && self.edge_length > 4.0 * r && self.edge_length <= 1.0e4) {
-            return Err(JobError::range(
-                "edge length",
+            return Err(Error::param(
+                Param::EdgeLength,
                 self.edge_length,
-                format!("more than two tool diameters ({} mm) and at most 10000 mm", 4.0 * r),
+                format!("more than two tool diameters ({} mm) and at most 10000 mm", num(4.0 * r)),
             ));
         }
         if !(self.feed_mm_per_min.is_finite() && self.feed_mm_per_min > 0.0) {
-            return Err(JobError::range("feed", self.feed_mm_per_min, "a finite number > 0 mm/min"));
+            return Err(Error::param(Param::Feed, self.feed_mm_per_min, "a finite number > 0 mm/min"));
         }
         let rh = self.rh();
         if !(rh.is_finite() && rh >= self.r_min() && rh <= 10.0 * r) {
-            return Err(JobError::range(
-                "isometric radius",
+            return Err(Error::param(
+                Param::IsometricRadius,
                 rh,
-                format!("from r_min = {} mm to 10·r = {} mm", self.r_min(), 10.0 * r),
+                format!("from r_min = {} mm to 10·r = {} mm", num(self.r_min()), num(10.0 * r)),
             ));
         }
         Ok(())
@@ -147,7 +148,7 @@ impl CornerScenario {
     /// Builds and validates the scenario. A corner too narrow for the tool to enter (the
     /// previous ring's corner would lie within one tool diameter of the wall ends) is an error
     /// naming the corner angle and the smallest angle these walls allow.
-    pub fn new(corner: Corner, settings: CornerSettings) -> Result<CornerScenario, JobError> {
+    pub fn new(corner: Corner, settings: CornerSettings) -> Result<CornerScenario, Error> {
         settings.validate()?;
         let (r, ae, len) = (settings.tool_radius, settings.step_over, settings.edge_length);
         let alpha = corner.half_angle;
@@ -155,15 +156,15 @@ impl CornerScenario {
         let foot = (r + ae) / alpha.tan();
         if foot > len - 2.0 * r {
             let min_angle = 2.0 * ((r + ae) / (len - 2.0 * r)).atan();
-            return Err(JobError::range(
-                "corner angle",
+            return Err(Error::param(
+                Param::Angle,
                 format!("{:.3}°", (2.0 * alpha).to_degrees()),
                 format!(
                     "at least {:.3}° for a {} mm tool, step-over {} mm and {} mm walls (narrower corners cannot be entered)",
                     min_angle.to_degrees(),
-                    2.0 * r,
-                    ae,
-                    len
+                    num(2.0 * r),
+                    num(ae),
+                    num(len)
                 ),
             ));
         }
@@ -262,13 +263,13 @@ pub struct NextCircle {
 /// (Z < 0: nothing left to cut) and the limit point `tM` (eqs. 23–24, domain-spec §3.3):
 /// accept when `0 < Z ≤ ε` with `Z = m(t) − a*`; if `Z(tM) ≤ 0` take tM. After 60 steps the
 /// low end (Z < 0, under the target) is taken.
-pub fn next_variable_circle(corner: &Corner, r: f64, t_n: f64, target: f64, eps: f64) -> Result<NextCircle, JobError> {
+pub fn next_variable_circle(corner: &Corner, r: f64, t_n: f64, target: f64, eps: f64) -> Result<NextCircle, Error> {
     let alpha = corner.half_angle;
     if t_n.is_nan() || t_n * alpha.sin() <= r {
-        return Err(JobError::range(
+        return Err(Error::geometry(
             "t_N",
             t_n,
-            format!("> r / sin α = {} mm (the current circle must be larger than the tool)", r / alpha.sin()),
+            format!("> r / sin α = {} mm (the current circle must be larger than the tool)", num(r / alpha.sin())),
         ));
     }
     let t_m = limit_point(t_n, alpha, r);
@@ -295,7 +296,7 @@ pub fn next_variable_circle(corner: &Corner, r: f64, t_n: f64, target: f64, eps:
 
 /// Variable circles from `t_start` towards the apex until the next tool-centre radius drops
 /// below `r_min` (domain-spec §3.3 stop rule). Returns the circles after the start circle.
-fn variable_chain(sc: &CornerScenario, t_start: f64) -> Result<Vec<CornerCircle>, JobError> {
+fn variable_chain(sc: &CornerScenario, t_start: f64) -> Result<Vec<CornerCircle>, Error> {
     let (corner, s) = (&sc.corner, &sc.settings);
     let r = s.tool_radius;
     let mut out = Vec::new();
@@ -313,7 +314,7 @@ fn variable_chain(sc: &CornerScenario, t_start: f64) -> Result<Vec<CornerCircle>
             steps: next.steps,
         });
         if out.len() > MAX_CIRCLES {
-            return Err(JobError::range("circles", out.len(), format!("at most {MAX_CIRCLES} per corner")));
+            return Err(Error::geometry("circles", out.len(), format!("at most {MAX_CIRCLES} per corner")));
         }
         t = next.t;
     }
@@ -330,14 +331,14 @@ fn variable_chain(sc: &CornerScenario, t_start: f64) -> Result<Vec<CornerCircle>
 /// A concave circle cutting the full band of depth a_e always exceeds a_str (R1 → ∞ as
 /// a* → a_str), so the target must exceed the straight-part engagement: Wu et al. use
 /// a* = a_str·(1 + t1), t1 = 15 %.
-pub fn first_circle_radius(s: &CornerSettings) -> Result<f64, JobError> {
+pub fn first_circle_radius(s: &CornerSettings) -> Result<f64, Error> {
     let r = s.tool_radius;
     let a_str = straight_engagement(s.step_over, r)?;
     let (cs, ct) = (a_str.cos(), s.target.cos());
     let den = 2.0 * r * (cs - ct);
     if !(s.target > a_str + 1e-6 && den > 0.0) {
-        return Err(JobError::range(
-            "target",
+        return Err(Error::param(
+            Param::Target,
             format!("{:.3}°", s.target.to_degrees()),
             format!(
                 "greater than the straight-part engagement {:.3}° (corner circles cut the wall band concavely)",
@@ -351,14 +352,14 @@ pub fn first_circle_radius(s: &CornerSettings) -> Result<f64, JobError> {
 }
 
 /// Bisector parameter of the first variable circle c1, checked against the wall length.
-fn first_variable_t(sc: &CornerScenario) -> Result<f64, JobError> {
+fn first_variable_t(sc: &CornerScenario) -> Result<f64, Error> {
     let big_r = first_circle_radius(&sc.settings)?;
     let t1 = sc.corner.t_for_radius(big_r);
     let along = t1 * sc.corner.half_angle.cos();
     let need = along + 2.0 * sc.settings.tool_radius;
     if need > sc.settings.edge_length {
-        return Err(JobError::range(
-            "edge length",
+        return Err(Error::param(
+            Param::EdgeLength,
             sc.settings.edge_length,
             format!(
                 "at least {need:.3} mm: the first corner circle (R = {big_r:.3} mm) touches the walls {along:.3} mm from the apex"
@@ -369,7 +370,7 @@ fn first_variable_t(sc: &CornerScenario) -> Result<f64, JobError> {
 }
 
 /// Plan one corner with a strategy.
-pub fn plan_corner(sc: &CornerScenario, method: CornerMethod) -> Result<CornerPlan, JobError> {
+pub fn plan_corner(sc: &CornerScenario, method: CornerMethod) -> Result<CornerPlan, Error> {
     let s = sc.settings;
     let mut notes = Vec::new();
     if method == CornerMethod::MedialAxis {
@@ -405,7 +406,7 @@ pub fn plan_corner(sc: &CornerScenario, method: CornerMethod) -> Result<CornerPl
 /// the branch by the §3.3 bisection (the axis as guide, §3.5 step 3), linked along U, and the
 /// tool finishes at the tool corner point (§3.5 step 2). With no contour-parallel ring here the
 /// two-circle model's "material everywhere outside the previous circle" is exact.
-fn medial_axis_plan(sc: &CornerScenario) -> Result<CornerPlan, JobError> {
+fn medial_axis_plan(sc: &CornerScenario) -> Result<CornerPlan, Error> {
     let s = sc.settings;
     let (r, corner) = (s.tool_radius, &sc.corner);
     let end1 = corner.apex - corner.dir_in * s.edge_length;
@@ -413,15 +414,15 @@ fn medial_axis_plan(sc: &CornerScenario) -> Result<CornerPlan, JobError> {
     let pocket = Polygon::new(vec![end1, corner.apex, end2])?;
     let axis = super::medial::medial_axis(&pocket, 1e-4)?;
     let (node, rc) = axis.branch_from(corner.apex, 1e-3).ok_or_else(|| {
-        JobError::range("polygon", "no medial-axis branch at the corner", "a corner with a Voronoi branch")
+        Error::geometry("polygon", "no medial-axis branch at the corner", "a corner with a Voronoi branch")
     })?;
     if rc - r < s.r_min() {
-        return Err(JobError::range(
-            "edge length",
+        return Err(Error::param(
+            Param::EdgeLength,
             s.edge_length,
             format!(
                 "long enough that the largest circle in the pocket (radius {rc:.3} mm) exceeds the tool radius by r_min = {} mm",
-                s.r_min()
+                num(s.r_min())
             ),
         ));
     }
@@ -487,7 +488,7 @@ fn medial_axis_plan(sc: &CornerScenario) -> Result<CornerPlan, JobError> {
 fn isometric_circles(
     sc: &CornerScenario,
     notes: &mut Vec<String>,
-) -> Result<(Vec<CornerCircle>, Option<P2>), JobError> {
+) -> Result<(Vec<CornerCircle>, Option<P2>), Error> {
     let s = sc.settings;
     let (r, ae, corner) = (s.tool_radius, s.step_over, &sc.corner);
     let alpha = corner.half_angle;
@@ -508,9 +509,9 @@ fn isometric_circles(
     let big_r = rh + r;
     let spacing = isometric_spacing(rh, r, s.target);
     if spacing.is_nan() || spacing <= 1e-6 {
-        return Err(JobError::range(
-            "target",
-            format!("{}°", s.target.to_degrees()),
+        return Err(Error::param(
+            Param::Target,
+            format!("{}°", num(s.target.to_degrees())),
             "large enough for a positive isometric centre spacing",
         ));
     }
@@ -523,18 +524,19 @@ fn isometric_circles(
     let u1 = (x_along + big_r - big_r / tan).max(ae / (2.0 * alpha).sin()).max(0.0);
     let first_along = big_r / tan + u1;
     if first_along + 2.0 * r > s.edge_length {
-        return Err(JobError::range(
-            "edge length",
+        return Err(Error::param(
+            Param::EdgeLength,
             s.edge_length,
             format!(
-                "at least {:.3} mm for isometric circles of rh = {rh} mm (the first touches wall 1 {first_along:.3} mm from the apex)",
-                first_along + 2.0 * r
+                "at least {:.3} mm for isometric circles of rh = {} mm (the first touches wall 1 {first_along:.3} mm from the apex)",
+                first_along + 2.0 * r,
+                num(rh)
             ),
         ));
     }
     let n = (u1 / spacing).ceil() as usize;
     if n > MAX_CIRCLES {
-        return Err(JobError::range("circles", n, format!("at most {MAX_CIRCLES} per corner")));
+        return Err(Error::geometry("circles", n, format!("at most {MAX_CIRCLES} per corner")));
     }
     let step = if n > 0 { u1 / n as f64 } else { 0.0 };
     let mut circles: Vec<CornerCircle> = Vec::with_capacity(n + 1);
@@ -576,7 +578,7 @@ pub fn isometric_spacing(rh: f64, r: f64, a: f64) -> f64 {
 }
 
 /// Variable circles: c1 from [`first_circle_radius`], then the §3.3 chain.
-fn variable_circles(sc: &CornerScenario) -> Result<Vec<CornerCircle>, JobError> {
+fn variable_circles(sc: &CornerScenario) -> Result<Vec<CornerCircle>, Error> {
     let t1 = first_variable_t(sc)?;
     let sin = sc.corner.half_angle.sin();
     let r = sc.settings.tool_radius;
@@ -618,17 +620,30 @@ fn ring_path(sc: &CornerScenario, circles: &[CornerCircle], leg_end: Option<P2>)
     path
 }
 
-/// Checks shared by corner and pocket settings: tool radius r (0 < D ≤ 1000 mm) and ring
-/// step-over a_e (0 < a_e < D); each error names the parameter, the value and the range.
-pub fn validate_tool_and_step_over(r: f64, step_over: f64) -> Result<(), JobError> {
-    if !(r.is_finite() && r > 0.0 && r <= 500.0) {
-        return Err(JobError::range("tool diameter", 2.0 * r, "a finite number greater than 0 and at most 1000 mm"));
+/// Largest tool diameter of a corner or pocket (mm).
+pub const MAX_TOOL_DIAMETER_MM: f64 = 1000.0;
+
+/// The tool diameter D of a corner or pocket: from [`MIN_SIZE_MM`] (a smaller tool is a typing
+/// error, named as the tool diameter rather than by the first derived quantity it breaks) to
+/// [`MAX_TOOL_DIAMETER_MM`].
+pub fn tool_diameter(d: f64) -> Result<f64, Error> {
+    if d.is_finite() && (MIN_SIZE_MM..=MAX_TOOL_DIAMETER_MM).contains(&d) {
+        Ok(d)
+    } else {
+        let (lo, hi) = (num(MIN_SIZE_MM), num(MAX_TOOL_DIAMETER_MM));
+        Err(Error::param(Param::ToolDiameter, d, format!("a finite number from {lo} to {hi} mm")))
     }
+}
+
+/// Checks shared by corner and pocket settings: tool radius r ([`tool_diameter`]) and ring
+/// step-over a_e (0 < a_e < D); each error names the parameter, the value and the range.
+pub fn validate_tool_and_step_over(r: f64, step_over: f64) -> Result<(), Error> {
+    tool_diameter(2.0 * r)?;
     if !(step_over.is_finite() && step_over > 0.0 && step_over < 2.0 * r) {
-        return Err(JobError::range(
-            "step-over",
+        return Err(Error::param(
+            Param::StepOver,
             step_over,
-            format!("greater than 0 and less than the tool diameter {} mm", 2.0 * r),
+            format!("greater than 0 and less than the tool diameter {} mm", num(2.0 * r)),
         ));
     }
     Ok(())
@@ -733,18 +748,18 @@ mod tests {
         for (s, name) in [
             (CornerSettings { step_over: 10.0, ..ok }, "step-over"),
             (CornerSettings { step_over: f64::NAN, ..ok }, "step-over"),
-            (CornerSettings { tool_radius: -1.0, ..ok }, "tool diameter"),
+            (CornerSettings { tool_radius: -1.0, ..ok }, "tool-diameter"),
             (CornerSettings { target: 0.0, ..ok }, "target"),
             (CornerSettings { feed_mm_per_min: 0.0, ..ok }, "feed"),
-            (CornerSettings { edge_length: 5.0, ..ok }, "edge length"),
+            (CornerSettings { edge_length: 5.0, ..ok }, "edge-length"),
         ] {
-            assert_eq!(s.validate().unwrap_err().parameter(), Some(name));
+            assert_eq!(s.validate().unwrap_err().subject(), Some(name));
         }
         // Target not above the straight-part engagement: no first circle exists.
         let flat = CornerSettings { target: straight_engagement(1.5, 5.0).unwrap(), ..ok };
-        assert_eq!(first_circle_radius(&flat).unwrap_err().parameter(), Some("target"));
+        assert_eq!(first_circle_radius(&flat).unwrap_err().subject(), Some("target"));
         // A 5° corner with 100 mm walls cannot be entered by a 10 mm tool.
         let e = CornerScenario::new(Corner::symmetric(5f64.to_radians()).unwrap(), ok).unwrap_err();
-        assert_eq!(e.parameter(), Some("corner angle"), "{e}");
+        assert_eq!(e.subject(), Some("angle"), "{e}");
     }
 }

@@ -2,7 +2,7 @@
 //! stock outlines of the corner evaluator).
 
 use super::{P2, cross};
-use crate::error::JobError;
+use crate::error::{Error, num};
 use serde::{Deserialize, Serialize};
 
 /// A simple polygon (no self-intersections, no degenerate edges), stored counter-clockwise.
@@ -15,7 +15,7 @@ impl Polygon {
     /// Validates and stores a polygon: at least 3 finite vertices (a repeated first vertex at
     /// the end is dropped), no edge shorter than 1e-9 mm, no two edges crossing or overlapping,
     /// non-zero area. Clockwise input is reversed.
-    pub fn new(mut vertices: Vec<P2>) -> Result<Polygon, JobError> {
+    pub fn new(mut vertices: Vec<P2>) -> Result<Polygon, Error> {
         if let (Some(first), Some(last)) = (vertices.first(), vertices.last())
             && vertices.len() > 1
             && (first - last).norm() <= 1e-9
@@ -24,13 +24,13 @@ impl Polygon {
         }
         let n = vertices.len();
         if n < 3 {
-            return Err(JobError::range("polygon vertices", n, "at least 3 distinct vertices"));
+            return Err(Error::geometry("polygon vertices", n, "at least 3 distinct vertices"));
         }
         for (i, v) in vertices.iter().enumerate() {
             if !(v.x.is_finite() && v.y.is_finite()) {
-                return Err(JobError::range(
+                return Err(Error::geometry(
                     "polygon vertex",
-                    format!("#{} ({}, {})", i + 1, v.x, v.y),
+                    format!("#{} ({}, {})", i + 1, num(v.x), num(v.y)),
                     "finite coordinates",
                 ));
             }
@@ -38,9 +38,9 @@ impl Polygon {
         for i in 0..n {
             let len = (vertices[(i + 1) % n] - vertices[i]).norm();
             if len <= 1e-9 {
-                return Err(JobError::range(
+                return Err(Error::geometry(
                     "polygon edge length",
-                    format!("{len} (edge #{})", i + 1),
+                    format!("{} (edge #{})", num(len), i + 1),
                     "> 1e-9 mm (degenerate edge)",
                 ));
             }
@@ -59,7 +59,7 @@ impl Polygon {
                     segments_intersect(a, b, c, d)
                 };
                 if bad {
-                    return Err(JobError::range(
+                    return Err(Error::geometry(
                         "polygon",
                         format!("edges #{} and #{} cross or overlap", i + 1, j + 1),
                         "a simple polygon (no self-intersections)",
@@ -69,7 +69,7 @@ impl Polygon {
         }
         let area = signed_area(&vertices);
         if area.abs() <= 1e-12 {
-            return Err(JobError::range("polygon area", area.abs(), "> 0 mm²"));
+            return Err(Error::geometry("polygon area", area.abs(), "> 0 mm²"));
         }
         if area < 0.0 {
             vertices.reverse();
@@ -143,15 +143,15 @@ mod tests {
     #[test]
     fn polygon_rejects_bad_shapes_naming_them() {
         let bow = Polygon::new(vec![p2(0.0, 0.0), p2(1.0, 1.0), p2(1.0, 0.0), p2(0.0, 1.0)]).unwrap_err();
-        assert_eq!(bow.parameter(), Some("polygon"), "{bow}");
+        assert_eq!(bow.subject(), Some("polygon"), "{bow}");
         let dup = Polygon::new(vec![p2(0.0, 0.0), p2(0.0, 0.0), p2(1.0, 0.0), p2(0.0, 1.0)]).unwrap_err();
-        assert_eq!(dup.parameter(), Some("polygon edge length"), "{dup}");
+        assert_eq!(dup.subject(), Some("polygon edge length"), "{dup}");
         let two = Polygon::new(vec![p2(0.0, 0.0), p2(1.0, 0.0)]).unwrap_err();
-        assert_eq!(two.parameter(), Some("polygon vertices"));
+        assert_eq!(two.subject(), Some("polygon vertices"));
         let nan = Polygon::new(vec![p2(0.0, 0.0), p2(f64::NAN, 0.0), p2(0.0, 1.0)]).unwrap_err();
-        assert_eq!(nan.parameter(), Some("polygon vertex"));
+        assert_eq!(nan.subject(), Some("polygon vertex"));
         let flat = Polygon::new(vec![p2(0.0, 0.0), p2(1.0, 0.0), p2(2.0, 0.0)]).unwrap_err();
-        assert!(flat.parameter().is_some(), "{flat}");
+        assert!(flat.subject().is_some(), "{flat}");
         // Clockwise input is accepted and turned counter-clockwise.
         let cw = Polygon::new(vec![p2(0.0, 0.0), p2(0.0, 1.0), p2(1.0, 1.0), p2(1.0, 0.0)]).unwrap();
         assert!((cw.area() - 1.0).abs() < 1e-12);

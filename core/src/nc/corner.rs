@@ -9,7 +9,7 @@
 
 use super::{NcOptions, NcProgram, PathJob, program_for_path};
 use crate::corner::{CornerPlan, CornerSettings};
-use crate::error::JobError;
+use crate::error::{Error, Param};
 use crate::geom::Segment;
 use crate::pocket::{LinkKind, PerforativePlan, PocketPlan, PocketSettings, RingPlan};
 
@@ -37,9 +37,9 @@ pub fn corner_program(
     angle_deg: f64,
     cut: CutSetup,
     opts: &NcOptions,
-) -> Result<NcProgram, JobError> {
+) -> Result<NcProgram, Error> {
     if !(angle_deg.is_finite() && angle_deg > 0.0 && angle_deg < 180.0) {
-        return Err(JobError::range("angle", angle_deg, "a finite number between 0 and 180 degrees"));
+        return Err(Error::param(Param::Angle, angle_deg, "a finite number between 0 and 180 degrees"));
     }
     let s = settings;
     let a_str = s.straight_engagement()?;
@@ -80,7 +80,7 @@ pub fn corner_program(
 }
 
 /// The program of the whole pocket `plan`, rings or medial axis ([`PocketPlan::tool_path`]).
-pub fn pocket_program(plan: &PocketPlan, cut: CutSetup, opts: &NcOptions) -> Result<NcProgram, JobError> {
+pub fn pocket_program(plan: &PocketPlan, cut: CutSetup, opts: &NcOptions) -> Result<NcProgram, Error> {
     match plan {
         PocketPlan::Rings(p) => ring_program(p, cut, opts),
         PocketPlan::MedialAxis(p) => perforative_program(p, cut, opts),
@@ -89,7 +89,7 @@ pub fn pocket_program(plan: &PocketPlan, cut: CutSetup, opts: &NcOptions) -> Res
 
 /// The program of a pocket cleared by rings: its rings and links ([`RingPlan::tool_path`]),
 /// retracting before the links that a straight move cannot take.
-fn ring_program(plan: &RingPlan, cut: CutSetup, opts: &NcOptions) -> Result<NcProgram, JobError> {
+fn ring_program(plan: &RingPlan, cut: CutSetup, opts: &NcOptions) -> Result<NcProgram, Error> {
     let (segments, retract_before) = plan.tool_path();
     let feed_links = plan.links.iter().filter(|l| l.kind == LinkKind::Feed).count();
     let summary = [
@@ -113,7 +113,7 @@ fn ring_program(plan: &RingPlan, cut: CutSetup, opts: &NcOptions) -> Result<NcPr
 
 /// The program of a pocket cleared by perforative trochoids along its medial axis: its path
 /// in machining order, a retract, rapid and plunge at the start of every part but the first.
-pub fn perforative_program(plan: &PerforativePlan, cut: CutSetup, opts: &NcOptions) -> Result<NcProgram, JobError> {
+pub fn perforative_program(plan: &PerforativePlan, cut: CutSetup, opts: &NcOptions) -> Result<NcProgram, Error> {
     let summary = [
         format!(
             "pocket of {} vertices, method medial-axis, {} circles, {} part(s)",
@@ -140,7 +140,7 @@ fn pocket_path_program(
     summary: [String; 2],
     cut: CutSetup,
     opts: &NcOptions,
-) -> Result<NcProgram, JobError> {
+) -> Result<NcProgram, Error> {
     let [first, second] = summary;
     let job = PathJob {
         segments,
@@ -226,11 +226,11 @@ mod tests {
             (CutSetup::default(), 90.0, NcOptions { tolerance_mm: 2.0, ..o.clone() }, "tolerance"),
         ] {
             let e = corner_program(&plan, &s, angle, cut, &opts).expect_err("invalid");
-            assert_eq!(e.parameter(), Some(name), "{e}");
+            assert_eq!(e.subject(), Some(name), "{e}");
         }
         let pocket = rectangle_pocket();
         let e = pocket_program(&pocket, CutSetup { depth_mm: 0.0, ..CutSetup::default() }, &o).expect_err("depth");
-        assert_eq!(e.parameter(), Some("depth"), "{e}");
+        assert_eq!(e.subject(), Some("depth"), "{e}");
     }
 
     /// 60 × 40 mm rectangle, D = 10, a_e = 4: plain rings at offsets d = 5, 9, 13, 17 (d < 20)

@@ -1,7 +1,7 @@
 //! NC dialects as data: what differs between controllers is written down here, once; the
 //! emitter ([`super::writer`]) reads it (design.md "dialects as data").
 
-use crate::error::JobError;
+use crate::error::{Error, Param};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 
@@ -194,11 +194,11 @@ impl Dialect {
     }
 
     /// Parse a CLI name.
-    pub fn from_name(s: &str) -> Result<Dialect, JobError> {
+    pub fn from_name(s: &str) -> Result<Dialect, Error> {
         Dialect::ALL
             .into_iter()
             .find(|d| d.name() == s)
-            .ok_or_else(|| JobError::range("dialect", s, "one of linuxcnc, fanuc, grbl, sinumerik"))
+            .ok_or_else(|| Error::param(Param::Dialect, s, "one of linuxcnc, fanuc, grbl, sinumerik"))
     }
 }
 
@@ -292,7 +292,7 @@ mod tests {
             assert_eq!(Dialect::from_name(d.name()), Ok(d));
         }
         let err = Dialect::from_name("heidenhain").expect_err("unknown");
-        assert_eq!(err.parameter(), Some("dialect"));
+        assert_eq!(err.parameter(), Some(Param::Dialect));
     }
 
     #[test]

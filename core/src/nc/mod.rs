@@ -30,7 +30,7 @@ pub use corner::{CutSetup, corner_program, perforative_program, pocket_program};
 pub use dialect::{CommentStyle, Dialect, DialectSpec, LoopStyle, ToolCall, sanitize_comment};
 pub use writer::{Writer, YForm};
 
-use crate::error::JobError;
+use crate::error::{Error, Param, num};
 use crate::geom::{FitPiece, P2, Segment, fit_biarcs, polyline};
 use crate::job::PathKind;
 use crate::plan::Plan;
@@ -82,27 +82,27 @@ impl Default for NcOptions {
 
 impl NcOptions {
     /// Check the options; the error names the option, its value and the allowed range.
-    pub fn validate(&self) -> Result<(), JobError> {
+    pub fn validate(&self) -> Result<(), Error> {
         let (lo, hi) = TOLERANCE_RANGE_MM;
         let t = self.tolerance_mm;
         if !(t.is_finite() && (lo..=hi).contains(&t)) {
-            return Err(JobError::range("tolerance", t, format!("from {lo} to {hi} mm")));
+            return Err(Error::param(Param::Tolerance, t, format!("from {} to {} mm", num(lo), num(hi))));
         }
         let z = self.safe_z_mm;
         if !(z.is_finite() && z > 0.0 && z <= 1000.0) {
-            return Err(JobError::range("safe-z", z, "a finite number > 0 and ≤ 1000 mm"));
+            return Err(Error::param(Param::SafeZ, z, "a finite number > 0 and ≤ 1000 mm"));
         }
         if let Some(f) = self.return_feed_mm_per_min
             && !(f.is_finite() && f > 0.0 && f <= 1.0e6)
         {
-            return Err(JobError::range("return-feed", f, "a finite number > 0 and ≤ 1000000 mm/min"));
+            return Err(Error::param(Param::ReturnFeed, f, "a finite number > 0 and ≤ 1000000 mm/min"));
         }
         if self.tool_number == 0 || self.tool_number > 9999 {
-            return Err(JobError::range("tool", self.tool_number, "a whole number from 1 to 9999"));
+            return Err(Error::param(Param::ToolNumber, self.tool_number, "a whole number from 1 to 9999"));
         }
         if self.compact && self.dialect.spec().loop_style.is_none() {
-            return Err(JobError::range(
-                "compact",
+            return Err(Error::param(
+                Param::Compact,
                 self.dialect.name(),
                 "a dialect with a loop form: linuxcnc or sinumerik",
             ));
@@ -177,7 +177,7 @@ pub fn cuts_nothing(plan: &Plan, cycle_len: f64, s0: f64, s1: f64) -> bool {
 }
 
 /// The NC program of a planned slot (module docs for its structure).
-pub fn program(plan: &Plan, opts: &NcOptions) -> Result<NcProgram, JobError> {
+pub fn program(plan: &Plan, opts: &NcOptions) -> Result<NcProgram, Error> {
     opts.validate()?;
     let spec = opts.dialect.spec();
     let moves = cycle_moves(plan, opts);
@@ -239,28 +239,28 @@ pub const PATH_GAP_MM: f64 = 1e-6;
 
 impl PathJob<'_> {
     /// Check the job; the error names the parameter, its value and the allowed range.
-    pub fn validate(&self) -> Result<(), JobError> {
+    pub fn validate(&self) -> Result<(), Error> {
         if self.segments.is_empty() {
-            return Err(JobError::range("path", "0 segments", "at least one segment"));
+            return Err(Error::nc("path", "0 segments", "at least one segment"));
         }
         let d = self.depth_mm;
         if !(d.is_finite() && d > 0.0 && d <= 1000.0) {
-            return Err(JobError::range("depth", d, "a finite number > 0 and ≤ 1000 mm"));
+            return Err(Error::param(Param::Depth, d, "a finite number > 0 and ≤ 1000 mm"));
         }
         let f = self.feed_mm_per_min;
         if !(f.is_finite() && f > 0.0 && f <= 1.0e6) {
-            return Err(JobError::range("feed", f, "a finite number > 0 and ≤ 1000000 mm/min"));
+            return Err(Error::param(Param::Feed, f, "a finite number > 0 and ≤ 1000000 mm/min"));
         }
         let n = self.spindle_rpm;
         if !(n.is_finite() && n > 0.0 && n <= 1.0e6) {
-            return Err(JobError::range("rpm", n, "a finite number > 0 and ≤ 1000000 rpm"));
+            return Err(Error::param(Param::Rpm, n, "a finite number > 0 and ≤ 1000000 rpm"));
         }
         let t = self.tool_diameter_mm;
         if !(t.is_finite() && t > 0.0 && t <= 1000.0) {
-            return Err(JobError::range("tool diameter", t, "a finite number > 0 and ≤ 1000 mm"));
+            return Err(Error::param(Param::ToolDiameter, t, "a finite number > 0 and ≤ 1000 mm"));
         }
         if let Some(&bad) = self.retract_before.iter().find(|&&i| i == 0 || i >= self.segments.len()) {
-            return Err(JobError::range(
+            return Err(Error::nc(
                 "retract",
                 format!("before segment {bad}"),
                 format!("before segments 1 to {}", self.segments.len().saturating_sub(1)),
@@ -272,10 +272,10 @@ impl PathJob<'_> {
             }
             let gap = (pair[1].start() - pair[0].end()).norm();
             if gap.is_nan() || gap > PATH_GAP_MM {
-                return Err(JobError::range(
+                return Err(Error::nc(
                     "path",
-                    format!("gap of {gap} mm after segment {k}"),
-                    format!("connected segments (gaps of at most {PATH_GAP_MM} mm)"),
+                    format!("gap of {} mm after segment {k}", num(gap)),
+                    format!("connected segments (gaps of at most {} mm)", num(PATH_GAP_MM)),
                 ));
             }
         }
@@ -292,14 +292,14 @@ impl PathJob<'_> {
 ///
 /// The loop form and the return feed need the repeating cycles and the tooth series of a slot
 /// plan: asking for them here is an error naming the option.
-pub fn program_for_path(job: &PathJob<'_>, opts: &NcOptions) -> Result<NcProgram, JobError> {
+pub fn program_for_path(job: &PathJob<'_>, opts: &NcOptions) -> Result<NcProgram, Error> {
     opts.validate()?;
     job.validate()?;
     if opts.compact {
-        return Err(JobError::range("compact", "true", "false for a path without repeating cycles"));
+        return Err(Error::param(Param::Compact, "true", "false for a path without repeating cycles"));
     }
     if let Some(f) = opts.return_feed_mm_per_min {
-        return Err(JobError::range("return-feed", f, "unset for a path without a tooth series"));
+        return Err(Error::param(Param::ReturnFeed, f, "unset for a path without a tooth series"));
     }
     let mut w = Writer::new(opts.dialect.spec());
     let header = Header {

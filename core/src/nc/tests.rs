@@ -30,13 +30,13 @@ fn bad_options_name_the_option() {
         (NcOptions { tolerance_mm: 5.0, ..NcOptions::default() }, "tolerance"),
         (NcOptions { safe_z_mm: f64::INFINITY, ..NcOptions::default() }, "safe-z"),
         (NcOptions { return_feed_mm_per_min: Some(-1.0), ..NcOptions::default() }, "return-feed"),
-        (NcOptions { tool_number: 0, ..NcOptions::default() }, "tool"),
+        (NcOptions { tool_number: 0, ..NcOptions::default() }, "tool-number"),
         (NcOptions { compact: true, ..opts(Dialect::Fanuc) }, "compact"),
         (NcOptions { compact: true, ..opts(Dialect::Grbl) }, "compact"),
     ];
     for (o, name) in cases {
         let err = program(&p, &o).expect_err("must be rejected");
-        assert_eq!(err.parameter(), Some(name), "{err}");
+        assert_eq!(err.subject(), Some(name), "{err}");
         assert!(err.to_string().contains(name), "{err}");
     }
 }
@@ -188,14 +188,14 @@ fn bad_path_jobs_name_the_parameter() {
         (PathJob { depth_mm: 0.0, ..path_job(&segs) }, opts(Dialect::Fanuc), "depth"),
         (PathJob { feed_mm_per_min: f64::NAN, ..path_job(&segs) }, opts(Dialect::Fanuc), "feed"),
         (PathJob { spindle_rpm: -1.0, ..path_job(&segs) }, opts(Dialect::Fanuc), "rpm"),
-        (PathJob { tool_diameter_mm: 0.0, ..path_job(&segs) }, opts(Dialect::Fanuc), "tool diameter"),
+        (PathJob { tool_diameter_mm: 0.0, ..path_job(&segs) }, opts(Dialect::Fanuc), "tool-diameter"),
         (path_job(&segs), NcOptions { compact: true, ..opts(Dialect::LinuxCnc) }, "compact"),
         (path_job(&segs), NcOptions { return_feed_mm_per_min: Some(900.0), ..opts(Dialect::Grbl) }, "return-feed"),
         (path_job(&segs), NcOptions { tolerance_mm: 0.0, ..opts(Dialect::Grbl) }, "tolerance"),
     ];
     for (job, o, name) in cases {
         let err = program_for_path(&job, &o).expect_err("must be rejected");
-        assert_eq!(err.parameter(), Some(name), "{err}");
+        assert_eq!(err.subject(), Some(name), "{err}");
     }
 }
 

@@ -12,7 +12,7 @@
 //! end (equal radii before rounding I/J), then rounded: the radii differ by at most q·√2.
 
 use super::dialect::{CommentStyle, DialectSpec, sanitize_comment};
-use crate::error::JobError;
+use crate::error::{Error, num};
 use crate::geom::{P2, Segment, p2, rot90};
 use std::f64::consts::{PI, TAU};
 
@@ -53,7 +53,7 @@ pub struct Writer {
     z: Option<i64>,
     feed: Option<i64>,
     y_form: YForm,
-    error: Option<JobError>,
+    error: Option<Error>,
 }
 
 impl Writer {
@@ -75,7 +75,7 @@ impl Writer {
 
     /// The program text and its number of blocks (lines that are not only a comment), or the
     /// first number that could not be written.
-    pub fn finish(self) -> Result<(String, usize), JobError> {
+    pub fn finish(self) -> Result<(String, usize), Error> {
         match self.error {
             Some(e) => Err(e),
             None => Ok((self.text, self.blocks)),
@@ -93,7 +93,7 @@ impl Writer {
             (v * self.scale).round() as i64
         } else {
             if self.error.is_none() {
-                self.error = Some(JobError::range(what, v, format!("a finite number of at most {MAX_ABS_MM} mm")));
+                self.error = Some(Error::nc(what, v, format!("a finite number of at most {} mm", num(MAX_ABS_MM))));
             }
             0
         }
@@ -184,7 +184,7 @@ impl Writer {
             (feed * 10.0).round() as i64
         } else {
             if self.error.is_none() {
-                self.error = Some(JobError::range("feed", feed, "a finite number > 0"));
+                self.error = Some(Error::nc("feed", feed, "a finite number > 0"));
             }
             1
         };
@@ -266,7 +266,7 @@ impl Writer {
     fn arc(&mut self, end: P2, center: P2, clockwise: bool, full_circle: bool, feed: f64) {
         let (Some(sx), Some(sy)) = (self.x, self.y) else {
             if self.error.is_none() {
-                self.error = Some(JobError::range("path", "arc", "to start from a known position"));
+                self.error = Some(Error::nc("path", "arc", "to start from a known position"));
             }
             return;
         };
@@ -292,7 +292,7 @@ impl Writer {
         let written_c = s + p2(i as f64 * q, j as f64 * q);
         let mismatch = ((s - written_c).norm() - (e - written_c).norm()).abs();
         if mismatch > self.spec.arc_radius_tolerance_mm && self.error.is_none() {
-            self.error = Some(JobError::range(
+            self.error = Some(Error::nc(
                 "tolerance",
                 format!("arc radius mismatch {mismatch:.6} mm"),
                 format!("at most {} mm for {}", self.spec.arc_radius_tolerance_mm, self.spec.name),
@@ -328,7 +328,7 @@ mod tests {
         let mut w = Writer::new(Dialect::LinuxCnc.spec());
         assert_eq!(w.format("x", 0.00004), "0.0000");
         w.format("x", f64::NAN);
-        assert_eq!(w.finish().expect_err("NaN is an error").parameter(), Some("x"));
+        assert_eq!(w.finish().expect_err("NaN is an error").subject(), Some("x"));
     }
 
     #[test]

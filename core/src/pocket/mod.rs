@@ -14,9 +14,8 @@ pub use perforative::{AxisCircle, KindMax, MoveKind, PerforativePlan, plan_perfo
 pub use rings::{LINK_ENGAGEMENT_SLACK_RAD, Link, LinkKind, Ring, RingPlan, inward_offset, link_is_inside, plan_rings};
 
 use crate::corner::CornerMethod;
-use crate::corner::finite;
-use crate::corner::strategy::validate_tool_and_step_over;
-use crate::error::JobError;
+use crate::corner::strategy::{tool_diameter, validate_tool_and_step_over};
+use crate::error::{Error, Param, num};
 use crate::geom::{Polygon, Segment, p2};
 use serde::{Deserialize, Serialize};
 
@@ -94,20 +93,20 @@ pub struct PocketSettings {
 
 impl PocketSettings {
     /// Range checks; each error names the parameter, the value and the allowed range.
-    pub fn validate(&self) -> Result<(), JobError> {
+    pub fn validate(&self) -> Result<(), Error> {
         let r = self.tool_radius;
         validate_tool_and_step_over(r, self.step_over)?;
         if !(self.feed_mm_per_min.is_finite() && self.feed_mm_per_min > 0.0) {
-            return Err(JobError::range("feed", self.feed_mm_per_min, "a finite number > 0 mm/min"));
+            return Err(Error::param(Param::Feed, self.feed_mm_per_min, "a finite number > 0 mm/min"));
         }
         if !(self.spacing.is_finite() && self.spacing > 0.0 && self.spacing <= r) {
-            return Err(JobError::range("spacing", self.spacing, format!("greater than 0 and at most r = {r} mm")));
+            return Err(Error::param(Param::Spacing, self.spacing, format!("greater than 0 and at most r = {} mm", num(r))));
         }
         Ok(())
     }
 
     /// Straight-cut engagement of the step-over, a_str = arccos(1 − a_e/r) (domain-spec §1.1).
-    pub fn straight_engagement(&self) -> Result<f64, JobError> {
+    pub fn straight_engagement(&self) -> Result<f64, Error> {
         crate::corner::straight_engagement(self.step_over, self.tool_radius)
     }
 }
@@ -148,8 +147,8 @@ impl Default for PocketRequest {
 
 impl PocketRequest {
     /// The validated numeric inputs. Errors name the input and its allowed range.
-    pub fn settings(&self) -> Result<PocketSettings, JobError> {
-        let d = finite("tool diameter", self.tool_diameter_mm)?;
+    pub fn settings(&self) -> Result<PocketSettings, Error> {
+        let d = tool_diameter(self.tool_diameter_mm)?;
         let settings = PocketSettings {
             tool_radius: d / 2.0,
             step_over: self.step_over_mm,
@@ -254,21 +253,21 @@ pub const MEDIAL_AXIS_MIN_STEP_OVER_RATIO: f64 = 0.05;
 /// [`MEDIAL_AXIS_MIN_STEP_OVER_RATIO`] × D, and a step-over (or spacing) so small that the plan
 /// would measure more than [`MAX_ESTIMATED_POSITIONS`] tool positions; the error names the
 /// smallest step-over allowed.
-pub fn plan(req: &PocketRequest) -> Result<PocketPlan, JobError> {
+pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
     let settings = req.settings()?;
     let least = MEDIAL_AXIS_MIN_STEP_OVER_RATIO * 2.0 * settings.tool_radius;
     if req.strategy == PocketStrategy::MedialAxis && settings.step_over < least {
-        return Err(JobError::range(
-            "step-over",
+        return Err(Error::param(
+            Param::StepOver,
             settings.step_over,
-            format!("at least {MEDIAL_AXIS_MIN_STEP_OVER_RATIO} × the tool diameter = {least} mm for the medial axis"),
+            format!("at least {MEDIAL_AXIS_MIN_STEP_OVER_RATIO} × the tool diameter = {} mm for the medial axis", num(least)),
         ));
     }
     let positions = estimated_positions(&req.polygon, req.strategy, &settings);
     if positions > MAX_ESTIMATED_POSITIONS {
         let least = settings.step_over * positions / MAX_ESTIMATED_POSITIONS;
-        return Err(JobError::range(
-            "step-over",
+        return Err(Error::param(
+            Param::StepOver,
             settings.step_over,
             format!(
                 "at least {least:.4} mm for this pocket with --spacing {} mm (its area / (step-over × spacing) \
@@ -302,6 +301,6 @@ mod tests {
         let checked = Polygon::new(req.polygon.vertices().to_vec()).expect("valid");
         assert_eq!(checked, req.polygon);
         let bad = PocketRequest { strategy: PocketStrategy::Rings(CornerMethod::MedialAxis), ..req };
-        assert_eq!(plan(&bad).expect_err("rejected").parameter(), Some("method"));
+        assert_eq!(plan(&bad).expect_err("rejected").subject(), Some("method"));
     }
 }

@@ -55,7 +55,7 @@ use super::PocketSettings;
 use super::rings::link_is_inside;
 use crate::corner::medial::{MedialAxis, Walls, medial_axis};
 use crate::corner::{CornerSettings, EngagementProfile, EvaluatorOptions, Turn, TwoCircle, engagement_profile};
-use crate::error::JobError;
+use crate::error::{Error, Param};
 use crate::geom::{Circle, P2, Polygon, Segment, golden_min, rot90};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
@@ -525,7 +525,7 @@ impl Current {
 
 /// Plan the pocket `polygon` with perforative trochoids along its medial axis; the target is
 /// the corner strategies' a* = a_str·(1 + t1).
-pub fn plan_perforative(polygon: &Polygon, settings: PocketSettings) -> Result<PerforativePlan, JobError> {
+pub fn plan_perforative(polygon: &Polygon, settings: PocketSettings) -> Result<PerforativePlan, Error> {
     settings.validate()?;
     let (r, ae) = (settings.tool_radius, settings.step_over);
     let cs = CornerSettings { feed_mm_per_min: settings.feed_mm_per_min, ..CornerSettings::new(r, ae)? };
@@ -535,8 +535,8 @@ pub fn plan_perforative(polygon: &Polygon, settings: PocketSettings) -> Result<P
     let parts = graph.parts(&walls);
     if parts.is_empty() {
         let widest = axis.edges.iter().map(|e| e.clearance_a.max(e.clearance_b)).fold(0.0, f64::max);
-        return Err(JobError::range(
-            "tool diameter",
+        return Err(Error::param(
+            Param::ToolDiameter,
             2.0 * r,
             format!("at most {:.3} mm, the widest circle that fits in the pocket", 2.0 * widest),
         ));
@@ -673,7 +673,7 @@ impl Planner<'_> {
         best.max(-golden_min(lo, hi, 1e-9, |p| -f(p)).1)
     }
 
-    fn push_circle(&mut self, center: P2, rho: f64, predicted: Option<f64>, kind: MoveKind) -> Result<(), JobError> {
+    fn push_circle(&mut self, center: P2, rho: f64, predicted: Option<f64>, kind: MoveKind) -> Result<(), Error> {
         self.circles.push(AxisCircle {
             tool_circle: Circle::new(center, rho),
             offset_radius: rho + self.r(),
@@ -681,13 +681,13 @@ impl Planner<'_> {
             kind,
         });
         if self.circles.len() > MAX_CIRCLES {
-            return Err(JobError::range("circles", self.circles.len(), format!("at most {MAX_CIRCLES} per pocket")));
+            return Err(Error::geometry("circles", self.circles.len(), format!("at most {MAX_CIRCLES} per pocket")));
         }
         Ok(())
     }
 
     /// One connected part: plunge at the root, concentric clearing, then every leaf.
-    fn part(&mut self, g: &AxisGraph, root: usize) -> Result<(), JobError> {
+    fn part(&mut self, g: &AxisGraph, root: usize) -> Result<(), Error> {
         let center = g.nodes[root];
         let rho_root = self.rho(center);
         let entry = self.spiral(center, rho_root)?;
@@ -715,7 +715,7 @@ impl Planner<'_> {
 
     /// Concentric circles about the plunge point `c` up to tool-centre radius `rho_max`.
     /// Returns the entry angle of the last circle (`None` if none was cut).
-    fn spiral(&mut self, c: P2, rho_max: f64) -> Result<Option<f64>, JobError> {
+    fn spiral(&mut self, c: P2, rho_max: f64) -> Result<Option<f64>, Error> {
         let (r, target, eps) = (self.r(), self.cs.target, self.cs.tolerance);
         if rho_max < self.cs.r_min() {
             return Ok(None);
@@ -756,7 +756,7 @@ impl Planner<'_> {
     /// `placed` collects the circles (with their arc length) for the next restart. A circle
     /// the search finds inside the current circle's cleared disc cuts nothing: it is skipped
     /// and the search goes on from there (`from`). Returns the arc length where the tool stops.
-    fn chain(&mut self, guide: &Guide, start: Current, placed: &mut Vec<Current>) -> Result<f64, JobError> {
+    fn chain(&mut self, guide: &Guide, start: Current, placed: &mut Vec<Current>) -> Result<f64, Error> {
         let (r, target, eps, r_min) = (self.r(), self.cs.target, self.cs.tolerance, self.cs.r_min());
         let end = guide.length();
         let mut cur = start;

@@ -64,7 +64,7 @@ use super::PocketSettings;
 use crate::corner::{
     Corner, CornerMethod, CornerScenario, CornerSettings, EvaluatorOptions, engagement_profile, plan_corner,
 };
-use crate::error::JobError;
+use crate::error::{Error, Param};
 use crate::geom::{P2, Polygon, Segment, p2};
 use cavalier_contours::polyline::{PlineSource, PlineSourceMut, PlineVertex, Polyline, seg_arc_radius_and_center};
 use serde::{Deserialize, Serialize};
@@ -216,9 +216,9 @@ fn point_segment(p: P2, a: P2, b: P2) -> f64 {
 
 /// The inward offset loops of a validated polygon at distance `d` (> 0, finite), as closed
 /// counter-clockwise segment loops. Empty when the offset vanishes.
-pub fn inward_offset(polygon: &Polygon, d: f64) -> Result<Vec<Vec<Segment>>, JobError> {
+pub fn inward_offset(polygon: &Polygon, d: f64) -> Result<Vec<Vec<Segment>>, Error> {
     if !(d.is_finite() && d > 0.0) {
-        return Err(JobError::range("offset", d, "a finite number > 0 mm"));
+        return Err(Error::geometry("offset", d, "a finite number > 0 mm"));
     }
     let mut pline: Polyline<f64> = Polyline::new_closed();
     for v in polygon.vertices() {
@@ -270,10 +270,10 @@ fn to_segments(pl: &Polyline<f64>) -> Vec<Segment> {
 /// isometric) at their corners, each ring measured by the independent evaluator. Errors:
 /// settings out of range (named), `method` medial-axis (a whole-pocket strategy:
 /// [`super::plan_perforative`]), a pocket too narrow for the tool (`tool diameter`).
-pub fn plan_rings(polygon: &Polygon, settings: PocketSettings, method: CornerMethod) -> Result<RingPlan, JobError> {
+pub fn plan_rings(polygon: &Polygon, settings: PocketSettings, method: CornerMethod) -> Result<RingPlan, Error> {
     settings.validate()?;
     if method == CornerMethod::MedialAxis {
-        return Err(JobError::range("method", method.name(), "plain, variable or isometric for pocket rings"));
+        return Err(Error::param(Param::Method, method.name(), "plain, variable or isometric for pocket rings"));
     }
     let (r, ae) = (settings.tool_radius, settings.step_over);
     let mut levels: Vec<(usize, f64, Vec<Vec<Segment>>)> = Vec::new();
@@ -286,14 +286,14 @@ pub fn plan_rings(polygon: &Polygon, settings: PocketSettings, method: CornerMet
         levels.push((k, d, loops));
     }
     if levels.is_empty() {
-        return Err(JobError::range(
-            "tool diameter",
+        return Err(Error::param(
+            Param::ToolDiameter,
             2.0 * r,
             "small enough to fit in the pocket (the inward offset of the polygon by the tool radius is empty)",
         ));
     }
     if levels.len() == MAX_LEVELS {
-        return Err(JobError::range("step-over", ae, format!("large enough for at most {MAX_LEVELS} rings")));
+        return Err(Error::param(Param::StepOver, ae, format!("large enough for at most {MAX_LEVELS} rings")));
     }
     let opts = EvaluatorOptions::new(r, settings.spacing);
     let mut rings = Vec::new();
@@ -340,7 +340,7 @@ pub fn plan_rings(polygon: &Polygon, settings: PocketSettings, method: CornerMet
         let (Some(from), Some(to)) =
             (pair[0].segments.last().map(Segment::end), pair[1].segments.first().map(Segment::start))
         else {
-            return Err(JobError::range("ring", "no segments", "at least one segment"));
+            return Err(Error::geometry("ring", "no segments", "at least one segment"));
         };
         let length_mm = (to - from).norm();
         let link = if link_is_inside(polygon, from, to, r) {
@@ -412,7 +412,7 @@ pub fn ring_with_corner_trochoids(
     ring: &[Segment],
     settings: PocketSettings,
     method: CornerMethod,
-) -> Result<(Vec<Segment>, usize, usize), JobError> {
+) -> Result<(Vec<Segment>, usize, usize), Error> {
     let (r, ae) = (settings.tool_radius, settings.step_over);
     let base = CornerSettings { feed_mm_per_min: settings.feed_mm_per_min, ..CornerSettings::new(r, ae)? };
     let n = ring.len();
