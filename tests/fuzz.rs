@@ -137,7 +137,7 @@ fn random_slot_jobs_plan_or_are_rejected_by_name_and_their_programs_retrace_the_
                 }
             }
             Err(e) => {
-                let name = e.parameter().expect("a job error names its parameter").to_string();
+                let name = e.parameter().expect("a job error names its parameter").cli_name();
                 assert_eq!(r.code, 2, "{label}: {e}");
                 assert!(r.stderr.contains(&name), "{label}: {} does not name {name}", r.stderr);
                 rejected += 1;
