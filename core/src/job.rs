@@ -76,10 +76,9 @@ impl PathKind {
 
     /// Parse a CLI / job-file name.
     pub fn from_name(s: &str) -> Result<PathKind, Error> {
-        PathKind::ALL
-            .into_iter()
-            .find(|k| k.name() == s)
-            .ok_or_else(|| Error::param(Param::Path, s, "one of circular, circular-type, elliptical, linear-elliptical"))
+        PathKind::ALL.into_iter().find(|k| k.name() == s).ok_or_else(|| {
+            Error::param(Param::Path, s, "one of circular, circular-type, elliptical, linear-elliptical")
+        })
     }
 
     /// Whether the aspect ratio r_e shapes this path.
@@ -212,11 +211,7 @@ impl Job {
         let depth = size(Param::Depth, self.depth)?;
         let d_t = size(Param::ToolDiameter, self.tool_diameter)?;
         if d_t >= b_w {
-            return Err(Error::param(
-                Param::ToolDiameter,
-                d_t,
-                format!("smaller than the slot width {} mm", num(b_w)),
-            ));
+            return Err(Error::param(Param::ToolDiameter, d_t, format!("smaller than the slot width {} mm", num(b_w))));
         }
         if d_t < b_w / 2.0 {
             return Err(Error::param(
@@ -253,7 +248,11 @@ impl Job {
         // 1e300 were accepted with `--path circular`).
         let (lo, hi) = ASPECT_RATIO;
         if !(self.aspect_ratio.is_finite() && self.aspect_ratio >= lo && self.aspect_ratio <= hi) {
-            return Err(Error::param(Param::AspectRatio, self.aspect_ratio, format!("from {} to {}", num(lo), num(hi))));
+            return Err(Error::param(
+                Param::AspectRatio,
+                self.aspect_ratio,
+                format!("from {} to {}", num(lo), num(hi)),
+            ));
         }
         let v = self.linear_distance;
         if !(v.is_finite() && v >= 0.0 && v <= b_w) {

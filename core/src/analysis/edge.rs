@@ -200,12 +200,9 @@ fn sweep_contains(pts: &[P2], shift: P2, r: f64, q: P2) -> bool {
 #[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 mod tests {
     use super::*;
-    use crate::job::{Job, PathKind};
+    use crate::job::PathKind;
 
-    fn cycle(path: PathKind, r_e: f64, d: f64) -> Cycle {
-        let job = Job { path, aspect_ratio: r_e, linear_distance: d, ..Job::default() };
-        Cycle::for_job(&job.validate().expect("valid"))
-    }
+    use crate::path::test_cycle as cycle;
 
     /// Brute force, independent of the radius function: distance from `p` to densely sampled
     /// centre points of cycles −1…−8.

@@ -212,9 +212,6 @@ mod tests {
         assert_eq!(Corner::symmetric(std::f64::consts::PI).unwrap_err().subject(), Some("angle"));
         assert_eq!(Corner::new(p2(0.0, 0.0), p2(0.0, 0.0), p2(1.0, 0.0)).unwrap_err().subject(), Some("edge length"));
         // A right turn is a reflex (outside) corner for a CCW pocket.
-        assert_eq!(
-            Corner::new(p2(0.0, 0.0), p2(1.0, 0.0), p2(0.0, -1.0)).unwrap_err().subject(),
-            Some("corner angle")
-        );
+        assert_eq!(Corner::new(p2(0.0, 0.0), p2(1.0, 0.0), p2(0.0, -1.0)).unwrap_err().subject(), Some("corner angle"));
     }
 }

@@ -22,8 +22,8 @@ use super::geometry::Corner;
 use super::method::CornerMethod;
 use super::request::CornerRequest;
 use crate::error::{Error, Param, num};
-use crate::job::limits::MIN_SIZE_MM;
 use crate::geom::{Circle, P2, Polygon, Segment};
+use crate::job::limits::MIN_SIZE_MM;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 
@@ -485,10 +485,7 @@ fn medial_axis_plan(sc: &CornerScenario) -> Result<CornerPlan, Error> {
 /// eq. 25: `rh1 = |PH1|/2 − r` with P the point of the previous corner arc PSQ farthest from
 /// wall 1 (our reading); if `rh ≤ rh1` the Fig. 14b layout (not in our fragments) would be
 /// needed and the variable method is used instead (noted).
-fn isometric_circles(
-    sc: &CornerScenario,
-    notes: &mut Vec<String>,
-) -> Result<(Vec<CornerCircle>, Option<P2>), Error> {
+fn isometric_circles(sc: &CornerScenario, notes: &mut Vec<String>) -> Result<(Vec<CornerCircle>, Option<P2>), Error> {
     let s = sc.settings;
     let (r, ae, corner) = (s.tool_radius, s.step_over, &sc.corner);
     let alpha = corner.half_angle;

@@ -243,21 +243,15 @@ impl PathJob<'_> {
         if self.segments.is_empty() {
             return Err(Error::nc("path", "0 segments", "at least one segment"));
         }
-        let d = self.depth_mm;
-        if !(d.is_finite() && d > 0.0 && d <= 1000.0) {
-            return Err(Error::param(Param::Depth, d, "a finite number > 0 and ≤ 1000 mm"));
-        }
-        let f = self.feed_mm_per_min;
-        if !(f.is_finite() && f > 0.0 && f <= 1.0e6) {
-            return Err(Error::param(Param::Feed, f, "a finite number > 0 and ≤ 1000000 mm/min"));
-        }
-        let n = self.spindle_rpm;
-        if !(n.is_finite() && n > 0.0 && n <= 1.0e6) {
-            return Err(Error::param(Param::Rpm, n, "a finite number > 0 and ≤ 1000000 rpm"));
-        }
-        let t = self.tool_diameter_mm;
-        if !(t.is_finite() && t > 0.0 && t <= 1000.0) {
-            return Err(Error::param(Param::ToolDiameter, t, "a finite number > 0 and ≤ 1000 mm"));
+        for (param, v, max, unit) in [
+            (Param::Depth, self.depth_mm, 1000.0, "mm"),
+            (Param::Feed, self.feed_mm_per_min, 1.0e6, "mm/min"),
+            (Param::Rpm, self.spindle_rpm, 1.0e6, "rpm"),
+            (Param::ToolDiameter, self.tool_diameter_mm, 1000.0, "mm"),
+        ] {
+            if !(v.is_finite() && v > 0.0 && v <= max) {
+                return Err(Error::param(param, v, format!("a finite number > 0 and ≤ {max} {unit}")));
+            }
         }
         if let Some(&bad) = self.retract_before.iter().find(|&&i| i == 0 || i >= self.segments.len()) {
             return Err(Error::nc(

@@ -175,16 +175,20 @@ impl SlotPath {
     }
 }
 
+/// The cycle of the default job with another path, r_e and d (tests of this crate).
+#[cfg(test)]
+#[allow(clippy::expect_used)]
+pub(crate) fn test_cycle(path: PathKind, r_e: f64, d: f64) -> Cycle {
+    let job = crate::job::Job { path, aspect_ratio: r_e, linear_distance: d, ..crate::job::Job::default() };
+    Cycle::for_job(&job.validate().expect("valid"))
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 mod tests {
     use super::*;
     use crate::job::Job;
-
-    fn cycle(path: PathKind, r_e: f64, d: f64) -> Cycle {
-        let job = Job { path, aspect_ratio: r_e, linear_distance: d, ..Job::default() };
-        Cycle::for_job(&job.validate().expect("valid"))
-    }
+    use test_cycle as cycle;
 
     #[test]
     fn every_cycle_starts_at_left_extreme_and_advances_one_step() {

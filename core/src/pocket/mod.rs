@@ -100,7 +100,11 @@ impl PocketSettings {
             return Err(Error::param(Param::Feed, self.feed_mm_per_min, "a finite number > 0 mm/min"));
         }
         if !(self.spacing.is_finite() && self.spacing > 0.0 && self.spacing <= r) {
-            return Err(Error::param(Param::Spacing, self.spacing, format!("greater than 0 and at most r = {} mm", num(r))));
+            return Err(Error::param(
+                Param::Spacing,
+                self.spacing,
+                format!("greater than 0 and at most r = {} mm", num(r)),
+            ));
         }
         Ok(())
     }
@@ -260,7 +264,10 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
         return Err(Error::param(
             Param::StepOver,
             settings.step_over,
-            format!("at least {MEDIAL_AXIS_MIN_STEP_OVER_RATIO} × the tool diameter = {} mm for the medial axis", num(least)),
+            format!(
+                "at least {MEDIAL_AXIS_MIN_STEP_OVER_RATIO} × the tool diameter = {} mm for the medial axis",
+                num(least)
+            ),
         ));
     }
     let positions = estimated_positions(&req.polygon, req.strategy, &settings);
