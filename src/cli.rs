@@ -9,10 +9,10 @@ use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
 use std::process::ExitCode;
+use trochoplan_core::job::teeth_error;
 use trochoplan_core::plan::engagement_limited_step;
 use trochoplan_core::quantity::{self, METRICS, Metric, SERIES};
 use trochoplan_core::sweep::{self, SweepParam};
-use trochoplan_core::job::teeth_error;
 use trochoplan_core::{Job, PathKind, Plan, plan};
 
 #[derive(Parser)]

@@ -2,12 +2,11 @@
 //! Degrees at this edge, radians in the core. Output is JSON (or a Markdown table with
 //! `corner --table`).
 
+use super::core_names;
 use crate::files::{read_input, write_atomic};
 use clap::Args;
 use serde::Serialize;
 use std::path::PathBuf;
-use super::core_names;
-use trochoplan_core::{Error, Param};
 use trochoplan_core::corner::acceptance::{acceptance_table, markdown};
 use trochoplan_core::corner::{
     CornerMethod, CornerReport, CornerRequest, EngagementSample, EvaluatorOptions, engagement_profile, evaluate,
@@ -20,6 +19,7 @@ use trochoplan_core::nc::{
 use trochoplan_core::pocket::{
     self, LinkKind, MoveKind, PerforativePlan, PocketPlan, PocketRequest, PocketStrategy, RingPlan,
 };
+use trochoplan_core::{Error, Param};
 
 /// Flags of `trochoplan corner` (defaults: [`CornerRequest::DEFAULT`]).
 #[derive(Args)]
