@@ -154,6 +154,7 @@ fn random_slot_jobs_plan_or_are_rejected_by_name_and_their_programs_retrace_the_
 fn random_pockets_of_every_method_never_gouge() {
     let dir = tempfile::tempdir().expect("tempdir");
     let mut rng = Rng::new(5);
+    let mut checked = 0;
     for seed in 0..5u64 {
         let n = 6 + rng.below(12);
         let polygon = star_polygon(100 + seed, n);
@@ -167,8 +168,11 @@ fn random_pockets_of_every_method_never_gouge() {
                 continue; // rejected by name (e.g. the tool does not fit): checked inside
             };
             check_pocket_program(&label, &e, &polygon, 0.5 * d, 0.005, 3);
+            checked += 1;
         }
     }
+    // a rejection is allowed, but the test must still check programs
+    assert!(checked >= 10, "only {checked} of 15 pockets were planned and checked");
 }
 
 /// A valid 60 × 40 rectangle file and mutations of one of its lines. Each mutated file must
