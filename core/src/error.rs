@@ -57,11 +57,17 @@ pub enum Param {
     StockPolygon,
     /// `engagement --path-csv`.
     PathCsv,
+    /// `pocket --helix-radius` (adaptive clearing).
+    HelixRadius,
+    /// `pocket --ramp-angle`.
+    RampAngle,
+    /// `pocket --finish-stock`.
+    FinishStock,
 }
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 37] = [
+    pub const ALL: [Param; 40] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
@@ -99,6 +105,9 @@ impl Param {
         Param::Polygon,
         Param::StockPolygon,
         Param::PathCsv,
+        Param::HelixRadius,
+        Param::RampAngle,
+        Param::FinishStock,
     ];
 
     /// The command-line flag without `--` (also the job-file key). The NC tolerance and the
@@ -142,6 +151,9 @@ impl Param {
             Param::Polygon => "polygon",
             Param::StockPolygon => "stock-polygon",
             Param::PathCsv => "path-csv",
+            Param::HelixRadius => "helix-radius",
+            Param::RampAngle => "ramp-angle",
+            Param::FinishStock => "finish-stock",
         }
     }
 
@@ -185,6 +197,9 @@ impl Param {
             Param::Polygon => "Pocket polygon",
             Param::StockPolygon => "Stock polygon",
             Param::PathCsv => "Path CSV",
+            Param::HelixRadius => "Helix radius",
+            Param::RampAngle => "Ramp angle",
+            Param::FinishStock => "Finishing stock",
         }
     }
 }
