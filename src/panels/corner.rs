@@ -234,6 +234,17 @@ pub fn compute_pocket(i: &CornerInputs) -> Result<PocketResult, String> {
                 p.max_of(MoveKind::Tip).to_degrees()
             ),
         ),
+        // One pass: the whole path at depth (shown as one entry of the ring list).
+        PocketPlan::Adaptive(p) => (
+            vec![(0, 0.0, p.max_engagement_rad.to_degrees(), segment_points(&p.segments, MAX_PATH_POINTS))],
+            format!(
+                "helix entry, {} rings, {} corners thinned; p95 {:.1}°, {:.0} mm at depth",
+                p.parts.iter().map(|q| q.rings).sum::<usize>(),
+                p.parts.iter().map(|q| q.corners.len()).sum::<usize>(),
+                p.p95_engagement_rad.to_degrees(),
+                p.length_at_depth_mm
+            ),
+        ),
         PocketPlan::Rings(p) => (
             p.rings
                 .iter()

@@ -97,7 +97,7 @@ pub fn adaptive_program(plan: &AdaptivePlan, cut: CutSetup, opts: &NcOptions) ->
     let h = &helices[0];
     let summary = [
         format!(
-            "pocket of {} vertices, method adaptive ({}), {} part(s), helix R {:.3} mm at {:.1} deg",
+            "pocket of {} vertices, adaptive {}, {} part(s), helix R {:.3} mm {:.1} deg",
             plan.polygon.vertices().len(),
             plan.options.direction.name(),
             plan.parts.len(),
@@ -105,7 +105,7 @@ pub fn adaptive_program(plan: &AdaptivePlan, cut: CutSetup, opts: &NcOptions) ->
             plan.options.ramp_deg
         ),
         format!(
-            "at depth {:.3} mm (links {:.3} mm), peak engagement {:.2} deg (target {:.2} deg)",
+            "at depth {:.1} mm, links {:.1} mm, peak {:.2} deg, target {:.2} deg",
             plan.length_at_depth_mm,
             plan.link_length_mm,
             plan.max_engagement_rad.to_degrees(),
