@@ -64,6 +64,8 @@ pub const HELIX_START_Z_MM: f64 = 0.5;
 pub const AIR_ENGAGEMENT_RAD: f64 = PI / 180.0;
 /// Most rings or corner passes per part (bounds run time on hostile input).
 const MAX_PASSES: usize = 20_000;
+/// Fractions of the inscribed radius the core radius T starts from (the shortest plan wins).
+const CORE_FRACTIONS: [f64; 5] = [1.0, 0.85, 0.7, 0.55, 0.4];
 /// Bisection steps for the inscribed radius.
 const INSCRIBED_STEPS: usize = 48;
 
@@ -410,6 +412,28 @@ pub fn plan_adaptive(
     settings: PocketSettings,
     options: AdaptiveOptions,
 ) -> Result<AdaptivePlan, Error> {
+    let (parts, b, corner_radius_left_mm) = plan_path(polygon, &settings, &options)?;
+    let phi = crate::corner::straight_engagement(settings.step_over, settings.tool_radius)?;
+    measure(polygon.clone(), settings, options, phi, parts, b, corner_radius_left_mm)
+}
+
+/// The moves of an adaptive plan without measuring them (what the speed bench times): the
+/// parts, their moves at depth and kinds, and the corner radius left.
+pub fn adaptive_path(
+    polygon: &Polygon,
+    settings: PocketSettings,
+    options: AdaptiveOptions,
+) -> Result<(Vec<AdaptivePart>, Vec<Segment>, Vec<MoveKind>, f64), Error> {
+    let (parts, b, left) = plan_path(polygon, &settings, &options)?;
+    Ok((parts, b.segments, b.kinds, left))
+}
+
+fn plan_path(
+    polygon: &Polygon,
+    settings: &PocketSettings,
+    options: &AdaptiveOptions,
+) -> Result<(Vec<AdaptivePart>, Builder, f64), Error> {
+    let (settings, options) = (*settings, *options);
     settings.validate()?;
     options.validate(&settings)?;
     let mirror = options.direction == Direction::Conventional;
@@ -432,8 +456,29 @@ pub fn plan_adaptive(
     let mut b = Builder { segments: Vec::new(), kinds: Vec::new() };
     let mut parts = Vec::new();
     for region in &regions {
+        // The core radius trades ring length against corner caps: plan with T starting at each
+        // fraction of the inscribed radius and keep the shortest path (geometry only).
+        let (inscribed_radius, k0) = inscribed(region);
+        let mut best: Option<(f64, Builder, AdaptivePart)> = None;
+        let mut last_err = None;
+        for fraction in CORE_FRACTIONS {
+            let mut bb = Builder { segments: Vec::new(), kinds: Vec::new() };
+            match plan_part(region, (inscribed_radius, k0), &work, &settings, &options, phi, rho_fin, fraction, &mut bb) {
+                Ok(part) => {
+                    let len: f64 = bb.segments.iter().map(Segment::length).sum();
+                    if best.as_ref().is_none_or(|(l, _, _)| len < *l) {
+                        best = Some((len, bb, part));
+                    }
+                }
+                Err(e) => last_err = Some(e),
+            }
+        }
+        let Some((_, bb, part)) = best else {
+            return Err(last_err.unwrap_or_else(|| Error::geometry("polygon", "no plan", "a pocket the tool fits")));
+        };
         let first = b.segments.len();
-        let part = plan_part(region, &work, &settings, &options, phi, rho_fin, &mut b)?;
+        b.segments.extend(bb.segments);
+        b.kinds.extend(bb.kinds);
         parts.push(AdaptivePart { first_segment: first, end_segment: b.segments.len(), ..part });
     }
     if mirror {
@@ -449,7 +494,7 @@ pub fn plan_adaptive(
             }
         }
     }
-    measure(polygon.clone(), settings, options, phi, parts, b, rho_fin + sf)
+    Ok((parts, b, rho_fin + sf))
 }
 
 /// ρ_fin: the concave step of radius ρ_fin + s_f reaches s_f.
@@ -483,17 +528,19 @@ fn mirror_segment(s: &Segment) -> Segment {
 }
 
 /// Entry, spiral, rings and corners of one region of tool centres; the finishing pass.
+#[allow(clippy::too_many_arguments)]
 fn plan_part(
     region: &Polyline<f64>,
+    (inscribed, k0): (f64, P2),
     polygon: &Polygon,
     settings: &PocketSettings,
     options: &AdaptiveOptions,
     phi: f64,
     rho_fin: f64,
+    fraction: f64,
     b: &mut Builder,
 ) -> Result<AdaptivePart, Error> {
     let r = settings.tool_radius;
-    let (inscribed, k0) = inscribed(region);
     let wanted = options.helix_radius_mm.unwrap_or(0.75 * r);
     let least = if options.helix_radius_mm.is_some() { wanted } else { 0.5 * r };
     // The helix circle must keep its bore inside the region: r_h ≤ inscribed radius.
@@ -514,7 +561,7 @@ fn plan_part(
     let corners_all = convex_corners(&to_segments(region));
     // Core radius T: the largest (from 0.995 × the inscribed radius, −10 % a step) whose
     // opening of the region leaves only the corner caps.
-    let mut t = 0.995 * inscribed;
+    let mut t = 0.995 * fraction * inscribed;
     let core = loop {
         if t < r_h {
             t = r_h;
