@@ -371,7 +371,33 @@ struct Corner {
     len_out: f64,
 }
 
+/// The loop with consecutive collinear lines joined (offsets keep the vertices where other
+/// edges' offsets ended), so that a corner's walls are whole.
+fn merged(lp: &[Segment]) -> Vec<Segment> {
+    let mut out: Vec<Segment> = Vec::with_capacity(lp.len());
+    for seg in lp {
+        if let (Some(Segment::Line { start, end }), Segment::Line { end: e2, .. }) = (out.last().copied(), *seg)
+            && cross((end - start).normalize(), (e2 - end).normalize()).abs() < 1e-9
+            && (end - start).dot(&(e2 - end)) > 0.0
+        {
+            *out.last_mut().unwrap_or(&mut Segment::Line { start, end }) = Segment::Line { start, end: e2 };
+            continue;
+        }
+        out.push(*seg);
+    }
+    if out.len() > 2
+        && let (Segment::Line { start: s0, end: e0 }, Segment::Line { start: sl, end: el }) = (out[0], out[out.len() - 1])
+        && cross((el - sl).normalize(), (e0 - s0).normalize()).abs() < 1e-9
+        && (el - sl).dot(&(e0 - s0)) > 0.0
+    {
+        out[0] = Segment::Line { start: sl, end: e0 };
+        out.pop();
+    }
+    out
+}
+
 fn convex_corners(lp: &[Segment]) -> Vec<Corner> {
+    let lp = merged(lp);
     let n = lp.len();
     let mut out = Vec::new();
     for i in 0..n {
@@ -494,7 +520,7 @@ fn plan_path(
             }
         }
     }
-    Ok((parts, b, rho_fin + sf))
+    Ok((parts, b, r + rho_fin + sf))
 }
 
 /// ρ_fin: the concave step of radius ρ_fin + s_f reaches s_f.
