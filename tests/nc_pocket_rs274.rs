@@ -188,6 +188,8 @@ fn adaptive_pockets_read_back_through_rs274_stay_within_the_issue_limits() {
             deg.sort_by(f64::total_cmp);
             let peak = deg[deg.len() - 1];
             let p95 = deg[(0.95 * deg.len() as f64).ceil() as usize - 1];
+            let at_depth = prof.path_length_mm;
+            eprintln!("{label}: read back {at_depth:.1} mm at depth, peak {peak:.2}°, p95 {p95:.2}°");
             assert!(peak <= 60.0 && p95 <= 50.0, "{label}: peak {peak:.2}°, p95 {p95:.2}° at {:?}", prof.max());
             // the plan's own numbers agree with the read-back within the written rounding
             let planned = e.json["max_engagement_deg"].as_f64().expect("max");
