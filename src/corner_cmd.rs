@@ -13,10 +13,10 @@ use trochoplan_core::corner::{
     finite, parse_points, polyline,
 };
 use trochoplan_core::geom::{P2, Polygon, Segment};
+use trochoplan_core::job::Direction;
 use trochoplan_core::nc::{
     CutSetup, DEFAULT_TOLERANCE_MM, Dialect, NcOptions, NcProgram, corner_program, pocket_program,
 };
-use trochoplan_core::job::Direction;
 use trochoplan_core::pocket::adaptive::corner_point_bound_rad;
 use trochoplan_core::pocket::{
     self, AdaptiveOptions, AdaptivePlan, LinkKind, MoveKind, PerforativePlan, PocketPlan, PocketRequest,

@@ -66,7 +66,12 @@ fn arriving_at_a_corner_point_reads_pi_minus_the_corner_angle() {
         // corner at the origin, walls along +x and along angle α; tool-centre corner point V
         let v = p2(R / (0.5 * alpha).tan(), R);
         let far = 40.0;
-        let stock = poly(&[(0.0, 0.0), (far, 0.0), (far * alpha.cos() + far, far * alpha.sin()), (far * alpha.cos(), far * alpha.sin())]);
+        let stock = poly(&[
+            (0.0, 0.0),
+            (far, 0.0),
+            (far * alpha.cos() + far, far * alpha.sin()),
+            (far * alpha.cos(), far * alpha.sin()),
+        ]);
         let path = [Segment::Line { start: p2(far * 0.5, R), end: v }];
         let prof = engagement_profile(&stock, &[], &path, &EvaluatorOptions::new(R, 0.25)).unwrap();
         let last = prof.samples.last().unwrap().angle_rad;
@@ -88,9 +93,17 @@ fn rectangle_and_l_keep_every_move_within_the_target() {
         assert!(p.max_engagement_rad <= 60f64.to_radians(), "{name}: {}", p.max_engagement_rad.to_degrees());
         assert!(p.p95_engagement_rad <= 50f64.to_radians(), "{name}: {}", p.p95_engagement_rad.to_degrees());
         for m in &p.maxima {
-            assert!(m.max_rad <= target + 1f64.to_radians(), "{name} {:?}: {}° at {:?}", m.kind, m.max_rad.to_degrees(), m.at);
+            assert!(
+                m.max_rad <= target + 1f64.to_radians(),
+                "{name} {:?}: {}° at {:?}",
+                m.kind,
+                m.max_rad.to_degrees(),
+                m.at
+            );
         }
-        for kind in [MoveKind::Entry, MoveKind::Spiral, MoveKind::Ring, MoveKind::Corner, MoveKind::Link, MoveKind::Finish] {
+        for kind in
+            [MoveKind::Entry, MoveKind::Spiral, MoveKind::Ring, MoveKind::Corner, MoveKind::Link, MoveKind::Finish]
+        {
             assert!(p.maxima.iter().any(|m| m.kind == kind), "{name}: no {kind:?}");
         }
         // the flat turn after the helix is inside its bore
@@ -208,8 +221,8 @@ fn helix_that_does_not_fit_and_bad_options_are_named() {
         assert_eq!(plan_adaptive(&rect, settings, o).unwrap_err().subject(), Some(name));
     }
     // no finishing pass: no finish moves, corners left at r + ρ_fin = 1.1·r
-    let p = plan_adaptive(&rect, settings, AdaptiveOptions { finish_stock_mm: 0.0, ..AdaptiveOptions::default() })
-        .unwrap();
+    let p =
+        plan_adaptive(&rect, settings, AdaptiveOptions { finish_stock_mm: 0.0, ..AdaptiveOptions::default() }).unwrap();
     assert!(p.maxima.iter().all(|m| m.kind != MoveKind::Finish));
     assert!((p.corner_radius_left_mm - 1.1 * R).abs() < 1e-12);
     assert!(p.max_engagement_rad <= PI);

@@ -591,6 +591,32 @@ fn pocket_mode_plans_the_medial_axis_strategy_for_the_whole_pocket() {
     assert!(p.detail.contains(&format!("{} circles along the medial axis", want.circles.len())), "{}", p.detail);
 }
 
+#[test]
+fn pocket_mode_plans_adaptive_clearing() {
+    use trochoplan_core::pocket::{self, PocketPlan};
+    let mut h = corner_harness();
+    h.get_by_label("Pocket").click();
+    h.run();
+    h.get_by_label(label::POCKET_ADAPTIVE).click();
+    h.run();
+    let t0 = Instant::now();
+    while h.state().corner.pending() && t0.elapsed().as_secs() < 120 {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        h.step();
+    }
+    h.run();
+    assert!(h.state().state.corner.pocket_adaptive);
+    assert!(h.state().corner.error.is_none(), "{:?}", h.state().corner.error);
+    let p = h.state().corner.last_pocket.clone().expect("a pocket");
+    let PocketPlan::Adaptive(plan) = &p.plan else { panic!("adaptive plan expected") };
+    // the tab shows what the core plans for the tab's request
+    let req = h.state().state.corner.pocket_request().unwrap();
+    let PocketPlan::Adaptive(want) = pocket::plan(&req).unwrap() else { panic!("adaptive plan expected") };
+    assert_eq!(want.segments, plan.segments);
+    assert!(shows(&h, &p.detail), "{}", p.detail);
+    assert!(p.detail.contains(&format!("{:.0} mm at depth", want.length_at_depth_mm)), "{}", p.detail);
+}
+
 /// Step frames until the Corner tab's acceptance table is no longer being computed.
 fn wait_for_table(h: &mut Harness<'_, App>) {
     let t0 = Instant::now();

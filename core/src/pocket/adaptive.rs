@@ -89,7 +89,13 @@ impl Default for AdaptiveOptions {
     /// Helix 0.375·D at 3° (a 3-flute carbide end mill's ramp), 0.2 mm finishing stock, climb,
     /// the NC export's default depth of 6 mm.
     fn default() -> Self {
-        AdaptiveOptions { helix_radius_mm: None, ramp_deg: 3.0, finish_stock_mm: 0.2, direction: Direction::Climb, depth_mm: 6.0 }
+        AdaptiveOptions {
+            helix_radius_mm: None,
+            ramp_deg: 3.0,
+            finish_stock_mm: 0.2,
+            direction: Direction::Climb,
+            depth_mm: 6.0,
+        }
     }
 }
 
@@ -147,7 +153,12 @@ impl Helix {
 
     /// The helix as a full circle in the plane (what it clears at depth).
     pub fn circle(&self) -> Segment {
-        Segment::Arc { center: self.center, radius: self.radius, start_angle: self.start_angle, sweep: self.sense * TAU }
+        Segment::Arc {
+            center: self.center,
+            radius: self.radius,
+            start_angle: self.start_angle,
+            sweep: self.sense * TAU,
+        }
     }
 
     /// Length of the 3D helix descending `drop` mm (mm).
@@ -286,7 +297,8 @@ fn closest_on(seg: &Segment, q: P2) -> (P2, f64) {
         Segment::Arc { start_angle, sweep, center, .. } => {
             let v = q - center;
             let ang = v.y.atan2(v.x);
-            let rel = if sweep >= 0.0 { (ang - start_angle).rem_euclid(TAU) } else { (start_angle - ang).rem_euclid(TAU) };
+            let rel =
+                if sweep >= 0.0 { (ang - start_angle).rem_euclid(TAU) } else { (start_angle - ang).rem_euclid(TAU) };
             let t = if rel <= sweep.abs() {
                 rel / sweep.abs()
             } else if (q - seg.start()).norm() <= (q - seg.end()).norm() {
@@ -386,7 +398,8 @@ fn merged(lp: &[Segment]) -> Vec<Segment> {
         out.push(*seg);
     }
     if out.len() > 2
-        && let (Segment::Line { start: s0, end: e0 }, Segment::Line { start: sl, end: el }) = (out[0], out[out.len() - 1])
+        && let (Segment::Line { start: s0, end: e0 }, Segment::Line { start: sl, end: el }) =
+            (out[0], out[out.len() - 1])
         && cross((el - sl).normalize(), (e0 - s0).normalize()).abs() < 1e-9
         && (el - sl).dot(&(e0 - s0)) > 0.0
     {
@@ -406,7 +419,14 @@ fn convex_corners(lp: &[Segment]) -> Vec<Corner> {
         let (d_in, d_out) = ((v - a0).normalize(), (b1 - v).normalize());
         let turn = cross(d_in, d_out).atan2(d_in.dot(&d_out));
         if turn > 1e-6 {
-            out.push(Corner { vertex: v, d_in, d_out, alpha: PI - turn, len_in: (v - a0).norm(), len_out: (b1 - v).norm() });
+            out.push(Corner {
+                vertex: v,
+                d_in,
+                d_out,
+                alpha: PI - turn,
+                len_in: (v - a0).norm(),
+                len_out: (b1 - v).norm(),
+            });
         }
     }
     out
@@ -489,7 +509,8 @@ fn plan_path(
         let mut last_err = None;
         for fraction in CORE_FRACTIONS {
             let mut bb = Builder { segments: Vec::new(), kinds: Vec::new() };
-            match plan_part(region, (inscribed_radius, k0), &work, &settings, &options, phi, rho_fin, fraction, &mut bb) {
+            match plan_part(region, (inscribed_radius, k0), &work, &settings, &options, phi, rho_fin, fraction, &mut bb)
+            {
                 Ok(part) => {
                     let len: f64 = bb.segments.iter().map(Segment::length).sum();
                     if best.as_ref().is_none_or(|(l, _, _)| len < *l) {
@@ -637,7 +658,8 @@ fn plan_part(
     }
     let halves = q.len() - 1;
     let theta0 = theta_n - halves as f64 * PI;
-    let helix = Helix { center: k0, radius: r_h, start_angle: theta0, sense: 1.0, ramp_rad: options.ramp_deg.to_radians() };
+    let helix =
+        Helix { center: k0, radius: r_h, start_angle: theta0, sense: 1.0, ramp_rad: options.ramp_deg.to_radians() };
     b.push(helix.circle(), MoveKind::Entry);
     for i in 0..halves {
         let th = theta0 + i as f64 * PI;
