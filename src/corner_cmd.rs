@@ -151,7 +151,9 @@ pub struct EngagementArgs {
 /// Flags of `trochoplan pocket` (defaults: [`PocketRequest::default`]).
 #[derive(Args)]
 pub struct PocketArgs {
-    /// Pocket boundary: one vertex "x,y" per line (mm), '#' comments allowed; a simple polygon.
+    /// Pocket boundary: one vertex "x,y" per line (mm), '#' comments allowed; or a drawing,
+    /// `.dxf` (closed LWPOLYLINE, or LINE/ARC chain) or `.svg` (first path or polygon, mm),
+    /// arcs and curves as chords within 0.01 mm; a simple polygon.
     #[arg(long, value_name = "FILE")]
     polygon: PathBuf,
     /// Tool diameter D (mm).
@@ -250,8 +252,8 @@ struct PocketOut {
 /// perforative trochoids along its medial axis (`--method medial-axis`).
 pub fn pocket(args: &PocketArgs) -> Result<String, String> {
     let what = args.polygon.display().to_string();
-    let polygon = Polygon::new(parse_points(&read_input(&args.polygon, "polygon file")?, &what).map_err(err)?)
-        .map_err(|e| format!("{what}: {e}"))?;
+    let points = crate::outline::outline_points(&args.polygon, &read_input(&args.polygon, "polygon file")?)?;
+    let polygon = Polygon::new(points).map_err(|e| format!("{what}: {e}"))?;
     let req = PocketRequest {
         polygon,
         tool_diameter_mm: args.tool_diameter,

@@ -463,13 +463,15 @@ pub fn plan_adaptive(
     measure(polygon.clone(), settings, options, phi, parts, b, corner_radius_left_mm)
 }
 
-/// The moves of an adaptive plan without measuring them (what the speed bench times): the
-/// parts, their moves at depth and kinds, and the corner radius left.
+/// The parts, their moves at depth and kinds, and the corner radius left (mm).
+pub type AdaptivePath = (Vec<AdaptivePart>, Vec<Segment>, Vec<MoveKind>, f64);
+
+/// The moves of an adaptive plan without measuring them (what the speed bench times).
 pub fn adaptive_path(
     polygon: &Polygon,
     settings: PocketSettings,
     options: AdaptiveOptions,
-) -> Result<(Vec<AdaptivePart>, Vec<Segment>, Vec<MoveKind>, f64), Error> {
+) -> Result<AdaptivePath, Error> {
     let (parts, b, left) = plan_path(polygon, &settings, &options)?;
     Ok((parts, b.segments, b.kinds, left))
 }
