@@ -137,7 +137,7 @@ fn svg_points(text: &str) -> Result<Vec<P2>, String> {
     if node.ancestors().any(|n| n.has_attribute("transform")) {
         return Err(format!("the <{}> has a transform: apply it in the drawing first", node.tag_name().name()));
     }
-    let flip = |x: f64, y: f64| p2(x, -y);
+    let flip = |x: f64, y: f64| p2(x, 0.0 - y); // 0 − y: no negative zero in the vertex text
     let pts: Vec<P2> = if node.tag_name().name() == "polygon" {
         PointsParser::from(node.attribute("points").unwrap_or("")).map(|(x, y)| flip(x, y)).collect()
     } else {

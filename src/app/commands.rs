@@ -34,6 +34,8 @@ pub enum Command {
     RestartCornerTable,
     /// Ask for a file and write the Corner tab's previewed NC program.
     ExportCornerNc,
+    /// Ask for a pocket outline (DXF, SVG or points) and put its vertices in the Pocket mode.
+    OpenOutline,
 }
 
 impl App {
@@ -68,6 +70,11 @@ impl App {
             Command::CancelCornerTable => self.corner.table.cancel(),
             Command::RestartCornerTable => self.corner.table.restart(),
             Command::ExportCornerNc => self.export_corner_nc(),
+            Command::OpenOutline => {
+                if let Some(path) = self.dialogs.open_outline() {
+                    self.open_outline(&path);
+                }
+            }
         }
     }
 
@@ -147,6 +154,19 @@ impl App {
                 self.set_job(job);
                 self.view.file = Some(path.to_owned());
                 self.status = Some((format!("opened {}", path.display()), false));
+            }
+            Err(e) => self.status = Some((format!("cannot open {}: {e}", path.display()), true)),
+        }
+    }
+
+    /// Read a pocket outline (`pocket --polygon`'s formats) into the Pocket mode's vertices.
+    pub fn open_outline(&mut self, path: &Path) {
+        let read =
+            crate::files::read_input(path, "outline").and_then(|text| crate::outline::outline_points(path, &text));
+        match read {
+            Ok(points) => {
+                self.state.corner.polygon_text = points.iter().map(|p| format!("{},{}\n", p.x, p.y)).collect();
+                self.status = Some((format!("opened outline {} ({} vertices)", path.display(), points.len()), false));
             }
             Err(e) => self.status = Some((format!("cannot open {}: {e}", path.display()), true)),
         }

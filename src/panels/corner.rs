@@ -694,10 +694,18 @@ fn pocket(ui: &mut egui::Ui, inputs: &mut CornerInputs, view: &CornerView, nc: &
     }
     let cmd = nc_options(ui, view, nc);
     let h = (ui.available_height() - 10.0).max(220.0);
+    let mut open = false;
     ui.horizontal_top(|ui| {
         ui.vertical(|ui| {
             ui.set_width(230.0);
             polygon_editor(ui, inputs);
+            if ui
+                .button(label::POCKET_OPEN_OUTLINE)
+                .on_hover_text("A DXF or SVG drawing, or an x,y point list")
+                .clicked()
+            {
+                open = true;
+            }
             if let Some(r) = view.last_pocket.as_deref() {
                 ui.add_space(6.0);
                 pocket_numbers(ui, r);
@@ -707,7 +715,7 @@ fn pocket(ui: &mut egui::Ui, inputs: &mut CornerInputs, view: &CornerView, nc: &
             pocket_view(ui, r, nc.settings.open, nc.cache, h);
         }
     });
-    cmd
+    if open { Some(Command::OpenOutline) } else { cmd }
 }
 
 /// The method, the tool diameter and the pocket's step-over.
