@@ -23,6 +23,9 @@ pub const CHORD_TOLERANCE_MM: f64 = 0.01;
 /// Largest gap between chained DXF LINE/ARC ends (mm).
 pub const JOIN_TOLERANCE_MM: f64 = 1e-4;
 
+/// A DXF LINE or ARC: start, end, and for an arc its centre and signed sweep (rad).
+type Piece = (P2, P2, Option<(P2, f64)>);
+
 /// The outline vertices of a `--polygon` file's text, by the file's extension.
 pub fn outline_points(path: &Path, text: &str) -> Result<Vec<P2>, String> {
     let what = path.display().to_string();
@@ -67,7 +70,7 @@ fn bulge_points(a: P2, b: P2, bulge: f64) -> Vec<P2> {
 fn dxf_points(text: &str) -> Result<Vec<P2>, String> {
     use dxf::entities::EntityType;
     let drawing = dxf::Drawing::load(&mut text.as_bytes()).map_err(|e| format!("not a readable DXF drawing ({e})"))?;
-    let mut pieces: Vec<(P2, P2, Option<(P2, f64)>)> = Vec::new();
+    let mut pieces: Vec<Piece> = Vec::new();
     for e in drawing.entities() {
         match &e.specific {
             EntityType::LwPolyline(pl) if pl.is_closed() && pl.vertices.len() >= 3 => {
@@ -99,7 +102,7 @@ fn dxf_points(text: &str) -> Result<Vec<P2>, String> {
 
 /// LINE/ARC pieces (start, end, arc centre and sweep) chained end to end into one closed loop
 /// that uses every piece.
-fn chain(mut pieces: Vec<(P2, P2, Option<(P2, f64)>)>) -> Option<Vec<P2>> {
+fn chain(mut pieces: Vec<Piece>) -> Option<Vec<P2>> {
     let (start, mut at, arc) = pieces.pop()?;
     let mut pts = vec![start];
     let push = |a: P2, b: P2, arc: Option<(P2, f64)>, pts: &mut Vec<P2>| match arc {
@@ -210,8 +213,10 @@ mod tests {
         let perimeter = 40.0 + 20.0 + 40.0 + 10.0 * PI;
         let tol = perimeter * CHORD_TOLERANCE_MM;
         let v = |x: f64, y: f64, bulge: f64| LwPolylineVertex { x, y, bulge, ..LwPolylineVertex::default() };
-        let mut pl = LwPolyline::default();
-        pl.vertices = vec![v(0.0, 0.0, 0.0), v(40.0, 0.0, 1.0), v(40.0, 20.0, 0.0), v(0.0, 20.0, 0.0)];
+        let mut pl = LwPolyline {
+            vertices: vec![v(0.0, 0.0, 0.0), v(40.0, 0.0, 1.0), v(40.0, 20.0, 0.0), v(0.0, 20.0, 0.0)],
+            ..LwPolyline::default()
+        };
         pl.set_is_closed(true);
         let mut d = dxf::Drawing::new();
         d.header.version = dxf::enums::AcadVersion::R2000; // LWPOLYLINE needs R14 or later

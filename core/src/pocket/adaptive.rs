@@ -492,8 +492,8 @@ fn plan_path(
     let outline = pline_of(work.vertices());
     let regions = offset(&outline, r + sf);
     if regions.is_empty() {
-        return Err(Error::geometry(
-            "polygon",
+        return Err(Error::param(
+            Param::Polygon,
             "narrower than the tool",
             format!("room for a tool of D = {} mm plus the finishing stock", num(2.0 * r)),
         ));
@@ -523,7 +523,7 @@ fn plan_path(
             }
         }
         let Some((_, bb, part)) = best else {
-            return Err(last_err.unwrap_or_else(|| Error::geometry("polygon", "no plan", "a pocket the tool fits")));
+            return Err(last_err.unwrap_or_else(|| Error::param(Param::Polygon, "no plan", "a pocket the tool fits")));
         };
         let first = b.segments.len();
         b.segments.extend(bb.segments);
@@ -620,7 +620,9 @@ fn plan_part(
             && let Some(opened) = largest(offset(&ks[0], -t))
         {
             let caps: f64 = corners_all.iter().map(|c| c.cap_area(t)).sum();
-            if area - opened.area() <= caps + 1e-3 * area || t <= r_h {
+            // the corner passes start from the opening's arc of radius T: it must fit the walls
+            let fits = corners_all.iter().all(|c| t <= c.len_in.min(c.len_out) * (0.5 * c.alpha).tan() + 1e-9);
+            if (fits && area - opened.area() <= caps + 1e-3 * area) || t <= r_h {
                 break ks.into_iter().next();
             }
         }
@@ -630,8 +632,8 @@ fn plan_part(
         t *= 0.9;
     };
     let Some(core) = core else {
-        return Err(Error::geometry(
-            "polygon",
+        return Err(Error::param(
+            Param::Polygon,
             "a region whose core does not hold the helix",
             "a pocket whose tool-centre region is one piece at least the helix radius wide",
         ));
@@ -749,10 +751,10 @@ fn plan_part(
     let sf = options.finish_stock_mm;
     if sf > 0.0 {
         let inner = largest(offset(region, rho_fin)).ok_or_else(|| {
-            Error::geometry("polygon", "no finishing contour", "a pocket wider than the tool plus the stock")
+            Error::param(Param::Polygon, "no finishing contour", "a pocket wider than the tool plus the stock")
         })?;
         let fin = largest(offset(&inner, -(rho_fin + sf)))
-            .ok_or_else(|| Error::geometry("polygon", "no finishing contour", "a pocket wider than the tool"))?;
+            .ok_or_else(|| Error::param(Param::Polygon, "no finishing contour", "a pocket wider than the tool"))?;
         // Start in the middle of the longest straight wall, entered on a quarter circle of
         // radius ρ_l = max(s_f, r/2) tangent to it (the stock grows from 0 to s_f under a
         // convex arc); the lead-in starts ρ_l from the wall, in cleared material.
