@@ -146,6 +146,10 @@ pub struct EngagementArgs {
     /// Spacing of the evaluated tool positions along the path (mm).
     #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = 0.1)]
     spacing: f64,
+    /// Tool-centre path cut before `--path-csv` (e.g. a helix bore read back from a program),
+    /// one point "x,y" per line: its material counts as removed, no engagement is reported.
+    #[arg(long, value_name = "FILE.csv")]
+    cut_csv: Option<PathBuf>,
 }
 
 /// Flags of `trochoplan pocket` (defaults: [`PocketRequest::default`]).
@@ -726,7 +730,16 @@ pub fn engagement(args: &EngagementArgs) -> Result<String, String> {
     let stock =
         Polygon::new(parse_points(&read_input(&args.stock_polygon, "stock polygon file")?, &what_stock).map_err(err)?)
             .map_err(|e| format!("{what_stock}: {e}"))?;
-    let prof = engagement_profile(&stock, &[], &path, &EvaluatorOptions::new(d / 2.0, args.spacing)).map_err(err)?;
+    let before = match &args.cut_csv {
+        Some(file) => {
+            let what = file.display().to_string();
+            polyline(&parse_points(&read_input(file, "cut path file")?, &what).map_err(err)?)
+                .map_err(|e| format!("{what}: {e}"))?
+        }
+        None => Vec::new(),
+    };
+    let prof =
+        engagement_profile(&stock, &before, &path, &EvaluatorOptions::new(d / 2.0, args.spacing)).map_err(err)?;
     let conv = |s: &EngagementSample| SampleOut {
         s_mm: s.s_mm,
         x_mm: s.x_mm,
@@ -856,7 +869,13 @@ mod tests {
         // moving; at the first position the tool has plunged, so both halves count: 120°.
         std::fs::write(&pc, "x,y\n-20,0\n20,0\n").expect("write");
         std::fs::write(&sp, "-50,2.5\n50,2.5\n50,40\n-50,40\n").expect("write");
-        let args = EngagementArgs { path_csv: pc, stock_polygon: sp.clone(), tool_diameter: 10.0, spacing: 1.0 };
+        let args = EngagementArgs {
+            path_csv: pc,
+            stock_polygon: sp.clone(),
+            tool_diameter: 10.0,
+            spacing: 1.0,
+            cut_csv: None,
+        };
         let v: serde_json::Value = serde_json::from_str(&engagement(&args).expect("run")).expect("json");
         let mx = v["max_engagement_deg"].as_f64().expect("max");
         assert!((mx - 120.0).abs() < 1e-3 && v["max_at"]["s_mm"].as_f64() == Some(0.0), "{mx}");
@@ -866,6 +885,14 @@ mod tests {
             let a = s["engagement_deg"].as_f64().expect("deg");
             assert!((a - 60.0).abs() < 1e-3, "{s}");
         }
+        // the tool came along the same line before (--cut-csv): no plunge at the first position,
+        // which reads the straight cut's 60° like the rest
+        let cut = dir.path().join("cut.csv");
+        std::fs::write(&cut, "-40,0\n-20,0\n").expect("write");
+        let with_cut = EngagementArgs { cut_csv: Some(cut), path_csv: args.path_csv.clone(), ..args };
+        let v: serde_json::Value = serde_json::from_str(&engagement(&with_cut).expect("run")).expect("json");
+        assert!((v["max_engagement_deg"].as_f64().expect("max") - 60.0).abs() < 1e-3, "{}", v["max_engagement_deg"]);
+        let args = EngagementArgs { cut_csv: None, ..with_cut };
         std::fs::write(&sp, "0,0\n1,1\n1,0\n0,1\n").expect("write");
         let e = engagement(&EngagementArgs { stock_polygon: sp, ..args }).expect_err("bow tie");
         assert!(e.contains("polygon"), "{e}");
