@@ -57,11 +57,30 @@ pub enum Param {
     StockPolygon,
     /// `engagement --path-csv`.
     PathCsv,
+    /// Work material by name (`--material`, job key `material`).
+    Material,
+    /// `--materials`: a material library file.
+    Materials,
+    /// Helix angle β of the tool (degrees).
+    HelixAngle,
+    /// Radial offset of each flute (job key `runout`, mm).
+    Runout,
+    /// Maximum roughness Ra entered by the user (µm), for the performance index.
+    RaUm,
+    /// Cutting-force coefficients (job keys under `[coefficients]`).
+    Ktc,
+    Krc,
+    Kac,
+    Kte,
+    Kre,
+    Kae,
+    /// `calibrate --slot-forces`: the slot-test file.
+    SlotForces,
 }
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 37] = [
+    pub const ALL: [Param; 49] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
@@ -99,6 +118,18 @@ impl Param {
         Param::Polygon,
         Param::StockPolygon,
         Param::PathCsv,
+        Param::Material,
+        Param::Materials,
+        Param::HelixAngle,
+        Param::Runout,
+        Param::RaUm,
+        Param::Ktc,
+        Param::Krc,
+        Param::Kac,
+        Param::Kte,
+        Param::Kre,
+        Param::Kae,
+        Param::SlotForces,
     ];
 
     /// The command-line flag without `--` (also the job-file key). The NC tolerance and the
@@ -142,6 +173,18 @@ impl Param {
             Param::Polygon => "polygon",
             Param::StockPolygon => "stock-polygon",
             Param::PathCsv => "path-csv",
+            Param::Material => "material",
+            Param::Materials => "materials",
+            Param::HelixAngle => "helix-angle",
+            Param::Runout => "runout",
+            Param::RaUm => "ra-um",
+            Param::Ktc => "ktc",
+            Param::Krc => "krc",
+            Param::Kac => "kac",
+            Param::Kte => "kte",
+            Param::Kre => "kre",
+            Param::Kae => "kae",
+            Param::SlotForces => "slot-forces",
         }
     }
 
@@ -185,6 +228,18 @@ impl Param {
             Param::Polygon => "Pocket polygon",
             Param::StockPolygon => "Stock polygon",
             Param::PathCsv => "Path CSV",
+            Param::Material => "Material",
+            Param::Materials => "Material library",
+            Param::HelixAngle => "Helix angle β",
+            Param::Runout => "Runout per flute",
+            Param::RaUm => "Ra,max",
+            Param::Ktc => "Ktc",
+            Param::Krc => "Krc",
+            Param::Kac => "Kac",
+            Param::Kte => "Kte",
+            Param::Kre => "Kre",
+            Param::Kae => "Kae",
+            Param::SlotForces => "Slot-force tests",
         }
     }
 }
