@@ -186,6 +186,12 @@ pub mod limits {
     /// still analysed exactly, against its own previous tooth f_z behind. Keeps one plan of
     /// any valid job within ~0.1 s and ~20 MB; the paper's jobs have a few hundred positions.
     pub const MAX_TOOTH_SAMPLES: usize = 4096;
+    /// Most (force sample × tooth) pairs of the force series of one cycle: one sample per
+    /// spindle step of at most 1° (37 709 × 4 teeth for the paper's default job) up to this
+    /// many, then coarser steps (a slow feed on a long cycle at high speed would need ~10¹³).
+    /// The work of a force series grows with samples × teeth × slices; this keeps one plan
+    /// of any valid job within ~0.1 s.
+    pub const MAX_FORCE_TOOTH_SAMPLES: usize = 400_000;
     /// Helix angle β (degrees).
     pub const HELIX_ANGLE_DEG: (f64, f64) = (0.0, 60.0);
     /// Largest radial offset of a flute (mm): runout is a few µm, 0.1 mm is a broken tool.

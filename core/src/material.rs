@@ -369,7 +369,8 @@ mod tests {
         assert_eq!(t[1], SlotTest { f_z_mm: 0.1, fx_n: -800.0, fy_n: 1500.0, fz_n: 280.0 });
         let t = parse_slot_forces("fy,fz,fx,f_z\n1,2,3,0.05\n", "f.csv").expect("any order");
         assert_eq!(t[0], SlotTest { f_z_mm: 0.05, fx_n: 3.0, fy_n: 1.0, fz_n: 2.0 });
-        for bad in ["0.05,1,2,3\n", "f_z,fx,fy,fz\n0.05,1,2\n", "f_z,fx,fy,fz\n0.05,1,x,3\n", "f_z,fx,fy,fz\n0.05,1,inf,3\n"]
+        for bad in
+            ["0.05,1,2,3\n", "f_z,fx,fy,fz\n0.05,1,2\n", "f_z,fx,fy,fz\n0.05,1,x,3\n", "f_z,fx,fy,fz\n0.05,1,inf,3\n"]
         {
             let e = parse_slot_forces(bad, "f.csv").expect_err(bad);
             assert!(e.to_string().contains("f.csv line"), "{e}");

@@ -213,7 +213,7 @@ pub const FORCE_RESULTANT_MAX: Metric = Metric::new(
     "N",
     1,
     |m| m.force_resultant_max_n,
-    "Largest resultant cutting force F_R = √(Fx² + Fy² + Fz²) over a steady-state cycle: linear \
+    "Largest resultant cutting force F_R = sqrt(Fx² + Fy² + Fz²) over a steady-state cycle: linear \
      edge-force model with helix, dF_t,r,a = (K_t,r,a c·h + K_t,r,a e)·dz per tooth and slice (domain-spec \
      §4.1, Altintas & Lee 1996), h(φ) from the material left by previous cycles (Figs. 14–16).",
 )
@@ -242,7 +242,7 @@ pub const FORCE_XY_MAX: Metric = Metric::new(
     "N",
     1,
     |m| m.force_xy_max_n,
-    "Largest force in the XY plane √(Fx² + Fy²): what bends the tool.",
+    "Largest force in the XY plane sqrt(Fx² + Fy²): what bends the tool.",
 )
 .lower_is_better();
 pub const TORQUE_MAX: Metric = Metric::new(
@@ -254,23 +254,11 @@ pub const TORQUE_MAX: Metric = Metric::new(
     "Largest spindle torque T = Σ dF_t·R over the cycle.",
 )
 .lower_is_better();
-pub const TORQUE_MEAN: Metric = Metric::new(
-    "torque_mean_nm",
-    "mean T",
-    "N·m",
-    2,
-    |m| m.torque_mean_nm,
-    "Mean spindle torque while the tool cuts.",
-);
-pub const POWER_MAX: Metric = Metric::new(
-    "power_max_w",
-    "P_max",
-    "W",
-    0,
-    |m| m.power_max_w,
-    "Largest cutting power P = T·Ω = T·2πn/60.",
-)
-.lower_is_better();
+pub const TORQUE_MEAN: Metric =
+    Metric::new("torque_mean_nm", "mean T", "N·m", 2, |m| m.torque_mean_nm, "Mean spindle torque while the tool cuts.");
+pub const POWER_MAX: Metric =
+    Metric::new("power_max_w", "P_max", "W", 0, |m| m.power_max_w, "Largest cutting power P = T·Ω = T·2πn/60.")
+        .lower_is_better();
 pub const POWER_MEAN: Metric =
     Metric::new("power_mean_w", "mean P", "W", 0, |m| m.power_mean_w, "Mean cutting power while the tool cuts.");
 pub const PERFORMANCE_INDEX: Metric = Metric::new(

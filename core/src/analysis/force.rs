@@ -21,11 +21,13 @@
 //! §4.1's dFx = −dFt·cos φ − dFr·sin φ, dFy = dFt·sin φ − dFr·cos φ in its frame (feed +x, φ
 //! clockwise from +y). Torque T = Σ dF_t·R, power P = T·Ω.
 //!
-//! **Time.** Spindle-angle steps of at most [`SPINDLE_STEP_RAD`] (1°) over one cycle. The
+//! **Time.** Spindle-angle steps of at most [`SPINDLE_STEP_RAD`] (1°) over one cycle (up to
+//! [`MAX_FORCE_TOOTH_SAMPLES`] / z samples; a job needing more gets coarser steps, `dt_s`). The
 //! chip geometry is known at the tooth positions f_z apart (one tooth period); between two of
 //! them the engaged arcs are blended linearly in time: ends by their angles, h at the same
-//! relative place along the arc, the frame (feed direction) by its angle. Where the two
-//! positions have different numbers of arcs (an arc appears or splits) the nearer one is used.
+//! relative place along the arc, the frame (feed direction) by its angle. An arc that appears
+//! (vanishes) between two positions grows from (shrinks to) a point in its middle; where both
+//! positions have arcs but not as many (an arc splits) the nearer position's are used.
 //!
 //! **Runout.** Flute j sits ρ_j further out than nominal; its chip is
 //! h_j = max(0, min over m = 1…z of (m·h + ρ_j − ρ_{j−m})) (the usual runout form, with the
@@ -33,7 +35,8 @@
 //!
 //! Forces are on the tool, in the machine frame (x across the slot, y along it, z up).
 
-use super::chip::{EngagedArc, ToothSample};
+use super::chip::{EngagedArc, ThicknessSample, ToothSample};
+use crate::job::limits::MAX_FORCE_TOOTH_SAMPLES;
 use crate::material::Coefficients;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -245,10 +248,12 @@ impl<'a> Model<'a> {
             slice_dirs: std::array::from_fn(|i| {
                 (c.helix_rad.tan() / c.radius_mm * c.depth_mm / SLICES as f64 * (i as f64 + 0.5)).sin_cos()
             }),
-            tooth_dirs: (0..c.teeth).map(|j| {
-                let (s, c) = (TAU * f64::from(j) / f64::from(c.teeth)).sin_cos();
-                (c, s)
-            }).collect(),
+            tooth_dirs: (0..c.teeth)
+                .map(|j| {
+                    let (s, c) = (TAU * f64::from(j) / f64::from(c.teeth)).sin_cos();
+                    (c, s)
+                })
+                .collect(),
         }
     }
 
@@ -259,7 +264,10 @@ impl<'a> Model<'a> {
             return h;
         }
         let n = self.teeth;
-        (1..=n).map(|m| m as f64 * h + self.runout[j] - self.runout[(j + n * m - m) % n]).fold(f64::INFINITY, f64::min).max(0.0)
+        (1..=n)
+            .map(|m| m as f64 * h + self.runout[j] - self.runout[(j + n * m - m) % n])
+            .fold(f64::INFINITY, f64::min)
+            .max(0.0)
     }
 
     /// Force (Fx, Fy, Fz) and torque at one instant: `frame` is the world angle (rad from +x,
@@ -412,7 +420,8 @@ pub fn cycle_forces(
     if series.is_empty() || !(t_cycle_s > 0.0) || !(omega > 0.0) {
         return ForceSeries::default();
     }
-    let steps = ((t_cycle_s * omega / SPINDLE_STEP_RAD).ceil() as usize).max(1);
+    let most = (MAX_FORCE_TOOTH_SAMPLES / cutter.teeth.max(1) as usize).max(1) as f64;
+    let steps = (t_cycle_s * omega / SPINDLE_STEP_RAD).ceil().clamp(1.0, most) as usize;
     let dt = t_cycle_s / steps as f64;
     let model = Model::new(cutter, k);
     let frame0 = FRAC_PI_2 + series[0].feed_angle_rad;
@@ -421,10 +430,24 @@ pub fn cycle_forces(
     // both have as many arcs).
     let singles: Vec<Vec<ArcPair>> =
         series.iter().map(|t| t.arcs.iter().map(|x| ArcPair::new(x, x)).collect()).collect();
+    // An arc that appears (or vanishes) between two positions grows from (shrinks to) a
+    // point in its middle with no chip.
+    let point = |x: &EngagedArc| {
+        let mid = 0.5 * (x.entry_rad + x.exit_rad);
+        EngagedArc { entry_rad: mid, exit_rad: mid, samples: vec![ThicknessSample { phi_rad: mid, h_mm: 0.0 }] }
+    };
     let pairs: Vec<Option<Vec<ArcPair>>> = (0..n)
         .map(|i| {
             let (a, b) = (&series[i].arcs, &series[(i + 1) % n].arcs);
-            (a.len() == b.len()).then(|| a.iter().zip(b).map(|(x, y)| ArcPair::new(x, y)).collect())
+            if a.len() == b.len() {
+                Some(a.iter().zip(b).map(|(x, y)| ArcPair::new(x, y)).collect())
+            } else if a.is_empty() {
+                Some(b.iter().map(|y| ArcPair::new(&point(y), y)).collect())
+            } else if b.is_empty() {
+                Some(a.iter().map(|x| ArcPair::new(x, &point(x))).collect())
+            } else {
+                None
+            }
         })
         .collect();
     let samples: Vec<ForceSample> = (0..steps)
@@ -439,10 +462,15 @@ pub fn cycle_forces(
             let w = if t1 > a.time_s { ((t - a.time_s) / (t1 - a.time_s)).clamp(0.0, 1.0) } else { 0.0 };
             let turn = wrap_pi(b.feed_angle_rad - a.feed_angle_rad);
             let (arcs, frame): (Vec<ArcBlend>, f64) = match &pairs[i0] {
-                Some(p) => (p.iter().map(|pair| ArcBlend { pair, w }).collect(), FRAC_PI_2 + a.feed_angle_rad + w * turn),
+                Some(p) => {
+                    (p.iter().map(|pair| ArcBlend { pair, w }).collect(), FRAC_PI_2 + a.feed_angle_rad + w * turn)
+                }
                 None => {
-                    let (near, angle) =
-                        if w < 0.5 { (&singles[i0], a.feed_angle_rad) } else { (&singles[(i0 + 1) % n], a.feed_angle_rad + turn) };
+                    let (near, angle) = if w < 0.5 {
+                        (&singles[i0], a.feed_angle_rad)
+                    } else {
+                        (&singles[(i0 + 1) % n], a.feed_angle_rad + turn)
+                    };
                     (near.iter().map(|pair| ArcBlend { pair, w: 0.0 }).collect(), FRAC_PI_2 + angle)
                 }
             };
@@ -501,7 +529,6 @@ fn wrap_pi(a: f64) -> f64 {
 #[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 mod tests {
     use super::*;
-    use crate::analysis::chip::ThicknessSample;
 
     /// domain-spec §4.2 default set.
     const P20: Coefficients = Coefficients { ktc: 2400.0, krc: 960.0, kac: 360.0, kte: 35.0, kre: 35.0, kae: 5.0 };

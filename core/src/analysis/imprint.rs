@@ -53,11 +53,8 @@ pub fn imprint_density(centres_x: &[f64], weight: usize, r: f64, width: f64, s: 
         .collect();
     let (ipeak, peak) =
         density_per_mm.iter().copied().enumerate().fold((0, 0.0), |b, (i, d)| if d > b.1 { (i, d) } else { b });
-    let mean = if n > 1 {
-        density_per_mm.windows(2).map(|w| 0.5 * (w[0] + w[1])).sum::<f64>() / (n - 1) as f64
-    } else {
-        0.0
-    };
+    let mean =
+        if n > 1 { density_per_mm.windows(2).map(|w| 0.5 * (w[0] + w[1])).sum::<f64>() / (n - 1) as f64 } else { 0.0 };
     ImprintProfile { peak_x_mm: x_mm[ipeak], x_mm, density_per_mm, peak_per_mm: peak, mean_per_mm: mean }
 }
 
