@@ -758,9 +758,9 @@ fn forces_tab_and_the_material_inputs_replan_the_forces() {
     );
     let lib = trochoplan_core::material::Library::builtin();
     h.get_by_role_and_label(Role::ComboBox, Param::Material.label()).click();
-    h.run();
+    h.run_steps(15);
     h.get_by_label(lib.get("ti-6al-4v").expect("ti").label.as_str()).click();
-    h.run();
+    h.run_steps(15);
     assert_eq!(h.state().state.job.material, "ti-6al-4v");
     assert_ne!(metrics(&h).force_resultant_max_n, low_helix.force_resultant_max_n);
 }
