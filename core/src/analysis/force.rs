@@ -417,7 +417,7 @@ pub fn cycle_forces(
     rpm: f64,
 ) -> ForceSeries {
     let omega = rpm / 60.0 * TAU;
-    if series.is_empty() || !(t_cycle_s > 0.0) || !(omega > 0.0) {
+    if series.is_empty() || !(t_cycle_s.is_finite() && t_cycle_s > 0.0 && omega.is_finite() && omega > 0.0) {
         return ForceSeries::default();
     }
     let most = (MAX_FORCE_TOOTH_SAMPLES / cutter.teeth.max(1) as usize).max(1) as f64;

@@ -75,6 +75,6 @@ mod tests {
         assert_eq!(p.density_per_mm[PROFILE_POINTS - 1], 0.0, "right wall");
         // At X = 0 every centre within ±5 mm counts, i.e. all of them but the extremes.
         let mid = p.density_per_mm[PROFILE_POINTS / 2];
-        assert!(mid <= 800.0 && mid >= 780.0, "{mid}");
+        assert!((780.0..=800.0).contains(&mid), "{mid}");
     }
 }
