@@ -10,6 +10,7 @@ use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use trochoplan_core::job::teeth_error;
+use trochoplan_core::material::{self, Library};
 use trochoplan_core::plan::engagement_limited_step;
 use trochoplan_core::quantity::{self, METRICS, Metric, SERIES};
 use trochoplan_core::sweep::{self, SweepParam};
@@ -34,6 +35,10 @@ enum Command {
         /// Engagement limit (degrees) for the engagement-limited step of this path type.
         #[arg(long, value_name = "DEG", default_value_t = 46.0, allow_hyphen_values = true)]
         engagement_limit: f64,
+        /// Also write the cutting-force series of the steady-state cycle as CSV (one row per
+        /// spindle step ≤ 1°).
+        #[arg(long, value_name = "FILE.csv")]
+        force_series: Option<PathBuf>,
     },
     /// Vary one parameter; print a CSV table of the metrics, one row per value.
     Sweep {
@@ -75,6 +80,20 @@ enum Command {
     Pocket {
         #[command(flatten)]
         args: corner_cmd::PocketArgs,
+    },
+    /// Fit the six cutting-force coefficients to full-slot tests (domain-spec §4.1); print
+    /// them as JSON with the fit residuals.
+    Calibrate {
+        /// CSV with a header naming the columns f_z, fx, fy, fz (mean forces of full-slot
+        /// tests, N, in the frame of domain-spec §4.1: feed along +x, φ clockwise from +y).
+        #[arg(long, value_name = "FILE.csv")]
+        slot_forces: PathBuf,
+        /// Number of teeth z of the test tool.
+        #[arg(long, value_name = "N", default_value_t = 4, allow_hyphen_values = true)]
+        teeth: i64,
+        /// Axial depth a_p of the tests (mm).
+        #[arg(long, value_name = "MM", default_value_t = 6.0, allow_hyphen_values = true)]
+        depth: f64,
     },
 }
 
@@ -137,6 +156,19 @@ pub struct JobArgs {
     /// Linear distance d (mm).
     #[arg(long, value_name = "MM", allow_hyphen_values = true)]
     linear_distance: Option<f64>,
+    /// Work material for the force model (a name of the material library).
+    #[arg(long, value_name = "NAME")]
+    material: Option<String>,
+    /// Material library (TOML, the format of assets/materials/library.toml) instead of the
+    /// built-in one.
+    #[arg(long, value_name = "FILE.toml")]
+    materials: Option<PathBuf>,
+    /// Helix angle β of the tool (degrees, 0–60).
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
+    helix_angle: Option<f64>,
+    /// Largest measured roughness Ra,max (µm) for the performance index, eq. (7).
+    #[arg(long, value_name = "X", allow_hyphen_values = true)]
+    ra_um: Option<f64>,
 }
 
 impl JobArgs {
@@ -169,6 +201,21 @@ impl JobArgs {
         if let Some(t) = self.teeth {
             job.teeth = u32::try_from(t).map_err(|_| teeth_error(t).to_string())?;
         }
+        set(&mut job.helix_angle, self.helix_angle);
+        if let Some(ra) = self.ra_um {
+            job.ra_um = Some(ra);
+        }
+        if let Some(m) = &self.material {
+            job.material.clone_from(m);
+        }
+        // A library file: the material's coefficients from it (checked on load).
+        if let Some(p) = &self.materials {
+            let text = read_input(p, "material library")?;
+            let lib = Library::from_toml(&text, &p.display().to_string()).map_err(|e| e.to_string())?;
+            let m = lib.get(&job.material).map_err(|e| e.to_string())?;
+            job.coefficients = Some(m.coefficients);
+            job.allow_unusual_ratio = m.allow_unusual_ratio;
+        }
         Ok(job)
     }
 }
@@ -190,14 +237,18 @@ pub fn main() -> ExitCode {
 
 fn run(cmd: Command) -> Result<String, String> {
     match cmd {
-        Command::Analyze { job, series, engagement_limit } => {
+        Command::Analyze { job, series, engagement_limit, force_series } => {
             let job = job.job()?;
             let p = plan(&job).map_err(|e| e.to_string())?;
             let limited = engagement_limited_step(&job, engagement_limit.to_radians()).map_err(|e| e.to_string())?;
             if let Some(file) = series {
                 write_atomic(&file, series_csv(&p).as_bytes())?;
             }
+            if let Some(file) = force_series {
+                write_atomic(&file, force_series_csv(&p).as_bytes())?;
+            }
             let mut value = metrics_json(&p);
+            value.insert("material".into(), p.job.material.clone().into());
             value.insert("engagement_limit_deg".into(), engagement_limit.into());
             value.insert("engagement_limited_step_mm".into(), limited.into());
             let mut text = serde_json::to_string_pretty(&value).map_err(|e| e.to_string())?;
@@ -209,7 +260,57 @@ fn run(cmd: Command) -> Result<String, String> {
         Command::Corner { args } => corner_cmd::corner(&args),
         Command::Engagement { args } => corner_cmd::engagement(&args),
         Command::Pocket { args } => corner_cmd::pocket(&args),
+        Command::Calibrate { slot_forces, teeth, depth } => calibrate(&slot_forces, teeth, depth),
     }
+}
+
+/// The `calibrate` command: coefficients from slot tests, with residuals, as JSON.
+fn calibrate(file: &std::path::Path, teeth: i64, depth: f64) -> Result<String, String> {
+    use trochoplan_core::{Error, Param};
+    let z = u32::try_from(teeth).ok().filter(|z| (1..=64).contains(z)).ok_or_else(|| teeth_error(teeth).to_string())?;
+    if !(depth.is_finite() && depth > 0.0 && depth <= 1000.0) {
+        return Err(Error::param(Param::Depth, depth, "a finite number > 0 and ≤ 1000 mm").to_string());
+    }
+    let text = read_input(file, "slot-force file")?;
+    let tests = material::parse_slot_forces(&text, &file.display().to_string()).map_err(|e| e.to_string())?;
+    let c = material::calibrate_slot(&tests, z, depth).map_err(|e| e.to_string())?;
+    let k = c.coefficients;
+    let check = match k.check(false) {
+        Ok(()) => "passes the usual checks (signs, Krc/Ktc from 0.2 to 0.6)".to_owned(),
+        Err(e) => format!("outside the usual checks: {e}"),
+    };
+    let value = serde_json::json!({
+        "teeth": z,
+        "depth_mm": depth,
+        "tests": tests.len(),
+        "ktc": k.ktc, "krc": k.krc, "kac": k.kac, "kte": k.kte, "kre": k.kre, "kae": k.kae,
+        "residuals_n": c.residuals_n.iter().zip(&tests).map(|(r, t)| serde_json::json!({
+            "f_z_mm": t.f_z_mm, "fx": r[0], "fy": r[1], "fz": r[2]
+        })).collect::<Vec<_>>(),
+        "rms_residual_n": { "fx": c.rms_residual_n[0], "fy": c.rms_residual_n[1], "fz": c.rms_residual_n[2] },
+        "check": check,
+    });
+    let mut out = serde_json::to_string_pretty(&value).map_err(|e| e.to_string())?;
+    out.push('\n');
+    Ok(out)
+}
+
+/// The cutting-force series of the steady-state cycle as CSV.
+fn force_series_csv(p: &Plan) -> String {
+    let mut s = String::from("time_s,fx_n,fy_n,fz_n,f_r_n,torque_nm,cutting\n");
+    for f in &p.forces.samples {
+        s.push_str(&format!(
+            "{:.6},{:.3},{:.3},{:.3},{:.3},{:.4},{}\n",
+            f.time_s,
+            f.fx_n,
+            f.fy_n,
+            f.fz_n,
+            f.resultant_n(),
+            f.torque_nm,
+            u8::from(f.cutting)
+        ));
+    }
+    s
 }
 
 /// The metrics of `p` as one JSON object: the path kind and every entry of the core's
@@ -242,7 +343,7 @@ fn series_csv(p: &Plan) -> String {
 }
 
 /// Metric columns of the sweep table.
-const COLUMNS: [&Metric; 10] = [
+const COLUMNS: [&Metric; 18] = [
     &quantity::CYCLE_LENGTH,
     &quantity::T_CYCLE,
     &quantity::MRR,
@@ -253,6 +354,14 @@ const COLUMNS: [&Metric; 10] = [
     &quantity::ENGAGEMENT_MAX,
     &quantity::WAVINESS_LEFT,
     &quantity::WAVINESS_RIGHT,
+    &quantity::FORCE_RESULTANT_MAX,
+    &quantity::FORCE_RESULTANT_MEAN,
+    &quantity::T_FORCE_MAX_SHARE,
+    &quantity::TORQUE_MAX,
+    &quantity::POWER_MAX,
+    &quantity::PERFORMANCE_INDEX,
+    &quantity::PERFORMANCE_INDEX_WITHOUT_RA,
+    &quantity::IMPRINT_DENSITY_MEAN,
 ];
 
 /// The sweep table: one row per value, under the core's sweep rules ([`sweep`]).
@@ -268,7 +377,11 @@ fn sweep(mut job: Job, param: SweepParam, from: f64, to: f64, steps: i64) -> Res
         let mut j = job.clone();
         param.set(&mut j, v);
         let m = plan(&j).map_err(|e| e.to_string())?.metrics;
-        let cells: Vec<String> = COLUMNS.iter().map(|q| format!("{:.6}", q.of(&m))).collect();
+        // A metric without a value (PI without Ra,max) is an empty cell.
+        let cells: Vec<String> = COLUMNS
+            .iter()
+            .map(|q| Some(q.of(&m)).filter(|v| !v.is_nan()).map_or(String::new(), |v| format!("{v:.6}")))
+            .collect();
         out.push_str(&format!("{},{v},{}\n", j.path.name(), cells.join(",")));
     }
     Ok(out)
@@ -309,6 +422,10 @@ mod tests {
             step: None,
             aspect_ratio: None,
             linear_distance: None,
+            material: None,
+            materials: None,
+            helix_angle: None,
+            ra_um: None,
         };
         let job = args.job().expect("job");
         assert_eq!((job.step, job.teeth), (0.8, 2));

@@ -292,3 +292,71 @@ fn pocket_medial_axis_prints_circles_axis_and_engagement_by_move() {
     }
     assert_eq!(v["segments"].as_array().unwrap().len(), v["kinds"].as_array().unwrap().len());
 }
+
+/// Issue #10 keys: the force, PI and imprint metrics; PI is null without `--ra-um` and
+/// PI-without-Ra divided by Ra with it (eq. 7); the force-series CSV has one row per spindle
+/// step ≤ 1° over the cycle (t_cycle·n/60·360 steps).
+#[test]
+fn analyze_reports_forces_pi_and_imprints() {
+    let v = json(&["analyze"]);
+    for k in [
+        "force_resultant_max_n",
+        "force_resultant_mean_n",
+        "t_force_max_share",
+        "torque_max_nm",
+        "power_max_w",
+        "performance_index_without_ra",
+        "imprint_density_mean_per_mm",
+    ] {
+        assert!(v[k].as_f64().is_some_and(|x| x.is_finite() && x > 0.0), "{k}: {v}");
+    }
+    assert!(v["performance_index"].is_null(), "{v}");
+    assert_eq!(v["material"], "p20");
+    let dir = tempfile::tempdir().expect("tempdir");
+    let csv = dir.path().join("forces.csv");
+    let w = json(&["analyze", "--ra-um", "0.5", "--force-series", csv.to_str().expect("utf8")]);
+    let pi = w["performance_index"].as_f64().expect("PI with Ra");
+    assert!((pi - 2.0 * w["performance_index_without_ra"].as_f64().expect("PI")).abs() < 1e-9 * pi);
+    let text = std::fs::read_to_string(&csv).expect("written");
+    let rows = text.lines().count() - 1;
+    let steps = (w["t_cycle_s"].as_f64().expect("t") * 2000.0 / 60.0 * 360.0).ceil() as usize;
+    assert_eq!(rows, steps, "one row per 1° spindle step");
+    assert!(text.starts_with("time_s,fx_n,fy_n,fz_n,f_r_n,torque_nm,cutting\n"));
+    // Material and helix flags change the forces; a softer material lowers the peak.
+    let al = json(&["analyze", "--material", "al-6061-t6"]);
+    assert!(al["force_resultant_max_n"].as_f64() < v["force_resultant_max_n"].as_f64());
+    let (ok, _, err) = run(&["analyze", "--material", "unobtainium"]);
+    assert!(!ok && err.contains("material") && err.contains("p20"), "{err}");
+    let (ok, _, err) = run(&["analyze", "--helix-angle", "75"]);
+    assert!(!ok && err.contains("helix-angle") && err.contains("60"), "{err}");
+    let (ok, _, err) = run(&["analyze", "--ra-um", "-1"]);
+    assert!(!ok && err.contains("ra-um"), "{err}");
+}
+
+/// `calibrate` inverts domain-spec §4.1: slot tests made from the p20 set by the closed form
+/// (F̄x = −N·a_p·Krc·f_z/4 − N·a_p·Kre/π etc., computed here) give the set back; fewer than two
+/// feeds is refused naming the file's flag.
+#[test]
+fn calibrate_recovers_the_coefficients_of_slot_tests() {
+    let (n, ap) = (4.0, 6.0);
+    let pi = std::f64::consts::PI;
+    let mut text = String::from("f_z,fx,fy,fz\n");
+    for fz in [0.05, 0.1, 0.15] {
+        let fx = -n * ap * 960.0 * fz / 4.0 - n * ap * 35.0 / pi;
+        let fy = n * ap * 2400.0 * fz / 4.0 + n * ap * 35.0 / pi;
+        let fzz = n * ap * 360.0 * fz / pi + n * ap * 5.0 / 2.0;
+        text.push_str(&format!("{fz},{fx},{fy},{fzz}\n"));
+    }
+    let dir = tempfile::tempdir().expect("tempdir");
+    let f = dir.path().join("slot.csv");
+    std::fs::write(&f, &text).expect("write");
+    let v = json(&["calibrate", "--slot-forces", f.to_str().expect("utf8")]);
+    for (k, want) in [("ktc", 2400.0), ("krc", 960.0), ("kac", 360.0), ("kte", 35.0), ("kre", 35.0), ("kae", 5.0)] {
+        let got = v[k].as_f64().expect(k);
+        assert!((got - want).abs() < 1e-6 * want, "{k}: {got} vs {want}");
+    }
+    assert!(v["rms_residual_n"]["fy"].as_f64().is_some_and(|r| r < 1e-6));
+    std::fs::write(&f, "f_z,fx,fy,fz\n0.1,-800,1500,280\n0.1,-810,1490,281\n").expect("write");
+    let (ok, _, err) = run(&["calibrate", "--slot-forces", f.to_str().expect("utf8")]);
+    assert!(!ok && err.contains("slot-forces") && err.contains("different feeds"), "{err}");
+}

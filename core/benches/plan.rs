@@ -1,11 +1,12 @@
 //! Speed of the analysis (criterion). Targets from issue #2: plan() of the default job fast
-//! enough to rerun on every GUI frame (≤ 2 ms) and of a 1 m slot ≤ 100 ms.
+//! enough to rerun on every GUI frame (≤ 2 ms) and of a 1 m slot ≤ 100 ms; issue #10: the
+//! force series of the default job ≤ 5 ms and the whole plan with forces ≤ 8 ms.
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
-use trochoplan_core::analysis::{PreviousEdge, Wall, tooth_series, wall_profile};
+use trochoplan_core::analysis::{PreviousEdge, Wall, cycle_forces, imprint_density, tooth_series, wall_profile};
 use trochoplan_core::path::{Cycle, SlotPath};
 use trochoplan_core::plan::engagement_limited_step;
 use trochoplan_core::{Job, PathKind, plan};
@@ -41,6 +42,16 @@ fn parts(c: &mut Criterion) {
     let edge = PreviousEdge::new(&path.cycle, r);
     c.bench_function("analysis/h and engagement per tooth (one cycle)", |b| {
         b.iter(|| tooth_series(black_box(&path.cycle), &edge, r, job.f_z(), job.feed / 60.0))
+    });
+    let series = tooth_series(&path.cycle, &edge, r, job.f_z(), job.feed / 60.0);
+    let t_cycle = path.cycle.length() / (job.feed / 60.0);
+    let cutter = trochoplan_core::plan::cutter(&job);
+    c.bench_function("analysis/force series (default job, spindle steps ≤ 1°)", |b| {
+        b.iter(|| cycle_forces(black_box(&series), t_cycle, &cutter, &job.coefficients, job.rpm))
+    });
+    let xs: Vec<f64> = series.iter().map(|t| t.x_mm).collect();
+    c.bench_function("analysis/imprint density", |b| {
+        b.iter(|| imprint_density(black_box(&xs), 1, r, job.slot_width, job.step))
     });
     c.bench_function("analysis/wall waviness (one wall)", |b| {
         b.iter(|| wall_profile(black_box(&path.cycle), r, Wall::Left))

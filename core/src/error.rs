@@ -63,11 +63,30 @@ pub enum Param {
     RampAngle,
     /// `pocket --finish-stock`.
     FinishStock,
+    /// Work material by name (`--material`, job key `material`).
+    Material,
+    /// `--materials`: a material library file.
+    Materials,
+    /// Helix angle β of the tool (degrees).
+    HelixAngle,
+    /// Radial offset of each flute (job key `runout`, mm).
+    Runout,
+    /// Maximum roughness Ra entered by the user (µm), for the performance index.
+    RaUm,
+    /// Cutting-force coefficients (job keys under `[coefficients]`).
+    Ktc,
+    Krc,
+    Kac,
+    Kte,
+    Kre,
+    Kae,
+    /// `calibrate --slot-forces`: the slot-test file.
+    SlotForces,
 }
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 40] = [
+    pub const ALL: [Param; 52] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
@@ -108,6 +127,18 @@ impl Param {
         Param::HelixRadius,
         Param::RampAngle,
         Param::FinishStock,
+        Param::Material,
+        Param::Materials,
+        Param::HelixAngle,
+        Param::Runout,
+        Param::RaUm,
+        Param::Ktc,
+        Param::Krc,
+        Param::Kac,
+        Param::Kte,
+        Param::Kre,
+        Param::Kae,
+        Param::SlotForces,
     ];
 
     /// The command-line flag without `--` (also the job-file key). The NC tolerance and the
@@ -154,6 +185,18 @@ impl Param {
             Param::HelixRadius => "helix-radius",
             Param::RampAngle => "ramp-angle",
             Param::FinishStock => "finish-stock",
+            Param::Material => "material",
+            Param::Materials => "materials",
+            Param::HelixAngle => "helix-angle",
+            Param::Runout => "runout",
+            Param::RaUm => "ra-um",
+            Param::Ktc => "ktc",
+            Param::Krc => "krc",
+            Param::Kac => "kac",
+            Param::Kte => "kte",
+            Param::Kre => "kre",
+            Param::Kae => "kae",
+            Param::SlotForces => "slot-forces",
         }
     }
 
@@ -200,6 +243,18 @@ impl Param {
             Param::HelixRadius => "Helix radius",
             Param::RampAngle => "Ramp angle",
             Param::FinishStock => "Finishing stock",
+            Param::Material => "Material",
+            Param::Materials => "Material library",
+            Param::HelixAngle => "Helix angle β",
+            Param::Runout => "Runout per flute",
+            Param::RaUm => "Ra,max",
+            Param::Ktc => "Ktc",
+            Param::Krc => "Krc",
+            Param::Kac => "Kac",
+            Param::Kte => "Kte",
+            Param::Kre => "Kre",
+            Param::Kae => "Kae",
+            Param::SlotForces => "Slot-force tests",
         }
     }
 }

@@ -7,6 +7,7 @@
 //! and a 20 mm long slot.
 
 use crate::error::{Error, Param, num};
+use crate::material::{Coefficients, DEFAULT_MATERIAL, Library};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
@@ -113,6 +114,24 @@ pub struct Job {
     pub aspect_ratio: f64,
     /// Linear distance d (mm, linear-elliptical path).
     pub linear_distance: f64,
+    /// Work material: a name of the built-in library (`p20`, …), or a label when
+    /// [`Job::coefficients`] are given.
+    pub material: String,
+    /// Helix angle β of the tool (degrees; the paper's tool: 35°).
+    pub helix_angle: f64,
+    /// Radial offset ρ_j of each flute (mm), one per tooth; empty: no runout.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub runout: Vec<f64>,
+    /// Largest measured roughness Ra,max (µm) for the performance index (eq. 7); none: the
+    /// index is given without Ra.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ra_um: Option<f64>,
+    /// Accept force coefficients with Krc/Ktc outside 0.2–0.6.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub allow_unusual_ratio: bool,
+    /// The six force coefficients, instead of the material's (TOML table `[coefficients]`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub coefficients: Option<Coefficients>,
 }
 
 impl Default for Job {
@@ -131,9 +150,18 @@ impl Default for Job {
             step: 1.0,
             aspect_ratio: 1.0,
             linear_distance: 0.0,
+            material: DEFAULT_MATERIAL.to_owned(),
+            helix_angle: DEFAULT_HELIX_ANGLE_DEG,
+            runout: Vec::new(),
+            ra_um: None,
+            allow_unusual_ratio: false,
+            coefficients: None,
         }
     }
 }
+
+/// The paper's tool: helix angle 35° (Wagih et al. 2023, section 4).
+pub const DEFAULT_HELIX_ANGLE_DEG: f64 = 35.0;
 
 /// Limits used by validation, stated once.
 pub mod limits {
@@ -158,6 +186,18 @@ pub mod limits {
     /// still analysed exactly, against its own previous tooth f_z behind. Keeps one plan of
     /// any valid job within ~0.1 s and ~20 MB; the paper's jobs have a few hundred positions.
     pub const MAX_TOOTH_SAMPLES: usize = 4096;
+    /// Most (force sample × tooth) pairs of the force series of one cycle: one sample per
+    /// spindle step of at most 1° (37 709 × 4 teeth for the paper's default job) up to this
+    /// many, then coarser steps (a slow feed on a long cycle at high speed would need ~10¹³).
+    /// The work of a force series grows with samples × teeth × slices; this keeps one plan
+    /// of any valid job within ~0.1 s.
+    pub const MAX_FORCE_TOOTH_SAMPLES: usize = 400_000;
+    /// Helix angle β (degrees).
+    pub const HELIX_ANGLE_DEG: (f64, f64) = (0.0, 60.0);
+    /// Largest radial offset of a flute (mm): runout is a few µm, 0.1 mm is a broken tool.
+    pub const MAX_RUNOUT_MM: f64 = 0.1;
+    /// Ra,max range (µm).
+    pub const RA_UM: (f64, f64) = (0.001, 1000.0);
 }
 
 /// A job that passed validation; everything downstream takes this type.
@@ -176,6 +216,16 @@ pub struct ValidJob {
     pub aspect_ratio: f64,
     /// Effective d (0 unless linear-elliptical).
     pub linear_distance: f64,
+    /// Material name (or the user's label for given coefficients).
+    pub material: String,
+    /// Force coefficients (checked).
+    pub coefficients: Coefficients,
+    /// Helix angle β (rad).
+    pub helix_rad: f64,
+    /// Radial offset of each flute (mm); empty or one per tooth.
+    pub runout_mm: Vec<f64>,
+    /// Ra,max (µm), if entered.
+    pub ra_um: Option<f64>,
 }
 
 fn positive(param: Param, v: f64, max: f64) -> Result<f64, Error> {
@@ -283,7 +333,13 @@ impl Job {
                 ),
             ));
         }
+        let (material, coefficients, helix_rad, runout_mm, ra_um) = self.process()?;
         Ok(ValidJob {
+            material,
+            coefficients,
+            helix_rad,
+            runout_mm,
+            ra_um,
             path: self.path,
             slot_width: b_w,
             slot_length: len,
@@ -296,6 +352,44 @@ impl Job {
             aspect_ratio: r_e,
             linear_distance: d,
         })
+    }
+
+    /// The process inputs of the force model: material and coefficients (checked), helix
+    /// angle, runout and Ra,max.
+    #[allow(clippy::type_complexity)]
+    fn process(&self) -> Result<(String, Coefficients, f64, Vec<f64>, Option<f64>), Error> {
+        use limits::*;
+        let coefficients = match self.coefficients {
+            Some(k) => {
+                k.check(self.allow_unusual_ratio)?;
+                k
+            }
+            None => Library::builtin().get(&self.material)?.coefficients,
+        };
+        let (lo, hi) = HELIX_ANGLE_DEG;
+        let beta = self.helix_angle;
+        if !(beta.is_finite() && (lo..=hi).contains(&beta)) {
+            return Err(Error::param(Param::HelixAngle, beta, format!("from {}° to {}°", num(lo), num(hi))));
+        }
+        if !self.runout.is_empty() && self.runout.len() != self.teeth as usize {
+            return Err(Error::param(
+                Param::Runout,
+                format!("{} values", self.runout.len()),
+                format!("one radial offset per tooth ({} values) or none", self.teeth),
+            ));
+        }
+        if let Some(&v) = self.runout.iter().find(|v| !(v.is_finite() && v.abs() <= MAX_RUNOUT_MM)) {
+            return Err(Error::param(
+                Param::Runout,
+                v,
+                format!("finite offsets from −{0} to {0} mm", num(MAX_RUNOUT_MM)),
+            ));
+        }
+        let (ra_lo, ra_hi) = RA_UM;
+        if let Some(ra) = self.ra_um.filter(|ra| !(ra.is_finite() && (ra_lo..=ra_hi).contains(ra))) {
+            return Err(Error::param(Param::RaUm, ra, format!("from {} to {} µm", num(ra_lo), num(ra_hi))));
+        }
+        Ok((self.material.clone(), coefficients, beta.to_radians(), self.runout.clone(), self.ra_um))
     }
 
     /// Read a job from TOML text (missing keys take the defaults).

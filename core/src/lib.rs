@@ -14,7 +14,9 @@
 //! - [`geom`]: points, exact segments (line, arc, eq. (1) trochoid piece), circles, simple
 //!   polygons, numerics.
 //! - [`path`]: the four slot path types as one repeated cycle.
-//! - [`analysis`]: edge of previous cycles, per-tooth h and engagement, waviness, step limit.
+//! - [`analysis`]: edge of previous cycles, per-tooth h and engagement, waviness, step limit,
+//!   cutting forces (linear edge-force model with helix) and bottom imprints.
+//! - [`material`]: force coefficients, the material library, slot-test calibration.
 //! - [`nc`]: NC programs (LinuxCNC, Fanuc-style ISO, GRBL, Sinumerik), biarc output.
 //! - [`corner`]: pocket corners (issue #5): engagement model, corner trochoids, evaluator;
 //!   [`corner::evaluate`] — corner request in, plans, profiles and acceptance row out.
@@ -29,6 +31,7 @@ pub mod corner;
 pub mod error;
 pub mod geom;
 pub mod job;
+pub mod material;
 pub mod nc;
 pub mod path;
 pub mod plan;

@@ -1,6 +1,9 @@
 //! One entry point for the GUI and the CLI: job in, plan out.
 
-use crate::analysis::{self, PreviousEdge, ToothSample, Wall, WallProfile, chip_timing, tooth_series, wall_profile};
+use crate::analysis::{
+    self, Cutter, ForceSeries, ImprintProfile, PreviousEdge, ToothSample, Wall, WallProfile, chip_timing, cycle_forces,
+    imprint_density, tooth_series, wall_profile,
+};
 use crate::error::{Error, Param, num};
 use crate::job::{Job, PathKind, ValidJob};
 use crate::path::{Cycle, SlotPath};
@@ -10,6 +13,10 @@ use serde::Serialize;
 pub const ENGAGEMENT_LIMIT_DEG: f64 = 46.0;
 /// Grechishnikov et al. (2017): cutting depth ≤ 15 % of the tool diameter.
 pub const DEPTH_LIMIT_FRACTION: f64 = 0.15;
+
+/// W_max used in the performance index is at least this (µm): the resolution of the paper's
+/// toolmaker microscope (Wagih et al. 2023, section 4).
+pub const W_RESOLUTION_UM: f64 = 1.0;
 
 /// Headline numbers of a plan. Field names are the CLI's JSON contract.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -57,6 +64,31 @@ pub struct Metrics {
     pub step_limit_46deg_mm: f64,
     /// Largest step for a straight-cut-equivalent depth of 15 % of D (mm).
     pub step_limit_15pct_depth_mm: f64,
+    /// F_R,max: largest resultant cutting force over a steady-state cycle (N), linear
+    /// edge-force model with helix (domain-spec §4.1).
+    pub force_resultant_max_n: f64,
+    /// Mean F_R over the part of the cycle in which the tool cuts (N).
+    pub force_resultant_mean_n: f64,
+    /// Time from the start of cutting to F_R,max as a share of t_cycle (0–1).
+    pub t_force_max_share: f64,
+    /// Largest |Fxy| (N).
+    pub force_xy_max_n: f64,
+    /// Largest and mean (while cutting) spindle torque (N·m).
+    pub torque_max_nm: f64,
+    pub torque_mean_nm: f64,
+    /// Largest and mean (while cutting) cutting power (W).
+    pub power_max_w: f64,
+    pub power_mean_w: f64,
+    /// PI = MRR / (F_R,max · Ra,max · W_max), eq. (7) (mm³/min, N, µm, µm; W_max = max(W_l, W_r),
+    /// at least [`W_RESOLUTION_UM`]); `None` without
+    /// Ra,max (JSON null).
+    pub performance_index: Option<f64>,
+    /// MRR / (F_R,max · W_max): eq. (7) without Ra (mm³/min, N, µm).
+    pub performance_index_without_ra: f64,
+    /// Mean and peak density of the cutting-edge imprints across the slot bottom (crossings
+    /// per mm, Figs. 21–22).
+    pub imprint_density_mean_per_mm: f64,
+    pub imprint_density_peak_per_mm: f64,
 }
 
 /// A planned slot job: path, per-tooth series of a steady-state cycle, wall profiles, metrics.
@@ -78,6 +110,10 @@ pub struct Plan {
     pub right_wall: WallProfile,
     /// Edge of the material left by previous cycles (for drawing chips and edges).
     pub edge: PreviousEdge,
+    /// Cutting forces over the steady-state cycle (spindle steps ≤ 1°).
+    pub forces: ForceSeries,
+    /// Imprint density across the slot bottom.
+    pub imprints: ImprintProfile,
 }
 
 impl Plan {
@@ -114,11 +150,20 @@ pub fn plan_valid(job: ValidJob) -> Plan {
     let stride = analysis::chip::tooth_stride(cycle_length, f_z);
     let timing = chip_timing(&series, stride as f64 * f_z / feed_mm_per_s);
     let t_cycle = cycle_length / feed_mm_per_s;
+    let mrr = job.slot_width * job.step * job.depth / t_cycle * 60.0;
+    let forces = cycle_forces(&series, t_cycle, &cutter(&job), &job.coefficients, job.rpm);
+    let xs: Vec<f64> = series.iter().map(|t| t.x_mm).collect();
+    let imprints = imprint_density(&xs, stride, r, job.slot_width, job.step);
+    let f = &forces.summary;
+    // eq. (7), W in µm, at least the paper's measuring resolution (1 µm, section 4): a
+    // linear-elliptical path with d ≥ s leaves no geometric waviness, and PI would be infinite.
+    let w_max_um = (left_wall.waviness_mm.max(right_wall.waviness_mm) * 1000.0).max(W_RESOLUTION_UM);
+    let pi_without_ra = if f.resultant_max_n > 0.0 { mrr / (f.resultant_max_n * w_max_um) } else { 0.0 };
     let metrics = Metrics {
         path: job.path,
         cycle_length_mm: cycle_length,
         t_cycle_s: t_cycle,
-        mrr_mm3_per_min: job.slot_width * job.step * job.depth / t_cycle * 60.0,
+        mrr_mm3_per_min: mrr,
         f_z_mm: f_z,
         h_max_mm: timing.h_max_mm,
         t_hmax_s: timing.t_hmax_s,
@@ -146,8 +191,31 @@ pub fn plan_valid(job: ValidJob) -> Plan {
             job.tool_diameter,
             DEPTH_LIMIT_FRACTION * job.tool_diameter,
         ),
+        force_resultant_max_n: f.resultant_max_n,
+        force_resultant_mean_n: f.resultant_mean_n,
+        t_force_max_share: f.t_max_share,
+        force_xy_max_n: f.fxy_max_n,
+        torque_max_nm: f.torque_max_nm,
+        torque_mean_nm: f.torque_mean_nm,
+        power_max_w: f.power_max_w,
+        power_mean_w: f.power_mean_w,
+        performance_index: job.ra_um.map(|ra| pi_without_ra / ra),
+        performance_index_without_ra: pi_without_ra,
+        imprint_density_mean_per_mm: imprints.mean_per_mm,
+        imprint_density_peak_per_mm: imprints.peak_per_mm,
     };
-    Plan { job, path, metrics, series, tooth_stride: stride, left_wall, right_wall, edge }
+    Plan { job, path, metrics, series, tooth_stride: stride, left_wall, right_wall, edge, forces, imprints }
+}
+
+/// The job's cutter for the force model.
+pub fn cutter(job: &ValidJob) -> Cutter {
+    Cutter {
+        radius_mm: job.tool_radius(),
+        teeth: job.teeth,
+        helix_rad: job.helix_rad,
+        depth_mm: job.depth,
+        runout_mm: job.runout_mm.clone(),
+    }
 }
 
 /// Largest step s (mm) for which the job's own path keeps the maximum engagement over a

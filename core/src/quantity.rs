@@ -67,7 +67,11 @@ impl Metric {
 
     /// The value in `m` with the GUI's decimals and the unit, e.g. "0.0581 mm", "51.5°", "32".
     pub fn display(&self, m: &Metrics) -> String {
-        let v = format!("{:.*}", self.decimals, self.of(m));
+        let x = self.of(m);
+        if x.is_nan() {
+            return "— (no value)".to_owned();
+        }
+        let v = format!("{:.*}", self.decimals, x);
         match self.unit {
             "" => v,
             "°" => format!("{v}°"),
@@ -203,8 +207,101 @@ pub const STEP_LIMIT_15PCT_DEPTH: Metric = Metric::new(
     "Largest step for a straight-cut-equivalent depth of 15 % of D (Grechishnikov et al. 2017).",
 );
 
+pub const FORCE_RESULTANT_MAX: Metric = Metric::new(
+    "force_resultant_max_n",
+    "F_R,max",
+    "N",
+    1,
+    |m| m.force_resultant_max_n,
+    "Largest resultant cutting force F_R = sqrt(Fx² + Fy² + Fz²) over a steady-state cycle: linear \
+     edge-force model with helix, dF_t,r,a = (K_t,r,a c·h + K_t,r,a e)·dz per tooth and slice (domain-spec \
+     §4.1, Altintas & Lee 1996), h(φ) from the material left by previous cycles (Figs. 14–16).",
+)
+.lower_is_better();
+pub const FORCE_RESULTANT_MEAN: Metric = Metric::new(
+    "force_resultant_mean_n",
+    "mean F_R",
+    "N",
+    1,
+    |m| m.force_resultant_mean_n,
+    "Mean resultant force over the part of the cycle in which the tool cuts (the dashed line of Fig. 15).",
+)
+.lower_is_better();
+pub const T_FORCE_MAX_SHARE: Metric = Metric::new(
+    "t_force_max_share",
+    "t(F_R,max)/t_cycle",
+    "",
+    3,
+    |m| m.t_force_max_share,
+    "Time from the start of cutting to F_R,max as a share of the cycle time (section 5.1: 9.7 % for \
+     r_e = 0.8, 16 % for the circular path, each 5–6 % of the cycle before h_max).",
+);
+pub const FORCE_XY_MAX: Metric = Metric::new(
+    "force_xy_max_n",
+    "|Fxy|max",
+    "N",
+    1,
+    |m| m.force_xy_max_n,
+    "Largest force in the XY plane sqrt(Fx² + Fy²): what bends the tool.",
+)
+.lower_is_better();
+pub const TORQUE_MAX: Metric = Metric::new(
+    "torque_max_nm",
+    "T_max",
+    "N·m",
+    2,
+    |m| m.torque_max_nm,
+    "Largest spindle torque T = Σ dF_t·R over the cycle.",
+)
+.lower_is_better();
+pub const TORQUE_MEAN: Metric =
+    Metric::new("torque_mean_nm", "mean T", "N·m", 2, |m| m.torque_mean_nm, "Mean spindle torque while the tool cuts.");
+pub const POWER_MAX: Metric =
+    Metric::new("power_max_w", "P_max", "W", 0, |m| m.power_max_w, "Largest cutting power P = T·Ω = T·2πn/60.")
+        .lower_is_better();
+pub const POWER_MEAN: Metric =
+    Metric::new("power_mean_w", "mean P", "W", 0, |m| m.power_mean_w, "Mean cutting power while the tool cuts.");
+pub const PERFORMANCE_INDEX: Metric = Metric::new(
+    "performance_index",
+    "PI",
+    "",
+    3,
+    |m| m.performance_index.unwrap_or(f64::NAN),
+    "Performance index PI = MRR / (F_R,max · Ra,max · W_max), eq. (7) (mm³/min, N, µm, µm; W_max = \
+     max(W_l, W_r)). Needs the measured Ra,max (ra-um); compare PI only within one unit system.",
+)
+.higher_is_better();
+pub const PERFORMANCE_INDEX_WITHOUT_RA: Metric = Metric::new(
+    "performance_index_without_ra",
+    "PI without Ra",
+    "",
+    3,
+    |m| m.performance_index_without_ra,
+    "Eq. (7) without Ra: MRR / (F_R,max · W_max) (mm³/min, N, µm) ranks paths by the predictable part; \
+     Ra,max is not predicted (domain-spec §4.3).",
+)
+.higher_is_better();
+pub const IMPRINT_DENSITY_MEAN: Metric = Metric::new(
+    "imprint_density_mean_per_mm",
+    "imprints (mean)",
+    "1/mm",
+    1,
+    |m| m.imprint_density_mean_per_mm,
+    "Mean density of cutting-edge imprints on the slot bottom: crossings of the edge circles (one every \
+     f_z along the path) with a line x = X, per mm of y, averaged across the slot (Figs. 21–22).",
+)
+.higher_is_better();
+pub const IMPRINT_DENSITY_PEAK: Metric = Metric::new(
+    "imprint_density_peak_per_mm",
+    "imprints (peak)",
+    "1/mm",
+    1,
+    |m| m.imprint_density_peak_per_mm,
+    "Largest imprint density across the slot bottom (Fig. 22: highest mid-slot).",
+);
+
 /// Every numeric metric of [`Metrics`] (all its fields but the path kind), in field order.
-pub const METRICS: [&Metric; 21] = [
+pub const METRICS: [&Metric; 33] = [
     &CYCLE_LENGTH,
     &T_CYCLE,
     &MRR,
@@ -226,6 +323,28 @@ pub const METRICS: [&Metric; 21] = [
     &TEETH_PER_CYCLE,
     &STEP_LIMIT_46DEG,
     &STEP_LIMIT_15PCT_DEPTH,
+    &FORCE_RESULTANT_MAX,
+    &FORCE_RESULTANT_MEAN,
+    &T_FORCE_MAX_SHARE,
+    &FORCE_XY_MAX,
+    &TORQUE_MAX,
+    &TORQUE_MEAN,
+    &POWER_MAX,
+    &POWER_MEAN,
+    &PERFORMANCE_INDEX,
+    &PERFORMANCE_INDEX_WITHOUT_RA,
+    &IMPRINT_DENSITY_MEAN,
+    &IMPRINT_DENSITY_PEAK,
+];
+
+/// The process results of a steady-state cycle (section 5: forces, eq. 7, Figs. 21–22).
+pub const PROCESS_RESULTS: [&Metric; 6] = [
+    &FORCE_RESULTANT_MAX,
+    &FORCE_RESULTANT_MEAN,
+    &T_FORCE_MAX_SHARE,
+    &PERFORMANCE_INDEX,
+    &PERFORMANCE_INDEX_WITHOUT_RA,
+    &IMPRINT_DENSITY_MEAN,
 ];
 
 /// The results of a steady-state cycle the paper compares paths by (Table 2, Figs. 5, 9):
@@ -326,7 +445,10 @@ mod tests {
         assert_eq!(fields.len(), METRICS.len() + 1, "every field but `path` has an entry");
         for q in METRICS {
             let v = fields.get(q.key).and_then(serde_json::Value::as_f64);
-            assert_eq!(v, Some(q.of(&m)), "{}", q.key);
+            // A metric without a value (PI without Ra,max) is NaN in the table, null in JSON.
+            let want = Some(q.of(&m)).filter(|x| !x.is_nan());
+            assert!(fields.contains_key(q.key), "{}", q.key);
+            assert_eq!(v, want, "{}", q.key);
             assert_eq!(q.whole, fields[q.key].is_u64(), "{}", q.key);
         }
     }
@@ -339,5 +461,6 @@ mod tests {
         assert!(ENGAGEMENT_MAX.display(&m).ends_with('°'));
         assert_eq!(MRR.heading(), "MRR [mm³/min]");
         assert_eq!(ASPECT_RATIO.heading(), "r_e");
+        assert_eq!(PERFORMANCE_INDEX.display(&m), "— (no value)", "no Ra,max in the default job");
     }
 }

@@ -16,6 +16,8 @@ pub enum Tab {
     Plots,
     Compare,
     Sweep,
+    /// Cutting forces and bottom imprints (issue #10).
+    Forces,
     /// The "Export NC" panel.
     Export,
     /// One pocket corner and its corner trochoids (issue #5).

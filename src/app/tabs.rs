@@ -21,7 +21,7 @@ pub struct TabSpec {
 }
 
 /// Every tab, in the order of the menu and the tab bar.
-pub const TABS: [TabSpec; 5] = [
+pub const TABS: [TabSpec; 6] = [
     TabSpec {
         tab: Tab::Plots,
         label: "Plots",
@@ -42,6 +42,13 @@ pub const TABS: [TabSpec; 5] = [
         tooltip: "Metrics against r_e or d, planned on a background thread",
         slot_panels: true,
         show: sweep_tab,
+    },
+    TabSpec {
+        tab: Tab::Forces,
+        label: "Forces",
+        tooltip: "Cutting forces over the cycle (Figs. 14–15) and edge imprints on the slot bottom (Figs. 21–22)",
+        slot_panels: true,
+        show: forces_tab,
     },
     TabSpec {
         tab: Tab::Export,
@@ -103,6 +110,22 @@ fn compare_tab(app: &mut App, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
     let cursor = app.planner.last.as_ref().and_then(|p| app.anim.cursor(&p.plan));
     let layers = layers(&app.planner, &app.variants, true);
     plot_grid(ui, &layers, cursor, &app.chip, app.state.chip_close_up, app.state.teach);
+}
+
+fn forces_tab(app: &mut App, ui: &mut egui::Ui, _cmds: &mut Vec<Command>) {
+    let Some(cur) = &app.planner.last else {
+        ui.label("No valid job yet: fix the marked parameter.");
+        return;
+    };
+    panels::teach::controls(ui, &mut app.anim, &cur.plan);
+    let cursor = app.anim.cursor(&cur.plan);
+    let layers = layers(&app.planner, &app.variants, app.state.overlay_pins);
+    let teach = app.state.teach;
+    let avail = ui.available_size();
+    let top = egui::vec2(avail.x, ((avail.y - 8.0) * 0.6).max(160.0));
+    let bottom = egui::vec2(avail.x, (avail.y - 8.0 - top.y).max(120.0));
+    sized(ui, top, |ui| plots::force_plot(ui, &layers, cursor, teach));
+    sized(ui, bottom, |ui| plots::imprint_plot(ui, &layers, teach));
 }
 
 fn sweep_tab(app: &mut App, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {

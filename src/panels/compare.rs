@@ -16,9 +16,13 @@ pub struct VariantView<'a> {
     pub metrics: &'a Metrics,
 }
 
-/// The compared quantities, in order: the path's shape, then the core's cycle results.
+/// The compared quantities, in order: the path's shape, then the core's cycle results and its
+/// process results (F_R,max, PI: the paper's Figs. 16 and 23).
 fn quantities() -> impl Iterator<Item = &'static Metric> {
-    [&quantity::ASPECT_RATIO, &quantity::LINEAR_DISTANCE].into_iter().chain(quantity::CYCLE_RESULTS)
+    [&quantity::ASPECT_RATIO, &quantity::LINEAR_DISTANCE]
+        .into_iter()
+        .chain(quantity::CYCLE_RESULTS)
+        .chain(quantity::PROCESS_RESULTS)
 }
 
 /// Percentage change of `v` against `base` (None when the base is zero).

@@ -59,6 +59,13 @@ pub struct Graphics {
     pub wall_left: Vec<PlotPoint>,
     /// Right wall: (y mm, deviation from its valley into the slot, mm).
     pub wall_right: Vec<PlotPoint>,
+    /// Cutting forces over the cycle, (t s, N), decimated: Fx, Fy, Fz, F_R.
+    pub forces: [Vec<PlotPoint>; 4],
+    /// Mean F_R while cutting (N), and time and value of F_R,max (s, N).
+    pub force_mean: f64,
+    pub force_max_at: (f64, f64),
+    /// Imprint density across the slot bottom, (X mm, crossings per mm).
+    pub imprints: Vec<PlotPoint>,
 }
 
 impl Graphics {
@@ -103,8 +110,28 @@ impl Graphics {
             t_hmax_spans,
             wall_left: wall_deviation(&plan.left_wall),
             wall_right: wall_deviation(&plan.right_wall),
+            forces: force_curves(plan),
+            force_mean: plan.forces.summary.resultant_mean_n,
+            force_max_at: (plan.forces.summary.t_max_s, plan.forces.summary.resultant_max_n),
+            imprints: plan
+                .imprints
+                .x_mm
+                .iter()
+                .zip(&plan.imprints.density_per_mm)
+                .map(|(&x, &d)| PlotPoint::new(x, d))
+                .collect(),
         }
     }
+}
+
+/// Fx, Fy, Fz and F_R over the cycle, each decimated.
+fn force_curves(plan: &Plan) -> [Vec<PlotPoint>; 4] {
+    let f = &plan.forces.samples;
+    let curve = |v: fn(&trochoplan_core::analysis::ForceSample) -> f64| {
+        let pts: Vec<[f64; 2]> = f.iter().map(|s| [s.time_s, v(s)]).collect();
+        decimate(&pts, MAX_SERIES_POINTS)
+    };
+    [curve(|s| s.fx_n), curve(|s| s.fy_n), curve(|s| s.fz_n), curve(|s| s.resultant_n())]
 }
 
 /// The first shown cycle and the current one: a few steps into the stock (steady state),

@@ -783,3 +783,35 @@ fn corner_export_previews_the_core_program_saves_it_and_reports_a_bad_depth() {
     h.run();
     assert_eq!(std::fs::read_to_string(&file).expect("saved"), preview);
 }
+
+/// Issue #10: F_R,max and PI without Ra are among the derived values; the Forces tab draws;
+/// the helix slider and the material picker replan with new forces (a lower helix angle puts
+/// fewer edges in the cut at once: a higher peak; titanium's set has lower cutting but higher
+/// axial coefficients than P20's).
+#[test]
+fn forces_tab_and_the_material_inputs_replan_the_forces() {
+    let mut h = harness();
+    let m = metrics(&h);
+    assert!(shows(&h, &format!("{:.1} N", m.force_resultant_max_n)), "F_R,max shown");
+    assert!(shows(&h, &format!("{:.3}", m.performance_index_without_ra)), "PI without Ra shown");
+    h.get_by_label("Forces").click();
+    h.run();
+    assert_eq!(h.state().view.tab, Tab::Forces);
+    h.get_by_role_and_label(Role::Slider, Param::HelixAngle.label()).set_value_accesskit(10.0);
+    h.run();
+    let low_helix = metrics(&h);
+    assert!((h.state().state.job.helix_angle - 10.0).abs() < 1e-9);
+    assert!(
+        low_helix.force_resultant_max_n > m.force_resultant_max_n,
+        "{} vs {}",
+        low_helix.force_resultant_max_n,
+        m.force_resultant_max_n
+    );
+    let lib = trochoplan_core::material::Library::builtin();
+    h.get_by_role_and_label(Role::ComboBox, Param::Material.label()).click();
+    h.run_steps(15);
+    h.get_by_label(lib.get("ti-6al-4v").expect("ti").label.as_str()).click();
+    h.run_steps(15);
+    assert_eq!(h.state().state.job.material, "ti-6al-4v");
+    assert_ne!(metrics(&h).force_resultant_max_n, low_helix.force_resultant_max_n);
+}

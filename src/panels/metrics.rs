@@ -4,8 +4,8 @@ use eframe::egui::{self, Color32, RichText};
 use trochoplan_core::Plan;
 use trochoplan_core::quantity::{self, Metric};
 
-/// The derived values shown, in order: feed and path shape, the core's cycle results, step
-/// limits and the whole job.
+/// The derived values shown, in order: feed and path shape, the core's cycle results, its
+/// process results (forces, PI, imprints), step limits and the whole job.
 pub fn shown() -> impl Iterator<Item = &'static Metric> {
     let shape = [&quantity::F_Z, &quantity::A, &quantity::B];
     let whole_job = [
@@ -15,7 +15,7 @@ pub fn shown() -> impl Iterator<Item = &'static Metric> {
         &quantity::PATH_LENGTH,
         &quantity::MACHINING_TIME,
     ];
-    shape.into_iter().chain(quantity::CYCLE_RESULTS).chain(whole_job)
+    shape.into_iter().chain(quantity::CYCLE_RESULTS).chain(quantity::PROCESS_RESULTS).chain(whole_job)
 }
 
 /// Draw the derived values of `plan`; `stale` when the current job is invalid and the values

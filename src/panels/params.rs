@@ -95,6 +95,79 @@ pub fn show(ui: &mut egui::Ui, job: &mut Job, error: Option<&Error>) {
     }
     field_error_line(ui, Param::Path, error);
     egui::Grid::new("path_grid").num_columns(2).spacing([8.0, 4.0]).show(ui, |ui| path_fields(ui, job, error));
+    ui.add_space(6.0);
+    ui.heading("Material and process");
+    egui::Grid::new("process_grid").num_columns(2).spacing([8.0, 4.0]).show(ui, |ui| process_fields(ui, job, error));
+}
+
+/// Work material (built-in library), helix angle and the measured Ra,max of eq. (7).
+fn process_fields(ui: &mut egui::Ui, job: &mut Job, error: Option<&Error>) {
+    let lib = trochoplan_core::material::Library::builtin();
+    let lab = ui.label(Param::Material.label());
+    let tip = "Work material: the six coefficients of the linear edge-force model \
+        (dF = (K_c·h + K_e)·dz, domain-spec §4.1) from the library assets/materials/library.toml, \
+        each value with its source. The paper's material is P20, unhardened.";
+    lab.clone().on_hover_text(tip);
+    let current = lib.get(&job.material).map_or(job.material.as_str(), |m| m.label.as_str()).to_owned();
+    egui::ComboBox::from_id_salt("material")
+        .selected_text(current)
+        .width(ui.spacing().slider_width + 60.0)
+        .show_ui(ui, |ui| {
+            for m in &lib.materials {
+                let k = &m.coefficients;
+                let text = format!(
+                    "Ktc {} Krc {} Kac {} N/mm², Kte {} Kre {} Kae {} N/mm",
+                    k.ktc, k.krc, k.kac, k.kte, k.kre, k.kae
+                );
+                if ui
+                    .selectable_label(job.material == m.name && job.coefficients.is_none(), &m.label)
+                    .on_hover_text(text)
+                    .clicked()
+                {
+                    job.material.clone_from(&m.name);
+                    job.coefficients = None;
+                }
+            }
+        })
+        .response
+        .labelled_by(lab.id)
+        .on_hover_text(tip);
+    ui.end_row();
+    field_error(ui, Param::Material, error);
+    Field::new(
+        Param::HelixAngle,
+        "°",
+        "Helix angle β of the flutes (0–60°). The edge at height z lags its bottom by z·tanβ/R, \
+        so several teeth share the cut and the force rises and falls more smoothly; it does not \
+        change the mean force. The paper's tool: 35°.",
+        0.0..=60.0,
+    )
+    .decimals(1)
+    .error(error)
+    .show(ui, &mut job.helix_angle);
+    let lab = ui.label(Param::RaUm.label());
+    let tip = "Largest measured roughness Ra,max (µm) of the slot (walls and bottom). Not \
+        predicted: enter your measurement to get PI = MRR/(F_R,max·Ra,max·W_max), eq. (7). \
+        Without it the planner ranks by MRR/(F_R,max·W_max) (\"PI without Ra\").";
+    lab.clone().on_hover_text(tip);
+    ui.horizontal(|ui| {
+        let mut on = job.ra_um.is_some();
+        if ui.checkbox(&mut on, "").on_hover_text(tip).changed() {
+            job.ra_um = on.then_some(1.0);
+        }
+        if let Some(ra) = &mut job.ra_um {
+            ui.add(egui::DragValue::new(ra).speed(0.01).range(0.0..=1000.0).suffix(" µm"))
+                .labelled_by(lab.id)
+                .on_hover_text(tip);
+        } else {
+            ui.label(RichText::new("not entered").weak());
+        }
+    });
+    ui.end_row();
+    field_error(ui, Param::RaUm, error);
+    for p in [Param::Ktc, Param::Krc, Param::Kac, Param::Kte, Param::Kre, Param::Kae, Param::Runout] {
+        field_error(ui, p, error);
+    }
 }
 
 /// Slot width, length and depth.

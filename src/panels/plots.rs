@@ -67,6 +67,23 @@ pub mod explain {
         from the deepest point of each wall (paper section 2.3: eq. (3) evaluated at the walls; \
         Figs. 8–9). Waviness W = peak-to-valley height; its spacing is the step s. Smaller r_e \
         raises W (Fig. 9); a linear distance d along the walls lowers it (Figs. 12, 28).";
+    pub const FORCES: &str = "Cutting forces on the tool over one steady-state cycle (paper \
+        Figs. 14–15): linear edge-force model with helix (Altintas & Lee 1996; domain-spec §4.1). \
+        Every tooth, every axial slice dz = a_p/50, spindle steps ≤ 1°: dF_t = (Ktc·h + Kte)·dz, \
+        dF_r = (Krc·h + Kre)·dz, dF_a = (Kac·h + Kae)·dz with h(φ) the chip thickness at the slice's \
+        angle on the engaged arc (the same material model as h, eqs. 3–6); F_R = sqrt(Fx² + Fy² + Fz²). \
+        Dashed: mean F_R while cutting. Peaks every tooth pass (z per revolution).";
+    pub const WHY_EARLY: &str = "Why F_R peaks early in an elliptical loop: h_max (eq. 4) is the \
+        thickest point of one chip, but the force integrates the whole engaged arc over the \
+        helix. On an ellipse (r_e < 1) the loop turns sharply at the wall and then runs along the \
+        slot, so the engaged arc is widest just after the turn and the force peaks there, while h \
+        keeps growing slowly towards h_max: the force rises fast and decays slowly (paper: peak at \
+        9.7 % of the cycle for r_e = 0.8, 16 % for the circle, 5–6 % before h_max). On the circle \
+        the arc grows and shrinks at the same rate.";
+    pub const IMPRINTS: &str = "Imprints of the cutting edges on the slot bottom (paper Figs. 21–22): \
+        the circle of the edges (radius R) drawn at every tooth position, f_z apart along the path; \
+        density = crossings of these circles with the line x = X, per mm of y, from the left wall \
+        to the right wall. More imprints: lower bottom roughness (section 5.2.2).";
 }
 
 fn title(ui: &mut egui::Ui, text: &str, explanation: &str, teach: bool) {
@@ -466,4 +483,60 @@ pub fn wall_plot(ui: &mut egui::Ui, layers: &[Layer], teach: bool) {
             }
         },
     );
+}
+
+/// Cutting forces Fx, Fy, Fz and F_R over one steady-state cycle, the mean F_R dashed (Figs.
+/// 14–15); pinned variants add their F_R.
+pub fn force_plot(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, teach: bool) {
+    title(ui, "Cutting forces over one steady-state cycle (Figs. 14–15)", explain::FORCES, teach);
+    if teach {
+        ui.add(egui::Label::new(RichText::new(explain::WHY_EARLY).weak()).wrap());
+    }
+    base_plot(ui, "force_plot").custom_x_axes(x_axis("t [s]")).y_axis_label("force [N]").show(ui, |p| {
+        for l in layers {
+            let g = l.g;
+            if l.primary {
+                let names = ["Fx", "Fy", "Fz"];
+                let colours =
+                    [Color32::from_rgb(40, 160, 70), Color32::from_rgb(220, 90, 30), Color32::from_rgb(170, 60, 190)];
+                for ((curve, name), colour) in g.forces.iter().zip(names).zip(colours) {
+                    p.line(Line::new(name, PlotPoints::Borrowed(curve)).color(colour.gamma_multiply(0.8)).width(1.0));
+                }
+                p.hline(
+                    HLine::new(format!("mean F_R = {:.0} N", g.force_mean), g.force_mean)
+                        .color(l.color)
+                        .style(LineStyle::dashed_loose()),
+                );
+                let (t, f) = g.force_max_at;
+                p.points(Points::new("", vec![[t, f]]).radius(5.0).color(l.color));
+                p.text(
+                    Text::new("", PlotPoint::new(t, f * 1.04), format!("F_R,max = {f:.0} N"))
+                        .anchor(egui::Align2::CENTER_BOTTOM)
+                        .color(l.color),
+                );
+                if let Some(c) = cursor {
+                    p.vline(VLine::new("current tooth", c.t_s).color(CHIP_COLOR).width(1.5));
+                }
+            }
+            p.line(Line::new(named(layers, l, "F_R"), PlotPoints::Borrowed(&g.forces[3])).color(l.color).width(1.5));
+        }
+    });
+}
+
+/// Imprint density across the slot bottom, left wall to right wall (Figs. 21–22).
+pub fn imprint_plot(ui: &mut egui::Ui, layers: &[Layer], teach: bool) {
+    title(ui, "Edge imprints on the slot bottom (Figs. 21–22)", explain::IMPRINTS, teach);
+    base_plot(ui, "imprint_plot")
+        .custom_x_axes(x_axis("X [mm] (left wall to right wall)"))
+        .y_axis_label("imprints [1/mm]")
+        .include_y(0.0)
+        .show(ui, |p| {
+            for l in layers {
+                p.line(
+                    Line::new(named(layers, l, "imprint density"), PlotPoints::Borrowed(&l.g.imprints))
+                        .color(l.color)
+                        .width(1.5),
+                );
+            }
+        });
 }

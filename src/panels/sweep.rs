@@ -216,8 +216,8 @@ fn status_row(ui: &mut egui::Ui, run: &SweepRun, running: bool) {
 /// The quantities of one sweep plot, each with its colour.
 type Series = Vec<(&'static Metric, Color32)>;
 
-/// The four sweep plots: id, y-axis label and the quantities drawn.
-fn sweep_plots() -> [(&'static str, &'static str, Series); 4] {
+/// The six sweep plots: id, y-axis label and the quantities drawn.
+fn sweep_plots() -> [(&'static str, &'static str, Series); 6] {
     [
         ("h_max", "h_max [mm]", vec![(&quantity::H_MAX, Color32::from_rgb(30, 110, 220))]),
         ("mrr", "MRR [mm³/min]", vec![(&quantity::MRR, Color32::from_rgb(40, 160, 70))]),
@@ -238,18 +238,27 @@ fn sweep_plots() -> [(&'static str, &'static str, Series); 4] {
                 (&quantity::T_CYCLE, Color32::from_rgb(120, 120, 120)),
             ],
         ),
+        (
+            "force",
+            "F_R [N]",
+            vec![
+                (&quantity::FORCE_RESULTANT_MAX, Color32::from_rgb(210, 40, 40)),
+                (&quantity::FORCE_RESULTANT_MEAN, Color32::from_rgb(120, 120, 120)),
+            ],
+        ),
+        ("pi", "PI without Ra", vec![(&quantity::PERFORMANCE_INDEX_WITHOUT_RA, Color32::from_rgb(30, 110, 220))]),
     ]
 }
 
-/// The four plots in a 2 × 2 grid, with the current job's value marked when the sweep's path
-/// is its path.
+/// The six plots in a 2 × 3 grid (h_max, MRR, waviness, times, forces (Fig. 16), PI without
+/// Ra (Figs. 23, 28)), with the current job's value marked when the sweep's path is its path.
 fn plots(ui: &mut egui::Ui, run: &SweepRun, current: &Job) {
     let ok: Vec<(f64, &Metrics)> =
         run.points.iter().filter_map(|p| p.result.as_ref().ok().map(|m| (p.value, m))).collect();
     let param = run.settings.param;
     let marker = (param.path_for(current.path) == Some(current.path)).then(|| param.get(current));
     let avail = ui.available_size();
-    let cell = egui::vec2((avail.x - 12.0) / 2.0, (avail.y - 12.0) / 2.0);
+    let cell = egui::vec2((avail.x - 12.0) / 2.0, ((avail.y - 20.0) / 3.0).max(100.0));
     egui::Grid::new("sweep_grid").num_columns(2).spacing([8.0, 8.0]).show(ui, |ui| {
         for (k, (id, ylabel, series)) in sweep_plots().iter().enumerate() {
             ui.allocate_ui(cell, |ui| {

@@ -541,10 +541,17 @@ impl<'a> CycleTeeth<'a> {
         let len = cycle.length();
         let back = P2::new(0.0, -cycle.step);
         let early = EarlySweep::new(cycle, P2::zeros(), r, 0.25);
-        // The first quarter of the previous cycle, for tooth −1.
-        let early_prev = EarlySweep::new(cycle, back, r, 0.25);
+        // Tooth −1 is the tooth f_z before the end of this cycle moved back by one step: the
+        // steady state repeats by translation. (Analysed on the previous cycle directly, it
+        // would meet that cycle itself in the edge of previous cycles and engage nothing.)
         let first = cycle.positions(len - f_z, f_z).into_iter().take(1).collect();
-        let before_start = teeth_at(cycle, edge, r, &early_prev, back, first).pop();
+        let before_start = teeth_at(cycle, edge, r, &early, P2::zeros(), first).pop().map(|mut t| {
+            t.frame.c += back;
+            for b in &mut t.engagement.ends {
+                *b += back;
+            }
+            t
+        });
         let spacing = stride as f64 * f_z;
         let teeth = teeth_at(cycle, edge, r, &early, P2::zeros(), cycle.positions(0.0, spacing));
         let previous = if stride > 1 {
@@ -598,10 +605,11 @@ impl<'a> CycleTeeth<'a> {
         }
         let swept = self.swept(*s);
         let half = |s: f64| s >= 0.5 * self.cycle.length();
-        // The previous tooth's intervals against this tooth's swept material: its own, except
-        // across the switch to the early sweep (and for tooth −1) found again.
+        // The previous tooth's intervals against this tooth's swept material: its own (tooth
+        // −1's are against the material before it, which tooth 0 has too), except across the
+        // switch to the early sweep found again.
         let prev = self.previous_of(i).map(|p| {
-            let intervals = if i > 0 && half(p.s) == half(*s) {
+            let intervals = if i == 0 || half(p.s) == half(*s) {
                 p.engagement.intervals.clone()
             } else {
                 engagement(&swept, &p.frame, self.r).intervals

@@ -4,11 +4,15 @@
 
 pub mod chip;
 pub mod edge;
+pub mod force;
+pub mod imprint;
 pub mod step;
 pub mod waviness;
 
 pub use chip::{ARC_SAMPLE_STEP_RAD, EngagedArc, H_CUT_MM, ToothSample, tooth_series};
 pub use edge::PreviousEdge;
+pub use force::{Cutter, ForceSample, ForceSeries, ForceSummary, cycle_forces};
+pub use imprint::{ImprintProfile, imprint_density};
 pub use waviness::{Wall, WallProfile, wall_profile};
 
 use serde::{Deserialize, Serialize};

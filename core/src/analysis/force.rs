@@ -1,0 +1,646 @@
+//! Cutting forces per tooth over one steady-state cycle: the mechanistic linear edge-force
+//! model with helix of Altintas & Lee (1996) (domain-spec §4.1; Wagih et al. 2023 cite it as
+//! [34]), driven by the chip thickness of the material model ([`super::chip`]), not by a
+//! straight-cut formula.
+//!
+//! **Model.** The flutes are helices: tooth j (of z) at height z above the tool tip lags its
+//! bottom point by z·tanβ/R. The depth a_p is cut into [`SLICES`] axial slices (dz = a_p/50);
+//! every slice of every tooth whose angle lies in an engaged arc of the tool edge carries
+//!
+//! ```text
+//! dF_t = (Ktc·h + Kte)·dz      dF_r = (Krc·h + Kre)·dz      dF_a = (Kac·h + Kae)·dz
+//! ```
+//!
+//! with h = h(φ) the radial chip thickness at the slice's angle (the engaged arcs of
+//! [`ToothSample::arcs`]: R − max(t₁, t_s), the edge left by previous cycles and the previous
+//! tooth). A slice cut by an end of the engaged arc counts only its engaged part (its length
+//! and mid-point clipped to the arc), so an arc end moving through a slice changes the force
+//! continuously. On the tool, the tangential force opposes the edge's velocity and the radial
+//! force points to the axis: with u the edge's radial unit vector and v its velocity direction
+//! (spindle M3, clockwise seen from +z), F = −dF_t·v − dF_r·u + dF_a·ẑ, which is domain-spec
+//! §4.1's dFx = −dFt·cos φ − dFr·sin φ, dFy = dFt·sin φ − dFr·cos φ in its frame (feed +x, φ
+//! clockwise from +y). Torque T = Σ dF_t·R, power P = T·Ω.
+//!
+//! **Time.** Spindle-angle steps of at most [`SPINDLE_STEP_RAD`] (1°) over one cycle (up to
+//! [`MAX_FORCE_TOOTH_SAMPLES`] / z samples; a job needing more gets coarser steps, `dt_s`). The
+//! chip geometry is known at the tooth positions f_z apart (one tooth period); between two of
+//! them the engaged arcs are blended linearly in time: ends by their angles, h at the same
+//! relative place along the arc, the frame (feed direction) by its angle. An arc that appears
+//! (vanishes) between two positions grows from (shrinks to) a point in its middle; where both
+//! positions have arcs but not as many (an arc splits) the nearer position's are used.
+//!
+//! **Runout.** Flute j sits ρ_j further out than nominal; its chip is
+//! h_j = max(0, min over m = 1…z of (m·h + ρ_j − ρ_{j−m})) (the usual runout form, with the
+//! m-teeth-back chip taken as m·h), arcs unchanged. Default: no runout.
+//!
+//! Forces are on the tool, in the machine frame (x across the slot, y along it, z up).
+
+use super::chip::{EngagedArc, ThicknessSample, ToothSample};
+use crate::job::limits::MAX_FORCE_TOOTH_SAMPLES;
+use crate::material::Coefficients;
+use rayon::prelude::*;
+use serde::Serialize;
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
+
+/// Axial slices over the depth a_p (dz = a_p / 50, issue #10).
+pub const SLICES: usize = 50;
+/// Largest spindle-angle step of the force series (rad): 1°.
+pub const SPINDLE_STEP_RAD: f64 = PI / 180.0;
+
+/// The cutter as the force model needs it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cutter {
+    /// Tool radius R (mm).
+    pub radius_mm: f64,
+    /// Number of teeth z.
+    pub teeth: u32,
+    /// Helix angle β (rad), 0 ≤ β < π/2.
+    pub helix_rad: f64,
+    /// Axial depth of cut a_p (mm).
+    pub depth_mm: f64,
+    /// Radial offset ρ_j of each flute (mm); empty: none.
+    pub runout_mm: Vec<f64>,
+}
+
+/// The force on the tool at one instant.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct ForceSample {
+    /// Time from the start of the cycle (s).
+    pub time_s: f64,
+    /// Force components in the machine frame (N).
+    pub fx_n: f64,
+    pub fy_n: f64,
+    pub fz_n: f64,
+    /// Spindle torque (N·m).
+    pub torque_nm: f64,
+    /// Whether any edge element is in the cut.
+    pub cutting: bool,
+}
+
+impl ForceSample {
+    /// F_R = √(Fx² + Fy² + Fz²) (N).
+    pub fn resultant_n(&self) -> f64 {
+        (self.fx_n * self.fx_n + self.fy_n * self.fy_n + self.fz_n * self.fz_n).sqrt()
+    }
+    /// |Fxy| = √(Fx² + Fy²) (N).
+    pub fn fxy_n(&self) -> f64 {
+        self.fx_n.hypot(self.fy_n)
+    }
+}
+
+/// The force series of one steady-state cycle and its summary.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct ForceSeries {
+    /// One sample per spindle step (≤ 1°), from t = 0 to t_cycle (excluded).
+    pub samples: Vec<ForceSample>,
+    /// Time step (s).
+    pub dt_s: f64,
+    pub summary: ForceSummary,
+}
+
+/// Peak and mean values of a force series.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct ForceSummary {
+    /// F_R,max: largest resultant force over the cycle (N).
+    pub resultant_max_n: f64,
+    /// Mean F_R over the samples in which the tool cuts (N).
+    pub resultant_mean_n: f64,
+    /// Time of F_R,max from the start of the cycle (s).
+    pub t_max_s: f64,
+    /// Time from the start of the cutting pass that contains F_R,max to F_R,max, as a share
+    /// of the cycle time (the paper's "after 9.7 % of the cycle", measured like t_hmax).
+    pub t_max_share: f64,
+    /// Largest |Fxy| (N).
+    pub fxy_max_n: f64,
+    /// Largest and mean (over the cutting samples) spindle torque (N·m).
+    pub torque_max_nm: f64,
+    pub torque_mean_nm: f64,
+    /// Largest and mean (over the cutting samples) cutting power P = T·Ω (W).
+    pub power_max_w: f64,
+    pub power_mean_w: f64,
+}
+
+/// The engaged arcs of two neighbouring tooth positions prepared for blending in the inner
+/// loop: both h(u) on one grid of the relative place u = (φ − φ_in)/(φ_out − φ_in) along
+/// each arc (the union of their samples' places), with each piece's value and slope.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ArcPair {
+    /// Entry and exit angles (rad) of the first arc and of the second.
+    pub a: (f64, f64),
+    pub b: (f64, f64),
+    u: Vec<f64>,
+    /// Per piece: h_a, dh_a/du, h_b, dh_b/du at its start.
+    pts: Vec<[f64; 4]>,
+}
+
+impl ArcPair {
+    /// `a` and `b` (the same arc twice for an arc on its own).
+    pub fn new(a: &EngagedArc, b: &EngagedArc) -> ArcPair {
+        let rel = |arc: &EngagedArc| -> Vec<(f64, f64)> {
+            let sweep = arc.sweep_rad();
+            let inv = if sweep > 0.0 { 1.0 / sweep } else { 0.0 };
+            arc.samples.iter().map(|x| (((x.phi_rad - arc.entry_rad) * inv).clamp(0.0, 1.0), x.h_mm)).collect()
+        };
+        let (ra, rb) = (rel(a), rel(b));
+        let mut u: Vec<f64> = ra.iter().chain(&rb).map(|p| p.0).collect();
+        u.sort_by(f64::total_cmp);
+        u.dedup_by(|x, y| (*x - *y).abs() < 1e-12);
+        let value = |r: &[(f64, f64)], x: f64| {
+            let i = r.partition_point(|p| p.0 < x);
+            match (i.checked_sub(1).and_then(|k| r.get(k)), r.get(i)) {
+                (Some(p), Some(q)) if q.0 > p.0 => p.1 + (q.1 - p.1) * (x - p.0) / (q.0 - p.0),
+                (_, Some(q)) => q.1,
+                (Some(p), None) => p.1,
+                (None, None) => 0.0,
+            }
+        };
+        let ha: Vec<f64> = u.iter().map(|&x| value(&ra, x)).collect();
+        let hb: Vec<f64> = u.iter().map(|&x| value(&rb, x)).collect();
+        let pts = (0..u.len())
+            .map(|i| match u.get(i + 1) {
+                Some(&next) if next > u[i] => {
+                    let du = next - u[i];
+                    [ha[i], (ha[i + 1] - ha[i]) / du, hb[i], (hb[i + 1] - hb[i]) / du]
+                }
+                _ => [ha[i], 0.0, hb[i], 0.0],
+            })
+            .collect();
+        ArcPair { a: (a.entry_rad, a.exit_rad), b: (b.entry_rad, b.exit_rad), u, pts }
+    }
+}
+
+/// One engaged arc at an instant: a pair of arcs of neighbouring tooth positions blended
+/// with weight `w` (0: the first alone). Angles φ as in [`EngagedArc`] (from the
+/// material-side normal N towards the feed direction T, clockwise seen from +z).
+#[derive(Clone, Copy, Debug)]
+pub struct ArcBlend<'a> {
+    pub pair: &'a ArcPair,
+    pub w: f64,
+}
+
+impl ArcBlend<'_> {
+    fn entry(&self) -> f64 {
+        self.pair.a.0 + self.w * (self.pair.b.0 - self.pair.a.0)
+    }
+    fn exit(&self) -> f64 {
+        self.pair.a.1 + self.w * (self.pair.b.1 - self.pair.a.1)
+    }
+}
+
+/// A reading position in an [`ArcPair`], moved forward as u grows.
+struct Cursor<'a> {
+    p: &'a ArcPair,
+    w: f64,
+    i: usize,
+}
+
+impl<'a> Cursor<'a> {
+    fn new(b: &ArcBlend<'a>, u: f64) -> Cursor<'a> {
+        Cursor { p: b.pair, w: b.w, i: b.pair.u.partition_point(|&x| x < u).saturating_sub(1) }
+    }
+    /// The blended h(u) (u not below the last call's).
+    #[inline]
+    fn at(&mut self, u: f64) -> f64 {
+        let (us, pts) = (&self.p.u, &self.p.pts);
+        while self.i + 2 < us.len() && us[self.i + 1] < u {
+            self.i += 1;
+        }
+        match (us.get(self.i), pts.get(self.i)) {
+            (Some(&u0), Some(&[ha, sa, hb, sb])) => {
+                let d = (u - u0).max(0.0);
+                let a = ha + sa * d;
+                a + self.w * (hb + sb * d - a)
+            }
+            _ => 0.0,
+        }
+    }
+}
+
+/// Precomputed constants of the model.
+struct Model<'a> {
+    k: &'a Coefficients,
+    r: f64,
+    depth: f64,
+    dz: f64,
+    /// tanβ / R (rad per mm of height).
+    lag: f64,
+    teeth: usize,
+    pitch: f64,
+    runout: &'a [f64],
+    /// (sin, cos) of lag·(i + ½)·dz: the turn from a flute's bottom to the mid-point of
+    /// slice i.
+    slice_dirs: [(f64, f64); SLICES],
+    /// (cos, sin) of j·2π/z for each tooth j.
+    tooth_dirs: Vec<(f64, f64)>,
+}
+
+impl<'a> Model<'a> {
+    fn new(c: &'a Cutter, k: &'a Coefficients) -> Model<'a> {
+        Model {
+            k,
+            r: c.radius_mm,
+            depth: c.depth_mm,
+            dz: c.depth_mm / SLICES as f64,
+            lag: c.helix_rad.tan() / c.radius_mm,
+            teeth: c.teeth as usize,
+            pitch: TAU / f64::from(c.teeth),
+            runout: &c.runout_mm,
+            slice_dirs: std::array::from_fn(|i| {
+                (c.helix_rad.tan() / c.radius_mm * c.depth_mm / SLICES as f64 * (i as f64 + 0.5)).sin_cos()
+            }),
+            tooth_dirs: (0..c.teeth)
+                .map(|j| {
+                    let (s, c) = (TAU * f64::from(j) / f64::from(c.teeth)).sin_cos();
+                    (c, s)
+                })
+                .collect(),
+        }
+    }
+
+    /// The chip of flute j for a nominal chip h (runout form, see the module docs).
+    #[inline]
+    fn flute_chip(&self, j: usize, h: f64) -> f64 {
+        if self.runout.is_empty() {
+            return h;
+        }
+        let n = self.teeth;
+        (1..=n)
+            .map(|m| m as f64 * h + self.runout[j] - self.runout[(j + n * m - m) % n])
+            .fold(f64::INFINITY, f64::min)
+            .max(0.0)
+    }
+
+    /// Force (Fx, Fy, Fz) and torque at one instant: `frame` is the world angle (rad from +x,
+    /// counter-clockwise) of φ = 0, `spindle` the angle φ of tooth 0's bottom point.
+    fn instant(&self, frame: f64, spindle: f64, arcs: &[ArcBlend]) -> ([f64; 4], bool) {
+        let mut f = [0.0; 4];
+        let mut cutting = false;
+        let span = self.lag * self.depth;
+        if arcs.is_empty() {
+            return (f, cutting);
+        }
+        // World direction of tooth 0's bottom point: ψ = frame − spindle; tooth j at ψ − j·2π/z.
+        let (s0, c0) = (frame - spindle).sin_cos();
+        for arc in arcs {
+            let (e, x) = (arc.entry(), arc.exit());
+            if x <= e {
+                continue;
+            }
+            for j in 0..self.teeth {
+                let bottom = spindle + j as f64 * self.pitch;
+                let (cj, sj) = self.tooth_dirs[j];
+                let dir = (c0 * cj + s0 * sj, s0 * cj - c0 * sj);
+                // The first branch of the flute at or after the arc entry.
+                let d = bottom - e;
+                let mut phi_b = e + (d - TAU * (d / TAU).floor());
+                while phi_b - span <= x {
+                    let (z_lo, z_hi) = if self.lag > 0.0 {
+                        (((phi_b - x) / self.lag).max(0.0), ((phi_b - e) / self.lag).min(self.depth))
+                    } else if phi_b <= x {
+                        (0.0, self.depth)
+                    } else {
+                        (0.0, 0.0)
+                    };
+                    if z_hi > z_lo {
+                        cutting = true;
+                        self.flute_slices(arc, e, x, j, phi_b, z_lo, z_hi, dir, &mut f);
+                    }
+                    if self.lag <= 0.0 {
+                        break;
+                    }
+                    phi_b += TAU;
+                }
+            }
+        }
+        (f, cutting)
+    }
+
+    /// Add the slices of flute `j` between heights `z_lo` and `z_hi` (its bottom at angle
+    /// `phi_b`, world direction (cos ψ₀, sin ψ₀) = `dir0`) in the blended arc (entry `e`, exit
+    /// `x`) to `f`.
+    ///
+    /// Slices go from the top down, so φ and u grow and the cursors only move forward. A slice
+    /// cut by `z_lo` or `z_hi` counts its engaged part (length and mid-point). The direction of
+    /// slice i's mid-point is ψ₀ turned by the tabulated lag·(i + ½)·dz, and for a cut slice
+    /// further by the small angle to its own mid-point (a 4th-order series, |δ| ≤ lag·dz/2).
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn flute_slices(
+        &self,
+        arc: &ArcBlend,
+        e: f64,
+        x: f64,
+        j: usize,
+        phi_b: f64,
+        z_lo: f64,
+        z_hi: f64,
+        dir0: (f64, f64),
+        f: &mut [f64; 4],
+    ) {
+        let inv_sweep = 1.0 / (x - e);
+        let u_of = |z: f64| ((phi_b - self.lag * z - e) * inv_sweep).clamp(0.0, 1.0);
+        let dz = self.dz;
+        let mut cursor = Cursor::new(arc, u_of(z_hi));
+        let mut acc = [0.0; 4];
+        let (c0, s0) = dir0;
+        // Slice i at mid-height z_m: ψ = ψ₀ + lag·z_m, turned from the tabulated
+        // lag·(i + ½)·dz by δ = lag·(z_m − (i + ½)·dz) for a cut slice.
+        let cut_slice = |acc: &mut [f64; 4], cursor: &mut Cursor, zl: f64, zh: f64| {
+            let i = ((zl / dz) as usize).min(SLICES - 1);
+            let zm = 0.5 * (zl + zh);
+            let (st, ct) = self.slice_dirs[i];
+            let d = self.lag * (zm - (i as f64 + 0.5) * dz);
+            let d2 = d * d;
+            let (sd, cd) = (d * (1.0 - d2 / 6.0), 1.0 - d2 * (0.5 - d2 / 24.0));
+            let (st, ct) = (st * cd + ct * sd, ct * cd - st * sd);
+            let h = cursor.at(u_of(zm));
+            self.add(acc, self.flute_chip(j, h), zh - zl, s0 * ct + c0 * st, c0 * ct - s0 * st);
+        };
+        // Whole slices i_a..i_b span [z_a, z_b]; the cut ones above and below.
+        let i_a = ((z_lo / dz).ceil() as usize).min(SLICES);
+        let i_b = ((z_hi / dz).floor() as usize).clamp(i_a, SLICES);
+        if i_a == i_b {
+            cut_slice(&mut acc, &mut cursor, z_lo, z_hi);
+        } else {
+            let (z_a, z_b) = (i_a as f64 * dz, i_b as f64 * dz);
+            if z_hi > z_b {
+                cut_slice(&mut acc, &mut cursor, z_b, z_hi);
+            }
+            let du = self.lag * dz * inv_sweep;
+            let mut u = (phi_b - self.lag * (z_b - 0.5 * dz) - e) * inv_sweep;
+            for i in (i_a..i_b).rev() {
+                let (st, ct) = self.slice_dirs[i];
+                let h = cursor.at(u.max(0.0));
+                self.add(&mut acc, self.flute_chip(j, h), dz, s0 * ct + c0 * st, c0 * ct - s0 * st);
+                u += du;
+            }
+            if z_a > z_lo {
+                cut_slice(&mut acc, &mut cursor, z_lo, z_a);
+            }
+        }
+        for (f, a) in f.iter_mut().zip(acc) {
+            *f += a;
+        }
+    }
+
+    /// Add the forces of one element: chip h, length `len`, world direction (cos ψ, sin ψ) =
+    /// (`c`, `s`) of the edge point; velocity (sin ψ, −cos ψ) (spindle M3).
+    #[inline]
+    fn add(&self, f: &mut [f64; 4], h: f64, len: f64, s: f64, c: f64) {
+        let k = self.k;
+        let ft = (k.ktc * h + k.kte) * len;
+        let fr = (k.krc * h + k.kre) * len;
+        f[0] += -ft * s - fr * c;
+        f[1] += ft * c - fr * s;
+        f[2] += (k.kac * h + k.kae) * len;
+        f[3] += ft * self.r;
+    }
+}
+
+/// Force (Fx, Fy, Fz in N) and torque (N·m) at one instant for the engaged `arcs`: `frame` is
+/// the world angle of φ = 0 (the material-side normal N), `spindle` the angle φ of tooth 0's
+/// bottom point (teeth follow at +2π/z). Also whether any element cuts.
+pub fn force_at(cutter: &Cutter, k: &Coefficients, frame: f64, spindle: f64, arcs: &[ArcBlend]) -> ForceSample {
+    let ([fx, fy, fz, t], cutting) = Model::new(cutter, k).instant(frame, spindle, arcs);
+    ForceSample { time_s: 0.0, fx_n: fx, fy_n: fy, fz_n: fz, torque_nm: t / 1000.0, cutting }
+}
+
+/// The force series of one steady-state cycle from its per-tooth `series` (tooth positions
+/// `tooth_period_s` apart in time, periodic with `t_cycle_s`) at spindle speed `rpm`.
+///
+/// At t = 0 tooth 0's bottom point is at φ = 0 (the spindle phase is arbitrary).
+pub fn cycle_forces(
+    series: &[ToothSample],
+    t_cycle_s: f64,
+    cutter: &Cutter,
+    k: &Coefficients,
+    rpm: f64,
+) -> ForceSeries {
+    let omega = rpm / 60.0 * TAU;
+    if series.is_empty() || !(t_cycle_s.is_finite() && t_cycle_s > 0.0 && omega.is_finite() && omega > 0.0) {
+        return ForceSeries::default();
+    }
+    let most = (MAX_FORCE_TOOTH_SAMPLES / cutter.teeth.max(1) as usize).max(1) as f64;
+    let steps = (t_cycle_s * omega / SPINDLE_STEP_RAD).ceil().clamp(1.0, most) as usize;
+    let dt = t_cycle_s / steps as f64;
+    let model = Model::new(cutter, k);
+    let frame0 = FRAC_PI_2 + series[0].feed_angle_rad;
+    let n = series.len();
+    // Per tooth position: its arcs on their own, and paired with the next position's (when
+    // both have as many arcs).
+    let singles: Vec<Vec<ArcPair>> =
+        series.iter().map(|t| t.arcs.iter().map(|x| ArcPair::new(x, x)).collect()).collect();
+    // An arc that appears (or vanishes) between two positions grows from (shrinks to) a
+    // point in its middle with no chip.
+    let point = |x: &EngagedArc| {
+        let mid = 0.5 * (x.entry_rad + x.exit_rad);
+        EngagedArc { entry_rad: mid, exit_rad: mid, samples: vec![ThicknessSample { phi_rad: mid, h_mm: 0.0 }] }
+    };
+    let pairs: Vec<Option<Vec<ArcPair>>> = (0..n)
+        .map(|i| {
+            let (a, b) = (&series[i].arcs, &series[(i + 1) % n].arcs);
+            if a.len() == b.len() {
+                Some(a.iter().zip(b).map(|(x, y)| ArcPair::new(x, y)).collect())
+            } else if a.is_empty() {
+                Some(b.iter().map(|y| ArcPair::new(&point(y), y)).collect())
+            } else if b.is_empty() {
+                Some(a.iter().map(|x| ArcPair::new(x, &point(x))).collect())
+            } else {
+                None
+            }
+        })
+        .collect();
+    let samples: Vec<ForceSample> = (0..steps)
+        .into_par_iter()
+        .map(|i| {
+            let t = i as f64 * dt;
+            // Positions i0 ≤ t < i1 (the one after the last is the next cycle's first).
+            let i0 = series.partition_point(|s| s.time_s <= t).saturating_sub(1);
+            let (a, b) = (&series[i0], &series[(i0 + 1) % n]);
+
+            let t1 = if i0 + 1 < n { b.time_s } else { b.time_s + t_cycle_s };
+            let w = if t1 > a.time_s { ((t - a.time_s) / (t1 - a.time_s)).clamp(0.0, 1.0) } else { 0.0 };
+            let turn = wrap_pi(b.feed_angle_rad - a.feed_angle_rad);
+            let (arcs, frame): (Vec<ArcBlend>, f64) = match &pairs[i0] {
+                Some(p) => {
+                    (p.iter().map(|pair| ArcBlend { pair, w }).collect(), FRAC_PI_2 + a.feed_angle_rad + w * turn)
+                }
+                None => {
+                    let (near, angle) = if w < 0.5 {
+                        (&singles[i0], a.feed_angle_rad)
+                    } else {
+                        (&singles[(i0 + 1) % n], a.feed_angle_rad + turn)
+                    };
+                    (near.iter().map(|pair| ArcBlend { pair, w: 0.0 }).collect(), FRAC_PI_2 + angle)
+                }
+            };
+            // Tooth 0 turns clockwise at Ω: its world angle is frame0 − Ω·t, so its φ in the
+            // current frame is frame − (frame0 − Ω·t).
+            let spindle = frame - frame0 + omega * t;
+            let ([fx, fy, fz, torque], cutting) = model.instant(frame, spindle, &arcs);
+            ForceSample { time_s: t, fx_n: fx, fy_n: fy, fz_n: fz, torque_nm: torque / 1000.0, cutting }
+        })
+        .collect();
+    let summary = summarise(&samples, dt, t_cycle_s, omega);
+    ForceSeries { samples, dt_s: dt, summary }
+}
+
+/// Peaks and means of a periodic series of one cycle (`omega`: spindle speed, rad/s).
+pub fn summarise(samples: &[ForceSample], dt: f64, t_cycle_s: f64, omega: f64) -> ForceSummary {
+    let n = samples.len();
+    let Some((imax, fmax)) =
+        samples.iter().map(ForceSample::resultant_n).enumerate().max_by(|a, b| a.1.total_cmp(&b.1))
+    else {
+        return ForceSummary::default();
+    };
+    // Back from the peak to the first cutting sample of its pass (around the cycle start).
+    let mut back = 0;
+    if samples[imax].cutting {
+        while back + 1 < n && samples[(imax + n - back - 1) % n].cutting {
+            back += 1;
+        }
+    }
+    let cutting: Vec<&ForceSample> = samples.iter().filter(|s| s.cutting).collect();
+    let mean = |f: fn(&ForceSample) -> f64| {
+        if cutting.is_empty() { 0.0 } else { cutting.iter().map(|s| f(s)).sum::<f64>() / cutting.len() as f64 }
+    };
+    let torque_max = samples.iter().map(|s| s.torque_nm).fold(0.0, f64::max);
+    let torque_mean = mean(|s| s.torque_nm);
+    ForceSummary {
+        resultant_max_n: fmax,
+        resultant_mean_n: mean(ForceSample::resultant_n),
+        t_max_s: samples[imax].time_s,
+        t_max_share: back as f64 * dt / t_cycle_s,
+        fxy_max_n: samples.iter().map(ForceSample::fxy_n).fold(0.0, f64::max),
+        torque_max_nm: torque_max,
+        torque_mean_nm: torque_mean,
+        power_max_w: torque_max * omega,
+        power_mean_w: torque_mean * omega,
+    }
+}
+
+/// An angle difference wrapped to (−π, π].
+fn wrap_pi(a: f64) -> f64 {
+    let w = a.rem_euclid(TAU);
+    if w > PI { w - TAU } else { w }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+mod tests {
+    use super::*;
+
+    /// domain-spec §4.2 default set.
+    const P20: Coefficients = Coefficients { ktc: 2400.0, krc: 960.0, kac: 360.0, kte: 35.0, kre: 35.0, kae: 5.0 };
+
+    fn cutter() -> Cutter {
+        Cutter { radius_mm: 5.0, teeth: 4, helix_rad: 35f64.to_radians(), depth_mm: 6.0, runout_mm: Vec::new() }
+    }
+
+    /// A straight cut's engaged arc: h = f_z·sin φ from φ_st to φ_ex, sampled every 0.05°.
+    fn straight_arc(f_z: f64, st: f64, ex: f64) -> EngagedArc {
+        let n = ((ex - st) / 0.05f64.to_radians()).ceil() as usize;
+        let samples = (0..=n)
+            .map(|i| {
+                let phi = st + (ex - st) * i as f64 / n as f64;
+                ThicknessSample { phi_rad: phi, h_mm: f_z * phi.sin() }
+            })
+            .collect();
+        EngagedArc { entry_rad: st, exit_rad: ex, samples }
+    }
+
+    /// Mean forces of a straight cut by the closed form of domain-spec §4.1 (re-derived there
+    /// from the model): [G(φ)] from φ_st to φ_ex.
+    fn closed_form_means(k: &Coefficients, n: f64, ap: f64, fz: f64, st: f64, ex: f64) -> [f64; 3] {
+        let gx = |p: f64| {
+            n * ap * fz / (8.0 * PI) * (k.ktc * (2.0 * p).cos() - k.krc * (2.0 * p - (2.0 * p).sin()))
+                + n * ap / (2.0 * PI) * (-k.kte * p.sin() + k.kre * p.cos())
+        };
+        let gy = |p: f64| {
+            n * ap * fz / (8.0 * PI) * (k.ktc * (2.0 * p - (2.0 * p).sin()) + k.krc * (2.0 * p).cos())
+                - n * ap / (2.0 * PI) * (k.kte * p.cos() + k.kre * p.sin())
+        };
+        let gz = |p: f64| n * ap / (2.0 * PI) * (-k.kac * fz * p.cos() + k.kae * p);
+        [gx(ex) - gx(st), gy(ex) - gy(st), gz(ex) - gz(st)]
+    }
+
+    /// Mean (over one tooth period, `m` uniform spindle angles) and peak of the model's force
+    /// for a straight cut; domain-spec §4.1's frame: feed +x, φ clockwise from +y (frame = π/2).
+    fn model_straight(arc: &EngagedArc, m: usize) -> ([f64; 3], f64, f64) {
+        let (c, pitch) = (cutter(), TAU / 4.0);
+        let pair = ArcPair::new(arc, arc);
+        let blend = [ArcBlend { pair: &pair, w: 0.0 }];
+        let mut mean = [0.0; 3];
+        let (mut peak, mut peak_xy) = (0.0f64, 0.0f64);
+        for i in 0..m {
+            let f = force_at(&c, &P20, FRAC_PI_2, pitch * i as f64 / m as f64, &blend);
+            mean[0] += f.fx_n / m as f64;
+            mean[1] += f.fy_n / m as f64;
+            mean[2] += f.fz_n / m as f64;
+            peak = peak.max(f.resultant_n());
+            peak_xy = peak_xy.max(f.fxy_n());
+        }
+        (mean, peak, peak_xy)
+    }
+
+    /// domain-spec §4.1 TEST: down-milling, a_e = 1.526708 mm (46°), f_z = 0.075: means
+    /// (191.55, 312.36, 46.82) N by the closed form, peak F_R 691.5 N and peak |Fxy| 686.0 N;
+    /// slot (0→π): (−699.38, 1347.38, 266.26) N. Tolerance 0.5 % (issue #10 acceptance).
+    #[test]
+    fn straight_cut_and_slot_match_the_spec_test_values() {
+        let fz = 0.075;
+        let st = PI - (1.0 - 1.526708 / 5.0f64).acos();
+        let closed = closed_form_means(&P20, 4.0, 6.0, fz, st, PI);
+        for (got, want) in closed.iter().zip([191.55, 312.36, 46.82]) {
+            assert!((got - want).abs() < 0.01, "closed form {got} vs spec {want}");
+        }
+        let arc = straight_arc(fz, st, PI);
+        // 0.1° spindle steps over one tooth period.
+        let (mean, peak, peak_xy) = model_straight(&arc, 900);
+        for (got, want) in mean.iter().zip(closed) {
+            assert!((got / want - 1.0).abs() < 5e-3, "mean {got} vs closed form {want}");
+        }
+        assert!((peak / 691.5 - 1.0).abs() < 5e-3, "peak F_R {peak} vs 691.5 N");
+        assert!((peak_xy / 686.0 - 1.0).abs() < 5e-3, "peak |Fxy| {peak_xy} vs 686.0 N");
+        let slot = straight_arc(fz, 0.0, PI);
+        let closed = closed_form_means(&P20, 4.0, 6.0, fz, 0.0, PI);
+        let (mean, _, _) = model_straight(&slot, 900);
+        for ((got, c), want) in mean.iter().zip(closed).zip([-699.38, 1347.38, 266.26]) {
+            assert!((c - want).abs() < 0.01, "slot closed form {c} vs spec {want}");
+            assert!((got / want - 1.0).abs() < 5e-3, "slot mean {got} vs {want}");
+        }
+    }
+
+    /// Straight flutes (β = 0) put every slice at one angle; the mean force does not depend
+    /// on the helix (domain-spec §4.1's closed form has no β).
+    #[test]
+    fn mean_force_is_independent_of_the_helix() {
+        let st = PI - (1.0 - 1.526708 / 5.0f64).acos();
+        let arc = straight_arc(0.075, st, PI);
+        let pair = ArcPair::new(&arc, &arc);
+        let blend = [ArcBlend { pair: &pair, w: 0.0 }];
+        let closed = closed_form_means(&P20, 4.0, 6.0, 0.075, st, PI);
+        for beta in [0.0, 20.0, 60.0f64] {
+            let c = Cutter { helix_rad: beta.to_radians(), ..cutter() };
+            let m = 3600;
+            let mean_y: f64 =
+                (0..m).map(|i| force_at(&c, &P20, FRAC_PI_2, TAU * i as f64 / m as f64, &blend).fy_n).sum::<f64>()
+                    / m as f64;
+            assert!((mean_y / closed[1] - 1.0).abs() < 5e-3, "β {beta}: {mean_y} vs {}", closed[1]);
+        }
+    }
+
+    /// Runout: equal offsets change nothing; one flute further out takes a thicker chip and the
+    /// next a thinner one (h_j = h + ρ_j − ρ_{j−1} where that is the minimum).
+    #[test]
+    fn runout_moves_chip_between_flutes() {
+        let c = Cutter { runout_mm: vec![0.01, 0.0, 0.0, 0.0], ..cutter() };
+        let m = Model::new(&c, &P20);
+        assert!((m.flute_chip(0, 0.05) - 0.06).abs() < 1e-12);
+        assert!((m.flute_chip(1, 0.05) - 0.04).abs() < 1e-12);
+        assert!((m.flute_chip(2, 0.05) - 0.05).abs() < 1e-12);
+        assert_eq!(m.flute_chip(1, 0.005), 0.0, "the flute behind the long one may cut nothing");
+        let same = Cutter { runout_mm: vec![0.01; 4], ..cutter() };
+        assert!((Model::new(&same, &P20).flute_chip(2, 0.05) - 0.05).abs() < 1e-12);
+    }
+}
