@@ -137,6 +137,10 @@ pub struct JobArgs {
     /// Linear distance d (mm).
     #[arg(long, value_name = "MM", allow_hyphen_values = true)]
     linear_distance: Option<f64>,
+    /// Machine preset for the real cycle time (hobby-router, vmc, hsc); a job file may give
+    /// its own limits in a [machine] table instead.
+    #[arg(long, value_name = "NAME")]
+    machine: Option<String>,
 }
 
 impl JobArgs {
@@ -166,6 +170,9 @@ impl JobArgs {
         set(&mut job.step, self.step);
         set(&mut job.aspect_ratio, self.aspect_ratio);
         set(&mut job.linear_distance, self.linear_distance);
+        if let Some(m) = &self.machine {
+            job.machine = Some(trochoplan_core::machine::MachineChoice::Preset(m.clone()));
+        }
         if let Some(t) = self.teeth {
             job.teeth = u32::try_from(t).map_err(|_| teeth_error(t).to_string())?;
         }
@@ -218,6 +225,7 @@ fn metrics_json(p: &Plan) -> serde_json::Map<String, serde_json::Value> {
     let m = &p.metrics;
     let mut obj = serde_json::Map::new();
     obj.insert("path".into(), m.path.name().into());
+    obj.insert("machine".into(), p.job.machine.as_ref().map_or("ideal", |m| m.name.as_str()).into());
     for q in METRICS {
         let v = q.of(m);
         obj.insert(q.key.into(), if q.whole { (v as u64).into() } else { v.into() });

@@ -81,6 +81,7 @@ fn random_job(rng: &mut Rng) -> Job {
         step: tool_diameter * rng.log_range(0.005, 0.4),
         aspect_ratio: rng.range(0.3, 2.0),
         linear_distance: slot_width * rng.range(0.0, 0.3),
+        machine: None,
     }
 }
 

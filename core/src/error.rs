@@ -57,11 +57,24 @@ pub enum Param {
     StockPolygon,
     /// `engagement --path-csv`.
     PathCsv,
+    /// Machine (issue #11): a preset name, and the keys of a job's `[machine]` table.
+    Machine,
+    MaxFeedX,
+    MaxFeedY,
+    AccelerationX,
+    AccelerationY,
+    JerkX,
+    JerkY,
+    PathTolerance,
+    MaxHmax,
+    MaxEngagement,
+    MaxWaviness,
+    MinCooling,
 }
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 37] = [
+    pub const ALL: [Param; 49] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
@@ -99,6 +112,18 @@ impl Param {
         Param::Polygon,
         Param::StockPolygon,
         Param::PathCsv,
+        Param::Machine,
+        Param::MaxFeedX,
+        Param::MaxFeedY,
+        Param::AccelerationX,
+        Param::AccelerationY,
+        Param::JerkX,
+        Param::JerkY,
+        Param::PathTolerance,
+        Param::MaxHmax,
+        Param::MaxEngagement,
+        Param::MaxWaviness,
+        Param::MinCooling,
     ];
 
     /// The command-line flag without `--` (also the job-file key). The NC tolerance and the
@@ -142,6 +167,18 @@ impl Param {
             Param::Polygon => "polygon",
             Param::StockPolygon => "stock-polygon",
             Param::PathCsv => "path-csv",
+            Param::Machine => "machine",
+            Param::MaxFeedX => "max-feed-x",
+            Param::MaxFeedY => "max-feed-y",
+            Param::AccelerationX => "acceleration-x",
+            Param::AccelerationY => "acceleration-y",
+            Param::JerkX => "jerk-x",
+            Param::JerkY => "jerk-y",
+            Param::PathTolerance => "path-tolerance",
+            Param::MaxHmax => "max-hmax",
+            Param::MaxEngagement => "max-engagement",
+            Param::MaxWaviness => "max-waviness",
+            Param::MinCooling => "min-cooling",
         }
     }
 
@@ -185,6 +222,18 @@ impl Param {
             Param::Polygon => "Pocket polygon",
             Param::StockPolygon => "Stock polygon",
             Param::PathCsv => "Path CSV",
+            Param::Machine => "Machine",
+            Param::MaxFeedX => "Machine feed limit X",
+            Param::MaxFeedY => "Machine feed limit Y",
+            Param::AccelerationX => "Machine acceleration X",
+            Param::AccelerationY => "Machine acceleration Y",
+            Param::JerkX => "Machine jerk X",
+            Param::JerkY => "Machine jerk Y",
+            Param::PathTolerance => "Machine path tolerance",
+            Param::MaxHmax => "Limit h_max",
+            Param::MaxEngagement => "Limit engagement",
+            Param::MaxWaviness => "Limit waviness W_max",
+            Param::MinCooling => "Minimum cooling share",
         }
     }
 }

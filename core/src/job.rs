@@ -7,6 +7,7 @@
 //! and a 20 mm long slot.
 
 use crate::error::{Error, Param, num};
+use crate::machine::{Machine, MachineChoice};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
@@ -113,6 +114,10 @@ pub struct Job {
     pub aspect_ratio: f64,
     /// Linear distance d (mm, linear-elliptical path).
     pub linear_distance: f64,
+    /// The machine (issue #11): a preset name (`machine = "vmc"`) or a `[machine]` table of
+    /// limits; none: an ideal machine that holds every programmed feed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub machine: Option<MachineChoice>,
 }
 
 impl Default for Job {
@@ -131,6 +136,7 @@ impl Default for Job {
             step: 1.0,
             aspect_ratio: 1.0,
             linear_distance: 0.0,
+            machine: None,
         }
     }
 }
@@ -176,6 +182,8 @@ pub struct ValidJob {
     pub aspect_ratio: f64,
     /// Effective d (0 unless linear-elliptical).
     pub linear_distance: f64,
+    /// The machine's validated limits (none: ideal).
+    pub machine: Option<Machine>,
 }
 
 fn positive(param: Param, v: f64, max: f64) -> Result<f64, Error> {
@@ -295,6 +303,7 @@ impl Job {
             step,
             aspect_ratio: r_e,
             linear_distance: d,
+            machine: self.machine.as_ref().map(MachineChoice::machine).transpose()?,
         })
     }
 

@@ -15,6 +15,7 @@
 //!   polygons, numerics.
 //! - [`path`]: the four slot path types as one repeated cycle.
 //! - [`analysis`]: edge of previous cycles, per-tooth h and engagement, waviness, step limit.
+//! - [`machine`]: machine limits, presets and the feed planner (real cycle time, issue #11).
 //! - [`nc`]: NC programs (LinuxCNC, Fanuc-style ISO, GRBL, Sinumerik), biarc output.
 //! - [`corner`]: pocket corners (issue #5): engagement model, corner trochoids, evaluator;
 //!   [`corner::evaluate`] — corner request in, plans, profiles and acceptance row out.
@@ -29,6 +30,7 @@ pub mod corner;
 pub mod error;
 pub mod geom;
 pub mod job;
+pub mod machine;
 pub mod nc;
 pub mod path;
 pub mod plan;

@@ -3,6 +3,9 @@
 use crate::analysis::{self, PreviousEdge, ToothSample, Wall, WallProfile, chip_timing, tooth_series, wall_profile};
 use crate::error::{Error, Param, num};
 use crate::job::{Job, PathKind, ValidJob};
+use crate::geom::p2;
+use crate::machine::planner::Dynamics;
+use crate::machine::{FeedProfile, RealTime, real_time};
 use crate::path::{Cycle, SlotPath};
 use serde::Serialize;
 
@@ -57,6 +60,15 @@ pub struct Metrics {
     pub step_limit_46deg_mm: f64,
     /// Largest step for a straight-cut-equivalent depth of 15 % of D (mm).
     pub step_limit_15pct_depth_mm: f64,
+    /// Steady-state cycle time on the job's machine, feed planned as a controller does (s);
+    /// equal to `t_cycle_s` without a machine.
+    pub t_cycle_real_s: f64,
+    /// Whole path on the job's machine, from rest to rest (s).
+    pub machining_time_real_s: f64,
+    /// MRR = B·s·a_p / t_cycle_real (mm³/min).
+    pub mrr_real_mm3_per_min: f64,
+    /// Share of the steady-state cycle's time at the programmed feed (1: held everywhere).
+    pub feed_held_share: f64,
 }
 
 /// A planned slot job: path, per-tooth series of a steady-state cycle, wall profiles, metrics.
@@ -78,6 +90,8 @@ pub struct Plan {
     pub right_wall: WallProfile,
     /// Edge of the material left by previous cycles (for drawing chips and edges).
     pub edge: PreviousEdge,
+    /// The feed over one steady-state cycle on the job's machine (constant without one).
+    pub feed: FeedProfile,
 }
 
 impl Plan {
@@ -114,11 +128,13 @@ pub fn plan_valid(job: ValidJob) -> Plan {
     let stride = analysis::chip::tooth_stride(cycle_length, f_z);
     let timing = chip_timing(&series, stride as f64 * f_z / feed_mm_per_s);
     let t_cycle = cycle_length / feed_mm_per_s;
+    let real = slot_real_time(&job, &path);
+    let mrr = |t: f64| job.slot_width * job.step * job.depth / t * 60.0;
     let metrics = Metrics {
         path: job.path,
         cycle_length_mm: cycle_length,
         t_cycle_s: t_cycle,
-        mrr_mm3_per_min: job.slot_width * job.step * job.depth / t_cycle * 60.0,
+        mrr_mm3_per_min: mrr(t_cycle),
         f_z_mm: f_z,
         h_max_mm: timing.h_max_mm,
         t_hmax_s: timing.t_hmax_s,
@@ -146,8 +162,22 @@ pub fn plan_valid(job: ValidJob) -> Plan {
             job.tool_diameter,
             DEPTH_LIMIT_FRACTION * job.tool_diameter,
         ),
+        t_cycle_real_s: real.t_cycle_s,
+        machining_time_real_s: real.total_s,
+        mrr_real_mm3_per_min: mrr(real.t_cycle_s),
+        feed_held_share: real.held_share,
     };
-    Plan { job, path, metrics, series, tooth_stride: stride, left_wall, right_wall, edge }
+    Plan { job, path, metrics, series, tooth_stride: stride, left_wall, right_wall, edge, feed: real.cycle }
+}
+
+/// Real time of a slot path at the job's feed on the job's machine ([`real_time`]); without
+/// a machine, the programmed time.
+pub fn slot_real_time(job: &ValidJob, path: &SlotPath) -> RealTime {
+    let feeds = vec![job.feed; path.cycle.segments.len()];
+    match &job.machine {
+        Some(m) => real_time(&path.cycle.segments, p2(0.0, path.cycle.step), path.cycles, &feeds, &Dynamics::of(m)),
+        None => RealTime::ideal(path.cycle.length(), path.cycles, job.feed),
+    }
 }
 
 /// Largest step s (mm) for which the job's own path keeps the maximum engagement over a

@@ -157,6 +157,7 @@ fn any_job() -> impl Strategy<Value = Job> {
                 feed: f_z * rpm * f64::from(teeth),
                 slot_length: (step * 1e6).min(MAX_SIZE_MM).powf(len_frac) * step.powf(1.0 - len_frac),
                 depth,
+                machine: None,
             }
         })
 }
