@@ -16,6 +16,7 @@
 //! - [`path`]: the four slot path types as one repeated cycle.
 //! - [`analysis`]: edge of previous cycles, per-tooth h and engagement, waviness, step limit.
 //! - [`machine`]: machine limits, presets and the feed planner (real cycle time, issue #11).
+//! - [`optimize`]: the job of highest real MRR within the user's limits; Pareto front.
 //! - [`nc`]: NC programs (LinuxCNC, Fanuc-style ISO, GRBL, Sinumerik), biarc output.
 //! - [`corner`]: pocket corners (issue #5): engagement model, corner trochoids, evaluator;
 //!   [`corner::evaluate`] — corner request in, plans, profiles and acceptance row out.
@@ -32,6 +33,7 @@ pub mod geom;
 pub mod job;
 pub mod machine;
 pub mod nc;
+pub mod optimize;
 pub mod path;
 pub mod plan;
 pub mod pocket;

@@ -124,6 +124,7 @@ impl FeedProfile {
 }
 
 /// A node of the path before planning.
+#[derive(Clone, Copy)]
 struct Node {
     s: f64,
     /// Speed limit (mm/s).
@@ -304,7 +305,29 @@ fn pass(s: &[f64], limit: &[f64], a_t: &[f64], jerk: Option<f64>) -> (Vec<f64>, 
 /// from rest to rest, on a machine with dynamics `d`.
 pub fn plan_feed(segments: &[Segment], feeds_mm_per_min: &[f64], d: &Dynamics) -> FeedProfile {
     let feeds: Vec<f64> = feeds_mm_per_min.iter().map(|f| f / 60.0).collect();
-    let nodes = nodes(segments, &feeds, d);
+    plan_nodes(&nodes(segments, &feeds, d), d)
+}
+
+/// The nodes of `count` repetitions of one cycle whose nodes are `one` (length `len`), the
+/// joint between repetitions limited to `joint` (mm/s).
+fn repeated(one: &[Node], count: usize, len: f64, joint: f64) -> Vec<Node> {
+    let mut out: Vec<Node> = Vec::with_capacity(one.len() * count);
+    for i in 0..count {
+        for (j, n) in one.iter().enumerate() {
+            match out.last_mut() {
+                Some(last) if j == 0 => {
+                    last.limit = last.limit.min(n.limit).min(joint);
+                    last.programmed = last.programmed.min(n.programmed);
+                }
+                _ => out.push(Node { s: n.s + i as f64 * len, ..*n }),
+            }
+        }
+    }
+    out
+}
+
+/// Forward and backward passes over `nodes`: the feed over the path.
+fn plan_nodes(nodes: &[Node], d: &Dynamics) -> FeedProfile {
     if nodes.len() < 2 {
         return FeedProfile::default();
     }
@@ -398,14 +421,14 @@ pub fn real_time(
     d: &Dynamics,
 ) -> RealTime {
     let k = cycles.clamp(1, PLANNED_CYCLES);
-    let mut segs = Vec::with_capacity(cycle.len() * k);
-    let mut feeds = Vec::with_capacity(cycle.len() * k);
-    for i in 0..k {
-        segs.extend(cycle.iter().map(|s| s.translated(shift * i as f64)));
-        feeds.extend_from_slice(feeds_mm_per_min);
-    }
-    let profile = plan_feed(&segs, &feeds, d);
+    let feeds: Vec<f64> = feeds_mm_per_min.iter().map(|f| f / 60.0).collect();
     let len: f64 = cycle.iter().map(Segment::length).sum();
+    let (Some(first), Some(last)) = (cycle.first(), cycle.last()) else {
+        return RealTime::ideal(0.0, cycles, 1.0);
+    };
+    // Every cycle has the same nodes; only the joint between two cycles is new.
+    let joint = joint_limit(d, last, &first.translated(shift));
+    let profile = plan_nodes(&repeated(&nodes(cycle, &feeds, d), k, len, joint), d);
     let mid = k / 2;
     let window = profile.window(mid as f64 * len, (mid + 1) as f64 * len);
     let t_cycle = window.time_s();
