@@ -5,6 +5,9 @@ use crate::files::{read_input, write_atomic};
 // Pocket-corner commands (issue #5) live in their own file next to this one.
 #[path = "corner_cmd.rs"]
 mod corner_cmd;
+// The optimiser (issue #11) likewise.
+#[path = "optimize_cmd.rs"]
+mod optimize_cmd;
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
@@ -75,6 +78,12 @@ enum Command {
     Pocket {
         #[command(flatten)]
         args: corner_cmd::PocketArgs,
+    },
+    /// Find the path, r_e, d, step and feed of highest real MRR (machine model on) within the
+    /// limits; print it as a TOML job file (`analyze --job` reproduces it).
+    Optimize {
+        #[command(flatten)]
+        args: optimize_cmd::OptimizeArgs,
     },
 }
 
@@ -216,6 +225,7 @@ fn run(cmd: Command) -> Result<String, String> {
         Command::Corner { args } => corner_cmd::corner(&args),
         Command::Engagement { args } => corner_cmd::engagement(&args),
         Command::Pocket { args } => corner_cmd::pocket(&args),
+        Command::Optimize { args } => optimize_cmd::run(&args),
     }
 }
 

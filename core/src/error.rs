@@ -70,11 +70,16 @@ pub enum Param {
     MaxEngagement,
     MaxWaviness,
     MinCooling,
+    /// Variable feed (issue #11).
+    TargetHmax,
+    MaxFeed,
+    FeedBand,
+    MinBlock,
 }
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 49] = [
+    pub const ALL: [Param; 53] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
@@ -124,6 +129,10 @@ impl Param {
         Param::MaxEngagement,
         Param::MaxWaviness,
         Param::MinCooling,
+        Param::TargetHmax,
+        Param::MaxFeed,
+        Param::FeedBand,
+        Param::MinBlock,
     ];
 
     /// The command-line flag without `--` (also the job-file key). The NC tolerance and the
@@ -179,6 +188,10 @@ impl Param {
             Param::MaxEngagement => "max-engagement",
             Param::MaxWaviness => "max-waviness",
             Param::MinCooling => "min-cooling",
+            Param::TargetHmax => "target-hmax",
+            Param::MaxFeed => "max-feed",
+            Param::FeedBand => "feed-band",
+            Param::MinBlock => "min-block",
         }
     }
 
@@ -234,6 +247,10 @@ impl Param {
             Param::MaxEngagement => "Limit engagement",
             Param::MaxWaviness => "Limit waviness W_max",
             Param::MinCooling => "Minimum cooling share",
+            Param::TargetHmax => "Target h",
+            Param::MaxFeed => "Maximum feed",
+            Param::FeedBand => "Feed band ratio",
+            Param::MinBlock => "Minimum block length",
         }
     }
 }

@@ -15,6 +15,7 @@
 //!   polygons, numerics.
 //! - [`path`]: the four slot path types as one repeated cycle.
 //! - [`analysis`]: edge of previous cycles, per-tooth h and engagement, waviness, step limit.
+//! - [`feed`]: variable feed: per-block feed for a target chip thickness, in bands.
 //! - [`machine`]: machine limits, presets and the feed planner (real cycle time, issue #11).
 //! - [`optimize`]: the job of highest real MRR within the user's limits; Pareto front.
 //! - [`nc`]: NC programs (LinuxCNC, Fanuc-style ISO, GRBL, Sinumerik), biarc output.
@@ -29,6 +30,7 @@
 pub mod analysis;
 pub mod corner;
 pub mod error;
+pub mod feed;
 pub mod geom;
 pub mod job;
 pub mod machine;

@@ -228,8 +228,10 @@ enum Scored {
 
 impl Search<'_> {
     fn job(&self, shape: Shape, s: f64, feed: f64) -> Job {
+        // A linear-elliptical path with d = 0 is the elliptical one: name it so.
+        let path = if shape.path == PathKind::LinearElliptical && shape.q == 0.0 { PathKind::Elliptical } else { shape.path };
         Job {
-            path: shape.path,
+            path,
             aspect_ratio: if shape.path.uses_aspect_ratio() { shape.r_e } else { self.base.aspect_ratio },
             linear_distance: if shape.path == PathKind::LinearElliptical { shape.q * s } else { 0.0 },
             step: s,
@@ -399,10 +401,10 @@ fn grid((lo, hi): (f64, f64), n: usize) -> Vec<f64> {
 }
 
 /// Coarse grid sizes of the bracketing start.
-const R_E_POINTS: usize = 8;
+const R_E_POINTS: usize = 6;
 const Q_POINTS: usize = 4;
 /// Steps per shape traced for the front, as fractions of s_max (s_max itself is scored).
-const FRONT_STEPS: [f64; 3] = [0.25, 0.5, 0.75];
+const FRONT_STEPS: [f64; 2] = [0.4, 0.7];
 
 /// The job of highest real MRR within `limits`, and the Pareto front. `base` fixes slot,
 /// tool, rpm, depth, slot length, teeth and machine; its path, r_e, d, step and feed are
