@@ -327,6 +327,7 @@ mod tests {
             step: None,
             aspect_ratio: None,
             linear_distance: None,
+            machine: None,
         };
         let job = args.job().expect("job");
         assert_eq!((job.step, job.teeth), (0.8, 2));

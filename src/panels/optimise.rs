@@ -129,13 +129,13 @@ pub fn show(
     let mut cmd = None;
     ui.horizontal_wrapped(|ui| {
         ui.add_enabled_ui(!running, |ui| {
-            let l = ui.label("h_max ≤");
+            let l = ui.label("h_max <=");
             ui.add(egui::DragValue::new(&mut settings.max_hmax_mm).speed(0.001).max_decimals(4).suffix(" mm"))
                 .labelled_by(l.id);
-            let l = ui.label("engagement ≤");
+            let l = ui.label("engagement <=");
             ui.add(egui::DragValue::new(&mut settings.max_engagement_deg).speed(0.5).max_decimals(2).suffix("°"))
                 .labelled_by(l.id);
-            ui.checkbox(&mut settings.limit_waviness, "W_max ≤");
+            ui.checkbox(&mut settings.limit_waviness, "W_max <=");
             ui.add_enabled(
                 settings.limit_waviness,
                 egui::DragValue::new(&mut settings.max_waviness_mm).speed(0.001).max_decimals(4).suffix(" mm"),
@@ -166,7 +166,7 @@ pub fn show(
             let m = &out.best.metrics;
             ui.horizontal_wrapped(|ui| {
                 ui.label(format!(
-                    "Best: {} r_e {:.3} d {:.3} mm s {:.3} mm feed {:.0} mm/min → real MRR {:.0} mm³/min, \
+                    "Best: {} r_e {:.3} d {:.3} mm s {:.3} mm feed {:.0} mm/min gives real MRR {:.0} mm³/min, \
                      h_max {:.4} mm, engagement {:.1}°, W_max {:.4} mm ({} plans)",
                     out.best.job.path.name(),
                     m.aspect_ratio,
