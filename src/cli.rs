@@ -37,6 +37,9 @@ enum Command {
         /// Engagement limit (degrees) for the engagement-limited step of this path type.
         #[arg(long, value_name = "DEG", default_value_t = 46.0, allow_hyphen_values = true)]
         engagement_limit: f64,
+        /// Also report the real times with the variable feed (issue #11; default bands).
+        #[arg(long)]
+        variable_feed: bool,
     },
     /// Vary one parameter; print a CSV table of the metrics, one row per value.
     Sweep {
@@ -206,7 +209,7 @@ pub fn main() -> ExitCode {
 
 fn run(cmd: Command) -> Result<String, String> {
     match cmd {
-        Command::Analyze { job, series, engagement_limit } => {
+        Command::Analyze { job, series, engagement_limit, variable_feed } => {
             let job = job.job()?;
             let p = plan(&job).map_err(|e| e.to_string())?;
             let limited = engagement_limited_step(&job, engagement_limit.to_radians()).map_err(|e| e.to_string())?;
@@ -216,6 +219,9 @@ fn run(cmd: Command) -> Result<String, String> {
             let mut value = metrics_json(&p);
             value.insert("engagement_limit_deg".into(), engagement_limit.into());
             value.insert("engagement_limited_step_mm".into(), limited.into());
+            if variable_feed {
+                variable_feed_json(&p, &mut value)?;
+            }
             let mut text = serde_json::to_string_pretty(&value).map_err(|e| e.to_string())?;
             text.push('\n');
             Ok(text)
@@ -245,6 +251,26 @@ fn metrics_json(p: &Plan) -> serde_json::Map<String, serde_json::Value> {
         obj.insert("tooth_stride".into(), p.tooth_stride.into());
     }
     obj
+}
+
+/// The variable feed's real times and chip figures (issue #11) under their keys.
+fn variable_feed_json(p: &Plan, obj: &mut serde_json::Map<String, serde_json::Value>) -> Result<(), String> {
+    let s = trochoplan_core::feed::schedule(p, &Default::default()).map_err(|e| e.to_string())?;
+    let m = &p.metrics;
+    let t = s.real.t_cycle_s;
+    for (k, v) in [
+        ("t_cycle_real_variable_feed_s", t),
+        ("machining_time_real_variable_feed_s", s.real.total_s),
+        ("mrr_real_variable_feed_mm3_per_min", m.mrr_real_mm3_per_min * m.t_cycle_real_s / t),
+        ("variable_feed_gain", 1.0 - t / m.t_cycle_real_s),
+        ("variable_feed_target_h_mm", s.target_h_mm),
+        ("variable_feed_h_over_target", s.h_over_target()),
+        ("variable_feed_within_2pct_share", s.within_2pct_share()),
+    ] {
+        obj.insert(k.into(), v.into());
+    }
+    obj.insert("variable_feed_blocks_per_cycle".into(), s.blocks.len().into());
+    Ok(())
 }
 
 /// Per-tooth series of the steady-state cycle as CSV (the core's series columns).
