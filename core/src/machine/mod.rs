@@ -11,7 +11,7 @@ pub mod planner;
 use crate::error::{Error, Param, num};
 use serde::{Deserialize, Serialize};
 
-pub use planner::{FeedPoint, FeedProfile, RealTime, real_time};
+pub use planner::{FeedPoint, FeedProfile, RealTime, path_real_time, real_time};
 
 /// The limits of one machine. Keys (TOML, kebab-case) are the job file's `[machine]` keys.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
