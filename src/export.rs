@@ -67,7 +67,7 @@ pub fn run(job: &Job, args: &ExportArgs) -> Result<String, String> {
         return_feed_mm_per_min: args.return_feed,
         compact: args.compact,
         title: args.title.clone().unwrap_or_default(),
-        variable_feed: args.variable_feed.then(|| VariableFeed {
+        variable_feed: args.variable_feed.then_some(VariableFeed {
             target_h_mm: args.target_hmax,
             max_feed_mm_per_min: args.max_feed,
             return_feed_mm_per_min: None,

@@ -312,8 +312,17 @@ fn machine_and_optimize() {
     let front = dir.path().join("front.csv");
     let front_arg = front.to_str().expect("utf-8");
     let (ok, toml, err) = run(&[
-        "optimize", "--max-hmax", "0.075", "--max-engagement", "57.5", "--machine", "vmc", "--slot-length", "60",
-        "--front", front_arg,
+        "optimize",
+        "--max-hmax",
+        "0.075",
+        "--max-engagement",
+        "57.5",
+        "--machine",
+        "vmc",
+        "--slot-length",
+        "60",
+        "--front",
+        front_arg,
     ]);
     assert!(ok, "{err}");
     let job_file = dir.path().join("best.toml");

@@ -159,7 +159,7 @@ pub fn schedule(plan: &Plan, vf: &VariableFeed) -> Result<FeedSchedule, Error> {
     let job = &plan.job;
     let f = job.feed;
     let target = vf.target_h_mm.unwrap_or(plan.metrics.h_max_mm);
-    if !(target > 0.0) {
+    if target.is_nan() || target <= 0.0 {
         return Err(Error::param(Param::TargetHmax, num(target), "above 0 mm: the job cuts nothing"));
     }
     let per_fz = job.rpm * f64::from(job.teeth);
@@ -192,15 +192,14 @@ pub fn schedule(plan: &Plan, vf: &VariableFeed) -> Result<FeedSchedule, Error> {
         match (cur.2, need) {
             (None, None) => cur.1 = s1,
             (Some(c), Some(n)) if n == c || n == c + 1 => cur.1 = s1,
+            // Too short to stand alone: the whole block goes down.
+            (Some(c), Some(n)) if n < c && cur.1 - cur.0 < vf.min_block_mm => {
+                cur.2 = Some(n);
+                cur.1 = s1;
+            }
             (Some(c), Some(n)) if n < c => {
-                if cur.1 - cur.0 < vf.min_block_mm {
-                    // Too short to stand alone: the whole block goes down.
-                    cur.2 = Some(n);
-                    cur.1 = s1;
-                } else {
-                    let start = s0.max(cur.1);
-                    blocks.push((start, s1, need));
-                }
+                let start = s0.max(cur.1);
+                blocks.push((start, s1, need));
             }
             (Some(_), Some(_)) if cur.1 - cur.0 < vf.min_block_mm => cur.1 = s1,
             (Some(_), None) if cur.1 - cur.0 < vf.min_block_mm => cur.1 = s1,
@@ -245,7 +244,9 @@ pub fn schedule(plan: &Plan, vf: &VariableFeed) -> Result<FeedSchedule, Error> {
     let pieces = sched.pieces(&plan.path.cycle);
     let (segs, feeds): (Vec<Segment>, Vec<f64>) = pieces.into_iter().unzip();
     sched.real = match &job.machine {
-        Some(m) => real_time(&segs, crate::geom::p2(0.0, plan.path.cycle.step), plan.path.cycles, &feeds, &Dynamics::of(m)),
+        Some(m) => {
+            real_time(&segs, crate::geom::p2(0.0, plan.path.cycle.step), plan.path.cycles, &feeds, &Dynamics::of(m))
+        }
         None => {
             let t: f64 = segs.iter().zip(&feeds).map(|(s, f)| s.length() / f * 60.0).sum();
             RealTime { t_cycle_s: t, total_s: t * plan.path.cycles as f64, ..RealTime::ideal(len, 1, f) }

@@ -2,8 +2,8 @@
 
 use crate::analysis::{self, PreviousEdge, ToothSample, Wall, WallProfile, chip_timing, tooth_series, wall_profile};
 use crate::error::{Error, Param, num};
-use crate::job::{Job, PathKind, ValidJob};
 use crate::geom::p2;
+use crate::job::{Job, PathKind, ValidJob};
 use crate::machine::planner::Dynamics;
 use crate::machine::{FeedProfile, RealTime, real_time};
 use crate::path::{Cycle, SlotPath};

@@ -257,7 +257,9 @@ fn jobs_choose_their_machine() {
     // are slower than programmed; the real MRR is the programmed one times the time ratio.
     let m = &a.metrics;
     assert!(m.t_cycle_real_s > 1.2 * m.t_cycle_s && m.feed_held_share < 0.5, "{m:?}");
-    assert!((m.mrr_real_mm3_per_min * m.t_cycle_real_s - m.mrr_mm3_per_min * m.t_cycle_s).abs() < 1e-6 * m.mrr_mm3_per_min);
+    assert!(
+        (m.mrr_real_mm3_per_min * m.t_cycle_real_s - m.mrr_mm3_per_min * m.t_cycle_s).abs() < 1e-6 * m.mrr_mm3_per_min
+    );
     assert!(m.machining_time_real_s > m.machining_time_s);
     // Without a machine real = programmed.
     let ideal = plan(&Job { machine: None, ..preset.clone() }).expect("plan").metrics;

@@ -100,7 +100,8 @@ fn waviness_limit_and_front() {
     let out = run(&Limits::new(h_lim, a_lim, Some(w_lim), None).expect("limits"));
     let best = out.best.metrics.mrr_real_mm3_per_min;
     assert!(meets(&out.best.metrics, h_lim, a_lim, Some(w_lim)));
-    let grid = grid_best(&range(0.5, 1.2, 0.1), &range(0.0, 1.2, 0.2), &range(0.1, 2.0, 0.05), h_lim, a_lim, Some(w_lim));
+    let grid =
+        grid_best(&range(0.5, 1.2, 0.1), &range(0.0, 1.2, 0.2), &range(0.1, 2.0, 0.05), h_lim, a_lim, Some(w_lim));
     assert!(best >= 0.99 * grid, "optimiser {best} vs grid {grid}");
     assert!(out.front.len() >= 3, "{} points", out.front.len());
     for w in out.front.windows(2) {

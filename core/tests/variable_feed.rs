@@ -65,6 +65,9 @@ fn bad_settings_are_named() {
         assert_eq!(schedule(&p, &vf).expect_err("bad").parameter(), Some(param));
     }
     // And through the NC options.
-    let opts = NcOptions { variable_feed: Some(VariableFeed { band_ratio: 0.5, ..VariableFeed::default() }), ..NcOptions::default() };
+    let opts = NcOptions {
+        variable_feed: Some(VariableFeed { band_ratio: 0.5, ..VariableFeed::default() }),
+        ..NcOptions::default()
+    };
     assert_eq!(program(&p, &opts).expect_err("bad").parameter(), Some(Param::FeedBand));
 }

@@ -739,8 +739,12 @@ fn machine_tab_shows_the_feed_and_the_optimiser_runs_in_the_background_and_loads
     let mut h = harness();
     // The job's machine (the picker sits below the fold of the parameter panel at this
     // size); the feed plot reports its real cycle time.
-    h.state_mut().state.job =
-        Job { feed: 3000.0, rpm: 10000.0, machine: Some(MachineChoice::Preset("hobby-router".into())), ..Job::default() };
+    h.state_mut().state.job = Job {
+        feed: 3000.0,
+        rpm: 10000.0,
+        machine: Some(MachineChoice::Preset("hobby-router".into())),
+        ..Job::default()
+    };
     h.run();
     h.get_by_label("Machine & optimise").click();
     h.run();

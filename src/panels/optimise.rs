@@ -33,8 +33,13 @@ impl Default for OptimiseSettings {
 
 impl OptimiseSettings {
     fn limits(&self) -> Result<Limits, String> {
-        Limits::new(self.max_hmax_mm, self.max_engagement_deg, self.limit_waviness.then_some(self.max_waviness_mm), None)
-            .map_err(|e| e.to_string())
+        Limits::new(
+            self.max_hmax_mm,
+            self.max_engagement_deg,
+            self.limit_waviness.then_some(self.max_waviness_mm),
+            None,
+        )
+        .map_err(|e| e.to_string())
     }
 }
 
@@ -234,7 +239,9 @@ fn front_plot(ui: &mut egui::Ui, out: &Outcome) -> Option<usize> {
         .allow_scroll(false)
         .show(ui, |plot| {
             plot.line(Line::new("Pareto front", PlotPoints::new(pts.clone())).color(Color32::GRAY));
-            plot.points(Points::new("jobs (click to load)", pts.clone()).radius(4.0).color(Color32::from_rgb(40, 110, 200)));
+            plot.points(
+                Points::new("jobs (click to load)", pts.clone()).radius(4.0).color(Color32::from_rgb(40, 110, 200)),
+            );
             plot.points(Points::new("best", vec![best]).radius(6.0).color(Color32::from_rgb(20, 150, 60)));
             plot.pointer_coordinate()
         });

@@ -140,7 +140,8 @@ mod tests {
     #[test]
     fn bad_limits_are_rejected_by_name() {
         let good = Machine::preset("vmc").expect("vmc");
-        let cases: [(fn(&mut Machine, f64), Param); 7] = [
+        type Setter = fn(&mut Machine, f64);
+        let cases: [(Setter, Param); 7] = [
             (|m, v| m.max_feed_x = v, Param::MaxFeedX),
             (|m, v| m.max_feed_y = v, Param::MaxFeedY),
             (|m, v| m.acceleration_x = v, Param::AccelerationX),

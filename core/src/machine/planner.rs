@@ -108,7 +108,8 @@ impl FeedProfile {
 
     /// Share of the time in which the programmed feed is held (both ends of an interval).
     pub fn held_share(&self) -> f64 {
-        let held: f64 = self.points.windows(2).filter(|w| w[0].held() && w[1].held()).map(|w| w[1].t_s - w[0].t_s).sum();
+        let held: f64 =
+            self.points.windows(2).filter(|w| w[0].held() && w[1].held()).map(|w| w[1].t_s - w[0].t_s).sum();
         let t = self.time_s();
         // + 0.0: an empty sum is −0.0.
         if t > 0.0 { held / t + 0.0 } else { 1.0 }
@@ -119,7 +120,9 @@ impl FeedProfile {
         let inside: Vec<&FeedPoint> =
             self.points.iter().filter(|p| p.s_mm >= s0 - 1e-9 && p.s_mm <= s1 + 1e-9).collect();
         let (s_a, t_a) = inside.first().map_or((0.0, 0.0), |p| (p.s_mm, p.t_s));
-        FeedProfile { points: inside.iter().map(|p| FeedPoint { s_mm: p.s_mm - s_a, t_s: p.t_s - t_a, ..**p }).collect() }
+        FeedProfile {
+            points: inside.iter().map(|p| FeedPoint { s_mm: p.s_mm - s_a, t_s: p.t_s - t_a, ..**p }).collect(),
+        }
     }
 }
 
@@ -208,14 +211,14 @@ fn nodes(segments: &[Segment], feeds: &[f64], d: &Dynamics) -> Vec<Node> {
             let dk = (kappa[i1] - kappa[i0]) / (at[i1] - at[i0]).max(1e-12);
             let limit = programmed.min(curvature_limit(d.a, kappa[i])).min(jerk_limit(d.j, kappa[i], dk));
             let node = Node { s: s0 + at[i], limit, programmed, a_t };
-            if i == 0 {
-                if let Some(last) = out.last_mut() {
-                    // The joint: both blocks' limits, the blend, the slower feed.
-                    let joint = joint_limit(d, &segments[k - 1], seg);
-                    last.limit = last.limit.min(node.limit).min(joint);
-                    last.programmed = last.programmed.min(programmed);
-                    continue;
-                }
+            if i == 0
+                && let Some(last) = out.last_mut()
+            {
+                // The joint: both blocks' limits, the blend, the slower feed.
+                let joint = joint_limit(d, &segments[k - 1], seg);
+                last.limit = last.limit.min(node.limit).min(joint);
+                last.programmed = last.programmed.min(programmed);
+                continue;
             }
             out.push(node);
         }
@@ -449,7 +452,12 @@ pub fn real_time(
 /// two retracts (`retract_before`: indices of the segments reached by retract, rapid and
 /// plunge) is planned from rest to rest; the rapids and plunges are not counted. Returns
 /// (time at depth in s, share of that time at the programmed feed).
-pub fn path_real_time(segments: &[Segment], retract_before: &[usize], feed_mm_per_min: f64, d: &Dynamics) -> (f64, f64) {
+pub fn path_real_time(
+    segments: &[Segment],
+    retract_before: &[usize],
+    feed_mm_per_min: f64,
+    d: &Dynamics,
+) -> (f64, f64) {
     let mut cuts: Vec<usize> = retract_before.iter().copied().filter(|&i| i > 0 && i < segments.len()).collect();
     cuts.sort_unstable();
     cuts.dedup();
@@ -508,7 +516,8 @@ mod tests {
     fn circle_speed_is_the_curvature_limit() {
         // Full circle R = 4 at 6000 mm/min, a = 1000: v ≤ √(0.866·1000·4) = 58.86 mm/s; the
         // jerk limit (J/κ²)^⅓ = (10⁴·16)^⅓ = 54.29 mm/s is lower and holds in the middle.
-        let arc = [Segment::Arc { center: p2(0.0, 0.0), radius: 4.0, start_angle: 0.0, sweep: 20.0 * std::f64::consts::TAU }];
+        let arc =
+            [Segment::Arc { center: p2(0.0, 0.0), radius: 4.0, start_angle: 0.0, sweep: 20.0 * std::f64::consts::TAU }];
         let p = plan_feed(&arc, &[6000.0], &dynamics(1000.0, 1e4));
         let mid = p.points[p.points.len() / 2].feed_mm_per_min / 60.0;
         assert!((mid - (1e4_f64 * 16.0).cbrt()).abs() < 1e-6, "{mid}");

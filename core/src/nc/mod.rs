@@ -161,7 +161,10 @@ pub fn cycle_moves(plan: &Plan, opts: &NcOptions) -> Vec<CycleMove> {
 /// segment is cut where the feed band changes and each piece fitted as in [`cycle_moves`],
 /// so arcs stay arcs. The NC return feed, if given, is the schedule's return feed.
 pub fn variable_feed_moves(plan: &Plan, vf: &VariableFeed, opts: &NcOptions) -> Result<Vec<CycleMove>, Error> {
-    let vf = VariableFeed { return_feed_mm_per_min: vf.return_feed_mm_per_min.or(opts.return_feed_mm_per_min), ..vf.clone() };
+    let vf = VariableFeed {
+        return_feed_mm_per_min: vf.return_feed_mm_per_min.or(opts.return_feed_mm_per_min),
+        ..vf.clone()
+    };
     let sched = crate::feed::schedule(plan, &vf)?;
     Ok(sched
         .pieces(&plan.path.cycle)

@@ -221,15 +221,19 @@ struct Search<'a> {
 
 /// The result of scoring one shape.
 enum Scored {
-    Feasible(Candidate),
+    Feasible(Box<Candidate>),
     /// No step meets the limits; the limit most broken and the best value it reached.
-    Infeasible { limit: Limit, best: f64 },
+    Infeasible {
+        limit: Limit,
+        best: f64,
+    },
 }
 
 impl Search<'_> {
     fn job(&self, shape: Shape, s: f64, feed: f64) -> Job {
         // A linear-elliptical path with d = 0 is the elliptical one: name it so.
-        let path = if shape.path == PathKind::LinearElliptical && shape.q == 0.0 { PathKind::Elliptical } else { shape.path };
+        let path =
+            if shape.path == PathKind::LinearElliptical && shape.q == 0.0 { PathKind::Elliptical } else { shape.path };
         Job {
             path,
             aspect_ratio: if shape.path.uses_aspect_ratio() { shape.r_e } else { self.base.aspect_ratio },
@@ -259,9 +263,9 @@ impl Search<'_> {
         for l in self.limits.of_class(LimitClass::Geometric) {
             let value = match l.kind {
                 LimitKind::Engagement => analysis::chip::max_engagement(&cycle, &edge, r, job.f_z()).to_degrees(),
-                LimitKind::Waviness => {
-                    wall_profile(&cycle, r, Wall::Left).waviness_mm.max(wall_profile(&cycle, r, Wall::Right).waviness_mm)
-                }
+                LimitKind::Waviness => wall_profile(&cycle, r, Wall::Left)
+                    .waviness_mm
+                    .max(wall_profile(&cycle, r, Wall::Right).waviness_mm),
                 LimitKind::Cooling => {
                     let feed = job.feed / 60.0;
                     let series = analysis::tooth_series(&cycle, &edge, r, job.f_z(), feed);
@@ -376,7 +380,7 @@ impl Search<'_> {
         {
             return Ok(Scored::Infeasible { limit: *l, best: l.kind.measure(&m) });
         }
-        Ok(Scored::Feasible(Candidate { job: self.job(shape, s, feed), metrics: m }))
+        Ok(Scored::Feasible(Box::new(Candidate { job: self.job(shape, s, feed), metrics: m })))
     }
 
     /// The best candidate of a shape (at its largest step).
@@ -414,7 +418,11 @@ pub fn optimize(base: &Job, limits: &Limits, control: &Control) -> Result<Option
     let search = Search { base, limits, plans: 0.into() };
     let shapes: Vec<Shape> = std::iter::once(Shape { path: PathKind::Circular, r_e: 1.0, q: 0.0 })
         .chain(std::iter::once(Shape { path: PathKind::CircularType, r_e: 1.0, q: 0.0 }))
-        .chain(grid(ASPECT_RATIO_RANGE, R_E_POINTS).into_iter().map(|r_e| Shape { path: PathKind::Elliptical, r_e, q: 0.0 }))
+        .chain(grid(ASPECT_RATIO_RANGE, R_E_POINTS).into_iter().map(|r_e| Shape {
+            path: PathKind::Elliptical,
+            r_e,
+            q: 0.0,
+        }))
         .chain(grid(ASPECT_RATIO_RANGE, R_E_POINTS / 2).into_iter().flat_map(|r_e| {
             grid(D_OVER_S_RANGE, Q_POINTS).into_iter().map(move |q| Shape { path: PathKind::LinearElliptical, r_e, q })
         }))
@@ -491,7 +499,7 @@ pub fn optimize(base: &Job, limits: &Limits, control: &Control) -> Result<Option
         .flat_map_iter(|(shape, s_max)| {
             let search = &search;
             FRONT_STEPS.iter().filter_map(move |&k| match search.at_best_feed(shape, k * s_max) {
-                Ok(Scored::Feasible(c)) => Some(c),
+                Ok(Scored::Feasible(c)) => Some(*c),
                 _ => None,
             })
         })
@@ -501,13 +509,13 @@ pub fn optimize(base: &Job, limits: &Limits, control: &Control) -> Result<Option
     }
     (control.progress)(1.0);
     let scored = all.iter().filter_map(|(_, s)| match s {
-        Scored::Feasible(c) => Some(c.clone()),
+        Scored::Feasible(c) => Some((**c).clone()),
         Scored::Infeasible { .. } => None,
     });
     let mut front = pareto(traced.into_iter().chain(scored).collect());
     front.sort_by(|a, b| a.waviness().total_cmp(&b.waviness()));
     front.dedup_by(|a, b| a.mrr() == b.mrr() && a.waviness() == b.waviness());
-    Ok(Some(Outcome { best: best.clone(), front, evaluations: search.plans.into_inner() }))
+    Ok(Some(Outcome { best: (**best).clone(), front, evaluations: search.plans.into_inner() }))
 }
 
 /// The candidates no other beats on both real MRR (higher) and W_max (lower).
