@@ -192,7 +192,9 @@ fn nodes(segments: &[Segment], feeds: &[f64], d: &Dynamics) -> Vec<Node> {
         let density = if matches!(seg, Segment::Trochoid { .. }) { 1.5 } else { 1.0 };
         let n = (density * len / DS_MM).ceil().max(2.0) as usize;
         let a_t = if matches!(seg, Segment::Line { .. }) { d.a } else { TANGENTIAL_SHARE * d.a };
-        let programmed = f.min(d.v_max);
+        // The programmed feed as written (the held share compares with it); the machine's
+        // feed limit enters the speed limit.
+        let programmed = f;
         // Parameters evenly spaced; arc length between them by Simpson's rule (the speed is
         // smooth and nearly constant over one step: error far below 1e-9 mm).
         let ts: Vec<f64> = (0..=n).map(|i| i as f64 / n as f64).collect();
@@ -209,7 +211,7 @@ fn nodes(segments: &[Segment], feeds: &[f64], d: &Dynamics) -> Vec<Node> {
         for i in 0..=n {
             let (i0, i1) = (i.saturating_sub(1), (i + 1).min(n));
             let dk = (kappa[i1] - kappa[i0]) / (at[i1] - at[i0]).max(1e-12);
-            let limit = programmed.min(curvature_limit(d.a, kappa[i])).min(jerk_limit(d.j, kappa[i], dk));
+            let limit = programmed.min(d.v_max).min(curvature_limit(d.a, kappa[i])).min(jerk_limit(d.j, kappa[i], dk));
             let node = Node { s: s0 + at[i], limit, programmed, a_t };
             if i == 0
                 && let Some(last) = out.last_mut()
@@ -481,6 +483,16 @@ mod tests {
 
     fn dynamics(a: f64, j: f64) -> Dynamics {
         Dynamics { v_max: 1e9, a, j, j_tangential: Some(j), tolerance: 0.01 }
+    }
+
+    #[test]
+    fn a_machine_slower_than_the_program_never_holds_its_feed() {
+        // 6000 mm/min programmed, 3000 mm/min machine: cruise at 50 mm/s, held share 0.
+        let line = [Segment::Line { start: p2(0.0, 0.0), end: p2(100.0, 0.0) }];
+        let d = Dynamics { v_max: 50.0, ..dynamics(1000.0, 1e9) };
+        let p = plan_feed(&line, &[6000.0], &d);
+        assert!((p.points[p.points.len() / 2].feed_mm_per_min - 3000.0).abs() < 1e-6);
+        assert_eq!(p.held_share(), 0.0);
     }
 
     #[test]
