@@ -13,11 +13,14 @@ use trochoplan_core::corner::{
     finite, parse_points, polyline,
 };
 use trochoplan_core::geom::{P2, Polygon, Segment};
+use trochoplan_core::job::Direction;
 use trochoplan_core::nc::{
     CutSetup, DEFAULT_TOLERANCE_MM, Dialect, NcOptions, NcProgram, corner_program, pocket_program,
 };
+use trochoplan_core::pocket::adaptive::corner_point_bound_rad;
 use trochoplan_core::pocket::{
-    self, LinkKind, MoveKind, PerforativePlan, PocketPlan, PocketRequest, PocketStrategy, RingPlan,
+    self, AdaptiveOptions, AdaptivePlan, LinkKind, MoveKind, PerforativePlan, PocketPlan, PocketRequest,
+    PocketStrategy, RingPlan,
 };
 use trochoplan_core::{Error, Param};
 
@@ -143,12 +146,18 @@ pub struct EngagementArgs {
     /// Spacing of the evaluated tool positions along the path (mm).
     #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = 0.1)]
     spacing: f64,
+    /// Tool-centre path cut before `--path-csv` (e.g. a helix bore read back from a program),
+    /// one point "x,y" per line: its material counts as removed, no engagement is reported.
+    #[arg(long, value_name = "FILE.csv")]
+    cut_csv: Option<PathBuf>,
 }
 
 /// Flags of `trochoplan pocket` (defaults: [`PocketRequest::default`]).
 #[derive(Args)]
 pub struct PocketArgs {
-    /// Pocket boundary: one vertex "x,y" per line (mm), '#' comments allowed; a simple polygon.
+    /// Pocket boundary: one vertex "x,y" per line (mm), '#' comments allowed; or a drawing,
+    /// `.dxf` (closed LWPOLYLINE, or LINE/ARC chain) or `.svg` (first path or polygon, mm),
+    /// arcs and curves as chords within 0.01 mm; a simple polygon.
     #[arg(long, value_name = "FILE")]
     polygon: PathBuf,
     /// Machine preset for the real time at depth (issue #11): adds `time_real_s` and
@@ -174,6 +183,23 @@ pub struct PocketArgs {
     /// Spacing of the tool positions measured by the evaluator (mm).
     #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = PocketRequest::default().spacing_mm)]
     spacing: f64,
+    /// Milling direction with M3 (`--method adaptive`): climb runs every loop counter-clockwise.
+    #[arg(
+        long,
+        value_parser = core_names(&Direction::ALL, Direction::name, Some(Direction::help)),
+        default_value = Direction::Climb.name()
+    )]
+    direction: Direction,
+    /// Helix radius of the tool centre (mm, `--method adaptive`); default 0.375 × D, reduced
+    /// to 0.25 × D where the pocket is narrower.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    helix_radius: Option<f64>,
+    /// Ramp angle of the helix (degrees, `--method adaptive`), 0 < angle ≤ 15.
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true, default_value_t = AdaptiveOptions::default().ramp_deg)]
+    ramp_angle: f64,
+    /// Radial stock of the finishing contour (mm, `--method adaptive`); 0: no finishing pass.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = AdaptiveOptions::default().finish_stock_mm)]
+    finish_stock: f64,
     #[command(flatten)]
     nc: CornerExportArgs,
 }
@@ -234,8 +260,8 @@ struct PocketOut {
 /// perforative trochoids along its medial axis (`--method medial-axis`).
 pub fn pocket(args: &PocketArgs) -> Result<String, String> {
     let what = args.polygon.display().to_string();
-    let polygon = Polygon::new(parse_points(&read_input(&args.polygon, "polygon file")?, &what).map_err(err)?)
-        .map_err(|e| format!("{what}: {e}"))?;
+    let points = crate::outline::outline_points(&args.polygon, &read_input(&args.polygon, "polygon file")?)?;
+    let polygon = Polygon::new(points).map_err(|e| format!("{what}: {e}"))?;
     let req = PocketRequest {
         polygon,
         tool_diameter_mm: args.tool_diameter,
@@ -243,7 +269,20 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
         feed_mm_per_min: args.feed,
         strategy: args.method,
         spacing_mm: args.spacing,
+        adaptive: AdaptiveOptions {
+            helix_radius_mm: args.helix_radius,
+            ramp_deg: args.ramp_angle,
+            finish_stock_mm: args.finish_stock,
+            direction: args.direction,
+            depth_mm: args.nc.depth,
+        },
     };
+    if args.direction == Direction::Conventional && args.method != PocketStrategy::Adaptive {
+        return Err(format!(
+            "invalid --direction conventional: only --method adaptive mirrors its loops (method {} cuts climb)",
+            args.method.name()
+        ));
+    }
     let plan = pocket::plan(&req).map_err(err)?;
     let nc_export = match &args.nc.export {
         Some(file) => Some(export_pocket(&args.nc, file, &plan)?),
@@ -252,6 +291,7 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
     let text = match &plan {
         PocketPlan::Rings(rings) => ring_pocket_json(&req, rings, nc_export),
         PocketPlan::MedialAxis(perforative) => perforative_pocket_json(perforative, nc_export),
+        PocketPlan::Adaptive(adaptive) => adaptive_pocket_json(adaptive, nc_export),
     }?;
     match &args.machine {
         Some(name) => with_real_time(&text, &plan, name, args.feed),
@@ -272,6 +312,130 @@ fn with_real_time(text: &str, plan: &PocketPlan, name: &str, feed: f64) -> Resul
         obj.insert("feed_held_share".into(), held.into());
     }
     json_text(&v)
+}
+
+#[derive(Serialize)]
+struct HelixOut {
+    center: [f64; 2],
+    radius_mm: f64,
+    ramp_deg: f64,
+    /// Whole turns from 0.5 mm above the stock top to the depth.
+    turns: usize,
+}
+
+#[derive(Serialize)]
+struct CornerPassesOut {
+    vertex: [f64; 2],
+    angle_deg: f64,
+    passes: usize,
+    last_radius_mm: f64,
+    /// Largest radial depth of a thinning pass, on the bisector (mm).
+    max_radial_depth_mm: f64,
+    max_engagement_deg: f64,
+    at: [f64; 2],
+    /// What any path reads at the corner point itself (π − α), which the plan does not reach.
+    corner_point_bound_deg: f64,
+}
+
+#[derive(Serialize)]
+struct AdaptiveOut {
+    method: &'static str,
+    direction: &'static str,
+    tool_diameter_mm: f64,
+    step_over_mm: f64,
+    feed_mm_per_min: f64,
+    /// Target = straight-cut engagement of the step-over, arccos(1 − a_e/r) (domain-spec §1.1).
+    target_deg: f64,
+    polygon: Vec<[f64; 2]>,
+    helices: Vec<HelixOut>,
+    parts: usize,
+    /// Core radius T and rings of each part.
+    core_radius_mm: Vec<f64>,
+    rings: Vec<usize>,
+    corners: Vec<CornerPassesOut>,
+    /// Radius the convex corners of the pocket are cut to (r + ρ_fin + s_f).
+    corner_radius_left_mm: f64,
+    finish_stock_mm: f64,
+    /// Maximum over every move at depth (entry, spiral, ring, corner, link, finish), measured
+    /// by the evaluator with the helix bores as cut; and the 95th percentile of its samples.
+    max_engagement_deg: f64,
+    p95_engagement_deg: f64,
+    by_kind: Vec<KindOut>,
+    length_at_depth_mm: f64,
+    link_length_mm: f64,
+    /// Moves at depth with engagement below 1°.
+    air_length_mm: f64,
+    helix_length_mm: f64,
+    /// Helices and moves at depth at the feed.
+    time_s: f64,
+    segments: Vec<Segment>,
+    kinds: Vec<MoveKind>,
+    retract_before: Vec<usize>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    nc_export: Option<NcExportOut>,
+}
+
+fn kind_out(m: &pocket::KindMax) -> KindOut {
+    KindOut { kind: m.kind, max_engagement_deg: m.max_rad.to_degrees(), at: [m.at.x, m.at.y], length_mm: m.length_mm }
+}
+
+/// The JSON of an adaptively cleared pocket.
+fn adaptive_pocket_json(plan: &AdaptivePlan, nc_export: Option<NcExportOut>) -> Result<String, String> {
+    let xy = |p: P2| [p.x, p.y];
+    let s = plan.settings;
+    let drop = pocket::adaptive::HELIX_START_Z_MM + plan.options.depth_mm;
+    let out = AdaptiveOut {
+        method: PocketStrategy::Adaptive.name(),
+        direction: plan.options.direction.name(),
+        tool_diameter_mm: 2.0 * s.tool_radius,
+        step_over_mm: s.step_over,
+        feed_mm_per_min: s.feed_mm_per_min,
+        target_deg: plan.target_rad.to_degrees(),
+        polygon: plan.polygon.vertices().iter().map(|&v| xy(v)).collect(),
+        helices: plan
+            .parts
+            .iter()
+            .map(|p| HelixOut {
+                center: xy(p.helix.center),
+                radius_mm: p.helix.radius,
+                ramp_deg: p.helix.ramp_rad.to_degrees(),
+                turns: p.helix.turns(drop),
+            })
+            .collect(),
+        parts: plan.parts.len(),
+        core_radius_mm: plan.parts.iter().map(|p| p.core_radius_mm).collect(),
+        rings: plan.parts.iter().map(|p| p.rings).collect(),
+        corners: plan
+            .parts
+            .iter()
+            .flat_map(|p| &p.corners)
+            .map(|c| CornerPassesOut {
+                vertex: xy(c.vertex),
+                angle_deg: c.angle_rad.to_degrees(),
+                passes: c.passes,
+                last_radius_mm: c.last_radius_mm,
+                max_radial_depth_mm: c.max_radial_depth_mm,
+                max_engagement_deg: c.max_engagement_rad.to_degrees(),
+                at: xy(c.at),
+                corner_point_bound_deg: corner_point_bound_rad(c.angle_rad).to_degrees(),
+            })
+            .collect(),
+        corner_radius_left_mm: plan.corner_radius_left_mm,
+        finish_stock_mm: plan.options.finish_stock_mm,
+        max_engagement_deg: plan.max_engagement_rad.to_degrees(),
+        p95_engagement_deg: plan.p95_engagement_rad.to_degrees(),
+        by_kind: plan.maxima.iter().map(kind_out).collect(),
+        length_at_depth_mm: plan.length_at_depth_mm,
+        link_length_mm: plan.link_length_mm,
+        air_length_mm: plan.air_length_mm,
+        helix_length_mm: plan.helix_length_mm,
+        time_s: plan.time_s,
+        segments: plan.segments.clone(),
+        kinds: plan.kinds.clone(),
+        retract_before: PocketPlan::Adaptive(plan.clone()).tool_path().1,
+        nc_export,
+    };
+    json_text(&out)
 }
 
 /// The JSON of a pocket cleared by rings.
@@ -418,16 +582,7 @@ fn perforative_pocket_json(plan: &PerforativePlan, nc_export: Option<NcExportOut
         path_length_mm: plan.path_length_mm,
         time_s: plan.time_s,
         max_engagement_deg: plan.body_max_rad.to_degrees(),
-        by_move: plan
-            .maxima
-            .iter()
-            .map(|m| KindOut {
-                kind: m.kind,
-                max_engagement_deg: m.max_rad.to_degrees(),
-                at: xy(m.at),
-                length_mm: m.length_mm,
-            })
-            .collect(),
+        by_move: plan.maxima.iter().map(kind_out).collect(),
         segments: plan.segments.clone(),
         kinds: plan.kinds.clone(),
         retract_before: plan.retract_before.clone(),
@@ -598,7 +753,16 @@ pub fn engagement(args: &EngagementArgs) -> Result<String, String> {
     let stock =
         Polygon::new(parse_points(&read_input(&args.stock_polygon, "stock polygon file")?, &what_stock).map_err(err)?)
             .map_err(|e| format!("{what_stock}: {e}"))?;
-    let prof = engagement_profile(&stock, &[], &path, &EvaluatorOptions::new(d / 2.0, args.spacing)).map_err(err)?;
+    let before = match &args.cut_csv {
+        Some(file) => {
+            let what = file.display().to_string();
+            polyline(&parse_points(&read_input(file, "cut path file")?, &what).map_err(err)?)
+                .map_err(|e| format!("{what}: {e}"))?
+        }
+        None => Vec::new(),
+    };
+    let prof =
+        engagement_profile(&stock, &before, &path, &EvaluatorOptions::new(d / 2.0, args.spacing)).map_err(err)?;
     let conv = |s: &EngagementSample| SampleOut {
         s_mm: s.s_mm,
         x_mm: s.x_mm,
@@ -728,7 +892,13 @@ mod tests {
         // moving; at the first position the tool has plunged, so both halves count: 120°.
         std::fs::write(&pc, "x,y\n-20,0\n20,0\n").expect("write");
         std::fs::write(&sp, "-50,2.5\n50,2.5\n50,40\n-50,40\n").expect("write");
-        let args = EngagementArgs { path_csv: pc, stock_polygon: sp.clone(), tool_diameter: 10.0, spacing: 1.0 };
+        let args = EngagementArgs {
+            path_csv: pc,
+            stock_polygon: sp.clone(),
+            tool_diameter: 10.0,
+            spacing: 1.0,
+            cut_csv: None,
+        };
         let v: serde_json::Value = serde_json::from_str(&engagement(&args).expect("run")).expect("json");
         let mx = v["max_engagement_deg"].as_f64().expect("max");
         assert!((mx - 120.0).abs() < 1e-3 && v["max_at"]["s_mm"].as_f64() == Some(0.0), "{mx}");
@@ -738,6 +908,14 @@ mod tests {
             let a = s["engagement_deg"].as_f64().expect("deg");
             assert!((a - 60.0).abs() < 1e-3, "{s}");
         }
+        // the tool came along the same line before (--cut-csv): no plunge at the first position,
+        // which reads the straight cut's 60° like the rest
+        let cut = dir.path().join("cut.csv");
+        std::fs::write(&cut, "-40,0\n-20,0\n").expect("write");
+        let with_cut = EngagementArgs { cut_csv: Some(cut), path_csv: args.path_csv.clone(), ..args };
+        let v: serde_json::Value = serde_json::from_str(&engagement(&with_cut).expect("run")).expect("json");
+        assert!((v["max_engagement_deg"].as_f64().expect("max") - 60.0).abs() < 1e-3, "{}", v["max_engagement_deg"]);
+        let args = EngagementArgs { cut_csv: None, ..with_cut };
         std::fs::write(&sp, "0,0\n1,1\n1,0\n0,1\n").expect("write");
         let e = engagement(&EngagementArgs { stock_polygon: sp, ..args }).expect_err("bow tie");
         assert!(e.contains("polygon"), "{e}");

@@ -5,6 +5,7 @@ mod app;
 mod cli;
 mod export;
 mod files;
+mod outline;
 mod worker;
 
 use std::process::ExitCode;

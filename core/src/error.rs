@@ -75,11 +75,17 @@ pub enum Param {
     MaxFeed,
     FeedBand,
     MinBlock,
+    /// `pocket --helix-radius` (adaptive clearing).
+    HelixRadius,
+    /// `pocket --ramp-angle`.
+    RampAngle,
+    /// `pocket --finish-stock`.
+    FinishStock,
 }
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 53] = [
+    pub const ALL: [Param; 56] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
@@ -133,6 +139,9 @@ impl Param {
         Param::MaxFeed,
         Param::FeedBand,
         Param::MinBlock,
+        Param::HelixRadius,
+        Param::RampAngle,
+        Param::FinishStock,
     ];
 
     /// The command-line flag without `--` (also the job-file key). The NC tolerance and the
@@ -192,6 +201,9 @@ impl Param {
             Param::MaxFeed => "max-feed",
             Param::FeedBand => "feed-band",
             Param::MinBlock => "min-block",
+            Param::HelixRadius => "helix-radius",
+            Param::RampAngle => "ramp-angle",
+            Param::FinishStock => "finish-stock",
         }
     }
 
@@ -251,6 +263,9 @@ impl Param {
             Param::MaxFeed => "Maximum feed",
             Param::FeedBand => "Feed band ratio",
             Param::MinBlock => "Minimum block length",
+            Param::HelixRadius => "Helix radius",
+            Param::RampAngle => "Ramp angle",
+            Param::FinishStock => "Finishing stock",
         }
     }
 }

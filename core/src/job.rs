@@ -337,6 +337,39 @@ impl ValidJob {
     }
 }
 
+/// Milling direction with the spindle turning M3 (clockwise seen from above): in climb
+/// milling the tooth enters the material at the full chip thickness and leaves it at zero;
+/// the material is on the right of the tool's motion. The paper's eq. (1) loops are clockwise,
+/// i.e. conventional; climb mirrors them (issue #12).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Direction {
+    #[default]
+    Climb,
+    Conventional,
+}
+
+impl Direction {
+    /// Both directions, in CLI order.
+    pub const ALL: [Direction; 2] = [Direction::Climb, Direction::Conventional];
+
+    /// CLI / JSON name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Direction::Climb => "climb",
+            Direction::Conventional => "conventional",
+        }
+    }
+
+    /// One line for `--help`.
+    pub fn help(self) -> &'static str {
+        match self {
+            Direction::Climb => "Climb milling: loops counter-clockwise with M3 (material on the right)",
+            Direction::Conventional => "Conventional milling: loops clockwise with M3 (the paper's eq. (1) sense)",
+        }
+    }
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 mod tests {

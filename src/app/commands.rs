@@ -40,6 +40,8 @@ pub enum Command {
     CancelOptimise,
     /// Load a job of the optimiser's front (`None`: its best job).
     LoadOptimised(Option<usize>),
+    /// Ask for a pocket outline (DXF, SVG or points) and put its vertices in the Pocket mode.
+    OpenOutline,
 }
 
 impl App {
@@ -88,6 +90,11 @@ impl App {
                 let job = self.optimise.as_ref().and_then(|r| i.map_or_else(|| r.best_job(), |i| r.front_job(i)));
                 if let Some(job) = job {
                     self.set_job(job);
+                }
+            }
+            Command::OpenOutline => {
+                if let Some(path) = self.dialogs.open_outline() {
+                    self.open_outline(&path);
                 }
             }
         }
@@ -169,6 +176,19 @@ impl App {
                 self.set_job(job);
                 self.view.file = Some(path.to_owned());
                 self.status = Some((format!("opened {}", path.display()), false));
+            }
+            Err(e) => self.status = Some((format!("cannot open {}: {e}", path.display()), true)),
+        }
+    }
+
+    /// Read a pocket outline (`pocket --polygon`'s formats) into the Pocket mode's vertices.
+    pub fn open_outline(&mut self, path: &Path) {
+        let read =
+            crate::files::read_input(path, "outline").and_then(|text| crate::outline::outline_points(path, &text));
+        match read {
+            Ok(points) => {
+                self.state.corner.polygon_text = points.iter().map(|p| format!("{},{}\n", p.x, p.y)).collect();
+                self.status = Some((format!("opened outline {} ({} vertices)", path.display(), points.len()), false));
             }
             Err(e) => self.status = Some((format!("cannot open {}: {e}", path.display()), true)),
         }

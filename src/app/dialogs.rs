@@ -11,6 +11,8 @@ pub trait FileDialogs {
     /// Ask where to save an NC program (`stem`: the default file name without extension,
     /// `extension`: the dialect's, without the dot).
     fn save_nc(&mut self, stem: &str, extension: &str) -> Option<PathBuf>;
+    /// Ask for a pocket outline: a drawing (DXF, SVG) or an "x,y" point list.
+    fn open_outline(&mut self) -> Option<PathBuf>;
 }
 
 /// rfd dialogs (XDG desktop portal on Linux).
@@ -44,5 +46,14 @@ impl FileDialogs for NativeDialogs {
             .add_filter("All files", &["*"])
             .set_file_name(format!("{stem}.{extension}"))
             .save_file()
+    }
+
+    fn open_outline(&mut self) -> Option<PathBuf> {
+        rfd::FileDialog::new()
+            .set_title("Open pocket outline")
+            .add_filter("Drawing (DXF, SVG)", &["dxf", "svg"])
+            .add_filter("Points x,y", &["txt", "csv", "poly"])
+            .add_filter("All files", &["*"])
+            .pick_file()
     }
 }

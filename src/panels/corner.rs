@@ -60,6 +60,8 @@ pub struct CornerInputs {
     pub polygon_text: String,
     /// Ring step-over of the pocket (mm).
     pub pocket_step_over_mm: f64,
+    /// Clear the pocket adaptively (helix entry, climb, finishing pass) instead of by `method`.
+    pub pocket_adaptive: bool,
 }
 
 impl Default for CornerInputs {
@@ -79,6 +81,7 @@ impl Default for CornerInputs {
             mode: CornerMode::Corner,
             polygon_text: pocket.polygon.vertices().iter().map(|v| format!("{},{}\n", v.x, v.y)).collect(),
             pocket_step_over_mm: pocket.step_over_mm,
+            pocket_adaptive: pocket.strategy == PocketStrategy::Adaptive,
         }
     }
 }
@@ -99,7 +102,8 @@ impl CornerInputs {
     }
 
     /// The core's pocket request of the tab's inputs: the polygon text read and validated, the
-    /// method as a whole-pocket strategy, the other inputs as `trochoplan pocket`'s defaults.
+    /// method as a whole-pocket strategy (or adaptive clearing), the other inputs as
+    /// `trochoplan pocket`'s defaults.
     pub fn pocket_request(&self) -> Result<PocketRequest, String> {
         let points = parse_points(&self.polygon_text, "polygon").map_err(|e| e.to_string())?;
         let polygon = Polygon::new(points).map_err(|e| format!("polygon: {e}"))?;
@@ -107,7 +111,11 @@ impl CornerInputs {
             polygon,
             tool_diameter_mm: self.tool_diameter_mm,
             step_over_mm: self.pocket_step_over_mm,
-            strategy: PocketStrategy::from_method(self.method),
+            strategy: if self.pocket_adaptive {
+                PocketStrategy::Adaptive
+            } else {
+                PocketStrategy::from_method(self.method)
+            },
             ..PocketRequest::default()
         })
     }
@@ -232,6 +240,17 @@ pub fn compute_pocket(i: &CornerInputs) -> Result<PocketResult, String> {
                 p.circles.len(),
                 p.parts,
                 p.max_of(MoveKind::Tip).to_degrees()
+            ),
+        ),
+        // One pass: the whole path at depth (shown as one entry of the ring list).
+        PocketPlan::Adaptive(p) => (
+            vec![(0, 0.0, p.max_engagement_rad.to_degrees(), segment_points(&p.segments, MAX_PATH_POINTS))],
+            format!(
+                "helix entry, {} rings, {} corners thinned; p95 {:.1}°, {:.0} mm at depth",
+                p.parts.iter().map(|q| q.rings).sum::<usize>(),
+                p.parts.iter().map(|q| q.corners.len()).sum::<usize>(),
+                p.p95_engagement_rad.to_degrees(),
+                p.length_at_depth_mm
             ),
         ),
         PocketPlan::Rings(p) => (
@@ -675,10 +694,18 @@ fn pocket(ui: &mut egui::Ui, inputs: &mut CornerInputs, view: &CornerView, nc: &
     }
     let cmd = nc_options(ui, view, nc);
     let h = (ui.available_height() - 10.0).max(220.0);
+    let mut open = false;
     ui.horizontal_top(|ui| {
         ui.vertical(|ui| {
             ui.set_width(230.0);
             polygon_editor(ui, inputs);
+            if ui
+                .button(label::POCKET_OPEN_OUTLINE)
+                .on_hover_text("A DXF or SVG drawing, or an x,y point list")
+                .clicked()
+            {
+                open = true;
+            }
             if let Some(r) = view.last_pocket.as_deref() {
                 ui.add_space(6.0);
                 pocket_numbers(ui, r);
@@ -688,13 +715,14 @@ fn pocket(ui: &mut egui::Ui, inputs: &mut CornerInputs, view: &CornerView, nc: &
             pocket_view(ui, r, nc.settings.open, nc.cache, h);
         }
     });
-    cmd
+    if open { Some(Command::OpenOutline) } else { cmd }
 }
 
 /// The method, the tool diameter and the pocket's step-over.
 fn pocket_inputs(ui: &mut egui::Ui, inputs: &mut CornerInputs) {
     ui.horizontal_wrapped(|ui| {
-        method_buttons(ui, &mut inputs.method);
+        ui.checkbox(&mut inputs.pocket_adaptive, label::POCKET_ADAPTIVE).on_hover_text(PocketStrategy::Adaptive.help());
+        ui.add_enabled_ui(!inputs.pocket_adaptive, |ui| method_buttons(ui, &mut inputs.method));
         ui.separator();
         let l = ui.label(label::CORNER_TOOL_DIAMETER);
         ui.add(DragValue::new(&mut inputs.tool_diameter_mm).speed(0.1).suffix(" mm")).labelled_by(l.id);

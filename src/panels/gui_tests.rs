@@ -26,6 +26,9 @@ impl FileDialogs for FakeDialogs {
     fn save_nc(&mut self, _stem: &str, _extension: &str) -> Option<PathBuf> {
         self.save.clone()
     }
+    fn open_outline(&mut self) -> Option<PathBuf> {
+        self.open.clone()
+    }
 }
 
 fn harness_with(app: App) -> Harness<'static, App> {
@@ -589,6 +592,54 @@ fn pocket_mode_plans_the_medial_axis_strategy_for_the_whole_pocket() {
     assert_eq!(want.segments, plan.segments);
     assert!(shows(&h, &p.detail), "{}", p.detail);
     assert!(p.detail.contains(&format!("{} circles along the medial axis", want.circles.len())), "{}", p.detail);
+}
+
+#[test]
+fn pocket_mode_opens_an_svg_outline() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("pocket.svg");
+    std::fs::write(&file, r#"<svg><polygon points="0,0 50,0 50,30 0,30"/></svg>"#).unwrap();
+    let app = App::new(Job::default(), None, Box::new(FakeDialogs { open: Some(file), save: None }));
+    let mut h = harness_with(app);
+    h.get_by_label("Corner").click();
+    h.run();
+    h.get_by_label("Pocket").click();
+    h.run();
+    h.get_by_label(label::POCKET_OPEN_OUTLINE).click();
+    h.run();
+    // SVG's y points down: the outline is flipped into the planner's y-up frame
+    assert_eq!(h.state().state.corner.polygon_text, "0,0\n50,0\n50,-30\n0,-30\n");
+    assert!(
+        h.state().status.as_ref().is_some_and(|(m, err)| !err && m.contains("4 vertices")),
+        "{:?}",
+        h.state().status
+    );
+}
+
+#[test]
+fn pocket_mode_plans_adaptive_clearing() {
+    use trochoplan_core::pocket::{self, PocketPlan};
+    let mut h = corner_harness();
+    h.get_by_label("Pocket").click();
+    h.run();
+    h.get_by_label(label::POCKET_ADAPTIVE).click();
+    h.run();
+    let t0 = Instant::now();
+    while h.state().corner.pending() && t0.elapsed().as_secs() < 120 {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        h.step();
+    }
+    h.run();
+    assert!(h.state().state.corner.pocket_adaptive);
+    assert!(h.state().corner.error.is_none(), "{:?}", h.state().corner.error);
+    let p = h.state().corner.last_pocket.clone().expect("a pocket");
+    let PocketPlan::Adaptive(plan) = &p.plan else { panic!("adaptive plan expected") };
+    // the tab shows what the core plans for the tab's request
+    let req = h.state().state.corner.pocket_request().unwrap();
+    let PocketPlan::Adaptive(want) = pocket::plan(&req).unwrap() else { panic!("adaptive plan expected") };
+    assert_eq!(want.segments, plan.segments);
+    assert!(shows(&h, &p.detail), "{}", p.detail);
+    assert!(p.detail.contains(&format!("{:.0} mm at depth", want.length_at_depth_mm)), "{}", p.detail);
 }
 
 /// Step frames until the Corner tab's acceptance table is no longer being computed.

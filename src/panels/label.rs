@@ -21,6 +21,8 @@ pub const STRAIGHT_ENGAGEMENT: &str = "Straight engagement a_str (°)";
 pub const ALLOWED_EXCESS_T1: &str = "Allowed excess t1";
 pub const POCKET_VERTICES: &str = "Pocket vertices (x,y per line)";
 pub const POCKET_STEP_OVER: &str = "Pocket step-over a_e (mm)";
+pub const POCKET_ADAPTIVE: &str = "Adaptive (helix, climb, finish)";
+pub const POCKET_OPEN_OUTLINE: &str = "Open outline…";
 
 // Corner tab: the acceptance table.
 pub const CANCEL_TABLE: &str = "Cancel table";

@@ -11,7 +11,7 @@ use super::{NcOptions, NcProgram, PathJob, program_for_path};
 use crate::corner::{CornerPlan, CornerSettings};
 use crate::error::{Error, Param};
 use crate::geom::Segment;
-use crate::pocket::{LinkKind, PerforativePlan, PocketPlan, PocketSettings, RingPlan};
+use crate::pocket::{AdaptivePlan, Helix, LinkKind, PerforativePlan, PocketPlan, PocketSettings, RingPlan};
 
 /// What a corner or pocket plan does not carry: the cutting depth and the spindle speed.
 /// Checked by [`PathJob::validate`] (errors name `depth` and `rpm`).
@@ -46,6 +46,7 @@ pub fn corner_program(
     let job = PathJob {
         segments: &plan.path,
         retract_before: &[],
+        helices: &[],
         depth_mm: cut.depth_mm,
         feed_mm_per_min: s.feed_mm_per_min,
         spindle_rpm: cut.spindle_rpm,
@@ -84,7 +85,34 @@ pub fn pocket_program(plan: &PocketPlan, cut: CutSetup, opts: &NcOptions) -> Res
     match plan {
         PocketPlan::Rings(p) => ring_program(p, cut, opts),
         PocketPlan::MedialAxis(p) => perforative_program(p, cut, opts),
+        PocketPlan::Adaptive(p) => adaptive_program(p, cut, opts),
     }
+}
+
+/// The program of an adaptively cleared pocket: per part a helical entry from above the stock
+/// top (no plunge), then its moves at depth; a retract and rapid between parts.
+pub fn adaptive_program(plan: &AdaptivePlan, cut: CutSetup, opts: &NcOptions) -> Result<NcProgram, Error> {
+    let (segments, retract_before) = PocketPlan::Adaptive(plan.clone()).tool_path();
+    let helices: Vec<Helix> = plan.parts.iter().map(|p| p.helix).collect();
+    let h = &helices[0];
+    let summary = [
+        format!(
+            "pocket of {} vertices, adaptive {}, {} part(s), helix R {:.3} mm {:.1} deg",
+            plan.polygon.vertices().len(),
+            plan.options.direction.name(),
+            plan.parts.len(),
+            h.radius,
+            plan.options.ramp_deg
+        ),
+        format!(
+            "at depth {:.1} mm, links {:.1} mm, peak {:.2} deg, target {:.2} deg",
+            plan.length_at_depth_mm,
+            plan.link_length_mm,
+            plan.max_engagement_rad.to_degrees(),
+            plan.target_rad.to_degrees()
+        ),
+    ];
+    pocket_path_program(&segments, &retract_before, &helices, &plan.settings, summary, cut, opts)
 }
 
 /// The program of a pocket cleared by rings: its rings and links ([`RingPlan::tool_path`]),
@@ -108,7 +136,7 @@ fn ring_program(plan: &RingPlan, cut: CutSetup, opts: &NcOptions) -> Result<NcPr
             plan.links.len() - feed_links
         ),
     ];
-    pocket_path_program(&segments, &retract_before, &plan.settings, summary, cut, opts)
+    pocket_path_program(&segments, &retract_before, &[], &plan.settings, summary, cut, opts)
 }
 
 /// The program of a pocket cleared by perforative trochoids along its medial axis: its path
@@ -128,7 +156,7 @@ pub fn perforative_program(plan: &PerforativePlan, cut: CutSetup, opts: &NcOptio
             plan.target_rad.to_degrees()
         ),
     ];
-    pocket_path_program(&plan.segments, &plan.retract_before, &plan.settings, summary, cut, opts)
+    pocket_path_program(&plan.segments, &plan.retract_before, &[], &plan.settings, summary, cut, opts)
 }
 
 /// A pocket's program in polygon coordinates: two summary lines of the plan, then the frame
@@ -136,6 +164,7 @@ pub fn perforative_program(plan: &PerforativePlan, cut: CutSetup, opts: &NcOptio
 fn pocket_path_program(
     segments: &[Segment],
     retract_before: &[usize],
+    helices: &[Helix],
     s: &PocketSettings,
     summary: [String; 2],
     cut: CutSetup,
@@ -145,6 +174,7 @@ fn pocket_path_program(
     let job = PathJob {
         segments,
         retract_before,
+        helices,
         depth_mm: cut.depth_mm,
         feed_mm_per_min: s.feed_mm_per_min,
         spindle_rpm: cut.spindle_rpm,

@@ -32,9 +32,11 @@ pub use writer::{Writer, YForm};
 
 use crate::error::{Error, Param, num};
 use crate::feed::VariableFeed;
-use crate::geom::{FitPiece, P2, Segment, fit_biarcs, polyline};
+use crate::geom::{FitPiece, P2, Segment, fit_biarcs, p2, polyline};
 use crate::job::PathKind;
 use crate::plan::Plan;
+use crate::pocket::Helix;
+use crate::pocket::adaptive::HELIX_START_Z_MM;
 use std::f64::consts::TAU;
 
 /// Default chord/biarc tolerance (mm), domain-spec §5.4.
@@ -255,6 +257,10 @@ pub struct PathJob<'a> {
     pub default_title: &'a str,
     /// Header comment lines describing the job (sanitised when written).
     pub description: Vec<String>,
+    /// Helical entries, one per connected part (the path start, then each retract in order):
+    /// the tool descends on the helix from above the stock top instead of feeding straight
+    /// down. Empty: straight down at every approach.
+    pub helices: &'a [Helix],
 }
 
 /// Largest gap allowed between consecutive segments of a [`PathJob`] (mm): far below any
@@ -327,10 +333,14 @@ pub fn program_for_path(job: &PathJob<'_>, opts: &NcOptions) -> Result<NcProgram
         spindle_rpm: job.spindle_rpm,
     };
     preamble(&mut w, &header, opts);
-    approach(&mut w, job.segments[0].start(), job.depth_mm, job.feed_mm_per_min, opts);
+    let descend = |w: &mut Writer, part: usize, start: P2| match job.helices.get(part) {
+        Some(h) => helical_approach(w, h, job.depth_mm, job.feed_mm_per_min, opts),
+        None => approach(w, start, job.depth_mm, job.feed_mm_per_min, opts),
+    };
+    descend(&mut w, 0, job.segments[0].start());
     for (i, seg) in job.segments.iter().enumerate() {
-        if job.retract_before.contains(&i) {
-            approach(&mut w, seg.start(), job.depth_mm, job.feed_mm_per_min, opts);
+        if let Some(k) = job.retract_before.iter().position(|&j| j == i) {
+            descend(&mut w, k + 1, seg.start());
         }
         for piece in fit(seg, opts) {
             w.segment(&piece.seg, job.feed_mm_per_min);
@@ -386,6 +396,21 @@ fn approach(w: &mut Writer, start: P2, depth: f64, feed: f64, opts: &NcOptions) 
     w.linear(None, None, Some(opts.safe_z_mm), None);
     w.linear(Some(start.x), Some(start.y), None, None);
     w.linear(None, None, Some(-depth), Some(feed));
+}
+
+/// Safe Z, rapid to the helix start, rapid down to [`HELIX_START_Z_MM`] above the stock top,
+/// then whole helical turns (half turns per block) down to `depth` at the ramp angle.
+fn helical_approach(w: &mut Writer, h: &Helix, depth: f64, feed: f64, opts: &NcOptions) {
+    let start = h.center + p2(h.start_angle.cos(), h.start_angle.sin()) * h.radius;
+    w.linear(None, None, Some(opts.safe_z_mm), None);
+    w.linear(Some(start.x), Some(start.y), None, None);
+    w.linear(None, None, Some(HELIX_START_Z_MM.min(opts.safe_z_mm)), None);
+    let drop = HELIX_START_Z_MM.min(opts.safe_z_mm) + depth;
+    let turns = h.turns(drop);
+    for k in 1..=turns {
+        let z = HELIX_START_Z_MM.min(opts.safe_z_mm) - drop * k as f64 / turns as f64;
+        w.helical_arc(&h.circle(), z, feed);
+    }
 }
 
 /// Retract to safe Z, coolant and spindle off, program end.

@@ -251,7 +251,7 @@ impl Writer {
                     if part.abs() < 0.5 * TAU && sagitta < 0.5 * self.quantum() {
                         self.linear(Some(end.x), Some(end.y), None, Some(feed));
                     } else {
-                        self.arc(end, center, part < 0.0, full_circle && parts == 1, feed);
+                        self.arc(end, center, part < 0.0, full_circle && parts == 1, None, feed);
                     }
                 }
             }
@@ -262,8 +262,27 @@ impl Writer {
         }
     }
 
-    /// One arc block from the current position to `end` around `center` (see module docs).
-    fn arc(&mut self, end: P2, center: P2, clockwise: bool, full_circle: bool, feed: f64) {
+    /// A helix: the arc `seg` in XY while Z moves linearly from the current height to `z_end`,
+    /// written in parts of at most half a turn (G2/G3 with a Z word), e.g. a helical entry.
+    pub fn helical_arc(&mut self, seg: &Segment, z_end: f64, feed: f64) {
+        let Segment::Arc { center, radius, start_angle, sweep } = *seg else {
+            let end = seg.end();
+            self.linear(Some(end.x), Some(end.y), Some(z_end), Some(feed));
+            return;
+        };
+        let z0 = self.z.map_or(z_end, |z| z as f64 * self.quantum());
+        let parts = (sweep.abs() / max_part_sweep(self.spec, false) - 1e-9).ceil().max(1.0) as usize;
+        for k in 1..=parts {
+            let a1 = start_angle + sweep * k as f64 / parts as f64;
+            let end = center + p2(a1.cos(), a1.sin()) * radius;
+            let z = z0 + (z_end - z0) * k as f64 / parts as f64;
+            self.arc(end, center, sweep < 0.0, false, Some(z), feed);
+        }
+    }
+
+    /// One arc block from the current position to `end` around `center` (see module docs),
+    /// descending to `z` on the way when given (a helix).
+    fn arc(&mut self, end: P2, center: P2, clockwise: bool, full_circle: bool, z: Option<f64>, feed: f64) {
         let (Some(sx), Some(sy)) = (self.x, self.y) else {
             if self.error.is_none() {
                 self.error = Some(Error::nc("path", "arc", "to start from a known position"));
@@ -304,6 +323,11 @@ impl Writer {
         words.push(self.y_word(ey));
         words.push(format!("I{}", self.number(i)));
         words.push(format!("J{}", self.number(j)));
+        if let Some(z) = z {
+            let n = self.quantize("z", z);
+            words.insert(words.len() - 2, format!("Z{}", self.number(n)));
+            self.z = Some(n);
+        }
         self.x = Some(ex);
         self.y = Some(ey);
         self.feed_word(feed, &mut words);

@@ -7,9 +7,11 @@
 //! CLI. Conventions as in [`crate::corner`]: mm, counter-clockwise pocket boundary, tool-centre
 //! circles and rings counter-clockwise (climb milling with M3).
 
+pub mod adaptive;
 pub mod perforative;
 pub mod rings;
 
+pub use adaptive::{AdaptiveOptions, AdaptivePart, AdaptivePlan, CornerPasses, Helix, plan_adaptive};
 pub use perforative::{AxisCircle, KindMax, MoveKind, PerforativePlan, plan_perforative};
 pub use rings::{LINK_ENGAGEMENT_SLACK_RAD, Link, LinkKind, Ring, RingPlan, inward_offset, link_is_inside, plan_rings};
 
@@ -29,11 +31,15 @@ pub enum PocketStrategy {
     /// No rings: perforative trochoids along the medial axis of the whole pocket
     /// ([`perforative`]).
     MedialAxis,
+    /// Helix entry, spiral, rings grown along the core, corner thinning and a finishing
+    /// contour, every pass within the target engagement ([`adaptive`]).
+    Adaptive,
 }
 
 impl PocketStrategy {
     /// Every strategy, in the order the front ends list them.
-    pub const ALL: [PocketStrategy; 4] = [
+    pub const ALL: [PocketStrategy; 5] = [
+        PocketStrategy::Adaptive,
         PocketStrategy::Rings(CornerMethod::Plain),
         PocketStrategy::Rings(CornerMethod::Variable),
         PocketStrategy::Rings(CornerMethod::Isometric),
@@ -49,27 +55,35 @@ impl PocketStrategy {
         }
     }
 
-    /// The corner method the strategy is named by (the inverse of [`Self::from_method`]).
-    pub fn method(self) -> CornerMethod {
+    /// The corner method the strategy is named by (the inverse of [`Self::from_method`]);
+    /// `None` for adaptive clearing, which has its own corner passes.
+    pub fn method(self) -> Option<CornerMethod> {
         match self {
-            PocketStrategy::Rings(m) => m,
-            PocketStrategy::MedialAxis => CornerMethod::MedialAxis,
+            PocketStrategy::Rings(m) => Some(m),
+            PocketStrategy::MedialAxis => Some(CornerMethod::MedialAxis),
+            PocketStrategy::Adaptive => None,
         }
     }
 
-    /// CLI / JSON name: the corner method's.
+    /// CLI / JSON name: "adaptive" or the corner method's.
     pub fn name(self) -> &'static str {
-        self.method().name()
+        self.method().map_or(ADAPTIVE, CornerMethod::name)
     }
 
     /// The strategy of a CLI / JSON name.
     pub fn from_name(name: &str) -> Option<PocketStrategy> {
+        if name == ADAPTIVE {
+            return Some(PocketStrategy::Adaptive);
+        }
         CornerMethod::from_name(name).map(PocketStrategy::from_method)
     }
 
     /// One line for `trochoplan pocket --help`.
     pub fn help(self) -> &'static str {
-        match self.method() {
+        let Some(method) = self.method() else {
+            return "Helix entry, spiral, rings along the core, corner thinning, finishing pass: every move within the target";
+        };
+        match method {
             CornerMethod::Plain => "Plain contour-parallel rings",
             CornerMethod::Variable => "Variable circles at every convex corner of every ring but the innermost",
             CornerMethod::Isometric => "Isometric circles at every convex corner of every ring but the innermost",
@@ -77,6 +91,9 @@ impl PocketStrategy {
         }
     }
 }
+
+/// CLI / JSON name of [`PocketStrategy::Adaptive`].
+const ADAPTIVE: &str = "adaptive";
 
 /// Numeric inputs of both pocket planners (mm, mm/min).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -130,6 +147,8 @@ pub struct PocketRequest {
     pub strategy: PocketStrategy,
     /// Arc-length spacing of the tool positions measured by the evaluator (mm).
     pub spacing_mm: f64,
+    /// Helix, finishing and direction of adaptive clearing (ignored by the other strategies).
+    pub adaptive: AdaptiveOptions,
 }
 
 impl Default for PocketRequest {
@@ -145,6 +164,7 @@ impl Default for PocketRequest {
             feed_mm_per_min: 600.0,
             strategy: PocketStrategy::Rings(CornerMethod::Plain),
             spacing_mm: 0.25,
+            adaptive: AdaptiveOptions::default(),
         }
     }
 }
@@ -169,6 +189,7 @@ impl PocketRequest {
 pub enum PocketPlan {
     Rings(RingPlan),
     MedialAxis(PerforativePlan),
+    Adaptive(AdaptivePlan),
 }
 
 impl PocketPlan {
@@ -177,6 +198,7 @@ impl PocketPlan {
         match self {
             PocketPlan::Rings(p) => PocketStrategy::Rings(p.method),
             PocketPlan::MedialAxis(_) => PocketStrategy::MedialAxis,
+            PocketPlan::Adaptive(_) => PocketStrategy::Adaptive,
         }
     }
 
@@ -185,6 +207,7 @@ impl PocketPlan {
         match self {
             PocketPlan::Rings(p) => &p.polygon,
             PocketPlan::MedialAxis(p) => &p.polygon,
+            PocketPlan::Adaptive(p) => &p.polygon,
         }
     }
 
@@ -193,14 +216,17 @@ impl PocketPlan {
         match self {
             PocketPlan::Rings(p) => &p.settings,
             PocketPlan::MedialAxis(p) => &p.settings,
+            PocketPlan::Adaptive(p) => &p.settings,
         }
     }
 
-    /// The cutting path length (mm): the rings (links excluded), or the whole medial-axis path.
+    /// The cutting path length (mm): the rings (links excluded), or the whole medial-axis or
+    /// adaptive path at depth.
     pub fn path_length_mm(&self) -> f64 {
         match self {
             PocketPlan::Rings(p) => p.path_length_mm,
             PocketPlan::MedialAxis(p) => p.path_length_mm,
+            PocketPlan::Adaptive(p) => p.length_at_depth_mm,
         }
     }
 
@@ -209,15 +235,18 @@ impl PocketPlan {
         match self {
             PocketPlan::Rings(p) => p.time_s,
             PocketPlan::MedialAxis(p) => p.time_s,
+            PocketPlan::Adaptive(p) => p.time_s,
         }
     }
 
     /// The engagement the plan bounds, measured by the evaluator (rad): the largest running
-    /// engagement of the rings (entries excluded), or the medial-axis path's body maximum.
+    /// engagement of the rings (entries excluded), the medial-axis path's body maximum, or the
+    /// adaptive path's maximum over every move at depth.
     pub fn max_engagement_rad(&self) -> f64 {
         match self {
             PocketPlan::Rings(p) => p.max_engagement_rad,
             PocketPlan::MedialAxis(p) => p.body_max_rad,
+            PocketPlan::Adaptive(p) => p.max_engagement_rad,
         }
     }
 
@@ -227,6 +256,7 @@ impl PocketPlan {
         match self {
             PocketPlan::Rings(p) => p.tool_path(),
             PocketPlan::MedialAxis(p) => (p.segments.clone(), p.retract_before.clone()),
+            PocketPlan::Adaptive(p) => (p.segments.clone(), p.parts.iter().skip(1).map(|q| q.first_segment).collect()),
         }
     }
 }
@@ -238,11 +268,13 @@ pub const MAX_ESTIMATED_POSITIONS: f64 = 1.0e5;
 /// Tool positions the evaluator will measure, estimated before planning: the path clears the
 /// pocket's area A in bands of the step-over a_e, so it is about k·A/a_e long, measured every
 /// `spacing` mm: k = 1 for rings; k = 3 for the medial axis, whose trochoid circles overlap
-/// (measured: 2·A/a_e for a rectangle, 3.6·A/a_e for random star-shaped pockets).
+/// (measured: 2·A/a_e for a rectangle, 3.6·A/a_e for random star-shaped pockets); k = 2 for
+/// adaptive clearing (rings, corner passes and links).
 pub fn estimated_positions(polygon: &Polygon, strategy: PocketStrategy, settings: &PocketSettings) -> f64 {
     let k = match strategy {
         PocketStrategy::Rings(_) => 1.0,
         PocketStrategy::MedialAxis => 3.0,
+        PocketStrategy::Adaptive => 2.0,
     };
     k * polygon.area().abs() / (settings.step_over * settings.spacing)
 }
@@ -286,6 +318,7 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
     match req.strategy {
         PocketStrategy::Rings(method) => plan_rings(&req.polygon, settings, method).map(PocketPlan::Rings),
         PocketStrategy::MedialAxis => plan_perforative(&req.polygon, settings).map(PocketPlan::MedialAxis),
+        PocketStrategy::Adaptive => plan_adaptive(&req.polygon, settings, req.adaptive).map(PocketPlan::Adaptive),
     }
 }
 
@@ -297,8 +330,11 @@ mod tests {
     fn strategies_are_named_by_their_corner_method() {
         for s in PocketStrategy::ALL {
             assert_eq!(PocketStrategy::from_name(s.name()), Some(s));
-            assert_eq!(PocketStrategy::from_method(s.method()), s);
+            if let Some(m) = s.method() {
+                assert_eq!(PocketStrategy::from_method(m), s);
+            }
         }
+        assert_eq!(PocketStrategy::from_name("adaptive"), Some(PocketStrategy::Adaptive));
         assert_eq!(PocketStrategy::from_name("medial-axis"), Some(PocketStrategy::MedialAxis));
     }
 

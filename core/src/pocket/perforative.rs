@@ -82,7 +82,8 @@ const SHORT_TURN_RAD: f64 = PI / 6.0;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum MoveKind {
-    /// The first circle after a plunge (≥ 90°, see the module docs).
+    /// The first circle after a plunge (≥ 90°, see the module docs); in adaptive clearing the
+    /// flat turn at depth after the helix, inside its bore.
     Entry,
     /// The concentric circles clearing the largest circle.
     Spiral,
@@ -96,6 +97,12 @@ pub enum MoveKind {
     Tip,
     /// Back along the axis through cleared material.
     Return,
+    /// A ring of adaptive clearing ([`super::adaptive`]).
+    Ring,
+    /// A thinning pass into a convex corner ([`super::adaptive`]).
+    Corner,
+    /// The finishing contour ([`super::adaptive`]).
+    Finish,
 }
 
 /// One circle of the path.
@@ -586,7 +593,7 @@ pub fn plan_perforative(polygon: &Polygon, settings: PocketSettings) -> Result<P
 /// Per-kind maxima of the profile and the body maximum (spiral, circles, links). The
 /// positions where the tool plunges (the start of each part) are left out: there the tool
 /// drills its own hole and the evaluator reads the whole periphery (360°).
-fn maxima(
+pub(super) fn maxima(
     profile: &EngagementProfile,
     segments: &[Segment],
     kinds: &[MoveKind],

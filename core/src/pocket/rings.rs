@@ -244,7 +244,7 @@ pub fn inward_offset(polygon: &Polygon, d: f64) -> Result<Vec<Vec<Segment>>, Err
 
 /// Closed cavalier_contours polyline to lines and arcs. Arc from bulge b between v1 and v2:
 /// centre and radius by `seg_arc_radius_and_center`, sweep `4·atan(b)` (b > 0: CCW).
-fn to_segments(pl: &Polyline<f64>) -> Vec<Segment> {
+pub(super) fn to_segments(pl: &Polyline<f64>) -> Vec<Segment> {
     let n = pl.vertex_count();
     let mut out = Vec::with_capacity(n);
     for i in 0..n {

@@ -56,6 +56,20 @@ fn arc_sweep(start: P2, end: P2, center: P2, turns: i32) -> (f64, f64, f64, f64)
     (a0, sweep, vs.norm(), ve.norm())
 }
 
+/// A cut as exact segments (XY): lines, and arcs about their written centre with the mean of
+/// their start and end radii (they differ by the written rounding only), for the evaluator.
+pub fn segments_of(cut: &[Motion]) -> Vec<Segment> {
+    cut.iter()
+        .map(|m| match *m {
+            Motion::Arc { start, end, center, turns } => {
+                let (start_angle, sweep, r0, r1) = arc_sweep(xy(start), xy(end), center, turns);
+                Segment::Arc { center, radius: 0.5 * (r0 + r1), start_angle, sweep }
+            }
+            _ => Segment::Line { start: xy(m.start()), end: xy(m.end()) },
+        })
+        .collect()
+}
+
 /// The feed moves at cutting depth (z = −depth within `z_tol`), in program order: the cut.
 pub fn cut(motions: &[Motion], depth: f64, z_tol: f64) -> Vec<Motion> {
     motions

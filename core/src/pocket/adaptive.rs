@@ -1,0 +1,890 @@
+//! Adaptive pocket clearing (issue #12): helix entry, a spiral out of the bore, rings that
+//! grow along the pocket's core, thinning passes into every convex corner and a finishing
+//! contour — every move at depth measured by the independent evaluator
+//! ([`crate::corner::evaluator`]). The algorithm is ours (DERIVED below); its engagement model
+//! is domain-spec §1.1/§1.2.
+//!
+//! Notation: `r` tool radius, `a_e` the step-over, φ* = arccos(1 − a_e/r) the target (the
+//! straight-cut engagement of a_e, §1.1), `C` the region of tool centres = the pocket offset
+//! inward by r + s_f (s_f the finishing stock).
+//!
+//! **Concave-cut step (DERIVED).** A tool centre on a circle of radius ρ that cuts outward from
+//! a disc already cleared to radius R = ρ_prev + r sees material where its periphery is farther
+//! than R from the centre; the periphery point at angle ψ from the outward normal is at
+//! distance² ρ² + r² + 2ρr·cos ψ, and the front half of the periphery is engaged over
+//! ψ ≤ arccos((R² − ρ² − r²)/(2ρr)). With R = ρ + r − a (a radial step a) this reads
+//! `cos φ = 1 − a/r − a/ρ + a²/(2ρr)`, which tends to §1.1's 1 − a/r for ρ → ∞. Solved for a
+//! at φ = φ* it gives [`concave_step`], the step a circle (or a corner arc) of radius ρ may
+//! take; it is below a_e for every finite ρ.
+//!
+//! 1. **Entry.** A helix of radius r_h (default 0.375·D: a bore of 75 % of D, the helix of
+//!    FreeCAD's Adaptive for D = 10) and ramp angle ≤ 3° about the point `k0` of largest
+//!    clearance of `C` (bisection on inward offsets), from 0.5 mm above the stock top down to
+//!    depth, then one flat turn at depth. The evaluator treats the bore as cut (the helix
+//!    circle is its `before` path): the tool descends into it on the ramp, never plunges.
+//! 2. **Spiral.** Half-circles about `k0` (each from radius q_i to q_i+1 half a turn later;
+//!    centre offset (q_i − q_i+1)/2, so the spiral is G1) growing by half the concave-cut step
+//!    per half turn, to radius T (the core radius below).
+//! 3. **Rings.** The core K = C ⊖ T (inward offset): for T just below the inscribed radius, K
+//!    is a thin strip along the pocket's middle. Ring j is the boundary of (K ∩ D(k0, s_j)) ⊕ T,
+//!    s_j growing by the concave-cut step of radius T: each ring is smooth (its corners are
+//!    arcs of radius ≥ T about K), lies a step outside the previous one (the offset of a set
+//!    that grew by at most the step), runs along the walls where it meets them tangentially,
+//!    and passes through the wall point q0 nearest k0, where consecutive rings join without a
+//!    link into material. The last ring is the opening of C with radius T. T starts at
+//!    0.995 × the inscribed radius and shrinks by 10 % until that opening leaves only the
+//!    corner caps uncut (area check: a cap of a convex corner α is T²(cot(α/2) − (π − α)/2)).
+//! 4. **Corners.** Every convex corner V of C (angle α) is thinned by arcs tangent to both
+//!    walls with radii ρ_k from T down to ρ_fin, centre V + b·ρ/sin(α/2) on the bisector b.
+//!    Consecutive arcs are a distance (ρ_k − ρ_k+1)(1/sin(α/2) − 1) apart on the bisector and
+//!    tangent to each other's walls; that distance is held to the concave-cut step of ρ_k+1.
+//!    A pass runs along wall A from the previous tangent point, the arc, back along wall B,
+//!    then a straight link through the cleared arc returns to wall A. The tool never reaches V
+//!    (see [`corner_point_bound_rad`]): the pocket corner is left with radius r + ρ_fin + s_f.
+//! 5. **Finish.** With s_f > 0: the opening of the final wall offset with radius ρ_fin + s_f,
+//!    concentric with the last corner arcs, once around (climb).
+//!
+//! Conventional milling mirrors the pocket in x, plans it, and mirrors the path back: every
+//! loop then runs clockwise, with the same engagement by symmetry.
+
+use super::PocketSettings;
+use super::perforative::{KindMax, MoveKind, maxima};
+use super::rings::{link_is_inside, to_segments};
+use crate::corner::{EngagementProfile, EvaluatorOptions, engagement_profile};
+use crate::error::{Error, Param, num};
+use crate::geom::{P2, Polygon, Segment, cross, p2};
+use crate::job::Direction;
+use cavalier_contours::polyline::{BooleanOp, PlineSource, PlineSourceMut, Polyline};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::{PI, TAU};
+
+/// Height above the stock top Z0 where the helix starts (mm).
+pub const HELIX_START_Z_MM: f64 = 0.5;
+/// Engagement below which a move counts as air (rad): 1°.
+pub const AIR_ENGAGEMENT_RAD: f64 = PI / 180.0;
+/// Most rings or corner passes per part (bounds run time on hostile input).
+const MAX_PASSES: usize = 20_000;
+/// Fractions of the inscribed radius the core radius T starts from (the shortest plan wins).
+const CORE_FRACTIONS: [f64; 5] = [1.0, 0.85, 0.7, 0.55, 0.4];
+/// Bisection steps for the inscribed radius.
+const INSCRIBED_STEPS: usize = 48;
+
+/// The options of adaptive clearing beyond [`PocketSettings`] (CLI names in brackets).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct AdaptiveOptions {
+    /// Helix radius of the tool centre r_h (mm) [`--helix-radius`]; `None`: 0.375·D, reduced
+    /// down to 0.25·D (a bore of 50 % of D) where the pocket is narrower.
+    pub helix_radius_mm: Option<f64>,
+    /// Ramp angle of the helix (deg) [`--ramp-angle`], 0 < angle ≤ 15.
+    pub ramp_deg: f64,
+    /// Radial stock left for the finishing pass (mm) [`--finish-stock`]; 0: no finishing pass.
+    pub finish_stock_mm: f64,
+    /// Climb (counter-clockwise loops with M3) or conventional [`--direction`].
+    pub direction: Direction,
+    /// Depth the helix descends to below Z0 (mm) [`--depth`]: its length and time.
+    pub depth_mm: f64,
+}
+
+impl Default for AdaptiveOptions {
+    /// Helix 0.375·D at 3° (a 3-flute carbide end mill's ramp), 0.2 mm finishing stock, climb,
+    /// the NC export's default depth of 6 mm.
+    fn default() -> Self {
+        AdaptiveOptions {
+            helix_radius_mm: None,
+            ramp_deg: 3.0,
+            finish_stock_mm: 0.2,
+            direction: Direction::Climb,
+            depth_mm: 6.0,
+        }
+    }
+}
+
+impl AdaptiveOptions {
+    /// Range checks; errors name the flag and its range.
+    pub fn validate(&self, settings: &PocketSettings) -> Result<(), Error> {
+        let r = settings.tool_radius;
+        if let Some(h) = self.helix_radius_mm
+            && !(h.is_finite() && h > 0.0 && h <= 0.9 * r)
+        {
+            return Err(Error::param(
+                Param::HelixRadius,
+                h,
+                format!("greater than 0 and at most 0.45 × D = {} mm", num(0.9 * r)),
+            ));
+        }
+        if !(self.ramp_deg.is_finite() && self.ramp_deg > 0.0 && self.ramp_deg <= 15.0) {
+            return Err(Error::param(Param::RampAngle, self.ramp_deg, "greater than 0 and at most 15 degrees"));
+        }
+        let s = self.finish_stock_mm;
+        if !(s.is_finite() && (0.0..=settings.step_over).contains(&s)) {
+            return Err(Error::param(
+                Param::FinishStock,
+                s,
+                format!("from 0 to the step-over {} mm", num(settings.step_over)),
+            ));
+        }
+        if !(self.depth_mm.is_finite() && self.depth_mm > 0.0 && self.depth_mm <= 1000.0) {
+            return Err(Error::param(Param::Depth, self.depth_mm, "greater than 0 and at most 1000 mm"));
+        }
+        Ok(())
+    }
+}
+
+/// A helical entry: the tool centre on a circle, descending from [`HELIX_START_Z_MM`] to the
+/// depth over whole turns in the loops' sense.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Helix {
+    pub center: P2,
+    pub radius: f64,
+    /// Angle of the start (and end) point (rad).
+    pub start_angle: f64,
+    /// +1 counter-clockwise (climb), −1 clockwise.
+    pub sense: f64,
+    /// Ramp angle (rad): the descent per turn is 2π·r_h·tan(ramp) at most.
+    pub ramp_rad: f64,
+}
+
+impl Helix {
+    /// Whole turns needed to descend `drop` mm at the ramp angle.
+    pub fn turns(&self, drop: f64) -> usize {
+        let per_turn = TAU * self.radius * self.ramp_rad.tan();
+        ((drop / per_turn) - 1e-9).ceil().max(1.0) as usize
+    }
+
+    /// The helix as a full circle in the plane (what it clears at depth).
+    pub fn circle(&self) -> Segment {
+        Segment::Arc {
+            center: self.center,
+            radius: self.radius,
+            start_angle: self.start_angle,
+            sweep: self.sense * TAU,
+        }
+    }
+
+    /// Length of the 3D helix descending `drop` mm (mm).
+    pub fn length(&self, drop: f64) -> f64 {
+        let n = self.turns(drop) as f64;
+        ((n * TAU * self.radius).powi(2) + drop * drop).sqrt()
+    }
+}
+
+/// One convex corner of a part, thinned by arcs.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CornerPasses {
+    /// The corner of the tool-centre region (mm).
+    pub vertex: P2,
+    /// Interior angle of the corner (rad).
+    pub angle_rad: f64,
+    /// Arcs cut, and the radius of the last (mm).
+    pub passes: usize,
+    pub last_radius_mm: f64,
+    /// Largest radial depth a pass removes, on the bisector (mm).
+    pub max_radial_depth_mm: f64,
+    /// Largest engagement measured over the corner's passes (rad) and where.
+    pub max_engagement_rad: f64,
+    pub at: P2,
+}
+
+/// A connected region of tool centres, cleared from its own helix.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct AdaptivePart {
+    pub helix: Helix,
+    /// Its moves at depth: `segments[range.0..range.1]` of the plan.
+    pub first_segment: usize,
+    pub end_segment: usize,
+    /// Core radius T (mm) and rings cut.
+    pub core_radius_mm: f64,
+    pub rings: usize,
+    pub corners: Vec<CornerPasses>,
+}
+
+/// A pocket cleared adaptively.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct AdaptivePlan {
+    pub polygon: Polygon,
+    pub settings: PocketSettings,
+    pub options: AdaptiveOptions,
+    /// Target engagement φ* = arccos(1 − a_e/r) (rad).
+    pub target_rad: f64,
+    pub parts: Vec<AdaptivePart>,
+    /// Every move at depth in machining order (parts one after the other); `kinds[i]` says
+    /// what `segments[i]` does.
+    pub segments: Vec<Segment>,
+    pub kinds: Vec<MoveKind>,
+    /// The evaluator's profile along `segments`, the helix bores counted as cut.
+    pub profile: EngagementProfile,
+    /// Per kind of move: maximum and where, length.
+    pub maxima: Vec<KindMax>,
+    /// Maximum over every move at depth (rad), and the 95th percentile of the samples.
+    pub max_engagement_rad: f64,
+    pub p95_engagement_rad: f64,
+    /// Length at depth (mm), of it the links, and the air (engagement < 1°).
+    pub length_at_depth_mm: f64,
+    pub link_length_mm: f64,
+    pub air_length_mm: f64,
+    /// Length of the helices (mm).
+    pub helix_length_mm: f64,
+    /// Time at the feed: helices and every move at depth (s).
+    pub time_s: f64,
+    /// Radius of the pocket's convex corners as cut, r + ρ_fin + s_f (mm): the tool stops short
+    /// of the corner point ([`corner_point_bound_rad`]).
+    pub corner_radius_left_mm: f64,
+}
+
+/// The engagement any path reads when it reaches the corner point of a convex corner of
+/// interior angle α (DERIVED): at that point the periphery arc facing the corner, between the
+/// two wall normals, lies strictly inside the pocket and every point of it is nearer to that
+/// tool position than to any other allowed one (the corner point is the only tool centre within
+/// r of them), so all of it is material when the tool first arrives: π − α (90° at a 90°
+/// corner, 120° at 60°). This is why the plan stops at the radius ρ_fin instead.
+pub fn corner_point_bound_rad(alpha: f64) -> f64 {
+    PI - alpha
+}
+
+/// The radial step a (mm) a concave cut of tool-centre radius ρ may take at engagement φ
+/// (module docs): the smaller root of a²/(2ρr) − a(1/r + 1/ρ) + (1 − cos φ) = 0.
+pub fn concave_step(rho: f64, r: f64, phi: f64) -> f64 {
+    let k = 1.0 - phi.cos();
+    let b = 1.0 / r + 1.0 / rho;
+    let c2 = 1.0 / (2.0 * rho * r);
+    let disc = (b * b - 4.0 * c2 * k).max(0.0);
+    // a = (b − √disc)/(2·c2), written stably as 2k/(b + √disc).
+    2.0 * k / (b + disc.sqrt())
+}
+
+fn pline_of(vertices: &[P2]) -> Polyline<f64> {
+    let mut pl: Polyline<f64> = Polyline::new_closed();
+    for v in vertices {
+        pl.add(v.x, v.y, 0.0);
+    }
+    pl
+}
+
+fn disc(c: P2, s: f64) -> Polyline<f64> {
+    let mut pl: Polyline<f64> = Polyline::new_closed();
+    pl.add(c.x + s, c.y, 1.0);
+    pl.add(c.x - s, c.y, 1.0);
+    pl
+}
+
+/// Closed counter-clockwise loops of an offset (positive: inward for a CCW loop).
+fn offset(pl: &Polyline<f64>, d: f64) -> Vec<Polyline<f64>> {
+    pl.parallel_offset(d)
+        .into_iter()
+        .filter(|o| o.vertex_count() >= 2 && o.is_closed())
+        .map(|mut o| {
+            if o.area() < 0.0 {
+                o.invert_direction_mut();
+            }
+            o
+        })
+        .filter(|o| o.area() > 1e-9)
+        .collect()
+}
+
+fn largest(loops: Vec<Polyline<f64>>) -> Option<Polyline<f64>> {
+    loops.into_iter().max_by(|a, b| a.area().total_cmp(&b.area()))
+}
+
+/// The closest point of a line or arc to `q`, and its local parameter.
+fn closest_on(seg: &Segment, q: P2) -> (P2, f64) {
+    match *seg {
+        Segment::Line { start, end } => {
+            let d = end - start;
+            let t = if d.norm_squared() > 0.0 { ((q - start).dot(&d) / d.norm_squared()).clamp(0.0, 1.0) } else { 0.0 };
+            (start + d * t, t)
+        }
+        Segment::Arc { start_angle, sweep, center, .. } => {
+            let v = q - center;
+            let ang = v.y.atan2(v.x);
+            let rel =
+                if sweep >= 0.0 { (ang - start_angle).rem_euclid(TAU) } else { (start_angle - ang).rem_euclid(TAU) };
+            let t = if rel <= sweep.abs() {
+                rel / sweep.abs()
+            } else if (q - seg.start()).norm() <= (q - seg.end()).norm() {
+                0.0
+            } else {
+                1.0
+            };
+            (seg.point(t), t)
+        }
+        Segment::Trochoid { .. } => (seg.start(), 0.0),
+    }
+}
+
+/// The two pieces of a line or arc split at local parameter t.
+fn split(seg: &Segment, t: f64) -> (Segment, Segment) {
+    match *seg {
+        Segment::Line { start, end } => {
+            let m = seg.point(t);
+            (Segment::Line { start, end: m }, Segment::Line { start: m, end })
+        }
+        Segment::Arc { center, radius, start_angle, sweep } => (
+            Segment::Arc { center, radius, start_angle, sweep: sweep * t },
+            Segment::Arc { center, radius, start_angle: start_angle + sweep * t, sweep: sweep * (1.0 - t) },
+        ),
+        other => (other, other),
+    }
+}
+
+/// The closed loop re-started at its point nearest `q`.
+fn start_near(lp: &[Segment], q: P2) -> Vec<Segment> {
+    let (mut best, mut bt, mut bd) = (0, 0.0, f64::INFINITY);
+    for (i, s) in lp.iter().enumerate() {
+        let (p, t) = closest_on(s, q);
+        if (p - q).norm() < bd {
+            (best, bt, bd) = (i, t, (p - q).norm());
+        }
+    }
+    let (head, tail) = split(&lp[best], bt);
+    let mut out = Vec::with_capacity(lp.len() + 1);
+    if tail.length() > 1e-9 {
+        out.push(tail);
+    }
+    out.extend_from_slice(&lp[best + 1..]);
+    out.extend_from_slice(&lp[..best]);
+    if head.length() > 1e-9 {
+        out.push(head);
+    }
+    out
+}
+
+/// The moves of one part being built.
+struct Builder {
+    segments: Vec<Segment>,
+    kinds: Vec<MoveKind>,
+}
+
+impl Builder {
+    fn push(&mut self, seg: Segment, kind: MoveKind) {
+        if seg.length() > 1e-9 {
+            self.segments.push(seg);
+            self.kinds.push(kind);
+        }
+    }
+
+    fn at(&self) -> P2 {
+        self.segments.last().map_or(P2::zeros(), Segment::end)
+    }
+
+    fn line(&mut self, to: P2, kind: MoveKind) {
+        let from = self.at();
+        self.push(Segment::Line { start: from, end: to }, kind);
+    }
+}
+
+/// A convex corner of a tool-centre loop between two lines.
+struct Corner {
+    vertex: P2,
+    d_in: P2,
+    d_out: P2,
+    alpha: f64,
+    len_in: f64,
+    len_out: f64,
+}
+
+/// The loop with consecutive collinear lines joined (offsets keep the vertices where other
+/// edges' offsets ended), so that a corner's walls are whole.
+fn merged(lp: &[Segment]) -> Vec<Segment> {
+    let mut out: Vec<Segment> = Vec::with_capacity(lp.len());
+    for seg in lp {
+        if let (Some(Segment::Line { start, end }), Segment::Line { end: e2, .. }) = (out.last().copied(), *seg)
+            && cross((end - start).normalize(), (e2 - end).normalize()).abs() < 1e-9
+            && (end - start).dot(&(e2 - end)) > 0.0
+        {
+            *out.last_mut().unwrap_or(&mut Segment::Line { start, end }) = Segment::Line { start, end: e2 };
+            continue;
+        }
+        out.push(*seg);
+    }
+    if out.len() > 2
+        && let (Segment::Line { start: s0, end: e0 }, Segment::Line { start: sl, end: el }) =
+            (out[0], out[out.len() - 1])
+        && cross((el - sl).normalize(), (e0 - s0).normalize()).abs() < 1e-9
+        && (el - sl).dot(&(e0 - s0)) > 0.0
+    {
+        out[0] = Segment::Line { start: sl, end: e0 };
+        out.pop();
+    }
+    out
+}
+
+fn convex_corners(lp: &[Segment]) -> Vec<Corner> {
+    let lp = merged(lp);
+    let n = lp.len();
+    let mut out = Vec::new();
+    for i in 0..n {
+        let (a, b) = (&lp[i], &lp[(i + 1) % n]);
+        let (Segment::Line { start: a0, end: v }, Segment::Line { end: b1, .. }) = (*a, *b) else { continue };
+        let (d_in, d_out) = ((v - a0).normalize(), (b1 - v).normalize());
+        let turn = cross(d_in, d_out).atan2(d_in.dot(&d_out));
+        if turn > 1e-6 {
+            out.push(Corner {
+                vertex: v,
+                d_in,
+                d_out,
+                alpha: PI - turn,
+                len_in: (v - a0).norm(),
+                len_out: (b1 - v).norm(),
+            });
+        }
+    }
+    out
+}
+
+impl Corner {
+    /// Tangent points on the incoming and outgoing walls and the arc of radius ρ.
+    fn arc(&self, rho: f64) -> (P2, P2, Segment) {
+        let half = 0.5 * self.alpha;
+        let l = rho / half.tan();
+        let b = (self.d_out - self.d_in).normalize();
+        let center = self.vertex + b * (rho / half.sin());
+        let a = self.vertex - self.d_in * l;
+        let e = self.vertex + self.d_out * l;
+        let start_angle = (a.y - center.y).atan2(a.x - center.x);
+        (a, e, Segment::Arc { center, radius: rho, start_angle, sweep: PI - self.alpha })
+    }
+
+    /// Cap area between the corner and its arc of radius ρ.
+    fn cap_area(&self, rho: f64) -> f64 {
+        let half = 0.5 * self.alpha;
+        rho * rho * (1.0 / half.tan() - (PI - self.alpha) / 2.0)
+    }
+}
+
+/// Plan the adaptive clearing of `polygon`.
+pub fn plan_adaptive(
+    polygon: &Polygon,
+    settings: PocketSettings,
+    options: AdaptiveOptions,
+) -> Result<AdaptivePlan, Error> {
+    let (parts, b, corner_radius_left_mm) = plan_path(polygon, &settings, &options)?;
+    let phi = crate::corner::straight_engagement(settings.step_over, settings.tool_radius)?;
+    measure(polygon.clone(), settings, options, phi, parts, b, corner_radius_left_mm)
+}
+
+/// The parts, their moves at depth and kinds, and the corner radius left (mm).
+pub type AdaptivePath = (Vec<AdaptivePart>, Vec<Segment>, Vec<MoveKind>, f64);
+
+/// The moves of an adaptive plan without measuring them (what the speed bench times).
+pub fn adaptive_path(
+    polygon: &Polygon,
+    settings: PocketSettings,
+    options: AdaptiveOptions,
+) -> Result<AdaptivePath, Error> {
+    let (parts, b, left) = plan_path(polygon, &settings, &options)?;
+    Ok((parts, b.segments, b.kinds, left))
+}
+
+fn plan_path(
+    polygon: &Polygon,
+    settings: &PocketSettings,
+    options: &AdaptiveOptions,
+) -> Result<(Vec<AdaptivePart>, Builder, f64), Error> {
+    let (settings, options) = (*settings, *options);
+    settings.validate()?;
+    options.validate(&settings)?;
+    let mirror = options.direction == Direction::Conventional;
+    let work = if mirror { mirrored_polygon(polygon)? } else { polygon.clone() };
+    let r = settings.tool_radius;
+    let phi = crate::corner::straight_engagement(settings.step_over, r)?;
+    let sf = options.finish_stock_mm;
+    let outline = pline_of(work.vertices());
+    let regions = offset(&outline, r + sf);
+    if regions.is_empty() {
+        return Err(Error::param(
+            Param::Polygon,
+            "narrower than the tool",
+            format!("room for a tool of D = {} mm plus the finishing stock", num(2.0 * r)),
+        ));
+    }
+    // The finishing corner radius: the finishing arc of radius ρ_fin + s_f removes s_f
+    // concentrically, within φ* (concave-cut step); at least r/10.
+    let rho_fin = if sf > 0.0 { fin_radius(sf, r, phi) } else { 0.1 * r };
+    let mut b = Builder { segments: Vec::new(), kinds: Vec::new() };
+    let mut parts = Vec::new();
+    for region in &regions {
+        // The core radius trades ring length against corner caps: plan with T starting at each
+        // fraction of the inscribed radius and keep the shortest path (geometry only).
+        let (inscribed_radius, k0) = inscribed(region);
+        let mut best: Option<(f64, Builder, AdaptivePart)> = None;
+        let mut last_err = None;
+        for fraction in CORE_FRACTIONS {
+            let mut bb = Builder { segments: Vec::new(), kinds: Vec::new() };
+            match plan_part(region, (inscribed_radius, k0), &work, &settings, &options, phi, rho_fin, fraction, &mut bb)
+            {
+                Ok(part) => {
+                    let len: f64 = bb.segments.iter().map(Segment::length).sum();
+                    if best.as_ref().is_none_or(|(l, _, _)| len < *l) {
+                        best = Some((len, bb, part));
+                    }
+                }
+                Err(e) => last_err = Some(e),
+            }
+        }
+        let Some((_, bb, part)) = best else {
+            return Err(last_err.unwrap_or_else(|| Error::param(Param::Polygon, "no plan", "a pocket the tool fits")));
+        };
+        let first = b.segments.len();
+        b.segments.extend(bb.segments);
+        b.kinds.extend(bb.kinds);
+        parts.push(AdaptivePart { first_segment: first, end_segment: b.segments.len(), ..part });
+    }
+    if mirror {
+        for s in &mut b.segments {
+            *s = mirror_segment(s);
+        }
+        for p in &mut parts {
+            p.helix.center.x = -p.helix.center.x;
+            p.helix.start_angle = PI - p.helix.start_angle;
+            p.helix.sense = -p.helix.sense;
+            for c in &mut p.corners {
+                c.vertex.x = -c.vertex.x;
+            }
+        }
+    }
+    Ok((parts, b, r + rho_fin + sf))
+}
+
+/// ρ_fin: the concave step of radius ρ_fin + s_f reaches s_f.
+fn fin_radius(sf: f64, r: f64, phi: f64) -> f64 {
+    let (mut lo, mut hi) = (1e-6, 100.0 * r);
+    for _ in 0..80 {
+        let mid = 0.5 * (lo + hi);
+        if concave_step(mid, r, phi) >= sf {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    (hi - sf).max(0.1 * r)
+}
+
+fn mirrored_polygon(p: &Polygon) -> Result<Polygon, Error> {
+    let mut v: Vec<P2> = p.vertices().iter().map(|q| p2(-q.x, q.y)).collect();
+    v.reverse();
+    Polygon::new(v)
+}
+
+fn mirror_segment(s: &Segment) -> Segment {
+    match *s {
+        Segment::Line { start, end } => Segment::Line { start: p2(-start.x, start.y), end: p2(-end.x, end.y) },
+        Segment::Arc { center, radius, start_angle, sweep } => {
+            Segment::Arc { center: p2(-center.x, center.y), radius, start_angle: PI - start_angle, sweep: -sweep }
+        }
+        other => other,
+    }
+}
+
+/// Entry, spiral, rings and corners of one region of tool centres; the finishing pass.
+#[allow(clippy::too_many_arguments)]
+fn plan_part(
+    region: &Polyline<f64>,
+    (inscribed, k0): (f64, P2),
+    polygon: &Polygon,
+    settings: &PocketSettings,
+    options: &AdaptiveOptions,
+    phi: f64,
+    rho_fin: f64,
+    fraction: f64,
+    b: &mut Builder,
+) -> Result<AdaptivePart, Error> {
+    let r = settings.tool_radius;
+    let wanted = options.helix_radius_mm.unwrap_or(0.75 * r);
+    let least = if options.helix_radius_mm.is_some() { wanted } else { 0.5 * r };
+    // The helix circle must keep its bore inside the region: r_h ≤ inscribed radius.
+    let r_h = wanted.min(inscribed * 0.98);
+    if r_h < least {
+        return Err(Error::param(
+            Param::HelixRadius,
+            wanted,
+            format!(
+                "at most {} mm for this pocket (its tool-centre region has an inscribed radius of {} mm); \
+                 a helix below 0.25 × D does not clear its own core",
+                num(0.98 * inscribed),
+                num(inscribed)
+            ),
+        ));
+    }
+    let area = region.area();
+    let corners_all = convex_corners(&to_segments(region));
+    // Core radius T: the largest (from 0.995 × the inscribed radius, −10 % a step) whose
+    // opening of the region leaves only the corner caps.
+    let mut t = 0.995 * fraction * inscribed;
+    let core = loop {
+        if t < r_h {
+            t = r_h;
+        }
+        let ks = offset(region, t);
+        if ks.len() == 1
+            && let Some(opened) = largest(offset(&ks[0], -t))
+        {
+            let caps: f64 = corners_all.iter().map(|c| c.cap_area(t)).sum();
+            // the corner passes start from the opening's arc of radius T: it must fit the walls
+            let fits = corners_all.iter().all(|c| t <= c.len_in.min(c.len_out) * (0.5 * c.alpha).tan() + 1e-9);
+            if (fits && area - opened.area() <= caps + 1e-3 * area) || t <= r_h {
+                break ks.into_iter().next();
+            }
+        }
+        if t <= r_h {
+            break None;
+        }
+        t *= 0.9;
+    };
+    let Some(core) = core else {
+        return Err(Error::param(
+            Param::Polygon,
+            "a region whose core does not hold the helix",
+            "a pocket whose tool-centre region is one piece at least the helix radius wide",
+        ));
+    };
+    // Wall point nearest k0: every ring passes within (inscribed − T) of it.
+    let walls = to_segments(region);
+    let foot = walls
+        .iter()
+        .map(|s| closest_on(s, k0).0)
+        .min_by(|a, c| (a - k0).norm().total_cmp(&(c - k0).norm()))
+        .unwrap_or(k0);
+    let n = if (foot - k0).norm() > 1e-9 { (foot - k0).normalize() } else { p2(1.0, 0.0) };
+    let theta_n = n.y.atan2(n.x);
+    // The first ring is the circle about k0 that (nearly) touches the nearest wall, at q0:
+    // (K ∩ D(k0, s0)) ⊕ T with s0 = 0.995·R_in − T; every later ring contains it, so passes
+    // within 0.005·R_in of q0, where consecutive rings are joined.
+    let s0 = (0.995 * inscribed - t).max(0.0);
+    let spiral_end = s0 + t;
+    // Spiral radii at half turns, r_h → the first ring.
+    let mut q = vec![r_h];
+    while let Some(&last) = q.last() {
+        if last >= spiral_end - 1e-9 || q.len() > MAX_PASSES {
+            break;
+        }
+        q.push((last + 0.5 * concave_step(last, r, phi)).min(spiral_end));
+    }
+    let halves = q.len() - 1;
+    let theta0 = theta_n - halves as f64 * PI;
+    let helix =
+        Helix { center: k0, radius: r_h, start_angle: theta0, sense: 1.0, ramp_rad: options.ramp_deg.to_radians() };
+    b.push(helix.circle(), MoveKind::Entry);
+    for i in 0..halves {
+        let th = theta0 + i as f64 * PI;
+        let e = p2(th.cos(), th.sin());
+        let seg = Segment::Arc {
+            center: k0 + e * (0.5 * (q[i] - q[i + 1])),
+            radius: 0.5 * (q[i] + q[i + 1]),
+            start_angle: th,
+            sweep: PI,
+        };
+        b.push(seg, MoveKind::Spiral);
+    }
+    // Rings: (K ∩ D(k0, s)) ⊕ T, the first (s = 0) the circle of radius T.
+    let step = concave_step(t, r, phi);
+    let reach = core.iter_vertexes().map(|v| (p2(v.x, v.y) - k0).norm()).fold(0.0, f64::max);
+    let mut s = s0;
+    let mut rings = 0;
+    let q0 = k0 + n * spiral_end;
+    loop {
+        let grown = if s <= s0 {
+            None
+        } else if s >= reach {
+            Some(core.clone())
+        } else {
+            largest(core.boolean(&disc(k0, s), BooleanOp::And).pos_plines.into_iter().map(|p| p.pline).collect())
+        };
+        let ring = match grown {
+            None => vec![Segment::Arc { center: k0, radius: spiral_end, start_angle: theta_n, sweep: TAU }],
+            Some(g) => match largest(offset(&g, -t)) {
+                Some(o) => start_near(&to_segments(&o), q0),
+                None => Vec::new(),
+            },
+        };
+        if !ring.is_empty() {
+            let start = ring[0].start();
+            b.line(start, MoveKind::Link);
+            for seg in ring {
+                b.push(seg, MoveKind::Ring);
+            }
+            rings += 1;
+        }
+        if s >= reach || rings > MAX_PASSES {
+            break;
+        }
+        s = (s + step).min(reach);
+    }
+    // Corners: the caps between the opening (radius T) and ρ_fin.
+    let mut corners = Vec::new();
+    for c in &corners_all {
+        let k = 1.0 / (0.5 * c.alpha).sin() - 1.0;
+        let lmax = c.len_in.min(c.len_out);
+        let mut rho = t.min(lmax * (0.5 * c.alpha).tan());
+        if rho <= rho_fin + 1e-6 {
+            continue;
+        }
+        let (a0, _, _) = c.arc(rho);
+        link(b, polygon, r, a0, k0);
+        let (mut prev_a, mut prev_e) = (a0, c.arc(rho).1);
+        let mut passes = 0;
+        let mut deepest: f64 = 0.0;
+        while rho > rho_fin + 1e-6 && passes < MAX_PASSES {
+            // Fixed point: the step allowed at the new radius.
+            let mut next = rho - concave_step(rho, r, phi) / k;
+            next = (rho - concave_step(next.max(rho_fin), r, phi) / k).max(rho_fin);
+            let (a, e, arc) = c.arc(next);
+            b.line(prev_a, MoveKind::Link);
+            b.line(a, MoveKind::Corner);
+            b.push(arc, MoveKind::Corner);
+            b.line(prev_e, MoveKind::Corner);
+            deepest = deepest.max((rho - next) * k);
+            (prev_a, prev_e, rho) = (a, e, next);
+            passes += 1;
+        }
+        corners.push(CornerPasses {
+            vertex: c.vertex,
+            angle_rad: c.alpha,
+            passes,
+            last_radius_mm: rho,
+            max_radial_depth_mm: deepest,
+            max_engagement_rad: 0.0,
+            at: c.vertex,
+        });
+    }
+    // Finishing contour: the opening of the final wall offset with radius ρ_fin + s_f.
+    let sf = options.finish_stock_mm;
+    if sf > 0.0 {
+        let inner = largest(offset(region, rho_fin)).ok_or_else(|| {
+            Error::param(Param::Polygon, "no finishing contour", "a pocket wider than the tool plus the stock")
+        })?;
+        let fin = largest(offset(&inner, -(rho_fin + sf)))
+            .ok_or_else(|| Error::param(Param::Polygon, "no finishing contour", "a pocket wider than the tool"))?;
+        // Start in the middle of the longest straight wall, entered on a quarter circle of
+        // radius ρ_l = max(s_f, r/2) tangent to it (the stock grows from 0 to s_f under a
+        // convex arc); the lead-in starts ρ_l from the wall, in cleared material.
+        let loop_segs = to_segments(&fin);
+        let (mid, dir) = loop_segs
+            .iter()
+            .filter_map(|sg| match *sg {
+                Segment::Line { start, end } => Some((start, end)),
+                _ => None,
+            })
+            .max_by(|a, c| (a.1 - a.0).norm().total_cmp(&(c.1 - c.0).norm()))
+            .map_or((loop_segs[0].start(), p2(1.0, 0.0)), |(a, c)| ((a + c) * 0.5, (c - a).normalize()));
+        let lead = sf.max(0.5 * r);
+        let inward = crate::geom::rot90(dir);
+        let center = mid + inward * lead;
+        let from = center - dir * lead;
+        link(b, polygon, r, from, k0);
+        let start_angle = (-dir.y).atan2(-dir.x);
+        b.push(Segment::Arc { center, radius: lead, start_angle, sweep: 0.5 * PI }, MoveKind::Finish);
+        for seg in start_near(&loop_segs, mid) {
+            b.push(seg, MoveKind::Finish);
+        }
+    }
+    Ok(AdaptivePart { helix, first_segment: 0, end_segment: 0, core_radius_mm: t, rings, corners })
+}
+
+/// A link through cleared material from the current position to `to`: straight where the tool
+/// keeps r from the walls, else by the helix centre `k0`.
+fn link(b: &mut Builder, polygon: &Polygon, r: f64, to: P2, k0: P2) {
+    let from = b.at();
+    if link_is_inside(polygon, from, to, r - 1e-6) {
+        b.line(to, MoveKind::Link);
+    } else {
+        b.line(k0, MoveKind::Link);
+        b.line(to, MoveKind::Link);
+    }
+}
+
+/// The radius of the largest circle in the region, by bisection on inward offsets, and its
+/// centre (the middle of the last offset that does not vanish).
+fn inscribed(region: &Polyline<f64>) -> (f64, P2) {
+    let ext = region.extents();
+    let (mut lo, mut hi) = (0.0, ext.map_or(1.0, |e| 0.5 * (e.max_x - e.min_x).min(e.max_y - e.min_y)) + 1e-9);
+    let mut centre = region.iter_vertexes().next().map_or(P2::zeros(), |v| p2(v.x, v.y));
+    for _ in 0..INSCRIBED_STEPS {
+        let mid = 0.5 * (lo + hi);
+        match largest(offset(region, mid)) {
+            Some(o) => {
+                lo = mid;
+                let ext = o.extents();
+                if let Some(e) = ext {
+                    centre = p2(0.5 * (e.min_x + e.max_x), 0.5 * (e.min_y + e.max_y));
+                }
+            }
+            None => hi = mid,
+        }
+    }
+    (lo, centre)
+}
+
+/// Evaluate every move at depth and gather the report.
+fn measure(
+    polygon: Polygon,
+    settings: PocketSettings,
+    options: AdaptiveOptions,
+    phi: f64,
+    mut parts: Vec<AdaptivePart>,
+    b: Builder,
+    corner_radius_left_mm: f64,
+) -> Result<AdaptivePlan, Error> {
+    let before: Vec<Segment> = parts.iter().map(|p| p.helix.circle()).collect();
+    let opts = EvaluatorOptions::new(settings.tool_radius, settings.spacing);
+    let profile = engagement_profile(&polygon, &before, &b.segments, &opts)?;
+    let (maxima, _) = maxima(&profile, &b.segments, &b.kinds, &[]);
+    let max_engagement_rad = profile.max_angle();
+    let mut angles: Vec<f64> = profile.samples.iter().map(|s| s.angle_rad).collect();
+    angles.sort_by(f64::total_cmp);
+    let p95_engagement_rad =
+        angles.get(((0.95 * angles.len() as f64).ceil() as usize).saturating_sub(1)).copied().unwrap_or(0.0);
+    let air_length_mm = profile
+        .samples
+        .windows(2)
+        .filter(|w| w[0].angle_rad < AIR_ENGAGEMENT_RAD && w[1].angle_rad < AIR_ENGAGEMENT_RAD)
+        .map(|w| w[1].s_mm - w[0].s_mm)
+        .sum();
+    let length_at_depth_mm: f64 = b.segments.iter().map(Segment::length).sum();
+    let link_length_mm: f64 =
+        b.segments.iter().zip(&b.kinds).filter(|(_, k)| **k == MoveKind::Link).map(|(s, _)| s.length()).sum();
+    // Corner maxima: the samples on each part's corner passes nearest each corner.
+    let mut ends = Vec::with_capacity(b.segments.len());
+    let mut acc = 0.0;
+    for s in &b.segments {
+        acc += s.length();
+        ends.push(acc);
+    }
+    for smp in &profile.samples {
+        let i = ends.partition_point(|&e| e < smp.s_mm - 1e-9).min(b.kinds.len().saturating_sub(1));
+        if b.kinds.get(i) != Some(&MoveKind::Corner) {
+            continue;
+        }
+        let at = p2(smp.x_mm, smp.y_mm);
+        if let Some(c) = parts
+            .iter_mut()
+            .flat_map(|p| p.corners.iter_mut())
+            .min_by(|a, c| (a.vertex - at).norm().total_cmp(&(c.vertex - at).norm()))
+            && smp.angle_rad > c.max_engagement_rad
+        {
+            c.max_engagement_rad = smp.angle_rad;
+            c.at = at;
+        }
+    }
+    let helix_length_mm: f64 = parts.iter().map(|p| p.helix.length(HELIX_START_Z_MM + options.depth_mm)).sum();
+    let time_s = (length_at_depth_mm + helix_length_mm) / settings.feed_mm_per_min * 60.0;
+    Ok(AdaptivePlan {
+        polygon,
+        settings,
+        options,
+        target_rad: phi,
+        parts,
+        segments: b.segments,
+        kinds: b.kinds,
+        profile,
+        maxima,
+        max_engagement_rad,
+        p95_engagement_rad,
+        length_at_depth_mm,
+        link_length_mm,
+        air_length_mm,
+        helix_length_mm,
+        time_s,
+        corner_radius_left_mm,
+    })
+}

@@ -1,0 +1,228 @@
+//! Adaptive pocket clearing (issue #12), checked by the independent evaluator: the step rule
+//! against a measured concave cut, the corner-point bound against a measured arrival, the
+//! issue's limits on its rectangle and L, corners of 30°–150°, the mirrored (conventional)
+//! plan, and the inputs it must reject or split.
+
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use std::f64::consts::{PI, TAU};
+use trochoplan_core::corner::{EvaluatorOptions, engagement_profile};
+use trochoplan_core::geom::{P2, Polygon, Segment, p2};
+use trochoplan_core::job::Direction;
+use trochoplan_core::pocket::adaptive::{concave_step, corner_point_bound_rad};
+use trochoplan_core::pocket::{
+    self, AdaptiveOptions, AdaptivePlan, MoveKind, PocketPlan, PocketRequest, PocketStrategy, plan_adaptive,
+};
+
+const R: f64 = 5.0;
+/// Issue #12's step-over: 46.0° on a straight wall with D = 10.
+const AE: f64 = 1.527;
+
+fn poly(v: &[(f64, f64)]) -> Polygon {
+    Polygon::new(v.iter().map(|&(x, y)| p2(x, y)).collect()).unwrap()
+}
+
+fn adaptive(polygon: Polygon, options: AdaptiveOptions) -> AdaptivePlan {
+    let req = PocketRequest {
+        polygon,
+        step_over_mm: AE,
+        strategy: PocketStrategy::Adaptive,
+        adaptive: options,
+        ..PocketRequest::default()
+    };
+    let PocketPlan::Adaptive(p) = pocket::plan(&req).unwrap() else { panic!("adaptive plan expected") };
+    p
+}
+
+#[test]
+fn concave_step_gives_the_target_engagement_measured_by_the_evaluator() {
+    // Independent check: a full circle of radius ρ about the origin after the circle of radius
+    // ρ − a (a = concave_step(ρ)) in a large block; the evaluator's steady engagement on the
+    // second circle is φ. For ρ → ∞ the rule is §1.1's a = r(1 − cos φ).
+    let phi = (1.0 - AE / R).acos();
+    assert!((concave_step(1e9, R, phi) - AE).abs() < 1e-6);
+    let stock = poly(&[(-60.0, -60.0), (60.0, -60.0), (60.0, 60.0), (-60.0, 60.0)]);
+    for rho in [4.0, 8.0, 15.0] {
+        let a = concave_step(rho, R, phi);
+        assert!(a < AE, "ρ {rho}: step {a} not below a_e");
+        let circle = |radius: f64| Segment::Arc { center: P2::zeros(), radius, start_angle: 0.0, sweep: TAU };
+        // the disc of radius ρ − a + r is cut: its circle and two inner ones
+        let before: Vec<Segment> = [rho - a, (rho - a) * 0.5, 1e-3].into_iter().map(circle).collect();
+        let prof = engagement_profile(&stock, &before, &[circle(rho)], &EvaluatorOptions::new(R, 0.5)).unwrap();
+        // steady state: the middle half of the circle (its start is entered from nowhere)
+        for s in prof.samples.iter().filter(|s| s.s_mm > 0.25 * TAU * rho && s.s_mm < 0.75 * TAU * rho) {
+            assert!((s.angle_rad - phi).abs() < 0.01_f64.to_radians(), "ρ {rho}: {}°", s.angle_rad.to_degrees());
+        }
+    }
+}
+
+#[test]
+fn arriving_at_a_corner_point_reads_pi_minus_the_corner_angle() {
+    // The bound the plan avoids, measured: along one wall into the corner point of a corner of
+    // interior angle α, after the rest of the corner was cleared by a wide arc; the evaluator
+    // reads at least π − α at the corner point (the periphery facing the corner).
+    for alpha_deg in [60.0_f64, 90.0, 120.0] {
+        let alpha = alpha_deg.to_radians();
+        // corner at the origin, walls along +x and along angle α; tool-centre corner point V
+        let v = p2(R / (0.5 * alpha).tan(), R);
+        let far = 40.0;
+        let stock = poly(&[
+            (0.0, 0.0),
+            (far, 0.0),
+            (far * alpha.cos() + far, far * alpha.sin()),
+            (far * alpha.cos(), far * alpha.sin()),
+        ]);
+        let path = [Segment::Line { start: p2(far * 0.5, R), end: v }];
+        let prof = engagement_profile(&stock, &[], &path, &EvaluatorOptions::new(R, 0.25)).unwrap();
+        let last = prof.samples.last().unwrap().angle_rad;
+        assert!(last >= corner_point_bound_rad(alpha) - 1e-6, "α {alpha_deg}: {}°", last.to_degrees());
+    }
+}
+
+/// Issue #12's acceptance on the plan (the read-back program is checked in
+/// `tests/nc_pocket_rs274.rs`): peak ≤ 60°, p95 ≤ 50°, every kind within the target (46.0°)
+/// up to 1°, the helix bore counted as cut, and lengths that add up.
+#[test]
+fn rectangle_and_l_keep_every_move_within_the_target() {
+    let target = (1.0 - AE / R).acos();
+    let rect = poly(&[(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)]);
+    let l = poly(&[(0.0, 0.0), (60.0, 0.0), (60.0, 25.0), (25.0, 25.0), (25.0, 60.0), (0.0, 60.0)]);
+    for (name, polygon, corners) in [("rect", rect, 4), ("L", l, 5)] {
+        let p = adaptive(polygon, AdaptiveOptions::default());
+        assert!((p.target_rad - target).abs() < 1e-12);
+        assert!(p.max_engagement_rad <= 60f64.to_radians(), "{name}: {}", p.max_engagement_rad.to_degrees());
+        assert!(p.p95_engagement_rad <= 50f64.to_radians(), "{name}: {}", p.p95_engagement_rad.to_degrees());
+        for m in &p.maxima {
+            assert!(
+                m.max_rad <= target + 1f64.to_radians(),
+                "{name} {:?}: {}° at {:?}",
+                m.kind,
+                m.max_rad.to_degrees(),
+                m.at
+            );
+        }
+        for kind in
+            [MoveKind::Entry, MoveKind::Spiral, MoveKind::Ring, MoveKind::Corner, MoveKind::Link, MoveKind::Finish]
+        {
+            assert!(p.maxima.iter().any(|m| m.kind == kind), "{name}: no {kind:?}");
+        }
+        // the flat turn after the helix is inside its bore
+        assert!(p.maxima.iter().find(|m| m.kind == MoveKind::Entry).unwrap().max_rad < 1f64.to_radians());
+        assert_eq!(p.parts.len(), 1);
+        assert_eq!(p.parts[0].corners.len(), corners, "{name}");
+        for c in &p.parts[0].corners {
+            assert!(c.max_engagement_rad <= target + 1f64.to_radians(), "{name}: corner {c:?}");
+        }
+        let sum: f64 = p.maxima.iter().map(|m| m.length_mm).sum();
+        assert!((sum - p.length_at_depth_mm).abs() < 1e-6 * sum);
+        assert!(p.link_length_mm < p.length_at_depth_mm && p.air_length_mm < p.length_at_depth_mm);
+        // the helix: 75 % of D, at most 3° of ramp
+        let h = p.parts[0].helix;
+        assert!((h.radius - 3.75).abs() < 1e-12 && h.ramp_rad <= 3f64.to_radians() + 1e-12);
+        let per_turn = 6.5 / h.turns(6.5) as f64;
+        assert!(per_turn <= TAU * h.radius * 3f64.to_radians().tan() + 1e-9);
+    }
+}
+
+/// Corners 30°–150° of a pocket (a kite: the corner of angle α at the origin, the other three
+/// corners wider), cleared from outside: the corner passes stay within the target + 1°, below
+/// FreeCAD's corner peaks (60°: 74°, 90°: 66°, 120°: 59.5°, issue #12).
+#[test]
+fn corners_from_30_to_150_degrees_stay_within_the_target() {
+    let target = (1.0 - AE / R).acos();
+    for alpha_deg in [30.0_f64, 45.0, 60.0, 90.0, 120.0, 150.0] {
+        let half = 0.5 * alpha_deg.to_radians();
+        let len = 60.0;
+        let a = p2(len * (-half).cos(), len * (-half).sin());
+        let c = p2(len * half.cos(), len * half.sin());
+        let b = p2(len * half.cos() + 25.0, 0.0);
+        let polygon = Polygon::new(vec![P2::zeros(), a, b, c]).unwrap();
+        let p = adaptive(polygon, AdaptiveOptions::default());
+        let corner = p.parts[0]
+            .corners
+            .iter()
+            .find(|k| (k.angle_rad - alpha_deg.to_radians()).abs() < 1e-6)
+            .unwrap_or_else(|| panic!("{alpha_deg}°: no corner passes"));
+        assert!(
+            corner.max_engagement_rad <= target + 1f64.to_radians(),
+            "{alpha_deg}°: {}°",
+            corner.max_engagement_rad.to_degrees()
+        );
+        assert!(p.max_engagement_rad <= 60f64.to_radians(), "{alpha_deg}°: {}", p.max_engagement_rad.to_degrees());
+    }
+}
+
+#[test]
+fn conventional_is_the_mirror_of_climb() {
+    let rect = poly(&[(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)]);
+    let climb = adaptive(rect.clone(), AdaptiveOptions::default());
+    let conv = adaptive(rect, AdaptiveOptions { direction: Direction::Conventional, ..AdaptiveOptions::default() });
+    // the rectangle is symmetric about x = 30: the conventional plan is a climb plan of the
+    // mirrored rectangle, mirrored back (its vertices start elsewhere, so the pieces may be
+    // ordered differently): the same length and engagement up to the evaluator's sampling,
+    // and every loop turns the other way
+    // links between corners start from another first vertex (measured: 2797.5 vs 2776.3 mm)
+    assert!((climb.length_at_depth_mm - conv.length_at_depth_mm).abs() < 0.01 * climb.length_at_depth_mm);
+    assert!((climb.max_engagement_rad - conv.max_engagement_rad).abs() < 0.5f64.to_radians());
+    let sweep = |p: &AdaptivePlan| {
+        p.segments.iter().map(|s| if let Segment::Arc { sweep, .. } = s { *sweep } else { 0.0 }).sum::<f64>()
+    };
+    assert!(sweep(&climb) > 0.0 && (sweep(&climb) + sweep(&conv)).abs() < 0.01 * sweep(&climb));
+    assert!(climb.parts[0].helix.sense > 0.0 && conv.parts[0].helix.sense < 0.0);
+}
+
+#[test]
+fn neck_narrower_than_the_tool_gives_parts_with_their_own_helix() {
+    // Two 40 × 30 rooms joined by a 20 mm long neck 8 mm wide (< D = 10): two parts.
+    let dumbbell = poly(&[
+        (0.0, 0.0),
+        (40.0, 0.0),
+        (40.0, 11.0),
+        (60.0, 11.0),
+        (60.0, 0.0),
+        (100.0, 0.0),
+        (100.0, 30.0),
+        (60.0, 30.0),
+        (60.0, 19.0),
+        (40.0, 19.0),
+        (40.0, 30.0),
+        (0.0, 30.0),
+    ]);
+    let p = adaptive(dumbbell, AdaptiveOptions::default());
+    assert_eq!(p.parts.len(), 2);
+    let mut xs: Vec<f64> = p.parts.iter().map(|q| q.helix.center.x).collect();
+    xs.sort_by(f64::total_cmp);
+    assert!(xs[0] < 40.0 && xs[1] > 60.0, "{xs:?}");
+    // each room's spiral, rings and corners keep the target (the cusp between the two offset
+    // arcs at the neck's mouth is not thinned yet: the finishing pass meets it, see the README)
+    let target = (1.0 - AE / R).acos();
+    for kind in [MoveKind::Spiral, MoveKind::Ring, MoveKind::Corner] {
+        let m = p.maxima.iter().find(|m| m.kind == kind).unwrap();
+        assert!(m.max_rad <= target + 1f64.to_radians(), "{kind:?}: {}°", m.max_rad.to_degrees());
+    }
+}
+
+#[test]
+fn helix_that_does_not_fit_and_bad_options_are_named() {
+    let rect = poly(&[(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)]);
+    let settings = PocketRequest { step_over_mm: AE, ..PocketRequest::default() }.settings().unwrap();
+    // a 14 mm wide slot: tool-centre region 3.6 mm wide, inscribed radius 1.8 < 0.25·D
+    let narrow = poly(&[(0.0, 0.0), (60.0, 0.0), (60.0, 14.0), (0.0, 14.0)]);
+    let e = plan_adaptive(&narrow, settings, AdaptiveOptions::default()).unwrap_err();
+    assert_eq!(e.subject(), Some("helix-radius"), "{e}");
+    for (o, name) in [
+        (AdaptiveOptions { helix_radius_mm: Some(5.0), ..AdaptiveOptions::default() }, "helix-radius"),
+        (AdaptiveOptions { ramp_deg: 0.0, ..AdaptiveOptions::default() }, "ramp-angle"),
+        (AdaptiveOptions { ramp_deg: f64::NAN, ..AdaptiveOptions::default() }, "ramp-angle"),
+        (AdaptiveOptions { finish_stock_mm: 2.0, ..AdaptiveOptions::default() }, "finish-stock"),
+        (AdaptiveOptions { finish_stock_mm: -0.1, ..AdaptiveOptions::default() }, "finish-stock"),
+    ] {
+        assert_eq!(plan_adaptive(&rect, settings, o).unwrap_err().subject(), Some(name));
+    }
+    // no finishing pass: no finish moves, corners left at r + ρ_fin = 1.1·r
+    let p =
+        plan_adaptive(&rect, settings, AdaptiveOptions { finish_stock_mm: 0.0, ..AdaptiveOptions::default() }).unwrap();
+    assert!(p.maxima.iter().all(|m| m.kind != MoveKind::Finish));
+    assert!((p.corner_radius_left_mm - 1.1 * R).abs() < 1e-12);
+    assert!(p.max_engagement_rad <= PI);
+}
