@@ -5,6 +5,9 @@ use crate::files::{read_input, write_atomic};
 // Pocket-corner commands (issue #5) live in their own file next to this one.
 #[path = "corner_cmd.rs"]
 mod corner_cmd;
+// The optimiser (issue #11) likewise.
+#[path = "optimize_cmd.rs"]
+mod optimize_cmd;
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
@@ -39,6 +42,9 @@ enum Command {
         /// spindle step ≤ 1°).
         #[arg(long, value_name = "FILE.csv")]
         force_series: Option<PathBuf>,
+        /// Also report the real times with the variable feed (issue #11; default bands).
+        #[arg(long)]
+        variable_feed: bool,
     },
     /// Vary one parameter; print a CSV table of the metrics, one row per value.
     Sweep {
@@ -94,6 +100,12 @@ enum Command {
         /// Axial depth a_p of the tests (mm).
         #[arg(long, value_name = "MM", default_value_t = 6.0, allow_hyphen_values = true)]
         depth: f64,
+    },
+    /// Find the path, r_e, d, step and feed of highest real MRR (machine model on) within the
+    /// limits; print it as a TOML job file (`analyze --job` reproduces it).
+    Optimize {
+        #[command(flatten)]
+        args: optimize_cmd::OptimizeArgs,
     },
 }
 
@@ -169,6 +181,10 @@ pub struct JobArgs {
     /// Largest measured roughness Ra,max (µm) for the performance index, eq. (7).
     #[arg(long, value_name = "X", allow_hyphen_values = true)]
     ra_um: Option<f64>,
+    /// Machine preset for the real cycle time (hobby-router, vmc, hsc); a job file may give
+    /// its own limits in a [machine] table instead.
+    #[arg(long, value_name = "NAME")]
+    machine: Option<String>,
 }
 
 impl JobArgs {
@@ -198,6 +214,9 @@ impl JobArgs {
         set(&mut job.step, self.step);
         set(&mut job.aspect_ratio, self.aspect_ratio);
         set(&mut job.linear_distance, self.linear_distance);
+        if let Some(m) = &self.machine {
+            job.machine = Some(trochoplan_core::machine::MachineChoice::Preset(m.clone()));
+        }
         if let Some(t) = self.teeth {
             job.teeth = u32::try_from(t).map_err(|_| teeth_error(t).to_string())?;
         }
@@ -237,7 +256,7 @@ pub fn main() -> ExitCode {
 
 fn run(cmd: Command) -> Result<String, String> {
     match cmd {
-        Command::Analyze { job, series, engagement_limit, force_series } => {
+        Command::Analyze { job, series, engagement_limit, force_series, variable_feed } => {
             let job = job.job()?;
             let p = plan(&job).map_err(|e| e.to_string())?;
             let limited = engagement_limited_step(&job, engagement_limit.to_radians()).map_err(|e| e.to_string())?;
@@ -251,6 +270,9 @@ fn run(cmd: Command) -> Result<String, String> {
             value.insert("material".into(), p.job.material.clone().into());
             value.insert("engagement_limit_deg".into(), engagement_limit.into());
             value.insert("engagement_limited_step_mm".into(), limited.into());
+            if variable_feed {
+                variable_feed_json(&p, &mut value)?;
+            }
             let mut text = serde_json::to_string_pretty(&value).map_err(|e| e.to_string())?;
             text.push('\n');
             Ok(text)
@@ -261,6 +283,7 @@ fn run(cmd: Command) -> Result<String, String> {
         Command::Engagement { args } => corner_cmd::engagement(&args),
         Command::Pocket { args } => corner_cmd::pocket(&args),
         Command::Calibrate { slot_forces, teeth, depth } => calibrate(&slot_forces, teeth, depth),
+        Command::Optimize { args } => optimize_cmd::run(&args),
     }
 }
 
@@ -319,6 +342,7 @@ fn metrics_json(p: &Plan) -> serde_json::Map<String, serde_json::Value> {
     let m = &p.metrics;
     let mut obj = serde_json::Map::new();
     obj.insert("path".into(), m.path.name().into());
+    obj.insert("machine".into(), p.job.machine.as_ref().map_or("ideal", |m| m.name.as_str()).into());
     for q in METRICS {
         let v = q.of(m);
         obj.insert(q.key.into(), if q.whole { (v as u64).into() } else { v.into() });
@@ -328,6 +352,26 @@ fn metrics_json(p: &Plan) -> serde_json::Map<String, serde_json::Value> {
         obj.insert("tooth_stride".into(), p.tooth_stride.into());
     }
     obj
+}
+
+/// The variable feed's real times and chip figures (issue #11) under their keys.
+fn variable_feed_json(p: &Plan, obj: &mut serde_json::Map<String, serde_json::Value>) -> Result<(), String> {
+    let s = trochoplan_core::feed::schedule(p, &Default::default()).map_err(|e| e.to_string())?;
+    let m = &p.metrics;
+    let t = s.real.t_cycle_s;
+    for (k, v) in [
+        ("t_cycle_real_variable_feed_s", t),
+        ("machining_time_real_variable_feed_s", s.real.total_s),
+        ("mrr_real_variable_feed_mm3_per_min", m.mrr_real_mm3_per_min * m.t_cycle_real_s / t),
+        ("variable_feed_gain", 1.0 - t / m.t_cycle_real_s),
+        ("variable_feed_target_h_mm", s.target_h_mm),
+        ("variable_feed_h_over_target", s.h_over_target()),
+        ("variable_feed_within_2pct_share", s.within_2pct_share()),
+    ] {
+        obj.insert(k.into(), v.into());
+    }
+    obj.insert("variable_feed_blocks_per_cycle".into(), s.blocks.len().into());
+    Ok(())
 }
 
 /// Per-tooth series of the steady-state cycle as CSV (the core's series columns).
@@ -426,6 +470,7 @@ mod tests {
             materials: None,
             helix_angle: None,
             ra_um: None,
+            machine: None,
         };
         let job = args.job().expect("job");
         assert_eq!((job.step, job.teeth), (0.8, 2));

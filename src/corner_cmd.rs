@@ -160,6 +160,10 @@ pub struct PocketArgs {
     /// arcs and curves as chords within 0.01 mm; a simple polygon.
     #[arg(long, value_name = "FILE")]
     polygon: PathBuf,
+    /// Machine preset for the real time at depth (issue #11): adds `time_real_s` and
+    /// `feed_held_share` to the JSON.
+    #[arg(long, value_name = "NAME")]
+    machine: Option<String>,
     /// Tool diameter D (mm).
     #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = PocketRequest::default().tool_diameter_mm)]
     tool_diameter: f64,
@@ -284,11 +288,30 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
         Some(file) => Some(export_pocket(&args.nc, file, &plan)?),
         None => None,
     };
-    match &plan {
+    let text = match &plan {
         PocketPlan::Rings(rings) => ring_pocket_json(&req, rings, nc_export),
         PocketPlan::MedialAxis(perforative) => perforative_pocket_json(perforative, nc_export),
         PocketPlan::Adaptive(adaptive) => adaptive_pocket_json(adaptive, nc_export),
+    }?;
+    match &args.machine {
+        Some(name) => with_real_time(&text, &plan, name, args.feed),
+        None => Ok(text),
     }
+}
+
+/// The pocket JSON `text` with the real time at depth on machine `name` (issue #11).
+fn with_real_time(text: &str, plan: &PocketPlan, name: &str, feed: f64) -> Result<String, String> {
+    use trochoplan_core::machine::{Machine, path_real_time, planner::Dynamics};
+    let m = Machine::preset(name).map_err(err)?;
+    let (segments, retracts) = plan.tool_path();
+    let (t, held) = path_real_time(&segments, &retracts, feed, &Dynamics::of(&m));
+    let mut v: serde_json::Value = serde_json::from_str(text).map_err(|e| e.to_string())?;
+    if let Some(obj) = v.as_object_mut() {
+        obj.insert("machine".into(), name.into());
+        obj.insert("time_real_s".into(), t.into());
+        obj.insert("feed_held_share".into(), held.into());
+    }
+    json_text(&v)
 }
 
 #[derive(Serialize)]

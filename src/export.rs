@@ -5,6 +5,7 @@ use crate::cli::core_names;
 use crate::files::write_atomic;
 use clap::Args;
 use std::path::PathBuf;
+use trochoplan_core::feed::VariableFeed;
 use trochoplan_core::nc::{DEFAULT_TOLERANCE_MM, Dialect, NcOptions, program};
 use trochoplan_core::{Job, plan};
 
@@ -32,6 +33,22 @@ pub struct ExportArgs {
     /// Text for the header comment.
     #[arg(long, value_name = "TEXT")]
     title: Option<String>,
+    /// Per-block feed so that each tooth's h_max follows a target (issue #11), in feed bands;
+    /// air moves at the return feed (default 3 × feed).
+    #[arg(long)]
+    variable_feed: bool,
+    /// Variable feed: target h (mm); default the job's h_max at its feed.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, requires = "variable_feed")]
+    target_hmax: Option<f64>,
+    /// Variable feed: largest cutting feed (mm/min); default 3 × feed.
+    #[arg(long, value_name = "MM_PER_MIN", allow_hyphen_values = true, requires = "variable_feed")]
+    max_feed: Option<f64>,
+    /// Variable feed: ratio between neighbouring feed bands.
+    #[arg(long, value_name = "RATIO", default_value_t = VariableFeed::default().band_ratio, allow_hyphen_values = true)]
+    feed_band: f64,
+    /// Variable feed: shortest block before the feed may rise again (mm).
+    #[arg(long, value_name = "MM", default_value_t = VariableFeed::default().min_block_mm, allow_hyphen_values = true)]
+    min_block: f64,
     /// Output file.
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     output: PathBuf,
@@ -50,6 +67,13 @@ pub fn run(job: &Job, args: &ExportArgs) -> Result<String, String> {
         return_feed_mm_per_min: args.return_feed,
         compact: args.compact,
         title: args.title.clone().unwrap_or_default(),
+        variable_feed: args.variable_feed.then_some(VariableFeed {
+            target_h_mm: args.target_hmax,
+            max_feed_mm_per_min: args.max_feed,
+            return_feed_mm_per_min: None,
+            band_ratio: args.feed_band,
+            min_block_mm: args.min_block,
+        }),
         ..nc_options(args.dialect, args.tolerance, args.linear_segments, args.coolant)
     };
     let prog = program(&p, &opts).map_err(|e| e.to_string())?;

@@ -360,3 +360,64 @@ fn calibrate_recovers_the_coefficients_of_slot_tests() {
     let (ok, _, err) = run(&["calibrate", "--slot-forces", f.to_str().expect("utf8")]);
     assert!(!ok && err.contains("slot-forces") && err.contains("different feeds"), "{err}");
 }
+
+/// Issue #11: `--machine` and the real-time keys; `optimize` prints a job that `analyze --job`
+/// reproduces and writes its front; contradictory limits name the tightest one.
+#[test]
+fn machine_and_optimize() {
+    // 3000 mm/min on the hobby router (400 mm/s²): the loops run slower than programmed.
+    let v = json(&["analyze", "--machine", "hobby-router", "--feed", "3000", "--rpm", "10000"]);
+    assert_eq!(v["machine"], "hobby-router");
+    let (t, t_real) = (v["t_cycle_s"].as_f64().expect("t"), v["t_cycle_real_s"].as_f64().expect("t real"));
+    assert!(t_real > 1.1 * t, "{t} {t_real}");
+    for k in ["machining_time_real_s", "mrr_real_mm3_per_min", "feed_held_share"] {
+        assert!(v[k].as_f64().is_some_and(f64::is_finite), "{k}: {v}");
+    }
+    let (ok, _, err) = run(&["analyze", "--machine", "lathe"]);
+    assert!(!ok && err.contains("machine") && err.contains("vmc"), "{err}");
+
+    let dir = tempfile::tempdir().expect("tempdir");
+    let front = dir.path().join("front.csv");
+    let front_arg = front.to_str().expect("utf-8");
+    let (ok, toml, err) = run(&[
+        "optimize",
+        "--max-hmax",
+        "0.075",
+        "--max-engagement",
+        "57.5",
+        "--machine",
+        "vmc",
+        "--slot-length",
+        "60",
+        "--front",
+        front_arg,
+    ]);
+    assert!(ok, "{err}");
+    let job_file = dir.path().join("best.toml");
+    std::fs::write(&job_file, &toml).expect("write");
+    let v = json(&["analyze", "--job", job_file.to_str().expect("utf-8")]);
+    // The printed figures are the job's own (comment line "real MRR … mm³/min").
+    let mrr = v["mrr_real_mm3_per_min"].as_f64().expect("mrr");
+    assert!(toml.contains(&format!("real MRR {mrr:.0} mm³/min")), "{toml}\n{mrr}");
+    assert!(v["h_max_mm"].as_f64().expect("h") <= 0.075 && v["engagement_max_deg"].as_f64().expect("a") <= 57.5);
+    assert_eq!(v["machine"], "vmc");
+    let csv = std::fs::read_to_string(&front).expect("front written");
+    assert!(csv.starts_with("path,aspect_ratio,") && csv.lines().count() >= 3, "{csv}");
+
+    let (ok, _, err) = run(&["optimize", "--max-hmax", "0.075", "--max-engagement", "0.01"]);
+    assert!(!ok && err.contains("max-engagement") && err.contains("tightest"), "{err}");
+    let (ok, _, err) = run(&["optimize", "--max-hmax", "-1", "--max-engagement", "50"]);
+    assert!(!ok && err.contains("max-hmax"), "{err}");
+
+    // Pockets: the real time at depth on a machine is at least the programmed one.
+    let poly = dir.path().join("rect.csv");
+    std::fs::write(&poly, "0,0\n60,0\n60,40\n0,40\n").expect("write");
+    let p = poly.to_str().expect("utf-8");
+    let ideal = json(&["pocket", "--polygon", p, "--feed", "3000"]);
+    let slow = json(&["pocket", "--polygon", p, "--feed", "3000", "--machine", "hobby-router"]);
+    let fast = json(&["pocket", "--polygon", p, "--feed", "3000", "--machine", "hsc"]);
+    let at_feed = ideal["path_length_mm"].as_f64().expect("length") / 50.0;
+    let (t_slow, t_fast) = (slow["time_real_s"].as_f64().expect("t"), fast["time_real_s"].as_f64().expect("t"));
+    assert!(t_slow > t_fast && t_fast > at_feed, "{t_slow} {t_fast} {at_feed}");
+    assert!(slow["feed_held_share"].as_f64().expect("share") < fast["feed_held_share"].as_f64().expect("share"));
+}

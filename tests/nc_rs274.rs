@@ -157,3 +157,43 @@ fn hostile_titles_cannot_form_active_comments() {
     }
     assert!(!log.exists(), "the program opened a log file on the controller");
 }
+
+/// Issue #11: variable feed in every dialect rs274 reads (and the LinuxCNC loop): the path is
+/// retraced as before, and the feeds rs274 sets are the schedule's block feeds (the plunge at
+/// the programmed feed aside), several of them, none above 3 × feed.
+#[test]
+fn variable_feed_programs_pass_rs274_with_the_scheduled_feeds() {
+    use trochoplan_core::feed::{VariableFeed, schedule};
+    let dir = tempfile::tempdir().expect("tempdir");
+    for (k, (flags, job)) in jobs().into_iter().enumerate() {
+        let p = plan(&job).expect("valid job");
+        let sched = schedule(&p, &VariableFeed::default()).expect("schedule");
+        let feeds: Vec<f64> = sched.blocks.iter().map(|b| b.feed_mm_per_min).collect();
+        for (dialect, ext, decimals, extra) in [
+            ("linuxcnc", "ngc", 4, &[][..]),
+            ("fanuc", "nc", 3, &[][..]),
+            ("grbl", "gcode", 3, &[][..]),
+            ("linuxcnc", "ngc", 4, &["--compact"][..]),
+        ] {
+            let nc: Vec<&str> = ["--dialect", dialect, "--variable-feed"].iter().chain(extra).copied().collect();
+            let f = export(dir.path(), &format!("{k}_vf{}.{ext}", extra.len()), &flags, &nc);
+            let label = format!("{} {dialect}{extra:?} variable feed", job.path.name());
+            check(&label, &f, &p, 0.005, decimals);
+            let canon = interpret(&f).unwrap_or_else(|e| panic!("{e}"));
+            let set: Vec<f64> = canon
+                .lines()
+                .filter_map(|l| l.split("SET_FEED_RATE(").nth(1))
+                .filter_map(|r| r.trim_end_matches(')').trim().parse::<f64>().ok())
+                // rs274 starts at F0 before the program sets one
+                .filter(|&f| f > 0.0)
+                .collect();
+            let distinct: std::collections::BTreeSet<i64> = set.iter().map(|f| (f * 10.0).round() as i64).collect();
+            assert!(distinct.len() >= 5, "{label}: feeds {distinct:?}");
+            for f in &set {
+                let scheduled = feeds.iter().any(|g| (g - f).abs() <= 0.05 + 1e-6 * g);
+                assert!(scheduled || (f - job.feed).abs() < 1e-6, "{label}: F{f} not in the schedule");
+                assert!(*f <= 3.0 * job.feed + 0.05, "{label}: F{f}");
+            }
+        }
+    }
+}

@@ -7,6 +7,7 @@
 //! and a 20 mm long slot.
 
 use crate::error::{Error, Param, num};
+use crate::machine::{Machine, MachineChoice};
 use crate::material::{Coefficients, DEFAULT_MATERIAL, Library};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
@@ -132,6 +133,10 @@ pub struct Job {
     /// The six force coefficients, instead of the material's (TOML table `[coefficients]`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub coefficients: Option<Coefficients>,
+    /// The machine (issue #11): a preset name (`machine = "vmc"`) or a `[machine]` table of
+    /// limits; none: an ideal machine that holds every programmed feed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub machine: Option<MachineChoice>,
 }
 
 impl Default for Job {
@@ -156,6 +161,7 @@ impl Default for Job {
             ra_um: None,
             allow_unusual_ratio: false,
             coefficients: None,
+            machine: None,
         }
     }
 }
@@ -226,6 +232,8 @@ pub struct ValidJob {
     pub runout_mm: Vec<f64>,
     /// Ra,max (µm), if entered.
     pub ra_um: Option<f64>,
+    /// The machine's validated limits (none: ideal).
+    pub machine: Option<Machine>,
 }
 
 fn positive(param: Param, v: f64, max: f64) -> Result<f64, Error> {
@@ -351,6 +359,7 @@ impl Job {
             step,
             aspect_ratio: r_e,
             linear_distance: d,
+            machine: self.machine.as_ref().map(MachineChoice::machine).transpose()?,
         })
     }
 

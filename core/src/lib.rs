@@ -17,6 +17,9 @@
 //! - [`analysis`]: edge of previous cycles, per-tooth h and engagement, waviness, step limit,
 //!   cutting forces (linear edge-force model with helix) and bottom imprints.
 //! - [`material`]: force coefficients, the material library, slot-test calibration.
+//! - [`feed`]: variable feed: per-block feed for a target chip thickness, in bands.
+//! - [`machine`]: machine limits, presets and the feed planner (real cycle time, issue #11).
+//! - [`optimize`]: the job of highest real MRR within the user's limits; Pareto front.
 //! - [`nc`]: NC programs (LinuxCNC, Fanuc-style ISO, GRBL, Sinumerik), biarc output.
 //! - [`corner`]: pocket corners (issue #5): engagement model, corner trochoids, evaluator;
 //!   [`corner::evaluate`] — corner request in, plans, profiles and acceptance row out.
@@ -29,10 +32,13 @@
 pub mod analysis;
 pub mod corner;
 pub mod error;
+pub mod feed;
 pub mod geom;
 pub mod job;
+pub mod machine;
 pub mod material;
 pub mod nc;
+pub mod optimize;
 pub mod path;
 pub mod plan;
 pub mod pocket;

@@ -5,7 +5,10 @@ use crate::analysis::{
     imprint_density, tooth_series, wall_profile,
 };
 use crate::error::{Error, Param, num};
+use crate::geom::p2;
 use crate::job::{Job, PathKind, ValidJob};
+use crate::machine::planner::Dynamics;
+use crate::machine::{FeedProfile, RealTime, real_time};
 use crate::path::{Cycle, SlotPath};
 use serde::Serialize;
 
@@ -89,6 +92,15 @@ pub struct Metrics {
     /// per mm, Figs. 21–22).
     pub imprint_density_mean_per_mm: f64,
     pub imprint_density_peak_per_mm: f64,
+    /// Steady-state cycle time on the job's machine, feed planned as a controller does (s);
+    /// equal to `t_cycle_s` without a machine.
+    pub t_cycle_real_s: f64,
+    /// Whole path on the job's machine, from rest to rest (s).
+    pub machining_time_real_s: f64,
+    /// MRR = B·s·a_p / t_cycle_real (mm³/min).
+    pub mrr_real_mm3_per_min: f64,
+    /// Share of the steady-state cycle's time at the programmed feed (1: held everywhere).
+    pub feed_held_share: f64,
 }
 
 /// A planned slot job: path, per-tooth series of a steady-state cycle, wall profiles, metrics.
@@ -114,6 +126,8 @@ pub struct Plan {
     pub forces: ForceSeries,
     /// Imprint density across the slot bottom.
     pub imprints: ImprintProfile,
+    /// The feed over one steady-state cycle on the job's machine (constant without one).
+    pub feed: FeedProfile,
 }
 
 impl Plan {
@@ -150,7 +164,9 @@ pub fn plan_valid(job: ValidJob) -> Plan {
     let stride = analysis::chip::tooth_stride(cycle_length, f_z);
     let timing = chip_timing(&series, stride as f64 * f_z / feed_mm_per_s);
     let t_cycle = cycle_length / feed_mm_per_s;
-    let mrr = job.slot_width * job.step * job.depth / t_cycle * 60.0;
+    let real = slot_real_time(&job, &path);
+    let mrr_at = |t: f64| job.slot_width * job.step * job.depth / t * 60.0;
+    let mrr = mrr_at(t_cycle);
     let forces = cycle_forces(&series, t_cycle, &cutter(&job), &job.coefficients, job.rpm);
     let xs: Vec<f64> = series.iter().map(|t| t.x_mm).collect();
     let imprints = imprint_density(&xs, stride, r, job.slot_width, job.step);
@@ -203,8 +219,24 @@ pub fn plan_valid(job: ValidJob) -> Plan {
         performance_index_without_ra: pi_without_ra,
         imprint_density_mean_per_mm: imprints.mean_per_mm,
         imprint_density_peak_per_mm: imprints.peak_per_mm,
+        t_cycle_real_s: real.t_cycle_s,
+        machining_time_real_s: real.total_s,
+        feed_held_share: real.held_share,
+        mrr_real_mm3_per_min: mrr_at(real.t_cycle_s),
     };
-    Plan { job, path, metrics, series, tooth_stride: stride, left_wall, right_wall, edge, forces, imprints }
+    Plan {
+        job,
+        path,
+        metrics,
+        series,
+        tooth_stride: stride,
+        left_wall,
+        right_wall,
+        edge,
+        forces,
+        imprints,
+        feed: real.cycle,
+    }
 }
 
 /// The job's cutter for the force model.
@@ -215,6 +247,16 @@ pub fn cutter(job: &ValidJob) -> Cutter {
         helix_rad: job.helix_rad,
         depth_mm: job.depth,
         runout_mm: job.runout_mm.clone(),
+    }
+}
+
+/// Real time of a slot path at the job's feed on the job's machine ([`real_time`]); without
+/// a machine, the programmed time.
+pub fn slot_real_time(job: &ValidJob, path: &SlotPath) -> RealTime {
+    let feeds = vec![job.feed; path.cycle.segments.len()];
+    match &job.machine {
+        Some(m) => real_time(&path.cycle.segments, p2(0.0, path.cycle.step), path.cycles, &feeds, &Dynamics::of(m)),
+        None => RealTime::ideal(path.cycle.length(), path.cycles, job.feed),
     }
 }
 

@@ -300,8 +300,46 @@ pub const IMPRINT_DENSITY_PEAK: Metric = Metric::new(
     "Largest imprint density across the slot bottom (Fig. 22: highest mid-slot).",
 );
 
+pub const T_CYCLE_REAL: Metric = Metric::new(
+    "t_cycle_real_s",
+    "t_cycle real",
+    "s",
+    3,
+    |m| m.t_cycle_real_s,
+    "Steady-state cycle time on the job's machine: feed planned with its acceleration, jerk and \
+     curvature limits (LinuxCNC v ≤ √(0.866·a·R)); = t_cycle without a machine.",
+)
+.lower_is_better();
+pub const MACHINING_TIME_REAL: Metric = Metric::new(
+    "machining_time_real_s",
+    "machining time real",
+    "s",
+    1,
+    |m| m.machining_time_real_s,
+    "Whole path on the job's machine, from rest to rest.",
+)
+.lower_is_better();
+pub const MRR_REAL: Metric = Metric::new(
+    "mrr_real_mm3_per_min",
+    "MRR real",
+    "mm³/min",
+    0,
+    |m| m.mrr_real_mm3_per_min,
+    "MRR = B·s·a_p / t_cycle real: the removal rate the machine achieves.",
+)
+.higher_is_better();
+pub const FEED_HELD_SHARE: Metric = Metric::new(
+    "feed_held_share",
+    "feed held",
+    "",
+    3,
+    |m| m.feed_held_share,
+    "Share of the steady-state cycle's time at the programmed feed (1 = held everywhere).",
+)
+.higher_is_better();
+
 /// Every numeric metric of [`Metrics`] (all its fields but the path kind), in field order.
-pub const METRICS: [&Metric; 33] = [
+pub const METRICS: [&Metric; 37] = [
     &CYCLE_LENGTH,
     &T_CYCLE,
     &MRR,
@@ -335,6 +373,10 @@ pub const METRICS: [&Metric; 33] = [
     &PERFORMANCE_INDEX_WITHOUT_RA,
     &IMPRINT_DENSITY_MEAN,
     &IMPRINT_DENSITY_PEAK,
+    &T_CYCLE_REAL,
+    &MACHINING_TIME_REAL,
+    &MRR_REAL,
+    &FEED_HELD_SHARE,
 ];
 
 /// The process results of a steady-state cycle (section 5: forces, eq. 7, Figs. 21–22).

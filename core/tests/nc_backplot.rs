@@ -40,8 +40,11 @@ fn backplot_of_every_dialect_retraces_the_planned_path() {
     for kind in PathKind::ALL {
         let p = job(kind);
         for d in Dialect::ALL {
-            for linear_segments in [false, true] {
-                let o = NcOptions { dialect: d, linear_segments, ..NcOptions::default() };
+            // Issue #11: the variable feed's split blocks retrace the path too (Sinumerik
+            // included, which rs274 cannot read).
+            let vf = Some(trochoplan_core::feed::VariableFeed::default());
+            for (linear_segments, variable_feed) in [(false, None), (true, None), (false, vf)] {
+                let o = NcOptions { dialect: d, linear_segments, variable_feed, ..NcOptions::default() };
                 let text = program(&p, &o).expect("program").text;
                 let bp = backplot(&text, d, CHORD).unwrap_or_else(|e| panic!("{kind:?} {d:?}: {e}"));
                 let q = 10f64.powi(-(d.spec().decimals as i32));

@@ -2,6 +2,7 @@
 //! threads. They run after all panels have drawn ([`App::apply`]).
 
 use super::panels::compare::{self, MAX_VARIANTS};
+use super::panels::optimise::OptimiseRun;
 use super::panels::sweep::SweepRun;
 use super::{App, PinnedJob, Variant};
 use crate::files::write_atomic;
@@ -34,6 +35,11 @@ pub enum Command {
     RestartCornerTable,
     /// Ask for a file and write the Corner tab's previewed NC program.
     ExportCornerNc,
+    /// Run the optimiser on a worker thread (issue #11).
+    StartOptimise,
+    CancelOptimise,
+    /// Load a job of the optimiser's front (`None`: its best job).
+    LoadOptimised(Option<usize>),
     /// Ask for a pocket outline (DXF, SVG or points) and put its vertices in the Pocket mode.
     OpenOutline,
 }
@@ -70,6 +76,22 @@ impl App {
             Command::CancelCornerTable => self.corner.table.cancel(),
             Command::RestartCornerTable => self.corner.table.restart(),
             Command::ExportCornerNc => self.export_corner_nc(),
+            Command::StartOptimise => {
+                let ctx = ctx.clone();
+                self.optimise =
+                    Some(OptimiseRun::start(&self.state.optimise, &self.state.job, move || ctx.request_repaint()));
+            }
+            Command::CancelOptimise => {
+                if let Some(run) = &mut self.optimise {
+                    run.cancel();
+                }
+            }
+            Command::LoadOptimised(i) => {
+                let job = self.optimise.as_ref().and_then(|r| i.map_or_else(|| r.best_job(), |i| r.front_job(i)));
+                if let Some(job) = job {
+                    self.set_job(job);
+                }
+            }
             Command::OpenOutline => {
                 if let Some(path) = self.dialogs.open_outline() {
                     self.open_outline(&path);

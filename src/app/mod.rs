@@ -102,6 +102,8 @@ pub struct App {
     undoer: Undoer<Inputs>,
     pub anim: Animation,
     pub sweep: Option<SweepRun>,
+    /// The optimiser's run (issue #11).
+    pub optimise: Option<panels::optimise::OptimiseRun>,
     /// The Corner tab's last result (planned inline, or on a thread in the window).
     pub corner: panels::corner::CornerView,
     /// The NC program of the current plan and export settings.
@@ -136,6 +138,7 @@ impl App {
             undoer: Undoer::default(),
             anim: Animation::default(),
             sweep: None,
+            optimise: None,
             corner: panels::corner::CornerView::default(),
             export: ExportCache::default(),
             corner_nc: panels::corner_nc::CornerNcCache::default(),
@@ -179,6 +182,9 @@ impl App {
         let mut cmds: Vec<Command> = Vec::new();
         self.shortcuts(ui, &mut cmds);
         if let Some(run) = &mut self.sweep {
+            run.poll();
+        }
+        if let Some(run) = &mut self.optimise {
             run.poll();
         }
 

@@ -4,6 +4,7 @@
 use super::panels::corner::CornerInputs;
 use super::panels::corner_nc::CornerNcSettings;
 use super::panels::export::ExportSettings;
+use super::panels::optimise::OptimiseSettings;
 use super::panels::sweep::SweepSettings;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
@@ -22,6 +23,8 @@ pub enum Tab {
     Export,
     /// One pocket corner and its corner trochoids (issue #5).
     Corner,
+    /// Feed over the cycle on the machine, and the optimiser (issue #11).
+    Optimise,
 }
 
 /// A pinned variant as persisted.
@@ -57,6 +60,8 @@ pub struct Inputs {
     pub corner: CornerInputs,
     /// NC export options of the Corner tab.
     pub corner_nc: CornerNcSettings,
+    /// Limits of the optimiser (issue #11).
+    pub optimise: OptimiseSettings,
 }
 
 impl Default for Inputs {
@@ -72,6 +77,7 @@ impl Default for Inputs {
             export: ExportSettings::default(),
             corner: CornerInputs::default(),
             corner_nc: CornerNcSettings::default(),
+            optimise: OptimiseSettings::default(),
         }
     }
 }

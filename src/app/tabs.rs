@@ -21,7 +21,7 @@ pub struct TabSpec {
 }
 
 /// Every tab, in the order of the menu and the tab bar.
-pub const TABS: [TabSpec; 6] = [
+pub const TABS: [TabSpec; 7] = [
     TabSpec {
         tab: Tab::Plots,
         label: "Plots",
@@ -63,6 +63,13 @@ pub const TABS: [TabSpec; 6] = [
         tooltip: "One pocket corner or a whole pocket with corner trochoids, and the acceptance table",
         slot_panels: false,
         show: corner_tab,
+    },
+    TabSpec {
+        tab: Tab::Optimise,
+        label: "Machine & optimise",
+        tooltip: "Feed over one cycle on the job's machine; the job of highest real MRR within your limits",
+        slot_panels: true,
+        show: optimise_tab,
     },
 ];
 
@@ -138,6 +145,11 @@ fn export_tab(app: &mut App, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
     cmds.extend(panels::export::show(ui, &mut app.state.export, &app.export, job_error.as_deref()));
     // settings edited this frame: regenerate now, so the next frame shows them
     app.refresh_export();
+}
+
+fn optimise_tab(app: &mut App, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
+    let plan = app.planner.last.as_ref().map(|p| &p.plan);
+    cmds.extend(panels::optimise::show(ui, &mut app.state.optimise, app.optimise.as_ref(), plan));
 }
 
 fn corner_tab(app: &mut App, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {

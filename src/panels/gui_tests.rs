@@ -815,3 +815,47 @@ fn forces_tab_and_the_material_inputs_replan_the_forces() {
     assert_eq!(h.state().state.job.material, "ti-6al-4v");
     assert_ne!(metrics(&h).force_resultant_max_n, low_helix.force_resultant_max_n);
 }
+
+#[test]
+fn machine_tab_shows_the_feed_and_the_optimiser_runs_in_the_background_and_loads_a_job() {
+    use trochoplan_core::machine::MachineChoice;
+    let mut h = harness();
+    // The job's machine (the picker sits below the fold of the parameter panel at this
+    // size); the feed plot reports its real cycle time.
+    h.state_mut().state.job = Job {
+        feed: 3000.0,
+        rpm: 10000.0,
+        machine: Some(MachineChoice::Preset("hobby-router".into())),
+        ..Job::default()
+    };
+    h.run();
+    h.get_by_label("Machine & optimise").click();
+    h.run();
+    let m = metrics(&h);
+    assert!(m.t_cycle_real_s > m.t_cycle_s);
+    let line = format!("real cycle {:.3} s vs programmed {:.3} s", m.t_cycle_real_s, m.t_cycle_s);
+    assert!(h.query_all_by_label_contains(&line).next().is_some(), "{line}");
+    // The optimiser on the paper's slot (back to its feed on the vmc).
+    h.state_mut().state.job = Job { machine: Some(MachineChoice::Preset("vmc".into())), ..Job::default() };
+    h.run();
+    h.get_by_label("Optimise").click();
+    h.step();
+    let t0 = Instant::now();
+    while h.state().optimise.as_ref().is_some_and(|r| r.running()) && t0.elapsed().as_secs() < 120 {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        h.step();
+    }
+    h.run();
+    let best = h.state().optimise.as_ref().and_then(|r| r.best_job()).expect("a best job");
+    h.get_by_label("Load best").click();
+    h.run();
+    assert_eq!(h.state().state.job, best);
+    assert!(metrics(&h).h_max_mm <= 0.075 + 1e-9);
+    // Cancel stops a run.
+    h.get_by_label("Optimise").click();
+    h.step();
+    h.step();
+    h.get_by_label("Cancel").click();
+    h.step();
+    assert!(h.state().optimise.as_ref().is_some_and(|r| !r.running() && r.cancelled));
+}

@@ -98,6 +98,7 @@ pub fn show(ui: &mut egui::Ui, job: &mut Job, error: Option<&Error>) {
     ui.add_space(6.0);
     ui.heading("Material and process");
     egui::Grid::new("process_grid").num_columns(2).spacing([8.0, 4.0]).show(ui, |ui| process_fields(ui, job, error));
+    machine_picker(ui, job, error);
 }
 
 /// Work material (built-in library), helix angle and the measured Ra,max of eq. (7).
@@ -167,6 +168,39 @@ fn process_fields(ui: &mut egui::Ui, job: &mut Job, error: Option<&Error>) {
     field_error(ui, Param::RaUm, error);
     for p in [Param::Ktc, Param::Krc, Param::Kac, Param::Kte, Param::Kre, Param::Kae, Param::Runout] {
         field_error(ui, p, error);
+    }
+}
+
+/// The machine for the real cycle time (issue #11): ideal, a preset, or the job file's own.
+fn machine_picker(ui: &mut egui::Ui, job: &mut Job, error: Option<&Error>) {
+    use trochoplan_core::machine::{MachineChoice, preset_names};
+    ui.heading("Machine");
+    let shown = job.machine.as_ref().map_or("ideal (programmed feed)".to_owned(), |m| m.name().to_owned());
+    egui::ComboBox::from_id_salt("machine_picker")
+        .selected_text(shown)
+        .show_ui(ui, |ui| {
+            ui.selectable_value(&mut job.machine, None, "ideal (programmed feed)");
+            for name in preset_names() {
+                let choice = Some(MachineChoice::Preset(name.to_owned()));
+                ui.selectable_value(&mut job.machine, choice, name);
+            }
+        })
+        .response
+        .on_hover_text(
+            "Acceleration, jerk and feed limits of the machine: the real cycle time, real MRR and \
+             the feed plot (Machine & optimise tab) follow them. Presets in assets/machines/.",
+        );
+    for p in [
+        Param::Machine,
+        Param::MaxFeedX,
+        Param::MaxFeedY,
+        Param::AccelerationX,
+        Param::AccelerationY,
+        Param::JerkX,
+        Param::JerkY,
+        Param::PathTolerance,
+    ] {
+        field_error_line(ui, p, error);
     }
 }
 

@@ -31,6 +31,7 @@ pub use dialect::{CommentStyle, Dialect, DialectSpec, LoopStyle, ToolCall, sanit
 pub use writer::{Writer, YForm};
 
 use crate::error::{Error, Param, num};
+use crate::feed::VariableFeed;
 use crate::geom::{FitPiece, P2, Segment, fit_biarcs, p2, polyline};
 use crate::job::PathKind;
 use crate::plan::Plan;
@@ -64,6 +65,9 @@ pub struct NcOptions {
     pub tool_number: u32,
     /// Free text for the header comment (sanitised).
     pub title: String,
+    /// Per-block feed for a target chip thickness, in bands (issue #11, [`crate::feed`]);
+    /// `None`: the programmed feed (and the return feed, if given).
+    pub variable_feed: Option<VariableFeed>,
 }
 
 impl Default for NcOptions {
@@ -78,6 +82,7 @@ impl Default for NcOptions {
             safe_z_mm: 5.0,
             tool_number: 1,
             title: String::new(),
+            variable_feed: None,
         }
     }
 }
@@ -154,6 +159,22 @@ pub fn cycle_moves(plan: &Plan, opts: &NcOptions) -> Vec<CycleMove> {
     moves
 }
 
+/// The blocks of one cycle with the variable feed of [`crate::feed::schedule`]: each exact
+/// segment is cut where the feed band changes and each piece fitted as in [`cycle_moves`],
+/// so arcs stay arcs. The NC return feed, if given, is the schedule's return feed.
+pub fn variable_feed_moves(plan: &Plan, vf: &VariableFeed, opts: &NcOptions) -> Result<Vec<CycleMove>, Error> {
+    let vf = VariableFeed {
+        return_feed_mm_per_min: vf.return_feed_mm_per_min.or(opts.return_feed_mm_per_min),
+        ..vf.clone()
+    };
+    let sched = crate::feed::schedule(plan, &vf)?;
+    Ok(sched
+        .pieces(&plan.path.cycle)
+        .iter()
+        .flat_map(|(seg, feed)| fit(seg, opts).into_iter().map(|p| CycleMove { seg: p.seg, feed_mm_per_min: *feed }))
+        .collect())
+}
+
 /// Whether no tooth cuts on the cycle stretch from arc length `s0` to `s1` in the steady
 /// state, with one tooth spacing f_z of margin at both ends (the tooth series is spaced f_z
 /// and periodic with the cycle length).
@@ -182,7 +203,10 @@ pub fn cuts_nothing(plan: &Plan, cycle_len: f64, s0: f64, s1: f64) -> bool {
 pub fn program(plan: &Plan, opts: &NcOptions) -> Result<NcProgram, Error> {
     opts.validate()?;
     let spec = opts.dialect.spec();
-    let moves = cycle_moves(plan, opts);
+    let moves = match &opts.variable_feed {
+        Some(vf) => variable_feed_moves(plan, vf, opts)?,
+        None => cycle_moves(plan, opts),
+    };
     let mut w = Writer::new(spec);
     let job = &plan.job;
     preamble(&mut w, &slot_header(plan, opts), opts);
@@ -421,6 +445,12 @@ fn preamble(w: &mut Writer, header: &Header<'_>, opts: &NcOptions) {
     ));
     if let Some(f) = opts.return_feed_mm_per_min {
         w.comment(&format!("return feed {f:.1} mm/min where no tooth cuts"));
+    }
+    if let Some(vf) = &opts.variable_feed {
+        w.comment(&format!(
+            "variable feed: per-block F for a constant chip thickness, bands x{}, blocks >= {} mm",
+            vf.band_ratio, vf.min_block_mm
+        ));
     }
     w.raw(spec.setup);
     if let Some(word) = spec.blend_tolerance_word {

@@ -1,0 +1,163 @@
+//! The machine model (issue #11): per-axis feed, acceleration and jerk limits and the
+//! controller's path tolerance, the presets in `assets/machines/`, and the feed planner that
+//! turns a path into the feed over time ([`planner`]).
+//!
+//! A job names a preset (`machine = "vmc"`) or states its own limits in a `[machine]` table
+//! with the keys of [`Machine`]. Without a machine the plan assumes an ideal one (the
+//! programmed feed everywhere): real and programmed times are then equal.
+
+pub mod planner;
+
+use crate::error::{Error, Param, num};
+use serde::{Deserialize, Serialize};
+
+pub use planner::{FeedPoint, FeedProfile, RealTime, path_real_time, real_time};
+
+/// The limits of one machine. Keys (TOML, kebab-case) are the job file's `[machine]` keys.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case", deny_unknown_fields)]
+pub struct Machine {
+    /// Name (a preset's name, or the user's).
+    pub name: String,
+    /// Largest feed of the X and Y axes (mm/min).
+    pub max_feed_x: f64,
+    pub max_feed_y: f64,
+    /// Largest acceleration of the X and Y axes (mm/s²).
+    pub acceleration_x: f64,
+    pub acceleration_y: f64,
+    /// Largest jerk of the X and Y axes (mm/s³).
+    pub jerk_x: f64,
+    pub jerk_y: f64,
+    /// Path tolerance of the controller's blending (mm): how far it may round a corner or a
+    /// curvature jump (LinuxCNC G64 P, GRBL junction deviation, Sinumerik CYCLE832).
+    pub path_tolerance: f64,
+}
+
+/// The presets, in the order the GUI lists them: (name, TOML text with the sources).
+pub const PRESETS: [(&str, &str); 3] = [
+    ("hobby-router", include_str!("../../../assets/machines/hobby-router.toml")),
+    ("vmc", include_str!("../../../assets/machines/vmc.toml")),
+    ("hsc", include_str!("../../../assets/machines/hsc.toml")),
+];
+
+/// The names of the presets.
+pub fn preset_names() -> impl Iterator<Item = &'static str> {
+    PRESETS.iter().map(|(n, _)| *n)
+}
+
+impl Machine {
+    /// The preset called `name`.
+    pub fn preset(name: &str) -> Result<Machine, Error> {
+        let (_, text) = PRESETS.iter().find(|(n, _)| *n == name).ok_or_else(|| {
+            Error::param(Param::Machine, name, format!("one of {}", preset_names().collect::<Vec<_>>().join(", ")))
+        })?;
+        toml::from_str(text).map_err(|e| Error::File(format!("machine preset {name}: {e}")))
+    }
+
+    /// Check every limit: finite and > 0; the error names the key.
+    pub fn validate(&self) -> Result<(), Error> {
+        let checks = [
+            (Param::MaxFeedX, self.max_feed_x, 1.0e6, "mm/min"),
+            (Param::MaxFeedY, self.max_feed_y, 1.0e6, "mm/min"),
+            (Param::AccelerationX, self.acceleration_x, 1.0e6, "mm/s²"),
+            (Param::AccelerationY, self.acceleration_y, 1.0e6, "mm/s²"),
+            (Param::JerkX, self.jerk_x, 1.0e9, "mm/s³"),
+            (Param::JerkY, self.jerk_y, 1.0e9, "mm/s³"),
+            (Param::PathTolerance, self.path_tolerance, 10.0, "mm"),
+        ];
+        for (param, v, max, unit) in checks {
+            if !(v.is_finite() && v > 0.0 && v <= max) {
+                return Err(Error::param(param, v, format!("a finite number > 0 and ≤ {} {unit}", num(max))));
+            }
+        }
+        Ok(())
+    }
+
+    /// Path feed limit (mm/s): the slower axis, as LinuxCNC bounds a move in the XY plane.
+    pub fn max_speed_mm_per_s(&self) -> f64 {
+        self.max_feed_x.min(self.max_feed_y) / 60.0
+    }
+
+    /// Path acceleration limit a (mm/s²): the weaker axis (LinuxCNC `pmCircleActualMaxVel`
+    /// takes the plane's bound).
+    pub fn acceleration(&self) -> f64 {
+        self.acceleration_x.min(self.acceleration_y)
+    }
+
+    /// Path jerk limit J (mm/s³): the weaker axis.
+    pub fn jerk(&self) -> f64 {
+        self.jerk_x.min(self.jerk_y)
+    }
+}
+
+/// The machine of a job: a preset by name, or limits given in the job.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum MachineChoice {
+    /// `machine = "vmc"`.
+    Preset(String),
+    /// `[machine]` with every key of [`Machine`].
+    Custom(Machine),
+}
+
+impl MachineChoice {
+    /// The machine's limits, validated.
+    pub fn machine(&self) -> Result<Machine, Error> {
+        let m = match self {
+            MachineChoice::Preset(name) => Machine::preset(name)?,
+            MachineChoice::Custom(m) => m.clone(),
+        };
+        m.validate()?;
+        Ok(m)
+    }
+
+    /// The name shown for it.
+    pub fn name(&self) -> &str {
+        match self {
+            MachineChoice::Preset(n) => n,
+            MachineChoice::Custom(m) => &m.name,
+        }
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn presets_parse_and_are_valid() {
+        for name in preset_names() {
+            let m = Machine::preset(name).expect("preset");
+            assert_eq!(m.name, name);
+            m.validate().expect("valid");
+        }
+        // issue #11: the VMC feeds at 20 m/min
+        assert_eq!(Machine::preset("vmc").expect("vmc").max_speed_mm_per_s(), 20000.0 / 60.0);
+        assert_eq!(Machine::preset("lathe").expect_err("unknown").parameter(), Some(Param::Machine));
+    }
+
+    #[test]
+    fn bad_limits_are_rejected_by_name() {
+        let good = Machine::preset("vmc").expect("vmc");
+        type Setter = fn(&mut Machine, f64);
+        let cases: [(Setter, Param); 7] = [
+            (|m, v| m.max_feed_x = v, Param::MaxFeedX),
+            (|m, v| m.max_feed_y = v, Param::MaxFeedY),
+            (|m, v| m.acceleration_x = v, Param::AccelerationX),
+            (|m, v| m.acceleration_y = v, Param::AccelerationY),
+            (|m, v| m.jerk_x = v, Param::JerkX),
+            (|m, v| m.jerk_y = v, Param::JerkY),
+            (|m, v| m.path_tolerance = v, Param::PathTolerance),
+        ];
+        for (set, param) in cases {
+            for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+                let mut m = good.clone();
+                set(&mut m, bad);
+                let e = m.validate().expect_err("rejected");
+                assert_eq!(e.parameter(), Some(param), "{e}");
+                assert!(e.to_string().contains(param.cli_name()), "{e}");
+            }
+        }
+    }
+}

@@ -1,0 +1,83 @@
+//! `trochoplan optimize` (issue #11): the job of highest real MRR within the user's limits,
+//! printed as a TOML job file (the keys of `--job`, so `analyze --job` reproduces it), and the
+//! Pareto front of real MRR against W_max as CSV.
+
+use crate::cli::JobArgs;
+use crate::files::write_atomic;
+use clap::Args;
+use std::path::PathBuf;
+use trochoplan_core::optimize::{Candidate, Control, Limits, optimize};
+
+/// Limits of the search; the job flags fix slot, tool, rpm, depth, slot length and machine.
+#[derive(Args)]
+pub struct OptimizeArgs {
+    #[command(flatten)]
+    pub job: JobArgs,
+    /// Largest maximum chip thickness h_max (mm).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    pub max_hmax: f64,
+    /// Largest engagement angle (degrees).
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
+    pub max_engagement: f64,
+    /// Largest wall waviness W_max = max(W_l, W_r) (mm); none: not limited.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    pub max_waviness: Option<f64>,
+    /// Smallest cooling share t_cooling/t_cycle (0–1); none: not limited.
+    #[arg(long, value_name = "SHARE", allow_hyphen_values = true)]
+    pub min_cooling: Option<f64>,
+    /// Write the Pareto front (real MRR against W_max) as CSV.
+    #[arg(long, value_name = "FILE.csv")]
+    pub front: Option<PathBuf>,
+}
+
+/// Run the search; the best job as TOML, with its figures as comments.
+pub fn run(args: &OptimizeArgs) -> Result<String, String> {
+    let base = args.job.job()?;
+    let limits = Limits::new(args.max_hmax, args.max_engagement, args.max_waviness, args.min_cooling)
+        .map_err(|e| e.to_string())?;
+    let out = optimize(&base, &limits, &Control::NONE).map_err(|e| e.to_string())?.ok_or("cancelled")?;
+    if let Some(file) = &args.front {
+        write_atomic(file, front_csv(&out.front).as_bytes())?;
+    }
+    let m = &out.best.metrics;
+    let mut text = format!(
+        "# trochoplan optimize: highest real MRR within the limits ({} plans)\n\
+         # real MRR {:.0} mm³/min, real cycle {:.3} s, real machining time {:.1} s\n\
+         # h_max {:.4} mm, engagement {:.2}°, W_max {:.4} mm, feed held {:.3}\n",
+        out.evaluations,
+        m.mrr_real_mm3_per_min,
+        m.t_cycle_real_s,
+        m.machining_time_real_s,
+        m.h_max_mm,
+        m.engagement_max_deg,
+        m.waviness_left_mm.max(m.waviness_right_mm),
+        m.feed_held_share,
+    );
+    text.push_str(&out.best.job.to_toml());
+    Ok(text)
+}
+
+/// The front as CSV, one candidate per row, by W_max.
+fn front_csv(front: &[Candidate]) -> String {
+    let mut s = String::from(
+        "path,aspect_ratio,linear_distance_mm,step_mm,feed_mm_per_min,mrr_real_mm3_per_min,waviness_max_mm,\
+         h_max_mm,engagement_max_deg,t_cycle_real_s\n",
+    );
+    for c in front {
+        let (j, m) = (&c.job, &c.metrics);
+        s.push_str(&format!(
+            "{},{},{},{},{},{},{},{},{},{}\n",
+            j.path.name(),
+            m.aspect_ratio,
+            m.linear_distance_mm,
+            m.step_mm,
+            j.feed,
+            m.mrr_real_mm3_per_min,
+            c.waviness(),
+            m.h_max_mm,
+            m.engagement_max_deg,
+            m.t_cycle_real_s
+        ));
+    }
+    s
+}
