@@ -25,7 +25,11 @@ pub struct OptimizeArgs {
     /// Smallest cooling share t_cooling/t_cycle (0–1); none: not limited.
     #[arg(long, value_name = "SHARE", allow_hyphen_values = true)]
     pub min_cooling: Option<f64>,
-    /// Write the Pareto front (real MRR against W_max) as CSV.
+    /// Largest resultant cutting force F_R,max (N, force model of `analyze`); none: not limited.
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub max_force: Option<f64>,
+    /// Write the Pareto fronts (real MRR against W_max and against F_R,max) as CSV; the
+    /// column `front` says which front a row is on.
     #[arg(long, value_name = "FILE.csv")]
     pub front: Option<PathBuf>,
 }
@@ -33,17 +37,20 @@ pub struct OptimizeArgs {
 /// Run the search; the best job as TOML, with its figures as comments.
 pub fn run(args: &OptimizeArgs) -> Result<String, String> {
     let base = args.job.job()?;
-    let limits = Limits::new(args.max_hmax, args.max_engagement, args.max_waviness, args.min_cooling)
+    let mut limits = Limits::new(args.max_hmax, args.max_engagement, args.max_waviness, args.min_cooling)
         .map_err(|e| e.to_string())?;
+    if let Some(f) = args.max_force {
+        limits = limits.with_max_force(f).map_err(|e| e.to_string())?;
+    }
     let out = optimize(&base, &limits, &Control::NONE).map_err(|e| e.to_string())?.ok_or("cancelled")?;
     if let Some(file) = &args.front {
-        write_atomic(file, front_csv(&out.front).as_bytes())?;
+        write_atomic(file, front_csv(&[("waviness", &out.front), ("force", &out.front_force)]).as_bytes())?;
     }
     let m = &out.best.metrics;
     let mut text = format!(
         "# trochoplan optimize: highest real MRR within the limits ({} plans)\n\
          # real MRR {:.0} mm³/min, real cycle {:.3} s, real machining time {:.1} s\n\
-         # h_max {:.4} mm, engagement {:.2}°, W_max {:.4} mm, feed held {:.3}\n",
+         # h_max {:.4} mm, engagement {:.2}°, W_max {:.4} mm, F_R,max {:.1} N, feed held {:.3}\n",
         out.evaluations,
         m.mrr_real_mm3_per_min,
         m.t_cycle_real_s,
@@ -51,33 +58,38 @@ pub fn run(args: &OptimizeArgs) -> Result<String, String> {
         m.h_max_mm,
         m.engagement_max_deg,
         m.waviness_left_mm.max(m.waviness_right_mm),
+        m.force_resultant_max_n,
         m.feed_held_share,
     );
     text.push_str(&out.best.job.to_toml());
     Ok(text)
 }
 
-/// The front as CSV, one candidate per row, by W_max.
-fn front_csv(front: &[Candidate]) -> String {
+/// The fronts as CSV, one candidate per row, each front by its cost (W_max or F_R,max).
+fn front_csv(fronts: &[(&str, &[Candidate])]) -> String {
     let mut s = String::from(
         "path,aspect_ratio,linear_distance_mm,step_mm,feed_mm_per_min,mrr_real_mm3_per_min,waviness_max_mm,\
-         h_max_mm,engagement_max_deg,t_cycle_real_s\n",
+         h_max_mm,engagement_max_deg,t_cycle_real_s,force_resultant_max_n,front\n",
     );
-    for c in front {
-        let (j, m) = (&c.job, &c.metrics);
-        s.push_str(&format!(
-            "{},{},{},{},{},{},{},{},{},{}\n",
-            j.path.name(),
-            m.aspect_ratio,
-            m.linear_distance_mm,
-            m.step_mm,
-            j.feed,
-            m.mrr_real_mm3_per_min,
-            c.waviness(),
-            m.h_max_mm,
-            m.engagement_max_deg,
-            m.t_cycle_real_s
-        ));
+    for (name, front) in fronts {
+        for c in *front {
+            let (j, m) = (&c.job, &c.metrics);
+            s.push_str(&format!(
+                "{},{},{},{},{},{},{},{},{},{},{},{}\n",
+                j.path.name(),
+                m.aspect_ratio,
+                m.linear_distance_mm,
+                m.step_mm,
+                j.feed,
+                m.mrr_real_mm3_per_min,
+                c.waviness(),
+                m.h_max_mm,
+                m.engagement_max_deg,
+                m.t_cycle_real_s,
+                m.force_resultant_max_n,
+                name
+            ));
+        }
     }
     s
 }

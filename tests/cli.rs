@@ -408,6 +408,10 @@ fn machine_and_optimize() {
     assert!(!ok && err.contains("max-engagement") && err.contains("tightest"), "{err}");
     let (ok, _, err) = run(&["optimize", "--max-hmax", "-1", "--max-engagement", "50"]);
     assert!(!ok && err.contains("max-hmax"), "{err}");
+    let (ok, _, err) = run(&["optimize", "--max-hmax", "0.075", "--max-engagement", "50", "--max-force", "-3"]);
+    assert!(!ok && err.contains("max-force"), "{err}");
+    assert!(csv.lines().next().is_some_and(|h| h.ends_with("force_resultant_max_n,front")), "{csv}");
+    assert!(csv.lines().skip(1).any(|l| l.ends_with(",force")) && csv.lines().any(|l| l.ends_with(",waviness")));
 
     // Pockets: the real time at depth on a machine is at least the programmed one.
     let poly = dir.path().join("rect.csv");

@@ -140,7 +140,7 @@ fn random_slot_jobs_plan_or_are_rejected_by_name_and_their_programs_retrace_the_
             Err(e) => {
                 let name = e.parameter().expect("a job error names its parameter").cli_name();
                 assert_eq!(r.code, 2, "{label}: {e}");
-                assert!(r.stderr.contains(&name), "{label}: {} does not name {name}", r.stderr);
+                assert!(r.stderr.contains(name), "{label}: {} does not name {name}", r.stderr);
                 rejected += 1;
             }
         }
@@ -184,7 +184,9 @@ fn malformed_polygon_and_path_files_are_errors_naming_the_line() {
     let dir = tempfile::tempdir().expect("tempdir");
     let lines = ["0,0", "60,0", "60,40", "0,40"];
     let reference = pocket_length(dir.path(), "ref", &lines.join("\n"), "polygon").expect("the rectangle plans");
-    let bad: [(&str, fn(&str) -> String); 7] = [
+    /// A named mutation of one polygon line.
+    type Mutation = (&'static str, fn(&str) -> String);
+    let bad: [Mutation; 7] = [
         ("trailing comment", |l| format!("{l} # note")),
         ("letter O for zero", |l| l.replace('0', "O")),
         ("third column", |l| format!("{l},5")),

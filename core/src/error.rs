@@ -70,6 +70,8 @@ pub enum Param {
     MaxEngagement,
     MaxWaviness,
     MinCooling,
+    /// `optimize --max-force`: limit on F_R,max (N).
+    MaxForce,
     /// Variable feed (issue #11).
     TargetHmax,
     MaxFeed,
@@ -104,7 +106,7 @@ pub enum Param {
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 68] = [
+    pub const ALL: [Param; 69] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
@@ -154,6 +156,7 @@ impl Param {
         Param::MaxEngagement,
         Param::MaxWaviness,
         Param::MinCooling,
+        Param::MaxForce,
         Param::TargetHmax,
         Param::MaxFeed,
         Param::FeedBand,
@@ -228,6 +231,7 @@ impl Param {
             Param::MaxEngagement => "max-engagement",
             Param::MaxWaviness => "max-waviness",
             Param::MinCooling => "min-cooling",
+            Param::MaxForce => "max-force",
             Param::TargetHmax => "target-hmax",
             Param::MaxFeed => "max-feed",
             Param::FeedBand => "feed-band",
@@ -302,6 +306,7 @@ impl Param {
             Param::MaxEngagement => "Limit engagement",
             Param::MaxWaviness => "Limit waviness W_max",
             Param::MinCooling => "Minimum cooling share",
+            Param::MaxForce => "Limit F_R,max",
             Param::TargetHmax => "Target h",
             Param::MaxFeed => "Maximum feed",
             Param::FeedBand => "Feed band ratio",

@@ -87,7 +87,9 @@ impl App {
                 }
             }
             Command::LoadOptimised(i) => {
-                let job = self.optimise.as_ref().and_then(|r| i.map_or_else(|| r.best_job(), |i| r.front_job(i)));
+                let by_force = self.state.optimise.front_by_force;
+                let job =
+                    self.optimise.as_ref().and_then(|r| i.map_or_else(|| r.best_job(), |i| r.front_job(i, by_force)));
                 if let Some(job) = job {
                     self.set_job(job);
                 }

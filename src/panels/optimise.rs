@@ -8,7 +8,7 @@ use crate::worker::{Keep, Task, Worker};
 use eframe::egui::{self, Color32, RichText};
 use egui_plot::{Legend, Line, Plot, PlotPoints, Points};
 use serde::{Deserialize, Serialize};
-use trochoplan_core::optimize::{Control, Limits, Outcome, optimize};
+use trochoplan_core::optimize::{Candidate, Control, Limits, Outcome, optimize};
 use trochoplan_core::{Job, Plan};
 
 /// Persisted optimiser limits (the CLI's `optimize` flags).
@@ -22,23 +22,40 @@ pub struct OptimiseSettings {
     /// `--max-waviness` (mm), used when `limit_waviness`.
     pub max_waviness_mm: f64,
     pub limit_waviness: bool,
+    /// `--max-force` (N), used when `limit_force`.
+    pub max_force_n: f64,
+    pub limit_force: bool,
+    /// Show (and load from) the front against F_R,max instead of W_max.
+    pub front_by_force: bool,
 }
 
 impl Default for OptimiseSettings {
     /// The acceptance case of issue #11: FreeCAD's peak chip and engagement.
     fn default() -> Self {
-        OptimiseSettings { max_hmax_mm: 0.075, max_engagement_deg: 57.5, max_waviness_mm: 0.01, limit_waviness: false }
+        OptimiseSettings {
+            max_hmax_mm: 0.075,
+            max_engagement_deg: 57.5,
+            max_waviness_mm: 0.01,
+            limit_waviness: false,
+            max_force_n: 700.0,
+            limit_force: false,
+            front_by_force: false,
+        }
     }
 }
 
 impl OptimiseSettings {
     fn limits(&self) -> Result<Limits, String> {
-        Limits::new(
+        let limits = Limits::new(
             self.max_hmax_mm,
             self.max_engagement_deg,
             self.limit_waviness.then_some(self.max_waviness_mm),
             None,
-        )
+        );
+        match limits {
+            Ok(l) if self.limit_force => l.with_max_force(self.max_force_n),
+            other => other,
+        }
         .map_err(|e| e.to_string())
     }
 }
@@ -98,10 +115,10 @@ impl OptimiseRun {
         self.cancelled = true;
     }
 
-    /// The job of front point `i`.
-    pub fn front_job(&self, i: usize) -> Option<Job> {
+    /// The job of point `i` of the front shown (against F_R,max if `by_force`, else W_max).
+    pub fn front_job(&self, i: usize, by_force: bool) -> Option<Job> {
         match &self.result {
-            Some(Ok(out)) => out.front.get(i).map(|c| c.job.clone()),
+            Some(Ok(out)) => front(out, by_force).get(i).map(|c| c.job.clone()),
             _ => None,
         }
     }
@@ -113,6 +130,11 @@ impl OptimiseRun {
             _ => None,
         }
     }
+}
+
+/// The front against F_R,max or against W_max.
+fn front(out: &Outcome, by_force: bool) -> &[Candidate] {
+    if by_force { &out.front_force } else { &out.front }
 }
 
 /// Colour of the stretches where the machine cannot hold the programmed feed.
@@ -145,6 +167,13 @@ pub fn show(
                 settings.limit_waviness,
                 egui::DragValue::new(&mut settings.max_waviness_mm).speed(0.001).max_decimals(4).suffix(" mm"),
             );
+            ui.checkbox(&mut settings.limit_force, "F_R,max <=").on_hover_text(
+                "Limit the largest resultant cutting force of the force model (Forces tab, domain-spec §4.1)",
+            );
+            ui.add_enabled(
+                settings.limit_force,
+                egui::DragValue::new(&mut settings.max_force_n).speed(5.0).max_decimals(0).suffix(" N"),
+            );
         });
         if running {
             if ui.button("Cancel").clicked() {
@@ -172,7 +201,7 @@ pub fn show(
             ui.horizontal_wrapped(|ui| {
                 ui.label(format!(
                     "Best: {} r_e {:.3} d {:.3} mm s {:.3} mm feed {:.0} mm/min gives real MRR {:.0} mm³/min, \
-                     h_max {:.4} mm, engagement {:.1}°, W_max {:.4} mm ({} plans)",
+                     h_max {:.4} mm, engagement {:.1}°, W_max {:.4} mm, F_R,max {:.0} N ({} plans)",
                     out.best.job.path.name(),
                     m.aspect_ratio,
                     m.linear_distance_mm,
@@ -182,13 +211,19 @@ pub fn show(
                     m.h_max_mm,
                     m.engagement_max_deg,
                     out.best.waviness(),
+                    m.force_resultant_max_n,
                     out.evaluations
                 ));
                 if ui.button("Load best").clicked() {
                     cmd = Some(Command::LoadOptimised(None));
                 }
             });
-            if let Some(i) = front_plot(ui, out) {
+            ui.horizontal(|ui| {
+                ui.label("Pareto front against");
+                ui.radio_value(&mut settings.front_by_force, false, "W_max");
+                ui.radio_value(&mut settings.front_by_force, true, "F_R,max");
+            });
+            if let Some(i) = front_plot(ui, out, settings.front_by_force) {
                 cmd = Some(Command::LoadOptimised(Some(i)));
             }
         }
@@ -227,14 +262,15 @@ fn feed_plot(ui: &mut egui::Ui, p: &Plan) {
         });
 }
 
-/// The front (real MRR against W_max); returns the point clicked.
-fn front_plot(ui: &mut egui::Ui, out: &Outcome) -> Option<usize> {
-    let pts: Vec<[f64; 2]> = out.front.iter().map(|c| [c.waviness() * 1000.0, c.mrr()]).collect();
-    let best = [out.best.waviness() * 1000.0, out.best.mrr()];
+/// A front (real MRR against W_max, or against F_R,max); returns the point clicked.
+fn front_plot(ui: &mut egui::Ui, out: &Outcome, by_force: bool) -> Option<usize> {
+    let x = |c: &Candidate| if by_force { c.metrics.force_resultant_max_n } else { c.waviness() * 1000.0 };
+    let pts: Vec<[f64; 2]> = front(out, by_force).iter().map(|c| [x(c), c.mrr()]).collect();
+    let best = [x(&out.best), out.best.mrr()];
     let resp = Plot::new("pareto_plot")
         .height(220.0)
         .legend(Legend::default())
-        .x_axis_label("W_max [µm]")
+        .x_axis_label(if by_force { "F_R,max [N]" } else { "W_max [µm]" })
         .y_axis_label("real MRR [mm³/min]")
         .allow_scroll(false)
         .show(ui, |plot| {

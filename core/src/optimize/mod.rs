@@ -11,10 +11,17 @@
 //!   lengths measured on tool circles f_z apart), so the largest admissible feed is found by
 //!   scaling and checked by planning again.
 //!
-//! A force limit F_R,max (issue #10) is feed-scaled and joins as one more [`LimitKind`].
+//! The force limit F_R,max (issue #10, linear edge-force model) is feed-scaled too, but
+//! affine rather than proportional: F = F_e + F_c with the edge part F_e independent of f_z
+//! (dF = (K_c·h + K_e)·dz, domain-spec §4.1). Lowering the feed by the ratio r = limit/F
+//! therefore leaves F slightly above the limit; the search lowers it by r² instead, which
+//! meets the limit whenever F_e ≤ r·F_c (F_e + r²F_c ≤ r(F_e + F_c) ⟺ F_e ≤ r·F_c; the edge
+//! part is about a sixth of the cutting part at the paper's f_z), and then climbs back.
 //! At a fixed shape the real MRR B·s·a_p/t_real grows with s (the feed allowed by h falls
 //! more slowly than s grows, since h/f_z ≈ sin of the engagement, and the real time grows
-//! with the path, not with s), so each shape is scored at (s_max, its largest feed). The
+//! with the path, not with s), so each shape is scored at (s_max, its largest feed) — except
+//! under a force limit, where F_R grows with the engagement and the feed it allows falls
+//! faster than s grows beyond some step: then s is searched by golden section. The
 //! shape variables are searched per path type: none for circular and circular-type paths;
 //! r_e for the elliptical path by a coarse grid over the paper's range 0.5–1.2 (the
 //! bracketing start) and golden-section refinement around its best point; r_e and the ratio
@@ -23,12 +30,13 @@
 //! of the job, so the result is feasible by construction; the grid-search test checks it
 //! against an independent grid over the same space.
 
+use crate::analysis::cycle_forces;
 use crate::analysis::{self, PreviousEdge, Wall, wall_profile};
 use crate::error::{Error, Param, num};
 use crate::geom::golden_min;
 use crate::job::{Job, PathKind, ValidJob, limits::MIN_FZ};
 use crate::path::Cycle;
-use crate::plan::{Metrics, plan_valid};
+use crate::plan::{Metrics, cutter, plan_valid};
 use rayon::prelude::*;
 
 /// Range of r_e searched: the paper's studied range (Table 2, 0.5–1.2).
@@ -50,6 +58,8 @@ pub enum LimitKind {
     Waviness,
     /// Cooling share t_cooling/t_cycle ≥ limit, `--min-cooling`.
     Cooling,
+    /// F_R,max ≤ limit (N), `--max-force`.
+    Force,
 }
 
 /// How a limit is met: by the step (geometry) or by the feed.
@@ -67,6 +77,7 @@ impl LimitKind {
             LimitKind::Engagement => Param::MaxEngagement,
             LimitKind::Waviness => Param::MaxWaviness,
             LimitKind::Cooling => Param::MinCooling,
+            LimitKind::Force => Param::MaxForce,
         }
     }
 
@@ -77,6 +88,7 @@ impl LimitKind {
             LimitKind::Engagement => m.engagement_max_deg,
             LimitKind::Waviness => m.waviness_left_mm.max(m.waviness_right_mm),
             LimitKind::Cooling => m.t_cooling_s / m.t_cycle_s,
+            LimitKind::Force => m.force_resultant_max_n,
         }
     }
 
@@ -87,7 +99,7 @@ impl LimitKind {
 
     pub fn class(self) -> LimitClass {
         match self {
-            LimitKind::HMax => LimitClass::FeedScaled,
+            LimitKind::HMax | LimitKind::Force => LimitClass::FeedScaled,
             _ => LimitClass::Geometric,
         }
     }
@@ -97,6 +109,7 @@ impl LimitKind {
             LimitKind::HMax | LimitKind::Waviness => " mm",
             LimitKind::Engagement => "°",
             LimitKind::Cooling => "",
+            LimitKind::Force => " N",
         }
     }
 }
@@ -150,6 +163,15 @@ impl Limits {
         Ok(Limits { list })
     }
 
+    /// The limits with F_R,max ≤ `force_n` (N) added (`--max-force`).
+    pub fn with_max_force(mut self, force_n: f64) -> Result<Limits, Error> {
+        if !(force_n.is_finite() && force_n > 0.0 && force_n <= 1e6) {
+            return Err(Error::param(Param::MaxForce, force_n, "a finite number > 0 and ≤ 1e6 N".to_owned()));
+        }
+        self.list.push(Limit { kind: LimitKind::Force, value: force_n });
+        Ok(self)
+    }
+
     /// Every limit.
     pub fn all(&self) -> &[Limit] {
         &self.list
@@ -186,6 +208,8 @@ pub struct Outcome {
     pub best: Candidate,
     /// Pareto front of real MRR (higher better) against W_max (lower better), by W_max.
     pub front: Vec<Candidate>,
+    /// Pareto front of real MRR against F_R,max (lower better), by F_R,max.
+    pub front_force: Vec<Candidate>,
     /// Plans made.
     pub evaluations: usize,
 }
@@ -273,7 +297,7 @@ impl Search<'_> {
                     let t = analysis::chip_timing(&series, stride as f64 * job.f_z() / feed);
                     t.t_cooling_s.min(cycle.length() / feed) / (cycle.length() / feed)
                 }
-                LimitKind::HMax => continue,
+                LimitKind::HMax | LimitKind::Force => continue,
             };
             let e = if l.kind.upper() { value / l.value - 1.0 } else { 1.0 - value / l.value };
             if e > worst.0 {
@@ -330,17 +354,27 @@ impl Search<'_> {
         Ok(Ok(a))
     }
 
-    /// The feed-scaled quantity of `kind` for `job` from its per-tooth series alone (no
-    /// walls, no feed planning): what the feed search needs.
-    fn feed_scaled(&self, kind: LimitKind, job: &ValidJob) -> f64 {
+    /// The feed-scaled quantities of `job` (h_max, F_R,max) from its per-tooth series alone
+    /// (no walls, no feed planning): what the feed search needs, as `(limit, value)`.
+    fn feed_scaled(&self, job: &ValidJob) -> Vec<(Limit, f64)> {
         self.plans.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         let (cycle, r, f_z) = (Cycle::for_job(job), job.tool_radius(), job.f_z());
         let edge = PreviousEdge::new(&cycle, r);
-        let series = analysis::tooth_series(&cycle, &edge, r, f_z, job.feed / 60.0);
-        match kind {
-            LimitKind::HMax => series.iter().map(|t| t.h_mm).fold(0.0, f64::max),
-            _ => 0.0,
-        }
+        let feed = job.feed / 60.0;
+        let series = analysis::tooth_series(&cycle, &edge, r, f_z, feed);
+        self.limits
+            .of_class(LimitClass::FeedScaled)
+            .map(|l| {
+                let value = match l.kind {
+                    LimitKind::Force => {
+                        let t_cycle = cycle.length() / feed;
+                        cycle_forces(&series, t_cycle, &cutter(job), &job.coefficients, job.rpm).summary.resultant_max_n
+                    }
+                    _ => series.iter().map(|t| t.h_mm).fold(0.0, f64::max),
+                };
+                (*l, value)
+            })
+            .collect()
     }
 
     /// Plan at step `s` with the largest feed that meets the feed-scaled limits (and the
@@ -356,12 +390,16 @@ impl Search<'_> {
         let mut feed = v.feed.clamp(f_lo, f_hi);
         // Scale: the quantities grow in proportion to f_z; further rounds absorb the rest.
         // Stop once the feed meets the limits within 0.1 % of the tightest (MRR within 0.1 %).
-        for _ in 0..4 {
+        for _ in 0..6 {
             let job = self.job(shape, s, feed).validate()?;
             let ratio = self
-                .limits
-                .of_class(LimitClass::FeedScaled)
-                .map(|l| l.value / self.feed_scaled(l.kind, &job))
+                .feed_scaled(&job)
+                .into_iter()
+                .map(|(l, v)| {
+                    let r = l.value / v;
+                    // F_R is affine in the feed (module docs): lower it by r².
+                    if l.kind == LimitKind::Force && r < 1.0 { r * r } else { r }
+                })
                 .fold(f64::INFINITY, f64::min);
             let next = (feed * ratio * (1.0 - 1e-9)).clamp(f_lo, f_hi);
             if ratio >= 1.0 && (ratio <= 1.001 || (next - feed).abs() <= 1e-9 * feed) {
@@ -391,6 +429,17 @@ impl Search<'_> {
             Ok(s) => s,
             Err((limit, best)) => return Ok(Scored::Infeasible { limit, best }),
         };
+        if self.limits.all().iter().any(|l| l.kind == LimitKind::Force) {
+            // Under a force limit the feed falls as the engagement grows with s, and the real
+            // MRR need not grow with s: golden section over s ∈ [s_max/20, s_max] (the MRR is
+            // unimodal in s there: it rises with s while the engagement is small and falls once
+            // the force limit takes the feed down faster), with the end s_max compared.
+            let neg = |x: f64| self.at_best_feed(shape, x).map_or(f64::INFINITY, |sc| -mrr_of(&sc));
+            let (x, fx) = golden_min(0.05 * s, s, 1e-2 * s, neg);
+            if fx < neg(s) {
+                s = x;
+            }
+        }
         let mut scored = self.at_best_feed(shape, s)?;
         for _ in 0..3 {
             match &scored {
@@ -525,20 +574,21 @@ pub fn optimize(base: &Job, limits: &Limits, control: &Control) -> Result<Option
         Scored::Feasible(c) => Some((**c).clone()),
         Scored::Infeasible { .. } => None,
     });
-    let mut front = pareto(traced.into_iter().chain(scored).collect());
-    front.sort_by(|a, b| a.waviness().total_cmp(&b.waviness()));
-    front.dedup_by(|a, b| a.mrr() == b.mrr() && a.waviness() == b.waviness());
-    Ok(Some(Outcome { best: (**best).clone(), front, evaluations: search.plans.into_inner() }))
+    let candidates: Vec<Candidate> = traced.into_iter().chain(scored).collect();
+    let front = pareto(&candidates, Candidate::waviness);
+    let front_force = pareto(&candidates, |c| c.metrics.force_resultant_max_n);
+    Ok(Some(Outcome { best: (**best).clone(), front, front_force, evaluations: search.plans.into_inner() }))
 }
 
-/// The candidates no other beats on both real MRR (higher) and W_max (lower).
-fn pareto(c: Vec<Candidate>) -> Vec<Candidate> {
+/// The candidates no other beats on both real MRR (higher) and `cost` (lower), by `cost`.
+fn pareto(c: &[Candidate], cost: impl Fn(&Candidate) -> f64) -> Vec<Candidate> {
     let dominated = |a: &Candidate| {
-        c.iter().any(|b| {
-            b.mrr() >= a.mrr() && b.waviness() <= a.waviness() && (b.mrr() > a.mrr() || b.waviness() < a.waviness())
-        })
+        c.iter().any(|b| b.mrr() >= a.mrr() && cost(b) <= cost(a) && (b.mrr() > a.mrr() || cost(b) < cost(a)))
     };
-    c.iter().filter(|a| !dominated(a)).cloned().collect()
+    let mut front: Vec<Candidate> = c.iter().filter(|a| !dominated(a)).cloned().collect();
+    front.sort_by(|a, b| cost(a).total_cmp(&cost(b)));
+    front.dedup_by(|a, b| a.mrr() == b.mrr() && cost(a) == cost(b));
+    front
 }
 
 /// No shape meets the limits: name the limit that fails by the least and the best value
