@@ -63,11 +63,13 @@ pub enum Param {
     RampAngle,
     /// `pocket --finish-stock`.
     FinishStock,
+    /// `pocket --target-engagement` (adaptive clearing).
+    TargetEngagement,
 }
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 40] = [
+    pub const ALL: [Param; 41] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
@@ -108,6 +110,7 @@ impl Param {
         Param::HelixRadius,
         Param::RampAngle,
         Param::FinishStock,
+        Param::TargetEngagement,
     ];
 
     /// The command-line flag without `--` (also the job-file key). The NC tolerance and the
@@ -154,6 +157,7 @@ impl Param {
             Param::HelixRadius => "helix-radius",
             Param::RampAngle => "ramp-angle",
             Param::FinishStock => "finish-stock",
+            Param::TargetEngagement => "target-engagement",
         }
     }
 
@@ -200,6 +204,7 @@ impl Param {
             Param::HelixRadius => "Helix radius",
             Param::RampAngle => "Ramp angle",
             Param::FinishStock => "Finishing stock",
+            Param::TargetEngagement => "Target engagement",
         }
     }
 }
