@@ -251,4 +251,21 @@ fn a_higher_target_engagement_is_kept_and_shortens_the_path() {
         hi.length_at_depth_mm,
         base.length_at_depth_mm
     );
+    // Sampling bound (module docs): ε = (h/2)(1/(r sin β) + 1/(2r) + κ) at h = 0.25 mm, β = the
+    // target, κ ≤ 1/3.75 mm (the peak is on the spiral or a first corner arc, radius ≥ r_h).
+    let h = 0.25;
+    let eps = 0.5 * h * (1.0 / (R * target.sin()) + 0.5 / R + 1.0 / 3.75);
+    let fine = plan_adaptive(
+        &hi.polygon,
+        pocket::PocketSettings { spacing: 0.05, ..hi.settings },
+        AdaptiveOptions { target_deg: Some(50.5), ..AdaptiveOptions::default() },
+    )
+    .unwrap();
+    assert!(
+        fine.max_engagement_rad <= hi.max_engagement_rad + eps,
+        "0.05 mm: {}° vs 0.25 mm: {}° + {}°",
+        fine.max_engagement_rad.to_degrees(),
+        hi.max_engagement_rad.to_degrees(),
+        eps.to_degrees()
+    );
 }
