@@ -755,7 +755,7 @@ fn plan_part(
         .unwrap_or((r_h, vec![r_h]));
     let halves = q.len() - 1;
     // The last half-turn ends on the side n (toward the nearest wall): e_last = −n.
-    let e_of = |i: usize| if (halves - 1 - i) % 2 == 0 { -n } else { n };
+    let e_of = |i: usize| if (halves - 1 - i).is_multiple_of(2) { -n } else { n };
     let theta0 = if halves > 0 { e_of(0).y.atan2(e_of(0).x) } else { n.y.atan2(n.x) };
     let helix =
         Helix { center: k0, radius: r_h, start_angle: theta0, sense: 1.0, ramp_rad: options.ramp_deg.to_radians() };
