@@ -200,6 +200,10 @@ pub struct PocketArgs {
     /// Radial stock of the finishing contour (mm, `--method adaptive`); 0: no finishing pass.
     #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = AdaptiveOptions::default().finish_stock_mm)]
     finish_stock: f64,
+    /// Engagement the adaptive passes are planned to (degrees, `--method adaptive`), from the
+    /// step-over's straight engagement φ* to 90; default φ*.
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
+    target_engagement: Option<f64>,
     #[command(flatten)]
     nc: CornerExportArgs,
 }
@@ -275,6 +279,7 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
             finish_stock_mm: args.finish_stock,
             direction: args.direction,
             depth_mm: args.nc.depth,
+            target_deg: args.target_engagement,
         },
     };
     if args.direction == Direction::Conventional && args.method != PocketStrategy::Adaptive {

@@ -102,11 +102,13 @@ pub enum Param {
     Kae,
     /// `calibrate --slot-forces`: the slot-test file.
     SlotForces,
+    /// `pocket --target-engagement` (adaptive clearing).
+    TargetEngagement,
 }
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 69] = [
+    pub const ALL: [Param; 70] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
@@ -176,6 +178,7 @@ impl Param {
         Param::Kre,
         Param::Kae,
         Param::SlotForces,
+        Param::TargetEngagement,
     ];
 
     /// The command-line flag without `--` (also the job-file key). The NC tolerance and the
@@ -251,6 +254,7 @@ impl Param {
             Param::Kre => "kre",
             Param::Kae => "kae",
             Param::SlotForces => "slot-forces",
+            Param::TargetEngagement => "target-engagement",
         }
     }
 
@@ -326,6 +330,7 @@ impl Param {
             Param::Kre => "Kre",
             Param::Kae => "Kae",
             Param::SlotForces => "Slot-force tests",
+            Param::TargetEngagement => "Target engagement",
         }
     }
 }

@@ -216,6 +216,10 @@ fn helix_that_does_not_fit_and_bad_options_are_named() {
         (AdaptiveOptions { ramp_deg: f64::NAN, ..AdaptiveOptions::default() }, "ramp-angle"),
         (AdaptiveOptions { finish_stock_mm: 2.0, ..AdaptiveOptions::default() }, "finish-stock"),
         (AdaptiveOptions { finish_stock_mm: -0.1, ..AdaptiveOptions::default() }, "finish-stock"),
+        // below φ* = 46.0° of the step-over, above 90°, not a number
+        (AdaptiveOptions { target_deg: Some(45.0), ..AdaptiveOptions::default() }, "target-engagement"),
+        (AdaptiveOptions { target_deg: Some(91.0), ..AdaptiveOptions::default() }, "target-engagement"),
+        (AdaptiveOptions { target_deg: Some(f64::NAN), ..AdaptiveOptions::default() }, "target-engagement"),
     ] {
         assert_eq!(plan_adaptive(&rect, settings, o).unwrap_err().subject(), Some(name));
     }
@@ -225,4 +229,43 @@ fn helix_that_does_not_fit_and_bad_options_are_named() {
     assert!(p.maxima.iter().all(|m| m.kind != MoveKind::Finish));
     assert!((p.corner_radius_left_mm - 1.1 * R).abs() < 1e-12);
     assert!(p.max_engagement_rad <= PI);
+}
+
+/// `--target-engagement`: the passes are planned to the given engagement instead of φ*; every
+/// kind of move keeps it within 1° (the same tolerance as at φ*), and the rectangle gets
+/// shorter than at φ* (larger steps), within the limits (peak 60°, p95 50°).
+#[test]
+fn a_higher_target_engagement_is_kept_and_shortens_the_path() {
+    let rect = poly(&[(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)]);
+    let base = adaptive(rect.clone(), AdaptiveOptions::default());
+    let hi = adaptive(rect, AdaptiveOptions { target_deg: Some(50.5), ..AdaptiveOptions::default() });
+    let target = 50.5f64.to_radians();
+    assert!((hi.target_rad - target).abs() < 1e-12);
+    for m in &hi.maxima {
+        assert!(m.max_rad <= target + 1f64.to_radians(), "{:?}: {}°", m.kind, m.max_rad.to_degrees());
+    }
+    assert!(hi.max_engagement_rad <= 60f64.to_radians() && hi.p95_engagement_rad <= 50f64.to_radians());
+    assert!(
+        hi.length_at_depth_mm < base.length_at_depth_mm,
+        "{} vs {}",
+        hi.length_at_depth_mm,
+        base.length_at_depth_mm
+    );
+    // Sampling bound (module docs): ε = (h/2)(1/(r sin β) + 1/(2r) + κ) at h = 0.25 mm, β = the
+    // target, κ ≤ 1/3.75 mm (the peak is on the spiral or a first corner arc, radius ≥ r_h).
+    let h = 0.25;
+    let eps = 0.5 * h * (1.0 / (R * target.sin()) + 0.5 / R + 1.0 / 3.75);
+    let fine = plan_adaptive(
+        &hi.polygon,
+        pocket::PocketSettings { spacing: 0.05, ..hi.settings },
+        AdaptiveOptions { target_deg: Some(50.5), ..AdaptiveOptions::default() },
+    )
+    .unwrap();
+    assert!(
+        fine.max_engagement_rad <= hi.max_engagement_rad + eps,
+        "0.05 mm: {}° vs 0.25 mm: {}° + {}°",
+        fine.max_engagement_rad.to_degrees(),
+        hi.max_engagement_rad.to_degrees(),
+        eps.to_degrees()
+    );
 }

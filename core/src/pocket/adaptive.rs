@@ -5,7 +5,8 @@
 //! is domain-spec §1.1/§1.2.
 //!
 //! Notation: `r` tool radius, `a_e` the step-over, φ* = arccos(1 − a_e/r) the target (the
-//! straight-cut engagement of a_e, §1.1), `C` the region of tool centres = the pocket offset
+//! straight-cut engagement of a_e, §1.1; `--target-engagement` plans to a higher one, the
+//! steps below all follow from it), `C` the region of tool centres = the pocket offset
 //! inward by r + s_f (s_f the finishing stock).
 //!
 //! **Concave-cut step (DERIVED).** A tool centre on a circle of radius ρ that cuts outward from
@@ -22,27 +23,57 @@
 //!    clearance of `C` (bisection on inward offsets), from 0.5 mm above the stock top down to
 //!    depth, then one flat turn at depth. The evaluator treats the bore as cut (the helix
 //!    circle is its `before` path): the tool descends into it on the ramp, never plunges.
-//! 2. **Spiral.** Half-circles about `k0` (each from radius q_i to q_i+1 half a turn later;
-//!    centre offset (q_i − q_i+1)/2, so the spiral is G1) growing by half the concave-cut step
-//!    per half turn, to radius T (the core radius below).
+//! 2. **Spiral.** Half-turns alternating between two ends, each from radius q_i to q_i+1
+//!    (centre offset (q_i − q_i+1)/2, so the spiral is G1), joined by straight lines parallel
+//!    to the axis below. Where the core C ⊖ q_f (q_f = 0.995 × the inscribed radius) is thin
+//!    (all its vertices within half a concave-cut step of the line through k0 along its
+//!    longest edge: a rectangle's core is a segment), the ends' centres travel along that axis
+//!    once the radius passes q₂, reaching its ends at q_f: the spiral grows into the stadium
+//!    (axis ⊕ q_f) = the rectangle's opening instead of a disc, and cuts along its whole
+//!    length. A revolution moves an end's tip by Δq(1 + κ), κ = s_ext/(q_f − q₂), held to the
+//!    concave-cut step of the radius; q₂ is the candidate (r_h + {0, ¼, ½, ¾}(q_f − r_h)) with
+//!    the shortest spiral. Without an axis the ends coincide at k0: the spiral about k0.
+//!    Ring 0 closes it once around the stadium (the circle about k0).
 //! 3. **Rings.** The core K = C ⊖ T (inward offset): for T just below the inscribed radius, K
 //!    is a thin strip along the pocket's middle. Ring j is the boundary of (K ∩ D(k0, s_j)) ⊕ T,
 //!    s_j growing by the concave-cut step of radius T: each ring is smooth (its corners are
 //!    arcs of radius ≥ T about K), lies a step outside the previous one (the offset of a set
 //!    that grew by at most the step), runs along the walls where it meets them tangentially,
-//!    and passes through the wall point q0 nearest k0, where consecutive rings join without a
-//!    link into material. The last ring is the opening of C with radius T. T starts at
-//!    0.995 × the inscribed radius and shrinks by 10 % until that opening leaves only the
-//!    corner caps uncut (area check: a cap of a convex corner α is T²(cot(α/2) − (π − α)/2)).
+//!    and passes through the wall point q0 where the spiral ended, where consecutive rings
+//!    join without a link into material. A ring inside the stadium (it adds less than a strip
+//!    2 % of a step wide along its length) is not cut. The last ring is the opening of C with
+//!    radius T. T starts at 0.995 × the inscribed radius and shrinks by 10 % until that opening
+//!    leaves only the corner caps uncut (area check: a cap of a convex corner α is
+//!    T²(cot(α/2) − (π − α)/2)).
 //! 4. **Corners.** Every convex corner V of C (angle α) is thinned by arcs tangent to both
 //!    walls with radii ρ_k from T down to ρ_fin, centre V + b·ρ/sin(α/2) on the bisector b.
 //!    Consecutive arcs are a distance (ρ_k − ρ_k+1)(1/sin(α/2) − 1) apart on the bisector and
 //!    tangent to each other's walls; that distance is held to the concave-cut step of ρ_k+1.
-//!    A pass runs along wall A from the previous tangent point, the arc, back along wall B,
-//!    then a straight link through the cleared arc returns to wall A. The tool never reaches V
+//!    A pass runs along wall A from the previous tangent point, the arc, then the arc's own
+//!    chord (cleared: it lies on the cut side of the arc) returns to wall A. The tool never reaches V
 //!    (see [`corner_point_bound_rad`]): the pocket corner is left with radius r + ρ_fin + s_f.
 //! 5. **Finish.** With s_f > 0: the opening of the final wall offset with radius ρ_fin + s_f,
 //!    concentric with the last corner arcs, once around (climb).
+//!
+//! **Sampling error bound (DERIVED).** The evaluator measures at every segment end (kinks are
+//! exact) and every h mm (`spacing`). Take two tool positions c, c' a distance δ apart along
+//! the path. Material only shrinks, and the periphery point c' + r·e(θ) is c + r·e(θ) moved by
+//! δ, so θ can be engaged at c' only if c + r·e(θ) lies within δ of the material at c, and
+//! only if e(θ)·t ≥ −δ/(2r) (t the direction of motion; nearer than r to c is swept). Each end
+//! of the engaged arc thus moves by at most
+//! - δ/(r·sin β) where it lies on a boundary left by an earlier position c_p, to first order in
+//!   δ; β = 2·arcsin(|c − c_p|/(2r)) is the angle at which the two circles cross (β = φ on a
+//!   straight cut at engagement φ);
+//! - δ/(2r) + κ·δ where it is the edge of the front half (κ the path's curvature: the front
+//!   half turns with the direction).
+//!
+//! A peak between two samples h apart lies within h/2 of one of them, so the reported maximum
+//! misses at most ε = (h/2)·(1/(r·sin β) + 1/(2r) + κ). With r = 5, β ≈ φ ≈ 50° and the default
+//! h = 0.25 mm: ε ≤ 4.5° where the path's radius is ≥ 3.75 mm (spiral, stadium, rings, the
+//! first corner arcs), ≤ 0.9° at h = 0.05 mm; on the last corner arcs (radius ρ_fin ≈ 0.7 mm)
+//! the κ term dominates (12° at 0.25 mm, 2.5° at 0.05 mm). Measured: the rectangle's peak at
+//! h = 0.05 mm equals the one at 0.25 mm within 0.01° (`core/tests/adaptive_pocket.rs`), and
+//! with every arc cut into pieces of h/r rad (the curvature term then h/(2r)) within 0.001°.
 //!
 //! Conventional milling mirrors the pocket in x, plans it, and mirrors the path back: every
 //! loop then runs clockwise, with the same engagement by symmetry.
@@ -54,7 +85,7 @@ use crate::corner::{EngagementProfile, EvaluatorOptions, engagement_profile};
 use crate::error::{Error, Param, num};
 use crate::geom::{P2, Polygon, Segment, cross, p2};
 use crate::job::Direction;
-use cavalier_contours::polyline::{BooleanOp, PlineSource, PlineSourceMut, Polyline};
+use cavalier_contours::polyline::{BooleanOp, PlineSource, PlineSourceMut, PlineVertex, Polyline};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 
@@ -83,6 +114,10 @@ pub struct AdaptiveOptions {
     pub direction: Direction,
     /// Depth the helix descends to below Z0 (mm) [`--depth`]: its length and time.
     pub depth_mm: f64,
+    /// Engagement the passes are planned to (deg) [`--target-engagement`], from φ* of the
+    /// step-over up to 90°; `None`: φ*.
+    #[serde(default)]
+    pub target_deg: Option<f64>,
 }
 
 impl Default for AdaptiveOptions {
@@ -95,6 +130,7 @@ impl Default for AdaptiveOptions {
             finish_stock_mm: 0.2,
             direction: Direction::Climb,
             depth_mm: 6.0,
+            target_deg: None,
         }
     }
 }
@@ -126,7 +162,25 @@ impl AdaptiveOptions {
         if !(self.depth_mm.is_finite() && self.depth_mm > 0.0 && self.depth_mm <= 1000.0) {
             return Err(Error::param(Param::Depth, self.depth_mm, "greater than 0 and at most 1000 mm"));
         }
+        if let Some(t) = self.target_deg {
+            let phi = crate::corner::straight_engagement(settings.step_over, r)?.to_degrees();
+            if !(t.is_finite() && t >= phi - 1e-9 && t <= 90.0) {
+                return Err(Error::param(
+                    Param::TargetEngagement,
+                    t,
+                    format!("from the step-over's straight engagement {}° to 90°", num(phi)),
+                ));
+            }
+        }
         Ok(())
+    }
+
+    /// The engagement the passes are planned to (rad): the option, else φ* of the step-over.
+    pub fn target_rad(&self, settings: &PocketSettings) -> Result<f64, Error> {
+        match self.target_deg {
+            Some(t) => Ok(t.to_radians()),
+            None => crate::corner::straight_engagement(settings.step_over, settings.tool_radius),
+        }
     }
 }
 
@@ -459,7 +513,7 @@ pub fn plan_adaptive(
     options: AdaptiveOptions,
 ) -> Result<AdaptivePlan, Error> {
     let (parts, b, corner_radius_left_mm) = plan_path(polygon, &settings, &options)?;
-    let phi = crate::corner::straight_engagement(settings.step_over, settings.tool_radius)?;
+    let phi = options.target_rad(&settings)?;
     measure(polygon.clone(), settings, options, phi, parts, b, corner_radius_left_mm)
 }
 
@@ -487,7 +541,7 @@ fn plan_path(
     let mirror = options.direction == Direction::Conventional;
     let work = if mirror { mirrored_polygon(polygon)? } else { polygon.clone() };
     let r = settings.tool_radius;
-    let phi = crate::corner::straight_engagement(settings.step_over, r)?;
+    let phi = options.target_rad(&settings)?;
     let sf = options.finish_stock_mm;
     let outline = pline_of(work.vertices());
     let regions = offset(&outline, r + sf);
@@ -645,67 +699,130 @@ fn plan_part(
         .map(|s| closest_on(s, k0).0)
         .min_by(|a, c| (a - k0).norm().total_cmp(&(c - k0).norm()))
         .unwrap_or(k0);
-    let n = if (foot - k0).norm() > 1e-9 { (foot - k0).normalize() } else { p2(1.0, 0.0) };
-    let theta_n = n.y.atan2(n.x);
+    let n_foot = if (foot - k0).norm() > 1e-9 { (foot - k0).normalize() } else { p2(1.0, 0.0) };
     // The first ring is the circle about k0 that (nearly) touches the nearest wall, at q0:
     // (K ∩ D(k0, s0)) ⊕ T with s0 = 0.995·R_in − T; every later ring contains it, so passes
     // within 0.005·R_in of q0, where consecutive rings are joined.
     let s0 = (0.995 * inscribed - t).max(0.0);
     let spiral_end = s0 + t;
-    // Spiral radii at half turns, r_h → the first ring.
-    let mut q = vec![r_h];
-    while let Some(&last) = q.last() {
-        if last >= spiral_end - 1e-9 || q.len() > MAX_PASSES {
-            break;
+    // Where the centres of the spiral's end half-turns may travel: along the axis of a thin
+    // core C ⊖ q_f (q_f = spiral_end), so the spiral ends as the stadium of that axis.
+    let axis = stadium_axis(region, spiral_end, k0, concave_step(spiral_end, r, phi)).filter(|&(u, _, _, w)| {
+        // the stadium's side must meet a wall at k0, where the rings are joined (below)
+        let m = crate::geom::rot90(u);
+        let side = k0 + (if m.dot(&n_foot) >= 0.0 { m } else { -m }) * (spiral_end + w);
+        walls.iter().map(|sg| (closest_on(sg, side).0 - side).norm()).fold(f64::INFINITY, f64::min)
+            <= 0.005 * inscribed + 1e-9
+    });
+    let (u, s_plus, s_minus, w) = axis.unwrap_or((crate::geom::rot90(n_foot), 0.0, 0.0, 0.0));
+    let spiral_end = spiral_end + w;
+    let n = if axis.is_some() {
+        let m = crate::geom::rot90(u);
+        if m.dot(&n_foot) >= 0.0 { m } else { -m }
+    } else {
+        n_foot
+    };
+    // Spiral radii at half turns, r_h → q_f. The ends' centres start along the axis once the
+    // radius passes q₂ and reach the axis' ends at q_f: a revolution then moves each end's
+    // centre by κ·Δq (κ = s_ext/(q_f − q₂)), so the tip of an end steps Δq(1 + κ), held to
+    // the concave-cut step of the radius. q₂ is the candidate with the shortest spiral.
+    let s_ext = s_plus.max(s_minus);
+    let radii = |q2: f64| {
+        let kappa = s_ext / (spiral_end - q2).max(1e-9);
+        let mut q = vec![r_h];
+        while let Some(&last) = q.last() {
+            if last >= spiral_end - 1e-9 || q.len() > MAX_PASSES {
+                break;
+            }
+            let next = if last < q2 - 1e-9 {
+                (last + 0.5 * concave_step(last, r, phi)).min(q2)
+            } else {
+                last + 0.5 * concave_step(last, r, phi) / (1.0 + kappa)
+            };
+            q.push(next.min(spiral_end));
         }
-        q.push((last + 0.5 * concave_step(last, r, phi)).min(spiral_end));
-    }
+        q
+    };
+    let lambda_of = |q2: f64, qi: f64| ((qi - q2) / (spiral_end - q2).max(1e-9)).clamp(0.0, 1.0);
+    let spiral_length = |q2: f64, q: &[f64]| -> f64 {
+        q.windows(2).map(|w| 0.5 * PI * (w[0] + w[1]) + 2.0 * s_ext * lambda_of(q2, w[0])).sum()
+    };
+    let (q2, q) = [0.0, 0.25, 0.5, 0.75]
+        .iter()
+        .map(|f| r_h + f * (spiral_end - r_h))
+        .map(|q2| (q2, radii(q2)))
+        .min_by(|a, c| spiral_length(a.0, &a.1).total_cmp(&spiral_length(c.0, &c.1)))
+        .unwrap_or((r_h, vec![r_h]));
     let halves = q.len() - 1;
-    let theta0 = theta_n - halves as f64 * PI;
+    // The last half-turn ends on the side n (toward the nearest wall): e_last = −n.
+    let e_of = |i: usize| if (halves - 1 - i).is_multiple_of(2) { -n } else { n };
+    let theta0 = if halves > 0 { e_of(0).y.atan2(e_of(0).x) } else { n.y.atan2(n.x) };
     let helix =
         Helix { center: k0, radius: r_h, start_angle: theta0, sense: 1.0, ramp_rad: options.ramp_deg.to_radians() };
     b.push(helix.circle(), MoveKind::Entry);
     for i in 0..halves {
-        let th = theta0 + i as f64 * PI;
-        let e = p2(th.cos(), th.sin());
+        let e = e_of(i);
+        // Centre of this end half-turn on the axis: its middle direction rot90(e) is ±u.
+        let lambda = lambda_of(q2, q[i]);
+        let ext = if crate::geom::rot90(e).dot(&u) > 0.0 { s_plus } else { -s_minus };
+        let a = k0 + u * (lambda * ext);
+        let start = a + e * q[i];
+        b.line(start, MoveKind::Spiral);
         let seg = Segment::Arc {
-            center: k0 + e * (0.5 * (q[i] - q[i + 1])),
+            center: a + e * (0.5 * (q[i] - q[i + 1])),
             radius: 0.5 * (q[i] + q[i + 1]),
-            start_angle: th,
+            start_angle: e.y.atan2(e.x),
             sweep: PI,
         };
         b.push(seg, MoveKind::Spiral);
     }
-    // Rings: (K ∩ D(k0, s)) ⊕ T, the first (s = 0) the circle of radius T.
+    // Ring 0 closes the spiral: the stadium of radius q_f about the axis (the circle about k0
+    // where the core has no axis).
+    let m = crate::geom::rot90(u);
+    let (a_plus, a_minus) = (k0 + u * s_plus, k0 - u * s_minus);
+    let ang = |v: P2| v.y.atan2(v.x);
+    let stadium = [
+        Segment::Line { start: a_minus - m * spiral_end, end: a_plus - m * spiral_end },
+        Segment::Arc { center: a_plus, radius: spiral_end, start_angle: ang(-m), sweep: PI },
+        Segment::Line { start: a_plus + m * spiral_end, end: a_minus + m * spiral_end },
+        Segment::Arc { center: a_minus, radius: spiral_end, start_angle: ang(m), sweep: PI },
+    ];
+    for seg in start_near(&stadium, b.at()) {
+        b.push(seg, MoveKind::Ring);
+    }
+    let mut cut: Polyline<f64> = Polyline::new_closed();
+    for v in [a_minus - m * spiral_end, a_plus - m * spiral_end, a_plus + m * spiral_end, a_minus + m * spiral_end] {
+        cut.add(v.x, v.y, 0.0);
+    }
+    cut.set_vertex(1, PlineVertex::new(cut[1].x, cut[1].y, 1.0));
+    cut.set_vertex(3, PlineVertex::new(cut[3].x, cut[3].y, 1.0));
+    // Rings: (K ∩ D(k0, s)) ⊕ T a step apart, joined at the wall point q0 where the spiral
+    // ended; a ring that adds to the stadium less area than a strip of 2 % of the step along
+    // its whole length (it lies inside the stadium but for slivers) is not cut.
     let step = concave_step(t, r, phi);
     let reach = core.iter_vertexes().map(|v| (p2(v.x, v.y) - k0).norm()).fold(0.0, f64::max);
-    let mut s = s0;
-    let mut rings = 0;
-    let q0 = k0 + n * spiral_end;
-    loop {
-        let grown = if s <= s0 {
-            None
-        } else if s >= reach {
+    let mut s = (s0 + step).min(reach);
+    let mut rings = 1;
+    let q0 = b.at();
+    while s > s0 + 1e-9 && rings <= MAX_PASSES {
+        let grown = if s >= reach {
             Some(core.clone())
         } else {
             largest(core.boolean(&disc(k0, s), BooleanOp::And).pos_plines.into_iter().map(|p| p.pline).collect())
         };
-        let ring = match grown {
-            None => vec![Segment::Arc { center: k0, radius: spiral_end, start_angle: theta_n, sweep: TAU }],
-            Some(g) => match largest(offset(&g, -t)) {
-                Some(o) => start_near(&to_segments(&o), q0),
-                None => Vec::new(),
-            },
-        };
-        if !ring.is_empty() {
-            let start = ring[0].start();
-            b.line(start, MoveKind::Link);
-            for seg in ring {
-                b.push(seg, MoveKind::Ring);
+        if let Some(o) = grown.and_then(|g| largest(offset(&g, -t))) {
+            let outside: f64 = o.boolean(&cut, BooleanOp::Not).pos_plines.iter().map(|p| p.pline.area().abs()).sum();
+            if outside >= 0.02 * step * o.path_length() {
+                let ring = start_near(&to_segments(&o), q0);
+                let start = ring[0].start();
+                b.line(start, MoveKind::Link);
+                for seg in ring {
+                    b.push(seg, MoveKind::Ring);
+                }
+                rings += 1;
             }
-            rings += 1;
         }
-        if s >= reach || rings > MAX_PASSES {
+        if s >= reach {
             break;
         }
         s = (s + step).min(reach);
@@ -721,20 +838,18 @@ fn plan_part(
         }
         let (a0, _, _) = c.arc(rho);
         link(b, polygon, r, a0, k0);
-        let (mut prev_a, mut prev_e) = (a0, c.arc(rho).1);
         let mut passes = 0;
         let mut deepest: f64 = 0.0;
         while rho > rho_fin + 1e-6 && passes < MAX_PASSES {
             // Fixed point: the step allowed at the new radius.
             let mut next = rho - concave_step(rho, r, phi) / k;
             next = (rho - concave_step(next.max(rho_fin), r, phi) / k).max(rho_fin);
-            let (a, e, arc) = c.arc(next);
-            b.line(prev_a, MoveKind::Link);
+            let (a, _, arc) = c.arc(next);
             b.line(a, MoveKind::Corner);
             b.push(arc, MoveKind::Corner);
-            b.line(prev_e, MoveKind::Corner);
+            b.line(a, MoveKind::Link);
             deepest = deepest.max((rho - next) * k);
-            (prev_a, prev_e, rho) = (a, e, next);
+            rho = next;
             passes += 1;
         }
         corners.push(CornerPasses {
@@ -779,6 +894,45 @@ fn plan_part(
         }
     }
     Ok(AdaptivePart { helix, first_segment: 0, end_segment: 0, core_radius_mm: t, rings, corners })
+}
+
+/// The axis of a thin core: the core C ⊖ q (one loop) whose vertices lie within `width` of a
+/// line through `k0`, as the unit direction u and the extents s₊, s₋ ≥ 0 of its vertices along
+/// u either side of k0 (u along the core's longest edge), and the widening w of the
+/// stadium's radius q (below). `None` where the core is
+/// not that thin (an L, a square) or its extents are below a tenth of `width`.
+fn stadium_axis(region: &Polyline<f64>, q: f64, k0: P2, width: f64) -> Option<(P2, f64, f64, f64)> {
+    let ks = offset(region, q);
+    let [k] = ks.as_slice() else { return None };
+    let vs: Vec<P2> = k.iter_vertexes().map(|v| p2(v.x, v.y)).collect();
+    let (mut u, mut far) = (p2(1.0, 0.0), 0.0);
+    for (i, a) in vs.iter().enumerate() {
+        let c = vs[(i + 1) % vs.len()];
+        if (c - a).norm() > far {
+            (u, far) = ((c - a) / (c - a).norm(), (c - a).norm());
+        }
+    }
+    if far < 0.2 * width {
+        return None;
+    }
+    let off = |v: &P2| cross(u, v - k0);
+    if vs.iter().any(|v| off(v).abs() > 0.5 * width) {
+        return None;
+    }
+    let along = |v: &P2| u.dot(&(v - k0));
+    let s_plus = vs.iter().map(along).fold(0.0, f64::max);
+    let s_minus = vs.iter().map(|v| -along(v)).fold(0.0, f64::max);
+    // Widened by the core's half-width w (the stadium then reaches the walls the core's offset
+    // reaches) and shortened by w, where its axis keeps q + w from every wall.
+    let w = vs.iter().map(|v| off(v).abs()).fold(0.0, f64::max);
+    let walls = to_segments(region);
+    let clear = |p: P2| walls.iter().map(|sg| (closest_on(sg, p).0 - p).norm()).fold(f64::INFINITY, f64::min);
+    let (sp, sm) = ((s_plus - w).max(0.0), (s_minus - w).max(0.0));
+    if [k0 + u * sp, k0 - u * sm, k0].iter().all(|&p| clear(p) >= q + w - 1e-9) {
+        Some((u, sp, sm, w))
+    } else {
+        Some((u, s_plus, s_minus, 0.0))
+    }
 }
 
 /// A link through cleared material from the current position to `to`: straight where the tool
