@@ -483,6 +483,16 @@ fn corner_harness() -> Harness<'static, App> {
     h
 }
 
+/// Step the harness until the Corner tab's background plan has arrived (at most 120 s).
+fn wait_for_corner(h: &mut Harness<'_, App>) {
+    let t0 = Instant::now();
+    while h.state().corner.pending() && t0.elapsed().as_secs() < 120 {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        h.step();
+    }
+    h.run();
+}
+
 fn corner_result(h: &Harness<'_, App>) -> std::sync::Arc<panels::corner::CornerResult> {
     h.state().corner.last.clone().expect("a corner result")
 }
@@ -569,12 +579,7 @@ fn pocket_mode_plans_the_medial_axis_strategy_for_the_whole_pocket() {
     h.run();
     h.state_mut().state.corner.method = CornerMethod::MedialAxis;
     h.run();
-    let t0 = Instant::now();
-    while h.state().corner.pending() && t0.elapsed().as_secs() < 120 {
-        std::thread::sleep(std::time::Duration::from_millis(20));
-        h.step();
-    }
-    h.run();
+    wait_for_corner(&mut h);
     assert!(h.state().corner.error.is_none(), "{:?}", h.state().corner.error);
     let p = h.state().corner.last_pocket.clone().expect("a pocket");
     let PocketPlan::MedialAxis(plan) = &p.plan else { panic!("medial-axis plan expected, got rings") };
@@ -624,12 +629,7 @@ fn pocket_mode_plans_adaptive_clearing() {
     h.run();
     h.get_by_label(label::POCKET_ADAPTIVE).click();
     h.run();
-    let t0 = Instant::now();
-    while h.state().corner.pending() && t0.elapsed().as_secs() < 120 {
-        std::thread::sleep(std::time::Duration::from_millis(20));
-        h.step();
-    }
-    h.run();
+    wait_for_corner(&mut h);
     assert!(h.state().state.corner.pocket_adaptive);
     assert!(h.state().corner.error.is_none(), "{:?}", h.state().corner.error);
     let p = h.state().corner.last_pocket.clone().expect("a pocket");

@@ -190,16 +190,7 @@ fn machine_picker(ui: &mut egui::Ui, job: &mut Job, error: Option<&Error>) {
             "Acceleration, jerk and feed limits of the machine: the real cycle time, real MRR and \
              the feed plot (Machine & optimise tab) follow them. Presets in assets/machines/.",
         );
-    for p in [
-        Param::Machine,
-        Param::MaxFeedX,
-        Param::MaxFeedY,
-        Param::AccelerationX,
-        Param::AccelerationY,
-        Param::JerkX,
-        Param::JerkY,
-        Param::PathTolerance,
-    ] {
+    for p in trochoplan_core::machine::Machine::PARAMS {
         field_error_line(ui, p, error);
     }
 }

@@ -54,6 +54,18 @@ impl Machine {
         toml::from_str(text).map_err(|e| Error::File(format!("machine preset {name}: {e}")))
     }
 
+    /// The parameters of a machine: its name and every limit (job keys, GUI error lines).
+    pub const PARAMS: [Param; 8] = [
+        Param::Machine,
+        Param::MaxFeedX,
+        Param::MaxFeedY,
+        Param::AccelerationX,
+        Param::AccelerationY,
+        Param::JerkX,
+        Param::JerkY,
+        Param::PathTolerance,
+    ];
+
     /// Check every limit: finite and > 0; the error names the key.
     pub fn validate(&self) -> Result<(), Error> {
         let checks = [
