@@ -24,10 +24,14 @@
 //! **Time.** Spindle-angle steps of at most [`SPINDLE_STEP_RAD`] (1°) over one cycle (up to
 //! [`MAX_FORCE_TOOTH_SAMPLES`] / z samples; a job needing more gets coarser steps, `dt_s`). The
 //! chip geometry is known at the tooth positions f_z apart (one tooth period); between two of
-//! them the engaged arcs are blended linearly in time: ends by their angles, h at the same
-//! relative place along the arc, the frame (feed direction) by its angle. An arc that appears
-//! (vanishes) between two positions grows from (shrinks to) a point in its middle; where both
-//! positions have arcs but not as many (an arc splits) the nearer position's are used.
+//! them the engaged arcs are blended in time: the arc's middle and h (at the same relative
+//! place along the arc) linearly, its sweep S with S² linear (an edge crossing a material
+//! boundary engages S ∝ √penetration), the frame (feed direction) by its angle. An arc that
+//! vanishes between two positions shrinks to a point in its middle; one that appears grows
+//! from there, from the time at which S² extrapolated from the next two positions is 0 (at
+//! the start of a cutting pass the tool meets the material between two positions, not at
+//! the first). Where both positions have arcs but not as many (an arc splits) the nearer
+//! position's are used.
 //!
 //! **Runout.** Flute j sits ρ_j further out than nominal; its chip is
 //! h_j = max(0, min over m = 1…z of (m·h + ρ_j − ρ_{j−m})) (the usual runout form, with the
@@ -84,7 +88,7 @@ impl ForceSample {
     }
     /// |Fxy| = √(Fx² + Fy²) (N).
     pub fn fxy_n(&self) -> f64 {
-        self.fx_n.hypot(self.fy_n)
+        (self.fx_n * self.fx_n + self.fy_n * self.fy_n).sqrt()
     }
 }
 
@@ -179,11 +183,15 @@ pub struct ArcBlend<'a> {
 }
 
 impl ArcBlend<'_> {
-    fn entry(&self) -> f64 {
-        self.pair.a.0 + self.w * (self.pair.b.0 - self.pair.a.0)
-    }
-    fn exit(&self) -> f64 {
-        self.pair.a.1 + self.w * (self.pair.b.1 - self.pair.a.1)
+    /// Entry and exit angles: the arc's middle blended linearly, its sweep S with S² linear
+    /// in w (a tool edge crossing a material boundary engages S ∝ √penetration, see
+    /// [`Growth::weight`]; between similar sweeps this is the linear blend).
+    fn ends(&self) -> (f64, f64) {
+        let (a, b, w) = (self.pair.a, self.pair.b, self.w);
+        let mid = 0.5 * (a.0 + a.1 + w * (b.0 + b.1 - a.0 - a.1));
+        let (sa, sb) = ((a.1 - a.0).max(0.0), (b.1 - b.0).max(0.0));
+        let half = 0.5 * (sa * sa + w * (sb * sb - sa * sa)).max(0.0).sqrt();
+        (mid - half, mid + half)
     }
 }
 
@@ -272,17 +280,14 @@ impl<'a> Model<'a> {
 
     /// Force (Fx, Fy, Fz) and torque at one instant: `frame` is the world angle (rad from +x,
     /// counter-clockwise) of φ = 0, `spindle` the angle φ of tooth 0's bottom point.
-    fn instant(&self, frame: f64, spindle: f64, arcs: &[ArcBlend]) -> ([f64; 4], bool) {
+    fn instant<'b>(&self, frame: f64, spindle: f64, arcs: impl IntoIterator<Item = ArcBlend<'b>>) -> ([f64; 4], bool) {
         let mut f = [0.0; 4];
         let mut cutting = false;
         let span = self.lag * self.depth;
-        if arcs.is_empty() {
-            return (f, cutting);
-        }
         // World direction of tooth 0's bottom point: ψ = frame − spindle; tooth j at ψ − j·2π/z.
         let (s0, c0) = (frame - spindle).sin_cos();
         for arc in arcs {
-            let (e, x) = (arc.entry(), arc.exit());
+            let (e, x) = arc.ends();
             if x <= e {
                 continue;
             }
@@ -292,7 +297,7 @@ impl<'a> Model<'a> {
                 let dir = (c0 * cj + s0 * sj, s0 * cj - c0 * sj);
                 // The first branch of the flute at or after the arc entry.
                 let d = bottom - e;
-                let mut phi_b = e + (d - TAU * (d / TAU).floor());
+                let mut phi_b = e + (d - TAU * floor(d / TAU));
                 while phi_b - span <= x {
                     let (z_lo, z_hi) = if self.lag > 0.0 {
                         (((phi_b - x) / self.lag).max(0.0), ((phi_b - e) / self.lag).min(self.depth))
@@ -303,7 +308,7 @@ impl<'a> Model<'a> {
                     };
                     if z_hi > z_lo {
                         cutting = true;
-                        self.flute_slices(arc, e, x, j, phi_b, z_lo, z_hi, dir, &mut f);
+                        self.flute_slices(&arc, e, x, j, phi_b, z_lo, z_hi, dir, &mut f);
                     }
                     if self.lag <= 0.0 {
                         break;
@@ -357,8 +362,10 @@ impl<'a> Model<'a> {
             self.add(acc, self.flute_chip(j, h), zh - zl, s0 * ct + c0 * st, c0 * ct - s0 * st);
         };
         // Whole slices i_a..i_b span [z_a, z_b]; the cut ones above and below.
-        let i_a = ((z_lo / dz).ceil() as usize).min(SLICES);
-        let i_b = ((z_hi / dz).floor() as usize).clamp(i_a, SLICES);
+        // z_lo, z_hi ≥ 0: truncation is the floor.
+        let (q_lo, q_hi) = (z_lo / dz, z_hi / dz);
+        let i_a = ((q_lo as usize) + usize::from(q_lo > (q_lo as usize) as f64)).min(SLICES);
+        let i_b = (q_hi as usize).clamp(i_a, SLICES);
         if i_a == i_b {
             cut_slice(&mut acc, &mut cursor, z_lo, z_hi);
         } else {
@@ -401,7 +408,7 @@ impl<'a> Model<'a> {
 /// the world angle of φ = 0 (the material-side normal N), `spindle` the angle φ of tooth 0's
 /// bottom point (teeth follow at +2π/z). Also whether any element cuts.
 pub fn force_at(cutter: &Cutter, k: &Coefficients, frame: f64, spindle: f64, arcs: &[ArcBlend]) -> ForceSample {
-    let ([fx, fy, fz, t], cutting) = Model::new(cutter, k).instant(frame, spindle, arcs);
+    let ([fx, fy, fz, t], cutting) = Model::new(cutter, k).instant(frame, spindle, arcs.iter().copied());
     ForceSample { time_s: 0.0, fx_n: fx, fy_n: fy, fz_n: fz, torque_nm: t / 1000.0, cutting }
 }
 
@@ -436,15 +443,24 @@ pub fn cycle_forces(
         let mid = 0.5 * (x.entry_rad + x.exit_rad);
         EngagedArc { entry_rad: mid, exit_rad: mid, samples: vec![ThicknessSample { phi_rad: mid, h_mm: 0.0 }] }
     };
-    let pairs: Vec<Option<Vec<ArcPair>>> = (0..n)
+    let period = |i: usize| {
+        let (a, b) = (series[i].time_s, series[(i + 1) % n].time_s);
+        if i + 1 < n { b - a } else { b + t_cycle_s - a }
+    };
+    let pairs: Vec<Option<(Vec<ArcPair>, Growth)>> = (0..n)
         .map(|i| {
             let (a, b) = (&series[i].arcs, &series[(i + 1) % n].arcs);
             if a.len() == b.len() {
-                Some(a.iter().zip(b).map(|(x, y)| ArcPair::new(x, y)).collect())
+                Some((a.iter().zip(b).map(|(x, y)| ArcPair::new(x, y)).collect(), Growth::Linear))
             } else if a.is_empty() {
-                Some(b.iter().map(|y| ArcPair::new(&point(y), y)).collect())
+                // Sweeps here and one position further on give the appearance.
+                let share = growth_share(b, &series[(i + 2) % n].arcs, period((i + 1) % n) / period(i));
+                Some((b.iter().map(|y| ArcPair::new(&point(y), y)).collect(), Growth::Appear(share)))
             } else if b.is_empty() {
-                Some(a.iter().map(|x| ArcPair::new(x, &point(x))).collect())
+                // Shrinking to a point at the next position: the sweep² blend of
+                // [`ArcBlend::ends`] (an extrapolated vanishing came too early where a sliver
+                // of an arc lingers, against the brute-force check).
+                Some((a.iter().map(|x| ArcPair::new(x, &point(x))).collect(), Growth::Linear))
             } else {
                 None
             }
@@ -461,28 +477,69 @@ pub fn cycle_forces(
             let t1 = if i0 + 1 < n { b.time_s } else { b.time_s + t_cycle_s };
             let w = if t1 > a.time_s { ((t - a.time_s) / (t1 - a.time_s)).clamp(0.0, 1.0) } else { 0.0 };
             let turn = wrap_pi(b.feed_angle_rad - a.feed_angle_rad);
-            let (arcs, frame): (Vec<ArcBlend>, f64) = match &pairs[i0] {
-                Some(p) => {
-                    (p.iter().map(|pair| ArcBlend { pair, w }).collect(), FRAC_PI_2 + a.feed_angle_rad + w * turn)
+            // The arcs (no allocation per sample) and the frame.
+            let (pairs, w, frame): (&[ArcPair], f64, f64) = match &pairs[i0] {
+                Some((p, growth)) => {
+                    let frame = FRAC_PI_2 + a.feed_angle_rad + w * turn;
+                    match growth.weight(w) {
+                        Some(g) => (p, g, frame),
+                        None => (&[], 0.0, frame),
+                    }
                 }
-                None => {
-                    let (near, angle) = if w < 0.5 {
-                        (&singles[i0], a.feed_angle_rad)
-                    } else {
-                        (&singles[(i0 + 1) % n], a.feed_angle_rad + turn)
-                    };
-                    (near.iter().map(|pair| ArcBlend { pair, w: 0.0 }).collect(), FRAC_PI_2 + angle)
-                }
+                None if w < 0.5 => (&singles[i0], 0.0, FRAC_PI_2 + a.feed_angle_rad),
+                None => (&singles[(i0 + 1) % n], 0.0, FRAC_PI_2 + a.feed_angle_rad + turn),
             };
+            let arcs = pairs.iter().map(|pair| ArcBlend { pair, w });
             // Tooth 0 turns clockwise at Ω: its world angle is frame0 − Ω·t, so its φ in the
             // current frame is frame − (frame0 − Ω·t).
             let spindle = frame - frame0 + omega * t;
-            let ([fx, fy, fz, torque], cutting) = model.instant(frame, spindle, &arcs);
+            let ([fx, fy, fz, torque], cutting) = model.instant(frame, spindle, arcs);
             ForceSample { time_s: t, fx_n: fx, fy_n: fy, fz_n: fz, torque_nm: torque / 1000.0, cutting }
         })
         .collect();
     let summary = summarise(&samples, dt, t_cycle_s, omega);
     ForceSeries { samples, dt_s: dt, summary }
+}
+
+/// How the arcs of two neighbouring tooth positions blend in time.
+#[derive(Clone, Copy, Debug)]
+enum Growth {
+    /// Both positions have the arcs: ends and h linear in time.
+    Linear,
+    /// The arcs appear from a point after this share of the tooth period (see
+    /// [`growth_share`]) and grow to the second position's.
+    Appear(f64),
+}
+
+impl Growth {
+    /// The blend weight of an [`ArcPair`] at time share `w` of the tooth period, or `None`
+    /// while no arc is engaged. A tool edge meeting a material boundary penetrates it by δ
+    /// growing linearly with the feed: h ∝ δ is linear in the time since
+    /// the arc appeared, and the sweep ∝ √δ follows from [`ArcBlend::ends`].
+    fn weight(self, w: f64) -> Option<f64> {
+        match self {
+            Growth::Linear => Some(w),
+            Growth::Appear(s) if w < s => None,
+            Growth::Appear(s) => Some((w - s) / (1.0 - s)),
+        }
+    }
+}
+
+/// When arcs `near` (at the position after a gap without arcs) appear, as a share of the
+/// gap's tooth period, from `far` (one position further on; `ratio` = its period over the
+/// gap's): the sweep S of an arc crossing a material boundary has S² linear in the feed (a
+/// circle cutting a straight edge, S ≈ 2√(2·δ/R) for penetration δ), so S² extrapolated from
+/// the two positions reaches 0 at the gap's share 1 − S²_near / (S²_far − S²_near)·ratio.
+/// Where the sweeps do not grow (or the arcs differ in number): the whole gap (share 0).
+fn growth_share(near: &[EngagedArc], far: &[EngagedArc], ratio: f64) -> f64 {
+    let sq = |arcs: &[EngagedArc]| arcs.iter().map(|a| a.sweep_rad().powi(2)).fold(0.0, f64::max);
+    let (s_near, s_far) = (sq(near), sq(far));
+    if far.len() != near.len() || s_far <= s_near || !ratio.is_finite() {
+        return 0.0;
+    }
+    // Share of the gap's period between the appearance and the near position.
+    let lead = (s_near / (s_far - s_near) * ratio).clamp(0.0, 1.0);
+    1.0 - lead
 }
 
 /// Peaks and means of a periodic series of one cycle (`omega`: spindle speed, rad/s).
@@ -517,6 +574,14 @@ pub fn summarise(samples: &[ForceSample], dt: f64, t_cycle_s: f64, omega: f64) -
         power_max_w: torque_max * omega,
         power_mean_w: torque_mean * omega,
     }
+}
+
+/// ⌊x⌋ for finite x by truncation (f64::floor is a library call on the baseline x86-64
+/// target: a tenth of the force series' time went to it).
+#[inline]
+fn floor(x: f64) -> f64 {
+    let t = x as i64 as f64;
+    if t > x { t - 1.0 } else { t }
 }
 
 /// An angle difference wrapped to (−π, π].
