@@ -429,18 +429,23 @@ impl Search<'_> {
             Ok(s) => s,
             Err((limit, best)) => return Ok(Scored::Infeasible { limit, best }),
         };
-        if self.limits.all().iter().any(|l| l.kind == LimitKind::Force) {
+        let at_max = self.at_best_feed(shape, s);
+        let mut scored = if self.limits.all().iter().any(|l| l.kind == LimitKind::Force) {
             // Under a force limit the feed falls as the engagement grows with s, and the real
             // MRR need not grow with s: golden section over s ∈ [s_max/20, s_max] (the MRR is
             // unimodal in s there: it rises with s while the engagement is small and falls once
             // the force limit takes the feed down faster), with the end s_max compared.
             let neg = |x: f64| self.at_best_feed(shape, x).map_or(f64::INFINITY, |sc| -mrr_of(&sc));
             let (x, fx) = golden_min(0.05 * s, s, 1e-2 * s, neg);
-            if fx < neg(s) {
+            if fx < at_max.as_ref().map_or(f64::INFINITY, |sc| -mrr_of(sc)) {
                 s = x;
+                self.at_best_feed(shape, s)?
+            } else {
+                at_max?
             }
-        }
-        let mut scored = self.at_best_feed(shape, s)?;
+        } else {
+            at_max?
+        };
         for _ in 0..3 {
             match &scored {
                 Scored::Infeasible { limit, .. } if limit.kind.class() == LimitClass::Geometric => {
