@@ -12,7 +12,7 @@ use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
 use std::process::ExitCode;
-use trochoplan_core::job::teeth_error;
+use trochoplan_core::job::{Direction, teeth_error};
 use trochoplan_core::material::{self, Library};
 use trochoplan_core::plan::engagement_limited_step;
 use trochoplan_core::quantity::{self, METRICS, Metric, SERIES};
@@ -168,6 +168,10 @@ pub struct JobArgs {
     /// Linear distance d (mm).
     #[arg(long, value_name = "MM", allow_hyphen_values = true)]
     linear_distance: Option<f64>,
+    /// Milling direction with M3 (default conventional: the paper's clockwise loops; climb
+    /// mirrors them in the slot's centre line).
+    #[arg(long, value_parser = core_names(&Direction::ALL, Direction::name, Some(Direction::help)))]
+    direction: Option<Direction>,
     /// Work material for the force model (a name of the material library).
     #[arg(long, value_name = "NAME")]
     material: Option<String>,
@@ -199,6 +203,9 @@ impl JobArgs {
         };
         if let Some(v) = self.path {
             job.path = v;
+        }
+        if let Some(v) = self.direction {
+            job.direction = v;
         }
         let set = |dst: &mut f64, v: Option<f64>| {
             if let Some(v) = v {
@@ -336,12 +343,13 @@ fn force_series_csv(p: &Plan) -> String {
     s
 }
 
-/// The metrics of `p` as one JSON object: the path kind and every entry of the core's
+/// The metrics of `p` as one JSON object: the path kind, the milling direction and every entry of the core's
 /// quantity table under its key (serde_json sorts the keys).
 fn metrics_json(p: &Plan) -> serde_json::Map<String, serde_json::Value> {
     let m = &p.metrics;
     let mut obj = serde_json::Map::new();
     obj.insert("path".into(), m.path.name().into());
+    obj.insert("direction".into(), m.direction.name().into());
     obj.insert("machine".into(), p.job.machine.as_ref().map_or("ideal", |m| m.name.as_str()).into());
     for q in METRICS {
         let v = q.of(m);
@@ -466,6 +474,7 @@ mod tests {
             step: None,
             aspect_ratio: None,
             linear_distance: None,
+            direction: None,
             material: None,
             materials: None,
             helix_angle: None,

@@ -17,6 +17,7 @@ mod nc_common;
 use nc_common::{Motion, check_cut, cut, interpret, motions, same_motion};
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use trochoplan_core::job::Direction;
 use trochoplan_core::{Job, PathKind, Plan, plan};
 
 /// (CLI flags, job): the paper's default job and every path type.
@@ -35,7 +36,28 @@ fn jobs() -> Vec<(Vec<&'static str>, Job)> {
         ),
         (
             vec!["--path", "linear-elliptical", "--aspect-ratio", "0.6", "--linear-distance", "0.75"],
-            Job { path: PathKind::LinearElliptical, aspect_ratio: 0.6, linear_distance: 0.75, ..d },
+            Job { path: PathKind::LinearElliptical, aspect_ratio: 0.6, linear_distance: 0.75, ..d.clone() },
+        ),
+        // climb milling (issue #12 item 4): every loop mirrored, counter-clockwise
+        (vec!["--direction", "climb"], Job { direction: Direction::Climb, ..d.clone() }),
+        (
+            vec![
+                "--path",
+                "linear-elliptical",
+                "--aspect-ratio",
+                "0.6",
+                "--linear-distance",
+                "0.75",
+                "--direction",
+                "climb",
+            ],
+            Job {
+                path: PathKind::LinearElliptical,
+                aspect_ratio: 0.6,
+                linear_distance: 0.75,
+                direction: Direction::Climb,
+                ..d
+            },
         ),
     ]
 }

@@ -115,6 +115,9 @@ pub struct Job {
     pub aspect_ratio: f64,
     /// Linear distance d (mm, linear-elliptical path).
     pub linear_distance: f64,
+    /// Milling direction with M3: conventional = the paper's clockwise loops (default, its
+    /// Table 2), climb = the loops mirrored in the slot's centre line (issue #12 item 4).
+    pub direction: Direction,
     /// Work material: a name of the built-in library (`p20`, …), or a label when
     /// [`Job::coefficients`] are given.
     pub material: String,
@@ -155,6 +158,7 @@ impl Default for Job {
             step: 1.0,
             aspect_ratio: 1.0,
             linear_distance: 0.0,
+            direction: Direction::Conventional,
             material: DEFAULT_MATERIAL.to_owned(),
             helix_angle: DEFAULT_HELIX_ANGLE_DEG,
             runout: Vec::new(),
@@ -222,6 +226,7 @@ pub struct ValidJob {
     pub aspect_ratio: f64,
     /// Effective d (0 unless linear-elliptical).
     pub linear_distance: f64,
+    pub direction: Direction,
     /// Material name (or the user's label for given coefficients).
     pub material: String,
     /// Force coefficients (checked).
@@ -359,6 +364,7 @@ impl Job {
             step,
             aspect_ratio: r_e,
             linear_distance: d,
+            direction: self.direction,
             machine: self.machine.as_ref().map(MachineChoice::machine).transpose()?,
         })
     }

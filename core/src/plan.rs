@@ -6,7 +6,7 @@ use crate::analysis::{
 };
 use crate::error::{Error, Param, num};
 use crate::geom::p2;
-use crate::job::{Job, PathKind, ValidJob};
+use crate::job::{Direction, Job, PathKind, ValidJob};
 use crate::machine::planner::Dynamics;
 use crate::machine::{FeedProfile, RealTime, real_time};
 use crate::path::{Cycle, SlotPath};
@@ -25,6 +25,8 @@ pub const W_RESOLUTION_UM: f64 = 1.0;
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Metrics {
     pub path: PathKind,
+    /// Milling direction (conventional: the paper's clockwise loops; climb: mirrored).
+    pub direction: Direction,
     /// Path length of one cycle (mm).
     pub cycle_length_mm: f64,
     /// t_cycle = cycle length / f_r (s).
@@ -120,7 +122,8 @@ pub struct Plan {
     pub tooth_stride: usize,
     pub left_wall: WallProfile,
     pub right_wall: WallProfile,
-    /// Edge of the material left by previous cycles (for drawing chips and edges).
+    /// Edge of the material left by previous cycles of the paper's (conventional) cycle, the
+    /// analysis frame (for drawing chips, [`Plan::chip_outline`]).
     pub edge: PreviousEdge,
     /// Cutting forces over the steady-state cycle (spindle steps ≤ 1°).
     pub forces: ForceSeries,
@@ -138,7 +141,14 @@ impl Plan {
         if !t.cutting {
             return Vec::new();
         }
-        analysis::chip::chip_outline(&self.path.cycle, &self.edge, self.job.tool_radius(), self.job.f_z(), t.s_mm, 24)
+        // Drawn in the analysis frame (the paper's cycle, module `path`), mirrored for climb.
+        let paper = Cycle::for_job(&self.job);
+        let outline =
+            analysis::chip::chip_outline(&paper, &self.edge, self.job.tool_radius(), self.job.f_z(), t.s_mm, 24);
+        match self.job.direction {
+            Direction::Conventional => outline,
+            Direction::Climb => outline.into_iter().map(|p| p2(-p.x, p.y)).collect(),
+        }
     }
 }
 
@@ -154,12 +164,23 @@ pub fn plan_valid(job: ValidJob) -> Plan {
     let r = job.tool_radius();
     let f_z = job.f_z();
     let feed_mm_per_s = job.feed / 60.0;
+    // The geometry (chips, engaged arcs, walls) is analysed on the paper's clockwise cycle; a
+    // climb path is its mirror image in x = 0, and so is its geometry. Everything after it
+    // (forces with the spindle still turning M3, imprints, machine time) is computed on the
+    // job's own path and series.
+    let paper = Cycle::for_job(&job);
     // The chip series and the two walls are independent: compute them side by side.
-    let edge = PreviousEdge::new(&path.cycle, r);
+    let edge = PreviousEdge::new(&paper, r);
     let (series, (left_wall, right_wall)) = rayon::join(
-        || tooth_series(&path.cycle, &edge, r, f_z, feed_mm_per_s),
-        || rayon::join(|| wall_profile(&path.cycle, r, Wall::Left), || wall_profile(&path.cycle, r, Wall::Right)),
+        || tooth_series(&paper, &edge, r, f_z, feed_mm_per_s),
+        || rayon::join(|| wall_profile(&paper, r, Wall::Left), || wall_profile(&paper, r, Wall::Right)),
     );
+    let (series, left_wall, right_wall) = match job.direction {
+        Direction::Conventional => (series, left_wall, right_wall),
+        Direction::Climb => {
+            (series.iter().map(|t| t.mirrored_x()).collect(), right_wall.mirrored_x(), left_wall.mirrored_x())
+        }
+    };
     let cycle_length = path.cycle.length();
     let stride = analysis::chip::tooth_stride(cycle_length, f_z);
     let timing = chip_timing(&series, stride as f64 * f_z / feed_mm_per_s);
@@ -177,6 +198,7 @@ pub fn plan_valid(job: ValidJob) -> Plan {
     let pi_without_ra = if f.resultant_max_n > 0.0 { mrr / (f.resultant_max_n * w_max_um) } else { 0.0 };
     let metrics = Metrics {
         path: job.path,
+        direction: job.direction,
         cycle_length_mm: cycle_length,
         t_cycle_s: t_cycle,
         mrr_mm3_per_min: mrr,

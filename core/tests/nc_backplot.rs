@@ -37,8 +37,14 @@ fn deviation(bp: &[P2], p: &Plan) -> f64 {
 
 #[test]
 fn backplot_of_every_dialect_retraces_the_planned_path() {
-    for kind in PathKind::ALL {
-        let p = job(kind);
+    // Conventional (the paper's loops) and climb (mirrored, issue #12 item 4).
+    let climb = |path| {
+        let v = job(path).job;
+        let (aspect_ratio, linear_distance) = (v.aspect_ratio, v.linear_distance);
+        let direction = trochoplan_core::job::Direction::Climb;
+        plan(&Job { path, aspect_ratio, linear_distance, direction, ..Job::default() }).expect("valid")
+    };
+    for (kind, p) in PathKind::ALL.into_iter().flat_map(|k| [(k, job(k)), (k, climb(k))]) {
         for d in Dialect::ALL {
             // Issue #11: the variable feed's split blocks retrace the path too (Sinumerik
             // included, which rs274 cannot read).

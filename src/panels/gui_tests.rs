@@ -100,6 +100,23 @@ fn lowering_the_aspect_ratio_moves_mrr_and_waviness_as_the_paper_describes() {
 }
 
 #[test]
+fn climb_milling_mirrors_the_loops_and_swaps_the_walls() {
+    let mut h = harness();
+    h.get_by_label(trochoplan_core::PathKind::Elliptical.label()).click();
+    h.run();
+    let conv = metrics(&h);
+    h.get_by_label("climb").click();
+    h.run();
+    assert_eq!(h.state().state.job.direction, trochoplan_core::job::Direction::Climb);
+    let climb = metrics(&h);
+    // issue #12 item 4: the mirror image — same h_max, the walls' waviness swapped
+    assert_eq!(climb.direction, trochoplan_core::job::Direction::Climb);
+    assert!((climb.h_max_mm - conv.h_max_mm).abs() < 1e-12);
+    assert!((climb.waviness_left_mm - conv.waviness_right_mm).abs() < 1e-12);
+    assert!((climb.waviness_right_mm - conv.waviness_left_mm).abs() < 1e-12);
+}
+
+#[test]
 fn an_invalid_value_is_marked_at_the_field_and_the_last_plan_is_kept() {
     let mut h = harness();
     let before = metrics(&h);

@@ -4,6 +4,7 @@
 
 use eframe::egui::{self, Color32, RichText, Slider, SliderClamping};
 use std::ops::RangeInclusive;
+use trochoplan_core::job::Direction;
 use trochoplan_core::{Error, Job, Param, PathKind};
 
 /// Colour of validation messages.
@@ -77,6 +78,13 @@ fn field_error_line(ui: &mut egui::Ui, param: Param, error: Option<&Error>) {
     }
 }
 
+/// Tooltip of the milling-direction choice.
+const DIRECTION_TIP: &str = "With the spindle turning M3 (clockwise seen from above), the paper's \
+    clockwise loops (eq. 1) cut in conventional (up) milling: each tooth enters the chip at zero \
+    thickness and leaves it at h_max. Climb (down) milling mirrors every loop in the slot's centre \
+    line: the tooth meets the thick end first, which most carbide tools prefer. Geometry (h_max, \
+    engagement, path, times) is the mirror image, the two walls' waviness swap, the forces differ.";
+
 /// Draw the parameter panel; edits `job` in place.
 pub fn show(ui: &mut egui::Ui, job: &mut Job, error: Option<&Error>) {
     if let Some(e) = error.filter(|e| e.parameter().is_none()) {
@@ -94,6 +102,12 @@ pub fn show(ui: &mut egui::Ui, job: &mut Job, error: Option<&Error>) {
         ui.radio_value(&mut job.path, kind, kind.label()).on_hover_text(kind.about());
     }
     field_error_line(ui, Param::Path, error);
+    ui.horizontal(|ui| {
+        ui.label("Milling").on_hover_text(DIRECTION_TIP);
+        for d in [Direction::Conventional, Direction::Climb] {
+            ui.radio_value(&mut job.direction, d, d.name()).on_hover_text(d.help());
+        }
+    });
     egui::Grid::new("path_grid").num_columns(2).spacing([8.0, 4.0]).show(ui, |ui| path_fields(ui, job, error));
     ui.add_space(6.0);
     ui.heading("Material and process");

@@ -98,6 +98,24 @@ impl EngagedArc {
     pub fn max_thickness_mm(&self) -> f64 {
         self.samples.iter().map(|x| x.h_mm).fold(0.0, f64::max)
     }
+
+    /// The arc of the tool position mirrored in x = 0 ([`ToothSample::mirrored_x`]), in this
+    /// type's convention for the mirrored feed direction T′: the edge point at φ lies in the
+    /// direction θ + π/2 − φ (θ the feed angle); mirrored it lies in π − (θ + π/2 − φ) =
+    /// θ′ + π/2 − (π − φ) with θ′ = π − θ. So φ becomes π − φ: the arc's order reverses and the
+    /// tooth, still turning clockwise (M3), meets its thick end first — climb milling.
+    pub fn mirrored(&self) -> EngagedArc {
+        EngagedArc {
+            entry_rad: PI - self.exit_rad,
+            exit_rad: PI - self.entry_rad,
+            samples: self
+                .samples
+                .iter()
+                .rev()
+                .map(|x| ThicknessSample { phi_rad: PI - x.phi_rad, h_mm: x.h_mm })
+                .collect(),
+        }
+    }
 }
 
 /// Analysis of one tooth position.
@@ -121,6 +139,21 @@ pub struct ToothSample {
     /// The engaged arcs in order of φ, with the chip thickness along each (empty when the
     /// edge touches no material).
     pub arcs: Vec<EngagedArc>,
+}
+
+impl ToothSample {
+    /// The same tool position on the path mirrored in the slot's centre line x = 0 (climb
+    /// milling, [`crate::path::Cycle::mirrored_x`]): x → −x, feed angle θ → π − θ, arcs
+    /// [`EngagedArc::mirrored`]. h, the engagement and the times are the mirror image's own:
+    /// the material left by previous cycles and the previous tooth are mirrored with the path.
+    pub fn mirrored_x(&self) -> ToothSample {
+        ToothSample {
+            x_mm: -self.x_mm,
+            feed_angle_rad: PI - self.feed_angle_rad,
+            arcs: self.arcs.iter().rev().map(EngagedArc::mirrored).collect(),
+            ..self.clone()
+        }
+    }
 }
 
 /// Engaged arc of one tool position.

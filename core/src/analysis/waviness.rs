@@ -36,6 +36,21 @@ pub struct WallProfile {
     pub samples: Vec<(f64, f64)>,
 }
 
+impl WallProfile {
+    /// The profile of the path mirrored in x = 0: it is the other wall's (x → −x).
+    pub fn mirrored_x(&self) -> WallProfile {
+        WallProfile {
+            wall: match self.wall {
+                Wall::Left => Wall::Right,
+                Wall::Right => Wall::Left,
+            },
+            waviness_mm: self.waviness_mm,
+            extreme_x_mm: -self.extreme_x_mm,
+            samples: self.samples.iter().map(|&(y, x)| (y, -x)).collect(),
+        }
+    }
+}
+
 struct WallSampler<'a> {
     cycle: &'a Cycle,
     r: f64,

@@ -23,7 +23,9 @@ pub enum Segment {
     Arc { center: P2, radius: f64, start_angle: f64, sweep: f64 },
     /// Piece of the elliptical trochoid of Wagih et al. (2023) eq. (1):
     /// `x = ox − a·cos θ`, `y = oy + b·sin θ + s·θ/(2π)` for θ from `theta0` to `theta1`.
-    /// With `a = b` it is the true (circular) trochoid — still not a circular arc.
+    /// With `a = b` it is the true (circular) trochoid — still not a circular arc. A negative
+    /// `a` is the loop mirrored in x (counter-clockwise: climb milling, see
+    /// [`Segment::mirrored_x`]).
     Trochoid { origin: P2, a: f64, b: f64, step: f64, theta0: f64, theta1: f64 },
 }
 
@@ -141,6 +143,24 @@ impl Segment {
         }
     }
 
+    /// The segment mirrored in the line x = 0, (x, y) → (−x, y), same direction of travel:
+    /// a clockwise loop becomes a counter-clockwise one (conventional ↔ climb milling).
+    pub fn mirrored_x(&self) -> Segment {
+        let m = |p: P2| p2(-p.x, p.y);
+        match *self {
+            Segment::Line { start, end } => Segment::Line { start: m(start), end: m(end) },
+            Segment::Arc { center, radius, start_angle, sweep } => Segment::Arc {
+                center: m(center),
+                radius,
+                start_angle: std::f64::consts::PI - start_angle,
+                sweep: -sweep,
+            },
+            Segment::Trochoid { origin, a, b, step, theta0, theta1 } => {
+                Segment::Trochoid { origin: m(origin), a: -a, b, step, theta0, theta1 }
+            }
+        }
+    }
+
     /// `n + 1` evenly spaced (in `t`) points, for plotting only.
     pub fn sample(&self, n: usize) -> Vec<P2> {
         let n = n.max(1);
@@ -214,6 +234,28 @@ mod tests {
         for i in 0..50 {
             let e = seg.eval(i as f64 / 50.0);
             assert!(crate::geom::cross(e.d1, e.d2) < 0.0);
+        }
+    }
+
+    #[test]
+    fn mirrored_segments_are_pointwise_mirror_images_turning_the_other_way() {
+        let segs = [
+            Segment::Line { start: p2(1.0, 2.0), end: p2(-3.0, 5.0) },
+            Segment::Arc { center: p2(1.0, 1.0), radius: 5.0, start_angle: PI, sweep: -TAU },
+            Segment::Trochoid { origin: p2(0.5, 3.0), a: 5.0, b: 4.0, step: 1.0, theta0: 0.3, theta1: 5.0 },
+        ];
+        for seg in segs {
+            let m = seg.mirrored_x();
+            assert!((m.length() - seg.length()).abs() < 1e-12, "{seg:?}");
+            for i in 0..=20 {
+                let t = i as f64 / 20.0;
+                let (e, f) = (seg.eval(t), m.eval(t));
+                assert!((f.p - p2(-e.p.x, e.p.y)).norm() < 1e-12, "{seg:?} at {t}");
+                // the curvature d1 × d2 changes sign: clockwise becomes counter-clockwise
+                let (k, km) = (crate::geom::cross(e.d1, e.d2), crate::geom::cross(f.d1, f.d2));
+                assert!((k + km).abs() < 1e-9 * (1.0 + k.abs()), "{seg:?} at {t}: {k} vs {km}");
+            }
+            assert!((m.mirrored_x().eval(0.7).p - seg.eval(0.7).p).norm() < 1e-12);
         }
     }
 }

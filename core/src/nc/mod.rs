@@ -33,7 +33,7 @@ pub use writer::{Writer, YForm};
 use crate::error::{Error, Param, num};
 use crate::feed::VariableFeed;
 use crate::geom::{FitPiece, P2, Segment, fit_biarcs, p2, polyline};
-use crate::job::PathKind;
+use crate::job::{Direction, PathKind};
 use crate::plan::Plan;
 use crate::pocket::Helix;
 use crate::pocket::adaptive::HELIX_START_Z_MM;
@@ -372,6 +372,14 @@ fn slot_header<'a>(plan: &Plan, opts: &NcOptions) -> Header<'a> {
         default_title: "TrochoPlan slot",
         description: vec![
             format!("path {}, {} cycles, path length {:.3} mm", job.path.name(), m.cycles, m.path_length_mm),
+            format!(
+                "{} milling with M3: loops {}",
+                job.direction.name(),
+                match job.direction {
+                    Direction::Conventional => "clockwise",
+                    Direction::Climb => "counter-clockwise",
+                }
+            ),
             format!("slot B {:.3} x L {:.3} mm, depth {:.3} mm", job.slot_width, job.slot_length, job.depth),
             "slot from X0 Y0 along +Y, stock top Z0".to_string(),
             format!(
@@ -562,8 +570,9 @@ fn is_circle_cycle(plan: &Plan, moves: &[CycleMove]) -> bool {
 /// The parametric program of Grechishnikov et al. (2017) (domain-spec §5.1) for the
 /// circular-type path: shaping circle k (R1 = k) has centre (R50, R51) + k·R2·(cos R3, sin R3);
 /// G1 to the circle start, given from centre k−1 by (R11, R12) = R2·u + a·n, then the full
-/// circle (G2, the clockwise loops of eq. 1) back to it, (R13, R14) = (R11, R12), centre by
-/// I=AC(…) J=AC(…). u = (cos R3, sin R3) = slot direction (+Y: R3 = 90°), n = its left normal.
+/// circle back to it, (R13, R14) = (R11, R12), centre by I=AC(…) J=AC(…). u = (cos R3, sin R3)
+/// = slot direction (+Y: R3 = 90°). Conventional: n = the left normal of u and G2 (the clockwise
+/// loops of eq. 1); climb: the mirror image, n = the right normal and G3.
 /// Consistency (§5.1): |(R11, R12) − R2·u| = a.
 fn grechishnikov_loop(w: &mut Writer, plan: &Plan, moves: &[CycleMove]) {
     let path = &plan.path;
@@ -579,15 +588,21 @@ fn grechishnikov_loop(w: &mut Writer, plan: &Plan, moves: &[CycleMove]) {
     w.comment("R6 feed mm/min of the step move");
     w.block(&[format!("R50={}", param(path.origin(0).x))]);
     w.comment("R50 R51 centre of circle 0");
-    // (R11, R12) = R2·u + a·n with u = (0, 1), n = (−1, 0)
-    w.block(&[format!("R11={}", param(-a))]);
+    // (R11, R12) = R2·u + a·n with u = (0, 1), n = (−1, 0) (conventional) or (1, 0) (climb)
+    let (n_x, circle) = match plan.job.direction {
+        Direction::Conventional => (-1.0, "G2"),
+        Direction::Climb => (1.0, "G3"),
+    };
+    w.block(&[format!("R11={}", param(n_x * a))]);
     w.block(&[format!("R12={}", param(s))]);
     w.block(&["R13=R11".into()]);
     w.block(&["R14=R12".into()]);
     w.comment("R11..R14 circle start and end from centre k-1");
     w.raw("LOOP:");
     w.raw("G1 X=R50+(R1-1)*R2*COS(R3)+R11 Y=R51+(R1-1)*R2*SIN(R3)+R12 F=R6");
-    w.raw("G2 X=R50+(R1-1)*R2*COS(R3)+R13 Y=R51+(R1-1)*R2*SIN(R3)+R14 I=AC(R50+R1*R2*COS(R3)) J=AC(R51+R1*R2*SIN(R3)) F=R4");
+    w.raw(&format!(
+        "{circle} X=R50+(R1-1)*R2*COS(R3)+R13 Y=R51+(R1-1)*R2*SIN(R3)+R14 I=AC(R50+R1*R2*COS(R3)) J=AC(R51+R1*R2*SIN(R3)) F=R4"
+    ));
     w.raw("R1=R1+1");
     w.raw("IF R1<R5/R2+0.5 GOTOB LOOP");
     w.forget_modal();

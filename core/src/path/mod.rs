@@ -3,11 +3,14 @@
 //! The slot runs along +y, centred on x = 0, stock from y = 0 to y = L. A path is one *cycle*
 //! (a list of exact segments starting at the left extreme x = −a, y = 0 and ending at
 //! x = −a, y = s) repeated with a translation of s·ŷ. Trochoidal radius a = (B − D)/2,
-//! b = r_e·a. All loops follow the paper's eq. (1) orientation: they start at the left extreme
-//! moving +y and turn clockwise seen from +z.
+//! b = r_e·a. A [`Cycle`] follows the paper's eq. (1) orientation: it starts at the left
+//! extreme moving +y and turns clockwise seen from +z — conventional milling with M3; the
+//! analysis works in this frame. A [`SlotPath`] is the job's path in the job's
+//! [`Direction`]: for climb milling every cycle is mirrored in the slot's centre line x = 0
+//! (it starts at the right extreme and turns counter-clockwise, issue #12 item 4).
 
 use crate::geom::{P2, Segment, SegmentPoint, p2};
-use crate::job::{PathKind, ValidJob};
+use crate::job::{Direction, PathKind, ValidJob};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 
@@ -61,6 +64,11 @@ impl Cycle {
             ],
         };
         Cycle::new(segments, s)
+    }
+
+    /// The cycle mirrored in x = 0 ([`Segment::mirrored_x`]): the climb-milling loop.
+    pub fn mirrored_x(&self) -> Cycle {
+        Cycle { segments: self.segments.iter().map(Segment::mirrored_x).collect(), ..self.clone() }
     }
 
     /// Path length of one cycle (mm).
@@ -126,6 +134,8 @@ impl Cycle {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SlotPath {
     pub kind: PathKind,
+    /// Conventional: the paper's clockwise cycles; climb: mirrored in x = 0.
+    pub direction: Direction,
     pub cycle: Cycle,
     /// y of the first cycle origin (mm, negative: the tool starts outside the stock).
     pub first_origin_y: f64,
@@ -139,13 +149,18 @@ impl SlotPath {
     /// The first cycle is placed so that its swept region just reaches the stock face y = 0
     /// (the tool starts outside the stock); cycles repeat until the left extreme of the last
     /// one is at or beyond the slot end y = L, so both walls are cut over the full length.
+    /// The job's direction decides the loops' sense (module docs).
     pub fn for_job(job: &ValidJob) -> SlotPath {
-        let cycle = Cycle::for_job(job);
+        let paper = Cycle::for_job(job);
+        let cycle = match job.direction {
+            Direction::Conventional => paper,
+            Direction::Climb => paper.mirrored_x(),
+        };
         let reach = cycle.segments.iter().flat_map(|s| s.sample(64)).map(|p| p.y).fold(f64::NEG_INFINITY, f64::max)
             + job.tool_radius();
         let first_origin_y = -reach;
         let cycles = ((job.slot_length - first_origin_y) / job.step).ceil() as usize + 1;
-        SlotPath { kind: job.path, cycle, first_origin_y, cycles }
+        SlotPath { kind: job.path, direction: job.direction, cycle, first_origin_y, cycles }
     }
 
     /// Origin of cycle `i`.

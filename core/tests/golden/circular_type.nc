@@ -2,6 +2,7 @@
 O1000
 (TrochoPlan slot)
 (path circular-type, 15 cycles, path length 486.239 mm)
+(conventional milling with M3: loops clockwise)
 (slot B 20.000 x L 3.000 mm, depth 6.000 mm)
 (slot from X0 Y0 along +Y, stock top Z0)
 (tool T1 D 10.000 mm, 4 teeth, 2000 rpm, feed 600.0 mm/min)
