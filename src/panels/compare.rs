@@ -3,6 +3,7 @@
 
 use super::Command;
 use eframe::egui::{self, Color32, RichText};
+use trochoplan_core::job::Direction;
 use trochoplan_core::quantity::{self, Metric};
 use trochoplan_core::{Job, Metrics, PathKind};
 
@@ -30,14 +31,19 @@ pub fn percent_change(v: f64, base: f64) -> Option<f64> {
     (base.abs() > 1e-12).then(|| (v - base) / base * 100.0)
 }
 
-/// A short label for a job, as the paper names its variants.
+/// A short label for a job, as the paper names its variants; ", climb" when it is not the
+/// paper's conventional loop.
 pub fn variant_label(job: &Job) -> String {
-    match job.path {
+    let label = match job.path {
         PathKind::Circular | PathKind::CircularType => job.path.name().to_owned(),
         PathKind::Elliptical => format!("elliptical r_e = {}", job.aspect_ratio),
         PathKind::LinearElliptical => {
             format!("lin.-elliptical r_e = {}, d = {}", job.aspect_ratio, job.linear_distance)
         }
+    };
+    match job.direction {
+        Direction::Conventional => label,
+        Direction::Climb => format!("{label}, climb"),
     }
 }
 
@@ -164,5 +170,13 @@ mod tests {
         assert!((percent_change(110.0, 100.0).unwrap_or(0.0) - 10.0).abs() < 1e-12);
         assert!((percent_change(90.0, 100.0).unwrap_or(0.0) + 10.0).abs() < 1e-12);
         assert_eq!(percent_change(1.0, 0.0), None);
+    }
+
+    #[test]
+    fn labels_tell_climb_from_the_papers_conventional_loops() {
+        let conv = Job { path: PathKind::Elliptical, aspect_ratio: 0.8, ..Job::default() };
+        assert_eq!(variant_label(&conv), "elliptical r_e = 0.8");
+        let climb = Job { direction: Direction::Climb, ..conv };
+        assert_eq!(variant_label(&climb), "elliptical r_e = 0.8, climb");
     }
 }
