@@ -42,7 +42,7 @@ enum Command {
         /// spindle step ≤ 1°).
         #[arg(long, value_name = "FILE.csv")]
         force_series: Option<PathBuf>,
-        /// Also report the real times with the variable feed (issue #11; default bands).
+        /// Also report the real times with the variable feed (issue #11; default settings).
         #[arg(long)]
         variable_feed: bool,
     },
@@ -375,6 +375,9 @@ fn variable_feed_json(p: &Plan, obj: &mut serde_json::Map<String, serde_json::Va
         ("variable_feed_target_h_mm", s.target_h_mm),
         ("variable_feed_h_over_target", s.h_over_target()),
         ("variable_feed_within_2pct_share", s.within_2pct_share()),
+        ("variable_feed_capped_share", s.shares().capped),
+        ("variable_feed_not_held_share", s.shares().not_held),
+        ("variable_feed_not_held_outside_2pct_share", s.shares().not_held_outside),
     ] {
         obj.insert(k.into(), v.into());
     }

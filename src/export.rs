@@ -33,8 +33,8 @@ pub struct ExportArgs {
     /// Text for the header comment.
     #[arg(long, value_name = "TEXT")]
     title: Option<String>,
-    /// Per-block feed so that each tooth's h_max follows a target (issue #11), in feed bands;
-    /// air moves at the return feed (default 3 × feed).
+    /// Per-block feed so that each tooth's h_max follows a target (issue #11), in blocks of at
+    /// least the machine's block time; air moves at the return feed (default 3 × feed).
     #[arg(long)]
     variable_feed: bool,
     /// Variable feed: target h (mm); default the job's h_max at its feed.
@@ -43,10 +43,11 @@ pub struct ExportArgs {
     /// Variable feed: largest cutting feed (mm/min); default 3 × feed.
     #[arg(long, value_name = "MM_PER_MIN", allow_hyphen_values = true, requires = "variable_feed")]
     max_feed: Option<f64>,
-    /// Variable feed: ratio between neighbouring feed bands.
+    /// Variable feed: largest ratio between the feeds the teeth of one block need (h within
+    /// its square root of the target).
     #[arg(long, value_name = "RATIO", default_value_t = VariableFeed::default().band_ratio, allow_hyphen_values = true)]
     feed_band: f64,
-    /// Variable feed: shortest block before the feed may rise again (mm).
+    /// Variable feed: shortest block (mm), on top of the machine's block time.
     #[arg(long, value_name = "MM", default_value_t = VariableFeed::default().min_block_mm, allow_hyphen_values = true)]
     min_block: f64,
     /// Output file.

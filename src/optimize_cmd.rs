@@ -61,6 +61,15 @@ pub fn run(args: &OptimizeArgs) -> Result<String, String> {
         m.force_resultant_max_n,
         m.feed_held_share,
     );
+    // The same job with the variable feed (cutting teeth at the target h, air at the return
+    // feed): what `analyze --variable-feed` reports and `export --variable-feed` writes.
+    let p = trochoplan_core::plan(&out.best.job).map_err(|e| e.to_string())?;
+    let vf = trochoplan_core::feed::schedule(&p, &Default::default()).map_err(|e| e.to_string())?;
+    text.push_str(&format!(
+        "# with --variable-feed: real machining time {:.1} s, real MRR {:.0} mm³/min\n",
+        vf.real.total_s,
+        m.mrr_real_mm3_per_min * m.t_cycle_real_s / vf.real.t_cycle_s,
+    ));
     text.push_str(&out.best.job.to_toml());
     Ok(text)
 }

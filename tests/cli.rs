@@ -399,6 +399,10 @@ fn machine_and_optimize() {
     // The printed figures are the job's own (comment line "real MRR … mm³/min").
     let mrr = v["mrr_real_mm3_per_min"].as_f64().expect("mrr");
     assert!(toml.contains(&format!("real MRR {mrr:.0} mm³/min")), "{toml}\n{mrr}");
+    // And its time with the variable feed is analyze's (issue #11: optimiser vs FreeCAD).
+    let vf = json(&["analyze", "--job", job_file.to_str().expect("utf-8"), "--variable-feed"]);
+    let t_vf = vf["machining_time_real_variable_feed_s"].as_f64().expect("t vf");
+    assert!(toml.contains(&format!("with --variable-feed: real machining time {t_vf:.1} s")), "{toml}\n{t_vf}");
     assert!(v["h_max_mm"].as_f64().expect("h") <= 0.075 && v["engagement_max_deg"].as_f64().expect("a") <= 57.5);
     assert_eq!(v["machine"], "vmc");
     let csv = std::fs::read_to_string(&front).expect("front written");

@@ -66,6 +66,8 @@ pub enum Param {
     JerkX,
     JerkY,
     PathTolerance,
+    /// Machine: shortest block time of the controller (s).
+    BlockTime,
     MaxHmax,
     MaxEngagement,
     MaxWaviness,
@@ -108,7 +110,7 @@ pub enum Param {
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 70] = [
+    pub const ALL: [Param; 71] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
@@ -154,6 +156,7 @@ impl Param {
         Param::JerkX,
         Param::JerkY,
         Param::PathTolerance,
+        Param::BlockTime,
         Param::MaxHmax,
         Param::MaxEngagement,
         Param::MaxWaviness,
@@ -230,6 +233,7 @@ impl Param {
             Param::JerkX => "jerk-x",
             Param::JerkY => "jerk-y",
             Param::PathTolerance => "path-tolerance",
+            Param::BlockTime => "block-time",
             Param::MaxHmax => "max-hmax",
             Param::MaxEngagement => "max-engagement",
             Param::MaxWaviness => "max-waviness",
@@ -306,6 +310,7 @@ impl Param {
             Param::JerkX => "Machine jerk X",
             Param::JerkY => "Machine jerk Y",
             Param::PathTolerance => "Machine path tolerance",
+            Param::BlockTime => "Machine block time",
             Param::MaxHmax => "Limit h_max",
             Param::MaxEngagement => "Limit engagement",
             Param::MaxWaviness => "Limit waviness W_max",

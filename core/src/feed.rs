@@ -1,22 +1,36 @@
 //! Variable feed (issue #11 part 2): a feed per block so that each tooth's chip thickness h
-//! follows a target, quantised into bands so that arcs stay arcs and controllers are not
-//! flooded (PureCutCNC #497: bands, rounded down, hysteresis, minimum fragment length).
+//! follows a target, in blocks long enough that arcs stay arcs and controllers are not
+//! flooded (PureCutCNC #497: a feed per fragment, a minimum fragment).
 //!
 //! Model: at a fixed path h of a tooth is proportional to the spacing f_z from the tooth
 //! before it (eqs. 3–6 measure lengths between tool circles f_z apart; tested against plans
 //! at other feeds), so a tooth with h_k at the programmed feed F needs R_k = F·h_target/h_k.
 //! The tooth at arc length s_k is set by the feed over (s_k − f_z, s_k]. Teeth that cut
-//! nothing take the return feed. Each required feed is capped by the maximum feed, rounded
-//! down to a band F·qⁱ (q = band ratio), and the cycle is cut into blocks: a block goes to a
-//! lower band at once (never a thicker chip than the target), to a higher band only when the
-//! rise is more than one band (hysteresis) and the block is at least the minimum length.
-//! Then every cutting tooth has h ≤ h_target, and h ≥ h_target/q² wherever its block's feed
-//! is its own band or one below it.
+//! nothing take the return feed.
+//!
+//! Blocks: the cycle is cut at tooth positions into blocks whose teeth need feeds within a
+//! ratio q of each other (`band_ratio`); a block runs at the geometric mean √(R_lo·R_hi) of
+//! its lowest and highest need, so every tooth in it has h within √q of the target
+//! (q = 1.03: ±1.5 %, leaving 0.5 % of the 2 % for the model). A block is not closed before
+//! it lasts the machine's block time (`block-time`, the controller's block rate) and is at
+//! least `min_block_mm` long: where the need changes faster than that, blocks are exactly that
+//! long and may leave the window. Blocks are therefore long where the need is flat and short
+//! where it changes fast, and a split arc is two arcs.
+//!
+//! Two kinds of tooth may miss the target, and only these (see [`ToothFeed`]):
+//! - *capped*: its need R_k is above the maximum feed (where the tool leaves the cut, h → 0);
+//!   it runs at the maximum feed, with a thinner chip;
+//! - *not held*: the machine does not hold the programmed feed over its tooth period (the
+//!   real feed of the planner, [`crate::machine::planner`]: ramps between blocks, curvature
+//!   and jerk limits); a real feed below the programmed one only thins the chip.
+//!
+//! The h of each tooth is computed from the real motion: the distance Δs travelled in the
+//! tooth period before it (from the planned feed over time), h = h_k·Δs/f_z.
 
 use crate::error::{Error, Param, num};
 use crate::geom::Segment;
 use crate::machine::planner::Dynamics;
-use crate::machine::{RealTime, real_time};
+use crate::machine::{DEFAULT_BLOCK_TIME_S, FeedPoint, FeedProfile, RealTime, real_time};
 use crate::path::Cycle;
 use crate::plan::Plan;
 
@@ -30,22 +44,23 @@ pub struct VariableFeed {
     pub max_feed_mm_per_min: Option<f64>,
     /// Feed where no tooth cuts (mm/min); default 3 × the programmed feed.
     pub return_feed_mm_per_min: Option<f64>,
-    /// Ratio q between neighbouring feed bands (> 1).
+    /// Largest ratio q between the needed feeds of the teeth of one block (> 1); each tooth's
+    /// h is then within √q of the target (module doc).
     pub band_ratio: f64,
-    /// Shortest block before the feed may rise again (mm).
+    /// Shortest block (mm), on top of the machine's block time.
     pub min_block_mm: f64,
 }
 
 impl Default for VariableFeed {
-    /// Bands 1 % apart (h within 2 % of the target where the block holds the tooth's band or
-    /// the one below) and blocks of at least 0.5 mm.
+    /// Needs within 3 % in a block (h within ±1.5 % of the target) and blocks as short as
+    /// the machine's block time allows.
     fn default() -> Self {
         VariableFeed {
             target_h_mm: None,
             max_feed_mm_per_min: None,
             return_feed_mm_per_min: None,
-            band_ratio: 1.01,
-            min_block_mm: 0.5,
+            band_ratio: 1.03,
+            min_block_mm: 0.0,
         }
     }
 }
@@ -66,11 +81,36 @@ pub struct FeedBlock {
 pub struct ToothFeed {
     /// Arc length from the cycle start (mm).
     pub s_mm: f64,
-    /// h at its block's feed (mm; 0: not cutting); h scales with the feed (module doc).
+    /// h at its block's programmed feed (mm; 0: not cutting); h scales with the feed.
     pub h_mm: f64,
-    /// Its feed for the target h is above the maximum feed (its h is then below the target).
+    /// h from the real motion: the distance travelled in its tooth period (module doc; mm).
+    pub h_real_mm: f64,
+    /// Its need for the target h is above the maximum feed (its h is then below the target).
     pub capped: bool,
+    /// The machine holds the programmed feed over its tooth period.
+    pub held: bool,
 }
+
+impl ToothFeed {
+    /// Cutting, not capped and held: its h must be within [`TOLERANCE`] of the target.
+    pub fn free(&self) -> bool {
+        self.h_mm > 0.0 && !self.capped && self.held
+    }
+}
+
+/// Shares of the cutting teeth (see [`FeedSchedule::shares`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ToothShares {
+    /// Needing more than the maximum feed.
+    pub capped: f64,
+    /// Not capped, and the machine does not hold the programmed feed over the tooth period.
+    pub not_held: f64,
+    /// Of those, with h more than 2 % off the target (all below it).
+    pub not_held_outside: f64,
+}
+
+/// The issue's tolerance on h where cutting: within 2 % of the target.
+pub const TOLERANCE: f64 = 0.02;
 
 /// The variable feed of a plan: blocks, the expected h per tooth and the real times.
 #[derive(Clone, Debug)]
@@ -85,17 +125,30 @@ pub struct FeedSchedule {
 }
 
 impl FeedSchedule {
-    /// Share of the cutting teeth not held back by the maximum feed whose h is within 2 %
-    /// below the target.
+    /// Share of the free cutting teeth ([`ToothFeed::free`]) whose real h is within 2 % of
+    /// the target.
     pub fn within_2pct_share(&self) -> f64 {
-        let free: Vec<f64> = self.teeth.iter().filter(|t| t.h_mm > 0.0 && !t.capped).map(|t| t.h_mm).collect();
-        let ok = free.iter().filter(|&&h| h >= 0.98 * self.target_h_mm && h <= self.target_h_mm * (1.0 + 1e-9));
+        let free: Vec<f64> = self.teeth.iter().filter(|t| t.free()).map(|t| t.h_real_mm).collect();
+        let ok = free.iter().filter(|&&h| (h / self.target_h_mm - 1.0).abs() <= TOLERANCE);
         if free.is_empty() { 1.0 } else { ok.count() as f64 / free.len() as f64 }
     }
 
-    /// Largest h of any tooth over the target (1: on target; never above with the bands).
+    /// How the cutting teeth fall into the exceptions of the 2 % rule (module doc).
+    pub fn shares(&self) -> ToothShares {
+        let cutting: Vec<&ToothFeed> = self.teeth.iter().filter(|t| t.h_mm > 0.0).collect();
+        let n = cutting.len().max(1) as f64;
+        let share = |f: &dyn Fn(&ToothFeed) -> bool| cutting.iter().filter(|t| f(t)).count() as f64 / n;
+        let outside = |t: &ToothFeed| (t.h_real_mm / self.target_h_mm - 1.0).abs() > TOLERANCE;
+        ToothShares {
+            capped: share(&|t| t.capped),
+            not_held: share(&|t| !t.capped && !t.held),
+            not_held_outside: share(&|t| !t.capped && !t.held && outside(t)),
+        }
+    }
+
+    /// Largest real h of any tooth over the target (1: on target).
     pub fn h_over_target(&self) -> f64 {
-        self.teeth.iter().map(|t| t.h_mm).fold(0.0, f64::max) / self.target_h_mm
+        self.teeth.iter().map(|t| t.h_real_mm).fold(0.0, f64::max) / self.target_h_mm
     }
 
     /// The exact sub-segments of `cycle` of each block with its feed (one cycle, from its
@@ -153,6 +206,29 @@ impl VariableFeed {
     }
 }
 
+/// An open block: its extent, and the lowest and highest need of its free teeth.
+struct Open {
+    s0: f64,
+    s1: f64,
+    cutting: bool,
+    lo: f64,
+    hi: f64,
+}
+
+impl Open {
+    /// Its feed: the return feed in air, the geometric mean of the needs within the maximum
+    /// feed where cutting (the maximum feed when every tooth is capped).
+    fn feed(&self, cap: f64, ret: f64) -> f64 {
+        if !self.cutting {
+            ret
+        } else if self.hi > 0.0 {
+            (self.lo * self.hi).sqrt().min(cap)
+        } else {
+            cap
+        }
+    }
+}
+
 /// The variable feed of `plan` (module doc).
 pub fn schedule(plan: &Plan, vf: &VariableFeed) -> Result<FeedSchedule, Error> {
     vf.check()?;
@@ -167,90 +243,142 @@ pub fn schedule(plan: &Plan, vf: &VariableFeed) -> Result<FeedSchedule, Error> {
     if let Some(m) = &job.machine {
         cap = cap.min(m.max_speed_mm_per_s() * 60.0);
     }
+    let block_time = job.machine.as_ref().map_or(DEFAULT_BLOCK_TIME_S, |m| m.block_time);
+    let min_len = |feed: f64| (feed / 60.0 * block_time).max(vf.min_block_mm);
     let ret = vf.return_feed_mm_per_min.unwrap_or(3.0 * f);
     let q = vf.band_ratio;
-    // Band index of a required feed, rounded down; the feed of a band.
-    let band = |r: f64| ((r / f).ln() / q.ln() + 1e-9).floor() as i64;
-    let band_feed = |i: i64| f * q.powi(i32::try_from(i).unwrap_or(i32::MAX));
     let spacing = plan.tooth_stride as f64 * job.f_z();
     let len = plan.path.cycle.length();
-    // Intervals (s0, s1, band or None for air).
-    let intervals: Vec<(f64, f64, Option<i64>)> = plan
-        .series
-        .iter()
-        .map(|t| {
-            let need = if t.cutting { Some(band((f * target / t.h_mm).min(cap))) } else { None };
-            ((t.s_mm - spacing).max(0.0), t.s_mm.min(len), need)
-        })
-        .collect();
-    let mut blocks: Vec<(f64, f64, Option<i64>)> = Vec::new();
-    for (s0, s1, need) in intervals {
-        let Some(cur) = blocks.last_mut() else {
-            blocks.push((0.0, s1, need));
-            continue;
-        };
-        match (cur.2, need) {
-            (None, None) => cur.1 = s1,
-            (Some(c), Some(n)) if n == c || n == c + 1 => cur.1 = s1,
-            // Too short to stand alone: the whole block goes down.
-            (Some(c), Some(n)) if n < c && cur.1 - cur.0 < vf.min_block_mm => {
-                cur.2 = Some(n);
-                cur.1 = s1;
-            }
-            (Some(c), Some(n)) if n < c => {
-                let start = s0.max(cur.1);
-                blocks.push((start, s1, need));
-            }
-            (Some(_), Some(_)) if cur.1 - cur.0 < vf.min_block_mm => cur.1 = s1,
-            (Some(_), None) if cur.1 - cur.0 < vf.min_block_mm => cur.1 = s1,
-            _ => {
-                let start = s0.max(cur.1);
-                blocks.push((start, s1, need));
+    let need = |h: f64| f * target / h;
+    // A tooth's chip is set by the travel in its tooth period, up to m spacings back at the
+    // fastest feed: so a block's window also takes the needs of the m teeth after it (the
+    // first teeth of the next block blend both feeds), and a block of teeth that cut nothing
+    // is cutting when one of the next m teeth cuts (air at the return feed ends m spacings
+    // before the cut). The series is periodic: the teeth after the last are the first.
+    let n = plan.series.len();
+    let m = ((cap.max(ret) / f).ceil() as usize).min(n);
+    // Tooth j > k runs at about its need R_j (the return feed in air), travels R_j/F spacings
+    // in its period and so reaches back over tooth k's position while (j − k) < R_j/F.
+    let reach = |t: &crate::analysis::chip::ToothSample| if t.cutting { need(t.h_mm).min(cap) } else { ret } / f;
+    let ahead = move |k: usize| {
+        (k..=k + m)
+            .map(move |i| (i - k, &plan.series[i % n]))
+            .filter(move |(d, t)| (*d as f64) < reach(t))
+            .map(|(_, t)| t)
+    };
+    // A free tooth's need (capped teeth bind nothing: their block runs at most at the cap).
+    let free = |t: &crate::analysis::chip::ToothSample| (t.cutting && need(t.h_mm) < cap).then(|| need(t.h_mm));
+    let mut blocks: Vec<Open> = Vec::new();
+    for (k, t) in plan.series.iter().enumerate() {
+        let (s0, s1) = ((t.s_mm - spacing).max(0.0), t.s_mm.min(len));
+        let cutting = ahead(k).any(|u| u.cutting);
+        let (lo, hi) = ahead(k).filter_map(free).fold((f64::INFINITY, 0.0_f64), |(lo, hi), r| (lo.min(r), hi.max(r)));
+        if let Some(cur) = blocks.last_mut()
+            && cur.cutting == cutting
+        {
+            let (lo, hi) = (cur.lo.min(lo), cur.hi.max(hi));
+            let short = cur.s1 - cur.s0 < min_len(cur.feed(cap, ret));
+            if hi <= q * lo * (1.0 + 1e-12) || hi == 0.0 || short {
+                (cur.s1, cur.lo, cur.hi) = (s1, lo, hi);
+                continue;
             }
         }
+        let start = blocks.last().map_or(0.0, |b| s0.max(b.s1));
+        blocks.push(Open { s0: start, s1, cutting, lo, hi });
     }
-    // Air blocks shorter than the minimum join the cutting block before them (lower feed).
-    let mut merged: Vec<(f64, f64, Option<i64>)> = Vec::new();
+    // Air too short for a block joins the cutting block before it (its slower feed).
+    let mut merged: Vec<Open> = Vec::new();
     for b in blocks {
         match merged.last_mut() {
-            Some(prev) if b.2.is_none() && b.1 - b.0 < vf.min_block_mm && prev.2.is_some() => prev.1 = b.1,
+            Some(prev) if !b.cutting && b.s1 - b.s0 < min_len(ret) && prev.cutting => prev.s1 = b.s1,
             _ => merged.push(b),
         }
     }
     if let Some(last) = merged.last_mut() {
-        last.1 = len;
+        last.s1 = len;
     }
     let blocks: Vec<FeedBlock> = merged
         .iter()
-        .map(|&(s0, s1, need)| FeedBlock {
-            s0,
-            s1,
-            feed_mm_per_min: need.map_or(ret, band_feed),
-            cutting: need.is_some(),
-        })
+        .map(|b| FeedBlock { s0: b.s0, s1: b.s1, feed_mm_per_min: b.feed(cap, ret), cutting: b.cutting })
         .collect();
-    // h per tooth at its block's feed.
-    let feed_at = |s: f64| blocks.iter().find(|b| s <= b.s1 + 1e-9).map_or(f, |b| b.feed_mm_per_min);
-    let teeth = plan
-        .series
-        .iter()
-        .map(|t| ToothFeed {
-            s_mm: t.s_mm,
-            h_mm: if t.cutting { t.h_mm * feed_at(t.s_mm) / f } else { 0.0 },
-            capped: t.cutting && f * target / t.h_mm >= cap,
-        })
-        .collect();
-    let mut sched = FeedSchedule { blocks, target_h_mm: target, teeth, real: RealTime::ideal(len, 1, f) };
+    let mut sched = FeedSchedule { blocks, target_h_mm: target, teeth: Vec::new(), real: RealTime::ideal(len, 1, f) };
     let pieces = sched.pieces(&plan.path.cycle);
     let (segs, feeds): (Vec<Segment>, Vec<f64>) = pieces.into_iter().unzip();
     sched.real = match &job.machine {
         Some(m) => {
             real_time(&segs, crate::geom::p2(0.0, plan.path.cycle.step), plan.path.cycles, &feeds, &Dynamics::of(m))
         }
-        None => {
-            let t: f64 = segs.iter().zip(&feeds).map(|(s, f)| s.length() / f * 60.0).sum();
-            RealTime { t_cycle_s: t, total_s: t * plan.path.cycles as f64, ..RealTime::ideal(len, 1, f) }
-        }
+        None => ideal_real_time(&segs, &feeds, plan.path.cycles),
     };
+    // h per tooth: at its block's programmed feed, and from the real motion.
+    let feed_at = |s: f64| sched.blocks.iter().find(|b| s <= b.s1 + 1e-9).map_or(f, |b| b.feed_mm_per_min);
+    let period = spacing / (f / 60.0);
+    sched.teeth = plan
+        .series
+        .iter()
+        .map(|t| {
+            let (travel, held) = travel_before(&sched.real.cycle, t.s_mm.min(len), period);
+            ToothFeed {
+                s_mm: t.s_mm,
+                h_mm: if t.cutting { t.h_mm * feed_at(t.s_mm) / f } else { 0.0 },
+                h_real_mm: if t.cutting { t.h_mm * travel / spacing } else { 0.0 },
+                capped: t.cutting && need(t.h_mm) >= cap,
+                held,
+            }
+        })
+        .collect();
     Ok(sched)
+}
+
+/// The ideal machine's time: every piece at its feed, steps at once.
+fn ideal_real_time(segs: &[Segment], feeds: &[f64], cycles: usize) -> RealTime {
+    let mut points = vec![FeedPoint {
+        s_mm: 0.0,
+        t_s: 0.0,
+        feed_mm_per_min: feeds.first().copied().unwrap_or(1.0),
+        programmed_mm_per_min: feeds.first().copied().unwrap_or(1.0),
+        limit_mm_per_min: feeds.first().copied().unwrap_or(1.0),
+    }];
+    let (mut s, mut t) = (0.0, 0.0);
+    for (seg, &feed) in segs.iter().zip(feeds) {
+        s += seg.length();
+        t += seg.length() / feed * 60.0;
+        points.push(FeedPoint {
+            s_mm: s,
+            t_s: t,
+            feed_mm_per_min: feed,
+            programmed_mm_per_min: feed,
+            limit_mm_per_min: feed,
+        });
+    }
+    RealTime { t_cycle_s: t, total_s: t * cycles as f64, held_share: 1.0, cycle: FeedProfile { points } }
+}
+
+/// On a periodic steady-state cycle `profile` (s and t from the cycle start): the distance
+/// travelled in the `period` (s) before arc length `s` and whether every node in it holds the
+/// programmed feed. Between nodes the time is interpolated linearly in s (nodes 0.05 mm apart
+/// or at piece ends of constant feed).
+fn travel_before(profile: &FeedProfile, s: f64, period: f64) -> (f64, bool) {
+    let pts = &profile.points;
+    let (Some(first), Some(last)) = (pts.first(), pts.last()) else { return (0.0, true) };
+    let (len, cycle_t) = (last.s_mm - first.s_mm, last.t_s - first.t_s);
+    if len <= 0.0 || cycle_t <= 0.0 {
+        return (0.0, true);
+    }
+    let interp = |x: f64, key: fn(&FeedPoint) -> f64, val: fn(&FeedPoint) -> f64| {
+        let i = pts.partition_point(|p| key(p) < x).clamp(1, pts.len() - 1);
+        let (a, b) = (&pts[i - 1], &pts[i]);
+        let w = if key(b) > key(a) { ((x - key(a)) / (key(b) - key(a))).clamp(0.0, 1.0) } else { 1.0 };
+        val(a) + w * (val(b) - val(a))
+    };
+    let t_k = interp(s, |p| p.s_mm, |p| p.t_s);
+    // Periods longer than a cycle do not occur (a tooth spacing is far below a cycle).
+    let (t0, wrap) = if t_k - period >= 0.0 { (t_k - period, 0.0) } else { (t_k - period + cycle_t, len) };
+    let s0 = interp(t0, |p| p.t_s, |p| p.s_mm) - wrap;
+    let inside = |p: &&FeedPoint| {
+        let x = p.s_mm;
+        (x > s0 + 1e-9 && x <= s + 1e-9) || (x - len > s0 + 1e-9 && x - len <= s + 1e-9)
+    };
+    let held = pts.iter().filter(inside).all(FeedPoint::held);
+    (s - s0, held)
 }

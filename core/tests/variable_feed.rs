@@ -1,7 +1,7 @@
 //! Variable feed (issue #11 part 2).
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use trochoplan_core::feed::{VariableFeed, schedule};
+use trochoplan_core::feed::{TOLERANCE, VariableFeed, schedule};
 use trochoplan_core::machine::MachineChoice;
 use trochoplan_core::nc::{NcOptions, program};
 use trochoplan_core::{Job, Param, PathKind, plan};
@@ -20,35 +20,80 @@ fn chip_thickness_scales_with_the_feed() {
     }
 }
 
-/// Issue #11 acceptance: on the default job every cutting tooth stays at or below the target
-/// (today's h_max) and, with bands 0.5 % apart and no minimum block, every tooth not held back
-/// by the maximum feed is within 2 % of it; the default bands (1 %, blocks ≥ 0.5 mm) give far
-/// fewer blocks. The real cycle time falls on every preset.
+/// Issue #11 acceptance, on the default job with the default settings, for each preset:
+/// every cutting tooth that is neither capped (its need above the maximum feed, where the
+/// tool leaves the cut) nor where the machine does not hold the programmed feed (the
+/// planner's real feed) has its real h within 2 % of the target; no tooth at all is more than
+/// 2 % above it; every block but the cycle's last lasts the machine's block time; the real
+/// cycle time falls.
 #[test]
 fn default_job_follows_the_target_and_gains_time() {
-    for machine in [None, Some("hobby-router"), Some("vmc"), Some("hsc")] {
-        let job = Job { machine: machine.map(|n| MachineChoice::Preset(n.into())), ..Job::default() };
+    use trochoplan_core::machine::Machine;
+    for name in ["hobby-router", "vmc", "hsc"] {
+        let job = Job { machine: Some(MachineChoice::Preset(name.into())), ..Job::default() };
         let p = plan(&job).expect("plan");
-        let fine = schedule(&p, &VariableFeed { band_ratio: 1.005, min_block_mm: 0.0, ..VariableFeed::default() })
-            .expect("schedule");
-        assert!(fine.h_over_target() <= 1.0 + 1e-9, "{machine:?}: {}", fine.h_over_target());
-        assert_eq!(fine.within_2pct_share(), 1.0, "{machine:?}");
-        let coarse = schedule(&p, &VariableFeed::default()).expect("schedule");
-        assert!(coarse.h_over_target() <= 1.0 + 1e-9);
-        assert!(coarse.blocks.len() * 3 < fine.blocks.len(), "{} vs {}", coarse.blocks.len(), fine.blocks.len());
+        let s = schedule(&p, &VariableFeed::default()).expect("schedule");
+        let target = s.target_h_mm;
+        for t in s.teeth.iter().filter(|t| t.free()) {
+            assert!(
+                (t.h_real_mm / target - 1.0).abs() <= TOLERANCE,
+                "{name}: tooth at {} h/target {}",
+                t.s_mm,
+                t.h_real_mm / target
+            );
+        }
+        assert_eq!(s.within_2pct_share(), 1.0, "{name}");
+        assert!(s.h_over_target() <= 1.0 + TOLERANCE, "{name}: {}", s.h_over_target());
+        // The exceptions stay exceptions: under 10 % capped (measured 6.8 %), under 40 % not
+        // held (measured 30–34 %) and under 10 % of all cutting teeth off by more than 2 %
+        // because the machine lags (measured 2.3–8.7 %, every one below the target).
+        let sh = s.shares();
+        assert!(sh.capped > 0.0 && sh.capped < 0.1 && sh.not_held < 0.4 && sh.not_held_outside < 0.1, "{name}: {sh:?}");
+        // Blocks: at least the block time at their feed (the last one ends at the cycle end).
+        let block_time = Machine::preset(name).expect("preset").block_time;
+        for b in &s.blocks[..s.blocks.len() - 1] {
+            assert!((b.s1 - b.s0) / b.feed_mm_per_min * 60.0 >= block_time * (1.0 - 1e-9), "{name}: {b:?}");
+        }
         // Air at 3 × feed and faster cutting where the chip is thin: at least the
         // process-model bound for air alone, 1 − (0.48 + 0.52/3) = 35 %, less the ramps.
-        for s in [&fine, &coarse] {
-            let gain = 1.0 - s.real.t_cycle_s / p.metrics.t_cycle_real_s;
-            assert!(gain > 0.3 && gain < 0.6, "{machine:?}: gain {gain}");
-            assert!(s.real.total_s < p.metrics.machining_time_real_s);
-        }
+        let gain = 1.0 - s.real.t_cycle_s / p.metrics.t_cycle_real_s;
+        assert!(gain > 0.3 && gain < 0.6, "{name}: gain {gain}");
+        assert!(s.real.total_s < p.metrics.machining_time_real_s);
         // The blocks cover the cycle without gaps.
-        for w in coarse.blocks.windows(2) {
+        for w in s.blocks.windows(2) {
             assert!((w[0].s1 - w[1].s0).abs() < 1e-9 && w[0].s1 > w[0].s0);
         }
-        assert!((coarse.blocks.last().expect("block").s1 - p.metrics.cycle_length_mm).abs() < 1e-9);
+        assert!((s.blocks.last().expect("block").s1 - p.metrics.cycle_length_mm).abs() < 1e-9);
     }
+}
+
+/// The real h of a tooth, computed independently on the ideal machine: the feed is the
+/// blocks' feed (steps at once), so the travel in the tooth period before a tooth is found by
+/// walking the blocks backwards from it; h = h_k·travel/f_z (the scaling premise above).
+#[test]
+fn real_chip_thickness_is_the_travel_in_the_tooth_period() {
+    let p = plan(&Job::default()).expect("plan");
+    let s = schedule(&p, &VariableFeed::default()).expect("schedule");
+    let (len, f_z) = (p.metrics.cycle_length_mm, p.job.f_z());
+    let period = f_z / (p.job.feed / 60.0);
+    let feed_at = |x: f64| {
+        let x = x.rem_euclid(len);
+        s.blocks.iter().find(|b| x >= b.s0 && x < b.s1).expect("block").feed_mm_per_min / 60.0
+    };
+    let mut checked = 0;
+    for (t, sample) in s.teeth.iter().zip(&p.series).filter(|(t, _)| t.h_mm > 0.0) {
+        // Walk back in steps of 1e-4 mm (the feed is constant between block ends).
+        let (mut x, mut time) = (t.s_mm, 0.0);
+        while time < period {
+            let v = feed_at(x - 5e-5);
+            time += 1e-4 / v;
+            x -= 1e-4;
+        }
+        let h = sample.h_mm * (t.s_mm - x) / f_z;
+        assert!((h / t.h_real_mm - 1.0).abs() < 2e-3, "at {}: {h} vs {}", t.s_mm, t.h_real_mm);
+        checked += 1;
+    }
+    assert!(checked > 100);
 }
 
 /// Settings out of range are named.

@@ -25,6 +25,9 @@ pub struct OptimiseSettings {
     /// `--max-force` (N), used when `limit_force`.
     pub max_force_n: f64,
     pub limit_force: bool,
+    /// `--min-cooling` (share of the cycle), used when `limit_cooling`.
+    pub min_cooling_share: f64,
+    pub limit_cooling: bool,
     /// Show (and load from) the front against F_R,max instead of W_max.
     pub front_by_force: bool,
 }
@@ -39,6 +42,8 @@ impl Default for OptimiseSettings {
             limit_waviness: false,
             max_force_n: 700.0,
             limit_force: false,
+            min_cooling_share: 0.5,
+            limit_cooling: false,
             front_by_force: false,
         }
     }
@@ -50,7 +55,7 @@ impl OptimiseSettings {
             self.max_hmax_mm,
             self.max_engagement_deg,
             self.limit_waviness.then_some(self.max_waviness_mm),
-            None,
+            self.limit_cooling.then_some(self.min_cooling_share),
         );
         match limits {
             Ok(l) if self.limit_force => l.with_max_force(self.max_force_n),
@@ -166,6 +171,17 @@ pub fn show(
             ui.add_enabled(
                 settings.limit_waviness,
                 egui::DragValue::new(&mut settings.max_waviness_mm).speed(0.001).max_decimals(4).suffix(" mm"),
+            );
+            ui.checkbox(&mut settings.limit_cooling, "cooling share >=").on_hover_text(
+                "Smallest share of the cycle in which a tooth does not cut (t_cooling, `--min-cooling`)",
+            );
+            ui.add_enabled(
+                settings.limit_cooling,
+                egui::DragValue::new(&mut settings.min_cooling_share)
+                    .range(0.0..=1.0)
+                    .speed(0.005)
+                    .max_decimals(3)
+                    .suffix(" of the cycle"),
             );
             ui.checkbox(&mut settings.limit_force, "F_R,max <=").on_hover_text(
                 "Limit the largest resultant cutting force of the force model (Forces tab, domain-spec §4.1)",

@@ -31,6 +31,20 @@ pub struct Machine {
     /// Path tolerance of the controller's blending (mm): how far it may round a corner or a
     /// curvature jump (LinuxCNC G64 P, GRBL junction deviation, Sinumerik CYCLE832).
     pub path_tolerance: f64,
+    /// Shortest time one NC block may take (s) without starving the controller's look-ahead
+    /// (its block processing rate, or the serial line that feeds it); the variable feed's
+    /// blocks last at least this long ([`crate::feed`]). Job files without it take
+    /// [`DEFAULT_BLOCK_TIME_S`].
+    #[serde(default = "default_block_time")]
+    pub block_time: f64,
+}
+
+/// Block time of a machine that does not state one, and of the ideal machine (s): the `vmc`
+/// preset's.
+pub const DEFAULT_BLOCK_TIME_S: f64 = 0.004;
+
+fn default_block_time() -> f64 {
+    DEFAULT_BLOCK_TIME_S
 }
 
 /// The presets, in the order the GUI lists them: (name, TOML text with the sources).
@@ -55,7 +69,7 @@ impl Machine {
     }
 
     /// The parameters of a machine: its name and every limit (job keys, GUI error lines).
-    pub const PARAMS: [Param; 8] = [
+    pub const PARAMS: [Param; 9] = [
         Param::Machine,
         Param::MaxFeedX,
         Param::MaxFeedY,
@@ -64,6 +78,7 @@ impl Machine {
         Param::JerkX,
         Param::JerkY,
         Param::PathTolerance,
+        Param::BlockTime,
     ];
 
     /// Check every limit: finite and > 0; the error names the key.
@@ -76,6 +91,7 @@ impl Machine {
             (Param::JerkX, self.jerk_x, 1.0e9, "mm/s³"),
             (Param::JerkY, self.jerk_y, 1.0e9, "mm/s³"),
             (Param::PathTolerance, self.path_tolerance, 10.0, "mm"),
+            (Param::BlockTime, self.block_time, 1.0, "s"),
         ];
         for (param, v, max, unit) in checks {
             if !(v.is_finite() && v > 0.0 && v <= max) {
@@ -153,7 +169,7 @@ mod tests {
     fn bad_limits_are_rejected_by_name() {
         let good = Machine::preset("vmc").expect("vmc");
         type Setter = fn(&mut Machine, f64);
-        let cases: [(Setter, Param); 7] = [
+        let cases: [(Setter, Param); 8] = [
             (|m, v| m.max_feed_x = v, Param::MaxFeedX),
             (|m, v| m.max_feed_y = v, Param::MaxFeedY),
             (|m, v| m.acceleration_x = v, Param::AccelerationX),
@@ -161,6 +177,7 @@ mod tests {
             (|m, v| m.jerk_x = v, Param::JerkX),
             (|m, v| m.jerk_y = v, Param::JerkY),
             (|m, v| m.path_tolerance = v, Param::PathTolerance),
+            (|m, v| m.block_time = v, Param::BlockTime),
         ];
         for (set, param) in cases {
             for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {

@@ -456,7 +456,7 @@ fn preamble(w: &mut Writer, header: &Header<'_>, opts: &NcOptions) {
     }
     if let Some(vf) = &opts.variable_feed {
         w.comment(&format!(
-            "variable feed: per-block F for a constant chip thickness, bands x{}, blocks >= {} mm",
+            "variable feed: per-block F for a constant chip thickness, needs within x{} a block, blocks >= {} mm and the block time",
             vf.band_ratio, vf.min_block_mm
         ));
     }
