@@ -104,11 +104,13 @@ pub enum Param {
     SlotForces,
     /// `pocket --target-engagement` (adaptive clearing).
     TargetEngagement,
+    /// `pocket --corner-tolerance`: how near the corner arcs reach each corner point (mm).
+    CornerTolerance,
 }
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 70] = [
+    pub const ALL: [Param; 71] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
@@ -179,6 +181,7 @@ impl Param {
         Param::Kae,
         Param::SlotForces,
         Param::TargetEngagement,
+        Param::CornerTolerance,
     ];
 
     /// The command-line flag without `--` (also the job-file key). The NC tolerance and the
@@ -255,6 +258,7 @@ impl Param {
             Param::Kae => "kae",
             Param::SlotForces => "slot-forces",
             Param::TargetEngagement => "target-engagement",
+            Param::CornerTolerance => "corner-tolerance",
         }
     }
 
@@ -331,6 +335,7 @@ impl Param {
             Param::Kae => "Kae",
             Param::SlotForces => "Slot-force tests",
             Param::TargetEngagement => "Target engagement",
+            Param::CornerTolerance => "Corner tolerance",
         }
     }
 }
