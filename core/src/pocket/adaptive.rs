@@ -79,6 +79,7 @@
 //! loop then runs clockwise, with the same engagement by symmetry.
 
 use super::PocketSettings;
+use super::mirror::{mirror_segment, mirrored_polygon};
 use super::perforative::{KindMax, MoveKind, maxima};
 use super::rings::{link_is_inside, to_segments};
 use crate::corner::{EngagementProfile, EvaluatorOptions, engagement_profile};
@@ -732,22 +733,6 @@ fn fin_radius(sf: f64, r: f64, phi: f64) -> f64 {
         }
     }
     (hi - sf).max(0.1 * r)
-}
-
-fn mirrored_polygon(p: &Polygon) -> Result<Polygon, Error> {
-    let mut v: Vec<P2> = p.vertices().iter().map(|q| p2(-q.x, q.y)).collect();
-    v.reverse();
-    Polygon::new(v)
-}
-
-fn mirror_segment(s: &Segment) -> Segment {
-    match *s {
-        Segment::Line { start, end } => Segment::Line { start: p2(-start.x, start.y), end: p2(-end.x, end.y) },
-        Segment::Arc { center, radius, start_angle, sweep } => {
-            Segment::Arc { center: p2(-center.x, center.y), radius, start_angle: PI - start_angle, sweep: -sweep }
-        }
-        other => other,
-    }
 }
 
 /// Entry, spiral, rings and corners of one region of tool centres; the finishing pass.
