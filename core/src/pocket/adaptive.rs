@@ -50,10 +50,16 @@
 //!    Consecutive arcs are a distance (ρ_k − ρ_k+1)(1/sin(α/2) − 1) apart on the bisector and
 //!    tangent to each other's walls; that distance is held to the concave-cut step of ρ_k+1.
 //!    A pass runs along wall A from the previous tangent point, the arc, then the arc's own
-//!    chord (cleared: it lies on the cut side of the arc) returns to wall A. The tool never reaches V
-//!    (see [`corner_point_bound_rad`]): the pocket corner is left with radius r + ρ_fin + s_f.
+//!    chord (cleared: it lies on the cut side of the arc) returns to wall A. These passes stop
+//!    at ρ_fin, where the finishing arc of radius ρ_fin + s_f stays within the target.
 //! 5. **Finish.** With s_f > 0: the opening of the final wall offset with radius ρ_fin + s_f,
-//!    concentric with the last corner arcs, once around (climb).
+//!    concentric with the last corner arcs, once around (climb), entered on a quarter circle
+//!    beside the straight wall nearest the tool.
+//! 6. **Corner points.** At each convex corner the finishing pass, after its arc, cuts arcs
+//!    tangent to both final walls with radii from [`next_corner_point_radius`] down to the
+//!    corner tolerance δ (each arc within the target, derived there); the pocket corner is left
+//!    with radius r + δ, δ(1/sin(α/2) − 1) on the bisector. Reaching V itself would read π − α
+//!    ([`corner_point_bound_rad`]).
 //!
 //! **Sampling error bound (DERIVED).** The evaluator measures at every segment end (kinks are
 //! exact) and every h mm (`spacing`). Take two tool positions c, c' a distance δ apart along
