@@ -511,6 +511,9 @@ fn start_near(lp: &[Segment], q: P2) -> Vec<Segment> {
 struct Builder {
     segments: Vec<Segment>,
     kinds: Vec<MoveKind>,
+    /// Corner-point radii already derived, by (α, ρ₀): the finishing pass is the same for every
+    /// core fraction, so each sequence is computed once per region.
+    radii: Vec<(f64, f64, Vec<f64>)>,
 }
 
 impl Builder {
@@ -678,7 +681,7 @@ fn plan_path(
     // The finishing corner radius: the finishing arc of radius ρ_fin + s_f removes s_f
     // concentrically, within φ* (concave-cut step); at least r/10.
     let rho_fin = if sf > 0.0 { fin_radius(sf, r, phi) } else { 0.1 * r };
-    let mut b = Builder { segments: Vec::new(), kinds: Vec::new() };
+    let mut b = Builder { segments: Vec::new(), kinds: Vec::new(), radii: Vec::new() };
     let mut parts = Vec::new();
     for region in &regions {
         // The core radius trades ring length against corner caps: plan with T starting at each
@@ -686,10 +689,13 @@ fn plan_path(
         let (inscribed_radius, k0) = inscribed(region);
         let mut best: Option<(f64, Builder, AdaptivePart)> = None;
         let mut last_err = None;
+        let mut radii = Vec::new();
         for fraction in CORE_FRACTIONS {
-            let mut bb = Builder { segments: Vec::new(), kinds: Vec::new() };
-            match plan_part(region, (inscribed_radius, k0), &work, &settings, &options, phi, rho_fin, fraction, &mut bb)
-            {
+            let mut bb = Builder { segments: Vec::new(), kinds: Vec::new(), radii: std::mem::take(&mut radii) };
+            let planned =
+                plan_part(region, (inscribed_radius, k0), &work, &settings, &options, phi, rho_fin, fraction, &mut bb);
+            radii = std::mem::take(&mut bb.radii);
+            match planned {
                 Ok(part) => {
                     let len: f64 = bb.segments.iter().map(Segment::length).sum();
                     if best.as_ref().is_none_or(|(l, _, _)| len < *l) {
@@ -1052,11 +1058,25 @@ fn corner_point_arcs(b: &mut Builder, c: &Corner, rho0: f64, r: f64, phi: f64, d
     let k = 1.0 / (0.5 * c.alpha).sin() - 1.0;
     let (mut rho, mut arcs, mut deepest) = (rho0, 0, 0.0_f64);
     b.line(a0, MoveKind::CornerPoint);
-    while rho > delta * (1.0 + 1e-9) && arcs < MAX_PASSES {
-        let next = next_corner_point_radius(rho, c.alpha, r, phi, delta);
-        if next >= rho * (1.0 - 1e-9) {
-            break;
+    let known = b.radii.iter().position(|(alpha, r0, _)| *alpha == c.alpha && *r0 == rho0);
+    let radii = match known {
+        Some(i) => b.radii[i].2.clone(),
+        None => {
+            let mut radii = Vec::new();
+            let mut q = rho0;
+            while q > delta * (1.0 + 1e-9) && radii.len() < MAX_PASSES {
+                let next = next_corner_point_radius(q, c.alpha, r, phi, delta);
+                if next >= q * (1.0 - 1e-9) {
+                    break;
+                }
+                radii.push(next);
+                q = next;
+            }
+            b.radii.push((c.alpha, rho0, radii.clone()));
+            radii
         }
+    };
+    for next in radii {
         let (a, _, arc) = c.arc(next);
         b.line(a, MoveKind::CornerPoint);
         if let Segment::Arc { center, radius, start_angle, sweep } = arc {
