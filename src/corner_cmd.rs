@@ -70,6 +70,14 @@ pub struct CornerArgs {
     /// Print the acceptance table (corner angles 30°…150° in 15° steps) as Markdown instead.
     #[arg(long)]
     table: bool,
+    /// Milling direction with M3: climb runs the circles and the ring counter-clockwise;
+    /// conventional is the mirror image about the bisector, clockwise.
+    #[arg(
+        long,
+        value_parser = core_names(&Direction::ALL, Direction::name, Some(Direction::help)),
+        default_value = Direction::Climb.name()
+    )]
+    direction: Direction,
     #[command(flatten)]
     nc: CornerExportArgs,
 }
@@ -90,6 +98,7 @@ impl CornerArgs {
             feed_mm_per_min: self.feed,
             isometric_radius_mm: self.isometric_radius,
             spacing_mm: self.spacing,
+            direction: self.direction,
         }
     }
 }
@@ -183,7 +192,8 @@ pub struct PocketArgs {
     /// Spacing of the tool positions measured by the evaluator (mm).
     #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = PocketRequest::default().spacing_mm)]
     spacing: f64,
-    /// Milling direction with M3 (`--method adaptive`): climb runs every loop counter-clockwise.
+    /// Milling direction with M3 (every method): climb runs every loop counter-clockwise,
+    /// conventional plans the mirrored pocket and mirrors the path back (clockwise loops).
     #[arg(
         long,
         value_parser = core_names(&Direction::ALL, Direction::name, Some(Direction::help)),
@@ -204,6 +214,10 @@ pub struct PocketArgs {
     /// step-over's straight engagement φ* to 90; default φ*.
     #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
     target_engagement: Option<f64>,
+    /// How near the finishing pass's corner arcs reach each convex corner point (mm,
+    /// `--method adaptive`): the pocket corners are cut to radius r + this, 0.001 to 1.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = AdaptiveOptions::default().corner_tolerance_mm)]
+    corner_tolerance: f64,
     #[command(flatten)]
     nc: CornerExportArgs,
 }
@@ -280,14 +294,9 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
             direction: args.direction,
             depth_mm: args.nc.depth,
             target_deg: args.target_engagement,
+            corner_tolerance_mm: args.corner_tolerance,
         },
     };
-    if args.direction == Direction::Conventional && args.method != PocketStrategy::Adaptive {
-        return Err(format!(
-            "invalid --direction conventional: only --method adaptive mirrors its loops (method {} cuts climb)",
-            args.method.name()
-        ));
-    }
     let plan = pocket::plan(&req).map_err(err)?;
     let nc_export = match &args.nc.export {
         Some(file) => Some(export_pocket(&args.nc, file, &plan)?),
@@ -338,8 +347,27 @@ struct CornerPassesOut {
     max_radial_depth_mm: f64,
     max_engagement_deg: f64,
     at: [f64; 2],
-    /// What any path reads at the corner point itself (π − α), which the plan does not reach.
+    /// What any path reads at the corner point itself (π − α); the finishing pass's arcs stop
+    /// the corner tolerance short of it (`corner_points`).
     corner_point_bound_deg: f64,
+}
+
+#[derive(Serialize)]
+struct CornerPointOut {
+    vertex: [f64; 2],
+    angle_deg: f64,
+    /// Arcs after the finishing arc, the last of radius δ (the corner tolerance).
+    arcs: usize,
+    last_radius_mm: f64,
+    /// Material left on the bisector, δ(1/sin(α/2) − 1).
+    residual_mm: f64,
+    /// Largest radial depth of an arc, on the bisector (mm).
+    max_radial_depth_mm: f64,
+    /// Peak over the arcs, their approach along the wall and their way out, and where.
+    max_engagement_deg: f64,
+    at: [f64; 2],
+    /// Chip thickness per tooth feed at the peak, h_max/f_z = sin(peak) (1 at 90° and above).
+    hmax_per_fz: f64,
 }
 
 #[derive(Serialize)]
@@ -358,7 +386,10 @@ struct AdaptiveOut {
     core_radius_mm: Vec<f64>,
     rings: Vec<usize>,
     corners: Vec<CornerPassesOut>,
-    /// Radius the convex corners of the pocket are cut to (r + ρ_fin + s_f).
+    /// The corner points reached by the finishing pass (within the corner tolerance).
+    corner_points: Vec<CornerPointOut>,
+    /// Radius the convex corners of the pocket are cut to: r + the corner tolerance (r + ρ_fin
+    /// without a finishing pass).
     corner_radius_left_mm: f64,
     finish_stock_mm: f64,
     /// Maximum over every move at depth (entry, spiral, ring, corner, link, finish), measured
@@ -423,6 +454,22 @@ fn adaptive_pocket_json(plan: &AdaptivePlan, nc_export: Option<NcExportOut>) -> 
                 max_engagement_deg: c.max_engagement_rad.to_degrees(),
                 at: xy(c.at),
                 corner_point_bound_deg: corner_point_bound_rad(c.angle_rad).to_degrees(),
+            })
+            .collect(),
+        corner_points: plan
+            .parts
+            .iter()
+            .flat_map(|p| &p.corner_points)
+            .map(|c| CornerPointOut {
+                vertex: xy(c.vertex),
+                angle_deg: c.angle_rad.to_degrees(),
+                arcs: c.arcs,
+                last_radius_mm: c.last_radius_mm,
+                residual_mm: c.residual_mm,
+                max_radial_depth_mm: c.max_radial_depth_mm,
+                max_engagement_deg: c.max_engagement_rad.to_degrees(),
+                at: xy(c.at),
+                hmax_per_fz: c.max_engagement_rad.min(0.5 * std::f64::consts::PI).sin(),
             })
             .collect(),
         corner_radius_left_mm: plan.corner_radius_left_mm,
@@ -941,7 +988,7 @@ mod tests {
         std::fs::write(&f, "# rectangle\n0,0\n60,0\n60,40\n0,40\n").expect("write");
         let p = f.display().to_string();
         let args = |extra: &[&str]| {
-            let mut v = vec!["t", "--polygon", p.as_str(), "--spacing", "0.5"];
+            let mut v = vec!["t", "--polygon", p.as_str(), "--spacing", "0.5", "--method", "plain"];
             v.extend_from_slice(extra);
             PT::try_parse_from(v).expect("parse").p
         };

@@ -421,9 +421,9 @@ fn machine_and_optimize() {
     let poly = dir.path().join("rect.csv");
     std::fs::write(&poly, "0,0\n60,0\n60,40\n0,40\n").expect("write");
     let p = poly.to_str().expect("utf-8");
-    let ideal = json(&["pocket", "--polygon", p, "--feed", "3000"]);
-    let slow = json(&["pocket", "--polygon", p, "--feed", "3000", "--machine", "hobby-router"]);
-    let fast = json(&["pocket", "--polygon", p, "--feed", "3000", "--machine", "hsc"]);
+    let ideal = json(&["pocket", "--polygon", p, "--feed", "3000", "--method", "plain"]);
+    let slow = json(&["pocket", "--polygon", p, "--feed", "3000", "--method", "plain", "--machine", "hobby-router"]);
+    let fast = json(&["pocket", "--polygon", p, "--feed", "3000", "--method", "plain", "--machine", "hsc"]);
     let at_feed = ideal["path_length_mm"].as_f64().expect("length") / 50.0;
     let (t_slow, t_fast) = (slow["time_real_s"].as_f64().expect("t"), fast["time_real_s"].as_f64().expect("t"));
     assert!(t_slow > t_fast && t_fast > at_feed, "{t_slow} {t_fast} {at_feed}");

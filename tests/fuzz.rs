@@ -244,7 +244,7 @@ fn malformed_polygon_and_path_files_are_errors_naming_the_line() {
 fn pocket_length(dir: &Path, name: &str, text: &str, what: &str) -> Result<f64, String> {
     let file = dir.join(format!("{name}.{what}"));
     std::fs::write(&file, text).expect("write");
-    let r = run(name, &["pocket", "--polygon", file.to_str().expect("utf-8")]);
+    let r = run(name, &["pocket", "--polygon", file.to_str().expect("utf-8"), "--method", "plain"]);
     if r.code != 0 {
         return Err(r.stderr);
     }

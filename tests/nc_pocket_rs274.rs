@@ -55,13 +55,13 @@ fn pocket_programs_pass_rs274_and_stay_inside_the_offset() {
 
 #[test]
 fn rectangle_pocket_program_is_one_connected_cut() {
-    // 60 × 40, D = 10, a_e = 2.5 (the defaults): rings at d = 5 + 2.5k while d ≤ 20 (the
+    // 60 × 40, D = 10, a_e = 2.5 (the defaults), plain rings: rings at d = 5 + 2.5k while d ≤ 20 (the
     // innermost, d = 20, is the segment from (20, 20) to (40, 20) walked there and back):
     // k = 0..6, seven rings, perimeters 2(60 − 2d) + 2(40 − 2d) = 200 − 8d = 160, 140, …, 40;
     // total 7·(160 + 40)/2 = 700 mm. Each ring is entered at the middle of a long side, so each
     // link is a step of a_e = 2.5 mm outward: six feed links, 15 mm, no retract.
     let dir = tempfile::tempdir().expect("tempdir");
-    let e = export(dir.path(), "rect.ngc", RECT, &["--dialect", "linuxcnc", "--linear-segments"]);
+    let e = export(dir.path(), "rect.ngc", RECT, &["--method", "plain", "--dialect", "linuxcnc", "--linear-segments"]);
     assert!((e.json["path_length_mm"].as_f64().expect("len") - 700.0).abs() < 1e-9, "{}", e.json["path_length_mm"]);
     assert!((e.json["link_length_mm"].as_f64().expect("links") - 15.0).abs() < 1e-9, "{}", e.json["link_length_mm"]);
     let text = std::fs::read_to_string(&e.file).expect("read");
@@ -206,4 +206,77 @@ fn adaptive_pockets_read_back_through_rs274_stay_within_the_issue_limits() {
             assert!((planned - peak).abs() < 0.5, "{label}: plan {planned:.2}° vs read back {peak:.2}°");
         }
     }
+}
+
+/// Every pocket method in both directions (issue #12 items 2 and 4) on the issue's rectangle
+/// (D = 10, a_e = 1.527 mm): the program passes rs274 with the wall check; conventional turns
+/// the arcs at depth the other way (the read-back arcs' senses, counted), and its read-back peak is the
+/// climb program's (the rectangle is its own mirror image) within 1°. The peak over everything
+/// at depth, measured on the read-back cut (the helix bore counted as cut for adaptive
+/// clearing; the other methods plunge, and the evaluator reads the plunge hole's first move
+/// from solid material), is printed for the README's table.
+#[test]
+fn every_method_in_both_directions_passes_rs274_and_mirrors_its_peak() {
+    use trochoplan_core::corner::{EvaluatorOptions, engagement_profile};
+    use trochoplan_core::geom::{Polygon, Segment, p2};
+    let dir = tempfile::tempdir().expect("tempdir");
+    let stock = Polygon::new(RECT.iter().map(|&(x, y)| p2(x, y)).collect()).expect("polygon");
+    for method in ["adaptive", "plain", "variable", "isometric", "medial-axis"] {
+        let (mut peaks, mut senses) = (Vec::new(), Vec::new());
+        for direction in ["climb", "conventional"] {
+            let label = format!("rect {method} {direction}");
+            let args = ["--method", method, "--step-over", "1.527", "--direction", direction, "--dialect", "linuxcnc"];
+            let e = export(dir.path(), &format!("rect_{method}_{direction}.ngc"), RECT, &args);
+            check_pocket_program(&label, &e, RECT, R, 0.005, 4);
+            let all = motions(&interpret(&e.file).expect("rs274"));
+            let at_depth: Vec<&Motion> =
+                all.iter().filter(|m| m.start()[2] < -DEPTH + 1e-6 && m.end()[2] < -DEPTH + 1e-6).collect();
+            let ccw = at_depth.iter().filter(|m| matches!(m, Motion::Arc { turns, .. } if *turns > 0)).count();
+            let cw = at_depth.iter().filter(|m| matches!(m, Motion::Arc { turns, .. } if *turns < 0)).count();
+            // signed area swept round by the cut (shoelace of its points, closed): > 0 for
+            // counter-clockwise loops; translation-invariant, negated by a mirror image
+            let pts = nc_common::sample(&cut(&all, DEPTH, 1e-4), 0.1);
+            let area: f64 = (0..pts.len()).map(|i| cross2(pts[i], pts[(i + 1) % pts.len()])).sum::<f64>() / 2.0;
+            senses.push((ccw, cw, area));
+            let bore: Vec<Segment> = e.json.get("helices").map_or(Vec::new(), |hs| {
+                hs.as_array()
+                    .expect("helices")
+                    .iter()
+                    .map(|h| Segment::Arc {
+                        center: p2(h["center"][0].as_f64().expect("x"), h["center"][1].as_f64().expect("y")),
+                        radius: h["radius_mm"].as_f64().expect("radius"),
+                        start_angle: 0.0,
+                        sweep: std::f64::consts::TAU,
+                    })
+                    .collect()
+            });
+            let path = segments_of(&cut(&all, DEPTH, 1e-4));
+            let prof = engagement_profile(&stock, &bore, &path, &EvaluatorOptions::new(R, 0.25)).expect("profile");
+            let mut deg: Vec<f64> = prof.samples.iter().map(|s| s.angle_rad.to_degrees()).collect();
+            deg.sort_by(f64::total_cmp);
+            let (peak, p95) = (deg[deg.len() - 1], deg[(0.95 * deg.len() as f64).ceil() as usize - 1]);
+            // the peak beyond the first millimetre after the plunge (its first position reads the
+            // whole periphery, 360°)
+            let after =
+                prof.samples.iter().filter(|s| s.s_mm > 1.0).map(|s| s.angle_rad.to_degrees()).fold(0.0, f64::max);
+            eprintln!(
+                "{label}: read back {:.1} mm at depth, peak {peak:.2}° at {:?}, after the first mm {after:.2}°, p95 {p95:.2}°",
+                prof.path_length_mm,
+                prof.max().map(|s| (s.x_mm, s.y_mm))
+            );
+            peaks.push(peak);
+        }
+        assert!((peaks[0] - peaks[1]).abs() < 1.0, "{method}: climb {:.2}° vs conventional {:.2}°", peaks[0], peaks[1]);
+        // (counter-clockwise, clockwise) arcs at depth: climb's mostly counter-clockwise, and
+        // conventional's the same counts the other way round; the area the cut turns round
+        // positive for climb and the opposite for conventional (plain rings have no arcs)
+        let ((ccw, cw, area), (ccw_conv, cw_conv, area_conv)) = (senses[0], senses[1]);
+        assert!(ccw >= cw && ccw == cw_conv && cw == ccw_conv, "{method}: {senses:?}");
+        assert!(area > 0.0 && (area + area_conv).abs() < 0.05 * area, "{method}: {senses:?}");
+    }
+}
+
+/// z of the cross product of two points taken as vectors from the origin.
+fn cross2(a: trochoplan_core::geom::P2, b: trochoplan_core::geom::P2) -> f64 {
+    a.x * b.y - a.y * b.x
 }

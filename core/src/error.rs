@@ -106,6 +106,8 @@ pub enum Param {
     SlotForces,
     /// `pocket --target-engagement` (adaptive clearing).
     TargetEngagement,
+    /// `pocket --corner-tolerance`: how near the corner arcs reach each corner point (mm).
+    CornerTolerance,
 }
 
 impl Param {
@@ -182,6 +184,7 @@ impl Param {
         Param::Kae,
         Param::SlotForces,
         Param::TargetEngagement,
+        Param::CornerTolerance,
     ];
 
     /// The command-line flag without `--` (also the job-file key). The NC tolerance and the
@@ -259,6 +262,7 @@ impl Param {
             Param::Kae => "kae",
             Param::SlotForces => "slot-forces",
             Param::TargetEngagement => "target-engagement",
+            Param::CornerTolerance => "corner-tolerance",
         }
     }
 
@@ -336,6 +340,7 @@ impl Param {
             Param::Kae => "Kae",
             Param::SlotForces => "Slot-force tests",
             Param::TargetEngagement => "Target engagement",
+            Param::CornerTolerance => "Corner tolerance",
         }
     }
 }

@@ -149,6 +149,28 @@ fn corners_from_30_to_150_degrees_stay_within_the_target() {
             corner.max_engagement_rad.to_degrees()
         );
         assert!(p.max_engagement_rad <= 60f64.to_radians(), "{alpha_deg}°: {}", p.max_engagement_rad.to_degrees());
+        // its corner point, reached within δ by the finishing pass's arcs (their approach and
+        // way out included) within the target + 1°
+        let point = p.parts[0]
+            .corner_points
+            .iter()
+            .find(|k| (k.angle_rad - alpha_deg.to_radians()).abs() < 1e-6)
+            .unwrap_or_else(|| panic!("{alpha_deg}°: no corner point"));
+        println!(
+            "{alpha_deg}°: corner passes {:.2}°, corner point {:.2}° ({} arcs, residual {:.4} mm, h_max/f_z {:.3}) at {:?}",
+            corner.max_engagement_rad.to_degrees(),
+            point.max_engagement_rad.to_degrees(),
+            point.arcs,
+            point.residual_mm,
+            point.max_engagement_rad.min(0.5 * PI).sin(),
+            point.at
+        );
+        assert!(
+            point.max_engagement_rad <= target + 1f64.to_radians(),
+            "{alpha_deg}°: {}°",
+            point.max_engagement_rad.to_degrees()
+        );
+        assert!((point.last_radius_mm - AdaptiveOptions::default().corner_tolerance_mm).abs() < 1e-12);
     }
 }
 
@@ -268,4 +290,56 @@ fn a_higher_target_engagement_is_kept_and_shortens_the_path() {
         hi.max_engagement_rad.to_degrees(),
         eps.to_degrees()
     );
+}
+
+/// The corner points (issue #12 item 3): after the finishing arc every convex corner gets arcs
+/// tangent to both final walls down to the corner tolerance δ; the corner is then cut to radius
+/// r + δ, with δ(1/sin(α/2) − 1) left on the bisector. Every one of those moves (arcs, their
+/// approach along the wall, their way out) stays within the target + 1° (the tolerance every
+/// other kind has), measured by the evaluator at 0.05 mm as well as at the default 0.25 mm.
+#[test]
+fn corner_points_are_reached_within_the_tolerance_and_the_target() {
+    let rect = poly(&[(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)]);
+    let l = poly(&[(0.0, 0.0), (60.0, 0.0), (60.0, 25.0), (25.0, 25.0), (25.0, 60.0), (0.0, 60.0)]);
+    for (name, polygon, target_deg, corners) in [("rect", rect, Some(50.5), 4), ("L", l, None, 5)] {
+        let options = AdaptiveOptions { target_deg, ..AdaptiveOptions::default() };
+        let p = adaptive(polygon, options);
+        let target = p.target_rad;
+        let delta = options.corner_tolerance_mm;
+        assert!((p.corner_radius_left_mm - (R + delta)).abs() < 1e-12);
+        let points = &p.parts[0].corner_points;
+        assert_eq!(points.len(), corners, "{name}");
+        for c in points {
+            println!(
+                "{name}: corner {:.0}° at ({:.3}, {:.3}): {} arcs, last ρ {:.4} mm, residual {:.5} mm, depth {:.4} mm, peak {:.2}° at ({:.3}, {:.3})",
+                c.angle_rad.to_degrees(),
+                c.vertex.x,
+                c.vertex.y,
+                c.arcs,
+                c.last_radius_mm,
+                c.residual_mm,
+                c.max_radial_depth_mm,
+                c.max_engagement_rad.to_degrees(),
+                c.at.x,
+                c.at.y
+            );
+            assert!((c.last_radius_mm - delta).abs() < 1e-12, "{name}: {c:?}");
+            let s = (0.5 * c.angle_rad).sin();
+            assert!((c.residual_mm - delta * (1.0 / s - 1.0)).abs() < 1e-12);
+            assert!(c.max_engagement_rad <= target + 1f64.to_radians(), "{name}: {c:?}");
+            assert!(c.max_engagement_rad > 0.5 * target, "{name}: the arcs cut nothing? {c:?}");
+        }
+        let m = p.maxima.iter().find(|m| m.kind == MoveKind::CornerPoint).unwrap();
+        assert!(m.max_rad <= target + 1f64.to_radians(), "{name}: {}°", m.max_rad.to_degrees());
+        let fine = plan_adaptive(&p.polygon, pocket::PocketSettings { spacing: 0.05, ..p.settings }, options).unwrap();
+        let mf = fine.maxima.iter().find(|m| m.kind == MoveKind::CornerPoint).unwrap();
+        println!(
+            "{name}: corner points {:.2}° (0.25 mm), {:.2}° (0.05 mm), {:.1} mm of {:.1} mm at depth",
+            m.max_rad.to_degrees(),
+            mf.max_rad.to_degrees(),
+            m.length_mm,
+            p.length_at_depth_mm
+        );
+        assert!(mf.max_rad <= target + 1f64.to_radians(), "{name} at 0.05 mm: {}°", mf.max_rad.to_degrees());
+    }
 }

@@ -575,6 +575,11 @@ fn pocket_mode_shows_the_rings_and_reports_a_bad_polygon() {
     let mut h = corner_harness();
     h.get_by_label("Pocket").click();
     h.run();
+    // adaptive clearing is the default (issue #12); the rings are the corner method's
+    assert!(h.state().state.corner.pocket_adaptive);
+    h.get_by_label(label::POCKET_ADAPTIVE).click();
+    h.run();
+    wait_for_corner(&mut h);
     assert!(h.state().corner.error.is_none(), "{:?}", h.state().corner.error);
     let p = h.state().corner.last_pocket.clone().expect("a pocket");
     assert!(!p.rings.is_empty());
@@ -594,6 +599,7 @@ fn pocket_mode_plans_the_medial_axis_strategy_for_the_whole_pocket() {
     let mut h = corner_harness();
     h.get_by_label("Pocket").click();
     h.run();
+    h.state_mut().state.corner.pocket_adaptive = false;
     h.state_mut().state.corner.method = CornerMethod::MedialAxis;
     h.run();
     wait_for_corner(&mut h);
@@ -644,9 +650,8 @@ fn pocket_mode_plans_adaptive_clearing() {
     let mut h = corner_harness();
     h.get_by_label("Pocket").click();
     h.run();
-    h.get_by_label(label::POCKET_ADAPTIVE).click();
-    h.run();
     wait_for_corner(&mut h);
+    // the default (issue #12)
     assert!(h.state().state.corner.pocket_adaptive);
     assert!(h.state().corner.error.is_none(), "{:?}", h.state().corner.error);
     let p = h.state().corner.last_pocket.clone().expect("a pocket");
@@ -787,12 +792,13 @@ fn corner_export_previews_the_core_program_saves_it_and_reports_a_bad_depth() {
     let (status, is_err) = h.state().status.clone().expect("status");
     assert!(!is_err && status.starts_with("exported"), "{status}");
 
-    // pocket mode exports the whole pocket
+    // pocket mode exports the whole pocket (adaptive by default)
     h.get_by_label("Pocket").click();
     h.run();
+    wait_for_corner(&mut h);
     let p = h.state().corner.last_pocket.clone().expect("a pocket");
     let cut = CutSetup { depth_mm: 3.0, ..CutSetup::default() };
-    assert!(matches!(p.plan, trochoplan_core::pocket::PocketPlan::Rings(_)), "ring pocket expected");
+    assert!(matches!(p.plan, trochoplan_core::pocket::PocketPlan::Adaptive(_)), "adaptive pocket expected");
     let want = pocket_program(&p.plan, cut, &opts).expect("core pocket program");
     let preview = h.state().corner_nc.view().expect("program").text.clone();
     assert_eq!(preview, want.text);

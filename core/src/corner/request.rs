@@ -9,6 +9,8 @@ use super::geometry::Corner;
 use super::method::CornerMethod;
 use super::strategy::{CornerPlan, CornerScenario, CornerSettings, DEFAULT_T1, plan_corner, tool_diameter};
 use crate::error::{Error, Param, num};
+use crate::job::Direction;
+use crate::pocket::mirror::{flip_y, flip_y_segment, flipped_y_polygon};
 use serde::{Deserialize, Serialize};
 
 /// One symmetric corner to plan and measure, in the user's units (degrees, mm, mm/min): the
@@ -39,6 +41,9 @@ pub struct CornerRequest {
     pub isometric_radius_mm: Option<f64>,
     /// Arc-length spacing of the tool positions measured by the evaluator (mm).
     pub spacing_mm: f64,
+    /// Climb (counter-clockwise circles and ring with M3) or conventional (the mirror image).
+    #[serde(default)]
+    pub direction: Direction,
 }
 
 impl CornerRequest {
@@ -58,6 +63,7 @@ impl CornerRequest {
         feed_mm_per_min: 600.0,
         isometric_radius_mm: None,
         spacing_mm: 0.1,
+        direction: Direction::Climb,
     };
 
     /// The validated settings of the corner plan. Each error names the input (as the CLI flag
@@ -144,7 +150,46 @@ pub fn evaluate(req: &CornerRequest) -> Result<CornerReport, Error> {
     let (plain, plain_profile) = measured(&scenario, CornerMethod::Plain, &opts)?;
     let row =
         acceptance::row(angle_deg, req.method, &scenario.corner, settings, (&plan, &profile), (&plain, &plain_profile));
-    Ok(CornerReport { angle_deg, scenario, plan, profile, plain, plain_profile, row })
+    let report = CornerReport { angle_deg, scenario, plan, profile, plain, plain_profile, row };
+    match req.direction {
+        Direction::Climb => Ok(report),
+        Direction::Conventional => report.mirrored(),
+    }
+}
+
+impl CornerReport {
+    /// Conventional milling (issue #12 item 4): the report reflected in the corner's bisector
+    /// (the x axis, y → −y: the same corner, walls swapped): every circle and the ring turn
+    /// clockwise, the engagement is the climb plan's (a reflection of tool, path and stock
+    /// leaves every engaged angle unchanged), the acceptance row the same.
+    fn mirrored(mut self) -> Result<CornerReport, Error> {
+        let sc = &mut self.scenario;
+        let c = sc.corner;
+        sc.corner = Corner {
+            apex: flip_y(c.apex),
+            dir_in: flip_y(c.dir_in),
+            dir_out: flip_y(c.dir_out),
+            half_angle: c.half_angle,
+            bisector: flip_y(c.bisector),
+        };
+        sc.stock = flipped_y_polygon(&sc.stock)?;
+        sc.previous_ring = sc.previous_ring.iter().map(flip_y_segment).collect();
+        for p in [&mut sc.ring_start, &mut sc.corner_point, &mut sc.ring_end] {
+            *p = flip_y(*p);
+        }
+        for (plan, profile) in [(&mut self.plan, &mut self.profile), (&mut self.plain, &mut self.plain_profile)] {
+            for circle in &mut plan.circles {
+                circle.tool_circle.center = flip_y(circle.tool_circle.center);
+            }
+            plan.path = plan.path.iter().map(flip_y_segment).collect();
+            plan.stock = flipped_y_polygon(&plan.stock)?;
+            plan.precut = plan.precut.iter().map(flip_y_segment).collect();
+            for s in &mut profile.samples {
+                s.y_mm = -s.y_mm;
+            }
+        }
+        Ok(self)
+    }
 }
 
 /// The scenario of the symmetric corner of `angle_deg` (the corner of [`evaluate`] and of

@@ -203,7 +203,7 @@ mod tests {
     use crate::corner::{Corner, CornerMethod, CornerScenario, parse_points, plan_corner};
     use crate::geom::{P2, Polygon};
     use crate::nc::{Dialect, backplot};
-    use crate::pocket::{PocketRequest, plan};
+    use crate::pocket::{PocketRequest, PocketStrategy, plan};
 
     fn corner_plan(angle_deg: f64) -> (CornerPlan, CornerSettings) {
         let s = CornerSettings::new(5.0, 2.0).expect("settings");
@@ -268,8 +268,14 @@ mod tests {
     /// a_e = 4 mm (12 mm), as in the tests of `trochoplan pocket`.
     fn rectangle_pocket() -> PocketPlan {
         let polygon = Polygon::new(parse_points("0,0\n60,0\n60,40\n0,40\n", "rect").expect("points")).expect("poly");
-        plan(&PocketRequest { polygon, step_over_mm: 4.0, spacing_mm: 1.0, ..PocketRequest::default() })
-            .expect("pocket")
+        plan(&PocketRequest {
+            polygon,
+            step_over_mm: 4.0,
+            spacing_mm: 1.0,
+            strategy: PocketStrategy::Rings(CornerMethod::Plain),
+            ..PocketRequest::default()
+        })
+        .expect("pocket")
     }
 
     #[test]

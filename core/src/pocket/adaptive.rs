@@ -50,10 +50,16 @@
 //!    Consecutive arcs are a distance (ρ_k − ρ_k+1)(1/sin(α/2) − 1) apart on the bisector and
 //!    tangent to each other's walls; that distance is held to the concave-cut step of ρ_k+1.
 //!    A pass runs along wall A from the previous tangent point, the arc, then the arc's own
-//!    chord (cleared: it lies on the cut side of the arc) returns to wall A. The tool never reaches V
-//!    (see [`corner_point_bound_rad`]): the pocket corner is left with radius r + ρ_fin + s_f.
+//!    chord (cleared: it lies on the cut side of the arc) returns to wall A. These passes stop
+//!    at ρ_fin, where the finishing arc of radius ρ_fin + s_f stays within the target.
 //! 5. **Finish.** With s_f > 0: the opening of the final wall offset with radius ρ_fin + s_f,
-//!    concentric with the last corner arcs, once around (climb).
+//!    concentric with the last corner arcs, once around (climb), entered on a quarter circle
+//!    beside the straight wall nearest the tool.
+//! 6. **Corner points.** At each convex corner the finishing pass, after its arc, cuts arcs
+//!    tangent to both final walls with radii from [`next_corner_point_radius`] down to the
+//!    corner tolerance δ (each arc within the target, derived there); the pocket corner is left
+//!    with radius r + δ, δ(1/sin(α/2) − 1) on the bisector. Reaching V itself would read π − α
+//!    ([`corner_point_bound_rad`]).
 //!
 //! **Sampling error bound (DERIVED).** The evaluator measures at every segment end (kinks are
 //! exact) and every h mm (`spacing`). Take two tool positions c, c' a distance δ apart along
@@ -79,6 +85,7 @@
 //! loop then runs clockwise, with the same engagement by symmetry.
 
 use super::PocketSettings;
+use super::mirror::{mirror_segment, mirrored_polygon};
 use super::perforative::{KindMax, MoveKind, maxima};
 use super::rings::{link_is_inside, to_segments};
 use crate::corner::{EngagementProfile, EvaluatorOptions, engagement_profile};
@@ -118,6 +125,19 @@ pub struct AdaptiveOptions {
     /// step-over up to 90°; `None`: φ*.
     #[serde(default)]
     pub target_deg: Option<f64>,
+    /// How near the finishing corner arcs reach each convex corner point (mm)
+    /// [`--corner-tolerance`]: the last arc's tool-centre radius δ, the pocket corner then has
+    /// radius r + δ ([`next_corner_point_radius`]).
+    #[serde(default = "default_corner_tolerance")]
+    pub corner_tolerance_mm: f64,
+}
+
+/// The default corner tolerance δ (mm): a residual of δ(1/sin(α/2) − 1) = 0.002 mm on the
+/// bisector of a 90° corner, far below a finishing tolerance.
+pub const DEFAULT_CORNER_TOLERANCE_MM: f64 = 0.005;
+
+fn default_corner_tolerance() -> f64 {
+    DEFAULT_CORNER_TOLERANCE_MM
 }
 
 impl Default for AdaptiveOptions {
@@ -131,6 +151,7 @@ impl Default for AdaptiveOptions {
             direction: Direction::Climb,
             depth_mm: 6.0,
             target_deg: None,
+            corner_tolerance_mm: DEFAULT_CORNER_TOLERANCE_MM,
         }
     }
 }
@@ -161,6 +182,10 @@ impl AdaptiveOptions {
         }
         if !(self.depth_mm.is_finite() && self.depth_mm > 0.0 && self.depth_mm <= 1000.0) {
             return Err(Error::param(Param::Depth, self.depth_mm, "greater than 0 and at most 1000 mm"));
+        }
+        let d = self.corner_tolerance_mm;
+        if !(d.is_finite() && (0.001..=1.0).contains(&d)) {
+            return Err(Error::param(Param::CornerTolerance, d, "from 0.001 to 1 mm"));
         }
         if let Some(t) = self.target_deg {
             let phi = crate::corner::straight_engagement(settings.step_over, r)?.to_degrees();
@@ -239,6 +264,26 @@ pub struct CornerPasses {
     pub at: P2,
 }
 
+/// One convex corner point reached by the finishing pass's corner arcs (within δ).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CornerPoint {
+    /// The corner of the final tool-centre region (the pocket offset by r) (mm).
+    pub vertex: P2,
+    /// Interior angle α of the corner (rad).
+    pub angle_rad: f64,
+    /// Arcs cut after the finishing arc, and the radius of the last, δ (mm).
+    pub arcs: usize,
+    pub last_radius_mm: f64,
+    /// Material left on the corner's bisector, δ(1/sin(α/2) − 1) (mm).
+    pub residual_mm: f64,
+    /// Largest radial depth an arc removes, on the bisector (mm).
+    pub max_radial_depth_mm: f64,
+    /// Largest engagement over the arcs, their approach along the wall and their way out
+    /// (rad), and where; h_max/f_z = sin of it (at most 1): the chip thickness per tooth feed.
+    pub max_engagement_rad: f64,
+    pub at: P2,
+}
+
 /// A connected region of tool centres, cleared from its own helix.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct AdaptivePart {
@@ -250,6 +295,9 @@ pub struct AdaptivePart {
     pub core_radius_mm: f64,
     pub rings: usize,
     pub corners: Vec<CornerPasses>,
+    /// The corner points reached by the finishing pass (none without a finishing pass).
+    #[serde(default)]
+    pub corner_points: Vec<CornerPoint>,
 }
 
 /// A pocket cleared adaptively.
@@ -280,8 +328,8 @@ pub struct AdaptivePlan {
     pub helix_length_mm: f64,
     /// Time at the feed: helices and every move at depth (s).
     pub time_s: f64,
-    /// Radius of the pocket's convex corners as cut, r + ρ_fin + s_f (mm): the tool stops short
-    /// of the corner point ([`corner_point_bound_rad`]).
+    /// Radius of the pocket's convex corners as cut (mm): r + δ after the finishing pass's
+    /// corner arcs, r + ρ_fin without a finishing pass ([`corner_point_bound_rad`]).
     pub corner_radius_left_mm: f64,
 }
 
@@ -290,9 +338,65 @@ pub struct AdaptivePlan {
 /// two wall normals, lies strictly inside the pocket and every point of it is nearer to that
 /// tool position than to any other allowed one (the corner point is the only tool centre within
 /// r of them), so all of it is material when the tool first arrives: π − α (90° at a 90°
-/// corner, 120° at 60°). This is why the plan stops at the radius ρ_fin instead.
+/// corner, 120° at 60°). This is why the plan stops δ short of it ([`next_corner_point_radius`]).
 pub fn corner_point_bound_rad(alpha: f64) -> f64 {
     PI - alpha
+}
+
+/// The next corner-arc radius ρ_k+1 after ρ_k (mm) in a convex corner of interior angle α whose
+/// walls are final, so that the tool on arc k+1 engages at most φ (DERIVED). Take wall A as
+/// the x axis of the tool centres (the region above it, travel +x), the corner point V at the
+/// origin, t = tan(α/2). Arc k (radius ρ_k, tangent to both walls) has its centre at
+/// O_k = (−ρ_k/t, ρ_k); what it left is the cap outside its tool envelope, the circle of
+/// radius R = ρ_k + r about O_k (tangent to both pocket walls). A tool position T on arc k+1
+/// (centre (−ρ_k+1/t, ρ_k+1), from its tangent point on wall A through π − α) moving in
+/// direction μ: its periphery point at angle ψ is at distance² d² + r² − 2dr·cos(ψ − β₀) from
+/// O_k (d = |O_k − T|, β₀ the direction of O_k − T), so it is material where
+/// |ψ − β₀| > γ, cos γ = (d² + r² − R²)/(2dr), and it lies inside the pocket (T keeps r from
+/// both pocket walls; at the arc's ends the wall contact is the front half's edge). The
+/// engaged angle is that arc within the front half |ψ − μ| ≤ π/2 (behind the tool its own
+/// path has cut, as in the evaluator). At the arc's start this is π/2 + β₀ − γ, for ρ ≪ r
+/// 2·atan((1 − q)/t) with q = ρ_k+1/ρ_k: a fixed ratio q = 1 − t·tan(φ/2) (0.528 at 90° and
+/// φ = 50.5°; q ≤ 0 where φ ≥ π − α: one arc reaches δ). The start is the peak for α ≥ 90°;
+/// for acute corners the peak moves onto the arc, so the maximum is taken over 33 positions
+/// along it. ρ → 0 (the corner point itself) would take infinitely many arcs and reads π − α
+/// at the point ([`corner_point_bound_rad`]): the arcs stop at the corner tolerance δ. The
+/// engaged angle grows as ρ_k+1 shrinks; ρ_k+1 is found by bisection and clamped to [δ, ρ_k].
+/// Checked against the evaluator in `core/tests/adaptive_pocket.rs` (it reads φ at 90°).
+pub fn next_corner_point_radius(rho: f64, alpha: f64, r: f64, phi: f64, delta: f64) -> f64 {
+    let t = (0.5 * alpha).tan();
+    let big_r = rho + r;
+    let o_k = p2(-rho / t, rho);
+    let engagement = |next: f64| {
+        let c1 = p2(-next / t, next);
+        (0..=32)
+            .map(|j| {
+                let theta = -0.5 * PI + (PI - alpha) * j as f64 / 32.0;
+                let tool = c1 + p2(theta.cos(), theta.sin()) * next;
+                let mu = theta + 0.5 * PI;
+                let v = o_k - tool;
+                let d = v.norm().max(1e-12);
+                let cos_gamma = ((d * d + r * r - big_r * big_r) / (2.0 * d * r)).clamp(-1.0, 1.0);
+                // material: the arc of half-width π − γ about β₀ + π; front half: π/2 about μ
+                let w = PI - cos_gamma.acos();
+                let delta_c = (v.y.atan2(v.x) + PI - mu + PI).rem_euclid(TAU) - PI;
+                ((delta_c + w).min(0.5 * PI) - (delta_c - w).max(-0.5 * PI)).max(0.0)
+            })
+            .fold(0.0, f64::max)
+    };
+    if engagement(0.0) <= phi {
+        return delta.min(rho);
+    }
+    let (mut lo, mut hi) = (0.0, rho);
+    for _ in 0..50 {
+        let mid = 0.5 * (lo + hi);
+        if engagement(mid) <= phi {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    hi.clamp(delta.min(rho), rho)
 }
 
 /// The radial step a (mm) a concave cut of tool-centre radius ρ may take at engagement φ
@@ -407,6 +511,9 @@ fn start_near(lp: &[Segment], q: P2) -> Vec<Segment> {
 struct Builder {
     segments: Vec<Segment>,
     kinds: Vec<MoveKind>,
+    /// Corner-point radii already derived, by (α, ρ₀): the finishing pass is the same for every
+    /// core fraction, so each sequence is computed once per region.
+    radii: Vec<(f64, f64, Vec<f64>)>,
 }
 
 impl Builder {
@@ -499,6 +606,25 @@ impl Corner {
         (a, e, Segment::Arc { center, radius: rho, start_angle, sweep: PI - self.alpha })
     }
 
+    /// The corner whose walls are the tangents at the ends of a counter-clockwise arc of radius
+    /// ρ (centre, start angle, sweep π − α): V lies ρ/sin(α/2) from the centre on the arc's
+    /// middle radius. The walls' lengths are the arc's tangent lengths ρ/tan(α/2).
+    fn of_arc(center: P2, rho: f64, start_angle: f64, sweep: f64) -> Corner {
+        let alpha = PI - sweep;
+        let half = 0.5 * alpha;
+        let dir = |a: f64| p2(a.cos(), a.sin());
+        let mid = dir(start_angle + 0.5 * sweep);
+        let l = rho / half.tan();
+        Corner {
+            vertex: center + mid * (rho / half.sin()),
+            d_in: crate::geom::rot90(dir(start_angle)),
+            d_out: crate::geom::rot90(dir(start_angle + sweep)),
+            alpha,
+            len_in: l,
+            len_out: l,
+        }
+    }
+
     /// Cap area between the corner and its arc of radius ρ.
     fn cap_area(&self, rho: f64) -> f64 {
         let half = 0.5 * self.alpha;
@@ -555,7 +681,7 @@ fn plan_path(
     // The finishing corner radius: the finishing arc of radius ρ_fin + s_f removes s_f
     // concentrically, within φ* (concave-cut step); at least r/10.
     let rho_fin = if sf > 0.0 { fin_radius(sf, r, phi) } else { 0.1 * r };
-    let mut b = Builder { segments: Vec::new(), kinds: Vec::new() };
+    let mut b = Builder { segments: Vec::new(), kinds: Vec::new(), radii: Vec::new() };
     let mut parts = Vec::new();
     for region in &regions {
         // The core radius trades ring length against corner caps: plan with T starting at each
@@ -563,10 +689,13 @@ fn plan_path(
         let (inscribed_radius, k0) = inscribed(region);
         let mut best: Option<(f64, Builder, AdaptivePart)> = None;
         let mut last_err = None;
+        let mut radii = Vec::new();
         for fraction in CORE_FRACTIONS {
-            let mut bb = Builder { segments: Vec::new(), kinds: Vec::new() };
-            match plan_part(region, (inscribed_radius, k0), &work, &settings, &options, phi, rho_fin, fraction, &mut bb)
-            {
+            let mut bb = Builder { segments: Vec::new(), kinds: Vec::new(), radii: std::mem::take(&mut radii) };
+            let planned =
+                plan_part(region, (inscribed_radius, k0), &work, &settings, &options, phi, rho_fin, fraction, &mut bb);
+            radii = std::mem::take(&mut bb.radii);
+            match planned {
                 Ok(part) => {
                     let len: f64 = bb.segments.iter().map(Segment::length).sum();
                     if best.as_ref().is_none_or(|(l, _, _)| len < *l) {
@@ -595,9 +724,13 @@ fn plan_path(
             for c in &mut p.corners {
                 c.vertex.x = -c.vertex.x;
             }
+            for c in &mut p.corner_points {
+                c.vertex.x = -c.vertex.x;
+            }
         }
     }
-    Ok((parts, b, r + rho_fin + sf))
+    let left = if sf > 0.0 { r + options.corner_tolerance_mm } else { r + rho_fin };
+    Ok((parts, b, left))
 }
 
 /// ρ_fin: the concave step of radius ρ_fin + s_f reaches s_f.
@@ -612,22 +745,6 @@ fn fin_radius(sf: f64, r: f64, phi: f64) -> f64 {
         }
     }
     (hi - sf).max(0.1 * r)
-}
-
-fn mirrored_polygon(p: &Polygon) -> Result<Polygon, Error> {
-    let mut v: Vec<P2> = p.vertices().iter().map(|q| p2(-q.x, q.y)).collect();
-    v.reverse();
-    Polygon::new(v)
-}
-
-fn mirror_segment(s: &Segment) -> Segment {
-    match *s {
-        Segment::Line { start, end } => Segment::Line { start: p2(-start.x, start.y), end: p2(-end.x, end.y) },
-        Segment::Arc { center, radius, start_angle, sweep } => {
-            Segment::Arc { center: p2(-center.x, center.y), radius, start_angle: PI - start_angle, sweep: -sweep }
-        }
-        other => other,
-    }
 }
 
 /// Entry, spiral, rings and corners of one region of tool centres; the finishing pass.
@@ -862,38 +979,131 @@ fn plan_part(
             at: c.vertex,
         });
     }
-    // Finishing contour: the opening of the final wall offset with radius ρ_fin + s_f.
+    // Finishing contour: the opening of the final wall offset with radius ρ_fin + s_f, and at
+    // every convex corner arc of it the arcs into the corner point.
     let sf = options.finish_stock_mm;
+    let mut corner_points = Vec::new();
     if sf > 0.0 {
         let inner = largest(offset(region, rho_fin)).ok_or_else(|| {
             Error::param(Param::Polygon, "no finishing contour", "a pocket wider than the tool plus the stock")
         })?;
         let fin = largest(offset(&inner, -(rho_fin + sf)))
             .ok_or_else(|| Error::param(Param::Polygon, "no finishing contour", "a pocket wider than the tool"))?;
-        // Start in the middle of the longest straight wall, entered on a quarter circle of
-        // radius ρ_l = max(s_f, r/2) tangent to it (the stock grows from 0 to s_f under a
-        // convex arc); the lead-in starts ρ_l from the wall, in cleared material.
+        // Start on the straight wall nearest the tool (at its point nearest the tool, at least
+        // ρ_l from the wall's start; the longest wall's middle where no wall is 2ρ_l long),
+        // entered on a quarter circle of radius ρ_l = max(s_f, r/2) tangent to it (the stock
+        // grows from 0 to s_f under a convex arc); the lead-in starts ρ_l from the wall, in
+        // cleared material.
         let loop_segs = to_segments(&fin);
-        let (mid, dir) = loop_segs
+        let lead = sf.max(0.5 * r);
+        let here = b.at();
+        let lines: Vec<(P2, P2)> = loop_segs
             .iter()
             .filter_map(|sg| match *sg {
                 Segment::Line { start, end } => Some((start, end)),
                 _ => None,
             })
+            .collect();
+        let nearest = lines
+            .iter()
+            .filter(|(a, c)| (c - a).norm() >= 2.0 * lead)
+            .map(|&(a, c)| {
+                let (len, dir) = ((c - a).norm(), (c - a).normalize());
+                let along = (here - a).dot(&dir).clamp(lead, len - 1e-3);
+                (a + dir * along, dir)
+            })
+            .min_by(|x, y| (x.0 - here).norm().total_cmp(&(y.0 - here).norm()));
+        let longest = lines
+            .iter()
             .max_by(|a, c| (a.1 - a.0).norm().total_cmp(&(c.1 - c.0).norm()))
             .map_or((loop_segs[0].start(), p2(1.0, 0.0)), |(a, c)| ((a + c) * 0.5, (c - a).normalize()));
-        let lead = sf.max(0.5 * r);
+        let (mid, dir) = nearest.unwrap_or(longest);
         let inward = crate::geom::rot90(dir);
         let center = mid + inward * lead;
         let from = center - dir * lead;
         link(b, polygon, r, from, k0);
         let start_angle = (-dir.y).atan2(-dir.x);
         b.push(Segment::Arc { center, radius: lead, start_angle, sweep: 0.5 * PI }, MoveKind::Finish);
-        for seg in start_near(&loop_segs, mid) {
-            b.push(seg, MoveKind::Finish);
+        let fin_loop = start_near(&loop_segs, mid);
+        let n = fin_loop.len();
+        for (i, seg) in fin_loop.iter().enumerate() {
+            b.push(*seg, MoveKind::Finish);
+            let is_line = |sg: &Segment| matches!(sg, Segment::Line { .. });
+            if let Segment::Arc { center, radius, start_angle, sweep } = *seg
+                && sweep > 1e-9
+                && (radius - (rho_fin + sf)).abs() < 1e-6
+                && is_line(&fin_loop[(i + n - 1) % n])
+                && is_line(&fin_loop[(i + 1) % n])
+            {
+                let corner = Corner::of_arc(center, radius, start_angle, sweep);
+                let point = corner_point_arcs(b, &corner, radius, r, phi, options.corner_tolerance_mm);
+                corner_points.push(point);
+            }
         }
     }
-    Ok(AdaptivePart { helix, first_segment: 0, end_segment: 0, core_radius_mm: t, rings, corners })
+    Ok(AdaptivePart { helix, first_segment: 0, end_segment: 0, core_radius_mm: t, rings, corners, corner_points })
+}
+
+/// Pieces each corner-point arc is cut into, so that the evaluator measures it at its
+/// bisector and quarter points (the arcs are shorter than the sampling spacing).
+const CORNER_POINT_PIECES: usize = 4;
+
+/// The arcs into a corner point after the finishing arc of radius ρ₀ (the tool at its end, on
+/// wall B): back on that arc's chord (cleared) to wall A, then per arc: along wall A to its
+/// tangent point, the arc (radius from [`next_corner_point_radius`]), and back on its chord;
+/// after the last (radius δ) along wall B to the finishing arc's end. Every move is
+/// [`MoveKind::CornerPoint`], measured like the rest.
+fn corner_point_arcs(b: &mut Builder, c: &Corner, rho0: f64, r: f64, phi: f64, delta: f64) -> CornerPoint {
+    let (a0, e0, _) = c.arc(rho0);
+    let k = 1.0 / (0.5 * c.alpha).sin() - 1.0;
+    let (mut rho, mut arcs, mut deepest) = (rho0, 0, 0.0_f64);
+    b.line(a0, MoveKind::CornerPoint);
+    let known = b.radii.iter().position(|(alpha, r0, _)| *alpha == c.alpha && *r0 == rho0);
+    let radii = match known {
+        Some(i) => b.radii[i].2.clone(),
+        None => {
+            let mut radii = Vec::new();
+            let mut q = rho0;
+            while q > delta * (1.0 + 1e-9) && radii.len() < MAX_PASSES {
+                let next = next_corner_point_radius(q, c.alpha, r, phi, delta);
+                if next >= q * (1.0 - 1e-9) {
+                    break;
+                }
+                radii.push(next);
+                q = next;
+            }
+            b.radii.push((c.alpha, rho0, radii.clone()));
+            radii
+        }
+    };
+    for next in radii {
+        let (a, _, arc) = c.arc(next);
+        b.line(a, MoveKind::CornerPoint);
+        if let Segment::Arc { center, radius, start_angle, sweep } = arc {
+            let piece = sweep / CORNER_POINT_PIECES as f64;
+            for j in 0..CORNER_POINT_PIECES {
+                let start_angle = start_angle + piece * j as f64;
+                b.push(Segment::Arc { center, radius, start_angle, sweep: piece }, MoveKind::CornerPoint);
+            }
+        }
+        if next > delta * (1.0 + 1e-9) {
+            b.line(a, MoveKind::CornerPoint);
+        }
+        deepest = deepest.max((rho - next) * k);
+        rho = next;
+        arcs += 1;
+    }
+    b.line(e0, MoveKind::CornerPoint);
+    CornerPoint {
+        vertex: c.vertex,
+        angle_rad: c.alpha,
+        arcs,
+        last_radius_mm: rho,
+        residual_mm: rho * k,
+        max_radial_depth_mm: deepest,
+        max_engagement_rad: 0.0,
+        at: c.vertex,
+    }
 }
 
 /// The axis of a thin core: the core C ⊖ q (one loop) whose vertices lie within `width` of a
@@ -1006,18 +1216,26 @@ fn measure(
     }
     for smp in &profile.samples {
         let i = ends.partition_point(|&e| e < smp.s_mm - 1e-9).min(b.kinds.len().saturating_sub(1));
-        if b.kinds.get(i) != Some(&MoveKind::Corner) {
-            continue;
-        }
         let at = p2(smp.x_mm, smp.y_mm);
-        if let Some(c) = parts
-            .iter_mut()
-            .flat_map(|p| p.corners.iter_mut())
-            .min_by(|a, c| (a.vertex - at).norm().total_cmp(&(c.vertex - at).norm()))
-            && smp.angle_rad > c.max_engagement_rad
+        let nearest = |v: P2, w: P2| (v - at).norm().total_cmp(&(w - at).norm());
+        let slot = match b.kinds.get(i) {
+            Some(MoveKind::Corner) => parts
+                .iter_mut()
+                .flat_map(|p| p.corners.iter_mut())
+                .min_by(|a, c| nearest(a.vertex, c.vertex))
+                .map(|c| (&mut c.max_engagement_rad, &mut c.at)),
+            Some(MoveKind::CornerPoint) => parts
+                .iter_mut()
+                .flat_map(|p| p.corner_points.iter_mut())
+                .min_by(|a, c| nearest(a.vertex, c.vertex))
+                .map(|c| (&mut c.max_engagement_rad, &mut c.at)),
+            _ => None,
+        };
+        if let Some((max, where_)) = slot
+            && smp.angle_rad > *max
         {
-            c.max_engagement_rad = smp.angle_rad;
-            c.at = at;
+            *max = smp.angle_rad;
+            *where_ = at;
         }
     }
     let helix_length_mm: f64 = parts.iter().map(|p| p.helix.length(HELIX_START_Z_MM + options.depth_mm)).sum();

@@ -8,6 +8,7 @@
 //! circles and rings counter-clockwise (climb milling with M3).
 
 pub mod adaptive;
+pub mod mirror;
 pub mod perforative;
 pub mod rings;
 
@@ -19,6 +20,7 @@ use crate::corner::CornerMethod;
 use crate::corner::strategy::{tool_diameter, validate_tool_and_step_over};
 use crate::error::{Error, Param, num};
 use crate::geom::{Polygon, Segment, p2};
+use crate::job::Direction;
 use serde::{Deserialize, Serialize};
 
 /// How a pocket is cleared.
@@ -147,14 +149,15 @@ pub struct PocketRequest {
     pub strategy: PocketStrategy,
     /// Arc-length spacing of the tool positions measured by the evaluator (mm).
     pub spacing_mm: f64,
-    /// Helix, finishing and direction of adaptive clearing (ignored by the other strategies).
+    /// Helix, finishing and corner tolerance of adaptive clearing (ignored by the other
+    /// strategies), and the milling direction of every strategy.
     pub adaptive: AdaptiveOptions,
 }
 
 impl Default for PocketRequest {
     /// The defaults of `trochoplan pocket`: D = 10 mm, a_e = 2.5 mm (a_e/D = 0.25, 60° on a
-    /// straight wall), 600 mm/min, plain rings, the evaluator every 0.25 mm; the pocket is the
-    /// README's 60 × 40 mm rectangle.
+    /// straight wall), 600 mm/min, adaptive clearing (issue #12: no plunge, no full slot), the
+    /// evaluator every 0.25 mm; the pocket is the README's 60 × 40 mm rectangle.
     fn default() -> Self {
         let rectangle = [p2(0.0, 0.0), p2(60.0, 0.0), p2(60.0, 40.0), p2(0.0, 40.0)];
         PocketRequest {
@@ -162,7 +165,7 @@ impl Default for PocketRequest {
             tool_diameter_mm: 10.0,
             step_over_mm: 2.5,
             feed_mm_per_min: 600.0,
-            strategy: PocketStrategy::Rings(CornerMethod::Plain),
+            strategy: PocketStrategy::Adaptive,
             spacing_mm: 0.25,
             adaptive: AdaptiveOptions::default(),
         }
@@ -315,9 +318,18 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
             ),
         ));
     }
+    // Conventional milling: the ring and medial-axis planners cut climb; they plan the mirrored
+    // pocket and mirror the plan back ([`mirror`]); adaptive clearing mirrors inside.
+    let conventional = req.adaptive.direction == Direction::Conventional;
+    let polygon = if conventional { mirror::mirrored_polygon(&req.polygon)? } else { req.polygon.clone() };
+    let back = |p: PocketPlan| match p {
+        PocketPlan::Rings(r) if conventional => PocketPlan::Rings(r.mirrored(&req.polygon)),
+        PocketPlan::MedialAxis(m) if conventional => PocketPlan::MedialAxis(m.mirrored(&req.polygon)),
+        other => other,
+    };
     match req.strategy {
-        PocketStrategy::Rings(method) => plan_rings(&req.polygon, settings, method).map(PocketPlan::Rings),
-        PocketStrategy::MedialAxis => plan_perforative(&req.polygon, settings).map(PocketPlan::MedialAxis),
+        PocketStrategy::Rings(method) => plan_rings(&polygon, settings, method).map(PocketPlan::Rings).map(back),
+        PocketStrategy::MedialAxis => plan_perforative(&polygon, settings).map(PocketPlan::MedialAxis).map(back),
         PocketStrategy::Adaptive => plan_adaptive(&req.polygon, settings, req.adaptive).map(PocketPlan::Adaptive),
     }
 }

@@ -103,6 +103,9 @@ pub enum MoveKind {
     Corner,
     /// The finishing contour ([`super::adaptive`]).
     Finish,
+    /// The finishing pass's arcs into a convex corner point, within the corner tolerance, with
+    /// their approach along the wall and their way out ([`super::adaptive`]).
+    CornerPoint,
 }
 
 /// One circle of the path.

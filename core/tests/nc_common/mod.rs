@@ -182,6 +182,40 @@ pub fn ordered_deviation(a: &[P2], b: &[P2], window: usize) -> f64 {
     if cursor + window < b.len() - 1 { f64::INFINITY } else { worst }
 }
 
+/// [`ordered_deviation`] with the window ahead of the cursor at least `reach` mm of `b`'s
+/// chords long (and at least `window` chords): the same walk where `b` is sampled densely.
+pub fn ordered_deviation_within(a: &[P2], b: &[P2], window: usize, reach: f64) -> f64 {
+    if b.len() < 2 {
+        return f64::INFINITY;
+    }
+    // cumulative chord length of b
+    let mut acc = Vec::with_capacity(b.len());
+    let mut total = 0.0;
+    acc.push(0.0);
+    for w in b.windows(2) {
+        total += (w[1] - w[0]).norm();
+        acc.push(total);
+    }
+    let end_of = |cursor: usize| {
+        let by_len = acc.partition_point(|&l| l < acc[cursor] + reach);
+        (cursor + window).max(by_len).min(b.len() - 1)
+    };
+    let mut cursor = 0usize;
+    let mut worst: f64 = 0.0;
+    for p in a {
+        let end = end_of(cursor);
+        let d: Vec<f64> =
+            (cursor..end).map(|j| dist_to_chord([b[j].x, b[j].y], [b[j + 1].x, b[j + 1].y], [p.x, p.y])).collect();
+        let best = d.iter().copied().fold(f64::INFINITY, f64::min);
+        if let Some(k) = d.iter().position(|&x| x <= best + TIE_MM) {
+            cursor += k;
+        }
+        worst = worst.max(best);
+    }
+    // the walk must have reached the end of b, or part of b was never matched
+    if end_of(cursor) < b.len() - 1 { f64::INFINITY } else { worst }
+}
+
 /// Two-sided ordered deviation between a cut and the planned path.
 pub fn deviation_from_plan(cut: &[Motion], plan: &Plan) -> f64 {
     deviation_from_segments(cut, plan.path.segments())
@@ -215,11 +249,15 @@ pub fn deviation_from_segments(cut: &[Motion], segments: impl IntoIterator<Item 
     }
     // both are sampled at ≤ H, so the match moves a sample or two per step; 0.4 mm of path
     // ahead is far more than that and than any deviation we accept
+    // (as path length: where segments are shorter than H, e.g. a pocket's corner arcs of
+    // 0.005 mm radius, two samples each, more chords than 0.4/H)
     let window = (0.4 / H) as usize;
     planned.into_iter().zip(&moves).fold(0.0, |worst: f64, (segs, piece)| {
         let prog = sample(piece, H);
         let plan = segment_samples(segs, H);
-        worst.max(ordered_deviation(&prog, &plan, window)).max(ordered_deviation(&plan, &prog, window))
+        worst
+            .max(ordered_deviation_within(&prog, &plan, window, 0.4))
+            .max(ordered_deviation_within(&plan, &prog, window, 0.4))
     })
 }
 

@@ -1,0 +1,207 @@
+//! Conventional milling of a pocket (issue #12 item 4): the planners cut every loop
+//! counter-clockwise (climb with M3); conventional mirrors the pocket in x (x → −x, vertex order
+//! reversed so that it is counter-clockwise again), plans it, and mirrors the plan back. Every
+//! loop then runs clockwise, and every engagement is the climb plan's of the mirrored pocket
+//! (the evaluator's engaged angle does not change under a reflection of tool, path and stock).
+
+use super::{PerforativePlan, RingPlan};
+use crate::error::Error;
+use crate::geom::{P2, Polygon, Segment, p2};
+use std::f64::consts::PI;
+
+/// `p` mirrored in x.
+pub fn mirror_point(p: P2) -> P2 {
+    p2(-p.x, p.y)
+}
+
+/// The pocket mirrored in x, counter-clockwise again.
+pub fn mirrored_polygon(p: &Polygon) -> Result<Polygon, Error> {
+    let mut v: Vec<P2> = p.vertices().iter().map(|&q| mirror_point(q)).collect();
+    v.reverse();
+    Polygon::new(v)
+}
+
+/// A segment mirrored in x: arcs change their sense; a trochoid p = o + (−a·cos θ,
+/// b·sin θ + kθ) keeps its form with o mirrored and a → −a.
+pub fn mirror_segment(s: &Segment) -> Segment {
+    match *s {
+        Segment::Line { start, end } => Segment::Line { start: mirror_point(start), end: mirror_point(end) },
+        Segment::Arc { center, radius, start_angle, sweep } => {
+            Segment::Arc { center: mirror_point(center), radius, start_angle: PI - start_angle, sweep: -sweep }
+        }
+        Segment::Trochoid { origin, a, b, step, theta0, theta1 } => {
+            Segment::Trochoid { origin: mirror_point(origin), a: -a, b, step, theta0, theta1 }
+        }
+    }
+}
+
+/// `p` reflected in the x axis (y → −y): a symmetric corner's bisector ([`crate::corner`]).
+pub fn flip_y(p: P2) -> P2 {
+    p2(p.x, -p.y)
+}
+
+/// The polygon reflected in the x axis, counter-clockwise again.
+pub fn flipped_y_polygon(p: &Polygon) -> Result<Polygon, Error> {
+    let mut v: Vec<P2> = p.vertices().iter().map(|&q| flip_y(q)).collect();
+    v.reverse();
+    Polygon::new(v)
+}
+
+/// A segment reflected in the x axis: arcs change their sense; a trochoid p = o + (−a·cos θ,
+/// b·sin θ + kθ) keeps its form with o reflected, b → −b and the step (k) negated.
+pub fn flip_y_segment(s: &Segment) -> Segment {
+    match *s {
+        Segment::Line { start, end } => Segment::Line { start: flip_y(start), end: flip_y(end) },
+        Segment::Arc { center, radius, start_angle, sweep } => {
+            Segment::Arc { center: flip_y(center), radius, start_angle: -start_angle, sweep: -sweep }
+        }
+        Segment::Trochoid { origin, a, b, step, theta0, theta1 } => {
+            Segment::Trochoid { origin: flip_y(origin), a, b: -b, step: -step, theta0, theta1 }
+        }
+    }
+}
+
+fn mirror_all(segments: &mut [Segment]) {
+    for s in segments {
+        *s = mirror_segment(s);
+    }
+}
+
+impl RingPlan {
+    /// The plan of the mirrored pocket mirrored back onto `polygon` (the pocket it mirrors).
+    pub fn mirrored(mut self, polygon: &Polygon) -> RingPlan {
+        self.polygon = polygon.clone();
+        for ring in &mut self.rings {
+            mirror_all(&mut ring.segments);
+            ring.max_engagement_at = mirror_point(ring.max_engagement_at);
+        }
+        for link in &mut self.links {
+            (link.from, link.to) = (mirror_point(link.from), mirror_point(link.to));
+        }
+        self
+    }
+}
+
+impl PerforativePlan {
+    /// The plan of the mirrored pocket mirrored back onto `polygon` (the pocket it mirrors).
+    pub fn mirrored(mut self, polygon: &Polygon) -> PerforativePlan {
+        self.polygon = polygon.clone();
+        for e in &mut self.axis.edges {
+            (e.a, e.b) = (mirror_point(e.a), mirror_point(e.b));
+            for q in &mut e.points {
+                *q = mirror_point(*q);
+            }
+        }
+        for c in &mut self.circles {
+            c.tool_circle.center = mirror_point(c.tool_circle.center);
+        }
+        mirror_all(&mut self.segments);
+        for smp in &mut self.profile.samples {
+            smp.x_mm = -smp.x_mm;
+        }
+        for m in &mut self.maxima {
+            m.at = mirror_point(m.at);
+        }
+        self
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::corner::{CornerMethod, EvaluatorOptions, engagement_profile};
+    use crate::job::Direction;
+    use crate::pocket::{AdaptiveOptions, PocketPlan, PocketRequest, PocketStrategy, plan};
+
+    /// Total turning of the path's direction (rad): the arcs' sweeps plus the turn at every
+    /// joint; a counter-clockwise loop adds 2π, its mirror image −2π.
+    fn sweep_sum(segments: &[Segment]) -> f64 {
+        let dir = |s: &Segment, t: f64| {
+            let (a, b) = (s.point((t - 1e-6).max(0.0)), s.point((t + 1e-6).min(1.0)));
+            (b - a).normalize()
+        };
+        let arcs: f64 = segments.iter().map(|s| if let Segment::Arc { sweep, .. } = s { *sweep } else { 0.0 }).sum();
+        let joints: f64 = segments
+            .windows(2)
+            .map(|w| {
+                let (u, v) = (dir(&w[0], 1.0), dir(&w[1], 0.0));
+                crate::geom::cross(u, v).atan2(u.dot(&v))
+            })
+            .sum();
+        arcs + joints
+    }
+
+    /// Conventional plans of the ring and medial-axis methods on the 60 × 40 rectangle (its own
+    /// mirror image about x = 30): every loop turns the other way (the arcs' sweeps cancel the
+    /// climb plan's), the length and the peak engagement are the climb plan's (up to where the
+    /// mirrored vertex order puts entries and links: 1 %, 0.5°), and the medial-axis plan's
+    /// profile is what the evaluator measures on its conventional path over the rectangle
+    /// itself (the mirrored-back plan reports its own geometry).
+    #[test]
+    fn conventional_ring_and_medial_axis_plans_are_the_mirror_of_climb() {
+        let rect = Polygon::new(vec![p2(0.0, 0.0), p2(60.0, 0.0), p2(60.0, 40.0), p2(0.0, 40.0)]).expect("rect");
+        for strategy in [
+            PocketStrategy::Rings(CornerMethod::Plain),
+            PocketStrategy::Rings(CornerMethod::Variable),
+            PocketStrategy::MedialAxis,
+        ] {
+            let req = |direction| PocketRequest {
+                polygon: rect.clone(),
+                step_over_mm: 2.5,
+                spacing_mm: 0.5,
+                strategy,
+                adaptive: AdaptiveOptions { direction, ..AdaptiveOptions::default() },
+                ..PocketRequest::default()
+            };
+            let climb = plan(&req(Direction::Climb)).expect("climb");
+            let conv = plan(&req(Direction::Conventional)).expect("conventional");
+            assert_eq!(conv.polygon(), &rect);
+            let (a, _) = climb.tool_path();
+            let (b, _) = conv.tool_path();
+            let len = |s: &[Segment]| s.iter().map(Segment::length).sum::<f64>();
+            // the mirrored rectangle's vertices start elsewhere: entries and links may differ
+            assert!((len(&a) - len(&b)).abs() < 0.01 * len(&a), "{strategy:?}: {} vs {}", len(&a), len(&b));
+            let (ta, tb) = (sweep_sum(&a), sweep_sum(&b));
+            assert!(ta > 0.0 && (ta + tb).abs() < 0.05 * ta, "{strategy:?}: turning {ta} vs {tb}");
+            let (ea, eb) = (climb.max_engagement_rad(), conv.max_engagement_rad());
+            assert!((ea - eb).abs() < 0.5f64.to_radians(), "{strategy:?}: {} vs {}", ea.to_degrees(), eb.to_degrees());
+            if let PocketPlan::MedialAxis(m) = &conv {
+                let own =
+                    engagement_profile(&rect, &[], &m.segments, &EvaluatorOptions::new(5.0, 0.5)).expect("profile");
+                assert!((own.max_angle() - m.profile.max_angle()).abs() < 1e-6, "measured again over the rectangle");
+            }
+        }
+    }
+
+    /// `corner --direction conventional`: the report reflected in the bisector; every method's
+    /// acceptance row equals climb's, the path is climb's reflected (y → −y) with every arc
+    /// turning the other way, and the evaluator measuring the conventional plan again over its
+    /// own stock and precut gives the profile it reports.
+    #[test]
+    fn conventional_corner_is_the_reflection_of_climb() {
+        use crate::corner::{CornerRequest, evaluate};
+        for method in [CornerMethod::Variable, CornerMethod::Isometric, CornerMethod::MedialAxis] {
+            let req = CornerRequest { method, spacing_mm: 0.25, ..CornerRequest::DEFAULT };
+            let climb = evaluate(&req).expect("climb");
+            let conv = evaluate(&CornerRequest { direction: Direction::Conventional, ..req }).expect("conventional");
+            assert_eq!(climb.row, conv.row, "{method:?}");
+            assert_eq!(climb.plan.path.len(), conv.plan.path.len());
+            for (a, b) in climb.plan.path.iter().zip(&conv.plan.path) {
+                for t in [0.0, 0.5, 1.0] {
+                    assert!((flip_y(a.point(t)) - b.point(t)).norm() < 1e-9, "{method:?}");
+                }
+                if let (Segment::Arc { sweep: sa, .. }, Segment::Arc { sweep: sb, .. }) = (a, b) {
+                    assert!((sa + sb).abs() < 1e-12);
+                }
+            }
+            let own = engagement_profile(
+                &conv.plan.stock,
+                &conv.plan.precut,
+                &conv.plan.path,
+                &EvaluatorOptions::new(5.0, 0.25),
+            )
+            .expect("profile");
+            assert!((own.max_angle() - conv.profile.max_angle()).abs() < 1e-6, "{method:?}");
+        }
+    }
+}
