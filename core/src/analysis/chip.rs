@@ -161,13 +161,31 @@ impl Frame {
 struct Swept<'a> {
     edge: &'a PreviousEdge,
     early: Option<&'a EarlySweep<'a>>,
+    /// Added to a point before the test: zero, or one step (0, s) to read the material as a
+    /// tooth of the previous cycle saw it (see [`Swept::before_previous_cycle_tooth`]).
+    shift: P2,
 }
 
-impl Swept<'_> {
+impl<'a> Swept<'a> {
+    /// The material before the tooth at arc length `s` of the current cycle.
+    fn before(edge: &'a PreviousEdge, early: &'a EarlySweep<'a>, s: f64, len: f64) -> Swept<'a> {
+        Swept { edge, early: (s >= 0.5 * len).then_some(early), shift: P2::zeros() }
+    }
+
+    /// The material before the tooth at arc length `s` of the *previous* cycle (moved by one
+    /// step −s·ŷ): the steady state repeats by translation, so it is [`Swept::before`] of `s`
+    /// read one step further on. Tooth 0's chip lies between its circle and the material as
+    /// tooth −1 left it; the edge of previous cycles also holds cycle −1's last f_z (from
+    /// tooth −1 to the cycle start), which no tooth has cut yet.
+    fn before_previous_cycle_tooth(edge: &'a PreviousEdge, early: &'a EarlySweep<'a>, s: f64, cycle: &Cycle) -> Swept<'a> {
+        Swept { shift: P2::new(0.0, cycle.step), ..Swept::before(edge, early, s, cycle.length()) }
+    }
+
     /// Positive where `p` is uncut material, not positive where it was swept (mm-like; only
     /// the sign and continuity matter).
     #[inline]
     fn margin(&self, p: P2) -> f64 {
+        let p = p + self.shift;
         let m = self.edge.margin(p);
         match self.early {
             Some(e) if m > 0.0 => m.min(e.margin(p)),
@@ -485,16 +503,19 @@ pub fn chip_outline(cycle: &Cycle, edge: &PreviousEdge, r: f64, f_z: f64, s: f64
         cycle.advance(start, len + s - f_z).map(|p| Frame::at(cycle, p, P2::new(0.0, -cycle.step)).c)
     };
     let early = EarlySweep::new(cycle, P2::zeros(), r, 0.25);
-    let swept = Swept { edge, early: (s >= 0.5 * len).then_some(&early) };
+    let swept = Swept::before(edge, &early, s, len);
     let e = engagement(&swept, &f, r);
-    let centre_swept = swept.margin(f.c) <= 0.0;
+    // The chip's inner boundary: the material as the previous tooth left it (for the first
+    // tooth of the cycle, the material before a tooth of the previous cycle).
+    let inner = if s >= f_z { swept } else { Swept::before_previous_cycle_tooth(edge, &early, len + s - f_z, cycle) };
+    let centre_swept = inner.margin(f.c) <= 0.0;
     let n = n.max(2);
     let mut out = Vec::new();
     for &(a, b) in &e.intervals {
         let phis: Vec<f64> = (0..=n).map(|i| a + (b - a) * i as f64 / n as f64).collect();
         out.extend(phis.iter().map(|&p| f.c + f.dir(p) * r));
         out.extend(
-            phis.iter().rev().map(|&p| f.c + f.dir(p) * (r - radial_thickness(&swept, &f, prev, r, centre_swept, p))),
+            phis.iter().rev().map(|&p| f.c + f.dir(p) * (r - radial_thickness(&inner, &f, prev, r, centre_swept, p))),
         );
     }
     out
@@ -565,7 +586,18 @@ impl<'a> CycleTeeth<'a> {
     /// The material before a tooth at arc length `s`: the first quarter of the cycle counts as
     /// swept in its second half.
     fn swept(&self, s: f64) -> Swept<'_> {
-        Swept { edge: self.edge, early: (s >= 0.5 * self.cycle.length()).then_some(&self.early) }
+        Swept::before(self.edge, &self.early, s, self.cycle.length())
+    }
+
+    /// The material that bounds the chip of analysed tooth `i` from inside (with the previous
+    /// tooth's disc): as the previous tooth left it. For tooth 0 that is the material before
+    /// tooth −1 of the previous cycle ([`Swept::before_previous_cycle_tooth`]); for the others
+    /// the material before them.
+    fn inner(&self, i: usize) -> Swept<'_> {
+        match (i, &self.before_start) {
+            (0, Some(p)) => Swept::before_previous_cycle_tooth(self.edge, &self.early, p.s, self.cycle),
+            _ => self.swept(self.teeth[i].s),
+        }
     }
 
     /// The tooth f_z before analysed tooth `i`.
@@ -580,7 +612,7 @@ impl<'a> CycleTeeth<'a> {
     /// h (eqs. 3–6) of analysed tooth `i`: from the previous tooth's points B where it has
     /// them, else the largest radial thickness of the chip ([`ray_thickness`]).
     fn chip_thickness(&self, i: usize) -> f64 {
-        let Tooth { s, frame: f, engagement: e } = &self.teeth[i];
+        let Tooth { frame: f, engagement: e, .. } = &self.teeth[i];
         if e.angle <= 0.0 {
             return 0.0;
         }
@@ -593,7 +625,7 @@ impl<'a> CycleTeeth<'a> {
                 }
                 h
             }
-            other => ray_thickness(&self.swept(*s), f, other.map(|p| p.frame.c), r, &e.intervals),
+            other => ray_thickness(&self.inner(i), f, other.map(|p| p.frame.c), r, &e.intervals),
         }
     }
 
@@ -616,7 +648,7 @@ impl<'a> CycleTeeth<'a> {
             };
             PrevTooth::new(p.frame, intervals)
         });
-        engaged_arcs(&swept, f, prev.as_ref(), self.r, &e.intervals)
+        engaged_arcs(&self.inner(i), f, prev.as_ref(), self.r, &e.intervals)
     }
 }
 
@@ -682,7 +714,7 @@ fn teeth_at(
         .into_par_iter()
         .map(|(s, pos)| {
             let frame = Frame::at(cycle, pos, shift);
-            let swept = Swept { edge, early: (s >= 0.5 * len).then_some(early) };
+            let swept = Swept::before(edge, early, s, len);
             Tooth { s, frame, engagement: engagement(&swept, &frame, r) }
         })
         .collect()
@@ -772,7 +804,7 @@ mod tests {
                 }
                 let f = Frame::at(&cycle, positions[k].1, P2::zeros());
                 let prev = Frame::at(&cycle, positions[k - 1].1, P2::zeros()).c;
-                let swept = Swept { edge: &edge, early: (t.s_mm >= 0.5 * len).then_some(&early) };
+                let swept = Swept::before(&edge, &early, t.s_mm, len);
                 let centre_swept = swept.margin(f.c) <= 0.0;
                 let exact = |phi| radial_thickness(&swept, &f, Some(prev), r, centre_swept, phi);
                 let (mut sampled_max, mut fine_max) = (0.0f64, 0.0f64);
