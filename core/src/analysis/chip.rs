@@ -555,6 +555,9 @@ struct CycleTeeth<'a> {
     before_start: Option<Tooth>,
     /// With a stride above 1: the tooth f_z before each analysed tooth but the first.
     previous: Vec<Tooth>,
+    /// Whether `before_start` lies on the previous cycle (moved back by one step): then the
+    /// first tooth's chip is bounded by the material as that cycle's tooth left it.
+    start_wraps: bool,
 }
 
 impl<'a> CycleTeeth<'a> {
@@ -580,7 +583,27 @@ impl<'a> CycleTeeth<'a> {
         } else {
             Vec::new()
         };
-        CycleTeeth { cycle, edge, r, stride, early, teeth, before_start, previous }
+        CycleTeeth { cycle, edge, r, stride, early, teeth, before_start, previous, start_wraps: true }
+    }
+
+    /// The one tooth at arc length `s` (0 ≤ s < cycle length) with its previous tooth f_z
+    /// before it (on the previous cycle, moved back by one step, for s < f_z).
+    fn at(cycle: &'a Cycle, edge: &'a PreviousEdge, r: f64, f_z: f64, s: f64) -> CycleTeeth<'a> {
+        let len = cycle.length();
+        let early = EarlySweep::new(cycle, P2::zeros(), r, 0.25);
+        let one = |s: f64| cycle.positions(s, len).into_iter().take(1).collect();
+        let start_wraps = s < f_z;
+        let back = if start_wraps { P2::new(0.0, -cycle.step) } else { P2::zeros() };
+        let prev_s = if start_wraps { len + s - f_z } else { s - f_z };
+        let before_start = teeth_at(cycle, edge, r, &early, P2::zeros(), one(prev_s)).pop().map(|mut t| {
+            t.frame.c += back;
+            for b in &mut t.engagement.ends {
+                *b += back;
+            }
+            t
+        });
+        let teeth = teeth_at(cycle, edge, r, &early, P2::zeros(), one(s));
+        CycleTeeth { cycle, edge, r, stride: 1, early, teeth, before_start, previous: Vec::new(), start_wraps }
     }
 
     /// The material before a tooth at arc length `s`: the first quarter of the cycle counts as
@@ -595,7 +618,9 @@ impl<'a> CycleTeeth<'a> {
     /// the material before them.
     fn inner(&self, i: usize) -> Swept<'_> {
         match (i, &self.before_start) {
-            (0, Some(p)) => Swept::before_previous_cycle_tooth(self.edge, &self.early, p.s, self.cycle),
+            (0, Some(p)) if self.start_wraps => {
+                Swept::before_previous_cycle_tooth(self.edge, &self.early, p.s, self.cycle)
+            }
             _ => self.swept(self.teeth[i].s),
         }
     }
@@ -641,7 +666,7 @@ impl<'a> CycleTeeth<'a> {
         // −1's are against the material before it, which tooth 0 has too), except across the
         // switch to the early sweep found again.
         let prev = self.previous_of(i).map(|p| {
-            let intervals = if i == 0 || half(p.s) == half(*s) {
+            let intervals = if (i == 0 && self.start_wraps) || half(p.s) == half(*s) {
                 p.engagement.intervals.clone()
             } else {
                 engagement(&swept, &p.frame, self.r).intervals
@@ -650,6 +675,38 @@ impl<'a> CycleTeeth<'a> {
         });
         engaged_arcs(&self.inner(i), f, prev.as_ref(), self.r, &e.intervals)
     }
+
+    /// The [`ToothSample`] of analysed tooth `i`.
+    fn sample(&self, i: usize, feed_mm_per_s: f64) -> ToothSample {
+        let Tooth { s, frame: f, engagement: e } = &self.teeth[i];
+        let h = self.chip_thickness(i);
+        ToothSample {
+            time_s: s / feed_mm_per_s,
+            s_mm: *s,
+            x_mm: f.c.x,
+            y_mm: f.c.y,
+            h_mm: h,
+            engagement_rad: e.angle,
+            cutting: h > H_CUT_MM,
+            feed_angle_rad: f.t.y.atan2(f.t.x),
+            arcs: self.arcs(i),
+        }
+    }
+}
+
+/// The [`ToothSample`]s of teeth at arc lengths `at` (mm, 0 ≤ s < cycle length) of the
+/// steady-state cycle, each after the tooth f_z before it: what [`tooth_series`] gives for a
+/// tooth there, at places between its teeth (the force model's refinement where the chip
+/// changes shape fast, [`super::force::refine_series`]).
+pub fn tooth_samples_at(
+    cycle: &Cycle,
+    edge: &PreviousEdge,
+    r: f64,
+    f_z: f64,
+    feed_mm_per_s: f64,
+    at: &[f64],
+) -> Vec<ToothSample> {
+    at.par_iter().map(|&s| CycleTeeth::at(cycle, edge, r, f_z, s).sample(0, feed_mm_per_s)).collect()
 }
 
 /// Per-tooth series of one steady-state cycle (tooth 0 at the cycle start): every tooth, or
@@ -670,24 +727,7 @@ fn strided_series(
 ) -> Vec<ToothSample> {
     let teeth = CycleTeeth::new(cycle, edge, r, f_z, stride);
     // Given the previous tooth, each tooth's h and arcs are independent: in parallel.
-    (0..teeth.teeth.len())
-        .into_par_iter()
-        .map(|i| {
-            let Tooth { s, frame: f, engagement: e } = &teeth.teeth[i];
-            let h = teeth.chip_thickness(i);
-            ToothSample {
-                time_s: s / feed_mm_per_s,
-                s_mm: *s,
-                x_mm: f.c.x,
-                y_mm: f.c.y,
-                h_mm: h,
-                engagement_rad: e.angle,
-                cutting: h > H_CUT_MM,
-                feed_angle_rad: f.t.y.atan2(f.t.x),
-                arcs: teeth.arcs(i),
-            }
-        })
-        .collect()
+    (0..teeth.teeth.len()).into_par_iter().map(|i| teeth.sample(i, feed_mm_per_s)).collect()
 }
 
 /// Largest engagement angle (rad) over the teeth [`tooth_series`] analyses — the same value
