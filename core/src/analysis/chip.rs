@@ -555,9 +555,13 @@ struct CycleTeeth<'a> {
     before_start: Option<Tooth>,
     /// With a stride above 1: the tooth f_z before each analysed tooth but the first.
     previous: Vec<Tooth>,
-    /// Whether `before_start` lies on the previous cycle (moved back by one step): then the
-    /// first tooth's chip is bounded by the material as that cycle's tooth left it.
-    start_wraps: bool,
+    /// Each analysed tooth's own previous tooth is in `previous` (teeth at arbitrary places,
+    /// [`CycleTeeth::at`]), not the one before it in `teeth`.
+    own_previous: bool,
+    /// Per analysed tooth: whether its previous tooth lies on the previous cycle (moved back
+    /// by one step); then its chip is bounded by the material as that cycle's tooth left it.
+    /// Missing entries: no.
+    wraps: Vec<bool>,
 }
 
 impl<'a> CycleTeeth<'a> {
@@ -583,27 +587,35 @@ impl<'a> CycleTeeth<'a> {
         } else {
             Vec::new()
         };
-        CycleTeeth { cycle, edge, r, stride, early, teeth, before_start, previous, start_wraps: true }
+        CycleTeeth { cycle, edge, r, stride, early, teeth, before_start, previous, own_previous: false, wraps: vec![true] }
     }
 
-    /// The one tooth at arc length `s` (0 ≤ s < cycle length) with its previous tooth f_z
+    /// The teeth at arc lengths `at` (0 ≤ s < cycle length), each with its previous tooth f_z
     /// before it (on the previous cycle, moved back by one step, for s < f_z).
-    fn at(cycle: &'a Cycle, edge: &'a PreviousEdge, r: f64, f_z: f64, s: f64) -> CycleTeeth<'a> {
+    fn at(cycle: &'a Cycle, edge: &'a PreviousEdge, r: f64, f_z: f64, at: &[f64]) -> CycleTeeth<'a> {
         let len = cycle.length();
         let early = EarlySweep::new(cycle, P2::zeros(), r, 0.25);
-        let one = |s: f64| cycle.positions(s, len).into_iter().take(1).collect();
-        let start_wraps = s < f_z;
-        let back = if start_wraps { P2::new(0.0, -cycle.step) } else { P2::zeros() };
-        let prev_s = if start_wraps { len + s - f_z } else { s - f_z };
-        let before_start = teeth_at(cycle, edge, r, &early, P2::zeros(), one(prev_s)).pop().map(|mut t| {
+        let start = CyclePos { seg: 0, t: 0.0 };
+        let positions = |ss: Vec<f64>| -> Vec<(f64, CyclePos)> {
+            ss.into_iter().map(|s| (s, cycle.advance(start, s.clamp(0.0, len)).unwrap_or(start))).collect()
+        };
+        let wraps: Vec<bool> = at.iter().map(|&s| s < f_z).collect();
+        let prev_s = at.iter().map(|&s| if s < f_z { len + s - f_z } else { s - f_z }).collect();
+        let mut previous = teeth_at(cycle, edge, r, &early, P2::zeros(), positions(prev_s));
+        for (t, _) in previous.iter_mut().zip(&wraps).filter(|x| *x.1) {
+            let back = P2::new(0.0, -cycle.step);
             t.frame.c += back;
             for b in &mut t.engagement.ends {
                 *b += back;
             }
-            t
-        });
-        let teeth = teeth_at(cycle, edge, r, &early, P2::zeros(), one(s));
-        CycleTeeth { cycle, edge, r, stride: 1, early, teeth, before_start, previous: Vec::new(), start_wraps }
+        }
+        let teeth = teeth_at(cycle, edge, r, &early, P2::zeros(), positions(at.to_vec()));
+        CycleTeeth { cycle, edge, r, stride: 1, early, teeth, before_start: None, previous, own_previous: true, wraps }
+    }
+
+    /// Whether analysed tooth `i`'s previous tooth lies on the previous cycle.
+    fn wraps(&self, i: usize) -> bool {
+        self.wraps.get(i).copied().unwrap_or(false)
     }
 
     /// The material before a tooth at arc length `s`: the first quarter of the cycle counts as
@@ -617,8 +629,16 @@ impl<'a> CycleTeeth<'a> {
     /// tooth −1 of the previous cycle ([`Swept::before_previous_cycle_tooth`]); for the others
     /// the material before them.
     fn inner(&self, i: usize) -> Swept<'_> {
+        if self.own_previous {
+            return match self.previous.get(i) {
+                Some(p) if self.wraps(i) => {
+                    Swept::before_previous_cycle_tooth(self.edge, &self.early, p.s, self.cycle)
+                }
+                _ => self.swept(self.teeth[i].s),
+            };
+        }
         match (i, &self.before_start) {
-            (0, Some(p)) if self.start_wraps => {
+            (0, Some(p)) if self.wraps(0) && !self.own_previous => {
                 Swept::before_previous_cycle_tooth(self.edge, &self.early, p.s, self.cycle)
             }
             _ => self.swept(self.teeth[i].s),
@@ -627,6 +647,9 @@ impl<'a> CycleTeeth<'a> {
 
     /// The tooth f_z before analysed tooth `i`.
     fn previous_of(&self, i: usize) -> Option<&Tooth> {
+        if self.own_previous {
+            return self.previous.get(i);
+        }
         match i.checked_sub(1) {
             None => self.before_start.as_ref(),
             Some(j) if self.stride == 1 => self.teeth.get(j),
@@ -666,7 +689,7 @@ impl<'a> CycleTeeth<'a> {
         // −1's are against the material before it, which tooth 0 has too), except across the
         // switch to the early sweep found again.
         let prev = self.previous_of(i).map(|p| {
-            let intervals = if (i == 0 && self.start_wraps) || half(p.s) == half(*s) {
+            let intervals = if self.wraps(i) || half(p.s) == half(*s) {
                 p.engagement.intervals.clone()
             } else {
                 engagement(&swept, &p.frame, self.r).intervals
@@ -676,10 +699,16 @@ impl<'a> CycleTeeth<'a> {
         engaged_arcs(&self.inner(i), f, prev.as_ref(), self.r, &e.intervals)
     }
 
-    /// The [`ToothSample`] of analysed tooth `i`.
-    fn sample(&self, i: usize, feed_mm_per_s: f64) -> ToothSample {
+    /// The [`ToothSample`] of analysed tooth `i`; with `exact_h` false, h is the largest
+    /// sample of its arcs (no refinement to the paper's point B: enough for the force model).
+    fn sample(&self, i: usize, feed_mm_per_s: f64, exact_h: bool) -> ToothSample {
         let Tooth { s, frame: f, engagement: e } = &self.teeth[i];
-        let h = self.chip_thickness(i);
+        let arcs = self.arcs(i);
+        let h = if exact_h {
+            self.chip_thickness(i)
+        } else {
+            arcs.iter().map(EngagedArc::max_thickness_mm).fold(0.0, f64::max)
+        };
         ToothSample {
             time_s: s / feed_mm_per_s,
             s_mm: *s,
@@ -689,14 +718,14 @@ impl<'a> CycleTeeth<'a> {
             engagement_rad: e.angle,
             cutting: h > H_CUT_MM,
             feed_angle_rad: f.t.y.atan2(f.t.x),
-            arcs: self.arcs(i),
+            arcs,
         }
     }
 }
 
 /// The [`ToothSample`]s of teeth at arc lengths `at` (mm, 0 ≤ s < cycle length) of the
 /// steady-state cycle, each after the tooth f_z before it: what [`tooth_series`] gives for a
-/// tooth there, at places between its teeth (the force model's refinement where the chip
+/// tooth there (but h is the largest sample of the arcs), at places between its teeth (the force model's refinement where the chip
 /// changes shape fast, [`super::force::refine_series`]).
 pub fn tooth_samples_at(
     cycle: &Cycle,
@@ -706,7 +735,8 @@ pub fn tooth_samples_at(
     feed_mm_per_s: f64,
     at: &[f64],
 ) -> Vec<ToothSample> {
-    at.par_iter().map(|&s| CycleTeeth::at(cycle, edge, r, f_z, s).sample(0, feed_mm_per_s)).collect()
+    let teeth = CycleTeeth::at(cycle, edge, r, f_z, at);
+    (0..at.len()).into_par_iter().map(|i| teeth.sample(i, feed_mm_per_s, false)).collect()
 }
 
 /// Per-tooth series of one steady-state cycle (tooth 0 at the cycle start): every tooth, or
@@ -727,7 +757,7 @@ fn strided_series(
 ) -> Vec<ToothSample> {
     let teeth = CycleTeeth::new(cycle, edge, r, f_z, stride);
     // Given the previous tooth, each tooth's h and arcs are independent: in parallel.
-    (0..teeth.teeth.len()).into_par_iter().map(|i| teeth.sample(i, feed_mm_per_s)).collect()
+    (0..teeth.teeth.len()).into_par_iter().map(|i| teeth.sample(i, feed_mm_per_s, true)).collect()
 }
 
 /// Largest engagement angle (rad) over the teeth [`tooth_series`] analyses — the same value

@@ -522,8 +522,18 @@ pub fn cycle_forces(
     let n = series.len();
     // Per tooth position: its arcs on their own, and paired with the next position's (when
     // both have as many arcs).
-    let singles: Vec<Vec<ArcPair>> =
-        series.iter().map(|t| t.arcs.iter().map(|x| ArcPair::new(x, x)).collect()).collect();
+    // (Only where a pair cannot be blended: the arcs split or merge.)
+    let split = |i: usize| {
+        let (a, b) = (&series[i].arcs, &series[(i + 1) % n].arcs);
+        a.len() != b.len() && !a.is_empty() && !b.is_empty()
+    };
+    let singles: Vec<Vec<ArcPair>> = (0..n)
+        .map(|i| {
+            let needed = split(i) || split((i + n - 1) % n);
+            let arcs = if needed { series[i].arcs.as_slice() } else { &[] };
+            arcs.iter().map(|x| ArcPair::new(x, x)).collect()
+        })
+        .collect();
     // An arc that appears (or vanishes) between two positions grows from (shrinks to) a
     // point with no chip: at its end held at φ = 0 or π (see [`ArcBlend::ends`]), else in
     // its middle.
@@ -630,14 +640,22 @@ pub fn refine_points(series: &[ToothSample], len: f64) -> Vec<f64> {
         .collect()
 }
 
-/// max |h_a(u) − h_b(u)| / max(h_a, h_b) over the relative place u along two arcs.
+/// max |h_a(u) − h_b(u)| / max(h_a, h_b) over the relative place u along two arcs (at both
+/// arcs' samples: h is linear between them).
 fn profile_change(a: &EngagedArc, b: &EngagedArc) -> f64 {
     let scale = a.max_thickness_mm().max(b.max_thickness_mm());
     if scale <= 0.0 {
         return 0.0;
     }
-    let pair = ArcPair::new(a, b);
-    pair.pts.iter().map(|p| (p[0] - p[2]).abs()).fold(0.0, f64::max) / scale
+    let at = |arc: &EngagedArc, u: f64| arc.thickness_at(arc.entry_rad + u * arc.sweep_rad());
+    let rel = |arc: &EngagedArc, phi: f64| {
+        let sweep = arc.sweep_rad();
+        if sweep > 0.0 { (phi - arc.entry_rad) / sweep } else { 0.0 }
+    };
+    let diff = |x: &EngagedArc, y: &EngagedArc| {
+        x.samples.iter().map(|p| (p.h_mm - at(y, rel(x, p.phi_rad))).abs()).fold(0.0, f64::max)
+    };
+    diff(a, b).max(diff(b, a)) / scale
 }
 
 /// `series` with the `extra` tooth samples merged in by time.
