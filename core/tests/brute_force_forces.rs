@@ -193,7 +193,8 @@ fn force_series_agrees_with_brute_force_at_every_sample() {
                     let Some((len, psi)) = part else { continue };
                     ends += usize::from(len < dz * (1.0 - 1e-9));
                     let h = h_at(psi);
-                    let (ft, fr, fa) = ((k.ktc * h + k.kte) * len, (k.krc * h + k.kre) * len, (k.kac * h + k.kae) * len);
+                    let (ft, fr, fa) =
+                        ((k.ktc * h + k.kte) * len, (k.krc * h + k.kre) * len, (k.kac * h + k.kae) * len);
                     // On the tool: −F_t along the edge velocity (sin ψ, −cos ψ), −F_r along (cos ψ, sin ψ).
                     let (sn, cs) = psi.sin_cos();
                     fx += -ft * sn - fr * cs;
@@ -315,7 +316,9 @@ fn force_series_agrees_with_brute_force_at_every_sample() {
         }
         if diff > (0.02 * b).max(allowance) {
             let t = model[i].time_s;
-            failures.push(format!("sample {i} (t = {t:.5} s): model {m:.3} N, brute {b:.3} N (allowance {allowance:.4} N, {ends} ends)"));
+            failures.push(format!(
+                "sample {i} (t = {t:.5} s): model {m:.3} N, brute {b:.3} N (allowance {allowance:.4} N, {ends} ends)"
+            ));
         }
     }
     let largest_allowed = results.iter().filter(|x| (x.1 - x.2).abs() > 0.02 * x.2).map(|x| x.2).fold(0.0, f64::max);

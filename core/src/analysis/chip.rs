@@ -177,7 +177,12 @@ impl<'a> Swept<'a> {
     /// read one step further on. Tooth 0's chip lies between its circle and the material as
     /// tooth −1 left it; the edge of previous cycles also holds cycle −1's last f_z (from
     /// tooth −1 to the cycle start), which no tooth has cut yet.
-    fn before_previous_cycle_tooth(edge: &'a PreviousEdge, early: &'a EarlySweep<'a>, s: f64, cycle: &Cycle) -> Swept<'a> {
+    fn before_previous_cycle_tooth(
+        edge: &'a PreviousEdge,
+        early: &'a EarlySweep<'a>,
+        s: f64,
+        cycle: &Cycle,
+    ) -> Swept<'a> {
         Swept { shift: P2::new(0.0, cycle.step), ..Swept::before(edge, early, s, cycle.length()) }
     }
 
@@ -587,7 +592,18 @@ impl<'a> CycleTeeth<'a> {
         } else {
             Vec::new()
         };
-        CycleTeeth { cycle, edge, r, stride, early, teeth, before_start, previous, own_previous: false, wraps: vec![true] }
+        CycleTeeth {
+            cycle,
+            edge,
+            r,
+            stride,
+            early,
+            teeth,
+            before_start,
+            previous,
+            own_previous: false,
+            wraps: vec![true],
+        }
     }
 
     /// The teeth at arc lengths `at` (0 ≤ s < cycle length), each with its previous tooth f_z
@@ -631,9 +647,7 @@ impl<'a> CycleTeeth<'a> {
     fn inner(&self, i: usize) -> Swept<'_> {
         if self.own_previous {
             return match self.previous.get(i) {
-                Some(p) if self.wraps(i) => {
-                    Swept::before_previous_cycle_tooth(self.edge, &self.early, p.s, self.cycle)
-                }
+                Some(p) if self.wraps(i) => Swept::before_previous_cycle_tooth(self.edge, &self.early, p.s, self.cycle),
                 _ => self.swept(self.teeth[i].s),
             };
         }

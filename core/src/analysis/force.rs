@@ -309,7 +309,9 @@ impl<'a> Model<'a> {
     }
 
     fn slice_dirs(c: &Cutter) -> [(f64, f64); SLICES] {
-        std::array::from_fn(|i| (c.helix_rad.tan() / c.radius_mm * c.depth_mm / SLICES as f64 * (i as f64 + 0.5)).sin_cos())
+        std::array::from_fn(|i| {
+            (c.helix_rad.tan() / c.radius_mm * c.depth_mm / SLICES as f64 * (i as f64 + 0.5)).sin_cos()
+        })
     }
 
     /// The chip of flute j for a nominal chip h (runout form, see the module docs).
@@ -884,6 +886,41 @@ mod tests {
                     / m as f64;
             assert!((mean_y / closed[1] - 1.0).abs() < 5e-3, "β {beta}: {mean_y} vs {}", closed[1]);
         }
+    }
+
+    /// The inner loop sums each flute's elements in its own frame and turns the sums once
+    /// ([`Model::add_flute`], whole slices' edge terms from [`Model::dir_sums`]): the same
+    /// forces as adding element by element in the machine frame, to rounding.
+    #[test]
+    fn flute_sums_give_the_element_by_element_forces() {
+        let c = cutter();
+        let m = Model::new(&c, &P20);
+        let (s0, c0) = 0.3f64.sin_cos();
+        let mut sums = [0.0; 6];
+        let mut direct = [0.0; 4];
+        for i in 0..SLICES {
+            // Chips 0.01–0.03 mm, lengths from half a slice to a whole one.
+            let (h, len) = (0.01 + 0.0004 * i as f64, m.dz * (0.5 + (i % 3) as f64 / 4.0));
+            let (st, ct) = m.slice_dirs[i];
+            for (sum, v) in sums.iter_mut().zip([h * len * ct, h * len * st, h * len, len * ct, len * st, len]) {
+                *sum += v;
+            }
+            let (sn, cs) = (s0 * ct + c0 * st, c0 * ct - s0 * st);
+            let (ft, fr) = ((P20.ktc * h + P20.kte) * len, (P20.krc * h + P20.kre) * len);
+            direct[0] += -ft * sn - fr * cs;
+            direct[1] += ft * cs - fr * sn;
+            direct[2] += (P20.kac * h + P20.kae) * len;
+            direct[3] += ft * m.r;
+        }
+        let mut f = [0.0; 4];
+        m.add_flute(&mut f, &sums, (c0, s0));
+        for (a, b) in f.iter().zip(direct) {
+            assert!((a - b).abs() <= 1e-9 * b.abs().max(1.0), "{a} vs {b}");
+        }
+        let (a, b) = (7, 42);
+        let sum = m.slice_dirs[a..b].iter().fold((0.0, 0.0), |s, d| (s.0 + d.0, s.1 + d.1));
+        assert!((m.dir_sums[b].0 - m.dir_sums[a].0 - sum.0).abs() < 1e-12);
+        assert!((m.dir_sums[b].1 - m.dir_sums[a].1 - sum.1).abs() < 1e-12);
     }
 
     /// Runout: equal offsets change nothing; one flute further out takes a thicker chip and the

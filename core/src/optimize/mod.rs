@@ -365,9 +365,7 @@ impl Search<'_> {
             .of_class(LimitClass::FeedScaled)
             .map(|l| {
                 let value = match l.kind {
-                    LimitKind::Force => {
-                        force_series(job, &cycle, &edge, &series).summary.resultant_max_n
-                    }
+                    LimitKind::Force => force_series(job, &cycle, &edge, &series).summary.resultant_max_n,
                     _ => series.iter().map(|t| t.h_mm).fold(0.0, f64::max),
                 };
                 (*l, value)
