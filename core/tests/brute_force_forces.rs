@@ -132,7 +132,7 @@ fn overlap(a: f64, b: f64, lo: f64, hi: f64) -> Option<(f64, f64)> {
     let (a, b) = (a + shift, b + shift);
     [-TAU, 0.0, TAU].into_iter().find_map(|k| {
         let (x, y) = ((a + k).max(lo), (b + k).min(hi));
-        (y > x).then(|| (y - x, 0.5 * (x + y) - k - shift))
+        (y > x).then_some((y - x, 0.5 * (x + y) - k - shift))
     })
 }
 
