@@ -6,9 +6,9 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
-use trochoplan_core::analysis::{PreviousEdge, Wall, cycle_forces, imprint_density, tooth_series, wall_profile};
+use trochoplan_core::analysis::{PreviousEdge, Wall, imprint_density, tooth_series, wall_profile};
 use trochoplan_core::path::{Cycle, SlotPath};
-use trochoplan_core::plan::engagement_limited_step;
+use trochoplan_core::plan::{engagement_limited_step, force_series};
 use trochoplan_core::{Job, PathKind, plan};
 
 fn plans(c: &mut Criterion) {
@@ -44,10 +44,10 @@ fn parts(c: &mut Criterion) {
         b.iter(|| tooth_series(black_box(&path.cycle), &edge, r, job.f_z(), job.feed / 60.0))
     });
     let series = tooth_series(&path.cycle, &edge, r, job.f_z(), job.feed / 60.0);
-    let t_cycle = path.cycle.length() / (job.feed / 60.0);
-    let cutter = trochoplan_core::plan::cutter(&job);
+    // The force series as plan() computes it: the extra tooth positions where the chip
+    // changes shape fast, then the series.
     c.bench_function("analysis/force series (default job, spindle steps ≤ 1°)", |b| {
-        b.iter(|| cycle_forces(black_box(&series), t_cycle, &cutter, &job.coefficients, job.rpm))
+        b.iter(|| force_series(&job, &path.cycle, &edge, black_box(&series)))
     });
     let xs: Vec<f64> = series.iter().map(|t| t.x_mm).collect();
     c.bench_function("analysis/imprint density", |b| {

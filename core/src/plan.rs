@@ -188,7 +188,7 @@ pub fn plan_valid(job: ValidJob) -> Plan {
     let real = slot_real_time(&job, &path);
     let mrr_at = |t: f64| job.slot_width * job.step * job.depth / t * 60.0;
     let mrr = mrr_at(t_cycle);
-    let forces = cycle_forces(&series, t_cycle, &cutter(&job), &job.coefficients, job.rpm);
+    let forces = force_series(&job, &path.cycle, &edge, &series);
     let xs: Vec<f64> = series.iter().map(|t| t.x_mm).collect();
     let imprints = imprint_density(&xs, stride, r, job.slot_width, job.step);
     let f = &forces.summary;
@@ -259,6 +259,28 @@ pub fn plan_valid(job: ValidJob) -> Plan {
         imprints,
         feed: real.cycle,
     }
+}
+
+/// Rounds of [`force_series`]' refinement; each halves the gaps that still change too fast.
+const FORCE_REFINE_ROUNDS: usize = 3;
+
+/// The force series of one steady-state cycle of `job` from its per-tooth `series`, with
+/// tooth positions added half-way where the chip changes shape faster than the force
+/// model's blending follows ([`analysis::force::refine_points`], up to
+/// [`FORCE_REFINE_ROUNDS`] times: at most an eighth of a tooth period apart there).
+pub fn force_series(job: &ValidJob, cycle: &Cycle, edge: &PreviousEdge, series: &[ToothSample]) -> ForceSeries {
+    let (r, f_z, feed) = (job.tool_radius(), job.f_z(), job.feed / 60.0);
+    let len = cycle.length();
+    let mut dense = std::borrow::Cow::Borrowed(series);
+    for _ in 0..FORCE_REFINE_ROUNDS {
+        let at = analysis::force::refine_points(&dense, len);
+        if at.is_empty() {
+            break;
+        }
+        let extra = analysis::chip::tooth_samples_at(cycle, edge, r, f_z, feed, &at);
+        dense = std::borrow::Cow::Owned(analysis::force::merge_series(&dense, extra));
+    }
+    cycle_forces(&dense, len / feed, &cutter(job), &job.coefficients, job.rpm)
 }
 
 /// The job's cutter for the force model.

@@ -2,17 +2,23 @@
 //! material left by a dense polyline of the previous cycles and of the current one ("swept =
 //! within R of a path point before now", `dense_common`), none of the analysis' machinery.
 //!
-//! - Tool positions every f_z/4 along the cycle (four per tooth period, not the analysis'
-//!   tooth positions). At each: the tool periphery on a fixed world-angle grid of 0.1°
-//!   (coarse scan at 1°, every 0.1° within 1.5° of an engaged coarse angle) is engaged where it
-//!   is not swept by the path before; h along each engaged ray by bisection: R minus where
-//!   the ray leaves the region swept up to the tooth one period (f_z) back.
+//! - Tool positions every f_z/[`SUB`] along the cycle (not the analysis' tooth positions). At
+//!   each, the periphery (the forward half: behind it the edge only rubs the wall) is engaged
+//!   where it is not swept by the path before; the engaged intervals are found on a 0.25°
+//!   scan and their ends bisected to 1e-9 rad. h on a fixed world-angle grid of 0.1° (from
+//!   one grid step before each interval to one after): R minus where the ray leaves the
+//!   region swept up to the tooth one period (f_z) back, by bisection.
 //! - Forces at every sample time of the model's series: tooth j's slice at height z (its own
-//!   axial grid: 400 slices, mid-points, no clipping) at world angle ψ₀ − Ω·t − j·2π/z +
-//!   z·tanβ/R; h and "engaged" bilinear in (time, angle) between the grid's positions and
-//!   angles; the element forces of domain-spec §4.1 written out here. Within 1.5 tooth
-//!   periods of a tooth position where the engaged arcs appear or vanish, the periphery is
-//!   scanned at each sample's own position instead (see there).
+//!   axial grid, [`SLICES`] slices) spans the world angles ψ₀ − Ω·t − j·2π/z + z·tanβ/R over
+//!   its height; it counts the share of that span inside the engaged intervals, with h
+//!   (bilinear in time and angle) and the direction at the middle of that share; the element
+//!   forces of domain-spec §4.1 written out here. Interval ends are linear in time between
+//!   the positions; within 1.5 tooth periods of a position where the number of intervals
+//!   changes (the tool meets or leaves material, S ∝ √t there), the periphery is scanned at
+//!   each sample's own position instead.
+//!
+//! `BRUTE_REFINE=k` divides every resolution (slices, grid, position spacing, polyline) by k
+//! for the convergence check of the README; `FORCE_DUMP=1` prints every sample outside 2 %.
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
@@ -21,190 +27,317 @@ mod dense_common;
 use dense_common::Dense;
 use rayon::prelude::*;
 use std::f64::consts::{FRAC_PI_2, TAU};
-use trochoplan_core::geom::p2;
+use trochoplan_core::geom::{P2, p2};
+use trochoplan_core::path::{Cycle, CyclePos};
 use trochoplan_core::{Job, plan};
 
+/// Resolutions at refinement 1: polyline spacing (mm), world-angle grid of h (cells per
+/// turn), positions per tooth period, axial slices.
 const DELTA: f64 = 0.01;
-/// Angular grid: 0.1°.
 const GRID: usize = 3600;
-/// Positions per tooth period.
-const SUB: usize = 4;
-/// Axial slices of the brute force.
+const SUB: usize = 8;
 const SLICES: usize = 400;
+/// Scan of the periphery for engaged intervals: 0.25°.
+const SCAN: usize = 1440;
 
-/// The periphery of one tool position on the world-angle grid: engaged or not, and h.
+/// Unit feed direction at arc length `s` of the cycle, from the path's own derivative: a
+/// chord of the dense polyline is off by up to half its turn (0.06° here), which moves the
+/// edge of the forward half and the spindle phase by as much.
+fn feed_dir(cycle: &Cycle, s: f64) -> P2 {
+    let pos = cycle.advance(CyclePos { seg: 0, t: 0.0 }, s.clamp(0.0, cycle.length())).expect("on the cycle");
+    cycle.eval(pos).d1.normalize()
+}
+
+/// The periphery of one tool position: engaged intervals of world angle (lo in [0, 2π),
+/// hi > lo, in scan order) and h on the world-angle grid.
 struct Snapshot {
-    engaged: Vec<bool>,
+    intervals: Vec<(f64, f64)>,
     h: Vec<f64>,
 }
 
-fn snapshot(d: &Dense, s: f64, f_z: f64) -> Snapshot {
-    let c = d.at(s);
-    let r = d.r;
-    // Feed direction from the dense path; the tool edge cuts on its forward half only (the
-    // project's definition of the engaged arc; behind it the edge at most rubs the wall).
-    let feed = (d.at(s + 1e-3) - d.at(s - 1e-3)).normalize();
-    let dir = |k: usize| {
-        let a = TAU * k as f64 / GRID as f64;
-        p2(a.cos(), a.sin())
-    };
-    let in_material = |k: usize| dir(k).dot(&feed) >= 0.0 && !d.swept(c + dir(k) * r, s - 2.0 * DELTA);
-    let coarse: Vec<bool> = (0..360).map(|i| in_material(i * 10)).collect();
-    let mut engaged = vec![false; GRID];
-    for (i, _) in coarse.iter().enumerate().filter(|x| *x.1) {
-        for k in (i * 10 + GRID - 15)..=(i * 10 + GRID + 15) {
-            let k = k % GRID;
-            engaged[k] = in_material(k);
+struct Brute<'a> {
+    d: &'a Dense,
+    cycle: &'a Cycle,
+    f_z: f64,
+    delta: f64,
+    grid: usize,
+}
+
+impl Brute<'_> {
+    fn snapshot(&self, s: f64) -> Snapshot {
+        let (d, r, grid) = (self.d, self.d.r, self.grid);
+        let c = d.at(s);
+        let feed = feed_dir(self.cycle, s);
+        let dir = |a: f64| p2(a.cos(), a.sin());
+        let in_material = |a: f64| dir(a).dot(&feed) >= 0.0 && !d.swept(c + dir(a) * r, s - 2.0 * self.delta);
+        let scan: Vec<bool> = (0..SCAN).map(|i| in_material(TAU * i as f64 / SCAN as f64)).collect();
+        // Bisect an end between scan angles a (value `va`) and b.
+        let bisect = |mut a: f64, mut b: f64, va: bool| {
+            while b - a > 1e-9 {
+                let m = 0.5 * (a + b);
+                if in_material(m) == va { a = m } else { b = m }
+            }
+            0.5 * (a + b)
+        };
+        let mut intervals = Vec::new();
+        // Start the walk at a scan angle outside material (none: the whole circle, never here).
+        if let Some(start) = scan.iter().position(|&x| !x) {
+            let mut lo = None;
+            for k in 1..=SCAN {
+                let (i0, i1) = (start + k - 1, start + k);
+                let (v0, v1) = (scan[i0 % SCAN], scan[i1 % SCAN]);
+                let (a0, a1) = (TAU * i0 as f64 / SCAN as f64, TAU * i1 as f64 / SCAN as f64);
+                if !v0 && v1 {
+                    lo = Some(bisect(a0, a1, false));
+                } else if v0 && !v1 {
+                    let l: f64 = lo.take().expect("an interval starts before it ends");
+                    let hi = bisect(a0, a1, true);
+                    let base = l.rem_euclid(TAU);
+                    intervals.push((base, base + (hi - l)));
+                }
+            }
         }
+        let upto = s - self.f_z;
+        let mut h = vec![0.0; grid];
+        for &(lo, hi) in &intervals {
+            let g0 = (lo / TAU * grid as f64).floor() as i64 - 1;
+            let g1 = (hi / TAU * grid as f64).ceil() as i64 + 1;
+            for g in g0..=g1 {
+                let k = g.rem_euclid(grid as i64) as usize;
+                let u = dir(TAU * k as f64 / grid as f64);
+                h[k] = if d.swept(c + u * r, upto) {
+                    0.0
+                } else {
+                    // Chips are thinner than 0.25 mm here (f_z = 0.075 mm): start there.
+                    let (mut lo, mut hi) = (r - 0.25, r);
+                    if !d.swept(c + u * lo, upto) {
+                        lo = 0.0;
+                    }
+                    while hi - lo > 1e-9 {
+                        let mid = 0.5 * (lo + hi);
+                        if d.swept(c + u * mid, upto) { lo = mid } else { hi = mid }
+                    }
+                    r - hi
+                };
+            }
+        }
+        Snapshot { intervals, h }
     }
-    let upto = s - f_z;
-    let h = (0..GRID)
-        .map(|k| {
-            if !engaged[k] {
-                return 0.0;
-            }
-            let u = dir(k);
-            if d.swept(c + u * r, upto) {
-                return 0.0;
-            }
-            // Chips are thinner than 0.25 mm here (f_z = 0.075 mm): start the bisection there.
-            let (mut lo, mut hi) = (r - 0.25, r);
-            if !d.swept(c + u * lo, upto) {
-                lo = 0.0;
-            }
-            for _ in 0..30 {
-                let mid = 0.5 * (lo + hi);
-                if d.swept(c + u * mid, upto) { lo = mid } else { hi = mid }
-            }
-            r - hi
-        })
-        .collect();
-    Snapshot { engaged, h }
+}
+
+/// Length of the overlap of the angle span [a, b] (b − a < π) with the interval [lo, hi]
+/// (lo in [0, 2π)), and the overlap's middle.
+fn overlap(a: f64, b: f64, lo: f64, hi: f64) -> Option<(f64, f64)> {
+    let shift = TAU * ((lo - a) / TAU).round();
+    let (a, b) = (a + shift, b + shift);
+    [-TAU, 0.0, TAU].into_iter().find_map(|k| {
+        let (x, y) = ((a + k).max(lo), (b + k).min(hi));
+        (y > x).then_some((y - x, 0.5 * (x + y) - k - shift))
+    })
 }
 
 #[test]
 fn force_series_agrees_with_brute_force_at_every_sample() {
+    let refine: usize = std::env::var("BRUTE_REFINE").ok().and_then(|x| x.parse().ok()).unwrap_or(1);
     let p = plan(&Job::default()).expect("default job");
     let (r, f_z) = (p.job.tool_radius(), p.metrics.f_z_mm);
-    let d = Dense::new(&p.path.cycle, r, DELTA);
+    let delta = DELTA / refine as f64;
+    let d = Dense::new(&p.path.cycle, r, delta);
+    let brute = Brute { d: &d, cycle: &p.path.cycle, f_z, delta, grid: GRID * refine };
     let len = p.metrics.cycle_length_mm;
     let v = p.job.feed / 60.0;
-    let spacing = f_z / SUB as f64;
+    let spacing = f_z / (SUB * refine) as f64;
     let m_count = (len / spacing).ceil() as usize + 1;
     let snaps: Vec<Snapshot> = (0..=m_count)
         .into_par_iter()
         .map(|m| {
             let s = m as f64 * spacing;
-            snapshot(&d, if s >= len { s - len } else { s }, f_z)
+            brute.snapshot(if s >= len { s - len } else { s })
         })
         .collect();
     // Spindle convention of the model: tooth 0's bottom at the material-side normal N at t = 0
     // (world angle π/2 + feed direction), turning clockwise.
-    let t0 = d.at(1e-3) - d.at(0.0);
+    let t0 = feed_dir(&p.path.cycle, 0.0);
     let frame0 = FRAC_PI_2 + t0.y.atan2(t0.x);
     let omega = p.job.rpm / 60.0 * TAU;
     let (z_teeth, ap) = (p.job.teeth as usize, p.job.depth);
     let lag = p.job.helix_rad.tan() / r;
     let k = p.job.coefficients;
-    let dz = ap / SLICES as f64;
-    // Forces at time t from the periphery snapshots `a` and `b` (weights 1 − w and w).
-    let brute_from = |t: f64, a: &Snapshot, b: &Snapshot, w: f64| -> f64 {
+    let slices = SLICES * refine;
+    let dz = ap / slices as f64;
+    let grid = brute.grid;
+    // F_R at time t from the engaged intervals `ivs` and the h grids of `a` and `b` (weights
+    // 1 − w and w), and how many slices an interval end cuts.
+    let force = |t: f64, ivs: &[(f64, f64)], a: &Snapshot, b: &Snapshot, w: f64| -> (f64, usize) {
+        let h_at = |psi: f64| {
+            let g = psi.rem_euclid(TAU) / TAU * grid as f64;
+            let (g0, gw) = ((g.floor() as usize) % grid, g - g.floor());
+            let g1 = (g0 + 1) % grid;
+            let lerp = |s: &Snapshot| (1.0 - gw) * s.h[g0] + gw * s.h[g1];
+            (1.0 - w) * lerp(a) + w * lerp(b)
+        };
         let (mut fx, mut fy, mut fz) = (0.0, 0.0, 0.0);
+        let mut ends = 0;
         for j in 0..z_teeth {
-            for i in 0..SLICES {
-                let z = (i as f64 + 0.5) * dz;
-                let psi = frame0 - omega * t - TAU * j as f64 / z_teeth as f64 + lag * z;
-                let g = psi.rem_euclid(TAU) / TAU * GRID as f64;
-                let (g0, gw) = ((g.floor() as usize) % GRID, g - g.floor());
-                let g1 = (g0 + 1) % GRID;
-                let bil = |x: &dyn Fn(&Snapshot, usize) -> f64| {
-                    (1.0 - w) * ((1.0 - gw) * x(a, g0) + gw * x(a, g1)) + w * ((1.0 - gw) * x(b, g0) + gw * x(b, g1))
-                };
-                if bil(&|s, k| f64::from(u8::from(s.engaged[k]))) < 0.5 {
-                    continue;
+            for i in 0..slices {
+                let base = frame0 - omega * t - TAU * j as f64 / z_teeth as f64;
+                let (za, zb) = (i as f64 * dz, (i + 1) as f64 * dz);
+                let (pa, pb) = (base + lag * za, base + lag * zb);
+                for &(lo, hi) in ivs {
+                    // The share of the slice in the interval (β = 0: all or nothing at its angle).
+                    let part = if lag > 0.0 {
+                        overlap(pa, pb, lo, hi).map(|(l, mid)| (l / lag, mid))
+                    } else {
+                        overlap(pa - 1e-12, pa + 1e-12, lo, hi).map(|_| (dz, pa))
+                    };
+                    let Some((len, psi)) = part else { continue };
+                    ends += usize::from(len < dz * (1.0 - 1e-9));
+                    let h = h_at(psi);
+                    let (ft, fr, fa) =
+                        ((k.ktc * h + k.kte) * len, (k.krc * h + k.kre) * len, (k.kac * h + k.kae) * len);
+                    // On the tool: −F_t along the edge velocity (sin ψ, −cos ψ), −F_r along (cos ψ, sin ψ).
+                    let (sn, cs) = psi.sin_cos();
+                    fx += -ft * sn - fr * cs;
+                    fy += ft * cs - fr * sn;
+                    fz += fa;
                 }
-                let h = bil(&|s, k| s.h[k]);
-                let (ft, fr, fa) = ((k.ktc * h + k.kte) * dz, (k.krc * h + k.kre) * dz, (k.kac * h + k.kae) * dz);
-                // On the tool: −F_t along the edge velocity (sin ψ, −cos ψ), −F_r along (cos ψ, sin ψ).
-                let (sn, cs) = psi.sin_cos();
-                fx += -ft * sn - fr * cs;
-                fy += ft * cs - fr * sn;
-                fz += fa;
             }
         }
-        (fx * fx + fy * fy + fz * fz).sqrt()
+        ((fx * fx + fy * fy + fz * fz).sqrt(), ends)
     };
-    let brute = |t: f64| -> f64 {
+    // Within 1.5 tooth periods (6·refine positions) of a change in the number of intervals.
+    let reach = (3 * SUB * refine).div_ceil(2);
+    let counts: Vec<usize> = snaps.iter().map(|s| s.intervals.len()).collect();
+    let near_change = |m: usize| {
+        let (lo, hi) = (m.saturating_sub(reach), (m + reach + 1).min(m_count));
+        counts[lo..=hi].iter().any(|&c| c != counts[m])
+    };
+    let brute_at = |t: f64| -> (f64, usize) {
         let q = v * t / spacing;
         let m = (q.floor() as usize).min(m_count - 1);
-        brute_from(t, &snaps[m], &snaps[m + 1], q - m as f64)
-    };
-    // Where an arc appears or vanishes (the tool meets or leaves the material), the engaged
-    // arc jumps between two grid positions: "engaged" interpolated in time would switch the
-    // whole arc on or off halfway between them. Within one tooth period of such a change the
-    // periphery is taken at each sample's own position instead (no time interpolation).
-    let period = f_z / v;
-    let ns = p.series.len();
-    let changes: Vec<f64> = (0..ns)
-        .filter(|&k| p.series[k].arcs.is_empty() != p.series[(k + ns - 1) % ns].arcs.is_empty())
-        .map(|k| p.series[k].time_s)
-        .collect();
-    let t_cycle = p.metrics.t_cycle_s;
-    let near_change =
-        |t: f64| changes.iter().any(|&o| (t - o).abs() < 1.5 * period || (t - o - t_cycle).abs() < 1.5 * period);
-    let brute = |t: f64| -> f64 {
-        if near_change(t) {
-            let snap = snapshot(&d, (v * t).rem_euclid(len), f_z);
-            brute_from(t, &snap, &snap, 0.0)
-        } else {
-            brute(t)
+        let w = q - m as f64;
+        let (a, b) = (&snaps[m], &snaps[m + 1]);
+        if near_change(m) || near_change(m + 1) {
+            let own = brute.snapshot((v * t).rem_euclid(len));
+            return force(t, &own.intervals, &own, &own, 0.0);
         }
+        // Ends linear in time (b's unwrapped next to a's).
+        let ivs: Vec<(f64, f64)> = a
+            .intervals
+            .iter()
+            .zip(&b.intervals)
+            .map(|(x, y)| {
+                let shift = TAU * ((x.0 - y.0) / TAU).round();
+                let (lo, hi) = (x.0 + w * (y.0 + shift - x.0), x.1 + w * (y.1 + shift - x.1));
+                let base = lo.rem_euclid(TAU);
+                (base, base + (hi - lo))
+            })
+            .collect();
+        force(t, &ivs, a, b, w)
     };
     let model = &p.forces.samples;
     let fmax = p.metrics.force_resultant_max_n;
-    let results: Vec<(usize, f64, f64)> =
-        model.par_iter().enumerate().map(|(i, s)| (i, s.resultant_n(), brute(s.time_s))).collect();
+    let results: Vec<(usize, f64, f64, usize)> = model
+        .par_iter()
+        .enumerate()
+        .map(|(i, s)| {
+            let (b, ends) = brute_at(s.time_s);
+            (i, s.resultant_n(), b, ends)
+        })
+        .collect();
     let brute_max = results.iter().map(|x| x.2).fold(0.0, f64::max);
-    // Absolute floor where F_R is small: one model slice's full edge force
-    // √(Kte² + Kre² + Kae²)·a_p/50 (the model's slices, dz = a_p/50 by issue #10; 5.97 N for
-    // the default job, 0.8 % of F_R,max). The model
-    // places an arc end continuously in a slice, the brute force on its 0.1° × a_p/400 grid
-    // from its own periphery scan; where few edge elements cut, the force is a few slices'
-    // edge forces and the two disagree by a share of one.
-    let edge_floor = (k.kte.powi(2) + k.kre.powi(2) + k.kae.powi(2)).sqrt() * ap / 50.0;
-    // The criterion: 2 % of the sample plus that floor. Samples that also meet the stricter
-    // max(2 %, floor) are counted and printed. (Before the arcs' appearance was timed by
-    // their sweeps, the model's force rose up to 26 N over a tooth period in which no edge
-    // cut: the onset of a cutting pass failed this by 20 N.)
-    let (mut strict, mut worst_rel) = (0, 0.0f64);
+    // Where hardly any edge cuts (the tool meets or leaves the material, a flute's tip at an
+    // arc end), F_R is the edge force of a short piece of flute and 2 % of it is below the
+    // model's resolution of the arc ends: the model knows the engaged arcs at the tooth
+    // positions and blends their ends linearly in time between them; for an end moving
+    // smoothly that is off by at most |Δ²φ|/8 (Δ²φ: the end's second difference over the
+    // three positions around the sample), and the frame (the feed direction θ, blended the same
+    // way) by |Δ²θ|/8. A flute's edge over dφ carries the edge force
+    // E_φ·dφ, E_φ = √(Kte² + Kre² + Kae²)·R/tanβ (dz = R·dφ/tanβ). The allowance of a sample is
+    // E_φ·((max|Δ²φ| + |Δ²θ|)/8 + the edge term below) per flute crossing an arc end there
+    // (counted by the brute force), with a factor 2 to spare (the brute force's ends and h
+    // carry errors of the same kind), used only where it exceeds 2 % of the brute force. Where
+    // the arcs appear or vanish (no three positions with arcs) there is no blend term. On the
+    // default job it admits 12 samples, all with F_R ≤ 1.03 N (0.13 % of F_R,max), that
+    // differ by at most 0.08 N.
+    let e_phi = (k.kte.powi(2) + k.kre.powi(2) + k.kae.powi(2)).sqrt() * r / p.job.helix_rad.tan();
+    let ns = p.series.len();
+    // Where an arc ends on the edge of previous cycles, the edge's own radial error ε moves
+    // that end by ε/(R·sin α), α the angle between the tool circle and the edge; there
+    // h(φ) ≈ R·tan α·|φ − φ_end|, so that is ε/|dh/dφ| at the end. ε: the model's edge of
+    // previous cycles is within 1e-5 mm (analysis::edge), the brute force's polyline within
+    // δ²/(8R) of its discs.
+    let eps = 1e-5 + delta * delta / (8.0 * r);
+    let edge_end = |i: usize| -> f64 {
+        p.series[i]
+            .arcs
+            .iter()
+            .flat_map(|a| {
+                let n = a.samples.len();
+                let slope = |x: &[trochoplan_core::analysis::chip::ThicknessSample]| {
+                    (x[1].h_mm - x[0].h_mm).abs() / (x[1].phi_rad - x[0].phi_rad).abs().max(1e-12)
+                };
+                let entry = (a.entry_rad > 0.0 && n > 1).then(|| eps / slope(&a.samples[..2]));
+                let exit = (a.exit_rad < std::f64::consts::PI && n > 1).then(|| eps / slope(&a.samples[n - 2..]));
+                entry.into_iter().chain(exit)
+            })
+            .fold(0.0, f64::max)
+    };
+    let end_blend = |t: f64| -> f64 {
+        let i0 = p.series.partition_point(|x| x.time_s <= t).saturating_sub(1);
+        [i0 + ns - 1, i0]
+            .into_iter()
+            .filter_map(|k| {
+                let w: Vec<_> = (0..3).map(|m| &p.series[(k + m) % ns].arcs).collect();
+                w.iter().all(|a| a.len() == 1).then(|| {
+                    let (a, b, c) = (&w[0][0], &w[1][0], &w[2][0]);
+                    let d2 = |f: fn(&trochoplan_core::analysis::EngagedArc) -> f64| (f(a) - 2.0 * f(b) + f(c)).abs();
+                    // The frame (feed direction) is blended linearly too.
+                    let th: Vec<f64> = (0..3).map(|m| p.series[(k + m) % ns].feed_angle_rad).collect();
+                    let frame = ((th[0] - th[1]).rem_euclid(TAU) - (th[1] - th[2]).rem_euclid(TAU)).abs();
+                    (d2(|x| x.entry_rad).max(d2(|x| x.exit_rad)) + frame) / 8.0
+                })
+            })
+            .fold(0.0, f64::max)
+            + edge_end(i0).max(edge_end((i0 + 1) % ns))
+    };
+    let mut worst = (0.0f64, 0usize);
     let mut failures = Vec::new();
-    for &(i, m, b) in &results {
+    let (mut allowed, mut largest_allowance) = (0, 0.0f64);
+    for &(i, m, b, ends) in &results {
         let diff = (m - b).abs();
-        if diff <= (0.02 * m).max(edge_floor) {
-            strict += 1;
+        if b > 0.0 && diff / b > worst.0 {
+            worst = (diff / b, i);
         }
-        if m >= 10.0 * edge_floor {
-            worst_rel = worst_rel.max(diff / m);
+        let allowance = 2.0 * ends as f64 * e_phi * end_blend(model[i].time_s);
+        if diff > 0.02 * b && diff <= allowance {
+            allowed += 1;
+            largest_allowance = largest_allowance.max(allowance);
         }
-        if diff > 0.02 * m + edge_floor {
+        if diff > (0.02 * b).max(allowance) {
             let t = model[i].time_s;
-            failures.push(format!("sample {i} (t = {t:.5} s): model {m:.2} N, brute {b:.2} N"));
+            failures.push(format!(
+                "sample {i} (t = {t:.5} s): model {m:.3} N, brute {b:.3} N (allowance {allowance:.4} N, {ends} ends)"
+            ));
         }
     }
+    let largest_allowed = results.iter().filter(|x| (x.1 - x.2).abs() > 0.02 * x.2).map(|x| x.2).fold(0.0, f64::max);
+    let allowance = largest_allowance;
     eprintln!(
-        "F_R,max model {fmax:.2} N, brute {brute_max:.2} N; {strict} of {} samples within max(2 %, {edge_floor:.2} N); worst relative difference above {:.0} N: {:.2} %",
+        "refinement {refine}: F_R,max model {fmax:.2} N, brute {brute_max:.2} N; {} of {} samples within 2 %, {allowed} more within the arc-end allowance (at most {allowance:.3} N; those have F_R ≤ {largest_allowed:.2} N); worst {:.2} % at sample {}",
+        results.len() - failures.len() - allowed,
         results.len(),
-        10.0 * edge_floor,
-        100.0 * worst_rel,
+        100.0 * worst.0,
+        worst.1
     );
     if std::env::var("FORCE_DUMP").is_ok() {
-        for &(i, m, b) in results.iter().filter(|x| (x.1 - x.2).abs() > (0.02 * x.1).max(edge_floor)) {
-            eprintln!("sample {i} (t = {:.5} s): model {m:.2} N, brute {b:.2} N", model[i].time_s);
+        for f in &failures {
+            eprintln!("{f}");
         }
     }
     assert!(
         failures.is_empty(),
-        "{} samples differ by more than 2 % + {edge_floor:.2} N:\n{}",
+        "{} samples differ by more than 2 % and the arc-end allowance:\n{}",
         failures.len(),
         failures[..failures.len().min(20)].join("\n")
     );

@@ -371,44 +371,50 @@ fn threaded_planner_delivers_the_newest_plan_and_validates_at_once() {
 }
 
 /// egui frame time (UI + tessellation, no rasteriser) while the step changes every frame as it
-/// does while a slider is dragged, at 60 frames per second with the planning thread running.
+/// does while a slider is dragged, at 60 frames per second with the planning thread running
+/// (every plan includes the force series and the imprints, issue #10), on the Plots tab and
+/// on the Forces tab (its force and imprint plots drawn every frame).
 /// Run: `cargo test --release -p trochoplan frame_time -- --ignored --nocapture`.
 #[test]
 #[ignore = "measurement, prints frame-time statistics"]
 fn frame_time_while_dragging_a_slider() {
-    let ctx = egui::Context::default();
-    let repaint = ctx.clone();
-    let dialogs = Box::new(FakeDialogs { open: None, save: None });
-    let mut app =
-        App::with_planner(Job::default(), None, dialogs, Planner::threaded(move || repaint.request_repaint()));
-    let mut ms = Vec::new();
-    for i in 0..300 {
-        app.state.job.step = 1.0 - 0.5 * f64::from(i % 150) / 150.0;
-        let input = egui::RawInput {
-            screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(1400.0, 900.0))),
-            time: Some(f64::from(i) / 60.0),
-            ..Default::default()
-        };
-        let t0 = Instant::now();
-        let out = ctx.run_ui(input, |ui| app.show(ui));
-        let meshes = ctx.tessellate(out.shapes, out.pixels_per_point);
-        ms.push(t0.elapsed().as_secs_f64() * 1e3);
-        assert!(!meshes.is_empty());
-        std::thread::sleep(std::time::Duration::from_millis(16));
+    for tab in [Tab::Plots, Tab::Forces] {
+        let ctx = egui::Context::default();
+        let repaint = ctx.clone();
+        let dialogs = Box::new(FakeDialogs { open: None, save: None });
+        let mut app =
+            App::with_planner(Job::default(), None, dialogs, Planner::threaded(move || repaint.request_repaint()));
+        app.view.tab = tab;
+        let mut ms = Vec::new();
+        for i in 0..300 {
+            app.state.job.step = 1.0 - 0.5 * f64::from(i % 150) / 150.0;
+            let input = egui::RawInput {
+                screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(1400.0, 900.0))),
+                time: Some(f64::from(i) / 60.0),
+                ..Default::default()
+            };
+            let t0 = Instant::now();
+            let out = ctx.run_ui(input, |ui| app.show(ui));
+            let meshes = ctx.tessellate(out.shapes, out.pixels_per_point);
+            ms.push(t0.elapsed().as_secs_f64() * 1e3);
+            assert!(!meshes.is_empty());
+            std::thread::sleep(std::time::Duration::from_millis(16));
+        }
+        let warm = &mut ms[30..];
+        warm.sort_by(f64::total_cmp);
+        let q = |p: f64| warm[((warm.len() - 1) as f64 * p) as usize];
+        println!(
+            "{tab:?} tab, frame (UI + tessellation) over {} frames: median {:.2} ms, p90 {:.2} ms, p99 {:.2} ms, max {:.2} ms; last plan {:.2} ms",
+            warm.len(),
+            q(0.5),
+            q(0.9),
+            q(0.99),
+            q(1.0),
+            app.planner.plan_ms
+        );
+        assert!(app.planner.replans > 100, "{tab:?}: replanned while dragging: {}", app.planner.replans);
+        assert_eq!(app.view.tab, tab);
     }
-    let warm = &mut ms[30..];
-    warm.sort_by(f64::total_cmp);
-    let q = |p: f64| warm[((warm.len() - 1) as f64 * p) as usize];
-    println!(
-        "frame (UI + tessellation) over {} frames: median {:.2} ms, p90 {:.2} ms, p99 {:.2} ms, max {:.2} ms; last plan {:.2} ms",
-        warm.len(),
-        q(0.5),
-        q(0.9),
-        q(0.99),
-        q(1.0),
-        app.planner.plan_ms
-    );
-    assert!(app.planner.replans > 100, "replanned while dragging: {}", app.planner.replans);
 }
 
 fn export_text(h: &Harness<'_, App>) -> String {

@@ -194,13 +194,36 @@ impl Frame {
 struct Swept<'a> {
     edge: &'a PreviousEdge,
     early: Option<&'a EarlySweep<'a>>,
+    /// Added to a point before the test: zero, or one step (0, s) to read the material as a
+    /// tooth of the previous cycle saw it (see [`Swept::before_previous_cycle_tooth`]).
+    shift: P2,
 }
 
-impl Swept<'_> {
+impl<'a> Swept<'a> {
+    /// The material before the tooth at arc length `s` of the current cycle.
+    fn before(edge: &'a PreviousEdge, early: &'a EarlySweep<'a>, s: f64, len: f64) -> Swept<'a> {
+        Swept { edge, early: (s >= 0.5 * len).then_some(early), shift: P2::zeros() }
+    }
+
+    /// The material before the tooth at arc length `s` of the *previous* cycle (moved by one
+    /// step −s·ŷ): the steady state repeats by translation, so it is [`Swept::before`] of `s`
+    /// read one step further on. Tooth 0's chip lies between its circle and the material as
+    /// tooth −1 left it; the edge of previous cycles also holds cycle −1's last f_z (from
+    /// tooth −1 to the cycle start), which no tooth has cut yet.
+    fn before_previous_cycle_tooth(
+        edge: &'a PreviousEdge,
+        early: &'a EarlySweep<'a>,
+        s: f64,
+        cycle: &Cycle,
+    ) -> Swept<'a> {
+        Swept { shift: P2::new(0.0, cycle.step), ..Swept::before(edge, early, s, cycle.length()) }
+    }
+
     /// Positive where `p` is uncut material, not positive where it was swept (mm-like; only
     /// the sign and continuity matter).
     #[inline]
     fn margin(&self, p: P2) -> f64 {
+        let p = p + self.shift;
         let m = self.edge.margin(p);
         match self.early {
             Some(e) if m > 0.0 => m.min(e.margin(p)),
@@ -518,16 +541,19 @@ pub fn chip_outline(cycle: &Cycle, edge: &PreviousEdge, r: f64, f_z: f64, s: f64
         cycle.advance(start, len + s - f_z).map(|p| Frame::at(cycle, p, P2::new(0.0, -cycle.step)).c)
     };
     let early = EarlySweep::new(cycle, P2::zeros(), r, 0.25);
-    let swept = Swept { edge, early: (s >= 0.5 * len).then_some(&early) };
+    let swept = Swept::before(edge, &early, s, len);
     let e = engagement(&swept, &f, r);
-    let centre_swept = swept.margin(f.c) <= 0.0;
+    // The chip's inner boundary: the material as the previous tooth left it (for the first
+    // tooth of the cycle, the material before a tooth of the previous cycle).
+    let inner = if s >= f_z { swept } else { Swept::before_previous_cycle_tooth(edge, &early, len + s - f_z, cycle) };
+    let centre_swept = inner.margin(f.c) <= 0.0;
     let n = n.max(2);
     let mut out = Vec::new();
     for &(a, b) in &e.intervals {
         let phis: Vec<f64> = (0..=n).map(|i| a + (b - a) * i as f64 / n as f64).collect();
         out.extend(phis.iter().map(|&p| f.c + f.dir(p) * r));
         out.extend(
-            phis.iter().rev().map(|&p| f.c + f.dir(p) * (r - radial_thickness(&swept, &f, prev, r, centre_swept, p))),
+            phis.iter().rev().map(|&p| f.c + f.dir(p) * (r - radial_thickness(&inner, &f, prev, r, centre_swept, p))),
         );
     }
     out
@@ -567,6 +593,13 @@ struct CycleTeeth<'a> {
     before_start: Option<Tooth>,
     /// With a stride above 1: the tooth f_z before each analysed tooth but the first.
     previous: Vec<Tooth>,
+    /// Each analysed tooth's own previous tooth is in `previous` (teeth at arbitrary places,
+    /// [`CycleTeeth::at`]), not the one before it in `teeth`.
+    own_previous: bool,
+    /// Per analysed tooth: whether its previous tooth lies on the previous cycle (moved back
+    /// by one step); then its chip is bounded by the material as that cycle's tooth left it.
+    /// Missing entries: no.
+    wraps: Vec<bool>,
 }
 
 impl<'a> CycleTeeth<'a> {
@@ -592,17 +625,78 @@ impl<'a> CycleTeeth<'a> {
         } else {
             Vec::new()
         };
-        CycleTeeth { cycle, edge, r, stride, early, teeth, before_start, previous }
+        CycleTeeth {
+            cycle,
+            edge,
+            r,
+            stride,
+            early,
+            teeth,
+            before_start,
+            previous,
+            own_previous: false,
+            wraps: vec![true],
+        }
+    }
+
+    /// The teeth at arc lengths `at` (0 ≤ s < cycle length), each with its previous tooth f_z
+    /// before it (on the previous cycle, moved back by one step, for s < f_z).
+    fn at(cycle: &'a Cycle, edge: &'a PreviousEdge, r: f64, f_z: f64, at: &[f64]) -> CycleTeeth<'a> {
+        let len = cycle.length();
+        let early = EarlySweep::new(cycle, P2::zeros(), r, 0.25);
+        let start = CyclePos { seg: 0, t: 0.0 };
+        let positions = |ss: Vec<f64>| -> Vec<(f64, CyclePos)> {
+            ss.into_iter().map(|s| (s, cycle.advance(start, s.clamp(0.0, len)).unwrap_or(start))).collect()
+        };
+        let wraps: Vec<bool> = at.iter().map(|&s| s < f_z).collect();
+        let prev_s = at.iter().map(|&s| if s < f_z { len + s - f_z } else { s - f_z }).collect();
+        let mut previous = teeth_at(cycle, edge, r, &early, P2::zeros(), positions(prev_s));
+        for (t, _) in previous.iter_mut().zip(&wraps).filter(|x| *x.1) {
+            let back = P2::new(0.0, -cycle.step);
+            t.frame.c += back;
+            for b in &mut t.engagement.ends {
+                *b += back;
+            }
+        }
+        let teeth = teeth_at(cycle, edge, r, &early, P2::zeros(), positions(at.to_vec()));
+        CycleTeeth { cycle, edge, r, stride: 1, early, teeth, before_start: None, previous, own_previous: true, wraps }
+    }
+
+    /// Whether analysed tooth `i`'s previous tooth lies on the previous cycle.
+    fn wraps(&self, i: usize) -> bool {
+        self.wraps.get(i).copied().unwrap_or(false)
     }
 
     /// The material before a tooth at arc length `s`: the first quarter of the cycle counts as
     /// swept in its second half.
     fn swept(&self, s: f64) -> Swept<'_> {
-        Swept { edge: self.edge, early: (s >= 0.5 * self.cycle.length()).then_some(&self.early) }
+        Swept::before(self.edge, &self.early, s, self.cycle.length())
+    }
+
+    /// The material that bounds the chip of analysed tooth `i` from inside (with the previous
+    /// tooth's disc): as the previous tooth left it. For tooth 0 that is the material before
+    /// tooth −1 of the previous cycle ([`Swept::before_previous_cycle_tooth`]); for the others
+    /// the material before them.
+    fn inner(&self, i: usize) -> Swept<'_> {
+        if self.own_previous {
+            return match self.previous.get(i) {
+                Some(p) if self.wraps(i) => Swept::before_previous_cycle_tooth(self.edge, &self.early, p.s, self.cycle),
+                _ => self.swept(self.teeth[i].s),
+            };
+        }
+        match (i, &self.before_start) {
+            (0, Some(p)) if self.wraps(0) && !self.own_previous => {
+                Swept::before_previous_cycle_tooth(self.edge, &self.early, p.s, self.cycle)
+            }
+            _ => self.swept(self.teeth[i].s),
+        }
     }
 
     /// The tooth f_z before analysed tooth `i`.
     fn previous_of(&self, i: usize) -> Option<&Tooth> {
+        if self.own_previous {
+            return self.previous.get(i);
+        }
         match i.checked_sub(1) {
             None => self.before_start.as_ref(),
             Some(j) if self.stride == 1 => self.teeth.get(j),
@@ -613,7 +707,7 @@ impl<'a> CycleTeeth<'a> {
     /// h (eqs. 3–6) of analysed tooth `i`: from the previous tooth's points B where it has
     /// them, else the largest radial thickness of the chip ([`ray_thickness`]).
     fn chip_thickness(&self, i: usize) -> f64 {
-        let Tooth { s, frame: f, engagement: e } = &self.teeth[i];
+        let Tooth { frame: f, engagement: e, .. } = &self.teeth[i];
         if e.angle <= 0.0 {
             return 0.0;
         }
@@ -626,7 +720,7 @@ impl<'a> CycleTeeth<'a> {
                 }
                 h
             }
-            other => ray_thickness(&self.swept(*s), f, other.map(|p| p.frame.c), r, &e.intervals),
+            other => ray_thickness(&self.inner(i), f, other.map(|p| p.frame.c), r, &e.intervals),
         }
     }
 
@@ -642,15 +736,54 @@ impl<'a> CycleTeeth<'a> {
         // −1's are against the material before it, which tooth 0 has too), except across the
         // switch to the early sweep found again.
         let prev = self.previous_of(i).map(|p| {
-            let intervals = if i == 0 || half(p.s) == half(*s) {
+            let intervals = if self.wraps(i) || half(p.s) == half(*s) {
                 p.engagement.intervals.clone()
             } else {
                 engagement(&swept, &p.frame, self.r).intervals
             };
             PrevTooth::new(p.frame, intervals)
         });
-        engaged_arcs(&swept, f, prev.as_ref(), self.r, &e.intervals)
+        engaged_arcs(&self.inner(i), f, prev.as_ref(), self.r, &e.intervals)
     }
+
+    /// The [`ToothSample`] of analysed tooth `i`; with `exact_h` false, h is the largest
+    /// sample of its arcs (no refinement to the paper's point B: enough for the force model).
+    fn sample(&self, i: usize, feed_mm_per_s: f64, exact_h: bool) -> ToothSample {
+        let Tooth { s, frame: f, engagement: e } = &self.teeth[i];
+        let arcs = self.arcs(i);
+        let h = if exact_h {
+            self.chip_thickness(i)
+        } else {
+            arcs.iter().map(EngagedArc::max_thickness_mm).fold(0.0, f64::max)
+        };
+        ToothSample {
+            time_s: s / feed_mm_per_s,
+            s_mm: *s,
+            x_mm: f.c.x,
+            y_mm: f.c.y,
+            h_mm: h,
+            engagement_rad: e.angle,
+            cutting: h > H_CUT_MM,
+            feed_angle_rad: f.t.y.atan2(f.t.x),
+            arcs,
+        }
+    }
+}
+
+/// The [`ToothSample`]s of teeth at arc lengths `at` (mm, 0 ≤ s < cycle length) of the
+/// steady-state cycle, each after the tooth f_z before it: what [`tooth_series`] gives for a
+/// tooth there (but h is the largest sample of the arcs), at places between its teeth (the force model's refinement where the chip
+/// changes shape fast, [`super::force::refine_series`]).
+pub fn tooth_samples_at(
+    cycle: &Cycle,
+    edge: &PreviousEdge,
+    r: f64,
+    f_z: f64,
+    feed_mm_per_s: f64,
+    at: &[f64],
+) -> Vec<ToothSample> {
+    let teeth = CycleTeeth::at(cycle, edge, r, f_z, at);
+    (0..at.len()).into_par_iter().map(|i| teeth.sample(i, feed_mm_per_s, false)).collect()
 }
 
 /// Per-tooth series of one steady-state cycle (tooth 0 at the cycle start): every tooth, or
@@ -671,24 +804,7 @@ fn strided_series(
 ) -> Vec<ToothSample> {
     let teeth = CycleTeeth::new(cycle, edge, r, f_z, stride);
     // Given the previous tooth, each tooth's h and arcs are independent: in parallel.
-    (0..teeth.teeth.len())
-        .into_par_iter()
-        .map(|i| {
-            let Tooth { s, frame: f, engagement: e } = &teeth.teeth[i];
-            let h = teeth.chip_thickness(i);
-            ToothSample {
-                time_s: s / feed_mm_per_s,
-                s_mm: *s,
-                x_mm: f.c.x,
-                y_mm: f.c.y,
-                h_mm: h,
-                engagement_rad: e.angle,
-                cutting: h > H_CUT_MM,
-                feed_angle_rad: f.t.y.atan2(f.t.x),
-                arcs: teeth.arcs(i),
-            }
-        })
-        .collect()
+    (0..teeth.teeth.len()).into_par_iter().map(|i| teeth.sample(i, feed_mm_per_s, true)).collect()
 }
 
 /// Largest engagement angle (rad) over the teeth [`tooth_series`] analyses — the same value
@@ -715,7 +831,7 @@ fn teeth_at(
         .into_par_iter()
         .map(|(s, pos)| {
             let frame = Frame::at(cycle, pos, shift);
-            let swept = Swept { edge, early: (s >= 0.5 * len).then_some(early) };
+            let swept = Swept::before(edge, early, s, len);
             Tooth { s, frame, engagement: engagement(&swept, &frame, r) }
         })
         .collect()
@@ -805,7 +921,7 @@ mod tests {
                 }
                 let f = Frame::at(&cycle, positions[k].1, P2::zeros());
                 let prev = Frame::at(&cycle, positions[k - 1].1, P2::zeros()).c;
-                let swept = Swept { edge: &edge, early: (t.s_mm >= 0.5 * len).then_some(&early) };
+                let swept = Swept::before(&edge, &early, t.s_mm, len);
                 let centre_swept = swept.margin(f.c) <= 0.0;
                 let exact = |phi| radial_thickness(&swept, &f, Some(prev), r, centre_swept, phi);
                 let (mut sampled_max, mut fine_max) = (0.0f64, 0.0f64);

@@ -126,15 +126,16 @@ pub struct ForceSummary {
 
 /// The engaged arcs of two neighbouring tooth positions prepared for blending in the inner
 /// loop: both h(u) on one grid of the relative place u = (φ − φ_in)/(φ_out − φ_in) along
-/// each arc (the union of their samples' places), with each piece's value and slope.
+/// each arc (the union of their samples' places), with each piece's value and slope and the
+/// integral of h from u = 0 to its start.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ArcPair {
     /// Entry and exit angles (rad) of the first arc and of the second.
     pub a: (f64, f64),
     pub b: (f64, f64),
     u: Vec<f64>,
-    /// Per piece: h_a, dh_a/du, h_b, dh_b/du at its start.
-    pts: Vec<[f64; 4]>,
+    /// Per piece: h_a, dh_a/du, h_b, dh_b/du at its start, ∫h_a du and ∫h_b du up to it.
+    pts: Vec<[f64; 6]>,
 }
 
 impl ArcPair {
@@ -160,13 +161,16 @@ impl ArcPair {
         };
         let ha: Vec<f64> = u.iter().map(|&x| value(&ra, x)).collect();
         let hb: Vec<f64> = u.iter().map(|&x| value(&rb, x)).collect();
+        let mut cum = [0.0, 0.0];
         let pts = (0..u.len())
             .map(|i| match u.get(i + 1) {
                 Some(&next) if next > u[i] => {
                     let du = next - u[i];
-                    [ha[i], (ha[i + 1] - ha[i]) / du, hb[i], (hb[i + 1] - hb[i]) / du]
+                    let p = [ha[i], (ha[i + 1] - ha[i]) / du, hb[i], (hb[i + 1] - hb[i]) / du, cum[0], cum[1]];
+                    cum = [cum[0] + 0.5 * (ha[i] + ha[i + 1]) * du, cum[1] + 0.5 * (hb[i] + hb[i + 1]) * du];
+                    p
                 }
-                _ => [ha[i], 0.0, hb[i], 0.0],
+                _ => [ha[i], 0.0, hb[i], 0.0, cum[0], cum[1]],
             })
             .collect();
         ArcPair { a: (a.entry_rad, a.exit_rad), b: (b.entry_rad, b.exit_rad), u, pts }
@@ -183,15 +187,26 @@ pub struct ArcBlend<'a> {
 }
 
 impl ArcBlend<'_> {
-    /// Entry and exit angles: the arc's middle blended linearly, its sweep S with S² linear
-    /// in w (a tool edge crossing a material boundary engages S ∝ √penetration, see
-    /// [`Growth::weight`]; between similar sweeps this is the linear blend).
+    /// Entry and exit angles. An arc held at an end of the forward half (φ = 0 or π in both
+    /// arcs: there the material boundary is the tool's own sweep just before, which the edge
+    /// crosses at a fixed angle) keeps that end, and its other end, where the circle crosses
+    /// the material's edge at an angle, moves linearly. A free arc (both ends on the edge of
+    /// the material) has its middle blended linearly and its sweep S with S² linear in w (a
+    /// circle crossing a boundary near tangency engages S ∝ √penetration, see
+    /// [`Growth::weight`]; between similar sweeps this is the linear blend). Ends stay in the
+    /// forward half [0, π].
     fn ends(&self) -> (f64, f64) {
         let (a, b, w) = (self.pair.a, self.pair.b, self.w);
-        let mid = 0.5 * (a.0 + a.1 + w * (b.0 + b.1 - a.0 - a.1));
         let (sa, sb) = ((a.1 - a.0).max(0.0), (b.1 - b.0).max(0.0));
+        if a.0 <= 0.0 && b.0 <= 0.0 {
+            return (0.0, sa + w * (sb - sa));
+        }
+        if a.1 >= PI && b.1 >= PI {
+            return (PI - (sa + w * (sb - sa)), PI);
+        }
+        let mid = 0.5 * (a.0 + a.1 + w * (b.0 + b.1 - a.0 - a.1));
         let half = 0.5 * (sa * sa + w * (sb * sb - sa * sa)).max(0.0).sqrt();
-        (mid - half, mid + half)
+        ((mid - half).max(0.0), (mid + half).min(PI))
     }
 }
 
@@ -206,21 +221,38 @@ impl<'a> Cursor<'a> {
     fn new(b: &ArcBlend<'a>, u: f64) -> Cursor<'a> {
         Cursor { p: b.pair, w: b.w, i: b.pair.u.partition_point(|&x| x < u).saturating_sub(1) }
     }
-    /// The blended h(u) (u not below the last call's).
+    /// The piece of u (not below the last call's) and u's offset into it.
     #[inline]
-    fn at(&mut self, u: f64) -> f64 {
+    fn piece(&mut self, u: f64) -> Option<(f64, &'a [f64; 6])> {
         let (us, pts) = (&self.p.u, &self.p.pts);
         while self.i + 2 < us.len() && us[self.i + 1] < u {
             self.i += 1;
         }
         match (us.get(self.i), pts.get(self.i)) {
-            (Some(&u0), Some(&[ha, sa, hb, sb])) => {
-                let d = (u - u0).max(0.0);
-                let a = ha + sa * d;
-                a + self.w * (hb + sb * d - a)
-            }
-            _ => 0.0,
+            (Some(&u0), Some(p)) => Some(((u - u0).max(0.0), p)),
+            _ => None,
         }
+    }
+
+    /// The blended h(u) (u not below the last call's).
+    #[inline]
+    fn at(&mut self, u: f64) -> f64 {
+        let w = self.w;
+        self.piece(u).map_or(0.0, |(d, &[ha, sa, hb, sb, ..])| {
+            let a = ha + sa * d;
+            a + w * (hb + sb * d - a)
+        })
+    }
+
+    /// The blended ∫₀ᵘ h du (u in [0, 1], not below the last call's): h is linear on each
+    /// piece, so this is exact.
+    #[inline]
+    fn integral(&mut self, u: f64) -> f64 {
+        let w = self.w;
+        self.piece(u).map_or(0.0, |(d, &[ha, sa, hb, sb, ia, ib])| {
+            let a = ia + d * (ha + 0.5 * sa * d);
+            a + w * (ib + d * (hb + 0.5 * sb * d) - a)
+        })
     }
 }
 
@@ -238,6 +270,8 @@ struct Model<'a> {
     /// (sin, cos) of lag·(i + ½)·dz: the turn from a flute's bottom to the mid-point of
     /// slice i.
     slice_dirs: [(f64, f64); SLICES],
+    /// Σ over slices 0..i of slice_dirs (the edge forces of whole slices need only these).
+    dir_sums: [(f64, f64); SLICES + 1],
     /// (cos, sin) of j·2π/z for each tooth j.
     tooth_dirs: Vec<(f64, f64)>,
 }
@@ -253,9 +287,18 @@ impl<'a> Model<'a> {
             teeth: c.teeth as usize,
             pitch: TAU / f64::from(c.teeth),
             runout: &c.runout_mm,
-            slice_dirs: std::array::from_fn(|i| {
-                (c.helix_rad.tan() / c.radius_mm * c.depth_mm / SLICES as f64 * (i as f64 + 0.5)).sin_cos()
-            }),
+            slice_dirs: Self::slice_dirs(c),
+            dir_sums: {
+                let dirs = Self::slice_dirs(c);
+                let mut sum = (0.0, 0.0);
+                std::array::from_fn(|i| {
+                    let at = sum;
+                    if let Some(d) = dirs.get(i) {
+                        sum = (sum.0 + d.0, sum.1 + d.1);
+                    }
+                    at
+                })
+            },
             tooth_dirs: (0..c.teeth)
                 .map(|j| {
                     let (s, c) = (TAU * f64::from(j) / f64::from(c.teeth)).sin_cos();
@@ -263,6 +306,12 @@ impl<'a> Model<'a> {
                 })
                 .collect(),
         }
+    }
+
+    fn slice_dirs(c: &Cutter) -> [(f64, f64); SLICES] {
+        std::array::from_fn(|i| {
+            (c.helix_rad.tan() / c.radius_mm * c.depth_mm / SLICES as f64 * (i as f64 + 0.5)).sin_cos()
+        })
     }
 
     /// The chip of flute j for a nominal chip h (runout form, see the module docs).
@@ -325,9 +374,13 @@ impl<'a> Model<'a> {
     /// `x`) to `f`.
     ///
     /// Slices go from the top down, so φ and u grow and the cursors only move forward. A slice
-    /// cut by `z_lo` or `z_hi` counts its engaged part (length and mid-point). The direction of
-    /// slice i's mid-point is ψ₀ turned by the tabulated lag·(i + ½)·dz, and for a cut slice
-    /// further by the small angle to its own mid-point (a 4th-order series, |δ| ≤ lag·dz/2).
+    /// cut by `z_lo` or `z_hi` counts its engaged part (length and mid-point). Each slice takes
+    /// the mean of h over its part of the arc, exactly (h is piecewise linear in u, and u
+    /// linear in z: the difference of ∫h du at its ends over their distance), so a kink of
+    /// h (the paper's point B, an arc end) inside a slice costs no accuracy; with runout the
+    /// flute's chip is taken of that mean. The direction of slice i's mid-point is ψ₀ turned
+    /// by the tabulated lag·(i + ½)·dz, and for a cut slice further by the small angle to its
+    /// own mid-point (a 4th-order series, |δ| ≤ lag·dz/2).
     #[allow(clippy::too_many_arguments)]
     #[inline]
     fn flute_slices(
@@ -346,11 +399,28 @@ impl<'a> Model<'a> {
         let u_of = |z: f64| ((phi_b - self.lag * z - e) * inv_sweep).clamp(0.0, 1.0);
         let dz = self.dz;
         let mut cursor = Cursor::new(arc, u_of(z_hi));
-        let mut acc = [0.0; 4];
-        let (c0, s0) = dir0;
+        // Sums over the flute's elements in its own frame (turn (sin, cos) = (st, ct) from
+        // ψ₀): Σ h·len·ct, Σ h·len·st, Σ h·len, Σ len·ct, Σ len·st, Σ len. The forces are
+        // linear in them ([`Model::add_flute`]).
+        let mut sums = [0.0; 6];
+        // Below this u-extent of a slice (straight flutes: every slice at one angle) h is
+        // taken at the slice's middle.
+        const POINT: f64 = 1e-12;
+        // The mean h between u_top and u_bot (≥ u_top) with ∫h du at u_top given; also ∫h du
+        // at u_bot.
+        let mean = |cursor: &mut Cursor, u_top: f64, i_top: f64, u_bot: f64| {
+            if u_bot - u_top < POINT {
+                let h = cursor.at(0.5 * (u_top + u_bot));
+                (h, cursor.integral(u_bot))
+            } else {
+                let i_bot = cursor.integral(u_bot);
+                ((i_bot - i_top) / (u_bot - u_top), i_bot)
+            }
+        };
         // Slice i at mid-height z_m: ψ = ψ₀ + lag·z_m, turned from the tabulated
-        // lag·(i + ½)·dz by δ = lag·(z_m − (i + ½)·dz) for a cut slice.
-        let cut_slice = |acc: &mut [f64; 4], cursor: &mut Cursor, zl: f64, zh: f64| {
+        // lag·(i + ½)·dz by δ = lag·(z_m − (i + ½)·dz) for a cut slice. Returns ∫h du at
+        // its bottom.
+        let cut_slice = |sums: &mut [f64; 6], cursor: &mut Cursor, zl: f64, zh: f64, i_top: f64| {
             let i = ((zl / dz) as usize).min(SLICES - 1);
             let zm = 0.5 * (zl + zh);
             let (st, ct) = self.slice_dirs[i];
@@ -358,49 +428,68 @@ impl<'a> Model<'a> {
             let d2 = d * d;
             let (sd, cd) = (d * (1.0 - d2 / 6.0), 1.0 - d2 * (0.5 - d2 / 24.0));
             let (st, ct) = (st * cd + ct * sd, ct * cd - st * sd);
-            let h = cursor.at(u_of(zm));
-            self.add(acc, self.flute_chip(j, h), zh - zl, s0 * ct + c0 * st, c0 * ct - s0 * st);
+            let (h, i_bot) = mean(cursor, u_of(zh), i_top, u_of(zl));
+            let (h, len) = (self.flute_chip(j, h), zh - zl);
+            for (sum, v) in sums.iter_mut().zip([h * len * ct, h * len * st, h * len, len * ct, len * st, len]) {
+                *sum += v;
+            }
+            i_bot
         };
+        let top = cursor.integral(u_of(z_hi));
         // Whole slices i_a..i_b span [z_a, z_b]; the cut ones above and below.
         // z_lo, z_hi ≥ 0: truncation is the floor.
         let (q_lo, q_hi) = (z_lo / dz, z_hi / dz);
         let i_a = ((q_lo as usize) + usize::from(q_lo > (q_lo as usize) as f64)).min(SLICES);
         let i_b = (q_hi as usize).clamp(i_a, SLICES);
         if i_a == i_b {
-            cut_slice(&mut acc, &mut cursor, z_lo, z_hi);
+            cut_slice(&mut sums, &mut cursor, z_lo, z_hi, top);
         } else {
             let (z_a, z_b) = (i_a as f64 * dz, i_b as f64 * dz);
-            if z_hi > z_b {
-                cut_slice(&mut acc, &mut cursor, z_b, z_hi);
-            }
+            let mut int = if z_hi > z_b { cut_slice(&mut sums, &mut cursor, z_b, z_hi, top) } else { top };
             let du = self.lag * dz * inv_sweep;
-            let mut u = (phi_b - self.lag * (z_b - 0.5 * dz) - e) * inv_sweep;
+            // u at the top of slice i_b − 1 (unclamped; clamped for the integral).
+            let mut u = (phi_b - self.lag * z_b - e) * inv_sweep;
+            let (mut hc, mut hs, mut hh) = (0.0, 0.0, 0.0);
             for i in (i_a..i_b).rev() {
                 let (st, ct) = self.slice_dirs[i];
-                let h = cursor.at(u.max(0.0));
-                self.add(&mut acc, self.flute_chip(j, h), dz, s0 * ct + c0 * st, c0 * ct - s0 * st);
+                let (h, next) = mean(&mut cursor, u.clamp(0.0, 1.0), int, (u + du).clamp(0.0, 1.0));
+                int = next;
+                let h = self.flute_chip(j, h);
+                hc += h * ct;
+                hs += h * st;
+                hh += h;
                 u += du;
             }
+            // The edge terms of whole slices from the tabulated sums of their turns.
+            let (sb, sa) = (self.dir_sums[i_b], self.dir_sums[i_a]);
+            let (ls, lc) = ((sb.0 - sa.0) * dz, (sb.1 - sa.1) * dz);
+            let len = (i_b - i_a) as f64 * dz;
+            for (sum, v) in sums.iter_mut().zip([hc * dz, hs * dz, hh * dz, lc, ls, len]) {
+                *sum += v;
+            }
             if z_a > z_lo {
-                cut_slice(&mut acc, &mut cursor, z_lo, z_a);
+                cut_slice(&mut sums, &mut cursor, z_lo, z_a, int);
             }
         }
-        for (f, a) in f.iter_mut().zip(acc) {
-            *f += a;
-        }
+        self.add_flute(f, &sums, dir0);
     }
 
-    /// Add the forces of one element: chip h, length `len`, world direction (cos ψ, sin ψ) =
-    /// (`c`, `s`) of the edge point; velocity (sin ψ, −cos ψ) (spindle M3).
+    /// Add the forces of a flute's elements from their `sums` in its frame (see
+    /// [`Model::flute_slices`]), the frame turned by ψ₀ ((cos ψ₀, sin ψ₀) = `dir0`). An
+    /// element at world angle ψ (turn (st, ct) from ψ₀) has the velocity (sin ψ, −cos ψ)
+    /// (spindle M3): on the tool F = −dF_t·(sin ψ, −cos ψ) − dF_r·(cos ψ, sin ψ) + dF_a·ẑ,
+    /// with dF_t = (Ktc·h + Kte)·len, and so on; sin ψ = s0·ct + c0·st, cos ψ = c0·ct − s0·st.
     #[inline]
-    fn add(&self, f: &mut [f64; 4], h: f64, len: f64, s: f64, c: f64) {
+    fn add_flute(&self, f: &mut [f64; 4], sums: &[f64; 6], (c0, s0): (f64, f64)) {
         let k = self.k;
-        let ft = (k.ktc * h + k.kte) * len;
-        let fr = (k.krc * h + k.kre) * len;
-        f[0] += -ft * s - fr * c;
-        f[1] += ft * c - fr * s;
-        f[2] += (k.kac * h + k.kae) * len;
-        f[3] += ft * self.r;
+        let [hc, hs, hh, lc, ls, len] = *sums;
+        // Σ dF_t·(ct, st) and Σ dF_r·(ct, st).
+        let (tc, ts) = (k.ktc * hc + k.kte * lc, k.ktc * hs + k.kte * ls);
+        let (rc, rs) = (k.krc * hc + k.kre * lc, k.krc * hs + k.kre * ls);
+        f[0] += -(s0 * tc + c0 * ts) - (c0 * rc - s0 * rs);
+        f[1] += (c0 * tc - s0 * ts) - (s0 * rc + c0 * rs);
+        f[2] += k.kac * hh + k.kae * len;
+        f[3] += (k.ktc * hh + k.kte * len) * self.r;
     }
 }
 
@@ -435,12 +524,29 @@ pub fn cycle_forces(
     let n = series.len();
     // Per tooth position: its arcs on their own, and paired with the next position's (when
     // both have as many arcs).
-    let singles: Vec<Vec<ArcPair>> =
-        series.iter().map(|t| t.arcs.iter().map(|x| ArcPair::new(x, x)).collect()).collect();
+    // (Only where a pair cannot be blended: the arcs split or merge.)
+    let split = |i: usize| {
+        let (a, b) = (&series[i].arcs, &series[(i + 1) % n].arcs);
+        a.len() != b.len() && !a.is_empty() && !b.is_empty()
+    };
+    let singles: Vec<Vec<ArcPair>> = (0..n)
+        .map(|i| {
+            let needed = split(i) || split((i + n - 1) % n);
+            let arcs = if needed { series[i].arcs.as_slice() } else { &[] };
+            arcs.iter().map(|x| ArcPair::new(x, x)).collect()
+        })
+        .collect();
     // An arc that appears (or vanishes) between two positions grows from (shrinks to) a
-    // point in its middle with no chip.
+    // point with no chip: at its end held at φ = 0 or π (see [`ArcBlend::ends`]), else in
+    // its middle.
     let point = |x: &EngagedArc| {
-        let mid = 0.5 * (x.entry_rad + x.exit_rad);
+        let mid = if x.entry_rad <= 0.0 {
+            0.0
+        } else if x.exit_rad >= PI {
+            PI
+        } else {
+            0.5 * (x.entry_rad + x.exit_rad)
+        };
         EngagedArc { entry_rad: mid, exit_rad: mid, samples: vec![ThicknessSample { phi_rad: mid, h_mm: 0.0 }] }
     };
     let period = |i: usize| {
@@ -457,10 +563,13 @@ pub fn cycle_forces(
                 let share = growth_share(b, &series[(i + 2) % n].arcs, period((i + 1) % n) / period(i));
                 Some((b.iter().map(|y| ArcPair::new(&point(y), y)).collect(), Growth::Appear(share)))
             } else if b.is_empty() {
-                // Shrinking to a point at the next position: the sweep² blend of
-                // [`ArcBlend::ends`] (an extrapolated vanishing came too early where a sliver
-                // of an arc lingers, against the brute-force check).
-                Some((a.iter().map(|x| ArcPair::new(x, &point(x))).collect(), Growth::Linear))
+                // Shrinking to a point: a held arc's sweep falls linearly, so it vanishes when
+                // the sweep extrapolated from the position before is 0; a free one shrinks
+                // by the sweep² blend of [`ArcBlend::ends`] to the next position (extrapolated,
+                // a lingering sliver vanished too early against the brute-force check).
+                let before = (i + n - 1) % n;
+                let share = vanish_share(a, &series[before].arcs, period(before) / period(i));
+                Some((a.iter().map(|x| ArcPair::new(x, &point(x))).collect(), Growth::Vanish(share)))
             } else {
                 None
             }
@@ -501,6 +610,63 @@ pub fn cycle_forces(
     ForceSeries { samples, dt_s: dt, summary }
 }
 
+/// Largest change of the chip profile between neighbouring tooth positions, as a share of
+/// the larger chip, above which [`refine_points`] asks for a position between them.
+pub const PROFILE_CHANGE: f64 = 0.1;
+
+/// Arc lengths (mm from the cycle start, cycle length `len`) half-way between neighbouring
+/// tooth positions of `series` (sorted by arc length) where the arcs appear or vanish (so
+/// the extrapolated time of first and last contact, [`growth_share`] and [`vanish_share`],
+/// comes from positions closer to it), or change shape faster than blending follows: the
+/// same number of arcs, but h at the same relative place along an arc differs by more than
+/// [`PROFILE_CHANGE`] of the larger chip. The latter happens where a pass
+/// begins: the first chip is a lens against the edge of previous cycles alone, the next ones
+/// are cut off by the previous tooth's circle at the paper's point B, and B runs along the
+/// arc within a few teeth. Blending the two profiles at the same relative place there
+/// underestimates h by up to a third (against the brute-force check); a real position half-way
+/// ([`super::chip::tooth_samples_at`]) halves the change. The positions of a steady cut
+/// change by about 1 %.
+pub fn refine_points(series: &[ToothSample], len: f64) -> Vec<f64> {
+    let n = series.len();
+    (0..n)
+        .filter(|&i| {
+            let (a, b) = (&series[i].arcs, &series[(i + 1) % n].arcs);
+            a.is_empty() != b.is_empty()
+                || (a.len() == b.len() && a.iter().zip(b).any(|(x, y)| profile_change(x, y) > PROFILE_CHANGE))
+        })
+        .map(|i| {
+            let next = if i + 1 < n { series[i + 1].s_mm } else { len + series[0].s_mm };
+            let mid = 0.5 * (series[i].s_mm + next);
+            if mid >= len { mid - len } else { mid }
+        })
+        .collect()
+}
+
+/// max |h_a(u) − h_b(u)| / max(h_a, h_b) over the relative place u along two arcs (at both
+/// arcs' samples: h is linear between them).
+fn profile_change(a: &EngagedArc, b: &EngagedArc) -> f64 {
+    let scale = a.max_thickness_mm().max(b.max_thickness_mm());
+    if scale <= 0.0 {
+        return 0.0;
+    }
+    let at = |arc: &EngagedArc, u: f64| arc.thickness_at(arc.entry_rad + u * arc.sweep_rad());
+    let rel = |arc: &EngagedArc, phi: f64| {
+        let sweep = arc.sweep_rad();
+        if sweep > 0.0 { (phi - arc.entry_rad) / sweep } else { 0.0 }
+    };
+    let diff = |x: &EngagedArc, y: &EngagedArc| {
+        x.samples.iter().map(|p| (p.h_mm - at(y, rel(x, p.phi_rad))).abs()).fold(0.0, f64::max)
+    };
+    diff(a, b).max(diff(b, a)) / scale
+}
+
+/// `series` with the `extra` tooth samples merged in by time.
+pub fn merge_series(series: &[ToothSample], extra: Vec<ToothSample>) -> Vec<ToothSample> {
+    let mut all: Vec<ToothSample> = series.iter().cloned().chain(extra).collect();
+    all.sort_by(|x, y| x.time_s.total_cmp(&y.time_s));
+    all
+}
+
 /// How the arcs of two neighbouring tooth positions blend in time.
 #[derive(Clone, Copy, Debug)]
 enum Growth {
@@ -509,6 +675,9 @@ enum Growth {
     /// The arcs appear from a point after this share of the tooth period (see
     /// [`growth_share`]) and grow to the second position's.
     Appear(f64),
+    /// The arcs shrink to a point within this share of the tooth period (see
+    /// [`vanish_share`]).
+    Vanish(f64),
 }
 
 impl Growth {
@@ -521,25 +690,49 @@ impl Growth {
             Growth::Linear => Some(w),
             Growth::Appear(s) if w < s => None,
             Growth::Appear(s) => Some((w - s) / (1.0 - s)),
+            Growth::Vanish(s) if w >= s => None,
+            Growth::Vanish(s) => Some(w / s),
         }
     }
 }
 
+/// The measure of a set of arcs that changes linearly in time where they appear or vanish:
+/// the largest sweep S of arcs held at an end of the forward half (their free end crosses the
+/// material's edge at an angle, see [`ArcBlend::ends`]), else the largest S² (a circle
+/// crossing a boundary near tangency, S ≈ 2√(2·δ/R) for penetration δ).
+fn growth_measure(arcs: &[EngagedArc]) -> f64 {
+    let held = arcs.iter().any(|a| a.entry_rad <= 0.0 || a.exit_rad >= PI);
+    let m = arcs.iter().map(EngagedArc::sweep_rad).fold(0.0, f64::max);
+    if held { m } else { m * m }
+}
+
 /// When arcs `near` (at the position after a gap without arcs) appear, as a share of the
 /// gap's tooth period, from `far` (one position further on; `ratio` = its period over the
-/// gap's): the sweep S of an arc crossing a material boundary has S² linear in the feed (a
-/// circle cutting a straight edge, S ≈ 2√(2·δ/R) for penetration δ), so S² extrapolated from
-/// the two positions reaches 0 at the gap's share 1 − S²_near / (S²_far − S²_near)·ratio.
-/// Where the sweeps do not grow (or the arcs differ in number): the whole gap (share 0).
+/// gap's): the [`growth_measure`] extrapolated from the two positions reaches 0 at the gap's
+/// share 1 − m_near / (m_far − m_near)·ratio. Where it does not grow (or the arcs differ in
+/// number): the whole gap (share 0).
 fn growth_share(near: &[EngagedArc], far: &[EngagedArc], ratio: f64) -> f64 {
-    let sq = |arcs: &[EngagedArc]| arcs.iter().map(|a| a.sweep_rad().powi(2)).fold(0.0, f64::max);
-    let (s_near, s_far) = (sq(near), sq(far));
-    if far.len() != near.len() || s_far <= s_near || !ratio.is_finite() {
+    let (m_near, m_far) = (growth_measure(near), growth_measure(far));
+    if far.len() != near.len() || m_far <= m_near || !ratio.is_finite() {
         return 0.0;
     }
     // Share of the gap's period between the appearance and the near position.
-    let lead = (s_near / (s_far - s_near) * ratio).clamp(0.0, 1.0);
+    let lead = (m_near / (m_far - m_near) * ratio).clamp(0.0, 1.0);
     1.0 - lead
+}
+
+/// Within which share of the tooth period after the last position with arcs (`near`) they
+/// vanish, from the position before (`before`; `ratio` = its period over the gap's): held
+/// arcs when their sweep extrapolated linearly is 0, m_near / (m_before − m_near)·ratio. Free
+/// arcs (a sliver that may linger near tangency) and arcs that do not shrink: the whole
+/// period (share 1).
+fn vanish_share(near: &[EngagedArc], before: &[EngagedArc], ratio: f64) -> f64 {
+    let held = near.iter().any(|a| a.entry_rad <= 0.0 || a.exit_rad >= PI);
+    let (m_near, m_before) = (growth_measure(near), growth_measure(before));
+    if !held || before.len() != near.len() || m_before <= m_near || !ratio.is_finite() {
+        return 1.0;
+    }
+    (m_near / (m_before - m_near) * ratio).clamp(f64::MIN_POSITIVE, 1.0)
 }
 
 /// Peaks and means of a periodic series of one cycle (`omega`: spindle speed, rad/s).
@@ -693,6 +886,41 @@ mod tests {
                     / m as f64;
             assert!((mean_y / closed[1] - 1.0).abs() < 5e-3, "β {beta}: {mean_y} vs {}", closed[1]);
         }
+    }
+
+    /// The inner loop sums each flute's elements in its own frame and turns the sums once
+    /// ([`Model::add_flute`], whole slices' edge terms from [`Model::dir_sums`]): the same
+    /// forces as adding element by element in the machine frame, to rounding.
+    #[test]
+    fn flute_sums_give_the_element_by_element_forces() {
+        let c = cutter();
+        let m = Model::new(&c, &P20);
+        let (s0, c0) = 0.3f64.sin_cos();
+        let mut sums = [0.0; 6];
+        let mut direct = [0.0; 4];
+        for i in 0..SLICES {
+            // Chips 0.01–0.03 mm, lengths from half a slice to a whole one.
+            let (h, len) = (0.01 + 0.0004 * i as f64, m.dz * (0.5 + (i % 3) as f64 / 4.0));
+            let (st, ct) = m.slice_dirs[i];
+            for (sum, v) in sums.iter_mut().zip([h * len * ct, h * len * st, h * len, len * ct, len * st, len]) {
+                *sum += v;
+            }
+            let (sn, cs) = (s0 * ct + c0 * st, c0 * ct - s0 * st);
+            let (ft, fr) = ((P20.ktc * h + P20.kte) * len, (P20.krc * h + P20.kre) * len);
+            direct[0] += -ft * sn - fr * cs;
+            direct[1] += ft * cs - fr * sn;
+            direct[2] += (P20.kac * h + P20.kae) * len;
+            direct[3] += ft * m.r;
+        }
+        let mut f = [0.0; 4];
+        m.add_flute(&mut f, &sums, (c0, s0));
+        for (a, b) in f.iter().zip(direct) {
+            assert!((a - b).abs() <= 1e-9 * b.abs().max(1.0), "{a} vs {b}");
+        }
+        let (a, b) = (7, 42);
+        let sum = m.slice_dirs[a..b].iter().fold((0.0, 0.0), |s, d| (s.0 + d.0, s.1 + d.1));
+        assert!((m.dir_sums[b].0 - m.dir_sums[a].0 - sum.0).abs() < 1e-12);
+        assert!((m.dir_sums[b].1 - m.dir_sums[a].1 - sum.1).abs() < 1e-12);
     }
 
     /// Runout: equal offsets change nothing; one flute further out takes a thicker chip and the

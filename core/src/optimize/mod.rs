@@ -30,13 +30,12 @@
 //! of the job, so the result is feasible by construction; the grid-search test checks it
 //! against an independent grid over the same space.
 
-use crate::analysis::cycle_forces;
 use crate::analysis::{self, PreviousEdge, Wall, wall_profile};
 use crate::error::{Error, Param, num};
 use crate::geom::golden_min;
 use crate::job::{Job, PathKind, ValidJob, limits::MIN_FZ};
 use crate::path::Cycle;
-use crate::plan::{Metrics, cutter, plan_valid};
+use crate::plan::{Metrics, force_series, plan_valid};
 use rayon::prelude::*;
 
 /// Range of r_e searched: the paper's studied range (Table 2, 0.5–1.2).
@@ -366,10 +365,7 @@ impl Search<'_> {
             .of_class(LimitClass::FeedScaled)
             .map(|l| {
                 let value = match l.kind {
-                    LimitKind::Force => {
-                        let t_cycle = cycle.length() / feed;
-                        cycle_forces(&series, t_cycle, &cutter(job), &job.coefficients, job.rpm).summary.resultant_max_n
-                    }
+                    LimitKind::Force => force_series(job, &cycle, &edge, &series).summary.resultant_max_n,
                     _ => series.iter().map(|t| t.h_mm).fold(0.0, f64::max),
                 };
                 (*l, value)
