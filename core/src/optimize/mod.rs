@@ -35,8 +35,8 @@ use crate::analysis::{self, PreviousEdge, Wall, wall_profile};
 use crate::error::{Error, Param, num};
 use crate::geom::golden_min;
 use crate::job::{Job, PathKind, ValidJob, limits::MIN_FZ};
-use crate::path::Cycle;
-use crate::plan::{Metrics, cutter, plan_valid};
+use crate::path::{Cycle, SlotPath};
+use crate::plan::{Metrics, cutter, plan_valid, slot_real_time};
 use rayon::prelude::*;
 
 /// Range of r_e searched: the paper's studied range (Table 2, 0.5–1.2).
@@ -377,9 +377,13 @@ impl Search<'_> {
             .collect()
     }
 
-    /// Plan at step `s` with the largest feed that meets the feed-scaled limits (and the
-    /// machine's feed and the validation's f_z ≤ D/8).
-    fn at_best_feed(&self, shape: Shape, s: f64) -> Result<Scored, Error> {
+    /// The largest feed at step `s` that meets the feed-scaled limits (and the machine's feed
+    /// and the validation's f_z ≤ D/8), and whether it meets them (false: not even at the
+    /// smallest feed). h_max is proportional to f_z: one scaling meets it. F_R,max is affine
+    /// in f_z (module docs): the first correction lowers the feed by r², later ones take the
+    /// secant through the last two (feed, F_R,max) points aimed 0.05 % under the limit, so
+    /// the feed settles within 0.1 % of the tightest limit in two or three force series.
+    fn best_feed(&self, shape: Shape, s: f64) -> Result<(f64, bool), Error> {
         let v = self.job(shape, s, self.base.feed).validate()?;
         let per_fz = v.rpm * f64::from(v.teeth);
         let f_lo = MIN_FZ * per_fz * 1.000_001;
@@ -388,25 +392,56 @@ impl Search<'_> {
             f_hi = f_hi.min(m.max_speed_mm_per_s() * 60.0);
         }
         let mut feed = v.feed.clamp(f_lo, f_hi);
-        // Scale: the quantities grow in proportion to f_z; further rounds absorb the rest.
-        // Stop once the feed meets the limits within 0.1 % of the tightest (MRR within 0.1 %).
+        let mut last_force: Option<(f64, f64)> = None;
         for _ in 0..6 {
             let job = self.job(shape, s, feed).validate()?;
-            let ratio = self
-                .feed_scaled(&job)
-                .into_iter()
-                .map(|(l, v)| {
-                    let r = l.value / v;
-                    // F_R is affine in the feed (module docs): lower it by r².
-                    if l.kind == LimitKind::Force && r < 1.0 { r * r } else { r }
+            let quantities = self.feed_scaled(&job);
+            let ratio = quantities.iter().map(|(l, v)| l.value / v).fold(f64::INFINITY, f64::min);
+            if ratio >= 1.0 && ratio <= 1.001 {
+                return Ok((feed, true));
+            }
+            let target = quantities
+                .iter()
+                .map(|&(l, value)| {
+                    let r = l.value / value;
+                    if l.kind != LimitKind::Force {
+                        return feed * r;
+                    }
+                    let secant = last_force.and_then(|(f0, v0)| {
+                        let slope = (value - v0) / (feed - f0);
+                        let f = feed + (l.value * (1.0 - 5e-4) - value) / slope;
+                        (slope > 0.0 && f.is_finite() && f > 0.0).then_some(f)
+                    });
+                    last_force = Some((feed, value));
+                    secant.unwrap_or(if r < 1.0 { feed * r * r } else { feed * r })
                 })
                 .fold(f64::INFINITY, f64::min);
-            let next = (feed * ratio * (1.0 - 1e-9)).clamp(f_lo, f_hi);
-            if ratio >= 1.0 && (ratio <= 1.001 || (next - feed).abs() <= 1e-9 * feed) {
-                break;
+            let next = (target * (1.0 - 1e-9)).clamp(f_lo, f_hi);
+            if (next - feed).abs() <= 1e-9 * feed {
+                return Ok((feed, ratio >= 1.0));
             }
             feed = next;
         }
+        // Six rounds without settling: the last feed, if it meets the limits.
+        let job = self.job(shape, s, feed).validate()?;
+        let ok = self.feed_scaled(&job).iter().all(|(l, v)| *v <= l.value);
+        Ok((feed, ok))
+    }
+
+    /// Real MRR at step `s` and its best feed from the path and the machine model alone (no
+    /// walls, no second force series): the objective of the step search, whose geometric
+    /// limits hold below s_max. −∞ where the feed-scaled limits cannot be met.
+    fn mrr_at_step(&self, shape: Shape, s: f64) -> f64 {
+        let Ok((feed, true)) = self.best_feed(shape, s) else { return f64::NEG_INFINITY };
+        let Ok(job) = self.job(shape, s, feed).validate() else { return f64::NEG_INFINITY };
+        let real = slot_real_time(&job, &SlotPath::for_job(&job));
+        job.slot_width * job.step * job.depth / real.t_cycle_s * 60.0
+    }
+
+    /// Plan at step `s` with the largest feed that meets the feed-scaled limits
+    /// ([`Self::best_feed`]).
+    fn at_best_feed(&self, shape: Shape, s: f64) -> Result<Scored, Error> {
+        let (feed, _) = self.best_feed(shape, s)?;
         self.plans.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         let m = plan_valid(self.job(shape, s, feed).validate()?).metrics;
         if let Some(l) = self
@@ -435,8 +470,9 @@ impl Search<'_> {
             // MRR need not grow with s: golden section over s ∈ [s_max/20, s_max] (the MRR is
             // unimodal in s there: it rises with s while the engagement is small and falls once
             // the force limit takes the feed down faster), with the end s_max compared.
-            let neg = |x: f64| self.at_best_feed(shape, x).map_or(f64::INFINITY, |sc| -mrr_of(&sc));
-            let (x, fx) = golden_min(0.05 * s, s, 1e-2 * s, neg);
+            // Each trial is scored from the feed search and the machine model alone
+            // ([`Self::mrr_at_step`]); the chosen step is planned in full below.
+            let (x, fx) = golden_min(0.05 * s, s, 1e-2 * s, |x| -self.mrr_at_step(shape, x));
             if fx < at_max.as_ref().map_or(f64::INFINITY, |sc| -mrr_of(sc)) {
                 s = x;
                 self.at_best_feed(shape, s)?
