@@ -613,13 +613,13 @@ pub fn optimize(base: &Job, limits: &Limits, control: &Control) -> Result<Option
         let neg = |sh: Shape| -> f64 { search.score(sh, STEP_TOL).map_or(f64::INFINITY, |s| -mrr_of(&s)) };
         let dr = (ASPECT_RATIO_RANGE.1 - ASPECT_RATIO_RANGE.0) / (R_E_POINTS - 1) as f64;
         let (lo, hi) = ((shape.r_e - dr).max(ASPECT_RATIO_RANGE.0), (shape.r_e + dr).min(ASPECT_RATIO_RANGE.1));
-        shape.r_e = golden_min(lo, hi, 5e-3, |r_e| neg(Shape { r_e, ..shape })).0;
+        shape.r_e = golden_min(lo, hi, 1e-2, |r_e| neg(Shape { r_e, ..shape })).0;
         tick();
         if path == PathKind::LinearElliptical && !(control.cancelled)() {
             let dq = (D_OVER_S_RANGE.1 - D_OVER_S_RANGE.0) / (Q_POINTS - 1) as f64;
             let (lo, hi) = ((shape.q - dq).max(D_OVER_S_RANGE.0), (shape.q + dq).min(D_OVER_S_RANGE.1));
             // The end q = lo is often the best: compare it with the interior optimum.
-            let (q, f) = golden_min(lo, hi, 5e-3, |q| neg(Shape { q, ..shape }));
+            let (q, f) = golden_min(lo, hi, 1e-2, |q| neg(Shape { q, ..shape }));
             shape.q = if neg(Shape { q: lo, ..shape }) <= f { lo } else { q };
             tick();
         }
@@ -644,12 +644,12 @@ pub fn optimize(base: &Job, limits: &Limits, control: &Control) -> Result<Option
     let traced: Vec<Candidate> = all
         .par_iter()
         .filter_map(|(shape, s)| match s {
-            Scored::Feasible(c) => Some((*shape, c.job.step)),
+            Scored::Feasible(c) => Some((*shape, c.job.step, c.job.feed)),
             Scored::Infeasible { .. } => None,
         })
-        .flat_map_iter(|(shape, s_max)| {
+        .flat_map_iter(|(shape, s_max, feed)| {
             let search = &search;
-            FRONT_STEPS.iter().filter_map(move |&k| match search.at_best_feed(shape, k * s_max, None) {
+            FRONT_STEPS.iter().filter_map(move |&k| match search.at_best_feed(shape, k * s_max, Some(feed)) {
                 Ok(Scored::Feasible(c)) => Some(*c),
                 _ => None,
             })
