@@ -21,7 +21,9 @@
 //! more slowly than s grows, since h/f_z ≈ sin of the engagement, and the real time grows
 //! with the path, not with s), so each shape is scored at (s_max, its largest feed) — except
 //! under a force limit, where F_R grows with the engagement and the feed it allows falls
-//! faster than s grows beyond some step: then s is searched by golden section. The
+//! faster than s grows beyond some step: then s is searched by golden section, each trial
+//! scored from two force series (the feed by the secant on the affine F_R,max) and the
+//! machine model, without the walls or a full plan; only the chosen step is planned. The
 //! shape variables are searched per path type: none for circular and circular-type paths;
 //! r_e for the elliptical path by a coarse grid over the paper's range 0.5–1.2 (the
 //! bracketing start) and golden-section refinement around its best point; r_e and the ratio
@@ -435,7 +437,7 @@ impl Search<'_> {
             let job = self.job(shape, s, feed).validate()?;
             let quantities = self.feed_scaled(&job);
             let ratio = quantities.iter().map(|(l, v)| l.value / v).fold(f64::INFINITY, f64::min);
-            if ratio >= 1.0 && ratio <= 1.001 {
+            if (1.0..=1.001).contains(&ratio) {
                 return Ok((feed, true));
             }
             let (target, _) = Self::feed_target(&quantities, feed, last, None);
@@ -517,7 +519,7 @@ impl Search<'_> {
                 last.set(feed.or(last.get()));
                 -mrr
             };
-            let (x, fx) = golden_min(0.05 * s, s, step_tol * s, &trial);
+            let (x, fx) = golden_min(0.05 * s, s, step_tol * s, trial);
             if fx < trial(s) {
                 s = x;
             }
