@@ -112,7 +112,7 @@ pub enum Param {
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 71] = [
+    pub const ALL: [Param; 72] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,

@@ -175,6 +175,8 @@ pub fn plan_valid(job: ValidJob) -> Plan {
         || tooth_series(&paper, &edge, r, f_z, feed_mm_per_s),
         || rayon::join(|| wall_profile(&paper, r, Wall::Left), || wall_profile(&paper, r, Wall::Right)),
     );
+    // Forces from the analysis-frame series (refined there), mirrored inside for climb.
+    let forces = force_series(&job, &paper, &edge, &series);
     let (series, left_wall, right_wall) = match job.direction {
         Direction::Conventional => (series, left_wall, right_wall),
         Direction::Climb => {
@@ -188,7 +190,6 @@ pub fn plan_valid(job: ValidJob) -> Plan {
     let real = slot_real_time(&job, &path);
     let mrr_at = |t: f64| job.slot_width * job.step * job.depth / t * 60.0;
     let mrr = mrr_at(t_cycle);
-    let forces = force_series(&job, &path.cycle, &edge, &series);
     let xs: Vec<f64> = series.iter().map(|t| t.x_mm).collect();
     let imprints = imprint_density(&xs, stride, r, job.slot_width, job.step);
     let f = &forces.summary;
@@ -268,6 +269,8 @@ const FORCE_REFINE_ROUNDS: usize = 3;
 /// tooth positions added half-way where the chip changes shape faster than the force
 /// model's blending follows ([`analysis::force::refine_points`], up to
 /// [`FORCE_REFINE_ROUNDS`] times: at most an eighth of a tooth period apart there).
+/// `cycle`, `edge` and `series` are in the analysis frame (the paper's clockwise cycle,
+/// [`Cycle::for_job`]); for a climb job the refined series is mirrored before the forces.
 pub fn force_series(job: &ValidJob, cycle: &Cycle, edge: &PreviousEdge, series: &[ToothSample]) -> ForceSeries {
     let (r, f_z, feed) = (job.tool_radius(), job.f_z(), job.feed / 60.0);
     let len = cycle.length();
@@ -279,6 +282,10 @@ pub fn force_series(job: &ValidJob, cycle: &Cycle, edge: &PreviousEdge, series: 
         }
         let extra = analysis::chip::tooth_samples_at(cycle, edge, r, f_z, feed, &at);
         dense = std::borrow::Cow::Owned(analysis::force::merge_series(&dense, extra));
+    }
+    // The forces of a climb job: on the mirrored series, the spindle still turning M3.
+    if job.direction == Direction::Climb {
+        dense = std::borrow::Cow::Owned(dense.iter().map(ToothSample::mirrored_x).collect());
     }
     cycle_forces(&dense, len / feed, &cutter(job), &job.coefficients, job.rpm)
 }

@@ -484,7 +484,7 @@ mod tests {
         let m = plan(&Job::default()).expect("plan").metrics;
         let json = serde_json::to_value(&m).expect("json");
         let fields = json.as_object().expect("object");
-        assert_eq!(fields.len(), METRICS.len() + 1, "every field but `path` has an entry");
+        assert_eq!(fields.len(), METRICS.len() + 2, "every field but `path` and `direction` has an entry");
         for q in METRICS {
             let v = fields.get(q.key).and_then(serde_json::Value::as_f64);
             // A metric without a value (PI without Ra,max) is NaN in the table, null in JSON.
