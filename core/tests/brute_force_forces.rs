@@ -138,8 +138,19 @@ fn overlap(a: f64, b: f64, lo: f64, hi: f64) -> Option<(f64, f64)> {
 
 #[test]
 fn force_series_agrees_with_brute_force_at_every_sample() {
+    check(Job::default());
+}
+
+/// Climb milling (issue #12 item 4): the model mirrors the paper's engaged arcs (φ → π − φ)
+/// and turns the spindle M3 as before; the brute force sees only the climb path itself.
+#[test]
+fn climb_force_series_agrees_with_brute_force_at_every_sample() {
+    check(Job { direction: trochoplan_core::job::Direction::Climb, ..Job::default() });
+}
+
+fn check(job: Job) {
     let refine: usize = std::env::var("BRUTE_REFINE").ok().and_then(|x| x.parse().ok()).unwrap_or(1);
-    let p = plan(&Job::default()).expect("default job");
+    let p = plan(&job).expect("valid job");
     let (r, f_z) = (p.job.tool_radius(), p.metrics.f_z_mm);
     let delta = DELTA / refine as f64;
     let d = Dense::new(&p.path.cycle, r, delta);
