@@ -134,8 +134,6 @@ impl Cycle {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SlotPath {
     pub kind: PathKind,
-    /// Conventional: the paper's clockwise cycles; climb: mirrored in x = 0.
-    pub direction: Direction,
     pub cycle: Cycle,
     /// y of the first cycle origin (mm, negative: the tool starts outside the stock).
     pub first_origin_y: f64,
@@ -160,7 +158,7 @@ impl SlotPath {
             + job.tool_radius();
         let first_origin_y = -reach;
         let cycles = ((job.slot_length - first_origin_y) / job.step).ceil() as usize + 1;
-        SlotPath { kind: job.path, direction: job.direction, cycle, first_origin_y, cycles }
+        SlotPath { kind: job.path, cycle, first_origin_y, cycles }
     }
 
     /// Origin of cycle `i`.
