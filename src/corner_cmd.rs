@@ -78,6 +78,11 @@ pub struct CornerArgs {
         default_value = Direction::Climb.name()
     )]
     direction: Direction,
+    /// How near the corner-point arcs reach the corner point (mm): the last arc's tool-centre
+    /// radius δ, the corner is cut to radius r + δ; 0: Wu et al.'s straight move into the tool
+    /// corner point (reads π − angle there). 0, or 0.001 to 1.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = CornerRequest::DEFAULT.corner_tolerance_mm)]
+    corner_tolerance: f64,
     #[command(flatten)]
     nc: CornerExportArgs,
 }
@@ -99,6 +104,7 @@ impl CornerArgs {
             isometric_radius_mm: self.isometric_radius,
             spacing_mm: self.spacing,
             direction: self.direction,
+            corner_tolerance_mm: self.corner_tolerance,
         }
     }
 }
@@ -670,15 +676,42 @@ struct CornerOut {
     circles: Vec<CircleOut>,
     path_length_mm: f64,
     time_s: f64,
-    /// Measured with the independent evaluator over the plan's material model.
+    /// Measured with the independent evaluator over the plan's material model: the maximum
+    /// over every move (legs, circles, links, the way into the corner point).
     max_engagement_deg: f64,
     max_engagement_at: [f64; 2],
+    /// Every move is at depth: the path length.
+    length_at_depth_mm: f64,
+    link_length_mm: f64,
+    air_length_mm: f64,
+    by_kind: Vec<KindOut>,
+    /// The way into the corner point: arcs down to the corner tolerance, or the straight move.
+    corner_point: CornerTipOut,
     plain_max_engagement_deg: f64,
     plain_path_length_mm: f64,
     notes: Vec<String>,
     path: Vec<Segment>,
     #[serde(skip_serializing_if = "Option::is_none")]
     nc_export: Option<NcExportOut>,
+}
+
+/// The way into a corner's corner point.
+#[derive(Serialize)]
+struct CornerTipOut {
+    /// 0: Wu et al.'s straight move into the tool corner point.
+    corner_tolerance_mm: f64,
+    /// Tool-centre radii of the corner-point arcs (mm), in machining order.
+    arc_radii_mm: Vec<f64>,
+    /// Material left on the bisector (mm): the corner is cut to radius r + δ.
+    residual_mm: f64,
+    /// Deepest radial cut of one arc (or of the straight move) on the bisector (mm).
+    max_radial_depth_mm: f64,
+    max_engagement_deg: f64,
+    at: [f64; 2],
+    /// Chip thickness per tooth feed at the peak, h_max/f_z = sin(peak) (1 at 90° and above).
+    hmax_per_fz: f64,
+    /// The limit it is planned to (deg): the target a* for arcs, π − angle-derived for the move.
+    limit_deg: f64,
 }
 
 /// What `--export` wrote.
@@ -745,6 +778,8 @@ pub fn corner(args: &CornerArgs) -> Result<String, String> {
     };
     let s = report.settings();
     let (plan, mx) = (&report.plan, report.profile.max());
+    let by_kind = report.by_kind();
+    let tip = by_kind.iter().find(|k| matches!(k.kind, MoveKind::CornerPoint | MoveKind::Tip));
     let out = CornerOut {
         method: plan.method.name(),
         corner_angle_deg: report.angle_deg,
@@ -768,6 +803,20 @@ pub fn corner(args: &CornerArgs) -> Result<String, String> {
         time_s: plan.time_s,
         max_engagement_deg: report.profile.max_angle().to_degrees(),
         max_engagement_at: mx.map_or([f64::NAN; 2], |m| [m.x_mm, m.y_mm]),
+        length_at_depth_mm: plan.path_length_mm,
+        link_length_mm: report.link_length_mm(),
+        air_length_mm: report.air_length_mm(),
+        by_kind: by_kind.iter().map(kind_out).collect(),
+        corner_point: CornerTipOut {
+            corner_tolerance_mm: s.corner_tolerance.unwrap_or(0.0),
+            arc_radii_mm: plan.corner_point.as_ref().map_or(Vec::new(), |c| c.radii_mm.clone()),
+            residual_mm: report.row.corner_residual_mm,
+            max_radial_depth_mm: report.row.tip_sliver_mm,
+            max_engagement_deg: tip.map_or(0.0, |t| t.max_rad.to_degrees()),
+            at: tip.map_or([f64::NAN; 2], |t| [t.at.x, t.at.y]),
+            hmax_per_fz: tip.map_or(0.0, |t| t.max_rad.min(0.5 * std::f64::consts::PI).sin()),
+            limit_deg: report.row.tip_limit_deg,
+        },
         plain_max_engagement_deg: report.plain_profile.max_angle().to_degrees(),
         plain_path_length_mm: report.plain.path_length_mm,
         notes: plan.notes.clone(),

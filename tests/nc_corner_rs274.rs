@@ -147,3 +147,67 @@ fn export_errors_name_the_problem() {
     assert!(!out.status.success() && err.contains("depth") && err.contains("-1"), "{err}");
     assert!(!f.exists(), "no file on error");
 }
+
+/// FreeCAD 0.20 Adaptive's peak at a corner of this angle cleared from outside (issue #12).
+fn freecad_peak_deg(angle: f64) -> Option<f64> {
+    [(60.0, 74.0), (90.0, 66.0), (120.0, 59.5)].iter().find(|(a, _)| *a == angle).map(|&(_, p)| p)
+}
+
+/// Issue #12 acceptance for corners cleared from outside, by the evaluator over the program
+/// read back through rs274: the peak over every move at depth (legs, circles, links, the
+/// corner-point arcs) stays within a* + 1° and below FreeCAD's corner peak at 60°, 90° and 120°;
+/// the JSON's peak is the read-back one within 0.5°; and no plunge: wherever the tool moves down
+/// below Z0 its whole disc is free of material (outside the corner's stock, or inside what the
+/// plan's material model has cut before: sampled on a polar grid over the disc).
+#[test]
+fn corner_programs_read_back_stay_within_the_target_without_a_plunge() {
+    use nc_common::segments_of;
+    use trochoplan_core::corner::{CornerMethod, CornerRequest, EvaluatorOptions, engagement_profile, evaluate};
+    use trochoplan_core::geom::{distance_to_piece, p2};
+    let dir = tempfile::tempdir().expect("tempdir");
+    for angle in [30.0, 45.0, 60.0, 90.0, 120.0, 150.0] {
+        for method in [CornerMethod::Variable, CornerMethod::Isometric, CornerMethod::MedialAxis] {
+            let label = format!("{} {angle}°", method.name());
+            let a = format!("{angle}");
+            let (file, _) = export(
+                dir.path(),
+                &format!("{}_{angle}.ngc", method.name()),
+                &["--angle", &a, "--method", method.name()],
+            );
+            let json: serde_json::Value = serde_json::from_slice(
+                &run_corner(&["--angle", &a, "--method", method.name(), "--spacing", "0.1"]).stdout,
+            )
+            .expect("json");
+            let report =
+                evaluate(&CornerRequest { angle_deg: angle, method, ..CornerRequest::default() }).expect("plan");
+            let (stock, precut) = (&report.plan.stock, &report.plan.precut);
+            let all = motions(&interpret(&file).expect("rs274"));
+            for m in &all {
+                let (s, e) = (m.start(), m.end());
+                if e[2] < s[2] - 1e-9 && e[2] < -1e-9 {
+                    let c = p2(e[0], e[1]);
+                    for i in 0..=20 {
+                        for j in 0..72 {
+                            let (rho, th) =
+                                (R * (1.0 - 1e-6) * i as f64 / 20.0, j as f64 * std::f64::consts::TAU / 72.0);
+                            let q = c + p2(th.cos(), th.sin()) * rho;
+                            let cut_before = precut.iter().any(|p| distance_to_piece(p, q) < R);
+                            assert!(!stock.contains(q) || cut_before, "{label}: plunge into material at {c:?}: {m:?}");
+                        }
+                    }
+                }
+            }
+            let path = segments_of(&cut(&all, DEPTH, 1e-4));
+            let prof = engagement_profile(stock, precut, &path, &EvaluatorOptions::new(R, 0.1)).expect("profile");
+            let peak = prof.max_angle().to_degrees();
+            let target = json["target_deg"].as_f64().expect("target");
+            eprintln!("{label}: read back peak {peak:.2}° (target {target:.2}°), {:.1} mm", prof.path_length_mm);
+            assert!(peak <= target + 1.0, "{label}: peak {peak:.2}° at {:?}", prof.max());
+            if let Some(freecad) = freecad_peak_deg(angle) {
+                assert!(peak < freecad, "{label}: {peak:.2}° ≥ FreeCAD's {freecad}°");
+            }
+            let planned = json["max_engagement_deg"].as_f64().expect("max");
+            assert!((planned - peak).abs() < 0.5, "{label}: plan {planned:.2}° vs read back {peak:.2}°");
+        }
+    }
+}

@@ -574,9 +574,10 @@ fn numbers(ui: &mut egui::Ui, r: &CornerResult) {
         ui.label("");
         ui.label("max engagement");
         ui.label("body / tip (limit)").on_hover_text(
-            "Body: everything but the final move into the tool's corner point. Tip: that move, which touches \
-             both walls and engages about 180° minus the corner angle over a thin sliver; its stated limit in \
-             brackets (see the README's acceptance table). Measured by the evaluator.",
+            "Body: everything but the way into the corner point. Tip: that way in — arcs tangent to both walls \
+             shrinking to the corner tolerance (0.005 mm), each planned to the target a*, so the corner is cut \
+             to radius r + 0.005 mm; its stated limit in brackets (see the README's acceptance table). \
+             Measured by the evaluator.",
         );
         ui.label("path length");
         ui.label("time");

@@ -3,13 +3,19 @@
 //! evaluator ([`super::evaluator`]), with path length and machining time.
 //!
 //! Stated limit (DERIVED): every strategy ends its chain of wall-tangent circles when the next
-//! tool-centre radius drops below r_min (domain-spec §3.3) and then moves into the tool corner
-//! point U0, where the tool touches both walls. The material left there is a sliver between
-//! the last offset circle and the walls; the tool periphery outside the last circle is an arc
-//! of π − 2α for any small last radius ρ (two circles of radii r and r + ρ whose centres are
-//! ρ/sin α apart cross at ±(π/2 − α) about the bisector), while the sliver is only
-//! ρ(1/sin α − 1) thick. So the final move is reported separately ("tip") and bounded by
-//! max(a* + 1°, π − 2α + 1°); the rest of the path ("body") must stay within a* + 1°.
+//! tool-centre radius drops below r_min (domain-spec §3.3). From there the "tip" — the way into
+//! the corner point — is reported apart from the rest of the path ("body", which must stay
+//! within a* + 1°):
+//! - with a corner tolerance δ (the default of `trochoplan corner`, issue #12 item 3), arcs
+//!   tangent to both walls shrink to δ, each planned to a* by the derivation of
+//!   [`crate::pocket::adaptive::next_corner_point_radius`]: the tip's limit is a* itself, and
+//!   the corner is left with radius r + δ;
+//! - without (Wu et al.), the tool moves into the tool corner point U0, where it touches both
+//!   walls. The material left there is a sliver between the last offset circle and the walls;
+//!   the tool periphery outside the last circle is an arc of π − 2α for any small last radius
+//!   ρ (two circles of radii r and r + ρ whose centres are ρ/sin α apart cross at ±(π/2 − α)
+//!   about the bisector), while the sliver is only ρ(1/sin α − 1) thick: the tip is bounded by
+//!   max(a* + 1°, π − 2α + 1°).
 
 use super::evaluator::{EngagementProfile, EvaluatorOptions};
 use super::geometry::Corner;
@@ -31,14 +37,19 @@ pub struct AcceptanceRow {
     pub max_deg: f64,
     /// Peak engagement except the final move into the corner point.
     pub body_max_deg: f64,
-    /// Peak engagement of the final move into the corner point.
+    /// Peak engagement of the way into the corner point (module docs).
     pub tip_deg: f64,
-    /// Stated limit of the final move (deg): the arc of the tool periphery at U0 outside the
-    /// last offset circle, 2(π − ψ) with cos ψ = (r² + e² − R²)/(2re), e = ρ/sin α, R = r + ρ;
-    /// it tends to π − 2α as ρ → 0.
+    /// Stated limit of the way in (deg): a* for corner-point arcs; for Wu et al.'s final move
+    /// the arc of the tool periphery at U0 outside the last offset circle, 2(π − ψ) with
+    /// cos ψ = (r² + e² − R²)/(2re), e = ρ/sin α, R = r + ρ, which tends to π − 2α as ρ → 0.
     pub tip_limit_deg: f64,
-    /// Radial thickness of the sliver cut by the final move, ρ_last(1/sin α − 1) (mm).
+    /// Radial thickness of the sliver cut by the way in (mm): the deepest corner-point arc's,
+    /// or ρ_last(1/sin α − 1) for the final move into U0.
     pub tip_sliver_mm: f64,
+    /// Material left on the bisector at the corner (mm): δ(1/sin α − 1) after corner-point
+    /// arcs, 0 after a move into U0 (and for the plain ring).
+    #[serde(default)]
+    pub corner_residual_mm: f64,
     pub circles: usize,
     pub path_length_mm: f64,
     pub time_s: f64,
@@ -126,11 +137,11 @@ pub fn row(
     (plan, prof): (&CornerPlan, &EngagementProfile),
     (plain, plain_prof): (&CornerPlan, &EngagementProfile),
 ) -> AcceptanceRow {
-    // The final move into U0 is reported apart (see the module docs).
-    let (tip_start, tip_end) = match plan.tip_segment {
-        Some(i) => {
-            let start: f64 = plan.path[..i].iter().map(|s| s.length()).sum();
-            (start, start + plan.path[i].length())
+    // The way into the corner point is reported apart (see the module docs).
+    let (tip_start, tip_end) = match &plan.tip_segments {
+        Some(range) => {
+            let start: f64 = plan.path[..range.start].iter().map(|s| s.length()).sum();
+            (start, start + plan.path[range.clone()].iter().map(|s| s.length()).sum::<f64>())
         }
         None => (f64::INFINITY, f64::INFINITY),
     };
@@ -145,8 +156,13 @@ pub fn row(
     let sin = corner.half_angle.sin();
     let r = settings.tool_radius;
     let rho = plan.circles.last().map_or(0.0, |c| c.tool_circle.radius);
-    let sliver = rho * (1.0 / sin - 1.0);
-    let tip_limit = if rho > 0.0 {
+    let (sliver, residual) = match &plan.corner_point {
+        Some(arcs) => (arcs.max_radial_depth_mm, arcs.residual_mm),
+        None => (rho * (1.0 / sin - 1.0), 0.0),
+    };
+    let tip_limit = if plan.corner_point.is_some() {
+        settings.target
+    } else if rho > 0.0 {
         let (e, big_r) = (rho / sin, r + rho);
         let psi = ((r * r + e * e - big_r * big_r) / (2.0 * r * e)).clamp(-1.0, 1.0).acos();
         2.0 * (std::f64::consts::PI - psi)
@@ -163,6 +179,7 @@ pub fn row(
         tip_deg: tip.to_degrees(),
         tip_limit_deg: tip_limit.to_degrees(),
         tip_sliver_mm: sliver,
+        corner_residual_mm: residual,
         circles: plan.circles.len(),
         path_length_mm: plan.path_length_mm,
         time_s: plan.time_s,
@@ -180,11 +197,11 @@ pub fn acceptance_table(req: &CornerRequest) -> Result<Vec<AcceptanceRow>, Error
 /// The table as Markdown (for the README and the CLI).
 pub fn markdown(rows: &[AcceptanceRow]) -> String {
     let mut s = String::from(
-        "| corner | method | target | plain max | max | body max | tip | tip limit | tip sliver mm | circles | length mm | time s | plain length mm | plain time s |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+        "| corner | method | target | plain max | max | body max | tip | tip limit | tip sliver mm | residual mm | circles | length mm | time s | plain length mm | plain time s |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for r in rows {
         s.push_str(&format!(
-            "| {:.0}° | {} | {:.2}° | {:.2}° | {:.2}° | {:.2}° | {:.2}° | {:.2}° | {:.3} | {} | {:.1} | {:.1} | {:.1} | {:.1} |\n",
+            "| {:.0}° | {} | {:.2}° | {:.2}° | {:.2}° | {:.2}° | {:.2}° | {:.2}° | {:.3} | {:.4} | {} | {:.1} | {:.1} | {:.1} | {:.1} |\n",
             r.corner_angle_deg,
             r.method.name(),
             r.target_deg,
@@ -194,6 +211,7 @@ pub fn markdown(rows: &[AcceptanceRow]) -> String {
             r.tip_deg,
             r.tip_limit_deg,
             r.tip_sliver_mm,
+            r.corner_residual_mm,
             r.circles,
             r.path_length_mm,
             r.time_s,

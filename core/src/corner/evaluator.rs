@@ -162,6 +162,15 @@ impl EngagementProfile {
     pub fn max_angle(&self) -> f64 {
         self.max().map_or(0.0, |s| s.angle_rad)
     }
+
+    /// Path length between consecutive samples that both engage less than `threshold` (rad):
+    /// the moves in air (issue #12: engagement < 1°).
+    pub fn air_length_mm(&self, threshold: f64) -> f64 {
+        self.samples
+            .windows(2)
+            .filter(|w| w[0].angle_rad < threshold && w[1].angle_rad < threshold)
+            .fold(0.0, |sum, w| sum + w[1].s_mm - w[0].s_mm)
+    }
 }
 
 /// Exact distance from `p` to the line or arc of `k` (its end points precomputed).

@@ -7,10 +7,14 @@ use super::engagement::{radial_depth_for_engagement, straight_engagement};
 use super::evaluator::{EngagementProfile, EvaluatorOptions, engagement_profile};
 use super::geometry::Corner;
 use super::method::CornerMethod;
-use super::strategy::{CornerPlan, CornerScenario, CornerSettings, DEFAULT_T1, plan_corner, tool_diameter};
+use super::strategy::{
+    CornerPlan, CornerScenario, CornerSettings, DEFAULT_T1, plan_corner, tool_diameter, validate_corner_tolerance,
+};
 use crate::error::{Error, Param, num};
 use crate::job::Direction;
+use crate::pocket::adaptive::{AIR_ENGAGEMENT_RAD, DEFAULT_CORNER_TOLERANCE_MM};
 use crate::pocket::mirror::{flip_y, flip_y_segment, flipped_y_polygon};
+use crate::pocket::{KindMax, MoveKind};
 use serde::{Deserialize, Serialize};
 
 /// One symmetric corner to plan and measure, in the user's units (degrees, mm, mm/min): the
@@ -44,12 +48,20 @@ pub struct CornerRequest {
     /// Climb (counter-clockwise circles and ring with M3) or conventional (the mirror image).
     #[serde(default)]
     pub direction: Direction,
+    /// Corner tolerance δ (mm): the way into the corner point ends on an arc of tool-centre
+    /// radius δ (issue #12 item 3); 0: Wu et al.'s straight move into the tool corner point.
+    #[serde(default = "default_corner_tolerance")]
+    pub corner_tolerance_mm: f64,
+}
+
+fn default_corner_tolerance() -> f64 {
+    DEFAULT_CORNER_TOLERANCE_MM
 }
 
 impl CornerRequest {
     /// The defaults of `trochoplan corner` and of the Corner tab: a 90° corner, variable
     /// circles, D = 10 mm, a_str = 46°, t1 = 15 %, ε = 0.5°, 100 mm walls, 600 mm/min, the
-    /// evaluator every 0.1 mm.
+    /// evaluator every 0.1 mm, climb, corner-point arcs down to δ = 0.005 mm.
     pub const DEFAULT: CornerRequest = CornerRequest {
         angle_deg: 90.0,
         method: CornerMethod::Variable,
@@ -64,6 +76,7 @@ impl CornerRequest {
         isometric_radius_mm: None,
         spacing_mm: 0.1,
         direction: Direction::Climb,
+        corner_tolerance_mm: DEFAULT_CORNER_TOLERANCE_MM,
     };
 
     /// The validated settings of the corner plan. Each error names the input (as the CLI flag
@@ -103,6 +116,17 @@ impl CornerRequest {
         s.edge_length = self.edge_length_mm;
         s.feed_mm_per_min = self.feed_mm_per_min;
         s.isometric_radius = self.isometric_radius_mm;
+        let delta = finite(Param::CornerTolerance, self.corner_tolerance_mm)?;
+        if delta != 0.0 {
+            validate_corner_tolerance(delta).map_err(|_| {
+                Error::param(
+                    Param::CornerTolerance,
+                    delta,
+                    "0 (into the corner point, Wu et al.) or from 0.001 to 1 mm",
+                )
+            })?;
+            s.corner_tolerance = Some(delta);
+        }
         s.validate()?;
         Ok(s)
     }
@@ -136,6 +160,23 @@ impl CornerReport {
     /// The settings the corner was planned with.
     pub fn settings(&self) -> &CornerSettings {
         &self.scenario.settings
+    }
+
+    /// Per kind of move (U and V legs, circles, links, corner-point arcs or the tip): the
+    /// largest engagement measured and where, and the length (issue #12 item 6).
+    pub fn by_kind(&self) -> Vec<KindMax> {
+        crate::pocket::perforative::maxima(&self.profile, &self.plan.path, &self.plan.kinds, &[]).0
+    }
+
+    /// Length of the moves along U between circles and of the isometric return (mm).
+    pub fn link_length_mm(&self) -> f64 {
+        let kinds = self.plan.path.iter().zip(&self.plan.kinds);
+        kinds.filter(|(_, k)| **k == MoveKind::Link).fold(0.0, |sum, (s, _)| sum + s.length())
+    }
+
+    /// Length of the moves that engage less than 1° (mm).
+    pub fn air_length_mm(&self) -> f64 {
+        self.profile.air_length_mm(AIR_ENGAGEMENT_RAD)
     }
 }
 

@@ -24,6 +24,7 @@ use super::request::CornerRequest;
 use crate::error::{Error, Param, num};
 use crate::geom::{Circle, P2, Polygon, Segment};
 use crate::job::limits::MIN_SIZE_MM;
+use crate::pocket::MoveKind;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 
@@ -51,6 +52,12 @@ pub struct CornerSettings {
     pub feed_mm_per_min: f64,
     /// Tool-centre radius rh of isometric circles (mm); `None` = r (domain-spec §3.4 TEST).
     pub isometric_radius: Option<f64>,
+    /// How the strategies reach the corner point (issue #12 item 3): `Some(δ)` by arcs tangent
+    /// to both walls that shrink to the tool-centre radius δ (mm), each within the target
+    /// ([`corner_point_radii`]); `None`: Wu et al.'s straight move into the tool corner point
+    /// U0 after the last circle (reads up to π − 2α there, [`super::acceptance`]).
+    #[serde(default)]
+    pub corner_tolerance: Option<f64>,
 }
 
 impl CornerSettings {
@@ -68,6 +75,7 @@ impl CornerSettings {
             edge_length: d.edge_length_mm,
             feed_mm_per_min: d.feed_mm_per_min,
             isometric_radius: d.isometric_radius_mm,
+            corner_tolerance: None,
         })
     }
 
@@ -113,6 +121,9 @@ impl CornerSettings {
         }
         if !(self.feed_mm_per_min.is_finite() && self.feed_mm_per_min > 0.0) {
             return Err(Error::param(Param::Feed, self.feed_mm_per_min, "a finite number > 0 mm/min"));
+        }
+        if let Some(d) = self.corner_tolerance {
+            validate_corner_tolerance(d)?;
         }
         let rh = self.rh();
         if !(rh.is_finite() && rh >= self.r_min() && rh <= 10.0 * r) {
@@ -224,9 +235,55 @@ pub struct CornerPlan {
     /// the stock polygon and the tool paths cut before.
     pub stock: Polygon,
     pub precut: Vec<Segment>,
-    /// Index in `path` of the final move into the tool corner point (see
-    /// [`super::acceptance`] for its stated engagement limit); `None` for the plain ring.
-    pub tip_segment: Option<usize>,
+    /// What each move of `path` does: U and V legs [`MoveKind::Ring`], circles, links along U,
+    /// corner-point arcs with their moves, or Wu et al.'s [`MoveKind::Tip`].
+    pub kinds: Vec<MoveKind>,
+    /// Indices in `path` of the way into the corner point (see [`super::acceptance`] for its
+    /// stated engagement limit): the corner-point arcs with their moves along the walls, or
+    /// Wu et al.'s final straight move into the tool corner point; `None` for the plain ring.
+    pub tip_segments: Option<std::ops::Range<usize>>,
+    /// The corner-point arcs, when the settings ask for them.
+    pub corner_point: Option<CornerPointArcs>,
+}
+
+/// The arcs into the corner point (issue #12 item 3): tangent to both walls (tool centre on U
+/// and V), radii shrinking from the last circle's to the corner tolerance δ.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CornerPointArcs {
+    /// Tool-centre radii of the arcs in machining order (mm); the last is δ.
+    pub radii_mm: Vec<f64>,
+    /// Material left on the bisector at the corner, δ(1/sin α − 1) (mm): the corner is cut to
+    /// radius r + δ.
+    pub residual_mm: f64,
+    /// Largest radial depth an arc cuts on the bisector, (ρ_k − ρ_k+1)(1/sin α − 1) (mm).
+    pub max_radial_depth_mm: f64,
+}
+
+/// Range of the corner tolerance δ (mm), shared with adaptive pockets: from 0.001 to 1.
+pub fn validate_corner_tolerance(d: f64) -> Result<(), Error> {
+    if !(d.is_finite() && (0.001..=1.0).contains(&d)) {
+        return Err(Error::param(Param::CornerTolerance, d, "from 0.001 to 1 mm"));
+    }
+    Ok(())
+}
+
+/// Tool-centre radii of the corner-point arcs after a wall-tangent arc or circle of radius
+/// `rho0` (mm), down to `delta`: each from [`crate::pocket::adaptive::next_corner_point_radius`]
+/// (DERIVED there: the material before arc k+1 is the cap outside arc k's tool envelope, which
+/// a full wall-tangent circle leaves exactly), so every arc engages at most `target`.
+/// `interior` is the corner's interior angle 2α.
+pub fn corner_point_radii(rho0: f64, interior: f64, r: f64, target: f64, delta: f64) -> Vec<f64> {
+    let mut radii = Vec::new();
+    let mut rho = rho0;
+    while rho > delta * (1.0 + 1e-9) && radii.len() < MAX_CIRCLES {
+        let next = crate::pocket::adaptive::next_corner_point_radius(rho, interior, r, target, delta);
+        if next >= rho * (1.0 - 1e-9) {
+            break;
+        }
+        radii.push(next);
+        rho = next;
+    }
+    radii
 }
 
 /// Limit point M of the bisection (Wu et al. §4.2.1 step 1; domain-spec §3.3, DERIVED):
@@ -381,9 +438,18 @@ pub fn plan_corner(sc: &CornerScenario, method: CornerMethod) -> Result<CornerPl
         CornerMethod::Variable => (variable_circles(sc)?, None),
         CornerMethod::Isometric => isometric_circles(sc, &mut notes)?,
     };
-    let path = ring_path(sc, &circles, leg_end);
+    let (mut moves, at) = ring_path(sc, &circles, leg_end);
+    let (mut tip_segments, mut corner_point) = (None, None);
+    match circles.last() {
+        None => moves.push(Segment::Line { start: at, end: sc.ring_end }, MoveKind::Ring), // through U0
+        Some(last) => {
+            let start = moves.path.len();
+            corner_point = into_corner_point(&mut moves, sc, last.tool_circle.radius, at, Some(sc.ring_end));
+            tip_segments = Some(start..moves.path.len() - 1);
+        }
+    }
+    let Moves { path, kinds } = moves;
     let len: f64 = path.iter().map(Segment::length).sum();
-    let tip_segment = if circles.is_empty() { None } else { Some(path.len() - 2) };
     Ok(CornerPlan {
         method,
         circles,
@@ -393,8 +459,62 @@ pub fn plan_corner(sc: &CornerScenario, method: CornerMethod) -> Result<CornerPl
         notes,
         stock: sc.stock.clone(),
         precut: sc.previous_ring.clone(),
-        tip_segment,
+        kinds,
+        tip_segments,
+        corner_point,
     })
+}
+
+/// The way into the corner point after the last wall-tangent circle (tool-centre radius
+/// `rho_last`, the tool at `at`, its tangent point on U), then along V to `end` if given.
+/// With a corner tolerance δ: the corner-point arcs of [`corner_point_radii`] — per arc a move
+/// along U to its tangent point, the arc (counter-clockwise through π − 2α) to its tangent
+/// point on V and, but after the last, back on its chord (between the arc and the last circle,
+/// cut) — so the tool never reaches U0 and the corner is cut to radius r + δ. Without: Wu et
+/// al.'s straight move into U0. The last move (along V) is not part of the way in. Returns
+/// the arcs, if any.
+fn into_corner_point(
+    moves: &mut Moves,
+    sc: &CornerScenario,
+    rho_last: f64,
+    at: P2,
+    end: Option<P2>,
+) -> Option<CornerPointArcs> {
+    let s = sc.settings;
+    let Some(delta) = s.corner_tolerance else {
+        moves.push(Segment::Line { start: at, end: sc.corner_point }, MoveKind::Tip);
+        if let Some(e) = end {
+            moves.push(Segment::Line { start: sc.corner_point, end: e }, MoveKind::Ring);
+        }
+        return None;
+    };
+    let (corner, r) = (&sc.corner, s.tool_radius);
+    let (n_in, n_out, alpha) = (corner.normal_in(), corner.normal_out(), corner.half_angle);
+    let radii = corner_point_radii(rho_last, 2.0 * alpha, r, s.target, delta);
+    let k = 1.0 / alpha.sin() - 1.0;
+    let (mut here, mut rho, mut deepest) = (at, rho_last, 0.0_f64);
+    for (i, &next) in radii.iter().enumerate() {
+        let o = corner.on_bisector(corner.t_for_radius(next + r));
+        let (a, e) = (o - n_in * next, o - n_out * next);
+        if (a - here).norm() > 1e-12 {
+            moves.push(Segment::Line { start: here, end: a }, MoveKind::CornerPoint);
+        }
+        let dir = a - o;
+        let arc = Segment::Arc { center: o, radius: next, start_angle: dir.y.atan2(dir.x), sweep: PI - 2.0 * alpha };
+        moves.push(arc, MoveKind::CornerPoint);
+        here = if i + 1 < radii.len() {
+            moves.push(Segment::Line { start: e, end: a }, MoveKind::CornerPoint);
+            a
+        } else {
+            e
+        };
+        deepest = deepest.max((rho - next) * k);
+        rho = next;
+    }
+    if let Some(e) = end {
+        moves.push(Segment::Line { start: here, end: e }, MoveKind::Ring);
+    }
+    Some(CornerPointArcs { residual_mm: rho * k, max_radial_depth_mm: deepest, radii_mm: radii })
 }
 
 /// Perforative trochoids along the medial axis (Wu et al. §4.2 (c); domain-spec §3.5) for the
@@ -438,25 +558,19 @@ fn medial_axis_plan(sc: &CornerScenario) -> Result<CornerPlan, Error> {
         rho -= 1.5 * r;
     }
     precut.push(Segment::Line { start: node, end: node + corner.bisector * 1e-3 });
-    let n_in = corner.normal_in();
-    let mut path = Vec::new();
-    let mut at = node - n_in * (rc - r);
-    for c in &circles[1..] {
-        let (o, rho) = (c.tool_circle.center, c.tool_circle.radius);
-        let tangent = o - n_in * rho;
-        path.push(Segment::Line { start: at, end: tangent });
-        let dir = tangent - o;
-        path.push(Segment::Arc { center: o, radius: rho, start_angle: dir.y.atan2(dir.x), sweep: TAU });
-        at = tangent;
-    }
-    path.push(Segment::Line { start: at, end: sc.corner_point });
+    let mut moves = Moves::default();
+    let at = circles_along_u(&mut moves, corner, &circles[1..], node - corner.normal_in() * (rc - r));
+    let rho_last = circles.last().map_or(rc - r, |c| c.tool_circle.radius);
+    let start = moves.path.len();
+    let corner_point = into_corner_point(&mut moves, sc, rho_last, at, None);
+    let tip_segments = Some(start..moves.path.len());
+    let Moves { path, kinds } = moves;
     let len: f64 = path.iter().map(Segment::length).sum();
     let notes = vec![format!(
         "medial axis (boostvoronoi) of the triangular pocket: corner branch to the node at {:.3} mm from the apex, clearance {rc:.3} mm; {} circles down the branch",
         t_node,
         circles.len() - 1
     )];
-    let tip = path.len() - 1;
     Ok(CornerPlan {
         method: CornerMethod::MedialAxis,
         circles,
@@ -466,7 +580,9 @@ fn medial_axis_plan(sc: &CornerScenario) -> Result<CornerPlan, Error> {
         notes,
         stock: pocket,
         precut,
-        tip_segment: Some(tip),
+        kinds,
+        tip_segments,
+        corner_point,
     })
 }
 
@@ -589,32 +705,59 @@ fn variable_circles(sc: &CornerScenario) -> Result<Vec<CornerCircle>, Error> {
     Ok(c)
 }
 
-/// The connected ring piece: U leg to the first circle's tangent point on U (or to `leg_end`
-/// and back along U to it), each circle once
-/// round (CCW) from its tangent point, straight moves along U between tangent points, then to
-/// the corner point and out along V.
-fn ring_path(sc: &CornerScenario, circles: &[CornerCircle], leg_end: Option<P2>) -> Vec<Segment> {
-    let n_in = sc.corner.normal_in();
-    let mut path = Vec::new();
-    let mut at = sc.ring_start;
-    if let Some(x) = leg_end {
-        path.push(Segment::Line { start: at, end: x });
-        at = x;
-    }
+/// The ring piece up to the corner's way in: U leg to the first circle's tangent point on U (or
+/// to `leg_end` and back along U to it), then [`circles_along_u`].
+fn ring_path(sc: &CornerScenario, circles: &[CornerCircle], leg_end: Option<P2>) -> (Moves, P2) {
+    let mut moves = Moves::default();
+    let first = circles
+        .first()
+        .map_or(sc.corner_point, |c| c.tool_circle.center - sc.corner.normal_in() * c.tool_circle.radius);
+    let at = match leg_end {
+        Some(x) => {
+            moves.push(Segment::Line { start: sc.ring_start, end: x }, MoveKind::Ring);
+            x
+        }
+        None => {
+            moves.push(Segment::Line { start: sc.ring_start, end: first }, MoveKind::Ring);
+            first
+        }
+    };
+    let at = circles_along_u(&mut moves, &sc.corner, circles, at);
+    (moves, at)
+}
+
+/// Each circle once round (CCW) from its tangent point on U, linked by straight moves along U
+/// from `at`; returns where the tool ends (the last circle's tangent point).
+fn circles_along_u(moves: &mut Moves, corner: &Corner, circles: &[CornerCircle], mut at: P2) -> P2 {
+    let n_in = corner.normal_in();
     for c in circles {
-        let o = c.tool_circle.center;
-        let rho = c.tool_circle.radius;
+        let (o, rho) = (c.tool_circle.center, c.tool_circle.radius);
         let tangent = o - n_in * rho; // point of the tool circle on U
         if (tangent - at).norm() > 1e-12 {
-            path.push(Segment::Line { start: at, end: tangent });
+            moves.push(Segment::Line { start: at, end: tangent }, MoveKind::Link);
         }
         let dir = tangent - o;
-        path.push(Segment::Arc { center: o, radius: rho, start_angle: dir.y.atan2(dir.x), sweep: TAU });
+        moves.push(
+            Segment::Arc { center: o, radius: rho, start_angle: dir.y.atan2(dir.x), sweep: TAU },
+            MoveKind::Circle,
+        );
         at = tangent;
     }
-    path.push(Segment::Line { start: at, end: sc.corner_point });
-    path.push(Segment::Line { start: sc.corner_point, end: sc.ring_end });
-    path
+    at
+}
+
+/// A corner path under construction: the moves and what each does.
+#[derive(Default)]
+struct Moves {
+    path: Vec<Segment>,
+    kinds: Vec<MoveKind>,
+}
+
+impl Moves {
+    fn push(&mut self, seg: Segment, kind: MoveKind) {
+        self.path.push(seg);
+        self.kinds.push(kind);
+    }
 }
 
 /// Largest tool diameter of a corner or pocket (mm).
@@ -730,11 +873,58 @@ mod tests {
                 }
                 assert!((p.path[0].start() - sc.ring_start).norm() < 1e-12);
                 assert!((p.path.last().unwrap().end() - sc.ring_end).norm() < 1e-12);
+                assert_eq!(p.kinds.len(), p.path.len());
                 if m == CornerMethod::Variable {
                     for w in p.circles.windows(2) {
                         assert!(w[1].offset_radius < w[0].offset_radius, "{angle}°: radii must shrink");
                     }
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn corner_point_arcs_touch_both_walls_and_shrink_to_the_tolerance() {
+        let delta = 0.005;
+        let base =
+            CornerSettings::new(5.0, crate::corner::radial_depth_for_engagement(46f64.to_radians(), 5.0)).unwrap();
+        let settings = CornerSettings { corner_tolerance: Some(delta), ..base };
+        for angle in [30.0f64, 60.0, 90.0, 120.0, 150.0] {
+            let sc = CornerScenario::new(Corner::symmetric(angle.to_radians()).unwrap(), settings).unwrap();
+            let (l1, l2) = sc.corner.wall_lines().unwrap();
+            for m in [CornerMethod::Variable, CornerMethod::Isometric, CornerMethod::MedialAxis] {
+                let p = plan_corner(&sc, m).unwrap();
+                let arcs = p.corner_point.as_ref().expect("corner-point arcs");
+                let radii = &arcs.radii_mm;
+                assert_eq!(*radii.last().unwrap(), delta, "{angle}° {m:?}: ends at δ");
+                assert!(radii.windows(2).all(|w| w[1] < w[0]), "{angle}° {m:?}: radii shrink");
+                assert!(radii[0] < p.circles.last().unwrap().tool_circle.radius);
+                for w in p.path.windows(2) {
+                    assert!((w[0].end() - w[1].start()).norm() < 1e-9, "{angle}° {m:?}: gap");
+                }
+                // Every corner-point arc: its tool envelope (radius ρ + r) touches both walls,
+                // it turns through π − angle, and no tool position comes nearer than r to a wall.
+                let tip = p.tip_segments.clone().expect("tip range");
+                let mut seen = 0;
+                for (seg, kind) in p.path[tip.clone()].iter().zip(&p.kinds[tip]) {
+                    assert_eq!(*kind, MoveKind::CornerPoint);
+                    if let Segment::Arc { center, radius, sweep, .. } = *seg {
+                        let want = radius + 5.0;
+                        assert!((l1.distance_offset(center, 0.0) - want).abs() < 1e-9, "{angle}° wall 1");
+                        assert!((l2.distance_offset(center, 0.0) - want).abs() < 1e-9, "{angle}° wall 2");
+                        assert!((sweep - (PI - angle.to_radians())).abs() < 1e-12);
+                        assert_eq!(radius, radii[seen]);
+                        seen += 1;
+                    }
+                    for q in [seg.start(), seg.end(), seg.point(0.5)] {
+                        let d = l1.distance_offset(q, 0.0).min(l2.distance_offset(q, 0.0));
+                        assert!(d >= 5.0 - 1e-9, "{angle}° {m:?}: {d} from a wall");
+                    }
+                }
+                assert_eq!(seen, radii.len());
+                // residual on the bisector: δ(1/sin α − 1)
+                let k = 1.0 / sc.corner.half_angle.sin() - 1.0;
+                assert!((arcs.residual_mm - delta * k).abs() < 1e-15);
             }
         }
     }
@@ -749,6 +939,8 @@ mod tests {
             (CornerSettings { target: 0.0, ..ok }, "target"),
             (CornerSettings { feed_mm_per_min: 0.0, ..ok }, "feed"),
             (CornerSettings { edge_length: 5.0, ..ok }, "edge-length"),
+            (CornerSettings { corner_tolerance: Some(0.0), ..ok }, "corner-tolerance"),
+            (CornerSettings { corner_tolerance: Some(f64::NAN), ..ok }, "corner-tolerance"),
         ] {
             assert_eq!(s.validate().unwrap_err().subject(), Some(name));
         }

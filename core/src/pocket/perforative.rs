@@ -596,7 +596,7 @@ pub fn plan_perforative(polygon: &Polygon, settings: PocketSettings) -> Result<P
 /// Per-kind maxima of the profile and the body maximum (spiral, circles, links). The
 /// positions where the tool plunges (the start of each part) are left out: there the tool
 /// drills its own hole and the evaluator reads the whole periphery (360°).
-pub(super) fn maxima(
+pub(crate) fn maxima(
     profile: &EngagementProfile,
     segments: &[Segment],
     kinds: &[MoveKind],
