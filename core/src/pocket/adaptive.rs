@@ -48,7 +48,10 @@
 //!    2 % of a step wide along its length) is not cut. The last ring is the opening of C with
 //!    radius T. T starts at 0.995 × the inscribed radius and shrinks by 10 % until that opening
 //!    leaves only the corner caps uncut (area check: a cap of a convex corner α is
-//!    T²(cot(α/2) − (π − α)/2)).
+//!    T²(cot(α/2) − (π − α)/2)). A ring is cut only where it adds to the previous one (its
+//!    runs off the previous ring: the ends where the core grew); where every later ring adds
+//!    at the same n ≥ 2 places (the ends of an L's arms), each place is cleared in turn, ring
+//!    after ring, the tool crossing back through what the last run cleared ([`cut_rings`]).
 //! 4. **Corners.** Every convex corner V of C (angle α) is thinned by arcs tangent to both
 //!    walls with radii ρ_k from T down to ρ_fin, centre V + b·ρ/sin(α/2) on the bisector b.
 //!    Consecutive arcs are a distance (ρ_k − ρ_k+1)(1/sin(α/2) − 1) apart on the bisector and
@@ -1010,12 +1013,7 @@ fn plan_part(
         b.push(seg, MoveKind::Ring);
     }
     let rings = 1 + rings_cut.len();
-    for ring in rings_cut {
-        b.line(ring[0].start(), MoveKind::Link);
-        for seg in ring {
-            b.push(seg, MoveKind::Ring);
-        }
-    }
+    cut_rings(b, polygon, r, k0, &stadium, rings_cut);
     // Corners: the caps between the opening (radius T) and ρ_fin.
     // The first corner pass's radius: T, or Δ/k more at the end whose half-circle ring 0 left.
     let first_radius = |c: &Corner| {
@@ -1136,6 +1134,113 @@ fn plan_part(
         }
     }
     Ok(AdaptivePart { helix, first_segment: 0, end_segment: 0, core_radius_mm: t, rings, corners, corner_points })
+}
+
+/// The runs of a ring (consecutive segments, the ring closed) that do not lie on the previous
+/// ring `prev`: what the ring adds. A segment lies on `prev` where its ends and middle are
+/// within 1 µm of it (the rings are offsets of growing sets: where the set did not grow there,
+/// the ring repeats the previous one along the walls).
+fn new_runs(ring: &[Segment], prev: &[Segment]) -> Vec<Vec<Segment>> {
+    let on_prev = |p: P2| prev.iter().any(|sg| (closest_on(sg, p).0 - p).norm() < 1e-3);
+    let needed: Vec<bool> =
+        ring.iter().map(|sg| !(on_prev(sg.start()) && on_prev(sg.point(0.5)) && on_prev(sg.end()))).collect();
+    let mut runs: Vec<Vec<Segment>> = Vec::new();
+    let mut open = false;
+    for (sg, &need) in ring.iter().zip(&needed) {
+        match (need, open) {
+            (true, true) => runs.last_mut().into_iter().for_each(|run| run.push(*sg)),
+            (true, false) => runs.push(vec![*sg]),
+            _ => {}
+        }
+        open = need;
+    }
+    // the ring is closed: a run through its start joins its last run
+    if runs.len() > 1 && needed.first() == Some(&true) && needed.last() == Some(&true) {
+        let head = runs.remove(0);
+        runs.last_mut().into_iter().for_each(|run| run.extend(head.iter().copied()));
+    }
+    // a run's first segment may start along `prev` and its last end along it (the walls):
+    // cut from where it leaves `prev` to where it rejoins it (bisection)
+    let edge = |sg: &Segment, from_start: bool| {
+        let (mut on, mut off) = if from_start { (0.0, 1.0) } else { (1.0, 0.0) };
+        for _ in 0..40 {
+            let mid = 0.5 * (on + off);
+            if on_prev(sg.point(mid)) {
+                on = mid;
+            } else {
+                off = mid;
+            }
+        }
+        on
+    };
+    for run in &mut runs {
+        if let Some(first) = run.first().copied()
+            && on_prev(first.start())
+        {
+            let t = edge(&first, true);
+            run[0] = split(&first, t).1;
+        }
+        if let Some(last) = run.last().copied()
+            && on_prev(last.end())
+        {
+            let t = edge(&last, false);
+            let n = run.len();
+            run[n - 1] = split(&last, t).0;
+        }
+    }
+    runs
+}
+
+/// Cut the rings after ring 0, each only where it adds to the previous one (its ends, where the
+/// core grew). Where every later ring adds at the same number n ≥ 2 of places (the ends of a
+/// pocket's arms), each place is cleared in turn, ring after ring: the tool crosses back
+/// through what the last run cleared instead of walking the cleared walls to the other ends.
+fn cut_rings(b: &mut Builder, polygon: &Polygon, r: f64, k0: P2, ring0: &[Segment], rings: Vec<Vec<Segment>>) {
+    let mut prev = ring0.to_vec();
+    let mut ring_runs = Vec::with_capacity(rings.len());
+    for ring in rings {
+        ring_runs.push(new_runs(&ring, &prev));
+        prev = ring;
+    }
+    let n = ring_runs.last().map_or(0, Vec::len);
+    let mut split = ring_runs.len();
+    if n >= 2 {
+        while split > 0 && ring_runs[split - 1].len() == n {
+            split -= 1;
+        }
+    }
+    let emit = |b: &mut Builder, run: &[Segment]| {
+        link(b, polygon, r, run[0].start(), k0);
+        for seg in run {
+            b.push(*seg, MoveKind::Ring);
+        }
+    };
+    let tail = ring_runs.split_off(split);
+    for runs in &ring_runs {
+        for run in runs {
+            emit(b, run);
+        }
+    }
+    // places: each place takes the run that starts nearest its last run's start
+    let mut places: Vec<Vec<Vec<Segment>>> = vec![Vec::new(); n];
+    for runs in tail {
+        let mut left = runs;
+        for place in places.iter_mut() {
+            let Some(end) = place.last().and_then(|run| run.first()).map(Segment::start) else {
+                place.push(left.remove(0));
+                continue;
+            };
+            let i = (0..left.len())
+                .min_by(|&i, &j| (left[i][0].start() - end).norm().total_cmp(&(left[j][0].start() - end).norm()))
+                .unwrap_or(0);
+            place.push(left.remove(i));
+        }
+    }
+    for place in places {
+        for run in place {
+            emit(b, &run);
+        }
+    }
 }
 
 /// Pieces each corner-point arc is cut into, so that the evaluator measures it at its
