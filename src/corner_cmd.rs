@@ -217,7 +217,10 @@ pub struct PocketArgs {
     #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = AdaptiveOptions::default().finish_stock_mm)]
     finish_stock: f64,
     /// Engagement the adaptive passes are planned to (degrees, `--method adaptive`), from the
-    /// step-over's straight engagement φ* to 90; default φ*.
+    /// step-over's straight engagement φ* = arccos(1 − a_e/r) to 90. Default: the step-over
+    /// read as FreeCAD reads it, an area rate (a_e mm² per mm), on a 90° corner pass, capped
+    /// at 50° and never below φ*: 50° for D = 10, a_e = 1.527 (φ* = 46.0°); the JSON's
+    /// `target_deg` reports it.
     #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
     target_engagement: Option<f64>,
     /// How near the finishing pass's corner arcs reach each convex corner point (mm,
@@ -383,7 +386,9 @@ struct AdaptiveOut {
     tool_diameter_mm: f64,
     step_over_mm: f64,
     feed_mm_per_min: f64,
-    /// Target = straight-cut engagement of the step-over, arccos(1 − a_e/r) (domain-spec §1.1).
+    /// Target every pass is planned to: `--target-engagement`, by default the step-over read
+    /// as an area rate, capped at 50°, at least the straight-cut engagement arccos(1 − a_e/r)
+    /// (`pocket::adaptive::default_target_rad`).
     target_deg: f64,
     polygon: Vec<[f64; 2]>,
     helices: Vec<HelixOut>,

@@ -4,10 +4,11 @@
 //! ([`crate::corner::evaluator`]). The algorithm is ours (DERIVED below); its engagement model
 //! is domain-spec §1.1/§1.2.
 //!
-//! Notation: `r` tool radius, `a_e` the step-over, φ* = arccos(1 − a_e/r) the target (the
-//! straight-cut engagement of a_e, §1.1; `--target-engagement` plans to a higher one, the
-//! steps below all follow from it), `C` the region of tool centres = the pocket offset
-//! inward by r + s_f (s_f the finishing stock).
+//! Notation: `r` tool radius, `a_e` the step-over, φ* = arccos(1 − a_e/r) its straight-cut
+//! engagement (§1.1), φ the target every pass is planned to (the steps below all follow from
+//! it): `--target-engagement`, by default [`default_target_rad`] — a_e read as FreeCAD reads
+//! it, an area rate, capped at 50° (50° for the issue's a_e = 1.527 mm, D = 10) — `C` the
+//! region of tool centres = the pocket offset inward by r + s_f (s_f the finishing stock).
 //!
 //! **Concave-cut step (DERIVED).** A tool centre on a circle of radius ρ that cuts outward from
 //! a disc already cleared to radius R = ρ_prev + r sees material where its periphery is farther
@@ -33,7 +34,10 @@
 //!    length. A revolution moves an end's tip by Δq(1 + κ), κ = s_ext/(q_f − q₂), held to the
 //!    concave-cut step of the radius; q₂ is the candidate (r_h + {0, ¼, ½, ¾}(q_f − r_h)) with
 //!    the shortest spiral. Without an axis the ends coincide at k0: the spiral about k0.
-//!    Ring 0 closes it once around the stadium (the circle about k0).
+//!    Ring 0 closes it once around the stadium (the circle about k0). Where the stadium is
+//!    the last ring, ring 0 leaves out the end half-circle the spiral ended on (the last
+//!    half-turn left a crescent at most Δ thick there, the gap between the two circles); the
+//!    corner passes at that end start Δ/k further out (below) and cut it.
 //! 3. **Rings.** The core K = C ⊖ T (inward offset): for T just below the inscribed radius, K
 //!    is a thin strip along the pocket's middle. Ring j is the boundary of (K ∩ D(k0, s_j)) ⊕ T,
 //!    s_j growing by the concave-cut step of radius T: each ring is smooth (its corners are
@@ -44,14 +48,19 @@
 //!    2 % of a step wide along its length) is not cut. The last ring is the opening of C with
 //!    radius T. T starts at 0.995 × the inscribed radius and shrinks by 10 % until that opening
 //!    leaves only the corner caps uncut (area check: a cap of a convex corner α is
-//!    T²(cot(α/2) − (π − α)/2)).
+//!    T²(cot(α/2) − (π − α)/2)). A ring is cut only where it adds to the previous one (its
+//!    runs off the previous ring: the ends where the core grew); where every later ring adds
+//!    at the same n ≥ 2 places (the ends of an L's arms), each place is cleared in turn, ring
+//!    after ring, the tool crossing back through what the last run cleared ([`cut_rings`]).
 //! 4. **Corners.** Every convex corner V of C (angle α) is thinned by arcs tangent to both
 //!    walls with radii ρ_k from T down to ρ_fin, centre V + b·ρ/sin(α/2) on the bisector b.
 //!    Consecutive arcs are a distance (ρ_k − ρ_k+1)(1/sin(α/2) − 1) apart on the bisector and
 //!    tangent to each other's walls; that distance is held to the concave-cut step of ρ_k+1.
-//!    A pass runs along wall A from the previous tangent point, the arc, then the arc's own
-//!    chord (cleared: it lies on the cut side of the arc) returns to wall A. These passes stop
-//!    at ρ_fin, where the finishing arc of radius ρ_fin + s_f stays within the target.
+//!    A pass is the arc from wall A to wall B, then a straight move back to wall A, nine
+//!    tenths of the way from this arc's tangent point to the next one's (it cuts a little near
+//!    its end: measured, within the target), and the last tenth along wall A into the next arc.
+//!    The corners are taken in the loop's order from the one nearest the tool. These passes
+//!    stop at ρ_fin, where the finishing arc of radius ρ_fin + s_f stays within the target.
 //! 5. **Finish.** With s_f > 0: the opening of the final wall offset with radius ρ_fin + s_f,
 //!    concentric with the last corner arcs, once around (climb), entered on a quarter circle
 //!    beside the straight wall nearest the tool.
@@ -104,6 +113,12 @@ pub const AIR_ENGAGEMENT_RAD: f64 = PI / 180.0;
 const MAX_PASSES: usize = 20_000;
 /// Fractions of the inscribed radius the core radius T starts from (the shortest plan wins).
 const CORE_FRACTIONS: [f64; 5] = [1.0, 0.85, 0.7, 0.55, 0.4];
+/// Candidates q₂ = r_h + (j/N)(q_f − r_h), j < N, for the radius where the spiral's ends start
+/// along the axis (the shortest spiral wins).
+const SPIRAL_CANDIDATES: usize = 16;
+/// How far along wall A, from one corner arc's start toward the next one's, the straight move
+/// from the previous arc's end reaches (the rest is run along the wall into the arc).
+const CORNER_CHORD_REACH: f64 = 0.9;
 /// Bisection steps for the inscribed radius.
 const INSCRIBED_STEPS: usize = 48;
 
@@ -200,13 +215,51 @@ impl AdaptiveOptions {
         Ok(())
     }
 
-    /// The engagement the passes are planned to (rad): the option, else φ* of the step-over.
+    /// The engagement the passes are planned to (rad): the option, else
+    /// [`default_target_rad`] of the step-over.
     pub fn target_rad(&self, settings: &PocketSettings) -> Result<f64, Error> {
         match self.target_deg {
             Some(t) => Ok(t.to_radians()),
-            None => crate::corner::straight_engagement(settings.step_over, settings.tool_radius),
+            None => default_target_rad(settings.step_over, settings.tool_radius),
         }
     }
+}
+
+/// Ceiling of the default target engagement (deg), DECLARED: issue #12's limit on the 95th
+/// percentile of a pocket's engagement. Every kind of move is planned to the target and read
+/// within it (up to the evaluator's overshoot at kinks), so the target bounds the percentile.
+pub const DEFAULT_TARGET_CAP_DEG: f64 = 50.0;
+
+/// The mean radial depth of a corner pass over its bisector depth, for a corner of interior
+/// angle α (DERIVED): two consecutive arcs tangent to both walls, radii ρ and ρ − Δρ, enclose
+/// the crescent (ρ² − (ρ − Δρ)²)·c, c = cot(α/2) − (π − α)/2 (the caps' difference), along an
+/// arc of length (π − α)(ρ − Δρ), and are Δρ·k apart on the bisector, k = 1/sin(α/2) − 1; for
+/// Δρ ≪ ρ the mean depth (area / length) over the bisector depth is 2c/((π − α)·k): 0.660 at
+/// 90°.
+pub fn corner_pass_mean_depth_ratio(alpha: f64) -> f64 {
+    let half = 0.5 * alpha;
+    let c = 1.0 / half.tan() - (PI - alpha) / 2.0;
+    let k = 1.0 / half.sin() - 1.0;
+    2.0 * c / ((PI - alpha) * k)
+}
+
+/// The default target engagement (rad) for step-over a_e and tool radius r. FreeCAD's Adaptive
+/// reads a_e as an area rate: a_e mm² removed per mm of travel (its optimalCutAreaPD is
+/// 2·f·r²/r = a_e for the step-over factor f = a_e/D). On a straight cut and on every concave
+/// cut of our spiral the area rate a_e *is* the engagement φ* = arccos(1 − a_e/r) (the
+/// concave-cut step a of radius ρ removes a(1 + r/ρ) − a²/(2ρ) per mm, which equals a_e
+/// exactly where cos φ* = 1 − a/r − a/ρ + a²/(2ρr), module docs). Where a pass's depth tapers
+/// to nothing at both ends — a corner pass, [`corner_pass_mean_depth_ratio`] — the same area
+/// rate needs a deepest cut of a_e/m (m = 0.660 for the pocket's usual 90° corner), read as the
+/// straight-cut engagement of that depth. The default plans every pass to that engagement,
+/// never above [`DEFAULT_TARGET_CAP_DEG`] and never below φ*: for D = 10, a_e = 1.527 mm
+/// (φ* = 46.0°) the area rate asks 57.5°, so the cap, 50°, is the target; for a_e = 0.5 mm
+/// it is 32.0° (φ* 25.8°); from a_e ≈ 1.79 mm (φ* ≥ 50°) it is φ*.
+pub fn default_target_rad(a_e: f64, r: f64) -> Result<f64, Error> {
+    let phi_star = crate::corner::straight_engagement(a_e, r)?;
+    let deepest = a_e / corner_pass_mean_depth_ratio(0.5 * PI);
+    let by_area = (1.0 - deepest / r).max(0.0).acos();
+    Ok(by_area.min(DEFAULT_TARGET_CAP_DEG.to_radians()).max(phi_star))
 }
 
 /// A helical entry: the tool centre on a circle, descending from [`HELIX_START_Z_MM`] to the
@@ -864,9 +917,8 @@ fn plan_part(
     let spiral_length = |q2: f64, q: &[f64]| -> f64 {
         q.windows(2).map(|w| 0.5 * PI * (w[0] + w[1]) + 2.0 * s_ext * lambda_of(q2, w[0])).sum()
     };
-    let (q2, q) = [0.0, 0.25, 0.5, 0.75]
-        .iter()
-        .map(|f| r_h + f * (spiral_end - r_h))
+    let (q2, q) = (0..SPIRAL_CANDIDATES)
+        .map(|j| r_h + (j as f64 / SPIRAL_CANDIDATES as f64) * (spiral_end - r_h))
         .map(|q2| (q2, radii(q2)))
         .min_by(|a, c| spiral_length(a.0, &a.1).total_cmp(&spiral_length(c.0, &c.1)))
         .unwrap_or((r_h, vec![r_h]));
@@ -877,6 +929,7 @@ fn plan_part(
     let helix =
         Helix { center: k0, radius: r_h, start_angle: theta0, sense: 1.0, ramp_rad: options.ramp_deg.to_radians() };
     b.push(helix.circle(), MoveKind::Entry);
+    let mut last_half = None;
     for i in 0..halves {
         let e = e_of(i);
         // Centre of this end half-turn on the axis: its middle direction rot90(e) is ±u.
@@ -891,6 +944,7 @@ fn plan_part(
             start_angle: e.y.atan2(e.x),
             sweep: PI,
         };
+        last_half = Some(seg);
         b.push(seg, MoveKind::Spiral);
     }
     // Ring 0 closes the spiral: the stadium of radius q_f about the axis (the circle about k0
@@ -904,9 +958,8 @@ fn plan_part(
         Segment::Line { start: a_plus + m * spiral_end, end: a_minus + m * spiral_end },
         Segment::Arc { center: a_minus, radius: spiral_end, start_angle: ang(m), sweep: PI },
     ];
-    for seg in start_near(&stadium, b.at()) {
-        b.push(seg, MoveKind::Ring);
-    }
+    let q0 = b.at();
+    let mut ring0 = start_near(&stadium, q0);
     let mut cut: Polyline<f64> = Polyline::new_closed();
     for v in [a_minus - m * spiral_end, a_plus - m * spiral_end, a_plus + m * spiral_end, a_minus + m * spiral_end] {
         cut.add(v.x, v.y, 0.0);
@@ -919,9 +972,8 @@ fn plan_part(
     let step = concave_step(t, r, phi);
     let reach = core.iter_vertexes().map(|v| (p2(v.x, v.y) - k0).norm()).fold(0.0, f64::max);
     let mut s = (s0 + step).min(reach);
-    let mut rings = 1;
-    let q0 = b.at();
-    while s > s0 + 1e-9 && rings <= MAX_PASSES {
+    let mut rings_cut: Vec<Vec<Segment>> = Vec::new();
+    while s > s0 + 1e-9 && rings_cut.len() < MAX_PASSES {
         let grown = if s >= reach {
             Some(core.clone())
         } else {
@@ -930,13 +982,7 @@ fn plan_part(
         if let Some(o) = grown.and_then(|g| largest(offset(&g, -t))) {
             let outside: f64 = o.boolean(&cut, BooleanOp::Not).pos_plines.iter().map(|p| p.pline.area().abs()).sum();
             if outside >= 0.02 * step * o.path_length() {
-                let ring = start_near(&to_segments(&o), q0);
-                let start = ring[0].start();
-                b.line(start, MoveKind::Link);
-                for seg in ring {
-                    b.push(seg, MoveKind::Ring);
-                }
-                rings += 1;
+                rings_cut.push(start_near(&to_segments(&o), q0));
             }
         }
         if s >= reach {
@@ -944,12 +990,52 @@ fn plan_part(
         }
         s = (s + step).min(reach);
     }
+    // Where no ring follows the stadium, ring 0 stops before the end half-circle the spiral
+    // ended on: that half-turn left a crescent from Δ = q_f − q_{n−1} at its start to 0 at its
+    // end, which the corner passes at that end take with their first arc (started Δ/k further
+    // out on the bisector, below), instead of a half-circle mostly in air and the link back.
+    let mut trimmed = None;
+    if axis.is_some() && rings_cut.is_empty() && halves >= 2 {
+        // (the spiral's end may lie a short line before the stadium's half-circle ends)
+        while ring0.last().is_some_and(|sg| matches!(sg, Segment::Line { .. }) && sg.length() < 0.1 * r) {
+            ring0.pop();
+        }
+        if let (Some(&Segment::Arc { center, radius, .. }), Some(&Segment::Arc { center: c_h, radius: r_half, .. })) =
+            (ring0.last(), last_half.as_ref())
+        {
+            ring0.pop();
+            let other = if (center - a_plus).norm() < (center - a_minus).norm() { a_minus } else { a_plus };
+            // the gap between this half-circle and the spiral's last half-turn, at most
+            trimmed = Some((center, other, radius - r_half + (center - c_h).norm()));
+        }
+    }
+    for seg in ring0 {
+        b.push(seg, MoveKind::Ring);
+    }
+    let rings = 1 + rings_cut.len();
+    cut_rings(b, polygon, r, k0, &stadium, rings_cut);
     // Corners: the caps between the opening (radius T) and ρ_fin.
-    let mut corners = Vec::new();
-    for c in &corners_all {
+    // The first corner pass's radius: T, or Δ/k more at the end whose half-circle ring 0 left.
+    let first_radius = |c: &Corner| {
         let k = 1.0 / (0.5 * c.alpha).sin() - 1.0;
-        let lmax = c.len_in.min(c.len_out);
-        let mut rho = t.min(lmax * (0.5 * c.alpha).tan());
+        let extra = match trimmed {
+            Some((end, other, delta)) if (c.vertex - end).norm() < (c.vertex - other).norm() => delta / k,
+            _ => 0.0,
+        };
+        (t + extra).min(c.len_in.min(c.len_out) * (0.5 * c.alpha).tan())
+    };
+    // From the corner whose first pass starts nearest the tool, in the loop's order.
+    let here = b.at();
+    let first = (0..corners_all.len())
+        .min_by(|&i, &j| {
+            let d = |c: &Corner| (c.arc(first_radius(c)).0 - here).norm();
+            d(&corners_all[i]).total_cmp(&d(&corners_all[j]))
+        })
+        .unwrap_or(0);
+    let mut corners = Vec::new();
+    for c in corners_all[first..].iter().chain(&corners_all[..first]) {
+        let k = 1.0 / (0.5 * c.alpha).sin() - 1.0;
+        let mut rho = first_radius(c);
         if rho <= rho_fin + 1e-6 {
             continue;
         }
@@ -961,10 +1047,16 @@ fn plan_part(
             // Fixed point: the step allowed at the new radius.
             let mut next = rho - concave_step(rho, r, phi) / k;
             next = (rho - concave_step(next.max(rho_fin), r, phi) / k).max(rho_fin);
+            // After the first: from the previous arc's end on wall B straight to wall A, short
+            // of this arc's start by a tenth of the gap between the two arcs' tangent points,
+            // then along wall A into the arc (entered tangentially, as the step rule assumes).
             let (a, _, arc) = c.arc(next);
+            if passes > 0 {
+                let (a_prev, _, _) = c.arc(rho);
+                b.line(a_prev + (a - a_prev) * CORNER_CHORD_REACH, MoveKind::Link);
+            }
             b.line(a, MoveKind::Corner);
             b.push(arc, MoveKind::Corner);
-            b.line(a, MoveKind::Link);
             deepest = deepest.max((rho - next) * k);
             rho = next;
             passes += 1;
@@ -1042,6 +1134,113 @@ fn plan_part(
         }
     }
     Ok(AdaptivePart { helix, first_segment: 0, end_segment: 0, core_radius_mm: t, rings, corners, corner_points })
+}
+
+/// The runs of a ring (consecutive segments, the ring closed) that do not lie on the previous
+/// ring `prev`: what the ring adds. A segment lies on `prev` where its ends and middle are
+/// within 1 µm of it (the rings are offsets of growing sets: where the set did not grow there,
+/// the ring repeats the previous one along the walls).
+fn new_runs(ring: &[Segment], prev: &[Segment]) -> Vec<Vec<Segment>> {
+    let on_prev = |p: P2| prev.iter().any(|sg| (closest_on(sg, p).0 - p).norm() < 1e-3);
+    let needed: Vec<bool> =
+        ring.iter().map(|sg| !(on_prev(sg.start()) && on_prev(sg.point(0.5)) && on_prev(sg.end()))).collect();
+    let mut runs: Vec<Vec<Segment>> = Vec::new();
+    let mut open = false;
+    for (sg, &need) in ring.iter().zip(&needed) {
+        match (need, open) {
+            (true, true) => runs.last_mut().into_iter().for_each(|run| run.push(*sg)),
+            (true, false) => runs.push(vec![*sg]),
+            _ => {}
+        }
+        open = need;
+    }
+    // the ring is closed: a run through its start joins its last run
+    if runs.len() > 1 && needed.first() == Some(&true) && needed.last() == Some(&true) {
+        let head = runs.remove(0);
+        runs.last_mut().into_iter().for_each(|run| run.extend(head.iter().copied()));
+    }
+    // a run's first segment may start along `prev` and its last end along it (the walls):
+    // cut from where it leaves `prev` to where it rejoins it (bisection)
+    let edge = |sg: &Segment, from_start: bool| {
+        let (mut on, mut off) = if from_start { (0.0, 1.0) } else { (1.0, 0.0) };
+        for _ in 0..40 {
+            let mid = 0.5 * (on + off);
+            if on_prev(sg.point(mid)) {
+                on = mid;
+            } else {
+                off = mid;
+            }
+        }
+        on
+    };
+    for run in &mut runs {
+        if let Some(first) = run.first().copied()
+            && on_prev(first.start())
+        {
+            let t = edge(&first, true);
+            run[0] = split(&first, t).1;
+        }
+        if let Some(last) = run.last().copied()
+            && on_prev(last.end())
+        {
+            let t = edge(&last, false);
+            let n = run.len();
+            run[n - 1] = split(&last, t).0;
+        }
+    }
+    runs
+}
+
+/// Cut the rings after ring 0, each only where it adds to the previous one (its ends, where the
+/// core grew). Where every later ring adds at the same number n ≥ 2 of places (the ends of a
+/// pocket's arms), each place is cleared in turn, ring after ring: the tool crosses back
+/// through what the last run cleared instead of walking the cleared walls to the other ends.
+fn cut_rings(b: &mut Builder, polygon: &Polygon, r: f64, k0: P2, ring0: &[Segment], rings: Vec<Vec<Segment>>) {
+    let mut prev = ring0.to_vec();
+    let mut ring_runs = Vec::with_capacity(rings.len());
+    for ring in rings {
+        ring_runs.push(new_runs(&ring, &prev));
+        prev = ring;
+    }
+    let n = ring_runs.last().map_or(0, Vec::len);
+    let mut split = ring_runs.len();
+    if n >= 2 {
+        while split > 0 && ring_runs[split - 1].len() == n {
+            split -= 1;
+        }
+    }
+    let emit = |b: &mut Builder, run: &[Segment]| {
+        link(b, polygon, r, run[0].start(), k0);
+        for seg in run {
+            b.push(*seg, MoveKind::Ring);
+        }
+    };
+    let tail = ring_runs.split_off(split);
+    for runs in &ring_runs {
+        for run in runs {
+            emit(b, run);
+        }
+    }
+    // places: each place takes the run that starts nearest its last run's start
+    let mut places: Vec<Vec<Vec<Segment>>> = vec![Vec::new(); n];
+    for runs in tail {
+        let mut left = runs;
+        for place in places.iter_mut() {
+            let Some(end) = place.last().and_then(|run| run.first()).map(Segment::start) else {
+                place.push(left.remove(0));
+                continue;
+            };
+            let i = (0..left.len())
+                .min_by(|&i, &j| (left[i][0].start() - end).norm().total_cmp(&(left[j][0].start() - end).norm()))
+                .unwrap_or(0);
+            place.push(left.remove(i));
+        }
+    }
+    for place in places {
+        for run in place {
+            emit(b, &run);
+        }
+    }
 }
 
 /// Pieces each corner-point arc is cut into, so that the evaluator measures it at its
