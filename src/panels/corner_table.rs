@@ -155,14 +155,15 @@ mod tip {
     pub const ANGLE: &str = "Interior angle of the symmetric line–line corner (walls 100 mm from the apex).";
     pub const PLAIN: &str = "Peak engagement of the plain contour-parallel ring turning at the corner, no trochoids \
         (measured by the evaluator, like every number here).";
-    pub const BODY: &str = "Body: peak engagement of the strategy's whole path except the final move into the tool's \
-        corner point. It must stay within the target a* + 1°.";
-    pub const TIP: &str = "Tip: peak engagement of the final move into the tool's corner point U0, where the tool \
-        touches both walls. It cuts only the sliver left between the last offset circle and the walls \
-        (ρ(1/sin α − 1) thick, ≤ 0.73 mm at 30°), but over a wide arc, so it is reported apart from the body.";
-    pub const LIMIT: &str = "Stated limit of the tip: the arc of the tool periphery outside the last offset circle, \
-        2(π − ψ), which tends to 180° minus the corner angle as the last circle shrinks. No path that reaches \
-        the corner point can engage less there, so the tip is judged against max(a* + 1°, limit + 1°).";
+    pub const BODY: &str = "Body: peak engagement of the strategy's whole path except the way into the corner point. \
+        It must stay within the target a* + 1°.";
+    pub const TIP: &str = "Tip: peak engagement of the way into the corner point: arcs tangent to both walls whose \
+        radii shrink from the last circle's to the corner tolerance (0.005 mm), each planned to a*; the corner is \
+        cut to radius r + 0.005 mm. (With --corner-tolerance 0, Wu et al.'s straight move into the corner point, \
+        which engages about 180° minus the corner angle.)";
+    pub const LIMIT: &str = "Stated limit of the tip: a* for the corner-point arcs (each is planned to it); for Wu \
+        et al.'s move into the corner point the arc of the tool periphery outside the last offset circle, \
+        2(π − ψ). The tip is judged against max(a* + 1°, limit + 1°).";
     pub const PASS: &str = "pass: body ≤ a* + 1° and tip ≤ max(a* + 1°, tip limit + 1°) (core: AcceptanceRow::passes).";
     pub const LENGTH: &str =
         "Tool-centre path length (mm): both walls and the corner; medial axis: the corner branch only.";
@@ -185,10 +186,9 @@ fn strategy_label(i: usize) -> &'static str {
 
 /// What the table's body and tip columns mean (under the grid).
 const BODY_AND_TIP: &str = "Body and tip: every strategy ends its chain of wall-tangent circles when the next circle \
-    gets too small and then moves into the tool's corner point, where the tool touches both walls. That last move \
-    engages about 180° minus the corner angle over a thin sliver, whatever the strategy, so it is reported apart \
-    (tip, dashed in the plot) with its own stated limit; the rest of the path (body) must stay within a* + 1°. \
-    Hover the column titles for details.";
+    gets too small; the tip is the way from there into the corner point — arcs tangent to both walls shrinking to \
+    0.005 mm, each planned to a* — reported apart (dashed in the plot); reaching the corner point itself would \
+    engage 180° minus the corner angle. Body and tip must both stay within a* + 1°. Hover the column titles for details.";
 
 /// The table (grid) and the plot of peak engagement against the corner angle.
 pub fn show(ui: &mut egui::Ui, view: &TableView) -> Option<Command> {
