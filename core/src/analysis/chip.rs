@@ -85,8 +85,12 @@ impl EngagedArc {
 
     /// h(φ) (mm) by linear interpolation between the samples; 0 outside the arc.
     pub fn thickness_at(&self, phi: f64) -> f64 {
+        self.thickness_after(self.samples.partition_point(|x| x.phi_rad < phi), phi)
+    }
+
+    /// [`EngagedArc::thickness_at`] with `i` the number of samples before `phi`.
+    pub fn thickness_after(&self, i: usize, phi: f64) -> f64 {
         let s = &self.samples;
-        let i = s.partition_point(|x| x.phi_rad < phi);
         match (i.checked_sub(1).and_then(|j| s.get(j)), s.get(i)) {
             (_, Some(b)) if b.phi_rad == phi => b.h_mm,
             (Some(a), Some(b)) => a.h_mm + (b.h_mm - a.h_mm) * (phi - a.phi_rad) / (b.phi_rad - a.phi_rad),
@@ -644,9 +648,9 @@ impl<'a> CycleTeeth<'a> {
     fn at(cycle: &'a Cycle, edge: &'a PreviousEdge, r: f64, f_z: f64, at: &[f64]) -> CycleTeeth<'a> {
         let len = cycle.length();
         let early = EarlySweep::new(cycle, P2::zeros(), r, 0.25);
-        let start = CyclePos { seg: 0, t: 0.0 };
         let positions = |ss: Vec<f64>| -> Vec<(f64, CyclePos)> {
-            ss.into_iter().map(|s| (s, cycle.advance(start, s.clamp(0.0, len)).unwrap_or(start))).collect()
+            let pos = positions_at(cycle, &ss);
+            ss.into_iter().zip(pos).collect()
         };
         let wraps: Vec<bool> = at.iter().map(|&s| s < f_z).collect();
         let prev_s = at.iter().map(|&s| if s < f_z { len + s - f_z } else { s - f_z }).collect();
@@ -768,6 +772,31 @@ impl<'a> CycleTeeth<'a> {
             arcs,
         }
     }
+}
+
+/// The positions at arc lengths `ss` (mm from the cycle start, clamped to the cycle) in any
+/// order: in order of s, each found from the one before (as [`Cycle::positions`] does), so the
+/// exact arc length is inverted over the gaps only, not from the cycle start each time.
+fn positions_at(cycle: &Cycle, ss: &[f64]) -> Vec<CyclePos> {
+    let len = cycle.length();
+    let mut order: Vec<usize> = (0..ss.len()).collect();
+    order.sort_by(|&a, &b| ss[a].total_cmp(&ss[b]));
+    let mut out = vec![CyclePos { seg: 0, t: 0.0 }; ss.len()];
+    // The segment, its start's arc length, and the last position in it (parameter, arc length).
+    let (mut seg, mut seg_start, mut t, mut at) = (0, 0.0, 0.0, 0.0);
+    for k in order {
+        let s = ss[k].clamp(0.0, len);
+        while seg + 1 < cycle.segments.len() && s > seg_start + cycle.lengths[seg] {
+            seg_start += cycle.lengths[seg];
+            (seg, t, at) = (seg + 1, 0.0, seg_start);
+        }
+        if let Some(segment) = cycle.segments.get(seg) {
+            t = segment.param_after_length(t, s - at);
+            at = s;
+        }
+        out[k] = CyclePos { seg, t };
+    }
+    out
 }
 
 /// The [`ToothSample`]s of teeth at arc lengths `at` (mm, 0 ≤ s < cycle length) of the

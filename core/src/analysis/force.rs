@@ -50,6 +50,9 @@ use std::f64::consts::{FRAC_PI_2, PI, TAU};
 pub const SLICES: usize = 50;
 /// Largest spindle-angle step of the force series (rad): 1°.
 pub const SPINDLE_STEP_RAD: f64 = PI / 180.0;
+/// Consecutive samples of one parallel task: they share the search for their tooth positions
+/// and turn the spindle by a rotation from one exact sin/cos (|error| < 128 ulp).
+const CHUNK: usize = 128;
 
 /// The cutter as the force model needs it.
 #[derive(Clone, Debug, PartialEq)]
@@ -126,16 +129,29 @@ pub struct ForceSummary {
 
 /// The engaged arcs of two neighbouring tooth positions prepared for blending in the inner
 /// loop: both h(u) on one grid of the relative place u = (φ − φ_in)/(φ_out − φ_in) along
-/// each arc (the union of their samples' places), with each piece's value and slope and the
-/// integral of h from u = 0 to its start.
+/// each arc (the union of their samples' places), as pieces with each one's value and slope
+/// and the integral of h from u = 0 to its start.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ArcPair {
     /// Entry and exit angles (rad) of the first arc and of the second.
     pub a: (f64, f64),
     pub b: (f64, f64),
-    u: Vec<f64>,
-    /// Per piece: h_a, dh_a/du, h_b, dh_b/du at its start, ∫h_a du and ∫h_b du up to it.
-    pts: Vec<[f64; 6]>,
+    /// By increasing u, then a sentinel starting at u = +∞ (so a cursor needs no length
+    /// check).
+    pieces: Vec<Piece>,
+}
+
+/// One piece of an [`ArcPair`] from `u0` to the next piece's start: h_a = `ha` + `sa`·(u − u0)
+/// and ∫₀ᵘ h_a du = `ia` + …, the same for h_b. The last grid point is a piece of slope 0.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Piece {
+    u0: f64,
+    ha: f64,
+    sa: f64,
+    hb: f64,
+    sb: f64,
+    ia: f64,
+    ib: f64,
 }
 
 impl ArcPair {
@@ -147,33 +163,68 @@ impl ArcPair {
             arc.samples.iter().map(|x| (((x.phi_rad - arc.entry_rad) * inv).clamp(0.0, 1.0), x.h_mm)).collect()
         };
         let (ra, rb) = (rel(a), rel(b));
-        let mut u: Vec<f64> = ra.iter().chain(&rb).map(|p| p.0).collect();
-        u.sort_by(f64::total_cmp);
-        u.dedup_by(|x, y| (*x - *y).abs() < 1e-12);
-        let value = |r: &[(f64, f64)], x: f64| {
-            let i = r.partition_point(|p| p.0 < x);
-            match (i.checked_sub(1).and_then(|k| r.get(k)), r.get(i)) {
-                (Some(p), Some(q)) if q.0 > p.0 => p.1 + (q.1 - p.1) * (x - p.0) / (q.0 - p.0),
-                (_, Some(q)) => q.1,
-                (Some(p), None) => p.1,
-                (None, None) => 0.0,
+        // Both are sorted by u (the samples by φ): merge, dropping places within 1e-12 of the
+        // one kept before.
+        let mut u: Vec<f64> = Vec::with_capacity(ra.len() + rb.len());
+        let (mut i, mut k) = (0, 0);
+        while let Some(x) = match (ra.get(i), rb.get(k)) {
+            (Some(p), Some(q)) if p.0 <= q.0 => {
+                i += 1;
+                Some(p.0)
             }
+            (_, Some(q)) => {
+                k += 1;
+                Some(q.0)
+            }
+            (Some(p), None) => {
+                i += 1;
+                Some(p.0)
+            }
+            (None, None) => None,
+        } {
+            if u.last().is_none_or(|&y| (x - y).abs() >= 1e-12) {
+                u.push(x);
+            }
+        }
+        // h of `r` at the increasing places `u`, by linear interpolation (constant beyond
+        // its ends).
+        let values = |r: &[(f64, f64)]| -> Vec<f64> {
+            let mut i = 0;
+            u.iter()
+                .map(|&x| {
+                    while r.get(i).is_some_and(|p| p.0 < x) {
+                        i += 1;
+                    }
+                    match (i.checked_sub(1).and_then(|k| r.get(k)), r.get(i)) {
+                        (Some(p), Some(q)) if q.0 > p.0 => p.1 + (q.1 - p.1) * (x - p.0) / (q.0 - p.0),
+                        (_, Some(q)) => q.1,
+                        (Some(p), None) => p.1,
+                        (None, None) => 0.0,
+                    }
+                })
+                .collect()
         };
-        let ha: Vec<f64> = u.iter().map(|&x| value(&ra, x)).collect();
-        let hb: Vec<f64> = u.iter().map(|&x| value(&rb, x)).collect();
+        let (ha, hb) = (values(&ra), values(&rb));
         let mut cum = [0.0, 0.0];
-        let pts = (0..u.len())
-            .map(|i| match u.get(i + 1) {
-                Some(&next) if next > u[i] => {
-                    let du = next - u[i];
-                    let p = [ha[i], (ha[i + 1] - ha[i]) / du, hb[i], (hb[i + 1] - hb[i]) / du, cum[0], cum[1]];
-                    cum = [cum[0] + 0.5 * (ha[i] + ha[i + 1]) * du, cum[1] + 0.5 * (hb[i] + hb[i + 1]) * du];
-                    p
-                }
-                _ => [ha[i], 0.0, hb[i], 0.0, cum[0], cum[1]],
+        let mut pieces: Vec<Piece> = (0..u.len())
+            .map(|i| {
+                let (ia, ib) = (cum[0], cum[1]);
+                let (sa, sb) = match u.get(i + 1) {
+                    Some(&next) if next > u[i] => {
+                        let du = next - u[i];
+                        cum = [cum[0] + 0.5 * (ha[i] + ha[i + 1]) * du, cum[1] + 0.5 * (hb[i] + hb[i + 1]) * du];
+                        ((ha[i + 1] - ha[i]) / du, (hb[i + 1] - hb[i]) / du)
+                    }
+                    _ => (0.0, 0.0),
+                };
+                Piece { u0: u[i], ha: ha[i], sa, hb: hb[i], sb, ia, ib }
             })
             .collect();
-        ArcPair { a: (a.entry_rad, a.exit_rad), b: (b.entry_rad, b.exit_rad), u, pts }
+        if pieces.is_empty() {
+            pieces.push(Piece { u0: 0.0, ha: 0.0, sa: 0.0, hb: 0.0, sb: 0.0, ia: 0.0, ib: 0.0 });
+        }
+        pieces.push(Piece { u0: f64::INFINITY, ..pieces[pieces.len() - 1] });
+        ArcPair { a: (a.entry_rad, a.exit_rad), b: (b.entry_rad, b.exit_rad), pieces }
     }
 }
 
@@ -212,47 +263,43 @@ impl ArcBlend<'_> {
 
 /// A reading position in an [`ArcPair`], moved forward as u grows.
 struct Cursor<'a> {
-    p: &'a ArcPair,
+    pieces: &'a [Piece],
     w: f64,
     i: usize,
 }
 
 impl<'a> Cursor<'a> {
     fn new(b: &ArcBlend<'a>, u: f64) -> Cursor<'a> {
-        Cursor { p: b.pair, w: b.w, i: b.pair.u.partition_point(|&x| x < u).saturating_sub(1) }
+        let pieces = b.pair.pieces.as_slice();
+        Cursor { pieces, w: b.w, i: pieces.partition_point(|p| p.u0 < u).saturating_sub(1) }
     }
+
     /// The piece of u (not below the last call's) and u's offset into it.
-    #[inline]
-    fn piece(&mut self, u: f64) -> Option<(f64, &'a [f64; 6])> {
-        let (us, pts) = (&self.p.u, &self.p.pts);
-        while self.i + 2 < us.len() && us[self.i + 1] < u {
+    #[inline(always)]
+    fn piece(&mut self, u: f64) -> (f64, &'a Piece) {
+        // The sentinel (u0 = +∞) stops the walk.
+        while self.pieces.get(self.i + 1).is_some_and(|p| p.u0 < u) {
             self.i += 1;
         }
-        match (us.get(self.i), pts.get(self.i)) {
-            (Some(&u0), Some(p)) => Some(((u - u0).max(0.0), p)),
-            _ => None,
-        }
+        let p = &self.pieces[self.i];
+        ((u - p.u0).max(0.0), p)
     }
 
     /// The blended h(u) (u not below the last call's).
-    #[inline]
+    #[inline(always)]
     fn at(&mut self, u: f64) -> f64 {
-        let w = self.w;
-        self.piece(u).map_or(0.0, |(d, &[ha, sa, hb, sb, ..])| {
-            let a = ha + sa * d;
-            a + w * (hb + sb * d - a)
-        })
+        let (d, p) = self.piece(u);
+        let a = p.ha + p.sa * d;
+        a + self.w * (p.hb + p.sb * d - a)
     }
 
     /// The blended ∫₀ᵘ h du (u in [0, 1], not below the last call's): h is linear on each
     /// piece, so this is exact.
-    #[inline]
+    #[inline(always)]
     fn integral(&mut self, u: f64) -> f64 {
-        let w = self.w;
-        self.piece(u).map_or(0.0, |(d, &[ha, sa, hb, sb, ia, ib])| {
-            let a = ia + d * (ha + 0.5 * sa * d);
-            a + w * (ib + d * (hb + 0.5 * sb * d) - a)
-        })
+        let (d, p) = self.piece(u);
+        let a = p.ia + d * (p.ha + 0.5 * p.sa * d);
+        a + self.w * (p.ib + d * (p.hb + 0.5 * p.sb * d) - a)
     }
 }
 
@@ -327,14 +374,19 @@ impl<'a> Model<'a> {
             .max(0.0)
     }
 
-    /// Force (Fx, Fy, Fz) and torque at one instant: `frame` is the world angle (rad from +x,
-    /// counter-clockwise) of φ = 0, `spindle` the angle φ of tooth 0's bottom point.
-    fn instant<'b>(&self, frame: f64, spindle: f64, arcs: impl IntoIterator<Item = ArcBlend<'b>>) -> ([f64; 4], bool) {
+    /// Force (Fx, Fy, Fz) and torque at one instant: `spindle` is the angle φ of tooth 0's
+    /// bottom point, (sin ψ, cos ψ) = `dir0` its world direction (ψ = the world angle of φ =
+    /// 0, from +x counter-clockwise, minus `spindle`).
+    fn instant<'b>(
+        &self,
+        (s0, c0): (f64, f64),
+        spindle: f64,
+        arcs: impl IntoIterator<Item = ArcBlend<'b>>,
+    ) -> ([f64; 4], bool) {
         let mut f = [0.0; 4];
         let mut cutting = false;
         let span = self.lag * self.depth;
-        // World direction of tooth 0's bottom point: ψ = frame − spindle; tooth j at ψ − j·2π/z.
-        let (s0, c0) = (frame - spindle).sin_cos();
+        // Tooth j at ψ − j·2π/z.
         for arc in arcs {
             let (e, x) = arc.ends();
             if x <= e {
@@ -373,7 +425,7 @@ impl<'a> Model<'a> {
     /// `phi_b`, world direction (cos ψ₀, sin ψ₀) = `dir0`) in the blended arc (entry `e`, exit
     /// `x`) to `f`.
     ///
-    /// Slices go from the top down, so φ and u grow and the cursors only move forward. A slice
+    /// Slices go from the top down, so φ and u grow and the cursor only moves forward. A slice
     /// cut by `z_lo` or `z_hi` counts its engaged part (length and mid-point). Each slice takes
     /// the mean of h over its part of the arc, exactly (h is piecewise linear in u, and u
     /// linear in z: the difference of ∫h du at its ends over their distance), so a kink of
@@ -395,70 +447,52 @@ impl<'a> Model<'a> {
         dir0: (f64, f64),
         f: &mut [f64; 4],
     ) {
-        let inv_sweep = 1.0 / (x - e);
-        let u_of = |z: f64| ((phi_b - self.lag * z - e) * inv_sweep).clamp(0.0, 1.0);
+        let flute = Flute { m: self, j, phi_b, e, inv_sweep: 1.0 / (x - e) };
         let dz = self.dz;
-        let mut cursor = Cursor::new(arc, u_of(z_hi));
+        let mut cursor = Cursor::new(arc, flute.u(z_hi));
         // Sums over the flute's elements in its own frame (turn (sin, cos) = (st, ct) from
         // ψ₀): Σ h·len·ct, Σ h·len·st, Σ h·len, Σ len·ct, Σ len·st, Σ len. The forces are
         // linear in them ([`Model::add_flute`]).
         let mut sums = [0.0; 6];
-        // Below this u-extent of a slice (straight flutes: every slice at one angle) h is
-        // taken at the slice's middle.
-        const POINT: f64 = 1e-12;
-        // The mean h between u_top and u_bot (≥ u_top) with ∫h du at u_top given; also ∫h du
-        // at u_bot.
-        let mean = |cursor: &mut Cursor, u_top: f64, i_top: f64, u_bot: f64| {
-            if u_bot - u_top < POINT {
-                let h = cursor.at(0.5 * (u_top + u_bot));
-                (h, cursor.integral(u_bot))
-            } else {
-                let i_bot = cursor.integral(u_bot);
-                ((i_bot - i_top) / (u_bot - u_top), i_bot)
-            }
-        };
-        // Slice i at mid-height z_m: ψ = ψ₀ + lag·z_m, turned from the tabulated
-        // lag·(i + ½)·dz by δ = lag·(z_m − (i + ½)·dz) for a cut slice. Returns ∫h du at
-        // its bottom.
-        let cut_slice = |sums: &mut [f64; 6], cursor: &mut Cursor, zl: f64, zh: f64, i_top: f64| {
-            let i = ((zl / dz) as usize).min(SLICES - 1);
-            let zm = 0.5 * (zl + zh);
-            let (st, ct) = self.slice_dirs[i];
-            let d = self.lag * (zm - (i as f64 + 0.5) * dz);
-            let d2 = d * d;
-            let (sd, cd) = (d * (1.0 - d2 / 6.0), 1.0 - d2 * (0.5 - d2 / 24.0));
-            let (st, ct) = (st * cd + ct * sd, ct * cd - st * sd);
-            let (h, i_bot) = mean(cursor, u_of(zh), i_top, u_of(zl));
-            let (h, len) = (self.flute_chip(j, h), zh - zl);
-            for (sum, v) in sums.iter_mut().zip([h * len * ct, h * len * st, h * len, len * ct, len * st, len]) {
-                *sum += v;
-            }
-            i_bot
-        };
-        let top = cursor.integral(u_of(z_hi));
+        let top = cursor.integral(flute.u(z_hi));
         // Whole slices i_a..i_b span [z_a, z_b]; the cut ones above and below.
         // z_lo, z_hi ≥ 0: truncation is the floor.
         let (q_lo, q_hi) = (z_lo / dz, z_hi / dz);
         let i_a = ((q_lo as usize) + usize::from(q_lo > (q_lo as usize) as f64)).min(SLICES);
         let i_b = (q_hi as usize).clamp(i_a, SLICES);
         if i_a == i_b {
-            cut_slice(&mut sums, &mut cursor, z_lo, z_hi, top);
+            flute.cut_slice(&mut sums, &mut cursor, z_lo, z_hi, top);
         } else {
             let (z_a, z_b) = (i_a as f64 * dz, i_b as f64 * dz);
-            let mut int = if z_hi > z_b { cut_slice(&mut sums, &mut cursor, z_b, z_hi, top) } else { top };
-            let du = self.lag * dz * inv_sweep;
+            let mut int = if z_hi > z_b { flute.cut_slice(&mut sums, &mut cursor, z_b, z_hi, top) } else { top };
+            let du = self.lag * dz * flute.inv_sweep;
             // u at the top of slice i_b − 1 (unclamped; clamped for the integral).
-            let mut u = (phi_b - self.lag * z_b - e) * inv_sweep;
+            let mut u = (phi_b - self.lag * z_b - e) * flute.inv_sweep;
             let (mut hc, mut hs, mut hh) = (0.0, 0.0, 0.0);
-            for i in (i_a..i_b).rev() {
-                let (st, ct) = self.slice_dirs[i];
-                let (h, next) = mean(&mut cursor, u.clamp(0.0, 1.0), int, (u + du).clamp(0.0, 1.0));
-                int = next;
-                let h = self.flute_chip(j, h);
-                hc += h * ct;
-                hs += h * st;
-                hh += h;
-                u += du;
+            let dirs = self.slice_dirs[i_a..i_b].iter().rev();
+            if du >= POINT {
+                // A whole slice spans du: its mean h is the difference of ∫h du at its ends
+                // over du (within [0, 1] but for rounding).
+                let inv_du = 1.0 / du;
+                for &(st, ct) in dirs {
+                    u += du;
+                    let next = cursor.integral(u.clamp(0.0, 1.0));
+                    let h = self.flute_chip(j, (next - int) * inv_du);
+                    int = next;
+                    hc += h * ct;
+                    hs += h * st;
+                    hh += h;
+                }
+            } else {
+                for &(st, ct) in dirs {
+                    let (h, next) = mean(&mut cursor, u.clamp(0.0, 1.0), int, (u + du).clamp(0.0, 1.0));
+                    int = next;
+                    let h = self.flute_chip(j, h);
+                    hc += h * ct;
+                    hs += h * st;
+                    hh += h;
+                    u += du;
+                }
             }
             // The edge terms of whole slices from the tabulated sums of their turns.
             let (sb, sa) = (self.dir_sums[i_b], self.dir_sums[i_a]);
@@ -468,7 +502,7 @@ impl<'a> Model<'a> {
                 *sum += v;
             }
             if z_a > z_lo {
-                cut_slice(&mut sums, &mut cursor, z_lo, z_a, int);
+                flute.cut_slice(&mut sums, &mut cursor, z_lo, z_a, int);
             }
         }
         self.add_flute(f, &sums, dir0);
@@ -493,11 +527,69 @@ impl<'a> Model<'a> {
     }
 }
 
+/// Below this u-extent of a slice (straight flutes: every slice at one angle) h is taken at
+/// the slice's middle.
+const POINT: f64 = 1e-12;
+
+/// The mean h between `u_top` and `u_bot` (≥ `u_top`) with ∫h du at `u_top` given (`i_top`);
+/// also ∫h du at `u_bot`.
+#[inline(always)]
+fn mean(cursor: &mut Cursor, u_top: f64, i_top: f64, u_bot: f64) -> (f64, f64) {
+    if u_bot - u_top < POINT {
+        let h = cursor.at(0.5 * (u_top + u_bot));
+        (h, cursor.integral(u_bot))
+    } else {
+        let i_bot = cursor.integral(u_bot);
+        ((i_bot - i_top) / (u_bot - u_top), i_bot)
+    }
+}
+
+/// One flute in one blended arc (see [`Model::flute_slices`]).
+struct Flute<'m, 'k> {
+    m: &'m Model<'k>,
+    j: usize,
+    /// Angle φ of the flute's bottom point.
+    phi_b: f64,
+    /// Arc entry angle and 1 / sweep.
+    e: f64,
+    inv_sweep: f64,
+}
+
+impl Flute<'_, '_> {
+    /// The place u along the arc of the flute's point at height z (clamped to [0, 1]).
+    #[inline(always)]
+    fn u(&self, z: f64) -> f64 {
+        ((self.phi_b - self.m.lag * z - self.e) * self.inv_sweep).clamp(0.0, 1.0)
+    }
+
+    /// Add the slice cut to heights [zl, zh] to `sums`: slice i at mid-height z_m, its
+    /// direction ψ = ψ₀ + lag·z_m turned from the tabulated lag·(i + ½)·dz by δ = lag·(z_m −
+    /// (i + ½)·dz). `i_top`: ∫h du at its top; returns ∫h du at its bottom.
+    #[inline]
+    fn cut_slice(&self, sums: &mut [f64; 6], cursor: &mut Cursor, zl: f64, zh: f64, i_top: f64) -> f64 {
+        let (m, dz) = (self.m, self.m.dz);
+        let i = ((zl / dz) as usize).min(SLICES - 1);
+        let zm = 0.5 * (zl + zh);
+        let (st, ct) = m.slice_dirs[i];
+        let d = m.lag * (zm - (i as f64 + 0.5) * dz);
+        let d2 = d * d;
+        let (sd, cd) = (d * (1.0 - d2 / 6.0), 1.0 - d2 * (0.5 - d2 / 24.0));
+        let (st, ct) = (st * cd + ct * sd, ct * cd - st * sd);
+        let (h, i_bot) = mean(cursor, self.u(zh), i_top, self.u(zl));
+        let (h, len) = (m.flute_chip(self.j, h), zh - zl);
+        for (sum, v) in sums.iter_mut().zip([h * len * ct, h * len * st, h * len, len * ct, len * st, len]) {
+            *sum += v;
+        }
+        i_bot
+    }
+}
+
 /// Force (Fx, Fy, Fz in N) and torque (N·m) at one instant for the engaged `arcs`: `frame` is
 /// the world angle of φ = 0 (the material-side normal N), `spindle` the angle φ of tooth 0's
 /// bottom point (teeth follow at +2π/z). Also whether any element cuts.
 pub fn force_at(cutter: &Cutter, k: &Coefficients, frame: f64, spindle: f64, arcs: &[ArcBlend]) -> ForceSample {
-    let ([fx, fy, fz, t], cutting) = Model::new(cutter, k).instant(frame, spindle, arcs.iter().copied());
+    let dir0 = (frame - spindle).sin_cos();
+    let ([fx, fy, fz, t], cutting) = Model::new(cutter, k).instant(dir0, spindle, arcs.iter().copied());
     ForceSample { time_s: 0.0, fx_n: fx, fy_n: fy, fz_n: fz, torque_nm: t / 1000.0, cutting }
 }
 
@@ -575,17 +667,27 @@ pub fn cycle_forces(
             }
         })
         .collect();
-    let samples: Vec<ForceSample> = (0..steps)
-        .into_par_iter()
-        .map(|i| {
-            let t = i as f64 * dt;
-            // Positions i0 ≤ t < i1 (the one after the last is the next cycle's first).
-            let i0 = series.partition_point(|s| s.time_s <= t).saturating_sub(1);
+    // Per tooth position: the turn of the feed direction to the next one.
+    let turns: Vec<f64> =
+        (0..n).map(|i| wrap_pi(series[(i + 1) % n].feed_angle_rad - series[i].feed_angle_rad)).collect();
+    // Tooth 0 turns clockwise at Ω: its world angle at t is frame0 − Ω·t, turned from one
+    // sample to the next by a rotation (exact sin/cos at the start of each chunk).
+    let (sin_step, cos_step) = (omega * dt).sin_cos();
+    let mut samples = vec![ForceSample::default(); steps];
+    samples.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
+        let first = c * CHUNK;
+        // Positions i0 ≤ t < i1 (the one after the last is the next cycle's first).
+        let mut i0 = series.partition_point(|s| s.time_s <= first as f64 * dt).saturating_sub(1);
+        let (mut s0, mut c0) = (frame0 - omega * (first as f64 * dt)).sin_cos();
+        for (k, out) in out.iter_mut().enumerate() {
+            let t = (first + k) as f64 * dt;
+            while i0 + 1 < n && series[i0 + 1].time_s <= t {
+                i0 += 1;
+            }
             let (a, b) = (&series[i0], &series[(i0 + 1) % n]);
-
             let t1 = if i0 + 1 < n { b.time_s } else { b.time_s + t_cycle_s };
             let w = if t1 > a.time_s { ((t - a.time_s) / (t1 - a.time_s)).clamp(0.0, 1.0) } else { 0.0 };
-            let turn = wrap_pi(b.feed_angle_rad - a.feed_angle_rad);
+            let turn = turns[i0];
             // The arcs (no allocation per sample) and the frame.
             let (pairs, w, frame): (&[ArcPair], f64, f64) = match &pairs[i0] {
                 Some((p, growth)) => {
@@ -599,13 +701,13 @@ pub fn cycle_forces(
                 None => (&singles[(i0 + 1) % n], 0.0, FRAC_PI_2 + a.feed_angle_rad + turn),
             };
             let arcs = pairs.iter().map(|pair| ArcBlend { pair, w });
-            // Tooth 0 turns clockwise at Ω: its world angle is frame0 − Ω·t, so its φ in the
-            // current frame is frame − (frame0 − Ω·t).
+            // Tooth 0's φ in the current frame is frame − (frame0 − Ω·t).
             let spindle = frame - frame0 + omega * t;
-            let ([fx, fy, fz, torque], cutting) = model.instant(frame, spindle, arcs);
-            ForceSample { time_s: t, fx_n: fx, fy_n: fy, fz_n: fz, torque_nm: torque / 1000.0, cutting }
-        })
-        .collect();
+            let ([fx, fy, fz, torque], cutting) = model.instant((s0, c0), spindle, arcs);
+            *out = ForceSample { time_s: t, fx_n: fx, fy_n: fy, fz_n: fz, torque_nm: torque / 1000.0, cutting };
+            (s0, c0) = (s0 * cos_step - c0 * sin_step, c0 * cos_step + s0 * sin_step);
+        }
+    });
     let summary = summarise(&samples, dt, t_cycle_s, omega);
     ForceSeries { samples, dt_s: dt, summary }
 }
@@ -626,13 +728,18 @@ pub const PROFILE_CHANGE: f64 = 0.1;
 /// underestimates h by up to a third (against the brute-force check); a real position half-way
 /// ([`super::chip::tooth_samples_at`]) halves the change. The positions of a steady cut
 /// change by about 1 %.
-pub fn refine_points(series: &[ToothSample], len: f64) -> Vec<f64> {
+///
+/// Only pairs with a position marked in `new` are examined (the others were, in an earlier
+/// round, and kept).
+pub fn refine_points(series: &[ToothSample], len: f64, new: &[bool]) -> Vec<f64> {
     let n = series.len();
+    let fresh = |i: usize| new.get(i).copied().unwrap_or(true);
     (0..n)
         .filter(|&i| {
             let (a, b) = (&series[i].arcs, &series[(i + 1) % n].arcs);
-            a.is_empty() != b.is_empty()
-                || (a.len() == b.len() && a.iter().zip(b).any(|(x, y)| profile_change(x, y) > PROFILE_CHANGE))
+            (fresh(i) || fresh((i + 1) % n))
+                && (a.is_empty() != b.is_empty()
+                    || (a.len() == b.len() && a.iter().zip(b).any(|(x, y)| profile_change(x, y) > PROFILE_CHANGE)))
         })
         .map(|i| {
             let next = if i + 1 < n { series[i + 1].s_mm } else { len + series[0].s_mm };
@@ -649,22 +756,35 @@ fn profile_change(a: &EngagedArc, b: &EngagedArc) -> f64 {
     if scale <= 0.0 {
         return 0.0;
     }
-    let at = |arc: &EngagedArc, u: f64| arc.thickness_at(arc.entry_rad + u * arc.sweep_rad());
     let rel = |arc: &EngagedArc, phi: f64| {
         let sweep = arc.sweep_rad();
         if sweep > 0.0 { (phi - arc.entry_rad) / sweep } else { 0.0 }
     };
+    // |h| at x's samples against y's h at the same u: the places grow with x's samples, so
+    // one walk along y's ([`EngagedArc::thickness_at`] without its search).
     let diff = |x: &EngagedArc, y: &EngagedArc| {
-        x.samples.iter().map(|p| (p.h_mm - at(y, rel(x, p.phi_rad))).abs()).fold(0.0, f64::max)
+        let (ys, mut i) = (&y.samples, 0);
+        x.samples
+            .iter()
+            .map(|p| {
+                let phi = y.entry_rad + rel(x, p.phi_rad) * y.sweep_rad();
+                while ys.get(i).is_some_and(|q| q.phi_rad < phi) {
+                    i += 1;
+                }
+                (p.h_mm - y.thickness_after(i, phi)).abs()
+            })
+            .fold(0.0, f64::max)
     };
     diff(a, b).max(diff(b, a)) / scale
 }
 
-/// `series` with the `extra` tooth samples merged in by time.
-pub fn merge_series(series: &[ToothSample], extra: Vec<ToothSample>) -> Vec<ToothSample> {
-    let mut all: Vec<ToothSample> = series.iter().cloned().chain(extra).collect();
-    all.sort_by(|x, y| x.time_s.total_cmp(&y.time_s));
-    all
+/// `series` with the `extra` tooth samples merged in by time, and which of the result are
+/// from `extra`.
+pub fn merge_series(series: &[ToothSample], extra: Vec<ToothSample>) -> (Vec<ToothSample>, Vec<bool>) {
+    let mut all: Vec<(ToothSample, bool)> =
+        series.iter().map(|t| (t.clone(), false)).chain(extra.into_iter().map(|t| (t, true))).collect();
+    all.sort_by(|x, y| x.0.time_s.total_cmp(&y.0.time_s));
+    all.into_iter().unzip()
 }
 
 /// How the arcs of two neighbouring tooth positions blend in time.
@@ -738,11 +858,26 @@ fn vanish_share(near: &[EngagedArc], before: &[EngagedArc], ratio: f64) -> f64 {
 /// Peaks and means of a periodic series of one cycle (`omega`: spindle speed, rad/s).
 pub fn summarise(samples: &[ForceSample], dt: f64, t_cycle_s: f64, omega: f64) -> ForceSummary {
     let n = samples.len();
-    let Some((imax, fmax)) =
-        samples.iter().map(ForceSample::resultant_n).enumerate().max_by(|a, b| a.1.total_cmp(&b.1))
-    else {
+    if n == 0 {
         return ForceSummary::default();
-    };
+    }
+    // One pass: the (last) largest F_R, the largest |Fxy| and torque, the sums over the
+    // cutting samples.
+    let (mut imax, mut fmax, mut fxy_max, mut torque_max) = (0, f64::NEG_INFINITY, 0.0f64, 0.0f64);
+    let (mut cutting, mut f_sum, mut t_sum) = (0usize, 0.0, 0.0);
+    for (i, s) in samples.iter().enumerate() {
+        let f = s.resultant_n();
+        if f >= fmax {
+            (imax, fmax) = (i, f);
+        }
+        fxy_max = fxy_max.max(s.fxy_n());
+        torque_max = torque_max.max(s.torque_nm);
+        if s.cutting {
+            cutting += 1;
+            f_sum += f;
+            t_sum += s.torque_nm;
+        }
+    }
     // Back from the peak to the first cutting sample of its pass (around the cycle start).
     let mut back = 0;
     if samples[imax].cutting {
@@ -750,18 +885,14 @@ pub fn summarise(samples: &[ForceSample], dt: f64, t_cycle_s: f64, omega: f64) -
             back += 1;
         }
     }
-    let cutting: Vec<&ForceSample> = samples.iter().filter(|s| s.cutting).collect();
-    let mean = |f: fn(&ForceSample) -> f64| {
-        if cutting.is_empty() { 0.0 } else { cutting.iter().map(|s| f(s)).sum::<f64>() / cutting.len() as f64 }
-    };
-    let torque_max = samples.iter().map(|s| s.torque_nm).fold(0.0, f64::max);
-    let torque_mean = mean(|s| s.torque_nm);
+    let mean = |sum: f64| if cutting == 0 { 0.0 } else { sum / cutting as f64 };
+    let torque_mean = mean(t_sum);
     ForceSummary {
         resultant_max_n: fmax,
-        resultant_mean_n: mean(ForceSample::resultant_n),
+        resultant_mean_n: mean(f_sum),
         t_max_s: samples[imax].time_s,
         t_max_share: back as f64 * dt / t_cycle_s,
-        fxy_max_n: samples.iter().map(ForceSample::fxy_n).fold(0.0, f64::max),
+        fxy_max_n: fxy_max,
         torque_max_nm: torque_max,
         torque_mean_nm: torque_mean,
         power_max_w: torque_max * omega,
