@@ -36,6 +36,10 @@ use std::f64::consts::PI;
 /// of the edge representation, far below any real chip.
 pub const H_CUT_MM: f64 = 1e-6;
 
+/// Arc lengths closer than this are one tool position (mm): far below any resolution of the
+/// analysis, far above the rounding of arc lengths along a cycle.
+const SAME_PLACE_MM: f64 = 1e-9;
+
 /// Coarse samples across the forward half circle before refinement.
 const COARSE: usize = 17;
 
@@ -161,6 +165,7 @@ impl ToothSample {
 }
 
 /// Engaged arc of one tool position.
+#[derive(Clone)]
 struct Engagement {
     /// Total angle in material (rad).
     angle: f64,
@@ -576,6 +581,7 @@ pub fn tooth_stride(len: f64, f_z: f64) -> usize {
 }
 
 /// One analysed tooth position: arc length from the cycle start (mm), frame, engagement.
+#[derive(Clone)]
 struct Tooth {
     s: f64,
     frame: Frame,
@@ -653,8 +659,21 @@ impl<'a> CycleTeeth<'a> {
             ss.into_iter().zip(pos).collect()
         };
         let wraps: Vec<bool> = at.iter().map(|&s| s < f_z).collect();
-        let prev_s = at.iter().map(|&s| if s < f_z { len + s - f_z } else { s - f_z }).collect();
-        let mut previous = teeth_at(cycle, edge, r, &early, P2::zeros(), positions(prev_s));
+        let teeth = teeth_at(cycle, edge, r, &early, P2::zeros(), positions(at.to_vec()));
+        // A previous tooth where an analysed one is (neighbouring gaps refined together: f_z
+        // before the middle of one gap is the middle of the gap before) is that tooth; the
+        // places agree to rounding, SAME_PLACE_MM.
+        let mut order: Vec<usize> = (0..at.len()).collect();
+        order.sort_by(|&a, &b| at[a].total_cmp(&at[b]));
+        let analysed = |s: f64| {
+            let k = order.partition_point(|&i| at[i] < s - SAME_PLACE_MM);
+            order.get(k).and_then(|&i| teeth.get(i)).filter(|t| (t.s - s).abs() <= SAME_PLACE_MM)
+        };
+        let prev_s: Vec<f64> = at.iter().map(|&s| if s < f_z { len + s - f_z } else { s - f_z }).collect();
+        let missing = prev_s.iter().copied().filter(|&s| analysed(s).is_none()).collect();
+        let mut computed = teeth_at(cycle, edge, r, &early, P2::zeros(), positions(missing)).into_iter();
+        let mut previous: Vec<Tooth> =
+            prev_s.iter().filter_map(|&s| analysed(s).cloned().or_else(|| computed.next())).collect();
         for (t, _) in previous.iter_mut().zip(&wraps).filter(|x| *x.1) {
             let back = P2::new(0.0, -cycle.step);
             t.frame.c += back;
@@ -662,7 +681,6 @@ impl<'a> CycleTeeth<'a> {
                 *b += back;
             }
         }
-        let teeth = teeth_at(cycle, edge, r, &early, P2::zeros(), positions(at.to_vec()));
         CycleTeeth { cycle, edge, r, stride: 1, early, teeth, before_start: None, previous, own_previous: true, wraps }
     }
 

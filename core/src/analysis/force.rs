@@ -141,15 +141,16 @@ pub struct ArcPair {
     pieces: Vec<Piece>,
 }
 
-/// One piece of an [`ArcPair`] from `u0` to the next piece's start: h_a = `ha` + `sa`·(u − u0)
-/// and ∫₀ᵘ h_a du = `ia` + …, the same for h_b. The last grid point is a piece of slope 0.
+/// One piece of an [`ArcPair`] from `u0` to the next piece's start: h_a = `ha` + 2·`qa`·(u −
+/// u0) (`qa`: half the slope) and ∫₀ᵘ h_a du = `ia` + (u − u0)·(`ha` + `qa`·(u − u0)), the same
+/// for h_b. The last grid point is a piece of slope 0.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Piece {
     u0: f64,
     ha: f64,
-    sa: f64,
+    qa: f64,
     hb: f64,
-    sb: f64,
+    qb: f64,
     ia: f64,
     ib: f64,
 }
@@ -209,19 +210,19 @@ impl ArcPair {
         let mut pieces: Vec<Piece> = (0..u.len())
             .map(|i| {
                 let (ia, ib) = (cum[0], cum[1]);
-                let (sa, sb) = match u.get(i + 1) {
+                let (qa, qb) = match u.get(i + 1) {
                     Some(&next) if next > u[i] => {
                         let du = next - u[i];
                         cum = [cum[0] + 0.5 * (ha[i] + ha[i + 1]) * du, cum[1] + 0.5 * (hb[i] + hb[i + 1]) * du];
-                        ((ha[i + 1] - ha[i]) / du, (hb[i + 1] - hb[i]) / du)
+                        (0.5 * ((ha[i + 1] - ha[i]) / du), 0.5 * ((hb[i + 1] - hb[i]) / du))
                     }
                     _ => (0.0, 0.0),
                 };
-                Piece { u0: u[i], ha: ha[i], sa, hb: hb[i], sb, ia, ib }
+                Piece { u0: u[i], ha: ha[i], qa, hb: hb[i], qb, ia, ib }
             })
             .collect();
         if pieces.is_empty() {
-            pieces.push(Piece { u0: 0.0, ha: 0.0, sa: 0.0, hb: 0.0, sb: 0.0, ia: 0.0, ib: 0.0 });
+            pieces.push(Piece { u0: 0.0, ha: 0.0, qa: 0.0, hb: 0.0, qb: 0.0, ia: 0.0, ib: 0.0 });
         }
         pieces.push(Piece { u0: f64::INFINITY, ..pieces[pieces.len() - 1] });
         ArcPair { a: (a.entry_rad, a.exit_rad), b: (b.entry_rad, b.exit_rad), pieces }
@@ -269,9 +270,18 @@ struct Cursor<'a> {
 }
 
 impl<'a> Cursor<'a> {
+    /// At the last piece starting before u (or the first).
     fn new(b: &ArcBlend<'a>, u: f64) -> Cursor<'a> {
         let pieces = b.pair.pieces.as_slice();
-        Cursor { pieces, w: b.w, i: pieces.partition_point(|p| p.u0 < u).saturating_sub(1) }
+        // Pieces are about evenly spread in u: start the search where u would be and walk.
+        let last = pieces.len().saturating_sub(2);
+        let mut i = ((u.clamp(0.0, 1.0) * last as f64) as usize).min(last);
+        while i > 0 && pieces[i].u0 >= u {
+            i -= 1;
+        }
+        let mut cursor = Cursor { pieces, w: b.w, i };
+        cursor.piece(u);
+        cursor
     }
 
     /// The piece of u (not below the last call's) and u's offset into it.
@@ -289,8 +299,8 @@ impl<'a> Cursor<'a> {
     #[inline(always)]
     fn at(&mut self, u: f64) -> f64 {
         let (d, p) = self.piece(u);
-        let a = p.ha + p.sa * d;
-        a + self.w * (p.hb + p.sb * d - a)
+        let a = p.ha + 2.0 * p.qa * d;
+        a + self.w * (p.hb + 2.0 * p.qb * d - a)
     }
 
     /// The blended ∫₀ᵘ h du (u in [0, 1], not below the last call's): h is linear on each
@@ -298,8 +308,8 @@ impl<'a> Cursor<'a> {
     #[inline(always)]
     fn integral(&mut self, u: f64) -> f64 {
         let (d, p) = self.piece(u);
-        let a = p.ia + d * (p.ha + 0.5 * p.sa * d);
-        a + self.w * (p.ib + d * (p.hb + 0.5 * p.sb * d) - a)
+        let a = p.ia + d * (p.ha + p.qa * d);
+        a + self.w * (p.ib + d * (p.hb + p.qb * d) - a)
     }
 }
 
@@ -309,8 +319,9 @@ struct Model<'a> {
     r: f64,
     depth: f64,
     dz: f64,
-    /// tanβ / R (rad per mm of height).
+    /// tanβ / R (rad per mm of height), and its inverse (0 for straight flutes).
     lag: f64,
+    inv_lag: f64,
     teeth: usize,
     pitch: f64,
     runout: &'a [f64],
@@ -331,6 +342,7 @@ impl<'a> Model<'a> {
             depth: c.depth_mm,
             dz: c.depth_mm / SLICES as f64,
             lag: c.helix_rad.tan() / c.radius_mm,
+            inv_lag: if c.helix_rad > 0.0 { c.radius_mm / c.helix_rad.tan() } else { 0.0 },
             teeth: c.teeth as usize,
             pitch: TAU / f64::from(c.teeth),
             runout: &c.runout_mm,
@@ -392,16 +404,16 @@ impl<'a> Model<'a> {
             if x <= e {
                 continue;
             }
+            // Tooth j's bottom point is at spindle + j·2π/z; the first branch of its flute at
+            // or after the arc entry is e + (that − e mod 2π).
+            let d = spindle - e;
+            let first = d - TAU * floor(d / TAU);
             for j in 0..self.teeth {
-                let bottom = spindle + j as f64 * self.pitch;
-                let (cj, sj) = self.tooth_dirs[j];
-                let dir = (c0 * cj + s0 * sj, s0 * cj - c0 * sj);
-                // The first branch of the flute at or after the arc entry.
-                let d = bottom - e;
-                let mut phi_b = e + (d - TAU * floor(d / TAU));
+                let r = first + j as f64 * self.pitch;
+                let mut phi_b = e + if r >= TAU { r - TAU } else { r };
                 while phi_b - span <= x {
                     let (z_lo, z_hi) = if self.lag > 0.0 {
-                        (((phi_b - x) / self.lag).max(0.0), ((phi_b - e) / self.lag).min(self.depth))
+                        (((phi_b - x) * self.inv_lag).max(0.0), ((phi_b - e) * self.inv_lag).min(self.depth))
                     } else if phi_b <= x {
                         (0.0, self.depth)
                     } else {
@@ -409,6 +421,8 @@ impl<'a> Model<'a> {
                     };
                     if z_hi > z_lo {
                         cutting = true;
+                        let (cj, sj) = self.tooth_dirs[j];
+                        let dir = (c0 * cj + s0 * sj, s0 * cj - c0 * sj);
                         self.flute_slices(&arc, e, x, j, phi_b, z_lo, z_hi, dir, &mut f);
                     }
                     if self.lag <= 0.0 {
@@ -473,15 +487,22 @@ impl<'a> Model<'a> {
             if du >= POINT {
                 // A whole slice spans du: its mean h is the difference of ∫h du at its ends
                 // over du (within [0, 1] but for rounding).
-                let inv_du = 1.0 / du;
-                for &(st, ct) in dirs {
-                    u += du;
-                    let next = cursor.integral(u.clamp(0.0, 1.0));
-                    let h = self.flute_chip(j, (next - int) * inv_du);
-                    int = next;
-                    hc += h * ct;
-                    hs += h * st;
-                    hh += h;
+                let mut whole = |chip: &dyn Fn(f64) -> f64| {
+                    let inv_du = 1.0 / du;
+                    for &(st, ct) in dirs.clone() {
+                        u += du;
+                        let next = cursor.integral(u.clamp(0.0, 1.0));
+                        let h = chip((next - int) * inv_du);
+                        int = next;
+                        hc += h * ct;
+                        hs += h * st;
+                        hh += h;
+                    }
+                };
+                if self.runout.is_empty() {
+                    whole(&|h| h);
+                } else {
+                    whole(&|h| self.flute_chip(j, h));
                 }
             } else {
                 for &(st, ct) in dirs {
@@ -622,6 +643,7 @@ pub fn cycle_forces(
         a.len() != b.len() && !a.is_empty() && !b.is_empty()
     };
     let singles: Vec<Vec<ArcPair>> = (0..n)
+        .into_par_iter()
         .map(|i| {
             let needed = split(i) || split((i + n - 1) % n);
             let arcs = if needed { series[i].arcs.as_slice() } else { &[] };
@@ -646,6 +668,7 @@ pub fn cycle_forces(
         if i + 1 < n { b - a } else { b + t_cycle_s - a }
     };
     let pairs: Vec<Option<(Vec<ArcPair>, Growth)>> = (0..n)
+        .into_par_iter()
         .map(|i| {
             let (a, b) = (&series[i].arcs, &series[(i + 1) % n].arcs);
             if a.len() == b.len() {
@@ -667,9 +690,16 @@ pub fn cycle_forces(
             }
         })
         .collect();
-    // Per tooth position: the turn of the feed direction to the next one.
+    // Per tooth position: the turn of the feed direction to the next one, and whether any
+    // arc is engaged before the next.
     let turns: Vec<f64> =
         (0..n).map(|i| wrap_pi(series[(i + 1) % n].feed_angle_rad - series[i].feed_angle_rad)).collect();
+    let engaged: Vec<bool> = (0..n)
+        .map(|i| match &pairs[i] {
+            Some((p, _)) => !p.is_empty(),
+            None => !singles[i].is_empty() || !singles[(i + 1) % n].is_empty(),
+        })
+        .collect();
     // Tooth 0 turns clockwise at Ω: its world angle at t is frame0 − Ω·t, turned from one
     // sample to the next by a rotation (exact sin/cos at the start of each chunk).
     let (sin_step, cos_step) = (omega * dt).sin_cos();
@@ -683,6 +713,11 @@ pub fn cycle_forces(
             let t = (first + k) as f64 * dt;
             while i0 + 1 < n && series[i0 + 1].time_s <= t {
                 i0 += 1;
+            }
+            if !engaged[i0] {
+                *out = ForceSample { time_s: t, ..ForceSample::default() };
+                (s0, c0) = (s0 * cos_step - c0 * sin_step, c0 * cos_step + s0 * sin_step);
+                continue;
             }
             let (a, b) = (&series[i0], &series[(i0 + 1) % n]);
             let t1 = if i0 + 1 < n { b.time_s } else { b.time_s + t_cycle_s };
