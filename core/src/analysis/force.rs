@@ -474,7 +474,9 @@ impl<'a> Model<'a> {
         let (q_lo, q_hi) = (z_lo / dz, z_hi / dz);
         let i_a = ((q_lo as usize) + usize::from(q_lo > (q_lo as usize) as f64)).min(SLICES);
         let i_b = (q_hi as usize).clamp(i_a, SLICES);
-        if i_a == i_b {
+        // Within one slice: one cut slice. (Two cut slices around one boundary, i_a = i_b,
+        // take the general path with no whole slice between them.)
+        if i_a as f64 * dz >= z_hi {
             flute.cut_slice(&mut sums, &mut cursor, z_lo, z_hi, top);
         } else {
             let (z_a, z_b) = (i_a as f64 * dz, i_b as f64 * dz);
@@ -486,12 +488,13 @@ impl<'a> Model<'a> {
             let dirs = self.slice_dirs[i_a..i_b].iter().rev();
             if du >= POINT {
                 // A whole slice spans du: its mean h is the difference of ∫h du at its ends
-                // over du (within [0, 1] but for rounding).
+                // over du. Its ends lie in [0, 1] but for rounding (beyond, the cursor reads
+                // the first or last piece's ends, so no clamp is needed).
                 let mut whole = |chip: &dyn Fn(f64) -> f64| {
                     let inv_du = 1.0 / du;
                     for &(st, ct) in dirs.clone() {
                         u += du;
-                        let next = cursor.integral(u.clamp(0.0, 1.0));
+                        let next = cursor.integral(u);
                         let h = chip((next - int) * inv_du);
                         int = next;
                         hc += h * ct;
@@ -1087,6 +1090,166 @@ mod tests {
         let sum = m.slice_dirs[a..b].iter().fold((0.0, 0.0), |s, d| (s.0 + d.0, s.1 + d.1));
         assert!((m.dir_sums[b].0 - m.dir_sums[a].0 - sum.0).abs() < 1e-12);
         assert!((m.dir_sums[b].1 - m.dir_sums[a].1 - sum.1).abs() < 1e-12);
+    }
+
+    /// The mean of an arc's h over the relative places [u1, u2] (trapezoids between its own
+    /// samples, where h is linear: exact), or h at the middle for a point-like span.
+    fn reference_mean_h(arc: &EngagedArc, u1: f64, u2: f64) -> f64 {
+        let sweep = arc.sweep_rad();
+        if sweep <= 0.0 {
+            return arc.samples.first().map_or(0.0, |x| x.h_mm);
+        }
+        let at = |u: f64| arc.thickness_at((arc.entry_rad + u * sweep).clamp(arc.entry_rad, arc.exit_rad));
+        if u2 - u1 < 1e-12 {
+            return at(0.5 * (u1 + u2));
+        }
+        let inner = arc.samples.iter().map(|x| (x.phi_rad - arc.entry_rad) / sweep).filter(|&u| u > u1 && u < u2);
+        let us: Vec<f64> = std::iter::once(u1).chain(inner).chain(std::iter::once(u2)).collect();
+        us.windows(2).map(|w| 0.5 * (at(w[0]) + at(w[1])) * (w[1] - w[0])).sum::<f64>() / (u2 - u1)
+    }
+
+    /// The force at one instant the straightforward way, independent of [`ArcPair`]'s pieces,
+    /// the cursor, the tabulated slice turns and the flute sums: every slice of every flute
+    /// (each branch of its helix), the part of it inside the blended arc, h the blend of both
+    /// arcs' exact means over that part (runout by [`Model::flute_chip`]), the element at the
+    /// world angle of the part's middle, domain-spec §4.1's element forces summed in the
+    /// machine frame. `frame`: world angle of φ = 0; tooth 0's bottom at φ = `spindle`.
+    fn reference_force(
+        c: &Cutter,
+        k: &Coefficients,
+        frame: f64,
+        spindle: f64,
+        arcs: &[(&EngagedArc, &EngagedArc, f64)],
+    ) -> [f64; 4] {
+        let m = Model::new(c, k);
+        let dz = c.depth_mm / SLICES as f64;
+        let lag = c.helix_rad.tan() / c.radius_mm;
+        let mut f = [0.0; 4];
+        for &(a, b, w) in arcs {
+            let (pair, _) = (ArcPair::new(a, b), ());
+            let (e, x) = ArcBlend { pair: &pair, w }.ends();
+            if x <= e {
+                continue;
+            }
+            for j in 0..c.teeth as usize {
+                let bottom = spindle + TAU * j as f64 / f64::from(c.teeth);
+                // Every branch of the flute that can reach the arc.
+                for turn in -2..=2 {
+                    let phi_b = bottom + TAU * f64::from(turn);
+                    for i in 0..SLICES {
+                        let (za, zb) = (i as f64 * dz, (i + 1) as f64 * dz);
+                        let (zl, zh) = if lag > 0.0 {
+                            (za.max((phi_b - x) / lag), zb.min((phi_b - e) / lag))
+                        } else if (e..=x).contains(&phi_b) {
+                            (za, zb)
+                        } else {
+                            continue;
+                        };
+                        if zh <= zl {
+                            continue;
+                        }
+                        let u = |z: f64| ((phi_b - lag * z - e) / (x - e)).clamp(0.0, 1.0);
+                        let (u1, u2) = (u(zh), u(zl));
+                        let h = (1.0 - w) * reference_mean_h(a, u1, u2) + w * reference_mean_h(b, u1, u2);
+                        let (h, len) = (m.flute_chip(j, h), zh - zl);
+                        let psi = frame - (phi_b - lag * 0.5 * (zl + zh));
+                        let (ft, fr, fa) =
+                            ((k.ktc * h + k.kte) * len, (k.krc * h + k.kre) * len, (k.kac * h + k.kae) * len);
+                        f[0] += -ft * psi.sin() - fr * psi.cos();
+                        f[1] += ft * psi.cos() - fr * psi.sin();
+                        f[2] += fa;
+                        f[3] += ft * c.radius_mm / 1000.0;
+                    }
+                }
+            }
+        }
+        f
+    }
+
+    /// The fast inner loop ([`force_at`]: pieces, cursor, whole slices by ∫h differences,
+    /// flute sums) equals [`reference_force`] on the default job's real engaged arcs: every
+    /// pair of neighbouring tooth positions with arcs, at the start, inside and at the end of
+    /// the tooth period, at spindle angles across a tooth pitch; with helix angles 0°, 35° and
+    /// 60° and with runout. Tolerance 1e-9 of F_R,max (rounding only).
+    #[test]
+    fn fast_force_equals_the_straightforward_sum() {
+        let p = crate::plan(&crate::Job::default()).expect("default job");
+        let k = p.job.coefficients;
+        let cutters = [
+            cutter(),
+            Cutter { helix_rad: 0.0, ..cutter() },
+            Cutter { helix_rad: 60f64.to_radians(), ..cutter() },
+            Cutter { runout_mm: vec![0.01, 0.0, 0.004, 0.0], ..cutter() },
+        ];
+        let tol = 1e-9 * p.forces.summary.resultant_max_n;
+        let n = p.series.len();
+        let (mut compared, mut cutting) = (0, 0);
+        for i in (0..n).step_by(3) {
+            let (a, b) = (&p.series[i].arcs, &p.series[(i + 1) % n].arcs);
+            if a.is_empty() || a.len() != b.len() {
+                continue;
+            }
+            let pairs: Vec<ArcPair> = a.iter().zip(b).map(|(x, y)| ArcPair::new(x, y)).collect();
+            for w in [0.0, 0.37, 1.0] {
+                let blends: Vec<ArcBlend> = pairs.iter().map(|pair| ArcBlend { pair, w }).collect();
+                let plain: Vec<_> = a.iter().zip(b).map(|(x, y)| (x, y, w)).collect();
+                for (q, c) in cutters.iter().enumerate() {
+                    for step in 0..7 {
+                        let frame = FRAC_PI_2 + p.series[i].feed_angle_rad;
+                        let spindle = 0.1 + 0.2 * step as f64 + 0.01 * q as f64;
+                        let fast = force_at(c, &k, frame, spindle, &blends);
+                        let slow = reference_force(c, &k, frame, spindle, &plain);
+                        for (got, want) in [fast.fx_n, fast.fy_n, fast.fz_n, fast.torque_nm].iter().zip(slow) {
+                            assert!((got - want).abs() <= tol, "position {i}, w {w}, cutter {q}: {got} vs {want}");
+                        }
+                        compared += 1;
+                        cutting += usize::from(fast.cutting);
+                    }
+                }
+            }
+        }
+        // Most of them cut (the comparison is not of zeros).
+        assert!(compared > 1000 && cutting > compared / 2, "{cutting} of {compared} cut");
+    }
+
+    /// The series ([`cycle_forces`]: chunks, the tooth interval found by walking, the spindle
+    /// direction by rotation, idle intervals skipped) equals [`force_at`] evaluated at each
+    /// sample's own time the plain way (position by search, sin/cos of the spindle angle),
+    /// wherever both neighbouring positions have as many arcs (blended linearly) or none.
+    #[test]
+    fn series_equals_the_instant_forces_at_its_times() {
+        let p = crate::plan(&crate::Job::default()).expect("default job");
+        let (c, k) = (crate::plan::cutter(&p.job), p.job.coefficients);
+        let series = &p.series;
+        let n = series.len();
+        let t_cycle = p.metrics.cycle_length_mm / (p.job.feed / 60.0);
+        let forces = cycle_forces(series, t_cycle, &c, &k, p.job.rpm);
+        let omega = p.job.rpm / 60.0 * TAU;
+        let frame0 = FRAC_PI_2 + series[0].feed_angle_rad;
+        let tol = 1e-9 * forces.summary.resultant_max_n;
+        let mut checked = 0;
+        for s in forces.samples.iter().step_by(7) {
+            let t = s.time_s;
+            let i0 = series.partition_point(|x| x.time_s <= t).saturating_sub(1);
+            let (a, b) = (&series[i0], &series[(i0 + 1) % n]);
+            if a.arcs.len() != b.arcs.len() {
+                continue;
+            }
+            let t1 = if i0 + 1 < n { b.time_s } else { b.time_s + t_cycle };
+            let w = ((t - a.time_s) / (t1 - a.time_s)).clamp(0.0, 1.0);
+            let frame = FRAC_PI_2 + a.feed_angle_rad + w * wrap_pi(b.feed_angle_rad - a.feed_angle_rad);
+            let pairs: Vec<ArcPair> = a.arcs.iter().zip(&b.arcs).map(|(x, y)| ArcPair::new(x, y)).collect();
+            let blends: Vec<ArcBlend> = pairs.iter().map(|pair| ArcBlend { pair, w }).collect();
+            let want = force_at(&c, &k, frame, frame - frame0 + omega * t, &blends);
+            for (got, want) in
+                [s.fx_n, s.fy_n, s.fz_n, s.torque_nm].iter().zip([want.fx_n, want.fy_n, want.fz_n, want.torque_nm])
+            {
+                assert!((got - want).abs() <= tol, "t {t}: {got} vs {want}");
+            }
+            assert_eq!(s.cutting, want.cutting, "t {t}");
+            checked += 1;
+        }
+        assert!(checked > forces.samples.len() / 10, "{checked} samples checked");
     }
 
     /// Runout: equal offsets change nothing; one flute further out takes a thicker chip and the
