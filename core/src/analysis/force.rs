@@ -323,15 +323,14 @@ struct Model<'a> {
     lag: f64,
     inv_lag: f64,
     teeth: usize,
-    pitch: f64,
     runout: &'a [f64],
     /// (sin, cos) of lag·(i + ½)·dz: the turn from a flute's bottom to the mid-point of
     /// slice i.
     slice_dirs: [(f64, f64); SLICES],
     /// Σ over slices 0..i of slice_dirs (the edge forces of whole slices need only these).
     dir_sums: [(f64, f64); SLICES + 1],
-    /// (cos, sin) of j·2π/z for each tooth j.
-    tooth_dirs: Vec<(f64, f64)>,
+    /// j·2π/z and its (cos, sin) for each tooth j.
+    tooth_dirs: Vec<(f64, f64, f64)>,
 }
 
 impl<'a> Model<'a> {
@@ -344,7 +343,6 @@ impl<'a> Model<'a> {
             lag: c.helix_rad.tan() / c.radius_mm,
             inv_lag: if c.helix_rad > 0.0 { c.radius_mm / c.helix_rad.tan() } else { 0.0 },
             teeth: c.teeth as usize,
-            pitch: TAU / f64::from(c.teeth),
             runout: &c.runout_mm,
             slice_dirs: Self::slice_dirs(c),
             dir_sums: {
@@ -360,8 +358,9 @@ impl<'a> Model<'a> {
             },
             tooth_dirs: (0..c.teeth)
                 .map(|j| {
-                    let (s, c) = (TAU * f64::from(j) / f64::from(c.teeth)).sin_cos();
-                    (c, s)
+                    let a = TAU * f64::from(j) / f64::from(c.teeth);
+                    let (s, c) = a.sin_cos();
+                    (a, c, s)
                 })
                 .collect(),
         }
@@ -408,8 +407,8 @@ impl<'a> Model<'a> {
             // or after the arc entry is e + (that − e mod 2π).
             let d = spindle - e;
             let first = d - TAU * floor(d / TAU);
-            for j in 0..self.teeth {
-                let r = first + j as f64 * self.pitch;
+            for (j, &(offset, cj, sj)) in self.tooth_dirs.iter().enumerate() {
+                let r = first + offset;
                 let mut phi_b = e + if r >= TAU { r - TAU } else { r };
                 while phi_b - span <= x {
                     let (z_lo, z_hi) = if self.lag > 0.0 {
@@ -421,7 +420,6 @@ impl<'a> Model<'a> {
                     };
                     if z_hi > z_lo {
                         cutting = true;
-                        let (cj, sj) = self.tooth_dirs[j];
                         let dir = (c0 * cj + s0 * sj, s0 * cj - c0 * sj);
                         self.flute_slices(&arc, e, x, j, phi_b, z_lo, z_hi, dir, &mut f);
                     }
@@ -901,14 +899,15 @@ pub fn summarise(samples: &[ForceSample], dt: f64, t_cycle_s: f64, omega: f64) -
     }
     // One pass: the (last) largest F_R, the largest |Fxy| and torque, the sums over the
     // cutting samples.
-    let (mut imax, mut fmax, mut fxy_max, mut torque_max) = (0, f64::NEG_INFINITY, 0.0f64, 0.0f64);
+    let (mut imax, mut fmax, mut xy2_max, mut torque_max) = (0, f64::NEG_INFINITY, 0.0f64, 0.0f64);
     let (mut cutting, mut f_sum, mut t_sum) = (0usize, 0.0, 0.0);
     for (i, s) in samples.iter().enumerate() {
-        let f = s.resultant_n();
+        let xy2 = s.fx_n * s.fx_n + s.fy_n * s.fy_n;
+        let f = (xy2 + s.fz_n * s.fz_n).sqrt();
         if f >= fmax {
             (imax, fmax) = (i, f);
         }
-        fxy_max = fxy_max.max(s.fxy_n());
+        xy2_max = xy2_max.max(xy2);
         torque_max = torque_max.max(s.torque_nm);
         if s.cutting {
             cutting += 1;
@@ -930,7 +929,7 @@ pub fn summarise(samples: &[ForceSample], dt: f64, t_cycle_s: f64, omega: f64) -
         resultant_mean_n: mean(f_sum),
         t_max_s: samples[imax].time_s,
         t_max_share: back as f64 * dt / t_cycle_s,
-        fxy_max_n: fxy_max,
+        fxy_max_n: xy2_max.sqrt(),
         torque_max_nm: torque_max,
         torque_mean_nm: torque_mean,
         power_max_w: torque_max * omega,
