@@ -275,13 +275,17 @@ pub fn force_series(job: &ValidJob, cycle: &Cycle, edge: &PreviousEdge, series: 
     let (r, f_z, feed) = (job.tool_radius(), job.f_z(), job.feed / 60.0);
     let len = cycle.length();
     let mut dense = std::borrow::Cow::Borrowed(series);
+    // Positions added by the last round (at first all): only their gaps may need more.
+    let mut new = vec![true; series.len()];
     for _ in 0..FORCE_REFINE_ROUNDS {
-        let at = analysis::force::refine_points(&dense, len);
+        let at = analysis::force::refine_points(&dense, len, &new);
         if at.is_empty() {
             break;
         }
         let extra = analysis::chip::tooth_samples_at(cycle, edge, r, f_z, feed, &at);
-        dense = std::borrow::Cow::Owned(analysis::force::merge_series(&dense, extra));
+        let merged;
+        (merged, new) = analysis::force::merge_series(&dense, extra);
+        dense = std::borrow::Cow::Owned(merged);
     }
     // The forces of a climb job: on the mirrored series, the spindle still turning M3.
     if job.direction == Direction::Climb {

@@ -36,6 +36,10 @@ use std::f64::consts::PI;
 /// of the edge representation, far below any real chip.
 pub const H_CUT_MM: f64 = 1e-6;
 
+/// Arc lengths closer than this are one tool position (mm): far below any resolution of the
+/// analysis, far above the rounding of arc lengths along a cycle.
+const SAME_PLACE_MM: f64 = 1e-9;
+
 /// Coarse samples across the forward half circle before refinement.
 const COARSE: usize = 17;
 
@@ -85,8 +89,12 @@ impl EngagedArc {
 
     /// h(φ) (mm) by linear interpolation between the samples; 0 outside the arc.
     pub fn thickness_at(&self, phi: f64) -> f64 {
+        self.thickness_after(self.samples.partition_point(|x| x.phi_rad < phi), phi)
+    }
+
+    /// [`EngagedArc::thickness_at`] with `i` the number of samples before `phi`.
+    pub fn thickness_after(&self, i: usize, phi: f64) -> f64 {
         let s = &self.samples;
-        let i = s.partition_point(|x| x.phi_rad < phi);
         match (i.checked_sub(1).and_then(|j| s.get(j)), s.get(i)) {
             (_, Some(b)) if b.phi_rad == phi => b.h_mm,
             (Some(a), Some(b)) => a.h_mm + (b.h_mm - a.h_mm) * (phi - a.phi_rad) / (b.phi_rad - a.phi_rad),
@@ -157,6 +165,7 @@ impl ToothSample {
 }
 
 /// Engaged arc of one tool position.
+#[derive(Clone)]
 struct Engagement {
     /// Total angle in material (rad).
     angle: f64,
@@ -572,6 +581,7 @@ pub fn tooth_stride(len: f64, f_z: f64) -> usize {
 }
 
 /// One analysed tooth position: arc length from the cycle start (mm), frame, engagement.
+#[derive(Clone)]
 struct Tooth {
     s: f64,
     frame: Frame,
@@ -644,13 +654,26 @@ impl<'a> CycleTeeth<'a> {
     fn at(cycle: &'a Cycle, edge: &'a PreviousEdge, r: f64, f_z: f64, at: &[f64]) -> CycleTeeth<'a> {
         let len = cycle.length();
         let early = EarlySweep::new(cycle, P2::zeros(), r, 0.25);
-        let start = CyclePos { seg: 0, t: 0.0 };
         let positions = |ss: Vec<f64>| -> Vec<(f64, CyclePos)> {
-            ss.into_iter().map(|s| (s, cycle.advance(start, s.clamp(0.0, len)).unwrap_or(start))).collect()
+            let pos = positions_at(cycle, &ss);
+            ss.into_iter().zip(pos).collect()
         };
         let wraps: Vec<bool> = at.iter().map(|&s| s < f_z).collect();
-        let prev_s = at.iter().map(|&s| if s < f_z { len + s - f_z } else { s - f_z }).collect();
-        let mut previous = teeth_at(cycle, edge, r, &early, P2::zeros(), positions(prev_s));
+        let teeth = teeth_at(cycle, edge, r, &early, P2::zeros(), positions(at.to_vec()));
+        // A previous tooth where an analysed one is (neighbouring gaps refined together: f_z
+        // before the middle of one gap is the middle of the gap before) is that tooth; the
+        // places agree to rounding, SAME_PLACE_MM.
+        let mut order: Vec<usize> = (0..at.len()).collect();
+        order.sort_by(|&a, &b| at[a].total_cmp(&at[b]));
+        let analysed = |s: f64| {
+            let k = order.partition_point(|&i| at[i] < s - SAME_PLACE_MM);
+            order.get(k).and_then(|&i| teeth.get(i)).filter(|t| (t.s - s).abs() <= SAME_PLACE_MM)
+        };
+        let prev_s: Vec<f64> = at.iter().map(|&s| if s < f_z { len + s - f_z } else { s - f_z }).collect();
+        let missing = prev_s.iter().copied().filter(|&s| analysed(s).is_none()).collect();
+        let mut computed = teeth_at(cycle, edge, r, &early, P2::zeros(), positions(missing)).into_iter();
+        let mut previous: Vec<Tooth> =
+            prev_s.iter().filter_map(|&s| analysed(s).cloned().or_else(|| computed.next())).collect();
         for (t, _) in previous.iter_mut().zip(&wraps).filter(|x| *x.1) {
             let back = P2::new(0.0, -cycle.step);
             t.frame.c += back;
@@ -658,7 +681,6 @@ impl<'a> CycleTeeth<'a> {
                 *b += back;
             }
         }
-        let teeth = teeth_at(cycle, edge, r, &early, P2::zeros(), positions(at.to_vec()));
         CycleTeeth { cycle, edge, r, stride: 1, early, teeth, before_start: None, previous, own_previous: true, wraps }
     }
 
@@ -768,6 +790,31 @@ impl<'a> CycleTeeth<'a> {
             arcs,
         }
     }
+}
+
+/// The positions at arc lengths `ss` (mm from the cycle start, clamped to the cycle) in any
+/// order: in order of s, each found from the one before (as [`Cycle::positions`] does), so the
+/// exact arc length is inverted over the gaps only, not from the cycle start each time.
+fn positions_at(cycle: &Cycle, ss: &[f64]) -> Vec<CyclePos> {
+    let len = cycle.length();
+    let mut order: Vec<usize> = (0..ss.len()).collect();
+    order.sort_by(|&a, &b| ss[a].total_cmp(&ss[b]));
+    let mut out = vec![CyclePos { seg: 0, t: 0.0 }; ss.len()];
+    // The segment, its start's arc length, and the last position in it (parameter, arc length).
+    let (mut seg, mut seg_start, mut t, mut at) = (0, 0.0, 0.0, 0.0);
+    for k in order {
+        let s = ss[k].clamp(0.0, len);
+        while seg + 1 < cycle.segments.len() && s > seg_start + cycle.lengths[seg] {
+            seg_start += cycle.lengths[seg];
+            (seg, t, at) = (seg + 1, 0.0, seg_start);
+        }
+        if let Some(segment) = cycle.segments.get(seg) {
+            t = segment.param_after_length(t, s - at);
+            at = s;
+        }
+        out[k] = CyclePos { seg, t };
+    }
+    out
 }
 
 /// The [`ToothSample`]s of teeth at arc lengths `at` (mm, 0 ≤ s < cycle length) of the

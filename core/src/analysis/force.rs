@@ -50,6 +50,9 @@ use std::f64::consts::{FRAC_PI_2, PI, TAU};
 pub const SLICES: usize = 50;
 /// Largest spindle-angle step of the force series (rad): 1°.
 pub const SPINDLE_STEP_RAD: f64 = PI / 180.0;
+/// Consecutive samples of one parallel task: they share the search for their tooth positions
+/// and turn the spindle by a rotation from one exact sin/cos (|error| < 128 ulp).
+const CHUNK: usize = 128;
 
 /// The cutter as the force model needs it.
 #[derive(Clone, Debug, PartialEq)]
@@ -126,16 +129,30 @@ pub struct ForceSummary {
 
 /// The engaged arcs of two neighbouring tooth positions prepared for blending in the inner
 /// loop: both h(u) on one grid of the relative place u = (φ − φ_in)/(φ_out − φ_in) along
-/// each arc (the union of their samples' places), with each piece's value and slope and the
-/// integral of h from u = 0 to its start.
+/// each arc (the union of their samples' places), as pieces with each one's value and slope
+/// and the integral of h from u = 0 to its start.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ArcPair {
     /// Entry and exit angles (rad) of the first arc and of the second.
     pub a: (f64, f64),
     pub b: (f64, f64),
-    u: Vec<f64>,
-    /// Per piece: h_a, dh_a/du, h_b, dh_b/du at its start, ∫h_a du and ∫h_b du up to it.
-    pts: Vec<[f64; 6]>,
+    /// By increasing u, then a sentinel starting at u = +∞ (so a cursor needs no length
+    /// check).
+    pieces: Vec<Piece>,
+}
+
+/// One piece of an [`ArcPair`] from `u0` to the next piece's start: h_a = `ha` + 2·`qa`·(u −
+/// u0) (`qa`: half the slope) and ∫₀ᵘ h_a du = `ia` + (u − u0)·(`ha` + `qa`·(u − u0)), the same
+/// for h_b. The last grid point is a piece of slope 0.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Piece {
+    u0: f64,
+    ha: f64,
+    qa: f64,
+    hb: f64,
+    qb: f64,
+    ia: f64,
+    ib: f64,
 }
 
 impl ArcPair {
@@ -147,33 +164,68 @@ impl ArcPair {
             arc.samples.iter().map(|x| (((x.phi_rad - arc.entry_rad) * inv).clamp(0.0, 1.0), x.h_mm)).collect()
         };
         let (ra, rb) = (rel(a), rel(b));
-        let mut u: Vec<f64> = ra.iter().chain(&rb).map(|p| p.0).collect();
-        u.sort_by(f64::total_cmp);
-        u.dedup_by(|x, y| (*x - *y).abs() < 1e-12);
-        let value = |r: &[(f64, f64)], x: f64| {
-            let i = r.partition_point(|p| p.0 < x);
-            match (i.checked_sub(1).and_then(|k| r.get(k)), r.get(i)) {
-                (Some(p), Some(q)) if q.0 > p.0 => p.1 + (q.1 - p.1) * (x - p.0) / (q.0 - p.0),
-                (_, Some(q)) => q.1,
-                (Some(p), None) => p.1,
-                (None, None) => 0.0,
+        // Both are sorted by u (the samples by φ): merge, dropping places within 1e-12 of the
+        // one kept before.
+        let mut u: Vec<f64> = Vec::with_capacity(ra.len() + rb.len());
+        let (mut i, mut k) = (0, 0);
+        while let Some(x) = match (ra.get(i), rb.get(k)) {
+            (Some(p), Some(q)) if p.0 <= q.0 => {
+                i += 1;
+                Some(p.0)
             }
+            (_, Some(q)) => {
+                k += 1;
+                Some(q.0)
+            }
+            (Some(p), None) => {
+                i += 1;
+                Some(p.0)
+            }
+            (None, None) => None,
+        } {
+            if u.last().is_none_or(|&y| (x - y).abs() >= 1e-12) {
+                u.push(x);
+            }
+        }
+        // h of `r` at the increasing places `u`, by linear interpolation (constant beyond
+        // its ends).
+        let values = |r: &[(f64, f64)]| -> Vec<f64> {
+            let mut i = 0;
+            u.iter()
+                .map(|&x| {
+                    while r.get(i).is_some_and(|p| p.0 < x) {
+                        i += 1;
+                    }
+                    match (i.checked_sub(1).and_then(|k| r.get(k)), r.get(i)) {
+                        (Some(p), Some(q)) if q.0 > p.0 => p.1 + (q.1 - p.1) * (x - p.0) / (q.0 - p.0),
+                        (_, Some(q)) => q.1,
+                        (Some(p), None) => p.1,
+                        (None, None) => 0.0,
+                    }
+                })
+                .collect()
         };
-        let ha: Vec<f64> = u.iter().map(|&x| value(&ra, x)).collect();
-        let hb: Vec<f64> = u.iter().map(|&x| value(&rb, x)).collect();
+        let (ha, hb) = (values(&ra), values(&rb));
         let mut cum = [0.0, 0.0];
-        let pts = (0..u.len())
-            .map(|i| match u.get(i + 1) {
-                Some(&next) if next > u[i] => {
-                    let du = next - u[i];
-                    let p = [ha[i], (ha[i + 1] - ha[i]) / du, hb[i], (hb[i + 1] - hb[i]) / du, cum[0], cum[1]];
-                    cum = [cum[0] + 0.5 * (ha[i] + ha[i + 1]) * du, cum[1] + 0.5 * (hb[i] + hb[i + 1]) * du];
-                    p
-                }
-                _ => [ha[i], 0.0, hb[i], 0.0, cum[0], cum[1]],
+        let mut pieces: Vec<Piece> = (0..u.len())
+            .map(|i| {
+                let (ia, ib) = (cum[0], cum[1]);
+                let (qa, qb) = match u.get(i + 1) {
+                    Some(&next) if next > u[i] => {
+                        let du = next - u[i];
+                        cum = [cum[0] + 0.5 * (ha[i] + ha[i + 1]) * du, cum[1] + 0.5 * (hb[i] + hb[i + 1]) * du];
+                        (0.5 * ((ha[i + 1] - ha[i]) / du), 0.5 * ((hb[i + 1] - hb[i]) / du))
+                    }
+                    _ => (0.0, 0.0),
+                };
+                Piece { u0: u[i], ha: ha[i], qa, hb: hb[i], qb, ia, ib }
             })
             .collect();
-        ArcPair { a: (a.entry_rad, a.exit_rad), b: (b.entry_rad, b.exit_rad), u, pts }
+        if pieces.is_empty() {
+            pieces.push(Piece { u0: 0.0, ha: 0.0, qa: 0.0, hb: 0.0, qb: 0.0, ia: 0.0, ib: 0.0 });
+        }
+        pieces.push(Piece { u0: f64::INFINITY, ..pieces[pieces.len() - 1] });
+        ArcPair { a: (a.entry_rad, a.exit_rad), b: (b.entry_rad, b.exit_rad), pieces }
     }
 }
 
@@ -212,47 +264,52 @@ impl ArcBlend<'_> {
 
 /// A reading position in an [`ArcPair`], moved forward as u grows.
 struct Cursor<'a> {
-    p: &'a ArcPair,
+    pieces: &'a [Piece],
     w: f64,
     i: usize,
 }
 
 impl<'a> Cursor<'a> {
+    /// At the last piece starting before u (or the first).
     fn new(b: &ArcBlend<'a>, u: f64) -> Cursor<'a> {
-        Cursor { p: b.pair, w: b.w, i: b.pair.u.partition_point(|&x| x < u).saturating_sub(1) }
+        let pieces = b.pair.pieces.as_slice();
+        // Pieces are about evenly spread in u: start the search where u would be and walk.
+        let last = pieces.len().saturating_sub(2);
+        let mut i = ((u.clamp(0.0, 1.0) * last as f64) as usize).min(last);
+        while i > 0 && pieces[i].u0 >= u {
+            i -= 1;
+        }
+        let mut cursor = Cursor { pieces, w: b.w, i };
+        cursor.piece(u);
+        cursor
     }
+
     /// The piece of u (not below the last call's) and u's offset into it.
-    #[inline]
-    fn piece(&mut self, u: f64) -> Option<(f64, &'a [f64; 6])> {
-        let (us, pts) = (&self.p.u, &self.p.pts);
-        while self.i + 2 < us.len() && us[self.i + 1] < u {
+    #[inline(always)]
+    fn piece(&mut self, u: f64) -> (f64, &'a Piece) {
+        // The sentinel (u0 = +∞) stops the walk.
+        while self.pieces.get(self.i + 1).is_some_and(|p| p.u0 < u) {
             self.i += 1;
         }
-        match (us.get(self.i), pts.get(self.i)) {
-            (Some(&u0), Some(p)) => Some(((u - u0).max(0.0), p)),
-            _ => None,
-        }
+        let p = &self.pieces[self.i];
+        ((u - p.u0).max(0.0), p)
     }
 
     /// The blended h(u) (u not below the last call's).
-    #[inline]
+    #[inline(always)]
     fn at(&mut self, u: f64) -> f64 {
-        let w = self.w;
-        self.piece(u).map_or(0.0, |(d, &[ha, sa, hb, sb, ..])| {
-            let a = ha + sa * d;
-            a + w * (hb + sb * d - a)
-        })
+        let (d, p) = self.piece(u);
+        let a = p.ha + 2.0 * p.qa * d;
+        a + self.w * (p.hb + 2.0 * p.qb * d - a)
     }
 
     /// The blended ∫₀ᵘ h du (u in [0, 1], not below the last call's): h is linear on each
     /// piece, so this is exact.
-    #[inline]
+    #[inline(always)]
     fn integral(&mut self, u: f64) -> f64 {
-        let w = self.w;
-        self.piece(u).map_or(0.0, |(d, &[ha, sa, hb, sb, ia, ib])| {
-            let a = ia + d * (ha + 0.5 * sa * d);
-            a + w * (ib + d * (hb + 0.5 * sb * d) - a)
-        })
+        let (d, p) = self.piece(u);
+        let a = p.ia + d * (p.ha + p.qa * d);
+        a + self.w * (p.ib + d * (p.hb + p.qb * d) - a)
     }
 }
 
@@ -262,18 +319,18 @@ struct Model<'a> {
     r: f64,
     depth: f64,
     dz: f64,
-    /// tanβ / R (rad per mm of height).
+    /// tanβ / R (rad per mm of height), and its inverse (0 for straight flutes).
     lag: f64,
+    inv_lag: f64,
     teeth: usize,
-    pitch: f64,
     runout: &'a [f64],
     /// (sin, cos) of lag·(i + ½)·dz: the turn from a flute's bottom to the mid-point of
     /// slice i.
     slice_dirs: [(f64, f64); SLICES],
     /// Σ over slices 0..i of slice_dirs (the edge forces of whole slices need only these).
     dir_sums: [(f64, f64); SLICES + 1],
-    /// (cos, sin) of j·2π/z for each tooth j.
-    tooth_dirs: Vec<(f64, f64)>,
+    /// j·2π/z and its (cos, sin) for each tooth j.
+    tooth_dirs: Vec<(f64, f64, f64)>,
 }
 
 impl<'a> Model<'a> {
@@ -284,8 +341,8 @@ impl<'a> Model<'a> {
             depth: c.depth_mm,
             dz: c.depth_mm / SLICES as f64,
             lag: c.helix_rad.tan() / c.radius_mm,
+            inv_lag: if c.helix_rad > 0.0 { c.radius_mm / c.helix_rad.tan() } else { 0.0 },
             teeth: c.teeth as usize,
-            pitch: TAU / f64::from(c.teeth),
             runout: &c.runout_mm,
             slice_dirs: Self::slice_dirs(c),
             dir_sums: {
@@ -301,8 +358,9 @@ impl<'a> Model<'a> {
             },
             tooth_dirs: (0..c.teeth)
                 .map(|j| {
-                    let (s, c) = (TAU * f64::from(j) / f64::from(c.teeth)).sin_cos();
-                    (c, s)
+                    let a = TAU * f64::from(j) / f64::from(c.teeth);
+                    let (s, c) = a.sin_cos();
+                    (a, c, s)
                 })
                 .collect(),
         }
@@ -327,29 +385,34 @@ impl<'a> Model<'a> {
             .max(0.0)
     }
 
-    /// Force (Fx, Fy, Fz) and torque at one instant: `frame` is the world angle (rad from +x,
-    /// counter-clockwise) of φ = 0, `spindle` the angle φ of tooth 0's bottom point.
-    fn instant<'b>(&self, frame: f64, spindle: f64, arcs: impl IntoIterator<Item = ArcBlend<'b>>) -> ([f64; 4], bool) {
+    /// Force (Fx, Fy, Fz) and torque at one instant: `spindle` is the angle φ of tooth 0's
+    /// bottom point, (sin ψ, cos ψ) = `dir0` its world direction (ψ = the world angle of φ =
+    /// 0, from +x counter-clockwise, minus `spindle`).
+    fn instant<'b>(
+        &self,
+        (s0, c0): (f64, f64),
+        spindle: f64,
+        arcs: impl IntoIterator<Item = ArcBlend<'b>>,
+    ) -> ([f64; 4], bool) {
         let mut f = [0.0; 4];
         let mut cutting = false;
         let span = self.lag * self.depth;
-        // World direction of tooth 0's bottom point: ψ = frame − spindle; tooth j at ψ − j·2π/z.
-        let (s0, c0) = (frame - spindle).sin_cos();
+        // Tooth j at ψ − j·2π/z.
         for arc in arcs {
             let (e, x) = arc.ends();
             if x <= e {
                 continue;
             }
-            for j in 0..self.teeth {
-                let bottom = spindle + j as f64 * self.pitch;
-                let (cj, sj) = self.tooth_dirs[j];
-                let dir = (c0 * cj + s0 * sj, s0 * cj - c0 * sj);
-                // The first branch of the flute at or after the arc entry.
-                let d = bottom - e;
-                let mut phi_b = e + (d - TAU * floor(d / TAU));
+            // Tooth j's bottom point is at spindle + j·2π/z; the first branch of its flute at
+            // or after the arc entry is e + (that − e mod 2π).
+            let d = spindle - e;
+            let first = d - TAU * floor(d / TAU);
+            for (j, &(offset, cj, sj)) in self.tooth_dirs.iter().enumerate() {
+                let r = first + offset;
+                let mut phi_b = e + if r >= TAU { r - TAU } else { r };
                 while phi_b - span <= x {
                     let (z_lo, z_hi) = if self.lag > 0.0 {
-                        (((phi_b - x) / self.lag).max(0.0), ((phi_b - e) / self.lag).min(self.depth))
+                        (((phi_b - x) * self.inv_lag).max(0.0), ((phi_b - e) * self.inv_lag).min(self.depth))
                     } else if phi_b <= x {
                         (0.0, self.depth)
                     } else {
@@ -357,6 +420,7 @@ impl<'a> Model<'a> {
                     };
                     if z_hi > z_lo {
                         cutting = true;
+                        let dir = (c0 * cj + s0 * sj, s0 * cj - c0 * sj);
                         self.flute_slices(&arc, e, x, j, phi_b, z_lo, z_hi, dir, &mut f);
                     }
                     if self.lag <= 0.0 {
@@ -373,7 +437,7 @@ impl<'a> Model<'a> {
     /// `phi_b`, world direction (cos ψ₀, sin ψ₀) = `dir0`) in the blended arc (entry `e`, exit
     /// `x`) to `f`.
     ///
-    /// Slices go from the top down, so φ and u grow and the cursors only move forward. A slice
+    /// Slices go from the top down, so φ and u grow and the cursor only moves forward. A slice
     /// cut by `z_lo` or `z_hi` counts its engaged part (length and mid-point). Each slice takes
     /// the mean of h over its part of the arc, exactly (h is piecewise linear in u, and u
     /// linear in z: the difference of ∫h du at its ends over their distance), so a kink of
@@ -395,70 +459,62 @@ impl<'a> Model<'a> {
         dir0: (f64, f64),
         f: &mut [f64; 4],
     ) {
-        let inv_sweep = 1.0 / (x - e);
-        let u_of = |z: f64| ((phi_b - self.lag * z - e) * inv_sweep).clamp(0.0, 1.0);
+        let flute = Flute { m: self, j, phi_b, e, inv_sweep: 1.0 / (x - e) };
         let dz = self.dz;
-        let mut cursor = Cursor::new(arc, u_of(z_hi));
+        let mut cursor = Cursor::new(arc, flute.u(z_hi));
         // Sums over the flute's elements in its own frame (turn (sin, cos) = (st, ct) from
         // ψ₀): Σ h·len·ct, Σ h·len·st, Σ h·len, Σ len·ct, Σ len·st, Σ len. The forces are
         // linear in them ([`Model::add_flute`]).
         let mut sums = [0.0; 6];
-        // Below this u-extent of a slice (straight flutes: every slice at one angle) h is
-        // taken at the slice's middle.
-        const POINT: f64 = 1e-12;
-        // The mean h between u_top and u_bot (≥ u_top) with ∫h du at u_top given; also ∫h du
-        // at u_bot.
-        let mean = |cursor: &mut Cursor, u_top: f64, i_top: f64, u_bot: f64| {
-            if u_bot - u_top < POINT {
-                let h = cursor.at(0.5 * (u_top + u_bot));
-                (h, cursor.integral(u_bot))
-            } else {
-                let i_bot = cursor.integral(u_bot);
-                ((i_bot - i_top) / (u_bot - u_top), i_bot)
-            }
-        };
-        // Slice i at mid-height z_m: ψ = ψ₀ + lag·z_m, turned from the tabulated
-        // lag·(i + ½)·dz by δ = lag·(z_m − (i + ½)·dz) for a cut slice. Returns ∫h du at
-        // its bottom.
-        let cut_slice = |sums: &mut [f64; 6], cursor: &mut Cursor, zl: f64, zh: f64, i_top: f64| {
-            let i = ((zl / dz) as usize).min(SLICES - 1);
-            let zm = 0.5 * (zl + zh);
-            let (st, ct) = self.slice_dirs[i];
-            let d = self.lag * (zm - (i as f64 + 0.5) * dz);
-            let d2 = d * d;
-            let (sd, cd) = (d * (1.0 - d2 / 6.0), 1.0 - d2 * (0.5 - d2 / 24.0));
-            let (st, ct) = (st * cd + ct * sd, ct * cd - st * sd);
-            let (h, i_bot) = mean(cursor, u_of(zh), i_top, u_of(zl));
-            let (h, len) = (self.flute_chip(j, h), zh - zl);
-            for (sum, v) in sums.iter_mut().zip([h * len * ct, h * len * st, h * len, len * ct, len * st, len]) {
-                *sum += v;
-            }
-            i_bot
-        };
-        let top = cursor.integral(u_of(z_hi));
+        let top = cursor.integral(flute.u(z_hi));
         // Whole slices i_a..i_b span [z_a, z_b]; the cut ones above and below.
         // z_lo, z_hi ≥ 0: truncation is the floor.
         let (q_lo, q_hi) = (z_lo / dz, z_hi / dz);
         let i_a = ((q_lo as usize) + usize::from(q_lo > (q_lo as usize) as f64)).min(SLICES);
         let i_b = (q_hi as usize).clamp(i_a, SLICES);
-        if i_a == i_b {
-            cut_slice(&mut sums, &mut cursor, z_lo, z_hi, top);
+        // Within one slice: one cut slice. (Two cut slices around one boundary, i_a = i_b,
+        // take the general path with no whole slice between them.)
+        if i_a as f64 * dz >= z_hi {
+            flute.cut_slice(&mut sums, &mut cursor, z_lo, z_hi, top);
         } else {
             let (z_a, z_b) = (i_a as f64 * dz, i_b as f64 * dz);
-            let mut int = if z_hi > z_b { cut_slice(&mut sums, &mut cursor, z_b, z_hi, top) } else { top };
-            let du = self.lag * dz * inv_sweep;
+            let mut int = if z_hi > z_b { flute.cut_slice(&mut sums, &mut cursor, z_b, z_hi, top) } else { top };
+            let du = self.lag * dz * flute.inv_sweep;
             // u at the top of slice i_b − 1 (unclamped; clamped for the integral).
-            let mut u = (phi_b - self.lag * z_b - e) * inv_sweep;
+            let mut u = (phi_b - self.lag * z_b - e) * flute.inv_sweep;
             let (mut hc, mut hs, mut hh) = (0.0, 0.0, 0.0);
-            for i in (i_a..i_b).rev() {
-                let (st, ct) = self.slice_dirs[i];
-                let (h, next) = mean(&mut cursor, u.clamp(0.0, 1.0), int, (u + du).clamp(0.0, 1.0));
-                int = next;
-                let h = self.flute_chip(j, h);
-                hc += h * ct;
-                hs += h * st;
-                hh += h;
-                u += du;
+            let dirs = self.slice_dirs[i_a..i_b].iter().rev();
+            if du >= POINT {
+                // A whole slice spans du: its mean h is the difference of ∫h du at its ends
+                // over du. Its ends lie in [0, 1] but for rounding (beyond, the cursor reads
+                // the first or last piece's ends, so no clamp is needed).
+                let mut whole = |chip: &dyn Fn(f64) -> f64| {
+                    let inv_du = 1.0 / du;
+                    for &(st, ct) in dirs.clone() {
+                        u += du;
+                        let next = cursor.integral(u);
+                        let h = chip((next - int) * inv_du);
+                        int = next;
+                        hc += h * ct;
+                        hs += h * st;
+                        hh += h;
+                    }
+                };
+                if self.runout.is_empty() {
+                    whole(&|h| h);
+                } else {
+                    whole(&|h| self.flute_chip(j, h));
+                }
+            } else {
+                for &(st, ct) in dirs {
+                    let (h, next) = mean(&mut cursor, u.clamp(0.0, 1.0), int, (u + du).clamp(0.0, 1.0));
+                    int = next;
+                    let h = self.flute_chip(j, h);
+                    hc += h * ct;
+                    hs += h * st;
+                    hh += h;
+                    u += du;
+                }
             }
             // The edge terms of whole slices from the tabulated sums of their turns.
             let (sb, sa) = (self.dir_sums[i_b], self.dir_sums[i_a]);
@@ -468,7 +524,7 @@ impl<'a> Model<'a> {
                 *sum += v;
             }
             if z_a > z_lo {
-                cut_slice(&mut sums, &mut cursor, z_lo, z_a, int);
+                flute.cut_slice(&mut sums, &mut cursor, z_lo, z_a, int);
             }
         }
         self.add_flute(f, &sums, dir0);
@@ -493,11 +549,69 @@ impl<'a> Model<'a> {
     }
 }
 
+/// Below this u-extent of a slice (straight flutes: every slice at one angle) h is taken at
+/// the slice's middle.
+const POINT: f64 = 1e-12;
+
+/// The mean h between `u_top` and `u_bot` (≥ `u_top`) with ∫h du at `u_top` given (`i_top`);
+/// also ∫h du at `u_bot`.
+#[inline(always)]
+fn mean(cursor: &mut Cursor, u_top: f64, i_top: f64, u_bot: f64) -> (f64, f64) {
+    if u_bot - u_top < POINT {
+        let h = cursor.at(0.5 * (u_top + u_bot));
+        (h, cursor.integral(u_bot))
+    } else {
+        let i_bot = cursor.integral(u_bot);
+        ((i_bot - i_top) / (u_bot - u_top), i_bot)
+    }
+}
+
+/// One flute in one blended arc (see [`Model::flute_slices`]).
+struct Flute<'m, 'k> {
+    m: &'m Model<'k>,
+    j: usize,
+    /// Angle φ of the flute's bottom point.
+    phi_b: f64,
+    /// Arc entry angle and 1 / sweep.
+    e: f64,
+    inv_sweep: f64,
+}
+
+impl Flute<'_, '_> {
+    /// The place u along the arc of the flute's point at height z (clamped to [0, 1]).
+    #[inline(always)]
+    fn u(&self, z: f64) -> f64 {
+        ((self.phi_b - self.m.lag * z - self.e) * self.inv_sweep).clamp(0.0, 1.0)
+    }
+
+    /// Add the slice cut to heights [zl, zh] to `sums`: slice i at mid-height z_m, its
+    /// direction ψ = ψ₀ + lag·z_m turned from the tabulated lag·(i + ½)·dz by δ = lag·(z_m −
+    /// (i + ½)·dz). `i_top`: ∫h du at its top; returns ∫h du at its bottom.
+    #[inline]
+    fn cut_slice(&self, sums: &mut [f64; 6], cursor: &mut Cursor, zl: f64, zh: f64, i_top: f64) -> f64 {
+        let (m, dz) = (self.m, self.m.dz);
+        let i = ((zl / dz) as usize).min(SLICES - 1);
+        let zm = 0.5 * (zl + zh);
+        let (st, ct) = m.slice_dirs[i];
+        let d = m.lag * (zm - (i as f64 + 0.5) * dz);
+        let d2 = d * d;
+        let (sd, cd) = (d * (1.0 - d2 / 6.0), 1.0 - d2 * (0.5 - d2 / 24.0));
+        let (st, ct) = (st * cd + ct * sd, ct * cd - st * sd);
+        let (h, i_bot) = mean(cursor, self.u(zh), i_top, self.u(zl));
+        let (h, len) = (m.flute_chip(self.j, h), zh - zl);
+        for (sum, v) in sums.iter_mut().zip([h * len * ct, h * len * st, h * len, len * ct, len * st, len]) {
+            *sum += v;
+        }
+        i_bot
+    }
+}
+
 /// Force (Fx, Fy, Fz in N) and torque (N·m) at one instant for the engaged `arcs`: `frame` is
 /// the world angle of φ = 0 (the material-side normal N), `spindle` the angle φ of tooth 0's
 /// bottom point (teeth follow at +2π/z). Also whether any element cuts.
 pub fn force_at(cutter: &Cutter, k: &Coefficients, frame: f64, spindle: f64, arcs: &[ArcBlend]) -> ForceSample {
-    let ([fx, fy, fz, t], cutting) = Model::new(cutter, k).instant(frame, spindle, arcs.iter().copied());
+    let dir0 = (frame - spindle).sin_cos();
+    let ([fx, fy, fz, t], cutting) = Model::new(cutter, k).instant(dir0, spindle, arcs.iter().copied());
     ForceSample { time_s: 0.0, fx_n: fx, fy_n: fy, fz_n: fz, torque_nm: t / 1000.0, cutting }
 }
 
@@ -530,6 +644,7 @@ pub fn cycle_forces(
         a.len() != b.len() && !a.is_empty() && !b.is_empty()
     };
     let singles: Vec<Vec<ArcPair>> = (0..n)
+        .into_par_iter()
         .map(|i| {
             let needed = split(i) || split((i + n - 1) % n);
             let arcs = if needed { series[i].arcs.as_slice() } else { &[] };
@@ -554,6 +669,7 @@ pub fn cycle_forces(
         if i + 1 < n { b - a } else { b + t_cycle_s - a }
     };
     let pairs: Vec<Option<(Vec<ArcPair>, Growth)>> = (0..n)
+        .into_par_iter()
         .map(|i| {
             let (a, b) = (&series[i].arcs, &series[(i + 1) % n].arcs);
             if a.len() == b.len() {
@@ -575,17 +691,39 @@ pub fn cycle_forces(
             }
         })
         .collect();
-    let samples: Vec<ForceSample> = (0..steps)
-        .into_par_iter()
-        .map(|i| {
-            let t = i as f64 * dt;
-            // Positions i0 ≤ t < i1 (the one after the last is the next cycle's first).
-            let i0 = series.partition_point(|s| s.time_s <= t).saturating_sub(1);
+    // Per tooth position: the turn of the feed direction to the next one, and whether any
+    // arc is engaged before the next.
+    let turns: Vec<f64> =
+        (0..n).map(|i| wrap_pi(series[(i + 1) % n].feed_angle_rad - series[i].feed_angle_rad)).collect();
+    let engaged: Vec<bool> = (0..n)
+        .map(|i| match &pairs[i] {
+            Some((p, _)) => !p.is_empty(),
+            None => !singles[i].is_empty() || !singles[(i + 1) % n].is_empty(),
+        })
+        .collect();
+    // Tooth 0 turns clockwise at Ω: its world angle at t is frame0 − Ω·t, turned from one
+    // sample to the next by a rotation (exact sin/cos at the start of each chunk).
+    let (sin_step, cos_step) = (omega * dt).sin_cos();
+    let mut samples = vec![ForceSample::default(); steps];
+    samples.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
+        let first = c * CHUNK;
+        // Positions i0 ≤ t < i1 (the one after the last is the next cycle's first).
+        let mut i0 = series.partition_point(|s| s.time_s <= first as f64 * dt).saturating_sub(1);
+        let (mut s0, mut c0) = (frame0 - omega * (first as f64 * dt)).sin_cos();
+        for (k, out) in out.iter_mut().enumerate() {
+            let t = (first + k) as f64 * dt;
+            while i0 + 1 < n && series[i0 + 1].time_s <= t {
+                i0 += 1;
+            }
+            if !engaged[i0] {
+                *out = ForceSample { time_s: t, ..ForceSample::default() };
+                (s0, c0) = (s0 * cos_step - c0 * sin_step, c0 * cos_step + s0 * sin_step);
+                continue;
+            }
             let (a, b) = (&series[i0], &series[(i0 + 1) % n]);
-
             let t1 = if i0 + 1 < n { b.time_s } else { b.time_s + t_cycle_s };
             let w = if t1 > a.time_s { ((t - a.time_s) / (t1 - a.time_s)).clamp(0.0, 1.0) } else { 0.0 };
-            let turn = wrap_pi(b.feed_angle_rad - a.feed_angle_rad);
+            let turn = turns[i0];
             // The arcs (no allocation per sample) and the frame.
             let (pairs, w, frame): (&[ArcPair], f64, f64) = match &pairs[i0] {
                 Some((p, growth)) => {
@@ -599,13 +737,13 @@ pub fn cycle_forces(
                 None => (&singles[(i0 + 1) % n], 0.0, FRAC_PI_2 + a.feed_angle_rad + turn),
             };
             let arcs = pairs.iter().map(|pair| ArcBlend { pair, w });
-            // Tooth 0 turns clockwise at Ω: its world angle is frame0 − Ω·t, so its φ in the
-            // current frame is frame − (frame0 − Ω·t).
+            // Tooth 0's φ in the current frame is frame − (frame0 − Ω·t).
             let spindle = frame - frame0 + omega * t;
-            let ([fx, fy, fz, torque], cutting) = model.instant(frame, spindle, arcs);
-            ForceSample { time_s: t, fx_n: fx, fy_n: fy, fz_n: fz, torque_nm: torque / 1000.0, cutting }
-        })
-        .collect();
+            let ([fx, fy, fz, torque], cutting) = model.instant((s0, c0), spindle, arcs);
+            *out = ForceSample { time_s: t, fx_n: fx, fy_n: fy, fz_n: fz, torque_nm: torque / 1000.0, cutting };
+            (s0, c0) = (s0 * cos_step - c0 * sin_step, c0 * cos_step + s0 * sin_step);
+        }
+    });
     let summary = summarise(&samples, dt, t_cycle_s, omega);
     ForceSeries { samples, dt_s: dt, summary }
 }
@@ -626,13 +764,18 @@ pub const PROFILE_CHANGE: f64 = 0.1;
 /// underestimates h by up to a third (against the brute-force check); a real position half-way
 /// ([`super::chip::tooth_samples_at`]) halves the change. The positions of a steady cut
 /// change by about 1 %.
-pub fn refine_points(series: &[ToothSample], len: f64) -> Vec<f64> {
+///
+/// Only pairs with a position marked in `new` are examined (the others were, in an earlier
+/// round, and kept).
+pub fn refine_points(series: &[ToothSample], len: f64, new: &[bool]) -> Vec<f64> {
     let n = series.len();
+    let fresh = |i: usize| new.get(i).copied().unwrap_or(true);
     (0..n)
         .filter(|&i| {
             let (a, b) = (&series[i].arcs, &series[(i + 1) % n].arcs);
-            a.is_empty() != b.is_empty()
-                || (a.len() == b.len() && a.iter().zip(b).any(|(x, y)| profile_change(x, y) > PROFILE_CHANGE))
+            (fresh(i) || fresh((i + 1) % n))
+                && (a.is_empty() != b.is_empty()
+                    || (a.len() == b.len() && a.iter().zip(b).any(|(x, y)| profile_change(x, y) > PROFILE_CHANGE)))
         })
         .map(|i| {
             let next = if i + 1 < n { series[i + 1].s_mm } else { len + series[0].s_mm };
@@ -649,22 +792,35 @@ fn profile_change(a: &EngagedArc, b: &EngagedArc) -> f64 {
     if scale <= 0.0 {
         return 0.0;
     }
-    let at = |arc: &EngagedArc, u: f64| arc.thickness_at(arc.entry_rad + u * arc.sweep_rad());
     let rel = |arc: &EngagedArc, phi: f64| {
         let sweep = arc.sweep_rad();
         if sweep > 0.0 { (phi - arc.entry_rad) / sweep } else { 0.0 }
     };
+    // |h| at x's samples against y's h at the same u: the places grow with x's samples, so
+    // one walk along y's ([`EngagedArc::thickness_at`] without its search).
     let diff = |x: &EngagedArc, y: &EngagedArc| {
-        x.samples.iter().map(|p| (p.h_mm - at(y, rel(x, p.phi_rad))).abs()).fold(0.0, f64::max)
+        let (ys, mut i) = (&y.samples, 0);
+        x.samples
+            .iter()
+            .map(|p| {
+                let phi = y.entry_rad + rel(x, p.phi_rad) * y.sweep_rad();
+                while ys.get(i).is_some_and(|q| q.phi_rad < phi) {
+                    i += 1;
+                }
+                (p.h_mm - y.thickness_after(i, phi)).abs()
+            })
+            .fold(0.0, f64::max)
     };
     diff(a, b).max(diff(b, a)) / scale
 }
 
-/// `series` with the `extra` tooth samples merged in by time.
-pub fn merge_series(series: &[ToothSample], extra: Vec<ToothSample>) -> Vec<ToothSample> {
-    let mut all: Vec<ToothSample> = series.iter().cloned().chain(extra).collect();
-    all.sort_by(|x, y| x.time_s.total_cmp(&y.time_s));
-    all
+/// `series` with the `extra` tooth samples merged in by time, and which of the result are
+/// from `extra`.
+pub fn merge_series(series: &[ToothSample], extra: Vec<ToothSample>) -> (Vec<ToothSample>, Vec<bool>) {
+    let mut all: Vec<(ToothSample, bool)> =
+        series.iter().map(|t| (t.clone(), false)).chain(extra.into_iter().map(|t| (t, true))).collect();
+    all.sort_by(|x, y| x.0.time_s.total_cmp(&y.0.time_s));
+    all.into_iter().unzip()
 }
 
 /// How the arcs of two neighbouring tooth positions blend in time.
@@ -738,11 +894,27 @@ fn vanish_share(near: &[EngagedArc], before: &[EngagedArc], ratio: f64) -> f64 {
 /// Peaks and means of a periodic series of one cycle (`omega`: spindle speed, rad/s).
 pub fn summarise(samples: &[ForceSample], dt: f64, t_cycle_s: f64, omega: f64) -> ForceSummary {
     let n = samples.len();
-    let Some((imax, fmax)) =
-        samples.iter().map(ForceSample::resultant_n).enumerate().max_by(|a, b| a.1.total_cmp(&b.1))
-    else {
+    if n == 0 {
         return ForceSummary::default();
-    };
+    }
+    // One pass: the (last) largest F_R, the largest |Fxy| and torque, the sums over the
+    // cutting samples.
+    let (mut imax, mut fmax, mut xy2_max, mut torque_max) = (0, f64::NEG_INFINITY, 0.0f64, 0.0f64);
+    let (mut cutting, mut f_sum, mut t_sum) = (0usize, 0.0, 0.0);
+    for (i, s) in samples.iter().enumerate() {
+        let xy2 = s.fx_n * s.fx_n + s.fy_n * s.fy_n;
+        let f = (xy2 + s.fz_n * s.fz_n).sqrt();
+        if f >= fmax {
+            (imax, fmax) = (i, f);
+        }
+        xy2_max = xy2_max.max(xy2);
+        torque_max = torque_max.max(s.torque_nm);
+        if s.cutting {
+            cutting += 1;
+            f_sum += f;
+            t_sum += s.torque_nm;
+        }
+    }
     // Back from the peak to the first cutting sample of its pass (around the cycle start).
     let mut back = 0;
     if samples[imax].cutting {
@@ -750,18 +922,14 @@ pub fn summarise(samples: &[ForceSample], dt: f64, t_cycle_s: f64, omega: f64) -
             back += 1;
         }
     }
-    let cutting: Vec<&ForceSample> = samples.iter().filter(|s| s.cutting).collect();
-    let mean = |f: fn(&ForceSample) -> f64| {
-        if cutting.is_empty() { 0.0 } else { cutting.iter().map(|s| f(s)).sum::<f64>() / cutting.len() as f64 }
-    };
-    let torque_max = samples.iter().map(|s| s.torque_nm).fold(0.0, f64::max);
-    let torque_mean = mean(|s| s.torque_nm);
+    let mean = |sum: f64| if cutting == 0 { 0.0 } else { sum / cutting as f64 };
+    let torque_mean = mean(t_sum);
     ForceSummary {
         resultant_max_n: fmax,
-        resultant_mean_n: mean(ForceSample::resultant_n),
+        resultant_mean_n: mean(f_sum),
         t_max_s: samples[imax].time_s,
         t_max_share: back as f64 * dt / t_cycle_s,
-        fxy_max_n: samples.iter().map(ForceSample::fxy_n).fold(0.0, f64::max),
+        fxy_max_n: xy2_max.sqrt(),
         torque_max_nm: torque_max,
         torque_mean_nm: torque_mean,
         power_max_w: torque_max * omega,
@@ -921,6 +1089,166 @@ mod tests {
         let sum = m.slice_dirs[a..b].iter().fold((0.0, 0.0), |s, d| (s.0 + d.0, s.1 + d.1));
         assert!((m.dir_sums[b].0 - m.dir_sums[a].0 - sum.0).abs() < 1e-12);
         assert!((m.dir_sums[b].1 - m.dir_sums[a].1 - sum.1).abs() < 1e-12);
+    }
+
+    /// The mean of an arc's h over the relative places [u1, u2] (trapezoids between its own
+    /// samples, where h is linear: exact), or h at the middle for a point-like span.
+    fn reference_mean_h(arc: &EngagedArc, u1: f64, u2: f64) -> f64 {
+        let sweep = arc.sweep_rad();
+        if sweep <= 0.0 {
+            return arc.samples.first().map_or(0.0, |x| x.h_mm);
+        }
+        let at = |u: f64| arc.thickness_at((arc.entry_rad + u * sweep).clamp(arc.entry_rad, arc.exit_rad));
+        if u2 - u1 < 1e-12 {
+            return at(0.5 * (u1 + u2));
+        }
+        let inner = arc.samples.iter().map(|x| (x.phi_rad - arc.entry_rad) / sweep).filter(|&u| u > u1 && u < u2);
+        let us: Vec<f64> = std::iter::once(u1).chain(inner).chain(std::iter::once(u2)).collect();
+        us.windows(2).map(|w| 0.5 * (at(w[0]) + at(w[1])) * (w[1] - w[0])).sum::<f64>() / (u2 - u1)
+    }
+
+    /// The force at one instant the straightforward way, independent of [`ArcPair`]'s pieces,
+    /// the cursor, the tabulated slice turns and the flute sums: every slice of every flute
+    /// (each branch of its helix), the part of it inside the blended arc, h the blend of both
+    /// arcs' exact means over that part (runout by [`Model::flute_chip`]), the element at the
+    /// world angle of the part's middle, domain-spec §4.1's element forces summed in the
+    /// machine frame. `frame`: world angle of φ = 0; tooth 0's bottom at φ = `spindle`.
+    fn reference_force(
+        c: &Cutter,
+        k: &Coefficients,
+        frame: f64,
+        spindle: f64,
+        arcs: &[(&EngagedArc, &EngagedArc, f64)],
+    ) -> [f64; 4] {
+        let m = Model::new(c, k);
+        let dz = c.depth_mm / SLICES as f64;
+        let lag = c.helix_rad.tan() / c.radius_mm;
+        let mut f = [0.0; 4];
+        for &(a, b, w) in arcs {
+            let (pair, _) = (ArcPair::new(a, b), ());
+            let (e, x) = ArcBlend { pair: &pair, w }.ends();
+            if x <= e {
+                continue;
+            }
+            for j in 0..c.teeth as usize {
+                let bottom = spindle + TAU * j as f64 / f64::from(c.teeth);
+                // Every branch of the flute that can reach the arc.
+                for turn in -2..=2 {
+                    let phi_b = bottom + TAU * f64::from(turn);
+                    for i in 0..SLICES {
+                        let (za, zb) = (i as f64 * dz, (i + 1) as f64 * dz);
+                        let (zl, zh) = if lag > 0.0 {
+                            (za.max((phi_b - x) / lag), zb.min((phi_b - e) / lag))
+                        } else if (e..=x).contains(&phi_b) {
+                            (za, zb)
+                        } else {
+                            continue;
+                        };
+                        if zh <= zl {
+                            continue;
+                        }
+                        let u = |z: f64| ((phi_b - lag * z - e) / (x - e)).clamp(0.0, 1.0);
+                        let (u1, u2) = (u(zh), u(zl));
+                        let h = (1.0 - w) * reference_mean_h(a, u1, u2) + w * reference_mean_h(b, u1, u2);
+                        let (h, len) = (m.flute_chip(j, h), zh - zl);
+                        let psi = frame - (phi_b - lag * 0.5 * (zl + zh));
+                        let (ft, fr, fa) =
+                            ((k.ktc * h + k.kte) * len, (k.krc * h + k.kre) * len, (k.kac * h + k.kae) * len);
+                        f[0] += -ft * psi.sin() - fr * psi.cos();
+                        f[1] += ft * psi.cos() - fr * psi.sin();
+                        f[2] += fa;
+                        f[3] += ft * c.radius_mm / 1000.0;
+                    }
+                }
+            }
+        }
+        f
+    }
+
+    /// The fast inner loop ([`force_at`]: pieces, cursor, whole slices by ∫h differences,
+    /// flute sums) equals [`reference_force`] on the default job's real engaged arcs: every
+    /// pair of neighbouring tooth positions with arcs, at the start, inside and at the end of
+    /// the tooth period, at spindle angles across a tooth pitch; with helix angles 0°, 35° and
+    /// 60° and with runout. Tolerance 1e-9 of F_R,max (rounding only).
+    #[test]
+    fn fast_force_equals_the_straightforward_sum() {
+        let p = crate::plan(&crate::Job::default()).expect("default job");
+        let k = p.job.coefficients;
+        let cutters = [
+            cutter(),
+            Cutter { helix_rad: 0.0, ..cutter() },
+            Cutter { helix_rad: 60f64.to_radians(), ..cutter() },
+            Cutter { runout_mm: vec![0.01, 0.0, 0.004, 0.0], ..cutter() },
+        ];
+        let tol = 1e-9 * p.forces.summary.resultant_max_n;
+        let n = p.series.len();
+        let (mut compared, mut cutting) = (0, 0);
+        for i in (0..n).step_by(3) {
+            let (a, b) = (&p.series[i].arcs, &p.series[(i + 1) % n].arcs);
+            if a.is_empty() || a.len() != b.len() {
+                continue;
+            }
+            let pairs: Vec<ArcPair> = a.iter().zip(b).map(|(x, y)| ArcPair::new(x, y)).collect();
+            for w in [0.0, 0.37, 1.0] {
+                let blends: Vec<ArcBlend> = pairs.iter().map(|pair| ArcBlend { pair, w }).collect();
+                let plain: Vec<_> = a.iter().zip(b).map(|(x, y)| (x, y, w)).collect();
+                for (q, c) in cutters.iter().enumerate() {
+                    for step in 0..7 {
+                        let frame = FRAC_PI_2 + p.series[i].feed_angle_rad;
+                        let spindle = 0.1 + 0.2 * step as f64 + 0.01 * q as f64;
+                        let fast = force_at(c, &k, frame, spindle, &blends);
+                        let slow = reference_force(c, &k, frame, spindle, &plain);
+                        for (got, want) in [fast.fx_n, fast.fy_n, fast.fz_n, fast.torque_nm].iter().zip(slow) {
+                            assert!((got - want).abs() <= tol, "position {i}, w {w}, cutter {q}: {got} vs {want}");
+                        }
+                        compared += 1;
+                        cutting += usize::from(fast.cutting);
+                    }
+                }
+            }
+        }
+        // Most of them cut (the comparison is not of zeros).
+        assert!(compared > 1000 && cutting > compared / 2, "{cutting} of {compared} cut");
+    }
+
+    /// The series ([`cycle_forces`]: chunks, the tooth interval found by walking, the spindle
+    /// direction by rotation, idle intervals skipped) equals [`force_at`] evaluated at each
+    /// sample's own time the plain way (position by search, sin/cos of the spindle angle),
+    /// wherever both neighbouring positions have as many arcs (blended linearly) or none.
+    #[test]
+    fn series_equals_the_instant_forces_at_its_times() {
+        let p = crate::plan(&crate::Job::default()).expect("default job");
+        let (c, k) = (crate::plan::cutter(&p.job), p.job.coefficients);
+        let series = &p.series;
+        let n = series.len();
+        let t_cycle = p.metrics.cycle_length_mm / (p.job.feed / 60.0);
+        let forces = cycle_forces(series, t_cycle, &c, &k, p.job.rpm);
+        let omega = p.job.rpm / 60.0 * TAU;
+        let frame0 = FRAC_PI_2 + series[0].feed_angle_rad;
+        let tol = 1e-9 * forces.summary.resultant_max_n;
+        let mut checked = 0;
+        for s in forces.samples.iter().step_by(7) {
+            let t = s.time_s;
+            let i0 = series.partition_point(|x| x.time_s <= t).saturating_sub(1);
+            let (a, b) = (&series[i0], &series[(i0 + 1) % n]);
+            if a.arcs.len() != b.arcs.len() {
+                continue;
+            }
+            let t1 = if i0 + 1 < n { b.time_s } else { b.time_s + t_cycle };
+            let w = ((t - a.time_s) / (t1 - a.time_s)).clamp(0.0, 1.0);
+            let frame = FRAC_PI_2 + a.feed_angle_rad + w * wrap_pi(b.feed_angle_rad - a.feed_angle_rad);
+            let pairs: Vec<ArcPair> = a.arcs.iter().zip(&b.arcs).map(|(x, y)| ArcPair::new(x, y)).collect();
+            let blends: Vec<ArcBlend> = pairs.iter().map(|pair| ArcBlend { pair, w }).collect();
+            let want = force_at(&c, &k, frame, frame - frame0 + omega * t, &blends);
+            for (got, want) in
+                [s.fx_n, s.fy_n, s.fz_n, s.torque_nm].iter().zip([want.fx_n, want.fy_n, want.fz_n, want.torque_nm])
+            {
+                assert!((got - want).abs() <= tol, "t {t}: {got} vs {want}");
+            }
+            assert_eq!(s.cutting, want.cutting, "t {t}");
+            checked += 1;
+        }
+        assert!(checked > forces.samples.len() / 10, "{checked} samples checked");
     }
 
     /// Runout: equal offsets change nothing; one flute further out takes a thicker chip and the
