@@ -19,7 +19,7 @@ use trochoplan_core::nc::{
 };
 use trochoplan_core::pocket::adaptive::corner_point_bound_rad;
 use trochoplan_core::pocket::{
-    self, AdaptiveOptions, AdaptivePlan, LinkKind, MoveKind, PerforativePlan, PocketPlan, PocketRequest,
+    self, AdaptiveOptions, AdaptivePlan, Entry, Helix, LinkKind, MoveKind, PerforativePlan, PocketPlan, PocketRequest,
     PocketStrategy, RingPlan,
 };
 use trochoplan_core::{Error, Param};
@@ -206,11 +206,11 @@ pub struct PocketArgs {
         default_value = Direction::Climb.name()
     )]
     direction: Direction,
-    /// Helix radius of the tool centre (mm, `--method adaptive`); default 0.375 × D, reduced
-    /// to 0.25 × D where the pocket is narrower.
+    /// Helix radius of the tool centre (mm, every method); default 0.375 × D, reduced to
+    /// 0.25 × D where the pocket is narrower, and a zig-zag ramp where not even that fits.
     #[arg(long, value_name = "MM", allow_hyphen_values = true)]
     helix_radius: Option<f64>,
-    /// Ramp angle of the helix (degrees, `--method adaptive`), 0 < angle ≤ 15.
+    /// Ramp angle of the helix or zig-zag ramp (degrees, every method), 0 < angle ≤ 15.
     #[arg(long, value_name = "DEG", allow_hyphen_values = true, default_value_t = AdaptiveOptions::default().ramp_deg)]
     ramp_angle: f64,
     /// Radial stock of the finishing contour (mm, `--method adaptive`); 0: no finishing pass.
@@ -277,8 +277,24 @@ struct PocketOut {
     link_length_mm: f64,
     /// Machining time of the rings (links excluded).
     time_s: f64,
-    /// Largest engagement over all rings (entries excluded), measured by the evaluator.
+    /// Largest engagement over every move at depth (entry, core, links, rings), measured by
+    /// the evaluator with the entries' bores as cut; and the 95th percentile of its samples.
     max_engagement_deg: f64,
+    p95_engagement_deg: f64,
+    /// Per kind of move: entry, spiral and ring (the core), link, ring and corner (the rings'
+    /// own moves and their corner strategy's).
+    by_kind: Vec<KindOut>,
+    /// Every move at depth (entries' flat moves included), of it the links.
+    length_at_depth_mm: f64,
+    /// The entries: helices, or zig-zag ramps where no helix fits; their descents' length.
+    helices: Vec<HelixOut>,
+    ramps: Vec<RampOut>,
+    entry_length_mm: f64,
+    /// The whole path at depth in machining order, what each segment does, and the segments
+    /// reached by retract, rapid and feed down into cleared material.
+    segments: Vec<Segment>,
+    kinds: Vec<MoveKind>,
+    retract_before: Vec<usize>,
     #[serde(skip_serializing_if = "Option::is_none")]
     nc_export: Option<NcExportOut>,
 }
@@ -313,7 +329,7 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
     };
     let text = match &plan {
         PocketPlan::Rings(rings) => ring_pocket_json(&req, rings, nc_export),
-        PocketPlan::MedialAxis(perforative) => perforative_pocket_json(perforative, nc_export),
+        PocketPlan::MedialAxis(perforative) => perforative_pocket_json(perforative, req.adaptive.depth_mm, nc_export),
         PocketPlan::Adaptive(adaptive) => adaptive_pocket_json(adaptive, nc_export),
     }?;
     match &args.machine {
@@ -344,6 +360,51 @@ struct HelixOut {
     ramp_deg: f64,
     /// Whole turns from 0.5 mm above the stock top to the depth.
     turns: usize,
+}
+
+fn helix_out(h: &Helix, depth_mm: f64) -> HelixOut {
+    HelixOut {
+        center: [h.center.x, h.center.y],
+        radius_mm: h.radius,
+        ramp_deg: h.ramp_rad.to_degrees(),
+        turns: h.turns(pocket::adaptive::HELIX_START_Z_MM + depth_mm),
+    }
+}
+
+/// A zig-zag ramp where no helix fits: legs between `end` and `start`, the last reaching the
+/// depth at `start`, then the flat pass to `end`.
+#[derive(Serialize)]
+struct RampOut {
+    start: [f64; 2],
+    end: [f64; 2],
+    ramp_deg: f64,
+    /// Legs from 0.5 mm above the stock top to the depth.
+    legs: usize,
+}
+
+/// The helices and the ramps of a plan's entries.
+fn entries_out(entries: &[Entry], depth_mm: f64) -> (Vec<HelixOut>, Vec<RampOut>) {
+    let drop = pocket::adaptive::HELIX_START_Z_MM + depth_mm;
+    let helices = entries
+        .iter()
+        .filter_map(|e| match e {
+            Entry::Helix(h) => Some(helix_out(h, depth_mm)),
+            Entry::Ramp(_) => None,
+        })
+        .collect();
+    let ramps = entries
+        .iter()
+        .filter_map(|e| match e {
+            Entry::Ramp(r) => Some(RampOut {
+                start: [r.start.x, r.start.y],
+                end: [r.end.x, r.end.y],
+                ramp_deg: r.ramp_rad.to_degrees(),
+                legs: r.legs(drop),
+            }),
+            Entry::Helix(_) => None,
+        })
+        .collect();
+    (helices, ramps)
 }
 
 #[derive(Serialize)]
@@ -430,7 +491,6 @@ fn kind_out(m: &pocket::KindMax) -> KindOut {
 fn adaptive_pocket_json(plan: &AdaptivePlan, nc_export: Option<NcExportOut>) -> Result<String, String> {
     let xy = |p: P2| [p.x, p.y];
     let s = plan.settings;
-    let drop = pocket::adaptive::HELIX_START_Z_MM + plan.options.depth_mm;
     let out = AdaptiveOut {
         method: PocketStrategy::Adaptive.name(),
         direction: plan.options.direction.name(),
@@ -439,16 +499,7 @@ fn adaptive_pocket_json(plan: &AdaptivePlan, nc_export: Option<NcExportOut>) -> 
         feed_mm_per_min: s.feed_mm_per_min,
         target_deg: plan.target_rad.to_degrees(),
         polygon: plan.polygon.vertices().iter().map(|&v| xy(v)).collect(),
-        helices: plan
-            .parts
-            .iter()
-            .map(|p| HelixOut {
-                center: xy(p.helix.center),
-                radius_mm: p.helix.radius,
-                ramp_deg: p.helix.ramp_rad.to_degrees(),
-                turns: p.helix.turns(drop),
-            })
-            .collect(),
+        helices: plan.parts.iter().map(|p| helix_out(&p.helix, plan.options.depth_mm)).collect(),
         parts: plan.parts.len(),
         core_radius_mm: plan.parts.iter().map(|p| p.core_radius_mm).collect(),
         rings: plan.parts.iter().map(|p| p.rings).collect(),
@@ -503,6 +554,7 @@ fn adaptive_pocket_json(plan: &AdaptivePlan, nc_export: Option<NcExportOut>) -> 
 
 /// The JSON of a pocket cleared by rings.
 fn ring_pocket_json(req: &PocketRequest, plan: &RingPlan, nc_export: Option<NcExportOut>) -> Result<String, String> {
+    let (helices, ramps) = entries_out(&plan.entries, req.adaptive.depth_mm);
     let out = PocketOut {
         method: plan.method.name(),
         trochoid_corners: plan.trochoid_corners,
@@ -541,6 +593,15 @@ fn ring_pocket_json(req: &PocketRequest, plan: &RingPlan, nc_export: Option<NcEx
         link_length_mm: plan.link_length_mm,
         time_s: plan.time_s,
         max_engagement_deg: plan.max_engagement_rad.to_degrees(),
+        p95_engagement_deg: plan.p95_engagement_rad.to_degrees(),
+        by_kind: plan.maxima.iter().map(kind_out).collect(),
+        length_at_depth_mm: plan.length_at_depth_mm,
+        helices,
+        ramps,
+        entry_length_mm: plan.entry_length_mm,
+        segments: plan.segments.clone(),
+        kinds: plan.kinds.clone(),
+        retract_before: plan.retract_before.clone(),
         nc_export,
     };
     json_text(&out)
@@ -599,9 +660,17 @@ struct PerforativeOut {
     /// Whole feed path (all moves), and its machining time.
     path_length_mm: f64,
     time_s: f64,
-    /// Largest engagement of the body (concentric clearing, axis circles, links), measured by
-    /// the evaluator: the number the target bounds.
+    /// Largest engagement over every move at depth (tips into the corner points included),
+    /// measured by the evaluator with the entries' bores as cut, and the 95th percentile.
     max_engagement_deg: f64,
+    p95_engagement_deg: f64,
+    /// Largest engagement of the body (concentric clearing, axis circles, links): the number
+    /// the target bounds.
+    body_max_engagement_deg: f64,
+    /// The entry of each part: helices, or zig-zag ramps where no helix fits; their descents.
+    helices: Vec<HelixOut>,
+    ramps: Vec<RampOut>,
+    entry_length_mm: f64,
     /// Per kind of move: entry (first circle after a plunge), spiral, circle, link, straight
     /// (through a neck), tip (into a corner point), return (back through cut material).
     by_move: Vec<KindOut>,
@@ -615,7 +684,12 @@ struct PerforativeOut {
 }
 
 /// The JSON of a pocket cleared by perforative trochoids along its medial axis.
-fn perforative_pocket_json(plan: &PerforativePlan, nc_export: Option<NcExportOut>) -> Result<String, String> {
+fn perforative_pocket_json(
+    plan: &PerforativePlan,
+    depth_mm: f64,
+    nc_export: Option<NcExportOut>,
+) -> Result<String, String> {
+    let (helices, ramps) = entries_out(&plan.entries, depth_mm);
     let xy = |p: P2| [p.x, p.y];
     let settings = plan.settings;
     let out = PerforativeOut {
@@ -644,7 +718,12 @@ fn perforative_pocket_json(plan: &PerforativePlan, nc_export: Option<NcExportOut
             .collect(),
         path_length_mm: plan.path_length_mm,
         time_s: plan.time_s,
-        max_engagement_deg: plan.body_max_rad.to_degrees(),
+        max_engagement_deg: plan.max_engagement_rad.to_degrees(),
+        p95_engagement_deg: plan.p95_engagement_rad.to_degrees(),
+        body_max_engagement_deg: plan.body_max_rad.to_degrees(),
+        helices,
+        ramps,
+        entry_length_mm: plan.entry_length_mm,
         by_move: plan.maxima.iter().map(kind_out).collect(),
         segments: plan.segments.clone(),
         kinds: plan.kinds.clone(),
@@ -1037,8 +1116,8 @@ mod tests {
     fn pocket_json_and_errors() {
         let dir = tempfile::tempdir().expect("tempdir");
         let f = dir.path().join("rect.txt");
-        // 60 × 40 rectangle, D = 10, a_e = 4: rings at d = 5, 9, 13, 17 (d < 20), perimeters
-        // 200 − 8d = 160, 128, 96, 64; total 448 mm, 44.8 s at 600 mm/min.
+        // 60 × 40 rectangle, D = 10, a_e = 4: rings at d = 5 + 4k (d < 20), perimeters
+        // 200 − 8d; issue #12: the outer ones around an adaptive core cut out of a helix bore.
         std::fs::write(&f, "# rectangle\n0,0\n60,0\n60,40\n0,40\n").expect("write");
         let p = f.display().to_string();
         let args = |extra: &[&str]| {
@@ -1048,11 +1127,19 @@ mod tests {
         };
         let v: serde_json::Value =
             serde_json::from_str(&pocket(&args(&["--step-over", "4"])).expect("plan")).expect("json");
-        assert_eq!(v["ring_count"].as_u64(), Some(4));
-        assert!(v["path_length_mm"].as_f64().is_some_and(|l| (l - 448.0).abs() < 1e-8), "{}", v["path_length_mm"]);
-        assert!(v["time_s"].as_f64().is_some_and(|t| (t - 44.8).abs() < 1e-9));
+        let rings = v["rings"].as_array().expect("rings");
+        assert!(!rings.is_empty() && rings.len() < 4, "{}", v["ring_count"]);
+        let offsets: Vec<f64> = rings.iter().map(|g| g["offset_mm"].as_f64().expect("offset")).collect();
+        assert_eq!(offsets.last(), Some(&5.0), "{offsets:?}");
+        let want: f64 = offsets.iter().map(|d| 200.0 - 8.0 * d).sum();
+        assert!(v["path_length_mm"].as_f64().is_some_and(|l| (l - want).abs() < 1e-8), "{}", v["path_length_mm"]);
+        let at_depth =
+            v["length_at_depth_mm"].as_f64().expect("at depth") + v["entry_length_mm"].as_f64().expect("entry");
+        assert!(v["time_s"].as_f64().is_some_and(|t| (t - at_depth / 10.0).abs() < 1e-9));
         assert!(v["rings"][0]["segments"].as_array().is_some_and(|s| s.len() == 5)); // 4 edges, the longest split at the entry
-        assert!(v["max_engagement_deg"].as_f64().is_some_and(|m| (m - 180.0).abs() < 1e-3));
+        assert_eq!(v["helices"].as_array().map(Vec::len), Some(1));
+        // no full slot (180°) anywhere: the plain corners read less
+        assert!(v["max_engagement_deg"].as_f64().is_some_and(|m| m < 179.0), "{}", v["max_engagement_deg"]);
         for (flags, name) in [
             (vec!["--step-over", "10"], "step-over"),
             (vec!["--tool-diameter", "NaN"], "tool-diameter"),
@@ -1061,15 +1148,14 @@ mod tests {
             let e = pocket(&args(&flags)).expect_err("must fail");
             assert!(e.contains(name), "{flags:?}: {e}");
         }
-        // --export: links (step of a_e = 4 between entries on the long sides, three of them,
-        // 12 mm) and the program written whole
+        // --export: one feed link between consecutive rings and the program written whole
         let nc = dir.path().join("rect.ngc");
         let n = nc.display().to_string();
         let v: serde_json::Value =
             serde_json::from_str(&pocket(&args(&["--step-over", "4", "--export", n.as_str()])).expect("export"))
                 .expect("json");
-        assert_eq!(v["links"].as_array().map(Vec::len), Some(3));
-        assert!(v["link_length_mm"].as_f64().is_some_and(|l| (l - 12.0).abs() < 1e-9), "{}", v["link_length_mm"]);
+        assert_eq!(v["links"].as_array().map(Vec::len), Some(rings.len() - 1));
+        assert!(v["links"].as_array().expect("links").iter().all(|l| l["kind"] == "feed"), "{}", v["links"]);
         let text = std::fs::read_to_string(&nc).expect("written");
         assert_eq!(v["nc_export"]["bytes"].as_u64(), Some(text.len() as u64));
         assert!(text.starts_with("(TrochoPlan pocket)\n") && text.ends_with("M5\nM30\n"), "{text}");

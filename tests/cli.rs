@@ -285,7 +285,10 @@ fn pocket_medial_axis_prints_circles_axis_and_engagement_by_move() {
     // The 60 × 40 rectangle's axis: four corner branches and the spine.
     assert_eq!(v["axis"].as_array().unwrap().len(), 5);
     let target = v["target_deg"].as_f64().unwrap();
-    assert!(v["max_engagement_deg"].as_f64().unwrap() <= target + 1.0, "{}", v["max_engagement_deg"]);
+    assert!(v["body_max_engagement_deg"].as_f64().unwrap() <= target + 1.0, "{}", v["body_max_engagement_deg"]);
+    // the peak over everything at depth includes the tips into the corner points
+    assert!(v["max_engagement_deg"].as_f64().unwrap() >= v["body_max_engagement_deg"].as_f64().unwrap());
+    assert_eq!(v["helices"].as_array().unwrap().len(), 1, "a helix, no plunge");
     let kinds: Vec<&str> = v["by_move"].as_array().unwrap().iter().map(|m| m["kind"].as_str().unwrap()).collect();
     for k in ["entry", "spiral", "circle", "link", "tip", "return"] {
         assert!(kinds.contains(&k), "{k} missing: {kinds:?}");

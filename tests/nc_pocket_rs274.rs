@@ -54,35 +54,61 @@ fn pocket_programs_pass_rs274_and_stay_inside_the_offset() {
 }
 
 #[test]
-fn rectangle_pocket_program_is_one_connected_cut() {
-    // 60 × 40, D = 10, a_e = 2.5 (the defaults), plain rings: rings at d = 5 + 2.5k while d ≤ 20 (the
-    // innermost, d = 20, is the segment from (20, 20) to (40, 20) walked there and back):
-    // k = 0..6, seven rings, perimeters 2(60 − 2d) + 2(40 − 2d) = 200 − 8d = 160, 140, …, 40;
-    // total 7·(160 + 40)/2 = 700 mm. Each ring is entered at the middle of a long side, so each
-    // link is a step of a_e = 2.5 mm outward: six feed links, 15 mm, no retract.
+fn rectangle_pocket_program_enters_on_a_helix_and_is_one_connected_cut() {
+    // 60 × 40, D = 10, a_e = 2.5 (the defaults), plain rings (issue #12): a helix, the core
+    // cleared out of its bore, the rings around it joined by feed links: no retract, one
+    // approach (safe Z, rapid to the helix start, rapid to Z0.5) and one final retract; the
+    // program retraces the JSON's path, every move down is on the helix.
     let dir = tempfile::tempdir().expect("tempdir");
     let e = export(dir.path(), "rect.ngc", RECT, &["--method", "plain", "--dialect", "linuxcnc", "--linear-segments"]);
-    assert!((e.json["path_length_mm"].as_f64().expect("len") - 700.0).abs() < 1e-9, "{}", e.json["path_length_mm"]);
-    assert!((e.json["link_length_mm"].as_f64().expect("links") - 15.0).abs() < 1e-9, "{}", e.json["link_length_mm"]);
+    assert_eq!(e.json["helices"].as_array().expect("helices").len(), 1, "{}", e.json["helices"]);
+    assert!(e.json["retract_before"].as_array().expect("retracts").is_empty());
+    assert!(e.json["links"].as_array().expect("links").iter().all(|l| l["kind"] == "feed"));
+    let segs: f64 = e.feed_path.iter().map(|s| s.length()).sum();
+    assert!((e.json["length_at_depth_mm"].as_f64().expect("len") - segs).abs() < 1e-6);
     let text = std::fs::read_to_string(&e.file).expect("read");
-    // one plunge, one final retract: the approach's G0 Z and the end's
+    // safe Z before the approach and at the end, and (modal G0) Z0.5 above the helix start
     assert_eq!(text.matches("G0 Z").count() + text.matches("\nZ5.0000").count(), 2, "{text}");
+    assert_eq!(text.matches("\nZ0.5000\n").count(), 1, "{text}");
     check_pocket_program("rect plain linuxcnc chords", &e, RECT, R, 0.005, 4);
+    assert_no_plunge("rect plain", &motions(&interpret(&e.file).expect("rs274")), &e.json);
 }
 
 #[test]
-fn retract_links_pass_rs274_and_the_cut_skips_them() {
+fn a_pocket_too_narrow_for_a_helix_is_entered_on_a_zig_zag_ramp() {
+    // 60 × 14 with D = 10 (no helix of 0.25·D fits): every method but adaptive ramps down on
+    // the middle line in 3D G1 legs at most 3° steep, passes rs274 and keeps r from the walls.
+    let narrow: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 14.0), (0.0, 14.0)];
+    let dir = tempfile::tempdir().expect("tempdir");
+    for method in ["plain", "variable", "isometric", "medial-axis"] {
+        let label = format!("narrow {method}");
+        let e = export(dir.path(), &format!("narrow_{method}.ngc"), narrow, &["--method", method]);
+        let ramps = e.json["ramps"].as_array().expect("ramps");
+        assert_eq!(ramps.len(), 1, "{label}: {}", e.json["ramps"]);
+        // 6.5 mm down at 3° on 50 mm legs: ⌈6.5 / (50 tan 3°)⌉ = 3 legs
+        assert_eq!(ramps[0]["legs"], 3, "{label}");
+        check_pocket_program(&label, &e, narrow, R, 0.005, 4);
+        assert_no_plunge(&label, &motions(&interpret(&e.file).expect("rs274")), &e.json);
+    }
+}
+
+#[test]
+fn retracts_pass_rs274_and_the_cut_skips_them() {
+    // The dumbbell (two 40 × 40 lobes, a 20 × 16 neck, D = 10): adaptive clearing's core does
+    // not pass the neck, so the core is each lobe's, from its own helix, with a retract
+    // between; every retract's descent is a helix or lands where the path has cleared.
     let dir = tempfile::tempdir().expect("tempdir");
     for (dialect, ext, decimals) in DIALECTS {
         let e =
             export(dir.path(), &format!("dumbbell.{ext}"), DUMBBELL, &["--method", "variable", "--dialect", dialect]);
-        let links = e.json["links"].as_array().expect("links");
-        let retracts = links.iter().filter(|l| l["kind"] == "retract").count();
-        assert!(retracts >= 1 && retracts < links.len(), "{dialect}: {links:?}");
+        assert_eq!(e.json["helices"].as_array().expect("helices").len(), 2, "{dialect}: {}", e.json["helices"]);
+        let retracts = e.json["retract_before"].as_array().expect("retracts").len();
+        assert!(retracts >= 1, "{dialect}");
         let text = std::fs::read_to_string(&e.file).expect("read");
-        // every retract link is one more plunge: the approach's, one per retract
-        let plunges = text.lines().filter(|l| l.contains("Z-6.000")).count();
-        assert_eq!(plunges, 1 + retracts, "{dialect}:\n{text}");
+        // one descent to the depth per part and per retract: the helices' last turns and the
+        // feeds down at retracts beyond them
+        let descents = text.lines().filter(|l| l.contains("Z-6.000")).count();
+        assert_eq!(descents, 1 + retracts, "{dialect}:\n{text}");
         check_pocket_program(&format!("dumbbell variable {dialect}"), &e, DUMBBELL, R, 0.005, decimals);
     }
 }
@@ -112,7 +138,8 @@ fn medial_axis_pocket_programs_pass_rs274_and_stay_inside_the_offset() {
     );
     assert_eq!(e.json["parts"], 2);
     let text = std::fs::read_to_string(&e.file).expect("read");
-    assert_eq!(text.lines().filter(|l| l.contains("Z-6.000")).count(), 2, "one plunge per part");
+    assert_eq!(text.lines().filter(|l| l.contains("Z-6.000")).count(), 2, "one helix per part");
+    assert_eq!(e.json["helices"].as_array().expect("helices").len(), 2);
     let canon = interpret(&e.file).unwrap_or_else(|err| panic!("dumbbell D18: {err}"));
     let c = cut(&motions(&canon), DEPTH, 1e-4);
     check_path_cut("dumbbell D18", &c, &e.feed_path, 0.005, 1e-4).unwrap_or_else(|err| panic!("{err}"));
@@ -175,17 +202,7 @@ fn adaptive_pockets_read_back_through_rs274_stay_within_the_issue_limits() {
             let helix = &e.json["helices"][0];
             let centre = p2(helix["center"][0].as_f64().expect("x"), helix["center"][1].as_f64().expect("y"));
             let r_h = helix["radius_mm"].as_f64().expect("radius");
-            for m in &all {
-                let (a, b) = (m.start(), m.end());
-                if b[2] < a[2] - 1e-9 && b[2] < -1e-9 {
-                    match m {
-                        Motion::Arc { center, .. } => {
-                            assert!((center - centre).norm() < 1e-3, "{label}: descending arc off the helix: {m:?}")
-                        }
-                        _ => panic!("{label}: straight move down into the stock: {m:?}"),
-                    }
-                }
-            }
+            assert_no_plunge(&label, &all, &e.json);
             let path = segments_of(&cut(&all, DEPTH, 1e-4));
             let stock = Polygon::new(polygon.iter().map(|&(x, y)| p2(x, y)).collect()).expect("polygon");
             let bore = [Segment::Arc { center: centre, radius: r_h, start_angle: 0.0, sweep: std::f64::consts::TAU }];
@@ -211,10 +228,9 @@ fn adaptive_pockets_read_back_through_rs274_stay_within_the_issue_limits() {
 /// Every pocket method in both directions (issue #12 items 2 and 4) on the issue's rectangle
 /// (D = 10, a_e = 1.527 mm): the program passes rs274 with the wall check; conventional turns
 /// the arcs at depth the other way (the read-back arcs' senses, counted), and its read-back peak is the
-/// climb program's (the rectangle is its own mirror image) within 1°. The peak over everything
-/// at depth, measured on the read-back cut (the helix bore counted as cut for adaptive
-/// clearing; the other methods plunge, and the evaluator reads the plunge hole's first move
-/// from solid material), is printed for the README's table.
+/// climb program's (the rectangle is its own mirror image) within 1°. No method plunges: every
+/// move down below Z0 is on the helix. The peak over everything at depth, measured on the
+/// read-back cut (the helix bore counted as cut), is printed for the README's table.
 #[test]
 fn every_method_in_both_directions_passes_rs274_and_mirrors_its_peak() {
     use trochoplan_core::corner::{EvaluatorOptions, engagement_profile};
@@ -229,6 +245,7 @@ fn every_method_in_both_directions_passes_rs274_and_mirrors_its_peak() {
             let e = export(dir.path(), &format!("rect_{method}_{direction}.ngc"), RECT, &args);
             check_pocket_program(&label, &e, RECT, R, 0.005, 4);
             let all = motions(&interpret(&e.file).expect("rs274"));
+            assert_no_plunge(&label, &all, &e.json);
             let at_depth: Vec<&Motion> =
                 all.iter().filter(|m| m.start()[2] < -DEPTH + 1e-6 && m.end()[2] < -DEPTH + 1e-6).collect();
             let ccw = at_depth.iter().filter(|m| matches!(m, Motion::Arc { turns, .. } if *turns > 0)).count();
@@ -279,4 +296,48 @@ fn every_method_in_both_directions_passes_rs274_and_mirrors_its_peak() {
 /// z of the cross product of two points taken as vectors from the origin.
 fn cross2(a: trochoplan_core::geom::P2, b: trochoplan_core::geom::P2) -> f64 {
     a.x * b.y - a.y * b.x
+}
+
+/// Issue #12's "no plunge": every feed move that goes down below Z0 is a helical arc about a
+/// helix centre the JSON reports, or a straight leg on a ramp line it reports, descending at
+/// most at the ramp angle (+ the written rounding).
+fn assert_no_plunge(label: &str, all: &[Motion], json: &serde_json::Value) {
+    use trochoplan_core::geom::p2;
+    let pt = |v: &serde_json::Value| p2(v[0].as_f64().expect("x"), v[1].as_f64().expect("y"));
+    let list = |key: &str| json.get(key).and_then(|v| v.as_array()).cloned().unwrap_or_default();
+    let centres: Vec<_> = list("helices").iter().map(|h| pt(&h["center"])).collect();
+    let ramps: Vec<_> = list("ramps")
+        .iter()
+        .map(|r| (pt(&r["start"]), pt(&r["end"]), r["ramp_deg"].as_f64().expect("ramp").to_radians()))
+        .collect();
+    assert!(!centres.is_empty() || !ramps.is_empty(), "{label}: no entry in the JSON");
+    for m in all {
+        let (a, b) = (m.start(), m.end());
+        if !(b[2] < a[2] - 1e-9 && b[2] < -1e-9) {
+            continue;
+        }
+        match m {
+            Motion::Arc { center, .. } => {
+                assert!(
+                    centres.iter().any(|c| (center - c).norm() < 1e-3),
+                    "{label}: descending arc off the helix: {m:?}"
+                )
+            }
+            Motion::Line { .. } => {
+                let (pa, pb) = (p2(a[0], a[1]), p2(b[0], b[1]));
+                let on = |q: trochoplan_core::geom::P2, s: trochoplan_core::geom::P2, e: trochoplan_core::geom::P2| {
+                    let u = (e - s).normalize();
+                    (q - s).x * u.y - (q - s).y * u.x
+                };
+                let leg = ramps.iter().any(|&(s, e, ramp)| {
+                    on(pa, s, e).abs() < 1e-3
+                        && on(pb, s, e).abs() < 1e-3
+                        && (pb - pa).norm() > 1.0
+                        && (a[2] - b[2]) <= (pb - pa).norm() * ramp.tan() + 2e-4
+                });
+                assert!(leg, "{label}: straight move down into the stock: {m:?}");
+            }
+            Motion::Rapid { .. } => panic!("{label}: rapid below Z0: {m:?}"),
+        }
+    }
 }

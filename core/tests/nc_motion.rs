@@ -303,7 +303,7 @@ fn corner_programs_in_every_dialect_retrace_the_corner_path() {
             let job = PathJob {
                 segments: &plan.path,
                 retract_before: &[],
-                helices: &[],
+                entries: &[],
                 depth_mm: 6.0,
                 feed_mm_per_min: 600.0,
                 spindle_rpm: 2000.0,

@@ -11,7 +11,7 @@ use super::{NcOptions, NcProgram, PathJob, program_for_path};
 use crate::corner::{CornerPlan, CornerSettings};
 use crate::error::{Error, Param};
 use crate::geom::Segment;
-use crate::pocket::{AdaptivePlan, Helix, LinkKind, PerforativePlan, PocketPlan, PocketSettings, RingPlan};
+use crate::pocket::{AdaptivePlan, Entry, LinkKind, PerforativePlan, PocketPlan, PocketSettings, RingPlan};
 
 /// What a corner or pocket plan does not carry: the cutting depth and the spindle speed.
 /// Checked by [`PathJob::validate`] (errors name `depth` and `rpm`).
@@ -46,7 +46,7 @@ pub fn corner_program(
     let job = PathJob {
         segments: &plan.path,
         retract_before: &[],
-        helices: &[],
+        entries: &[],
         depth_mm: cut.depth_mm,
         feed_mm_per_min: s.feed_mm_per_min,
         spindle_rpm: cut.spindle_rpm,
@@ -93,8 +93,8 @@ pub fn pocket_program(plan: &PocketPlan, cut: CutSetup, opts: &NcOptions) -> Res
 /// top (no plunge), then its moves at depth; a retract and rapid between parts.
 pub fn adaptive_program(plan: &AdaptivePlan, cut: CutSetup, opts: &NcOptions) -> Result<NcProgram, Error> {
     let (segments, retract_before) = PocketPlan::Adaptive(plan.clone()).tool_path();
-    let helices: Vec<Helix> = plan.parts.iter().map(|p| p.helix).collect();
-    let h = &helices[0];
+    let entries: Vec<Entry> = plan.parts.iter().map(|p| Entry::Helix(p.helix)).collect();
+    let h = &plan.parts[0].helix;
     let summary = [
         format!(
             "pocket of {} vertices, adaptive {}, {} part(s), helix R {:.3} mm {:.1} deg",
@@ -112,7 +112,7 @@ pub fn adaptive_program(plan: &AdaptivePlan, cut: CutSetup, opts: &NcOptions) ->
             plan.target_rad.to_degrees()
         ),
     ];
-    pocket_path_program(&segments, &retract_before, &helices, &plan.settings, summary, cut, opts)
+    pocket_path_program(&segments, &retract_before, &entries, &plan.settings, summary, cut, opts)
 }
 
 /// The program of a pocket cleared by rings: its rings and links ([`RingPlan::tool_path`]),
@@ -136,7 +136,7 @@ fn ring_program(plan: &RingPlan, cut: CutSetup, opts: &NcOptions) -> Result<NcPr
             plan.links.len() - feed_links
         ),
     ];
-    pocket_path_program(&segments, &retract_before, &[], &plan.settings, summary, cut, opts)
+    pocket_path_program(&segments, &retract_before, &plan.entries, &plan.settings, summary, cut, opts)
 }
 
 /// The program of a pocket cleared by perforative trochoids along its medial axis: its path
@@ -156,7 +156,7 @@ pub fn perforative_program(plan: &PerforativePlan, cut: CutSetup, opts: &NcOptio
             plan.target_rad.to_degrees()
         ),
     ];
-    pocket_path_program(&plan.segments, &plan.retract_before, &[], &plan.settings, summary, cut, opts)
+    pocket_path_program(&plan.segments, &plan.retract_before, &plan.entries, &plan.settings, summary, cut, opts)
 }
 
 /// A pocket's program in polygon coordinates: two summary lines of the plan, then the frame
@@ -164,7 +164,7 @@ pub fn perforative_program(plan: &PerforativePlan, cut: CutSetup, opts: &NcOptio
 fn pocket_path_program(
     segments: &[Segment],
     retract_before: &[usize],
-    helices: &[Helix],
+    entries: &[Entry],
     s: &PocketSettings,
     summary: [String; 2],
     cut: CutSetup,
@@ -174,7 +174,7 @@ fn pocket_path_program(
     let job = PathJob {
         segments,
         retract_before,
-        helices,
+        entries,
         depth_mm: cut.depth_mm,
         feed_mm_per_min: s.feed_mm_per_min,
         spindle_rpm: cut.spindle_rpm,
@@ -203,7 +203,7 @@ mod tests {
     use crate::corner::{Corner, CornerMethod, CornerScenario, parse_points, plan_corner};
     use crate::geom::{P2, Polygon};
     use crate::nc::{Dialect, backplot};
-    use crate::pocket::{PocketRequest, PocketStrategy, plan};
+    use crate::pocket::{PocketRequest, plan_rings};
 
     fn corner_plan(angle_deg: f64) -> (CornerPlan, CornerSettings) {
         let s = CornerSettings::new(5.0, 2.0).expect("settings");
@@ -263,19 +263,14 @@ mod tests {
         assert_eq!(e.subject(), Some("depth"), "{e}");
     }
 
-    /// 60 × 40 mm rectangle, D = 10, a_e = 4: plain rings at offsets d = 5, 9, 13, 17 (d < 20)
-    /// with perimeters 200 − 8d = 160, 128, 96, 64 (448 mm), joined by three feed links of
-    /// a_e = 4 mm (12 mm), as in the tests of `trochoplan pocket`.
+    /// 60 × 40 mm rectangle, D = 10, a_e = 4: the papers' plain rings ([`plan_rings`], the
+    /// layout without entry or core) at offsets d = 5, 9, 13, 17 (d < 20) with perimeters
+    /// 200 − 8d = 160, 128, 96, 64 (448 mm), joined by three feed links of a_e = 4 mm (12 mm).
     fn rectangle_pocket() -> PocketPlan {
         let polygon = Polygon::new(parse_points("0,0\n60,0\n60,40\n0,40\n", "rect").expect("points")).expect("poly");
-        plan(&PocketRequest {
-            polygon,
-            step_over_mm: 4.0,
-            spacing_mm: 1.0,
-            strategy: PocketStrategy::Rings(CornerMethod::Plain),
-            ..PocketRequest::default()
-        })
-        .expect("pocket")
+        let req = PocketRequest { polygon, step_over_mm: 4.0, spacing_mm: 1.0, ..PocketRequest::default() };
+        let settings = req.settings().expect("settings");
+        PocketPlan::Rings(plan_rings(&req.polygon, settings, CornerMethod::Plain).expect("pocket"))
     }
 
     #[test]

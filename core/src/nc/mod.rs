@@ -35,8 +35,8 @@ use crate::feed::VariableFeed;
 use crate::geom::{FitPiece, P2, Segment, fit_biarcs, p2, polyline};
 use crate::job::{Direction, PathKind};
 use crate::plan::Plan;
-use crate::pocket::Helix;
 use crate::pocket::adaptive::HELIX_START_Z_MM;
+use crate::pocket::{Entry, Helix, Ramp};
 use std::f64::consts::TAU;
 
 /// Default chord/biarc tolerance (mm), domain-spec §5.4.
@@ -257,10 +257,11 @@ pub struct PathJob<'a> {
     pub default_title: &'a str,
     /// Header comment lines describing the job (sanitised when written).
     pub description: Vec<String>,
-    /// Helical entries, one per connected part (the path start, then each retract in order):
-    /// the tool descends on the helix from above the stock top instead of feeding straight
-    /// down. Empty: straight down at every approach.
-    pub helices: &'a [Helix],
+    /// Entries, one per connected part (the path start, then each retract in order): the tool
+    /// descends on the helix or the zig-zag ramp from above the stock top instead of feeding
+    /// straight down. Retracts beyond them (and all, when empty): straight down, which a pocket
+    /// plan uses only where it lands in material its path has cleared.
+    pub entries: &'a [Entry],
 }
 
 /// Largest gap allowed between consecutive segments of a [`PathJob`] (mm): far below any
@@ -333,8 +334,9 @@ pub fn program_for_path(job: &PathJob<'_>, opts: &NcOptions) -> Result<NcProgram
         spindle_rpm: job.spindle_rpm,
     };
     preamble(&mut w, &header, opts);
-    let descend = |w: &mut Writer, part: usize, start: P2| match job.helices.get(part) {
-        Some(h) => helical_approach(w, h, job.depth_mm, job.feed_mm_per_min, opts),
+    let descend = |w: &mut Writer, part: usize, start: P2| match job.entries.get(part) {
+        Some(Entry::Helix(h)) => helical_approach(w, h, job.depth_mm, job.feed_mm_per_min, opts),
+        Some(Entry::Ramp(r)) => ramp_approach(w, r, job.depth_mm, job.feed_mm_per_min, opts),
         None => approach(w, start, job.depth_mm, job.feed_mm_per_min, opts),
     };
     descend(&mut w, 0, job.segments[0].start());
@@ -418,6 +420,24 @@ fn helical_approach(w: &mut Writer, h: &Helix, depth: f64, feed: f64, opts: &NcO
     for k in 1..=turns {
         let z = HELIX_START_Z_MM.min(opts.safe_z_mm) - drop * k as f64 / turns as f64;
         w.helical_arc(&h.circle(), z, feed);
+    }
+}
+
+/// Safe Z, rapid to the ramp's first point, rapid down to [`HELIX_START_Z_MM`] above the stock
+/// top, then straight legs back and forth on the ramp line (3D G1), each descending the same
+/// amount at most at the ramp angle, the last reaching `depth` at the ramp's start.
+fn ramp_approach(w: &mut Writer, r: &Ramp, depth: f64, feed: f64, opts: &NcOptions) {
+    let top = HELIX_START_Z_MM.min(opts.safe_z_mm);
+    let drop = top + depth;
+    let first = r.first_point(drop);
+    w.linear(None, None, Some(opts.safe_z_mm), None);
+    w.linear(Some(first.x), Some(first.y), None, None);
+    w.linear(None, None, Some(top), None);
+    let legs = r.legs(drop);
+    for k in 1..=legs {
+        let to = if (legs - k).is_multiple_of(2) { r.start } else { r.end };
+        let z = top - drop * k as f64 / legs as f64;
+        w.linear(Some(to.x), Some(to.y), Some(z), Some(feed));
     }
 }
 

@@ -138,7 +138,7 @@ fn path_job(segments: &[Segment]) -> PathJob<'_> {
     PathJob {
         segments,
         retract_before: &[],
-        helices: &[],
+        entries: &[],
         depth_mm: 3.0,
         feed_mm_per_min: 500.0,
         spindle_rpm: 4000.0,

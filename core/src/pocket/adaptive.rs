@@ -463,7 +463,7 @@ pub fn concave_step(rho: f64, r: f64, phi: f64) -> f64 {
     2.0 * k / (b + disc.sqrt())
 }
 
-fn pline_of(vertices: &[P2]) -> Polyline<f64> {
+pub(crate) fn pline_of(vertices: &[P2]) -> Polyline<f64> {
     let mut pl: Polyline<f64> = Polyline::new_closed();
     for v in vertices {
         pl.add(v.x, v.y, 0.0);
@@ -479,7 +479,7 @@ fn disc(c: P2, s: f64) -> Polyline<f64> {
 }
 
 /// Closed counter-clockwise loops of an offset (positive: inward for a CCW loop).
-fn offset(pl: &Polyline<f64>, d: f64) -> Vec<Polyline<f64>> {
+pub(crate) fn offset(pl: &Polyline<f64>, d: f64) -> Vec<Polyline<f64>> {
     pl.parallel_offset(d)
         .into_iter()
         .filter(|o| o.vertex_count() >= 2 && o.is_closed())
@@ -498,7 +498,7 @@ fn largest(loops: Vec<Polyline<f64>>) -> Option<Polyline<f64>> {
 }
 
 /// The closest point of a line or arc to `q`, and its local parameter.
-fn closest_on(seg: &Segment, q: P2) -> (P2, f64) {
+pub(crate) fn closest_on(seg: &Segment, q: P2) -> (P2, f64) {
     match *seg {
         Segment::Line { start, end } => {
             let d = end - start;
@@ -561,12 +561,12 @@ fn start_near(lp: &[Segment], q: P2) -> Vec<Segment> {
 }
 
 /// The moves of one part being built.
-struct Builder {
-    segments: Vec<Segment>,
-    kinds: Vec<MoveKind>,
+pub(crate) struct Builder {
+    pub(crate) segments: Vec<Segment>,
+    pub(crate) kinds: Vec<MoveKind>,
     /// Corner-point radii already derived, by (α, ρ₀): the finishing pass is the same for every
     /// core fraction, so each sequence is computed once per region.
-    radii: Vec<(f64, f64, Vec<f64>)>,
+    pub(crate) radii: Vec<(f64, f64, Vec<f64>)>,
 }
 
 impl Builder {
@@ -734,38 +734,7 @@ fn plan_path(
     // The finishing corner radius: the finishing arc of radius ρ_fin + s_f removes s_f
     // concentrically, within φ* (concave-cut step); at least r/10.
     let rho_fin = if sf > 0.0 { fin_radius(sf, r, phi) } else { 0.1 * r };
-    let mut b = Builder { segments: Vec::new(), kinds: Vec::new(), radii: Vec::new() };
-    let mut parts = Vec::new();
-    for region in &regions {
-        // The core radius trades ring length against corner caps: plan with T starting at each
-        // fraction of the inscribed radius and keep the shortest path (geometry only).
-        let (inscribed_radius, k0) = inscribed(region);
-        let mut best: Option<(f64, Builder, AdaptivePart)> = None;
-        let mut last_err = None;
-        let mut radii = Vec::new();
-        for fraction in CORE_FRACTIONS {
-            let mut bb = Builder { segments: Vec::new(), kinds: Vec::new(), radii: std::mem::take(&mut radii) };
-            let planned =
-                plan_part(region, (inscribed_radius, k0), &work, &settings, &options, phi, rho_fin, fraction, &mut bb);
-            radii = std::mem::take(&mut bb.radii);
-            match planned {
-                Ok(part) => {
-                    let len: f64 = bb.segments.iter().map(Segment::length).sum();
-                    if best.as_ref().is_none_or(|(l, _, _)| len < *l) {
-                        best = Some((len, bb, part));
-                    }
-                }
-                Err(e) => last_err = Some(e),
-            }
-        }
-        let Some((_, bb, part)) = best else {
-            return Err(last_err.unwrap_or_else(|| Error::param(Param::Polygon, "no plan", "a pocket the tool fits")));
-        };
-        let first = b.segments.len();
-        b.segments.extend(bb.segments);
-        b.kinds.extend(bb.kinds);
-        parts.push(AdaptivePart { first_segment: first, end_segment: b.segments.len(), ..part });
-    }
+    let (mut parts, mut b) = clear_regions(&regions, &work, &settings, &options, phi, rho_fin)?;
     if mirror {
         for s in &mut b.segments {
             *s = mirror_segment(s);
@@ -786,8 +755,55 @@ fn plan_path(
     Ok((parts, b, left))
 }
 
+/// Entry, spiral, rings, corner passes down to `rho_fin` and (with a finishing stock) the
+/// finishing pass of each region of tool centres of `work`, one part each: for each, the
+/// shortest plan over the core fractions. Also the core of the ring methods
+/// ([`super::rings::plan_ring_pocket`]).
+pub(crate) fn clear_regions(
+    regions: &[Polyline<f64>],
+    work: &Polygon,
+    settings: &PocketSettings,
+    options: &AdaptiveOptions,
+    phi: f64,
+    rho_fin: f64,
+) -> Result<(Vec<AdaptivePart>, Builder), Error> {
+    let mut b = Builder { segments: Vec::new(), kinds: Vec::new(), radii: Vec::new() };
+    let mut parts = Vec::new();
+    for region in regions {
+        // The core radius trades ring length against corner caps: plan with T starting at each
+        // fraction of the inscribed radius and keep the shortest path (geometry only).
+        let (inscribed_radius, k0) = inscribed(region);
+        let mut best: Option<(f64, Builder, AdaptivePart)> = None;
+        let mut last_err = None;
+        let mut radii = Vec::new();
+        for fraction in CORE_FRACTIONS {
+            let mut bb = Builder { segments: Vec::new(), kinds: Vec::new(), radii: std::mem::take(&mut radii) };
+            let planned =
+                plan_part(region, (inscribed_radius, k0), work, settings, options, phi, rho_fin, fraction, &mut bb);
+            radii = std::mem::take(&mut bb.radii);
+            match planned {
+                Ok(part) => {
+                    let len: f64 = bb.segments.iter().map(Segment::length).sum();
+                    if best.as_ref().is_none_or(|(l, _, _)| len < *l) {
+                        best = Some((len, bb, part));
+                    }
+                }
+                Err(e) => last_err = Some(e),
+            }
+        }
+        let Some((_, bb, part)) = best else {
+            return Err(last_err.unwrap_or_else(|| Error::param(Param::Polygon, "no plan", "a pocket the tool fits")));
+        };
+        let first = b.segments.len();
+        b.segments.extend(bb.segments);
+        b.kinds.extend(bb.kinds);
+        parts.push(AdaptivePart { first_segment: first, end_segment: b.segments.len(), ..part });
+    }
+    Ok((parts, b))
+}
+
 /// ρ_fin: the concave step of radius ρ_fin + s_f reaches s_f.
-fn fin_radius(sf: f64, r: f64, phi: f64) -> f64 {
+pub(crate) fn fin_radius(sf: f64, r: f64, phi: f64) -> f64 {
     let (mut lo, mut hi) = (1e-6, 100.0 * r);
     for _ in 0..80 {
         let mid = 0.5 * (lo + hi);
@@ -814,22 +830,7 @@ fn plan_part(
     b: &mut Builder,
 ) -> Result<AdaptivePart, Error> {
     let r = settings.tool_radius;
-    let wanted = options.helix_radius_mm.unwrap_or(0.75 * r);
-    let least = if options.helix_radius_mm.is_some() { wanted } else { 0.5 * r };
-    // The helix circle must keep its bore inside the region: r_h ≤ inscribed radius.
-    let r_h = wanted.min(inscribed * 0.98);
-    if r_h < least {
-        return Err(Error::param(
-            Param::HelixRadius,
-            wanted,
-            format!(
-                "at most {} mm for this pocket (its tool-centre region has an inscribed radius of {} mm); \
-                 a helix below 0.25 × D does not clear its own core",
-                num(0.98 * inscribed),
-                num(inscribed)
-            ),
-        ));
-    }
+    let r_h = super::entry::helix_radius(options, r, inscribed)?;
     let area = region.area();
     let corners_all = convex_corners(&to_segments(region));
     // Core radius T: the largest (from 0.995 × the inscribed radius, −10 % a step) whose
@@ -1358,7 +1359,7 @@ fn link(b: &mut Builder, polygon: &Polygon, r: f64, to: P2, k0: P2) {
 
 /// The radius of the largest circle in the region, by bisection on inward offsets, and its
 /// centre (the middle of the last offset that does not vanish).
-fn inscribed(region: &Polyline<f64>) -> (f64, P2) {
+pub(crate) fn inscribed(region: &Polyline<f64>) -> (f64, P2) {
     let ext = region.extents();
     let (mut lo, mut hi) = (0.0, ext.map_or(1.0, |e| 0.5 * (e.max_x - e.min_x).min(e.max_y - e.min_y)) + 1e-9);
     let mut centre = region.iter_vertexes().next().map_or(P2::zeros(), |v| p2(v.x, v.y));

@@ -78,6 +78,13 @@ impl RingPlan {
         for link in &mut self.links {
             (link.from, link.to) = (mirror_point(link.from), mirror_point(link.to));
         }
+        for e in &mut self.entries {
+            *e = e.mirrored();
+        }
+        mirror_all(&mut self.segments);
+        for m in &mut self.maxima {
+            m.at = mirror_point(m.at);
+        }
         self
     }
 }
@@ -96,6 +103,9 @@ impl PerforativePlan {
             c.tool_circle.center = mirror_point(c.tool_circle.center);
         }
         mirror_all(&mut self.segments);
+        for e in &mut self.entries {
+            *e = e.mirrored();
+        }
         for smp in &mut self.profile.samples {
             smp.x_mm = -smp.x_mm;
         }
@@ -166,8 +176,9 @@ mod tests {
             let (ea, eb) = (climb.max_engagement_rad(), conv.max_engagement_rad());
             assert!((ea - eb).abs() < 0.5f64.to_radians(), "{strategy:?}: {} vs {}", ea.to_degrees(), eb.to_degrees());
             if let PocketPlan::MedialAxis(m) = &conv {
+                let bores: Vec<Segment> = m.entries.iter().map(crate::pocket::Entry::bore).collect();
                 let own =
-                    engagement_profile(&rect, &[], &m.segments, &EvaluatorOptions::new(5.0, 0.5)).expect("profile");
+                    engagement_profile(&rect, &bores, &m.segments, &EvaluatorOptions::new(5.0, 0.5)).expect("profile");
                 assert!((own.max_angle() - m.profile.max_angle()).abs() < 1e-6, "measured again over the rectangle");
             }
         }

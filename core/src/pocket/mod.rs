@@ -8,13 +8,18 @@
 //! circles and rings counter-clockwise (climb milling with M3).
 
 pub mod adaptive;
+pub mod entry;
 pub mod mirror;
 pub mod perforative;
 pub mod rings;
 
 pub use adaptive::{AdaptiveOptions, AdaptivePart, AdaptivePlan, CornerPasses, Helix, plan_adaptive};
+pub use entry::{Entry, Ramp};
 pub use perforative::{AxisCircle, KindMax, MoveKind, PerforativePlan, plan_perforative};
-pub use rings::{LINK_ENGAGEMENT_SLACK_RAD, Link, LinkKind, Ring, RingPlan, inward_offset, link_is_inside, plan_rings};
+pub use rings::{
+    LINK_ENGAGEMENT_SLACK_RAD, Link, LinkKind, Ring, RingPlan, inward_offset, link_is_inside, plan_ring_pocket,
+    plan_rings,
+};
 
 use crate::corner::CornerMethod;
 use crate::corner::strategy::{tool_diameter, validate_tool_and_step_over};
@@ -27,10 +32,11 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum PocketStrategy {
-    /// Contour-parallel rings with a corner strategy at every convex corner of every ring but
-    /// the innermost: plain, variable or isometric ([`rings`]).
+    /// Contour-parallel rings around a core cleared adaptively out of a helix bore, with a
+    /// corner strategy at every convex corner of every ring: plain, variable or isometric
+    /// ([`rings::plan_ring_pocket`]).
     Rings(CornerMethod),
-    /// No rings: perforative trochoids along the medial axis of the whole pocket
+    /// No rings: a helix, then perforative trochoids along the medial axis of the whole pocket
     /// ([`perforative`]).
     MedialAxis,
     /// Helix entry, spiral, rings grown along the core, corner thinning and a finishing
@@ -86,10 +92,18 @@ impl PocketStrategy {
             return "Helix entry, spiral, rings along the core, corner thinning, finishing pass: every move within the target";
         };
         match method {
-            CornerMethod::Plain => "Plain contour-parallel rings",
-            CornerMethod::Variable => "Variable circles at every convex corner of every ring but the innermost",
-            CornerMethod::Isometric => "Isometric circles at every convex corner of every ring but the innermost",
-            CornerMethod::MedialAxis => "No rings: perforative trochoids along the medial axis of the whole pocket",
+            CornerMethod::Plain => {
+                "Helix, adaptive core, then plain contour-parallel rings: the papers' baseline, its corners above the target on purpose"
+            }
+            CornerMethod::Variable => {
+                "Helix, adaptive core, then rings with variable circles at every convex corner (the core takes the corners they do not fit)"
+            }
+            CornerMethod::Isometric => {
+                "Helix, adaptive core, then rings with isometric circles at every convex corner (the core takes the corners they do not fit)"
+            }
+            CornerMethod::MedialAxis => {
+                "No rings: helix, then perforative trochoids along the medial axis of the whole pocket"
+            }
         }
     }
 }
@@ -223,11 +237,12 @@ impl PocketPlan {
         }
     }
 
-    /// The cutting path length (mm): the rings (links excluded), or the whole medial-axis or
-    /// adaptive path at depth.
+    /// The cutting path length (mm): the whole path at depth (for [`plan_rings`]' layout, which
+    /// has no core: its rings, links excluded).
     pub fn path_length_mm(&self) -> f64 {
         match self {
-            PocketPlan::Rings(p) => p.path_length_mm,
+            PocketPlan::Rings(p) if p.segments.is_empty() => p.path_length_mm,
+            PocketPlan::Rings(p) => p.length_at_depth_mm,
             PocketPlan::MedialAxis(p) => p.path_length_mm,
             PocketPlan::Adaptive(p) => p.length_at_depth_mm,
         }
@@ -242,19 +257,18 @@ impl PocketPlan {
         }
     }
 
-    /// The engagement the plan bounds, measured by the evaluator (rad): the largest running
-    /// engagement of the rings (entries excluded), the medial-axis path's body maximum, or the
-    /// adaptive path's maximum over every move at depth.
+    /// The largest engagement over every move at depth, measured by the evaluator with the
+    /// entries' bores as cut (rad).
     pub fn max_engagement_rad(&self) -> f64 {
         match self {
             PocketPlan::Rings(p) => p.max_engagement_rad,
-            PocketPlan::MedialAxis(p) => p.body_max_rad,
+            PocketPlan::MedialAxis(p) => p.max_engagement_rad,
             PocketPlan::Adaptive(p) => p.max_engagement_rad,
         }
     }
 
     /// The whole tool path in machining order, and the indices of the segments reached by
-    /// retract, rapid and plunge ([`RingPlan::tool_path`], [`PerforativePlan::retract_before`]).
+    /// retract, rapid and a new entry or a feed down into cleared material ([`RingPlan::tool_path`], [`PerforativePlan::retract_before`]).
     pub fn tool_path(&self) -> (Vec<Segment>, Vec<usize>) {
         match self {
             PocketPlan::Rings(p) => p.tool_path(),
@@ -328,8 +342,12 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
         other => other,
     };
     match req.strategy {
-        PocketStrategy::Rings(method) => plan_rings(&polygon, settings, method).map(PocketPlan::Rings).map(back),
-        PocketStrategy::MedialAxis => plan_perforative(&polygon, settings).map(PocketPlan::MedialAxis).map(back),
+        PocketStrategy::Rings(method) => {
+            plan_ring_pocket(&polygon, settings, method, &req.adaptive).map(PocketPlan::Rings).map(back)
+        }
+        PocketStrategy::MedialAxis => {
+            plan_perforative(&polygon, settings, &req.adaptive).map(PocketPlan::MedialAxis).map(back)
+        }
         PocketStrategy::Adaptive => plan_adaptive(&req.polygon, settings, req.adaptive).map(PocketPlan::Adaptive),
     }
 }

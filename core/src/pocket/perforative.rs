@@ -11,17 +11,21 @@
 //!    nearest wall) is the radius of the largest circle the walls allow; the tool centre may be
 //!    at q only where Rc(q) ≥ r. The axis is clipped to that part (bisection on Rc = r); a
 //!    pocket whose axis falls apart there (a neck narrower than the tool) is cleared part by
-//!    part, each part reached by retract, rapid and plunge, and the axis length the tool cannot
+//!    part, each part reached by retract, rapid and its own entry, and the axis length the tool cannot
 //!    reach is reported (`unreachable_axis_mm`).
-//! 2. **Start.** In each part, the tool plunges at the axis point of largest clearance (a
-//!    Voronoi vertex) and clears that largest circle by concentric circles about the plunge
-//!    point, joined by half-circles (G1: the half-circle from radius ρi at angle θ to ρi+1 at θ + π
-//!    has centre `p + (ρi − ρi+1)/2·e(θ)` and radius `(ρi + ρi+1)/2`). Each radius is the
-//!    largest whose two-circle engagement (§1.2) after the previous circle stays within the
-//!    target (bisection as §3.3). The first circle about the plunge hole cannot: for a tool
-//!    centre at distance ρ from the hole's centre, §1.2 gives δ = arccos(ρ/2r), β = π, so the
-//!    engagement is π/2 + arcsin(ρ/2r) ≥ 90° for any ρ (DERIVED); it is cut at ρ1 = min(a_e,
-//!    Rc − r) and reported as the entry, apart from the body.
+//! 2. **Start.** In each part, the tool enters at the axis point of largest clearance (a
+//!    Voronoi vertex) on a helix of radius r_h ([`super::entry`], as adaptive clearing: no
+//!    plunge), whose flat turn at depth is the first move and whose bore the evaluator counts
+//!    as cut. It then clears that largest circle by concentric circles about the helix centre,
+//!    joined by half-circles (G1: the half-circle from radius ρi at angle θ to ρi+1 at θ + π
+//!    has centre `p + (ρi − ρi+1)/2·e(θ)` and radius `(ρi + ρi+1)/2`), starting from the helix
+//!    circle ρ0 = r_h. Each radius is the largest whose two-circle engagement (§1.2) after the
+//!    previous circle, and that of the half-circle to it, stay within the target (bisection as
+//!    §3.3), so the first circles grow out of the bore within the target. (From a plunge hole
+//!    instead, §1.2 gives δ = arccos(ρ/2r), β = π for a tool centre at distance ρ from the
+//!    hole's centre: π/2 + arcsin(ρ/2r) ≥ 90° for any ρ, DERIVED; that is why the helix.)
+//!    Where not even a helix of 0.25·D fits, the tool ramps down along the longest line
+//!    through that point (a zig-zag [`super::entry::Ramp`]) and the chain starts from there.
 //! 3. **Circles along the axis.** The axis is a tree; it is walked depth first from the start,
 //!    one root-to-leaf guide at a time (children in counter-clockwise order). On a guide, the
 //!    next circle is centred on the axis at arc length s with offset radius Rc(s) (allowance 0:
@@ -48,10 +52,13 @@
 //!    next guide shares with this one (cleared material), then moves out to that circle's exit
 //!    point; the chain continues from that circle.
 //!
-//! The whole path is measured by the evaluator over the pocket polygon; samples are classified
-//! by the move they belong to ([`MoveKind`]), and the maximum is reported per class.
+//! The whole path is measured by the evaluator over the pocket polygon, the entries' bores
+//! counted as cut; samples are classified by the move they belong to ([`MoveKind`]), and the
+//! maximum is reported per class and over everything.
 
 use super::PocketSettings;
+use super::adaptive::AdaptiveOptions;
+use super::entry::{Entry, entry_at};
 use super::rings::link_is_inside;
 use crate::corner::medial::{MedialAxis, Walls, medial_axis};
 use crate::corner::{CornerSettings, EngagementProfile, EvaluatorOptions, Turn, TwoCircle, engagement_profile};
@@ -82,8 +89,8 @@ const SHORT_TURN_RAD: f64 = PI / 6.0;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum MoveKind {
-    /// The first circle after a plunge (≥ 90°, see the module docs); in adaptive clearing the
-    /// flat turn at depth after the helix, inside its bore.
+    /// The flat turn at depth after the helix (inside its bore), or the flat pass after a
+    /// zig-zag ramp (on its line).
     Entry,
     /// The concentric circles clearing the largest circle.
     Spiral,
@@ -146,14 +153,19 @@ pub struct PerforativePlan {
     /// The tool path in machining order; `kinds[i]` says what `segments[i]` does.
     pub segments: Vec<Segment>,
     pub kinds: Vec<MoveKind>,
-    /// Indices of the segments reached by retract, rapid and plunge: the start of every part
-    /// but the first (which the program's approach reaches).
+    /// Indices of the segments reached by retract, rapid and a new entry: the start of every
+    /// part but the first (which the program's first entry reaches).
     pub retract_before: Vec<usize>,
-    /// Parts of the axis reached separately (one plunge each).
+    /// Parts of the axis reached separately (one entry each).
     pub parts: usize,
+    /// The entry of each part, in order (helix, or ramp where no helix fits).
+    pub entries: Vec<Entry>,
+    /// Length of the entries' descents from above the stock top (mm).
+    pub entry_length_mm: f64,
     /// Axis length where the tool does not fit (Rc < r), left uncut (mm).
     pub unreachable_axis_mm: f64,
-    /// Feed path length, all moves (mm), and its machining time at the feed (s).
+    /// Feed path length at depth, all moves (mm), and the machining time of it and the
+    /// entries' descents at the feed (s).
     pub path_length_mm: f64,
     pub time_s: f64,
     /// The evaluator's profile along `segments` (positions `settings.spacing` apart).
@@ -162,6 +174,9 @@ pub struct PerforativePlan {
     pub maxima: Vec<KindMax>,
     /// Largest engagement of the body (spiral, circles, links; rad): what the target bounds.
     pub body_max_rad: f64,
+    /// Largest engagement over every move at depth (rad), and the 95th percentile.
+    pub max_engagement_rad: f64,
+    pub p95_engagement_rad: f64,
 }
 
 impl PerforativePlan {
@@ -534,9 +549,16 @@ impl Current {
 }
 
 /// Plan the pocket `polygon` with perforative trochoids along its medial axis; the target is
-/// the corner strategies' a* = a_str·(1 + t1).
-pub fn plan_perforative(polygon: &Polygon, settings: PocketSettings) -> Result<PerforativePlan, Error> {
+/// the corner strategies' a* = a_str·(1 + t1). `options` gives the entry (helix radius, ramp
+/// angle) and the depth the entries descend to.
+pub fn plan_perforative(
+    polygon: &Polygon,
+    settings: PocketSettings,
+    options: &AdaptiveOptions,
+) -> Result<PerforativePlan, Error> {
     settings.validate()?;
+    // the entry's options (no finishing pass here)
+    AdaptiveOptions { finish_stock_mm: 0.0, ..*options }.validate(&settings)?;
     let (r, ae) = (settings.tool_radius, settings.step_over);
     let cs = CornerSettings { feed_mm_per_min: settings.feed_mm_per_min, ..CornerSettings::new(r, ae)? };
     let axis = medial_axis(polygon, VORONOI_RESOLUTION_MM)?;
@@ -559,20 +581,20 @@ pub fn plan_perforative(polygon: &Polygon, settings: PocketSettings) -> Result<P
         circles: Vec::new(),
     };
     let mut retract_before = Vec::new();
+    let mut entries = Vec::new();
     for part in &parts {
         retract_before.push(p.b.segments.len());
-        p.b.pos = graph.nodes[part[0]];
-        p.part(&graph, part[0])?;
+        entries.push(p.part(&graph, part[0], options)?);
     }
-    retract_before.dedup();
-    retract_before.retain(|&i| i < p.b.segments.len());
-    let plunges = retract_before.clone();
-    retract_before.retain(|&i| i > 0); // the first part is reached by the program's approach
+    retract_before.retain(|&i| i > 0); // the first part is reached by the program's first entry
     let Planner { b, circles, .. } = p;
     let opts = EvaluatorOptions::new(r, settings.spacing);
-    let profile = engagement_profile(polygon, &[], &b.segments, &opts)?;
-    let (maxima, body_max_rad) = maxima(&profile, &b.segments, &b.kinds, &plunges);
+    let bores: Vec<Segment> = entries.iter().map(Entry::bore).collect();
+    let profile = engagement_profile(polygon, &bores, &b.segments, &opts)?;
+    let (maxima, body_max_rad) = maxima(&profile, &b.segments, &b.kinds, &[]);
+    let (max_engagement_rad, p95_engagement_rad) = peak_and_p95(&profile);
     let len: f64 = b.segments.iter().map(Segment::length).sum();
+    let entry_length_mm: f64 = entries.iter().map(|e| e.descent_length(options.depth_mm)).sum();
     Ok(PerforativePlan {
         polygon: polygon.clone(),
         settings,
@@ -584,13 +606,25 @@ pub fn plan_perforative(polygon: &Polygon, settings: PocketSettings) -> Result<P
         kinds: b.kinds,
         retract_before,
         parts: parts.len(),
+        entries,
+        entry_length_mm,
         unreachable_axis_mm: graph.unreachable_mm,
         path_length_mm: len,
-        time_s: len / settings.feed_mm_per_min * 60.0,
+        time_s: (len + entry_length_mm) / settings.feed_mm_per_min * 60.0,
         profile,
         maxima,
         body_max_rad,
+        max_engagement_rad,
+        p95_engagement_rad,
     })
+}
+
+/// The largest engagement of a profile and the 95th percentile of its samples (rad).
+pub(crate) fn peak_and_p95(profile: &EngagementProfile) -> (f64, f64) {
+    let mut angles: Vec<f64> = profile.samples.iter().map(|s| s.angle_rad).collect();
+    angles.sort_by(f64::total_cmp);
+    let p95 = angles.get(((0.95 * angles.len() as f64).ceil() as usize).saturating_sub(1)).copied().unwrap_or(0.0);
+    (profile.max_angle(), p95)
 }
 
 /// Per-kind maxima of the profile and the body maximum (spiral, circles, links). The
@@ -696,12 +730,26 @@ impl Planner<'_> {
         Ok(())
     }
 
-    /// One connected part: plunge at the root, concentric clearing, then every leaf.
-    fn part(&mut self, g: &AxisGraph, root: usize) -> Result<(), Error> {
+    /// One connected part: entry at the root (helix, else ramp), concentric clearing out of
+    /// the helix bore, then every leaf. Returns the entry.
+    fn part(&mut self, g: &AxisGraph, root: usize, options: &AdaptiveOptions) -> Result<Entry, Error> {
         let center = g.nodes[root];
         let rho_root = self.rho(center);
-        let entry = self.spiral(center, rho_root)?;
-        let mut cur = Current { s: 0.0, center, offset_radius: rho_root.max(0.0) + self.r(), entry };
+        let way_in = entry_at(self.poly, self.r(), options, center, rho_root, 0.0)?;
+        let bore = way_in.at_depth();
+        self.b.pos = bore.start();
+        self.b.segments.push(bore);
+        self.b.kinds.push(MoveKind::Entry);
+        self.b.pos = bore.end();
+        let mut cur = match way_in {
+            Entry::Helix(h) => {
+                self.push_circle(center, h.radius, None, MoveKind::Entry)?;
+                let entry = self.spiral(center, h.radius, h.start_angle, rho_root)?;
+                Current { s: 0.0, center, offset_radius: rho_root.max(h.radius) + self.r(), entry }
+            }
+            // the ramp cleared its line: the chain starts from the tool at the root
+            Entry::Ramp(_) => Current { s: 0.0, center, offset_radius: self.r(), entry: None },
+        };
         let walks = g.leaf_walks(root);
         let mut prev: Option<(Vec<usize>, Guide, Vec<Current>, f64)> = None;
         for walk in walks {
@@ -720,45 +768,40 @@ impl Planner<'_> {
             let stop = self.chain(&guide, cur, &mut placed)?;
             prev = Some((walk, guide, placed, stop));
         }
-        Ok(())
+        Ok(way_in)
     }
 
-    /// Concentric circles about the plunge point `c` up to tool-centre radius `rho_max`.
-    /// Returns the entry angle of the last circle (`None` if none was cut).
-    fn spiral(&mut self, c: P2, rho_max: f64) -> Result<Option<f64>, Error> {
-        let (r, target, eps) = (self.r(), self.cs.target, self.cs.tolerance);
-        if rho_max < self.cs.r_min() {
+    /// Concentric circles about the helix centre `c`, from the helix circle (tool-centre radius
+    /// `rho0`, the tool at angle `theta0` on it) up to tool-centre radius `rho_max`. Returns
+    /// the entry angle of the last circle (`None` if none was cut).
+    fn spiral(&mut self, c: P2, rho0: f64, theta0: f64, rho_max: f64) -> Result<Option<f64>, Error> {
+        let (r, target, eps, r_min) = (self.r(), self.cs.target, self.cs.tolerance, self.cs.r_min());
+        if rho_max <= rho0 + 1e-9 {
             return Ok(None);
         }
-        let mut rho = self.cs.step_over.min(rho_max);
-        let mut theta: f64 = 0.0;
-        // From the plunge point: half-circle out to ρ1, then the full first circle.
-        let mut prev_rho = 0.0;
-        let mut kind = MoveKind::Entry;
-        let mut predicted = None;
+        let (mut prev_rho, mut theta) = (rho0, theta0);
         loop {
+            // Next radius: the largest in (ρ, ρ_max] within the target (bisection, §3.3).
+            let prev_c = Circle::new(c, prev_rho + r);
+            let m = |x: f64| {
+                self.engagement(prev_c, Circle::new(c, x + r)).max(self.transition_engagement(c, prev_rho, c, x))
+            };
+            let mut next = bisect(prev_rho, rho_max, target, eps, m);
+            if next.0 <= prev_rho + 1e-6 {
+                let x = (prev_rho + r_min).min(rho_max);
+                next = (x, m(x));
+            }
+            let rho = next.0;
             let e = P2::new(theta.cos(), theta.sin());
-            let (m, rt, _) = transition_along(c, prev_rho, c, rho, e);
-            self.b.arc(m, rt, theta, PI, kind);
+            let (mid, rt, _) = transition_along(c, prev_rho, c, rho, e);
+            self.b.arc(mid, rt, theta, PI, MoveKind::Spiral);
             theta += PI;
-            self.push_circle(c, rho, predicted, kind)?;
+            self.push_circle(c, rho, Some(next.1), MoveKind::Spiral)?;
             if rho >= rho_max - 1e-9 {
                 return Ok(Some(theta)); // its full turn is cut by the chain (`link`, `finish`)
             }
-            self.b.arc(c, rho, theta, TAU, kind);
-            // Next radius: the largest in (ρ, ρ_max] within the target (bisection, §3.3).
-            let prev_c = Circle::new(c, rho + r);
-            let m =
-                |x: f64| self.engagement(prev_c, Circle::new(c, x + r)).max(self.transition_engagement(c, rho, c, x));
-            let mut next = bisect(rho, rho_max, target, eps, m);
-            if next.0 <= rho + 1e-6 {
-                let x = (rho + self.cs.r_min()).min(rho_max);
-                next = (x, m(x));
-            }
+            self.b.arc(c, rho, theta, TAU, MoveKind::Spiral);
             prev_rho = rho;
-            rho = next.0;
-            predicted = Some(next.1);
-            kind = MoveKind::Spiral;
         }
     }
 

@@ -61,6 +61,11 @@
 //! result is measured by the evaluator like the plain rings.
 
 use super::PocketSettings;
+use super::adaptive::{
+    AdaptiveOptions, AdaptivePart, Builder, clear_regions, closest_on, fin_radius, inscribed, offset, pline_of,
+};
+use super::entry::{Entry, entry_at, helix_radius};
+use super::perforative::{KindMax, MoveKind, maxima, peak_and_p95};
 use crate::corner::{
     Corner, CornerMethod, CornerScenario, CornerSettings, EvaluatorOptions, engagement_profile, plan_corner,
 };
@@ -121,6 +126,31 @@ pub struct RingPlan {
     pub links: Vec<Link>,
     /// Length of the feed links (mm; retract links count 0).
     pub link_length_mm: f64,
+    /// [`plan_ring_pocket`] (issue #12): the entry of each region of tool centres (helix, or
+    /// ramp where no helix fits); empty for [`plan_rings`], which plunges.
+    #[serde(default)]
+    pub entries: Vec<Entry>,
+    /// [`plan_ring_pocket`]: every move at depth in machining order — entries' flat moves, the
+    /// core cleared out of the helix bore, links and rings — and what each does; the segments
+    /// reached by retract, rapid and feed down (into material the path has cleared). Empty
+    /// for [`plan_rings`] (its path is [`RingPlan::tool_path`] of the rings and links).
+    #[serde(default)]
+    pub segments: Vec<Segment>,
+    #[serde(default)]
+    pub kinds: Vec<MoveKind>,
+    #[serde(default)]
+    pub retract_before: Vec<usize>,
+    /// [`plan_ring_pocket`]: per kind of move its maximum engagement, where, and length;
+    /// the 95th percentile of every sample at depth (rad); the length at depth (mm) and of the
+    /// entries' descents (mm).
+    #[serde(default)]
+    pub maxima: Vec<KindMax>,
+    #[serde(default)]
+    pub p95_engagement_rad: f64,
+    #[serde(default)]
+    pub length_at_depth_mm: f64,
+    #[serde(default)]
+    pub entry_length_mm: f64,
 }
 
 /// How the tool gets from one ring to the next.
@@ -152,6 +182,9 @@ impl RingPlan {
     /// and the indices of the segments the tool reaches by a retract link (retract to safe Z,
     /// rapid to the segment's start, plunge). Consecutive segments not at such an index join.
     pub fn tool_path(&self) -> (Vec<Segment>, Vec<usize>) {
+        if !self.segments.is_empty() {
+            return (self.segments.clone(), self.retract_before.clone());
+        }
         let mut segs = Vec::new();
         let mut breaks = Vec::new();
         for (i, ring) in self.rings.iter().enumerate() {
@@ -266,17 +299,15 @@ pub(super) fn to_segments(pl: &Polyline<f64>) -> Vec<Segment> {
     out
 }
 
-/// Contour-parallel rings of a pocket with the corner strategy `method` (plain, variable or
-/// isometric) at their corners, each ring measured by the independent evaluator. Errors:
-/// settings out of range (named), `method` medial-axis (a whole-pocket strategy:
-/// [`super::plan_perforative`]), a pocket too narrow for the tool (`tool diameter`).
-pub fn plan_rings(polygon: &Polygon, settings: PocketSettings, method: CornerMethod) -> Result<RingPlan, Error> {
-    settings.validate()?;
-    if method == CornerMethod::MedialAxis {
-        return Err(Error::param(Param::Method, method.name(), "plain, variable or isometric for pocket rings"));
-    }
-    let (r, ae) = (settings.tool_radius, settings.step_over);
-    let mut levels: Vec<(usize, f64, Vec<Vec<Segment>>)> = Vec::new();
+/// An offset level: k, its offset d = r + k·a_e, its loops.
+type Level = (usize, f64, Vec<Vec<Segment>>);
+/// A loop whose segments carry what they do.
+type Tagged = Vec<(Segment, MoveKind)>;
+
+/// The offset levels of a pocket: level k is the inward offset by d = r + k·a_e, its loops,
+/// while it is non-empty. Errors: the tool does not fit (`tool diameter`), too many levels.
+fn ring_levels(polygon: &Polygon, r: f64, ae: f64) -> Result<Vec<Level>, Error> {
+    let mut levels: Vec<Level> = Vec::new();
     for k in 0..MAX_LEVELS {
         let d = r + k as f64 * ae;
         let loops = inward_offset(polygon, d)?;
@@ -295,6 +326,20 @@ pub fn plan_rings(polygon: &Polygon, settings: PocketSettings, method: CornerMet
     if levels.len() == MAX_LEVELS {
         return Err(Error::param(Param::StepOver, ae, format!("large enough for at most {MAX_LEVELS} rings")));
     }
+    Ok(levels)
+}
+
+/// Contour-parallel rings of a pocket with the corner strategy `method` (plain, variable or
+/// isometric) at their corners, each ring measured by the independent evaluator. Errors:
+/// settings out of range (named), `method` medial-axis (a whole-pocket strategy:
+/// [`super::plan_perforative`]), a pocket too narrow for the tool (`tool diameter`).
+pub fn plan_rings(polygon: &Polygon, settings: PocketSettings, method: CornerMethod) -> Result<RingPlan, Error> {
+    settings.validate()?;
+    if method == CornerMethod::MedialAxis {
+        return Err(Error::param(Param::Method, method.name(), "plain, variable or isometric for pocket rings"));
+    }
+    let (r, ae) = (settings.tool_radius, settings.step_over);
+    let levels = ring_levels(polygon, r, ae)?;
     let opts = EvaluatorOptions::new(r, settings.spacing);
     let mut rings = Vec::new();
     let mut cut: Vec<Segment> = Vec::new();
@@ -377,6 +422,14 @@ pub fn plan_rings(polygon: &Polygon, settings: PocketSettings, method: CornerMet
         plain_corners,
         links,
         link_length_mm,
+        entries: Vec::new(),
+        segments: Vec::new(),
+        kinds: Vec::new(),
+        retract_before: Vec::new(),
+        maxima: Vec::new(),
+        p95_engagement_rad: 0.0,
+        length_at_depth_mm: 0.0,
+        entry_length_mm: 0.0,
     })
 }
 
@@ -385,21 +438,27 @@ pub fn plan_rings(polygon: &Polygon, settings: PocketSettings, method: CornerMet
 /// the last corner would run only after the tool had already turned there). Loops without a
 /// line are returned as they are.
 fn start_mid_longest_line(ring: Vec<Segment>) -> Vec<Segment> {
-    let best = ring.iter().enumerate().filter(|(_, s)| matches!(s, Segment::Line { .. })).fold(
+    let tagged = ring.into_iter().map(|s| (s, MoveKind::Ring)).collect();
+    start_mid_longest_line_of(tagged).into_iter().map(|(s, _)| s).collect()
+}
+
+/// [`start_mid_longest_line`] of a loop whose segments carry what they do.
+fn start_mid_longest_line_of(ring: Vec<(Segment, MoveKind)>) -> Vec<(Segment, MoveKind)> {
+    let best = ring.iter().enumerate().filter(|(_, (s, _))| matches!(s, Segment::Line { .. })).fold(
         None,
-        |b: Option<(usize, f64)>, (i, s)| match b {
+        |b: Option<(usize, f64)>, (i, (s, _))| match b {
             Some((_, l)) if l >= s.length() => b,
             _ => Some((i, s.length())),
         },
     );
     let Some((i, _)) = best else { return ring };
-    let Segment::Line { start, end } = ring[i] else { return ring };
+    let (Segment::Line { start, end }, kind) = ring[i] else { return ring };
     let mid = (start + end) * 0.5;
     let mut out = Vec::with_capacity(ring.len() + 1);
-    out.push(Segment::Line { start: mid, end });
+    out.push((Segment::Line { start: mid, end }, kind));
     out.extend(ring[i + 1..].iter().copied());
     out.extend(ring[..i].iter().copied());
-    out.push(Segment::Line { start, end: mid });
+    out.push((Segment::Line { start, end: mid }, kind));
     out
 }
 
@@ -413,6 +472,18 @@ pub fn ring_with_corner_trochoids(
     settings: PocketSettings,
     method: CornerMethod,
 ) -> Result<(Vec<Segment>, usize, usize), Error> {
+    let (tagged, done, skipped) = corner_ring(polygon, ring, settings, method)?;
+    Ok((tagged.into_iter().map(|(s, _)| s).collect(), done, skipped))
+}
+
+/// [`ring_with_corner_trochoids`] with each segment tagged: [`MoveKind::Corner`] for the
+/// strategy's pieces, [`MoveKind::Ring`] for the ring's own.
+fn corner_ring(
+    polygon: &Polygon,
+    ring: &[Segment],
+    settings: PocketSettings,
+    method: CornerMethod,
+) -> Result<(Tagged, usize, usize), Error> {
     let (r, ae) = (settings.tool_radius, settings.step_over);
     let base = CornerSettings { feed_mm_per_min: settings.feed_mm_per_min, ..CornerSettings::new(r, ae)? };
     let n = ring.len();
@@ -421,21 +492,21 @@ pub fn ring_with_corner_trochoids(
     for i in 0..n {
         let (seg, next) = (ring[i], ring[(i + 1) % n]);
         let (Segment::Line { start: a, end: u0 }, Segment::Line { end: c, .. }) = (seg, next) else {
-            out.push(seg);
+            out.push((seg, MoveKind::Ring));
             continue;
         };
         let (u, v) = (u0 - a, c - u0);
         if crate::geom::cross(u, v) <= 1e-9 * u.norm() * v.norm() {
-            out.push(seg); // straight or reflex (concave-of-pocket) vertex
+            out.push((seg, MoveKind::Ring)); // straight or reflex (concave-of-pocket) vertex
             continue;
         }
         match corner_piece(a, u0, c, base, method).filter(|p| piece_is_inside(polygon, p, r)) {
             Some(piece) => {
-                out.extend(piece);
+                out.extend(piece.into_iter().map(|s| (s, MoveKind::Corner)));
                 done += 1;
             }
             None => {
-                out.push(seg);
+                out.push((seg, MoveKind::Ring));
                 skipped += 1;
             }
         }
@@ -470,4 +541,378 @@ fn corner_piece(a: P2, u0: P2, c: P2, base: CornerSettings, method: CornerMethod
         return None;
     }
     Some(path)
+}
+
+/// The core of [`plan_ring_pocket`]: adaptive clearing of the regions (inward offsets of the
+/// pocket), with its finishing pass (`--finish-stock`, which keeps the spiral's stadium off the
+/// region's boundary) and corner points; its parts, moves, and the regions' boundary loops.
+type Core = (Vec<AdaptivePart>, Builder, Vec<Vec<Segment>>);
+
+fn adaptive_core(
+    polygon: &Polygon,
+    settings: &PocketSettings,
+    options: &AdaptiveOptions,
+    phi: f64,
+    outline: &Polyline<f64>,
+    d: f64,
+) -> Result<Core, Error> {
+    let (r, sf) = (settings.tool_radius, options.finish_stock_mm);
+    // as adaptive clearing: the regions keep the finishing stock from the final wall, ring d
+    let regions = offset(outline, d + sf);
+    if regions.is_empty() {
+        return Err(Error::param(Param::Polygon, "no region", "a pocket the tool fits"));
+    }
+    let rho_fin = if sf > 0.0 { fin_radius(sf, r, phi) } else { 0.1 * r };
+    let (parts, b) = clear_regions(&regions, polygon, settings, options, phi, rho_fin)?;
+    Ok((parts, b, offset(outline, d).iter().map(to_segments).collect()))
+}
+
+/// The rings of [`plan_ring_pocket`] from the core outward, each with its tagged segments
+/// (starting after its longest line, ending with it), the corners done and left plain, and
+/// the helix centre of its region.
+struct Candidate {
+    level: usize,
+    offset: f64,
+    segments: Vec<(Segment, MoveKind)>,
+    corners: (usize, usize),
+    hub: P2,
+    /// The loop inside it that was cut before it: the previous ring, or the boundary of the
+    /// region the core cleared.
+    inner: Vec<Segment>,
+}
+
+/// The same closed loop restarted on its longest line a'→e', at Q = e' − min(r, L/4)·u (u its
+/// direction, L its length): it starts with Q→e' and ends with a'→Q, where the diagonal link
+/// arrives short of the line's end (a plain ring's corner, or the entry of the first corner
+/// circle).
+fn start_on_longest_line(ring: Vec<(Segment, MoveKind)>, r: f64) -> Vec<(Segment, MoveKind)> {
+    let best = ring
+        .iter()
+        .enumerate()
+        .filter(|(_, (s, _))| matches!(s, Segment::Line { .. }))
+        .max_by(|a, b| a.1.0.length().total_cmp(&b.1.0.length()));
+    let Some((i, _)) = best else { return ring };
+    let (Segment::Line { start, end }, kind) = ring[i] else { return ring };
+    let len = (end - start).norm();
+    let q = end - (end - start) / len * r.min(0.25 * len);
+    let mut out = vec![(Segment::Line { start: q, end }, kind)];
+    out.extend_from_slice(&ring[i + 1..]);
+    out.extend_from_slice(&ring[..i]);
+    out.push((Segment::Line { start, end: q }, kind));
+    out
+}
+
+/// The point of a loop nearest `q`.
+fn nearest_on(lp: &[Segment], q: P2) -> P2 {
+    lp.iter().map(|s| closest_on(s, q).0).min_by(|a, b| (a - q).norm().total_cmp(&(b - q).norm())).unwrap_or(q)
+}
+
+/// The link from `from` (on or inside the loop `inner`, all cleared) into `ring`, which starts
+/// at Q on its longest line a'→e' and ends with a'→Q ([`start_on_longest_line`]) (DERIVED):
+/// the band of `ring` along that line is entered on the diagonal from A, the point of `inner`
+/// a step a_e inside the line, a_e + r/2 along from a' (past the corner and its rounding), to
+/// Q. Moving at an angle θ = atan(a_e/|A Q|) to a straight band of depth a_e, the tool's front
+/// half reaches θ beyond the band's chord on the side it turns to: engagement φ* + θ at most
+/// (φ* at θ = 0, the straight cut); the wedge it leaves is cut by a'→Q, thinner than the band.
+/// The tool gets to A on a chord through the cleared inside of `inner` (straight where it
+/// keeps r from the walls, else through the hub). `None` where the ring does not start on a
+/// line or A is more than a_e/10 from where it should be (the loops are not offsets of each
+/// other there).
+fn diagonal_link(polygon: &Polygon, r: f64, ae: f64, from: P2, inner: &[Segment], ring: &Candidate) -> Option<Vec<P2>> {
+    if inner.is_empty() {
+        return None;
+    }
+    let (Segment::Line { start: a1, end: q }, _) = *ring.segments.last()? else { return None };
+
+    let u = (q - a1) / (q - a1).norm();
+    let wanted = a1 + crate::geom::rot90(u) * ae + u * (ae + 0.5 * r);
+    let a = nearest_on(inner, wanted);
+    if (a - wanted).norm() > 0.1 * ae || (q - a).dot(&u) <= ae || !link_is_inside(polygon, a, q, r) {
+        return None;
+    }
+    let e1 = q;
+    if link_is_inside(polygon, from, a, r) {
+        Some(vec![from, a, e1])
+    } else if link_is_inside(polygon, from, ring.hub, r) && link_is_inside(polygon, ring.hub, a, r) {
+        Some(vec![from, ring.hub, a, e1])
+    } else {
+        None
+    }
+}
+
+/// The whole path of [`plan_ring_pocket`]: segments, kinds, retracts, and for each ring its
+/// segment range and its link's (range, from, to).
+struct Assembled {
+    segments: Vec<Segment>,
+    kinds: Vec<MoveKind>,
+    retract_before: Vec<usize>,
+    rings: Vec<(usize, usize)>,
+    links: Vec<(usize, usize, P2, P2)>,
+}
+
+impl Assembled {
+    fn line(&mut self, start: P2, end: P2) {
+        if (end - start).norm() > 1e-9 {
+            self.segments.push(Segment::Line { start, end });
+            self.kinds.push(MoveKind::Link);
+        }
+    }
+}
+
+/// Core, then each ring reached by its [`diagonal_link`]; where there is none, straight, or
+/// through the hub, where the tool keeps r from the walls, else a retract (feeding down at the
+/// ring's start, which the core and the rings inside it have cleared).
+fn assemble(polygon: &Polygon, r: f64, ae: f64, mut a: Assembled, rings: &[Candidate]) -> Assembled {
+    for ring in rings {
+        let from = a.segments.last().map_or(ring.hub, Segment::end);
+        let to = ring.segments[0].0.start();
+        let first = a.segments.len();
+        if let Some(pts) = diagonal_link(polygon, r, ae, from, &ring.inner, ring) {
+            for w in pts.windows(2) {
+                a.line(w[0], w[1]);
+            }
+        } else if link_is_inside(polygon, from, to, r) {
+            a.line(from, to);
+        } else if link_is_inside(polygon, from, ring.hub, r) && link_is_inside(polygon, ring.hub, to, r) {
+            a.line(from, ring.hub);
+            a.line(ring.hub, to);
+        } else {
+            a.retract_before.push(a.segments.len());
+        }
+        a.links.push((first, a.segments.len(), from, to));
+        let start = a.segments.len();
+        for (s, k) in &ring.segments {
+            a.segments.push(*s);
+            a.kinds.push(*k);
+        }
+        a.rings.push((start, a.segments.len()));
+    }
+    a
+}
+
+/// Contour-parallel rings without a plunge or a full slot (issue #12 items 1 and 2):
+/// 1. **Core.** The rings run from level k_c − 1 out to level 0 (the wall). The region inside
+///    ring k_c is cleared by adaptive clearing ([`super::adaptive`]: helix at its point of
+///    largest clearance, spiral out of the bore, rings along its core, corner passes, the
+///    finishing pass of `--finish-stock` along ring k_c and its corner points), every move
+///    within the target: no full slot. k_c is
+///    the deepest level whose region still holds a helix of 0.25·D, and not deeper than the
+///    first level with a convex corner where the strategy does not apply (its walls too short
+///    for the circles, or the circles too near a wall): those corners are the core's. Where
+///    adaptive clearing cannot take that region (a neck its core does not pass), the next
+///    level out, down to the wall ring, then the levels further in (where the region splits
+///    into lobes, each its own part); rings between keep the corners left plain, counted. So every
+///    ring of variable/isometric has its strategy at every convex corner. Plain rings take the
+///    levels of variable circles and keep plain corners (the papers' baseline, above the
+///    target on purpose). Where even level 0 does not hold the helix, the tool ramps down
+///    along the longest line through the point of largest clearance ([`super::entry`]) and
+///    every level is a ring.
+/// 2. **Links.** Into each ring on a [`diagonal_link`]: a chord through the cleared inside,
+///    then a diagonal of angle atan(a_e/L) into the ring's band along its longest line (φ* + θ
+///    at most); otherwise straight, through the helix centre, or a retract.
+///
+/// Everything at depth is measured in one profile by the evaluator, the entries' bores counted
+/// as cut; each ring's and link's maximum comes from that profile.
+pub fn plan_ring_pocket(
+    polygon: &Polygon,
+    settings: PocketSettings,
+    method: CornerMethod,
+    options: &AdaptiveOptions,
+) -> Result<RingPlan, Error> {
+    settings.validate()?;
+    let core_options = *options;
+    core_options.validate(&settings)?;
+    if method == CornerMethod::MedialAxis {
+        return Err(Error::param(Param::Method, method.name(), "plain, variable or isometric for pocket rings"));
+    }
+    let (r, ae) = (settings.tool_radius, settings.step_over);
+    let levels = ring_levels(polygon, r, ae)?;
+    let phi = options.target_rad(&settings)?;
+    let outline = pline_of(polygon.vertices());
+    // Every ring with its corners; k_c from the helix and the corners.
+    let mut rings: Vec<Vec<(Tagged, (usize, usize))>> = Vec::with_capacity(levels.len());
+    for (_, _, loops) in &levels {
+        let mut level = Vec::with_capacity(loops.len());
+        for plain in loops {
+            level.push(if method == CornerMethod::Plain {
+                (plain.iter().map(|s| (*s, MoveKind::Ring)).collect(), (0, 0))
+            } else {
+                let (segs, done, skipped) = corner_ring(polygon, plain, settings, method)?;
+                (segs, (done, skipped))
+            });
+        }
+        rings.push(level);
+    }
+    let sf = core_options.finish_stock_mm;
+    let holds_helix = |k: usize| {
+        let regions = offset(&outline, levels[k].1 + sf);
+        !regions.is_empty() && regions.iter().all(|g| helix_radius(&core_options, r, inscribed(g).0).is_ok())
+    };
+    let deepest = (0..levels.len()).rev().find(|&k| holds_helix(k));
+    // Plain rings take the levels of variable circles (the same core and rings, only the
+    // corners differ), so the two compare like for like.
+    let first_plain = if method == CornerMethod::Plain {
+        let mut first = None;
+        'levels: for (k, (_, _, loops)) in levels.iter().enumerate() {
+            for plain in loops {
+                if corner_ring(polygon, plain, settings, CornerMethod::Variable)?.2 > 0 {
+                    first = Some(k);
+                    break 'levels;
+                }
+            }
+        }
+        first
+    } else {
+        rings.iter().position(|l| l.iter().any(|(_, (_, skipped))| *skipped > 0))
+    };
+    let mut core = Assembled {
+        segments: Vec::new(),
+        kinds: Vec::new(),
+        retract_before: Vec::new(),
+        rings: Vec::new(),
+        links: Vec::new(),
+    };
+    let mut entries = Vec::new();
+    let mut last_err = None;
+    // (k_c, the regions' loops, their hubs)
+    let (kc, inner_loops, hubs) = match deepest {
+        Some(deepest) => {
+            // From the wanted level outward to the wall, then inward (where a level splits
+            // into lobes that adaptive clearing takes one by one): the first it can clear.
+            let wanted = deepest.min(first_plain.unwrap_or(usize::MAX));
+            let mut tries = (0..=wanted).rev().chain(wanted + 1..=deepest);
+            loop {
+                let Some(kc) = tries.next() else { break Err(()) };
+                match adaptive_core(polygon, &settings, &core_options, phi, &outline, levels[kc].1) {
+                    Ok((parts, b, loops)) => {
+                        for (i, part) in parts.iter().enumerate() {
+                            if i > 0 {
+                                core.retract_before.push(part.first_segment);
+                            }
+                            entries.push(Entry::Helix(part.helix));
+                        }
+                        core.segments = b.segments;
+                        core.kinds = b.kinds;
+                        let hubs = parts.iter().map(|p| p.helix.center).collect::<Vec<_>>();
+                        break Ok((kc, loops, hubs));
+                    }
+                    Err(e) => last_err = Some(e),
+                }
+            }
+            .map_err(|()| {
+                last_err.take().unwrap_or_else(|| Error::param(Param::Polygon, "no core", "a pocket the tool fits"))
+            })?
+        }
+        None => {
+            // No helix anywhere: a ramp in each region of tool centres, every level a ring.
+            let mut hubs = Vec::new();
+            for region in offset(&outline, r) {
+                if !core.segments.is_empty() {
+                    core.retract_before.push(core.segments.len());
+                }
+                let (ins, k0) = inscribed(&region);
+                let e = entry_at(polygon, r, options, k0, ins, 0.0)?;
+                entries.push(e);
+                core.segments.push(e.at_depth());
+                core.kinds.push(MoveKind::Entry);
+                hubs.push(k0);
+            }
+            (levels.len(), Vec::new(), hubs)
+        }
+    };
+    // The rings from level k_c − 1 out, each after the loop inside it (the nearest loop of the
+    // level below, or of the core's regions).
+    let mut candidates: Vec<Candidate> = Vec::new();
+    let mut inside: Vec<Vec<Segment>> = inner_loops;
+    for k in (0..kc).rev() {
+        let mut next = Vec::new();
+        for (plain, (segs, corners)) in levels[k].2.iter().zip(&rings[k]) {
+            let p = plain[0].start();
+            let inner = inside
+                .iter()
+                .min_by(|a, b| (nearest_on(a, p) - p).norm().total_cmp(&(nearest_on(b, p) - p).norm()))
+                .cloned()
+                .unwrap_or_default();
+            let hub = hubs.iter().copied().min_by(|a, b| (a - p).norm().total_cmp(&(b - p).norm())).unwrap_or(p);
+            let segments = start_on_longest_line(segs.clone(), r);
+            next.push(segments.iter().map(|(s, _)| *s).collect());
+            candidates.push(Candidate { level: k, offset: levels[k].1, segments, corners: *corners, hub, inner });
+        }
+        inside = next;
+    }
+    let a = assemble(polygon, r, ae, core, &candidates);
+    let opts = EvaluatorOptions::new(r, settings.spacing);
+    let bores: Vec<Segment> = entries.iter().map(Entry::bore).collect();
+    let profile = engagement_profile(polygon, &bores, &a.segments, &opts)?;
+    let mut ends = Vec::with_capacity(a.segments.len());
+    let mut acc = 0.0;
+    for s in &a.segments {
+        acc += s.length();
+        ends.push(acc);
+    }
+    // the segment each sample belongs to (a sample on a joint: the segment ending there)
+    let owner: Vec<usize> = profile
+        .samples
+        .iter()
+        .map(|smp| ends.partition_point(|&e| e < smp.s_mm - 1e-9).min(a.segments.len().saturating_sub(1)))
+        .collect();
+    let in_range = |lo: usize, hi: usize| {
+        profile.samples.iter().zip(&owner).filter(move |(_, o)| (lo..hi).contains(*o)).map(|(s, _)| s)
+    };
+    let mut out_rings = Vec::with_capacity(candidates.len());
+    let mut links = Vec::with_capacity(candidates.len());
+    for (i, c) in candidates.iter().enumerate() {
+        let (lo, hi) = a.rings[i];
+        let segments: Vec<Segment> = a.segments[lo..hi].to_vec();
+        let best = in_range(lo, hi).fold(None, |b: Option<(f64, P2)>, s| match b {
+            Some((m, _)) if m >= s.angle_rad => b,
+            _ => Some((s.angle_rad, p2(s.x_mm, s.y_mm))),
+        });
+        let (max, at) = best.unwrap_or((0.0, segments[0].start()));
+        out_rings.push(Ring {
+            level: c.level,
+            offset_mm: c.offset,
+            length_mm: segments.iter().map(Segment::length).sum(),
+            segments,
+            max_engagement_rad: max,
+            max_engagement_at: at,
+            entry_engagement_rad: in_range(lo, hi).next().map_or(0.0, |s| s.angle_rad),
+        });
+        let (l0, l1, from, to) = a.links[i];
+        let kind = if l0 == l1 && a.retract_before.contains(&l1) { LinkKind::Retract } else { LinkKind::Feed };
+        let length_mm = a.segments[l0..l1].iter().map(Segment::length).sum();
+        let max_engagement_rad = in_range(l0, l1).map(|s| s.angle_rad).fold(0.0, f64::max);
+        links.push(Link { kind, from, to, length_mm, max_engagement_rad });
+    }
+    // `links[i]` joins ring i to ring i + 1; the link from the core into the first ring is
+    // part of the path (and of `link_length_mm`), not of that list.
+    let first_link = if links.is_empty() { None } else { Some(links.remove(0)) };
+    let (maxima, _) = maxima(&profile, &a.segments, &a.kinds, &[]);
+    let (max_engagement_rad, p95_engagement_rad) = peak_and_p95(&profile);
+    let length_at_depth_mm: f64 = a.segments.iter().map(Segment::length).sum();
+    let entry_length_mm: f64 = entries.iter().map(|e| e.descent_length(options.depth_mm)).sum();
+    let path_length_mm: f64 = out_rings.iter().map(|g| g.length_mm).sum();
+    let link_length_mm =
+        links.iter().chain(&first_link).filter(|l| l.kind == LinkKind::Feed).map(|l| l.length_mm).sum();
+    Ok(RingPlan {
+        polygon: polygon.clone(),
+        settings,
+        method,
+        rings: out_rings,
+        path_length_mm,
+        time_s: (length_at_depth_mm + entry_length_mm) / settings.feed_mm_per_min * 60.0,
+        max_engagement_rad,
+        trochoid_corners: candidates.iter().map(|c| c.corners.0).sum(),
+        plain_corners: candidates.iter().map(|c| c.corners.1).sum(),
+        links,
+        link_length_mm,
+        entries,
+        segments: a.segments,
+        kinds: a.kinds,
+        retract_before: a.retract_before,
+        maxima,
+        p95_engagement_rad,
+        length_at_depth_mm,
+        entry_length_mm,
+    })
 }

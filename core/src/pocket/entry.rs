@@ -1,0 +1,276 @@
+//! How the tool gets down to depth in every pocket method (issue #12 item 1): a helix about a
+//! point of large clearance, or — where not even the smallest helix fits — a straight zig-zag
+//! ramp along the longest line through the region of tool centres around that point. Both start
+//! [`HELIX_START_Z_MM`] above the stock top and descend at most at the ramp angle; neither
+//! plunges. What an entry clears at depth (its *bore*: the helix circle, or the ramp line) is
+//! the first move of the path at depth and the `before` path of the evaluator, so the tool
+//! never cuts from solid material straight down.
+
+use super::adaptive::{AdaptiveOptions, HELIX_START_Z_MM, Helix};
+use super::mirror::mirror_point;
+use super::rings::link_is_inside;
+use crate::corner::medial::Walls;
+use crate::error::{Error, Param, num};
+use crate::geom::{P2, Polygon, Segment, p2};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+
+/// Directions tried for the ramp line (every 1°).
+const RAMP_DIRECTIONS: usize = 180;
+/// Ramp lines at least this share of the longest compete on their mean clearance.
+const RAMP_LENGTH_SHARE: f64 = 0.95;
+/// Points along a ramp line where its clearance is sampled.
+const RAMP_CLEARANCE_SAMPLES: usize = 16;
+/// How far the ramp's bore reaches beyond its ends for the evaluator (mm): the legs stood at
+/// both ends, whose periphery the evaluator would count as material at exactly r (see
+/// [`Entry::bore`]).
+const RAMP_END_MM: f64 = 1e-3;
+/// Bisection steps for the ramp line's ends.
+const RAMP_BISECTION: usize = 40;
+
+/// A straight zig-zag ramp: legs back and forth on the line between `end` and `start`, each
+/// descending by the same amount at most at the ramp angle, the last one reaching the depth at
+/// `start`; at depth the tool then runs once from `start` to `end` (the flat pass that removes
+/// the last leg's wedge).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Ramp {
+    pub start: P2,
+    pub end: P2,
+    /// Ramp angle (rad): a leg of length L descends L·tan(ramp) at most.
+    pub ramp_rad: f64,
+}
+
+impl Ramp {
+    /// Legs needed to descend `drop` mm at the ramp angle.
+    pub fn legs(&self, drop: f64) -> usize {
+        let per_leg = (self.end - self.start).norm() * self.ramp_rad.tan();
+        ((drop / per_leg) - 1e-9).ceil().max(1.0) as usize
+    }
+
+    /// Where the first leg starts: legs alternate and the last ends at `start`, so the first
+    /// starts at `end` for an odd number of legs and at `start` for an even one.
+    pub fn first_point(&self, drop: f64) -> P2 {
+        if self.legs(drop) % 2 == 1 { self.end } else { self.start }
+    }
+
+    /// Length of the 3D legs descending `drop` mm (mm).
+    pub fn length(&self, drop: f64) -> f64 {
+        let n = self.legs(drop) as f64;
+        ((n * (self.end - self.start).norm()).powi(2) + drop * drop).sqrt()
+    }
+}
+
+/// The way down of one connected part of a pocket.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Entry {
+    Helix(Helix),
+    Ramp(Ramp),
+}
+
+impl Entry {
+    /// What the entry clears at depth, and its first move there: the helix's flat turn, or the
+    /// ramp's flat pass.
+    pub fn at_depth(&self) -> Segment {
+        match self {
+            Entry::Helix(h) => h.circle(),
+            Entry::Ramp(r) => Segment::Line { start: r.start, end: r.end },
+        }
+    }
+
+    /// What the entry cleared, as the evaluator's `before` path: the helix circle, or the ramp
+    /// line lengthened by [`RAMP_END_MM`] at each end (the legs turned at both ends, so their
+    /// end discs are cut; the evaluator counts a periphery point exactly r from every position
+    /// as material).
+    pub fn bore(&self) -> Segment {
+        match self {
+            Entry::Helix(h) => h.circle(),
+            Entry::Ramp(r) => {
+                let u = (r.end - r.start) / (r.end - r.start).norm();
+                Segment::Line { start: r.start - u * RAMP_END_MM, end: r.end + u * RAMP_END_MM }
+            }
+        }
+    }
+
+    /// Length of the descent from [`HELIX_START_Z_MM`] to `depth` below the stock top (mm).
+    pub fn descent_length(&self, depth: f64) -> f64 {
+        let drop = HELIX_START_Z_MM + depth;
+        match self {
+            Entry::Helix(h) => h.length(drop),
+            Entry::Ramp(r) => r.length(drop),
+        }
+    }
+
+    /// The entry of the mirror image (x → −x): a helix turns the other way.
+    pub fn mirrored(&self) -> Entry {
+        match *self {
+            Entry::Helix(h) => Entry::Helix(Helix {
+                center: mirror_point(h.center),
+                start_angle: PI - h.start_angle,
+                sense: -h.sense,
+                ..h
+            }),
+            Entry::Ramp(r) => Entry::Ramp(Ramp { start: mirror_point(r.start), end: mirror_point(r.end), ..r }),
+        }
+    }
+}
+
+/// The helix radius r_h (mm) for a tool-centre region whose largest inscribed circle has
+/// radius `inscribed` (mm): the option, else 0.375·D reduced down to 0.25·D (a bore of 50 % of
+/// D) where the region is narrower; r_h ≤ 0.98 × `inscribed` keeps the bore inside. Error
+/// (naming `--helix-radius`) when that leaves less than the option, or less than 0.25·D.
+pub(crate) fn helix_radius(options: &AdaptiveOptions, r: f64, inscribed: f64) -> Result<f64, Error> {
+    let wanted = options.helix_radius_mm.unwrap_or(0.75 * r);
+    let least = if options.helix_radius_mm.is_some() { wanted } else { 0.5 * r };
+    // The helix circle must keep its bore inside the region: r_h ≤ inscribed radius.
+    let r_h = wanted.min(inscribed * 0.98);
+    if r_h < least {
+        return Err(Error::param(
+            Param::HelixRadius,
+            wanted,
+            format!(
+                "at most {} mm for this pocket (its tool-centre region has an inscribed radius of {} mm); \
+                 a helix below 0.25 × D does not clear its own core",
+                num(0.98 * inscribed),
+                num(inscribed)
+            ),
+        ));
+    }
+    Ok(r_h)
+}
+
+/// The entry of a part whose tool centres may reach `inscribed` mm around `center`: a helix
+/// about it ([`helix_radius`], starting at `start_angle`, counter-clockwise), else — when no
+/// helix radius was asked for and not even 0.25·D fits — a zig-zag ramp on the longest line
+/// through `center` along which the tool centre keeps r from every wall of `polygon`
+/// ([`ramp_line`]). Error naming `--helix-radius` when that line is shorter than D too.
+pub fn entry_at(
+    polygon: &Polygon,
+    r: f64,
+    options: &AdaptiveOptions,
+    center: P2,
+    inscribed: f64,
+    start_angle: f64,
+) -> Result<Entry, Error> {
+    let ramp_rad = options.ramp_deg.to_radians();
+    match helix_radius(options, r, inscribed) {
+        Ok(radius) => Ok(Entry::Helix(Helix { center, radius, start_angle, sense: 1.0, ramp_rad })),
+        Err(e) if options.helix_radius_mm.is_some() => Err(e),
+        Err(_) => {
+            let (start, end, longest) = ramp_line(polygon, r, center);
+            if (end - start).norm() < 2.0 * r {
+                return Err(Error::param(
+                    Param::HelixRadius,
+                    0.5 * r,
+                    format!(
+                        "a pocket with room for a helix of 0.25 × D or a straight ramp of at least D = {} mm \
+                         (the longest line for the tool centre here is {} mm)",
+                        num(2.0 * r),
+                        num(longest)
+                    ),
+                ));
+            }
+            Ok(Entry::Ramp(Ramp { start, end, ramp_rad }))
+        }
+    }
+}
+
+/// The longest straight line through `center` along which the tool centre keeps r from every
+/// edge of `polygon` ([`link_is_inside`]): every 1° of direction, each end found by bisection
+/// (the segment from `center` stays inside up to one length and not beyond, the region being
+/// closed). Of the lines at least 95 % as long as the longest (and at least D when the
+/// longest is), the one with the largest mean clearance from the walls (sampled at 16
+/// points) — in a slot its middle line, not its diagonal, so the passes after it cut even
+/// bands on both sides. Returns its ends and the longest length; a point (both ends at
+/// `center`) where the centre itself does not fit.
+pub fn ramp_line(polygon: &Polygon, r: f64, center: P2) -> (P2, P2, f64) {
+    if !link_is_inside(polygon, center, center, r) {
+        return (center, center, 0.0);
+    }
+    let v = polygon.vertices();
+    let reach = v.iter().map(|q| (q - center).norm()).fold(0.0, f64::max);
+    let extent = |u: P2| {
+        let (mut good, mut bad) = (0.0, reach);
+        for _ in 0..RAMP_BISECTION {
+            let mid = 0.5 * (good + bad);
+            if link_is_inside(polygon, center, center + u * mid, r) {
+                good = mid;
+            } else {
+                bad = mid;
+            }
+        }
+        good
+    };
+    let lines: Vec<(P2, P2)> = (0..RAMP_DIRECTIONS)
+        .map(|k| {
+            let a = PI * k as f64 / RAMP_DIRECTIONS as f64;
+            let u = p2(a.cos(), a.sin());
+            (center - u * extent(-u), center + u * extent(u))
+        })
+        .collect();
+    let longest = lines.iter().map(|(a, b)| (b - a).norm()).fold(0.0, f64::max);
+    let walls = Walls::new(polygon);
+    let mean_clearance = |(a, b): &(P2, P2)| {
+        let n = RAMP_CLEARANCE_SAMPLES;
+        (0..=n).map(|k| walls.clearance(a + (b - a) * (k as f64 / n as f64))).sum::<f64>() / (n + 1) as f64
+    };
+    let least = longest.min((RAMP_LENGTH_SHARE * longest).max(2.0 * r));
+    let (a, b) = lines
+        .into_iter()
+        .filter(|(a, b)| (b - a).norm() >= least)
+        .max_by(|x, y| mean_clearance(x).total_cmp(&mean_clearance(y)))
+        .unwrap_or((center, center));
+    (a, b, longest)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rect(w: f64, h: f64) -> Polygon {
+        Polygon::new(vec![p2(0.0, 0.0), p2(w, 0.0), p2(w, h), p2(0.0, h)]).expect("rect")
+    }
+
+    #[test]
+    fn a_narrow_pocket_gets_a_ramp_along_its_length() {
+        // 60 × 14, D = 10: the tool centres lie in the 50 × 4 rectangle [5, 55] × [5, 9]; its
+        // inscribed radius 2 is below 0.98⁻¹ × 0.25·D, so no helix. The lines through its
+        // centre (30, 7) from 0° to 4° run end wall to end wall (tan 4° · 50 = 3.5 ≤ 4), the
+        // longest 50/cos 4° = 50.12 mm; all are within 95 % of it, and the middle line y = 7
+        // (0°, 50 mm) keeps the most clearance.
+        let opts = AdaptiveOptions::default();
+        let e = entry_at(&rect(60.0, 14.0), 5.0, &opts, p2(30.0, 7.0), 2.0, 0.0).expect("ramp");
+        let Entry::Ramp(ramp) = e else { panic!("ramp expected, got {e:?}") };
+        let len = (ramp.end - ramp.start).norm();
+        assert!((ramp.start.y - 7.0).abs() < 1e-9 && (ramp.end.y - 7.0).abs() < 1e-9, "{ramp:?}");
+        assert!((len - 50.0).abs() < 1e-6, "{ramp:?}");
+        // 6.5 mm at 3° on 50 mm legs: 6.5 / (50 tan 3°) = 2.48 → 3 legs, the first from `end`
+        assert_eq!(ramp.legs(6.5), 3);
+        assert_eq!(ramp.first_point(6.5), ramp.end);
+        let want = ((3.0 * len).powi(2) + 6.5f64.powi(2)).sqrt();
+        assert!((ramp.length(6.5) - want).abs() < 1e-6);
+    }
+
+    #[test]
+    fn too_narrow_for_a_ramp_of_one_diameter_names_the_helix_radius() {
+        // 14 × 14, D = 10: the centres lie in a 4 × 4 square, its longest line the diagonal
+        // 4√2 = 5.66 mm < D.
+        let opts = AdaptiveOptions::default();
+        let e = entry_at(&rect(14.0, 14.0), 5.0, &opts, p2(7.0, 7.0), 2.0, 0.0).expect_err("too small");
+        assert_eq!(e.subject(), Some("helix-radius"), "{e}");
+        assert!(e.to_string().contains("5.6568542"), "{e}");
+        // an explicit helix radius that does not fit is an error, not a ramp
+        let asked = AdaptiveOptions { helix_radius_mm: Some(3.0), ..opts };
+        let e = entry_at(&rect(60.0, 14.0), 5.0, &asked, p2(30.0, 7.0), 2.0, 0.0).expect_err("asked");
+        assert_eq!(e.subject(), Some("helix-radius"), "{e}");
+    }
+
+    #[test]
+    fn wide_pockets_get_the_default_helix() {
+        let opts = AdaptiveOptions::default();
+        let e = entry_at(&rect(60.0, 40.0), 5.0, &opts, p2(30.0, 20.0), 15.0, 0.0).expect("helix");
+        assert!(matches!(e, Entry::Helix(h) if (h.radius - 3.75).abs() < 1e-12), "{e:?}");
+        let m = e.mirrored().mirrored();
+        assert_eq!(m, e);
+    }
+}
