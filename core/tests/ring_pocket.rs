@@ -10,7 +10,7 @@
 use std::f64::consts::FRAC_PI_2;
 use trochoplan_core::corner::{CornerMethod, CornerSettings, straight_engagement};
 use trochoplan_core::geom::{P2, Polygon, Segment, p2};
-use trochoplan_core::pocket::adaptive::corner_point_bound_rad;
+use trochoplan_core::pocket::adaptive::{corner_point_bound_rad, default_target_rad};
 use trochoplan_core::pocket::{
     Entry, MoveKind, PocketPlan, PocketRequest, PocketStrategy, RingPlan, inward_offset, plan,
 };
@@ -85,6 +85,8 @@ fn largest_link_turn(p: &RingPlan) -> f64 {
 #[test]
 fn variable_and_isometric_rings_get_their_strategy_at_every_corner_and_no_slot() {
     let phi = straight_engagement(AE, R).unwrap();
+    // the core is adaptive clearing at its default target (50° for a_e = 1.527 mm, D = 10)
+    let phi_core = default_target_rad(AE, R).unwrap();
     let corner_target = CornerSettings::new(R, AE).unwrap().target;
     // the same rings with plain corners (an independent plan), read by the evaluator
     let plain = rings(RECT, CornerMethod::Plain, AE);
@@ -116,7 +118,7 @@ fn variable_and_isometric_rings_get_their_strategy_at_every_corner_and_no_slot()
             let bound = match kind {
                 MoveKind::Entry => 1e-3, // inside the bore, up to rounding at its edge
                 // the core: adaptive clearing's target
-                MoveKind::Spiral | MoveKind::Ring | MoveKind::Finish | MoveKind::CornerPoint => phi + slack,
+                MoveKind::Spiral | MoveKind::Ring | MoveKind::Finish | MoveKind::CornerPoint => phi_core + slack,
                 // the diagonal into a band: φ* + θ (derived at `diagonal_link`)
                 MoveKind::Link => phi + theta + slack,
                 // the corner strategies' own target, but at the ring's corner points, which
@@ -153,6 +155,7 @@ fn plain_rings_keep_plain_corners_on_purpose_but_no_slot() {
     // Plain takes the rings of variable circles; its corners read more than the target (the
     // papers' baseline), everything else within it, and nothing is a full slot (180°).
     let phi = straight_engagement(AE, R).unwrap();
+    let phi_core = default_target_rad(AE, R).unwrap();
     let p = rings(RECT, CornerMethod::Plain, AE);
     let v = rings(RECT, CornerMethod::Variable, AE);
     let levels = |q: &RingPlan| q.rings.iter().map(|g| g.level).collect::<Vec<_>>();
@@ -168,7 +171,9 @@ fn plain_rings_keep_plain_corners_on_purpose_but_no_slot() {
         if corners.iter().any(|c| (c - at).norm() < 2.0 * R) {
             above += usize::from(*a > phi + 10f64.to_radians());
         } else {
-            assert!(*a <= phi + theta + 1f64.to_radians(), "{kind:?} {:.2}° at {at:?}", a.to_degrees());
+            // links within φ* + θ (derived at `diagonal_link`), the core within its target
+            let bound = (phi + theta).max(phi_core) + 1f64.to_radians();
+            assert!(*a <= bound, "{kind:?} {:.2}° at {at:?}", a.to_degrees());
         }
     }
     assert!(above > 0, "plain corners read more than the target");
@@ -177,8 +182,9 @@ fn plain_rings_keep_plain_corners_on_purpose_but_no_slot() {
 #[test]
 fn an_l_whose_ring_corners_do_not_take_circles_is_cleared_by_the_core() {
     // The L's wall ring has corners where variable circles do not fit (too near the other
-    // walls): k_c = 0, the adaptive core clears the whole region, every move within φ* + 1°.
-    let phi = straight_engagement(AE, R).unwrap();
+    // walls): k_c = 0, the adaptive core clears the whole region, every move within its
+    // target (the default for this a_e) + 1°.
+    let phi = default_target_rad(AE, R).unwrap();
     for method in [CornerMethod::Plain, CornerMethod::Variable] {
         let p = rings(L_ISSUE, method, AE);
         assert!(p.rings.is_empty(), "{method:?}: {:?}", p.rings.iter().map(|g| g.level).collect::<Vec<_>>());
