@@ -483,6 +483,12 @@ struct AdaptiveOut {
     nc_export: Option<NcExportOut>,
 }
 
+/// Chip thickness per tooth feed at an engagement φ (rad): h_max/f_z = sin φ up to 90°, 1 beyond
+/// (the chip is thickest where the edge is normal to the feed).
+fn hmax_per_fz(phi: f64) -> f64 {
+    phi.min(0.5 * std::f64::consts::PI).sin()
+}
+
 fn kind_out(m: &pocket::KindMax) -> KindOut {
     KindOut { kind: m.kind, max_engagement_deg: m.max_rad.to_degrees(), at: [m.at.x, m.at.y], length_mm: m.length_mm }
 }
@@ -531,7 +537,7 @@ fn adaptive_pocket_json(plan: &AdaptivePlan, nc_export: Option<NcExportOut>) -> 
                 max_radial_depth_mm: c.max_radial_depth_mm,
                 max_engagement_deg: c.max_engagement_rad.to_degrees(),
                 at: xy(c.at),
-                hmax_per_fz: c.max_engagement_rad.min(0.5 * std::f64::consts::PI).sin(),
+                hmax_per_fz: hmax_per_fz(c.max_engagement_rad),
             })
             .collect(),
         corner_radius_left_mm: plan.corner_radius_left_mm,
@@ -898,7 +904,7 @@ pub fn corner(args: &CornerArgs) -> Result<String, String> {
             max_radial_depth_mm: report.row.tip_sliver_mm,
             max_engagement_deg: tip.map_or(0.0, |t| t.max_rad.to_degrees()),
             at: tip.map_or([f64::NAN; 2], |t| [t.at.x, t.at.y]),
-            hmax_per_fz: tip.map_or(0.0, |t| t.max_rad.min(0.5 * std::f64::consts::PI).sin()),
+            hmax_per_fz: tip.map_or(0.0, |t| hmax_per_fz(t.max_rad)),
             limit_deg: report.row.tip_limit_deg,
         },
         plain_max_engagement_deg: report.plain_profile.max_angle().to_degrees(),

@@ -169,7 +169,7 @@ impl EngagementProfile {
         self.samples
             .windows(2)
             .filter(|w| w[0].angle_rad < threshold && w[1].angle_rad < threshold)
-            .fold(0.0, |sum, w| sum + w[1].s_mm - w[0].s_mm)
+            .fold(0.0, |sum, w| sum + (w[1].s_mm - w[0].s_mm))
     }
 }
 

@@ -7,12 +7,10 @@ use super::engagement::{radial_depth_for_engagement, straight_engagement};
 use super::evaluator::{EngagementProfile, EvaluatorOptions, engagement_profile};
 use super::geometry::Corner;
 use super::method::CornerMethod;
-use super::strategy::{
-    CornerPlan, CornerScenario, CornerSettings, DEFAULT_T1, plan_corner, tool_diameter, validate_corner_tolerance,
-};
+use super::strategy::{CornerPlan, CornerScenario, CornerSettings, DEFAULT_T1, plan_corner, tool_diameter};
 use crate::error::{Error, Param, num};
 use crate::job::Direction;
-use crate::pocket::adaptive::{AIR_ENGAGEMENT_RAD, DEFAULT_CORNER_TOLERANCE_MM};
+use crate::pocket::adaptive::{AIR_ENGAGEMENT_RAD, DEFAULT_CORNER_TOLERANCE_MM, validate_corner_tolerance};
 use crate::pocket::mirror::{flip_y, flip_y_segment, flipped_y_polygon};
 use crate::pocket::{KindMax, MoveKind};
 use serde::{Deserialize, Serialize};

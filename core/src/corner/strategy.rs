@@ -25,6 +25,7 @@ use crate::error::{Error, Param, num};
 use crate::geom::{Circle, P2, Polygon, Segment};
 use crate::job::limits::MIN_SIZE_MM;
 use crate::pocket::MoveKind;
+use crate::pocket::adaptive::{corner_point_radii, validate_corner_tolerance};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 
@@ -259,33 +260,6 @@ pub struct CornerPointArcs {
     pub max_radial_depth_mm: f64,
 }
 
-/// Range of the corner tolerance δ (mm), shared with adaptive pockets: from 0.001 to 1.
-pub fn validate_corner_tolerance(d: f64) -> Result<(), Error> {
-    if !(d.is_finite() && (0.001..=1.0).contains(&d)) {
-        return Err(Error::param(Param::CornerTolerance, d, "from 0.001 to 1 mm"));
-    }
-    Ok(())
-}
-
-/// Tool-centre radii of the corner-point arcs after a wall-tangent arc or circle of radius
-/// `rho0` (mm), down to `delta`: each from [`crate::pocket::adaptive::next_corner_point_radius`]
-/// (DERIVED there: the material before arc k+1 is the cap outside arc k's tool envelope, which
-/// a full wall-tangent circle leaves exactly), so every arc engages at most `target`.
-/// `interior` is the corner's interior angle 2α.
-pub fn corner_point_radii(rho0: f64, interior: f64, r: f64, target: f64, delta: f64) -> Vec<f64> {
-    let mut radii = Vec::new();
-    let mut rho = rho0;
-    while rho > delta * (1.0 + 1e-9) && radii.len() < MAX_CIRCLES {
-        let next = crate::pocket::adaptive::next_corner_point_radius(rho, interior, r, target, delta);
-        if next >= rho * (1.0 - 1e-9) {
-            break;
-        }
-        radii.push(next);
-        rho = next;
-    }
-    radii
-}
-
 /// Limit point M of the bisection (Wu et al. §4.2.1 step 1; domain-spec §3.3, DERIVED):
 /// `tM = (tN(1 − sin α) + 2r)/(1 + sin α)`, valid while `R_N = tN sin α > r`.
 pub fn limit_point(t_n: f64, alpha: f64, r: f64) -> f64 {
@@ -490,7 +464,7 @@ fn into_corner_point(
     };
     let (corner, r) = (&sc.corner, s.tool_radius);
     let (n_in, n_out, alpha) = (corner.normal_in(), corner.normal_out(), corner.half_angle);
-    let radii = corner_point_radii(rho_last, 2.0 * alpha, r, s.target, delta);
+    let radii = corner_point_radii(rho_last, 2.0 * alpha, r, s.target, delta, MAX_CIRCLES);
     let k = 1.0 / alpha.sin() - 1.0;
     let (mut here, mut rho, mut deepest) = (at, rho_last, 0.0_f64);
     for (i, &next) in radii.iter().enumerate() {

@@ -95,7 +95,7 @@
 
 use super::PocketSettings;
 use super::mirror::{mirror_segment, mirrored_polygon};
-use super::perforative::{KindMax, MoveKind, maxima};
+use super::perforative::{KindMax, MoveKind, maxima, peak_and_p95};
 use super::rings::{link_is_inside, to_segments};
 use crate::corner::{EngagementProfile, EvaluatorOptions, engagement_profile};
 use crate::error::{Error, Param, num};
@@ -155,6 +155,15 @@ fn default_corner_tolerance() -> f64 {
     DEFAULT_CORNER_TOLERANCE_MM
 }
 
+/// The range of a corner tolerance δ (mm), of adaptive pockets and of `trochoplan corner`:
+/// from 0.001 to 1; the error names `corner-tolerance`.
+pub fn validate_corner_tolerance(d: f64) -> Result<(), Error> {
+    if !(d.is_finite() && (0.001..=1.0).contains(&d)) {
+        return Err(Error::param(Param::CornerTolerance, d, "from 0.001 to 1 mm"));
+    }
+    Ok(())
+}
+
 impl Default for AdaptiveOptions {
     /// Helix 0.375·D at 3° (a 3-flute carbide end mill's ramp), 0.2 mm finishing stock, climb,
     /// the NC export's default depth of 6 mm.
@@ -198,10 +207,7 @@ impl AdaptiveOptions {
         if !(self.depth_mm.is_finite() && self.depth_mm > 0.0 && self.depth_mm <= 1000.0) {
             return Err(Error::param(Param::Depth, self.depth_mm, "greater than 0 and at most 1000 mm"));
         }
-        let d = self.corner_tolerance_mm;
-        if !(d.is_finite() && (0.001..=1.0).contains(&d)) {
-            return Err(Error::param(Param::CornerTolerance, d, "from 0.001 to 1 mm"));
-        }
+        validate_corner_tolerance(self.corner_tolerance_mm)?;
         if let Some(t) = self.target_deg {
             let phi = crate::corner::straight_engagement(settings.step_over, r)?.to_degrees();
             if !(t.is_finite() && t >= phi - 1e-9 && t <= 90.0) {
@@ -450,6 +456,25 @@ pub fn next_corner_point_radius(rho: f64, alpha: f64, r: f64, phi: f64, delta: f
         }
     }
     hi.clamp(delta.min(rho), rho)
+}
+
+/// The radii (mm) of the arcs into a corner point of interior angle α after an arc of radius
+/// `rho0`, each from [`next_corner_point_radius`] (so within φ), down to the corner tolerance δ;
+/// at most `max_arcs` (the caller's bound on hostile input). Used by adaptive clearing's finishing pass and by
+/// the corner strategies of `trochoplan corner` after their last wall-tangent circle (which
+/// leaves exactly the cap this derivation models).
+pub fn corner_point_radii(rho0: f64, alpha: f64, r: f64, phi: f64, delta: f64, max_arcs: usize) -> Vec<f64> {
+    let mut radii = Vec::new();
+    let mut q = rho0;
+    while q > delta * (1.0 + 1e-9) && radii.len() < max_arcs {
+        let next = next_corner_point_radius(q, alpha, r, phi, delta);
+        if next >= q * (1.0 - 1e-9) {
+            break;
+        }
+        radii.push(next);
+        q = next;
+    }
+    radii
 }
 
 /// The radial step a (mm) a concave cut of tool-centre radius ρ may take at engagement φ
@@ -1262,16 +1287,7 @@ fn corner_point_arcs(b: &mut Builder, c: &Corner, rho0: f64, r: f64, phi: f64, d
     let radii = match known {
         Some(i) => b.radii[i].2.clone(),
         None => {
-            let mut radii = Vec::new();
-            let mut q = rho0;
-            while q > delta * (1.0 + 1e-9) && radii.len() < MAX_PASSES {
-                let next = next_corner_point_radius(q, c.alpha, r, phi, delta);
-                if next >= q * (1.0 - 1e-9) {
-                    break;
-                }
-                radii.push(next);
-                q = next;
-            }
+            let radii = corner_point_radii(rho0, c.alpha, r, phi, delta, MAX_PASSES);
             b.radii.push((c.alpha, rho0, radii.clone()));
             radii
         }
@@ -1393,17 +1409,8 @@ fn measure(
     let opts = EvaluatorOptions::new(settings.tool_radius, settings.spacing);
     let profile = engagement_profile(&polygon, &before, &b.segments, &opts)?;
     let (maxima, _) = maxima(&profile, &b.segments, &b.kinds, &[]);
-    let max_engagement_rad = profile.max_angle();
-    let mut angles: Vec<f64> = profile.samples.iter().map(|s| s.angle_rad).collect();
-    angles.sort_by(f64::total_cmp);
-    let p95_engagement_rad =
-        angles.get(((0.95 * angles.len() as f64).ceil() as usize).saturating_sub(1)).copied().unwrap_or(0.0);
-    let air_length_mm = profile
-        .samples
-        .windows(2)
-        .filter(|w| w[0].angle_rad < AIR_ENGAGEMENT_RAD && w[1].angle_rad < AIR_ENGAGEMENT_RAD)
-        .map(|w| w[1].s_mm - w[0].s_mm)
-        .sum();
+    let (max_engagement_rad, p95_engagement_rad) = peak_and_p95(&profile);
+    let air_length_mm = profile.air_length_mm(AIR_ENGAGEMENT_RAD);
     let length_at_depth_mm: f64 = b.segments.iter().map(Segment::length).sum();
     let link_length_mm: f64 =
         b.segments.iter().zip(&b.kinds).filter(|(_, k)| **k == MoveKind::Link).map(|(s, _)| s.length()).sum();

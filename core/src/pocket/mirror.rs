@@ -7,7 +7,6 @@
 use super::{PerforativePlan, RingPlan};
 use crate::error::Error;
 use crate::geom::{P2, Polygon, Segment, p2};
-use std::f64::consts::PI;
 
 /// `p` mirrored in x.
 pub fn mirror_point(p: P2) -> P2 {
@@ -21,18 +20,10 @@ pub fn mirrored_polygon(p: &Polygon) -> Result<Polygon, Error> {
     Polygon::new(v)
 }
 
-/// A segment mirrored in x: arcs change their sense; a trochoid p = o + (−a·cos θ,
-/// b·sin θ + kθ) keeps its form with o mirrored and a → −a.
+/// A segment mirrored in x ([`Segment::mirrored_x`]: arcs change their sense, a trochoid keeps
+/// its form with o mirrored and a → −a).
 pub fn mirror_segment(s: &Segment) -> Segment {
-    match *s {
-        Segment::Line { start, end } => Segment::Line { start: mirror_point(start), end: mirror_point(end) },
-        Segment::Arc { center, radius, start_angle, sweep } => {
-            Segment::Arc { center: mirror_point(center), radius, start_angle: PI - start_angle, sweep: -sweep }
-        }
-        Segment::Trochoid { origin, a, b, step, theta0, theta1 } => {
-            Segment::Trochoid { origin: mirror_point(origin), a: -a, b, step, theta0, theta1 }
-        }
-    }
+    s.mirrored_x()
 }
 
 /// `p` reflected in the x axis (y → −y): a symmetric corner's bisector ([`crate::corner`]).
