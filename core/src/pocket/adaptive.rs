@@ -61,6 +61,11 @@
 //!    its end: measured, within the target), and the last tenth along wall A into the next arc.
 //!    The corners are taken in the loop's order from the one nearest the tool. These passes
 //!    stop at ρ_fin, where the finishing arc of radius ρ_fin + s_f stays within the target.
+//!    **Cusps** — convex corners of C where a wall is an arc about a reflex pocket vertex (a
+//!    neck's mouth, a reflex vertex near a wall) — get the same passes from [`super::cusp`]:
+//!    arcs tangent to both walls centred at the matching vertex of C ⊖ ρ, each crescent's
+//!    deepest cut held to the concave-cut step, back on the chord and along the incoming wall
+//!    into the next. Their caps count in T's area check like the corners' caps.
 //! 5. **Finish.** With s_f > 0: the opening of the final wall offset with radius ρ_fin + s_f,
 //!    concentric with the last corner arcs, once around (climb), entered on a quarter circle
 //!    beside the straight wall nearest the tool.
@@ -858,6 +863,8 @@ fn plan_part(
     let r_h = super::entry::helix_radius(options, r, inscribed)?;
     let area = region.area();
     let corners_all = convex_corners(&to_segments(region));
+    let cusps_all =
+        super::cusp::cusps(&to_segments(region), polygon, r + options.finish_stock_mm, options.finish_stock_mm);
     // Core radius T: the largest (from 0.995 × the inscribed radius, −10 % a step) whose
     // opening of the region leaves only the corner caps.
     let mut t = 0.995 * fraction * inscribed;
@@ -869,9 +876,11 @@ fn plan_part(
         if ks.len() == 1
             && let Some(opened) = largest(offset(&ks[0], -t))
         {
-            let caps: f64 = corners_all.iter().map(|c| c.cap_area(t)).sum();
+            let caps: f64 = corners_all.iter().map(|c| c.cap_area(t)).sum::<f64>()
+                + cusps_all.iter().map(|c| c.cap_area(t)).sum::<f64>();
             // the corner passes start from the opening's arc of radius T: it must fit the walls
-            let fits = corners_all.iter().all(|c| t <= c.len_in.min(c.len_out) * (0.5 * c.alpha).tan() + 1e-9);
+            let fits = corners_all.iter().all(|c| t <= c.len_in.min(c.len_out) * (0.5 * c.alpha).tan() + 1e-9)
+                && cusps_all.iter().all(|c| t <= c.rho_max + 1e-9);
             if (fits && area - opened.area() <= caps + 1e-3 * area) || t <= r_h {
                 break ks.into_iter().next();
             }
@@ -1096,6 +1105,36 @@ fn plan_part(
             max_engagement_rad: 0.0,
             at: c.vertex,
         });
+    }
+    // Cusps (a neck's mouth): arcs tangent to both walls from T down to ρ_fin, each back on
+    // its chord (inside its own disc: cleared) and along the incoming wall into the next.
+    for c in &cusps_all {
+        let rho0 = t.min(c.rho_max);
+        let radii = c.radii(rho0, rho_fin, r, phi);
+        let (Some((a0, _, _)), false) = (c.arc(rho0), radii.is_empty()) else { continue };
+        link(b, polygon, r, a0, k0);
+        let (mut rho_prev, mut a_prev, mut deepest) = (rho0, a0, 0.0_f64);
+        for &rho in &radii {
+            let Some((a, _, arc)) = c.arc(rho) else { break };
+            b.line(a_prev, MoveKind::Link);
+            for sg in c.along_wall(a_prev, a) {
+                b.push(sg, MoveKind::Corner);
+            }
+            b.push(arc, MoveKind::Corner);
+            deepest = deepest.max(c.depth(rho_prev, rho));
+            (rho_prev, a_prev) = (rho, a);
+        }
+        {
+            corners.push(CornerPasses {
+                vertex: c.vertex,
+                angle_rad: c.alpha,
+                passes: radii.len(),
+                last_radius_mm: rho_prev,
+                max_radial_depth_mm: deepest,
+                max_engagement_rad: 0.0,
+                at: c.vertex,
+            });
+        }
     }
     // Finishing contour: the opening of the final wall offset with radius ρ_fin + s_f, and at
     // every convex corner arc of it the arcs into the corner point.

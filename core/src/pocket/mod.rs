@@ -8,6 +8,7 @@
 //! circles and rings counter-clockwise (climb milling with M3).
 
 pub mod adaptive;
+mod cusp;
 pub mod entry;
 pub mod mirror;
 pub mod perforative;
