@@ -70,6 +70,13 @@
 //!    with radius r + δ, δ(1/sin(α/2) − 1) on the bisector. Reaching V itself would read π − α
 //!    ([`corner_point_bound_rad`]).
 //!
+//! **Open sides** ([`plan_adaptive_open`], `--open-edges`). Where an edge of the pocket has no
+//! wall, the tool-centre region reaches past it (the pocket extended across it, far corners
+//! rounded: no corner passes there) while the stock stays the pocket. The part starts outside
+//! the stock instead of steps 1–2: the tool goes straight down where its disc is off the
+//! material ([`Entry::Outside`]), and the rings of step 3 grow from the air by geodesic
+//! dilation instead of about k0 ([`grown_rings`]); steps 4–6 follow at the closed corners.
+//!
 //! **Sampling error bound (DERIVED).** The evaluator measures at every segment end (kinks are
 //! exact) and every h mm (`spacing`). Take two tool positions c, c' a distance δ apart along
 //! the path. Material only shrinks, and the periphery point c' + r·e(θ) is c + r·e(θ) moved by
