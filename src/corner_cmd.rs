@@ -227,6 +227,12 @@ pub struct PocketArgs {
     /// `--method adaptive`): the pocket corners are cut to radius r + this, 0.001 to 1.
     #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = AdaptiveOptions::default().corner_tolerance_mm)]
     corner_tolerance: f64,
+    /// Edges of the pocket that have no wall (`--method adaptive`): the stock ends there, e.g.
+    /// a step, a slot end or a notch at the part edge. Edge i runs from vertex i to vertex i + 1
+    /// of the polygon file (0-based; the last edge closes the polygon). The tool goes down
+    /// outside the stock beyond an open edge and clears inward from there.
+    #[arg(long, value_name = "I[,J…]", value_delimiter = ',')]
+    open_edges: Vec<usize>,
     #[command(flatten)]
     nc: CornerExportArgs,
 }
@@ -304,7 +310,8 @@ struct PocketOut {
 pub fn pocket(args: &PocketArgs) -> Result<String, String> {
     let what = args.polygon.display().to_string();
     let points = crate::outline::outline_points(&args.polygon, &read_input(&args.polygon, "polygon file")?)?;
-    let polygon = Polygon::new(points).map_err(|e| format!("{what}: {e}"))?;
+    let polygon = Polygon::new(points.clone()).map_err(|e| format!("{what}: {e}"))?;
+    let open_edges = pocket::stored_open_edges(&polygon, &points, &args.open_edges).map_err(err)?;
     let req = PocketRequest {
         polygon,
         tool_diameter_mm: args.tool_diameter,
@@ -321,6 +328,7 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
             target_deg: args.target_engagement,
             corner_tolerance_mm: args.corner_tolerance,
         },
+        open_edges,
     };
     let plan = pocket::plan(&req).map_err(err)?;
     let nc_export = match &args.nc.export {
@@ -382,6 +390,23 @@ struct RampOut {
     legs: usize,
 }
 
+/// One entry: its kind and where (a helix's centre, a ramp's middle, the point outside).
+#[derive(Serialize)]
+struct EntryOut {
+    kind: &'static str,
+    at: [f64; 2],
+}
+
+fn entry_out(e: &Entry) -> EntryOut {
+    let kind = match e {
+        Entry::Helix(_) => "helix",
+        Entry::Ramp(_) => "ramp",
+        Entry::Outside { .. } => "outside",
+    };
+    let c = e.center();
+    EntryOut { kind, at: [c.x, c.y] }
+}
+
 /// The helices and the ramps of a plan's entries.
 fn entries_out(entries: &[Entry], depth_mm: f64) -> (Vec<HelixOut>, Vec<RampOut>) {
     let drop = pocket::adaptive::HELIX_START_Z_MM + depth_mm;
@@ -389,7 +414,7 @@ fn entries_out(entries: &[Entry], depth_mm: f64) -> (Vec<HelixOut>, Vec<RampOut>
         .iter()
         .filter_map(|e| match e {
             Entry::Helix(h) => Some(helix_out(h, depth_mm)),
-            Entry::Ramp(_) => None,
+            Entry::Ramp(_) | Entry::Outside { .. } => None,
         })
         .collect();
     let ramps = entries
@@ -401,7 +426,7 @@ fn entries_out(entries: &[Entry], depth_mm: f64) -> (Vec<HelixOut>, Vec<RampOut>
                 ramp_deg: r.ramp_rad.to_degrees(),
                 legs: r.legs(drop),
             }),
-            Entry::Helix(_) => None,
+            Entry::Helix(_) | Entry::Outside { .. } => None,
         })
         .collect();
     (helices, ramps)
@@ -452,6 +477,11 @@ struct AdaptiveOut {
     /// (`pocket::adaptive::default_target_rad`).
     target_deg: f64,
     polygon: Vec<[f64; 2]>,
+    /// The polygon's open edges (`--open-edges`, as stored: counter-clockwise).
+    open_edges: Vec<usize>,
+    /// Each part's entry: its kind ("helix", "ramp" or "outside": straight down beyond an open
+    /// edge, where the tool's disc keeps r off the stock) and where; the helices in detail.
+    entries: Vec<EntryOut>,
     helices: Vec<HelixOut>,
     parts: usize,
     /// Core radius T and rings of each part.
@@ -505,7 +535,9 @@ fn adaptive_pocket_json(plan: &AdaptivePlan, nc_export: Option<NcExportOut>) -> 
         feed_mm_per_min: s.feed_mm_per_min,
         target_deg: plan.target_rad.to_degrees(),
         polygon: plan.polygon.vertices().iter().map(|&v| xy(v)).collect(),
-        helices: plan.parts.iter().map(|p| helix_out(&p.helix, plan.options.depth_mm)).collect(),
+        open_edges: plan.open_edges.clone(),
+        entries: plan.parts.iter().map(|p| entry_out(&p.entry)).collect(),
+        helices: entries_out(&plan.parts.iter().map(|p| p.entry).collect::<Vec<_>>(), plan.options.depth_mm).0,
         parts: plan.parts.len(),
         core_radius_mm: plan.parts.iter().map(|p| p.core_radius_mm).collect(),
         rings: plan.parts.iter().map(|p| p.rings).collect(),

@@ -310,7 +310,12 @@ fn assert_no_plunge(label: &str, all: &[Motion], json: &serde_json::Value) {
         .iter()
         .map(|r| (pt(&r["start"]), pt(&r["end"]), r["ramp_deg"].as_f64().expect("ramp").to_radians()))
         .collect();
-    assert!(!centres.is_empty() || !ramps.is_empty(), "{label}: no entry in the JSON");
+    // straight down outside the stock (adaptive `--open-edges`): the points the JSON lists,
+    // accepted only where the tool's whole disc is off the stock, measured here from the JSON's
+    // polygon (its distance from the polygon, outside it, at least r)
+    let stock: Vec<_> = list("polygon").iter().map(pt).collect();
+    let outside: Vec<_> = list("entries").iter().filter(|e| e["kind"] == "outside").map(|e| pt(&e["at"])).collect();
+    assert!(!centres.is_empty() || !ramps.is_empty() || !outside.is_empty(), "{label}: no entry in the JSON");
     for m in all {
         let (a, b) = (m.start(), m.end());
         if !(b[2] < a[2] - 1e-9 && b[2] < -1e-9) {
@@ -335,9 +340,93 @@ fn assert_no_plunge(label: &str, all: &[Motion], json: &serde_json::Value) {
                         && (pb - pa).norm() > 1.0
                         && (a[2] - b[2]) <= (pb - pa).norm() * ramp.tan() + 2e-4
                 });
-                assert!(leg, "{label}: straight move down into the stock: {m:?}");
+                let off_stock = (pb - pa).norm() < 1e-9
+                    && outside.iter().any(|&o| (o - pa).norm() < 1e-3)
+                    && !inside_polygon(pa, &stock)
+                    && distance_to_polygon(pa, &stock) >= R - 1e-3;
+                assert!(leg || off_stock, "{label}: straight move down into the stock: {m:?}");
             }
             Motion::Rapid { .. } => panic!("{label}: rapid below Z0: {m:?}"),
         }
+    }
+}
+
+/// Whether `p` is inside the polygon `v` (even–odd ray casting along +x).
+fn inside_polygon(p: trochoplan_core::geom::P2, v: &[trochoplan_core::geom::P2]) -> bool {
+    let mut c = false;
+    for i in 0..v.len() {
+        let (a, b) = (v[i], v[(i + 1) % v.len()]);
+        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) {
+            c = !c;
+        }
+    }
+    c
+}
+
+/// Distance from `p` to the nearest edge of the polygon `v`.
+fn distance_to_polygon(p: trochoplan_core::geom::P2, v: &[trochoplan_core::geom::P2]) -> f64 {
+    (0..v.len())
+        .map(|i| {
+            let (a, b) = (v[i], v[(i + 1) % v.len()]);
+            let t = ((p - a).dot(&(b - a)) / (b - a).norm_squared()).clamp(0.0, 1.0);
+            (p - (a + (b - a) * t)).norm()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Issue #12 item 1, entry from outside the stock: the rectangle (D = 10, a_e = 1.527 mm) open
+/// on its bottom edge (`--open-edges 0`, climb and conventional) and on its bottom and top
+/// edges (a through slot, `--open-edges 0,2`). The program passes rs274, retraces the JSON's
+/// path, keeps no rapid below the safe height, keeps the tool centre r from every closed wall
+/// (the open edges have none); the tool goes down only outside the stock where its whole disc
+/// is off it ([`assert_no_plunge`]); the read-back path measured by the evaluator over the
+/// rectangle alone (nothing cut before it) peaks within 60° with p95 ≤ 50°, and the JSON agrees.
+#[test]
+fn open_pockets_enter_from_outside_and_read_back_within_the_issue_limits() {
+    use trochoplan_core::corner::{EvaluatorOptions, engagement_profile};
+    use trochoplan_core::geom::{Polygon, p2};
+    let dir = tempfile::tempdir().expect("tempdir");
+    let stock = Polygon::new(RECT.iter().map(|&(x, y)| p2(x, y)).collect()).expect("polygon");
+    let v = stock.vertices().to_vec();
+    for (open, direction) in [("0", "climb"), ("0", "conventional"), ("0,2", "climb")] {
+        let label = format!("rect open {open} {direction}");
+        let args = ["--step-over", "1.527", "--direction", direction, "--open-edges", open];
+        let e = export(dir.path(), &format!("rect_open_{}_{direction}.ngc", open.replace(',', "_")), RECT, &args);
+        assert_eq!(e.json["entries"][0]["kind"], "outside", "{label}: {}", e.json["entries"]);
+        assert!(e.json["helices"].as_array().is_some_and(Vec::is_empty), "{label}: {}", e.json["helices"]);
+        let all = motions(&interpret(&e.file).unwrap_or_else(|err| panic!("{label}: {err}")));
+        for m in &all {
+            if let Motion::Rapid { start, end } = m {
+                assert!(
+                    start[2] >= pocket_common::SAFE_Z - 1e-4 || end[2] >= pocket_common::SAFE_Z - 1e-4,
+                    "{label}: {m:?}"
+                );
+            }
+        }
+        let c = cut(&all, DEPTH, 1e-4);
+        check_path_cut(&label, &c, &e.feed_path, 0.005, 1e-4).unwrap_or_else(|err| panic!("{err}"));
+        // the closed walls: every sampled tool centre keeps r from each (up to the budget)
+        let open_idx: Vec<usize> = open.split(',').map(|i| i.parse().expect("index")).collect();
+        let closed: Vec<usize> = (0..v.len()).filter(|i| !open_idx.contains(i)).collect();
+        let least = nc_common::sample(&c, 0.02)
+            .iter()
+            .map(|&p| {
+                closed
+                    .iter()
+                    .map(|&i| distance_to_polygon(p, &[v[i], v[(i + 1) % v.len()]]))
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .fold(f64::INFINITY, f64::min);
+        assert!(least >= R - budget(0.005, 1e-4), "{label}: tool centre {least:.6} mm from a closed wall");
+        assert_no_plunge(&label, &all, &e.json);
+        let path = segments_of(&c);
+        let prof = engagement_profile(&stock, &[], &path, &EvaluatorOptions::new(R, 0.25)).expect("profile");
+        let mut deg: Vec<f64> = prof.samples.iter().map(|s| s.angle_rad.to_degrees()).collect();
+        deg.sort_by(f64::total_cmp);
+        let (peak, p95) = (deg[deg.len() - 1], deg[(0.95 * deg.len() as f64).ceil() as usize - 1]);
+        eprintln!("{label}: read back {:.1} mm at depth, peak {peak:.2}°, p95 {p95:.2}°", prof.path_length_mm);
+        assert!(peak <= 60.0 && p95 <= 50.0, "{label}: peak {peak:.2}°, p95 {p95:.2}° at {:?}", prof.max());
+        let planned = e.json["max_engagement_deg"].as_f64().expect("max");
+        assert!((planned - peak).abs() < 0.5, "{label}: plan {planned:.2}° vs read back {peak:.2}°");
     }
 }

@@ -108,11 +108,13 @@ pub enum Param {
     TargetEngagement,
     /// `pocket --corner-tolerance`: how near the corner arcs reach each corner point (mm).
     CornerTolerance,
+    /// `pocket --open-edges`: the pocket's edges without a wall (adaptive clearing).
+    OpenEdges,
 }
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 72] = [
+    pub const ALL: [Param; 73] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
@@ -185,6 +187,7 @@ impl Param {
         Param::SlotForces,
         Param::TargetEngagement,
         Param::CornerTolerance,
+        Param::OpenEdges,
     ];
 
     /// The command-line flag without `--` (also the job-file key). The NC tolerance and the
@@ -263,6 +266,7 @@ impl Param {
             Param::SlotForces => "slot-forces",
             Param::TargetEngagement => "target-engagement",
             Param::CornerTolerance => "corner-tolerance",
+            Param::OpenEdges => "open-edges",
         }
     }
 
@@ -341,6 +345,7 @@ impl Param {
             Param::SlotForces => "Slot-force tests",
             Param::TargetEngagement => "Target engagement",
             Param::CornerTolerance => "Corner tolerance",
+            Param::OpenEdges => "Open edges",
         }
     }
 }

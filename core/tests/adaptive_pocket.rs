@@ -13,7 +13,7 @@ use trochoplan_core::pocket::adaptive::{
     DEFAULT_TARGET_CAP_DEG, concave_step, corner_pass_mean_depth_ratio, corner_point_bound_rad, default_target_rad,
 };
 use trochoplan_core::pocket::{
-    self, AdaptiveOptions, AdaptivePlan, MoveKind, PocketPlan, PocketRequest, PocketStrategy, plan_adaptive,
+    self, AdaptiveOptions, AdaptivePlan, Entry, MoveKind, PocketPlan, PocketRequest, PocketStrategy, plan_adaptive,
 };
 
 const R: f64 = 5.0;
@@ -163,7 +163,7 @@ fn rectangle_and_l_keep_every_move_within_the_target() {
         assert!((sum - p.length_at_depth_mm).abs() < 1e-6 * sum);
         assert!(p.link_length_mm < p.length_at_depth_mm && p.air_length_mm < p.length_at_depth_mm);
         // the helix: 75 % of D, at most 3° of ramp
-        let h = p.parts[0].helix;
+        let Entry::Helix(h) = p.parts[0].entry else { panic!("{name}: helix expected") };
         assert!((h.radius - 3.75).abs() < 1e-12 && h.ramp_rad <= 3f64.to_radians() + 1e-12);
         let per_turn = 6.5 / h.turns(6.5) as f64;
         assert!(per_turn <= TAU * h.radius * 3f64.to_radians().tan() + 1e-9);
@@ -253,7 +253,11 @@ fn conventional_is_the_mirror_of_climb() {
         p.segments.iter().map(|s| if let Segment::Arc { sweep, .. } = s { *sweep } else { 0.0 }).sum::<f64>()
     };
     assert!(sweep(&climb) > 0.0 && (sweep(&climb) + sweep(&conv)).abs() < 0.01 * sweep(&climb));
-    assert!(climb.parts[0].helix.sense > 0.0 && conv.parts[0].helix.sense < 0.0);
+    let sense = |p: &AdaptivePlan| match p.parts[0].entry {
+        Entry::Helix(h) => h.sense,
+        other => panic!("helix expected: {other:?}"),
+    };
+    assert!(sense(&climb) > 0.0 && sense(&conv) < 0.0);
 }
 
 #[test]
@@ -275,7 +279,8 @@ fn neck_narrower_than_the_tool_gives_parts_with_their_own_helix() {
     ]);
     let p = adaptive(dumbbell, AdaptiveOptions::default());
     assert_eq!(p.parts.len(), 2);
-    let mut xs: Vec<f64> = p.parts.iter().map(|q| q.helix.center.x).collect();
+    assert!(p.parts.iter().all(|q| matches!(q.entry, Entry::Helix(_))), "{:?}", p.parts);
+    let mut xs: Vec<f64> = p.parts.iter().map(|q| q.entry.center().x).collect();
     xs.sort_by(f64::total_cmp);
     assert!(xs[0] < 40.0 && xs[1] > 60.0, "{xs:?}");
     // every move keeps the target + 1°, the finishing pass included: the cusp between the two
@@ -439,4 +444,100 @@ fn corner_points_are_reached_within_the_tolerance_and_the_target() {
         );
         assert!(mf.max_rad <= target + 1f64.to_radians(), "{name} at 0.05 mm: {}°", mf.max_rad.to_degrees());
     }
+}
+
+/// Distance from `p` to the polygon `v` (0 inside): how far a tool centre is off the stock.
+fn off_stock(p: P2, v: &[P2]) -> f64 {
+    let poly = Polygon::new(v.to_vec()).unwrap();
+    if poly.contains(p) {
+        return 0.0;
+    }
+    (0..v.len())
+        .map(|i| {
+            let (a, b) = (v[i], v[(i + 1) % v.len()]);
+            let t = ((p - a).dot(&(b - a)) / (b - a).norm_squared()).clamp(0.0, 1.0);
+            (p - (a + (b - a) * t)).norm()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The rectangle (a_e = 1.527 mm, D = 10) open on its bottom edge (a step), on its
+/// bottom and top edges (a through slot), on its left and right edges, and on the bottom and
+/// right edges (a notch at a part corner), climb and conventional: the tool goes down outside
+/// the stock — its whole disc at least r off the material, computed here from the polygon — no
+/// helix, no spiral; every move at depth within the target + 1° (and the 60°/p95 50°);
+/// corner passes and corner points only at the closed corners (both ends of a closed edge
+/// whose neighbours are closed too); the evaluator's stock is the rectangle alone (the moves
+/// beyond the open edges read 0°).
+#[test]
+fn open_rectangle_is_cleared_from_outside_within_the_target() {
+    let v = [p2(0.0, 0.0), p2(60.0, 0.0), p2(60.0, 40.0), p2(0.0, 40.0)];
+    let rect = Polygon::new(v.to_vec()).unwrap();
+    for (open, closed_corners) in [(vec![0], 2), (vec![0, 2], 0), (vec![1, 3], 0), (vec![0, 1], 1)] {
+        for direction in [Direction::Climb, Direction::Conventional] {
+            let label = format!("open {open:?} {direction:?}");
+            let req = PocketRequest {
+                polygon: rect.clone(),
+                step_over_mm: AE,
+                open_edges: open.clone(),
+                adaptive: AdaptiveOptions { direction, ..AdaptiveOptions::default() },
+                ..PocketRequest::default()
+            };
+            let PocketPlan::Adaptive(p) = pocket::plan(&req).unwrap() else { panic!("{label}: adaptive") };
+            assert_eq!(p.open_edges, open, "{label}");
+            assert_eq!(p.parts.len(), 1, "{label}");
+            let Entry::Outside { at } = p.parts[0].entry else { panic!("{label}: {:?}", p.parts[0].entry) };
+            assert!(off_stock(at, &v) >= R, "{label}: goes down {} mm off the stock at {at:?}", off_stock(at, &v));
+            assert!((p.segments[0].start() - at).norm() < 1e-9, "{label}: the path starts where the tool goes down");
+            assert!(!p.kinds.contains(&MoveKind::Spiral), "{label}: a spiral");
+            let target = p.target_rad;
+            let (peak, p95) = (p.max_engagement_rad.to_degrees(), p.p95_engagement_rad.to_degrees());
+            eprintln!(
+                "{label}: peak {peak:.2}°, p95 {p95:.2}°, {:.1} mm at depth, links {:.1} mm, air {:.1} mm, {} rings",
+                p.length_at_depth_mm, p.link_length_mm, p.air_length_mm, p.parts[0].rings
+            );
+            assert!(p.max_engagement_rad <= target + 1f64.to_radians(), "{label}: peak {peak:.2}°");
+            assert!(peak <= 60.0 && p95 <= 50.0, "{label}: peak {peak:.2}°, p95 {p95:.2}°");
+            // the evaluator's profile covers the whole path; where the tool goes down it reads 0
+            let sum: f64 = p.maxima.iter().map(|m| m.length_mm).sum();
+            assert!((sum - p.length_at_depth_mm).abs() < 1e-6 * sum, "{label}");
+            assert!(p.profile.samples[0].angle_rad < 1e-9, "{label}: {:?}", p.profile.samples[0]);
+            // corners only where two closed edges meet, at the rectangle's corner (±r + stock)
+            let part = &p.parts[0];
+            assert_eq!(part.corners.len(), closed_corners, "{label}: {:?}", part.corners);
+            assert_eq!(part.corner_points.len(), closed_corners, "{label}: {:?}", part.corner_points);
+            let n = v.len();
+            for c in part.corners.iter().map(|c| c.vertex).chain(part.corner_points.iter().map(|c| c.vertex)) {
+                let k = (0..n).min_by(|&i, &j| (v[i] - c).norm().total_cmp(&(v[j] - c).norm())).unwrap();
+                assert!(
+                    !open.contains(&k) && !open.contains(&((k + n - 1) % n)),
+                    "{label}: corner {c:?} at vertex {k}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn open_edges_are_checked_and_only_adaptive_clearing_takes_them() {
+    let rect = poly(&[(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)]);
+    let base = PocketRequest { polygon: rect, step_over_mm: AE, ..PocketRequest::default() };
+    for open in [vec![4], vec![1, 1]] {
+        let e = pocket::plan(&PocketRequest { open_edges: open.clone(), ..base.clone() }).unwrap_err();
+        assert_eq!(e.subject(), Some("open-edges"), "{open:?}: {e}");
+    }
+    for strategy in PocketStrategy::ALL.into_iter().filter(|s| *s != PocketStrategy::Adaptive) {
+        let e = pocket::plan(&PocketRequest { open_edges: vec![0], strategy, ..base.clone() }).unwrap_err();
+        assert_eq!(e.subject(), Some("open-edges"), "{strategy:?}: {e}");
+        assert!(e.to_string().contains("--method adaptive"), "{e}");
+    }
+    // edges numbered as in the file: a clockwise file is stored reversed, edge 0 of the file
+    // (0,0)–(0,40) is then the stored edge from (0,40) to (0,0)
+    let file = [p2(0.0, 0.0), p2(0.0, 40.0), p2(60.0, 40.0), p2(60.0, 0.0)];
+    let stored = Polygon::new(file.to_vec()).unwrap();
+    let k = pocket::stored_open_edges(&stored, &file, &[0]).unwrap()[0];
+    let w = stored.vertices();
+    let ends = [w[k], w[(k + 1) % 4]];
+    assert!(ends.contains(&p2(0.0, 0.0)) && ends.contains(&p2(0.0, 40.0)), "{ends:?}");
+    assert_eq!(pocket::stored_open_edges(&stored, &file, &[4]).unwrap_err().subject(), Some("open-edges"));
 }

@@ -62,6 +62,8 @@ pub struct CornerInputs {
     pub pocket_step_over_mm: f64,
     /// Clear the pocket adaptively (helix entry, climb, finishing pass) instead of by `method`.
     pub pocket_adaptive: bool,
+    /// The pocket's open edges, "i, j, …" (`--open-edges`: edge i from vertex i to i + 1).
+    pub pocket_open_edges: String,
 }
 
 impl Default for CornerInputs {
@@ -82,6 +84,7 @@ impl Default for CornerInputs {
             polygon_text: pocket.polygon.vertices().iter().map(|v| format!("{},{}\n", v.x, v.y)).collect(),
             pocket_step_over_mm: pocket.step_over_mm,
             pocket_adaptive: pocket.strategy == PocketStrategy::Adaptive,
+            pocket_open_edges: String::new(),
         }
     }
 }
@@ -106,8 +109,17 @@ impl CornerInputs {
     /// `trochoplan pocket`'s defaults.
     pub fn pocket_request(&self) -> Result<PocketRequest, String> {
         let points = parse_points(&self.polygon_text, "polygon").map_err(|e| e.to_string())?;
-        let polygon = Polygon::new(points).map_err(|e| format!("polygon: {e}"))?;
+        let polygon = Polygon::new(points.clone()).map_err(|e| format!("polygon: {e}"))?;
+        let open: Vec<usize> = self
+            .pocket_open_edges
+            .split([',', ' '])
+            .filter(|w| !w.trim().is_empty())
+            .map(|w| w.trim().parse::<usize>())
+            .collect::<Result<_, _>>()
+            .map_err(|_| format!("open edges: \"{}\" is not a list of edge numbers i, j, …", self.pocket_open_edges))?;
+        let open_edges = pocket::stored_open_edges(&polygon, &points, &open).map_err(|e| e.to_string())?;
         Ok(PocketRequest {
+            open_edges,
             polygon,
             tool_diameter_mm: self.tool_diameter_mm,
             step_over_mm: self.pocket_step_over_mm,
@@ -246,7 +258,12 @@ pub fn compute_pocket(i: &CornerInputs) -> Result<PocketResult, String> {
         PocketPlan::Adaptive(p) => (
             vec![(0, 0.0, p.max_engagement_rad.to_degrees(), segment_points(&p.segments, MAX_PATH_POINTS))],
             format!(
-                "helix entry, {} rings, {} corners thinned; p95 {:.1}°, {:.0} mm at depth",
+                "{} entry, {} rings, {} corners thinned; p95 {:.1}°, {:.0} mm at depth",
+                match p.parts.first().map(|q| q.entry) {
+                    Some(pocket::Entry::Outside { .. }) => "outside",
+                    Some(pocket::Entry::Ramp(_)) => "ramp",
+                    _ => "helix",
+                },
                 p.parts.iter().map(|q| q.rings).sum::<usize>(),
                 p.parts.iter().map(|q| q.corners.len()).sum::<usize>(),
                 p.p95_engagement_rad.to_degrees(),
@@ -731,6 +748,16 @@ fn pocket_inputs(ui: &mut egui::Ui, inputs: &mut CornerInputs) {
         ui.add(DragValue::new(&mut inputs.pocket_step_over_mm).speed(0.05).suffix(" mm"))
             .labelled_by(l.id)
             .on_hover_text("Distance between successive contour-parallel rings, 0 < a_e < D.");
+        let l = ui.label(label::POCKET_OPEN_EDGES);
+        ui.add_enabled(
+            inputs.pocket_adaptive,
+            egui::TextEdit::singleline(&mut inputs.pocket_open_edges).desired_width(60.0),
+        )
+        .labelled_by(l.id)
+        .on_hover_text(
+            "Edges without a wall (adaptive): \"0\" or \"0, 2\"; edge i runs from vertex i to vertex i + 1 \
+             (0-based). The tool goes down outside the stock there and clears inward.",
+        );
     });
 }
 

@@ -670,6 +670,33 @@ fn pocket_mode_plans_adaptive_clearing() {
     assert!(p.detail.contains(&format!("{:.0} mm at depth", want.length_at_depth_mm)), "{}", p.detail);
 }
 
+/// The Pocket tab's open-edges field (issue #12 item 1): typed into, the tab plans the pocket
+/// open on that edge (entered from outside the stock); a bad list is an error naming it.
+#[test]
+fn pocket_mode_takes_open_edges() {
+    use trochoplan_core::pocket::{Entry, PocketPlan};
+    let mut h = corner_harness();
+    h.get_by_label("Pocket").click();
+    h.run();
+    wait_for_corner(&mut h);
+    h.get_by_label(label::POCKET_OPEN_EDGES).click();
+    h.run();
+    h.get_by_label(label::POCKET_OPEN_EDGES).type_text("0");
+    h.run();
+    wait_for_corner(&mut h);
+    assert_eq!(h.state().state.corner.pocket_open_edges, "0");
+    assert!(h.state().corner.error.is_none(), "{:?}", h.state().corner.error);
+    let p = h.state().corner.last_pocket.clone().expect("a pocket");
+    let PocketPlan::Adaptive(plan) = &p.plan else { panic!("adaptive plan expected") };
+    assert_eq!(plan.open_edges, vec![0]);
+    assert!(matches!(plan.parts[0].entry, Entry::Outside { .. }), "{:?}", plan.parts[0].entry);
+    assert!(shows(&h, &p.detail) && p.detail.starts_with("outside entry"), "{}", p.detail);
+    h.state_mut().state.corner.pocket_open_edges = "0, x".to_owned();
+    h.run();
+    let e = h.state().corner.error.clone().expect("a bad list is an error");
+    assert!(e.contains("open edges"), "{e}");
+}
+
 /// Step frames until the Corner tab's acceptance table is no longer being computed.
 fn wait_for_table(h: &mut Harness<'_, App>) {
     let t0 = Instant::now();

@@ -93,16 +93,19 @@ pub fn pocket_program(plan: &PocketPlan, cut: CutSetup, opts: &NcOptions) -> Res
 /// top (no plunge), then its moves at depth; a retract and rapid between parts.
 pub fn adaptive_program(plan: &AdaptivePlan, cut: CutSetup, opts: &NcOptions) -> Result<NcProgram, Error> {
     let (segments, retract_before) = PocketPlan::Adaptive(plan.clone()).tool_path();
-    let entries: Vec<Entry> = plan.parts.iter().map(|p| Entry::Helix(p.helix)).collect();
-    let h = &plan.parts[0].helix;
+    let entries: Vec<Entry> = plan.parts.iter().map(|p| p.entry).collect();
+    let way_in = match plan.parts[0].entry {
+        Entry::Helix(h) => format!("helix R {:.3} mm {:.1} deg", h.radius, plan.options.ramp_deg),
+        Entry::Ramp(_) => format!("zig-zag ramp {:.1} deg", plan.options.ramp_deg),
+        Entry::Outside { .. } => format!("from outside the stock (open edges {:?})", plan.open_edges),
+    };
     let summary = [
         format!(
-            "pocket of {} vertices, adaptive {}, {} part(s), helix R {:.3} mm {:.1} deg",
+            "pocket of {} vertices, adaptive {}, {} part(s), {}",
             plan.polygon.vertices().len(),
             plan.options.direction.name(),
             plan.parts.len(),
-            h.radius,
-            plan.options.ramp_deg
+            way_in
         ),
         format!(
             "at depth {:.1} mm, links {:.1} mm, peak {:.2} deg, target {:.2} deg",

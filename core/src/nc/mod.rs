@@ -259,7 +259,7 @@ pub struct PathJob<'a> {
     pub description: Vec<String>,
     /// Entries, one per connected part (the path start, then each retract in order): the tool
     /// descends on the helix or the zig-zag ramp from above the stock top instead of feeding
-    /// straight down. Retracts beyond them (and all, when empty): straight down, which a pocket
+    /// straight down, or straight down outside the stock (beyond an open edge of a pocket). Retracts beyond them (and all, when empty): straight down, which a pocket
     /// plan uses only where it lands in material its path has cleared.
     pub entries: &'a [Entry],
 }
@@ -337,6 +337,8 @@ pub fn program_for_path(job: &PathJob<'_>, opts: &NcOptions) -> Result<NcProgram
     let descend = |w: &mut Writer, part: usize, start: P2| match job.entries.get(part) {
         Some(Entry::Helix(h)) => helical_approach(w, h, job.depth_mm, job.feed_mm_per_min, opts),
         Some(Entry::Ramp(r)) => ramp_approach(w, r, job.depth_mm, job.feed_mm_per_min, opts),
+        // beyond an open edge the tool's disc is off the stock: straight down cuts nothing
+        Some(Entry::Outside { at }) => approach(w, *at, job.depth_mm, job.feed_mm_per_min, opts),
         None => approach(w, start, job.depth_mm, job.feed_mm_per_min, opts),
     };
     descend(&mut w, 0, job.segments[0].start());

@@ -75,6 +75,13 @@
 //!    with radius r + δ, δ(1/sin(α/2) − 1) on the bisector. Reaching V itself would read π − α
 //!    ([`corner_point_bound_rad`]).
 //!
+//! **Open sides** ([`plan_adaptive_open`], `--open-edges`). Where an edge of the pocket has no
+//! wall, the tool-centre region reaches past it (the pocket extended across it, far corners
+//! rounded: no corner passes there) while the stock stays the pocket. The part starts outside
+//! the stock instead of steps 1–2: the tool goes straight down where its disc is off the
+//! material ([`Entry::Outside`]), and the rings of step 3 grow from the air by geodesic
+//! dilation instead of about k0 ([`grown_rings`]); steps 4–6 follow at the closed corners.
+//!
 //! **Sampling error bound (DERIVED).** The evaluator measures at every segment end (kinks are
 //! exact) and every h mm (`spacing`). Take two tool positions c, c' a distance δ apart along
 //! the path. Material only shrinks, and the periphery point c' + r·e(θ) is c + r·e(θ) moved by
@@ -99,6 +106,7 @@
 //! loop then runs clockwise, with the same engagement by symmetry.
 
 use super::PocketSettings;
+use super::entry::Entry;
 use super::mirror::{mirror_segment, mirrored_polygon};
 use super::perforative::{KindMax, MoveKind, maxima, peak_and_p95};
 use super::rings::{link_is_inside, to_segments};
@@ -348,10 +356,11 @@ pub struct CornerPoint {
     pub at: P2,
 }
 
-/// A connected region of tool centres, cleared from its own helix.
+/// A connected region of tool centres, cleared from its own entry: a helix bore, a zig-zag
+/// ramp where no helix fits, or straight down outside the stock beyond an open edge.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct AdaptivePart {
-    pub helix: Helix,
+    pub entry: Entry,
     /// Its moves at depth: `segments[range.0..range.1]` of the plan.
     pub first_segment: usize,
     pub end_segment: usize,
@@ -368,6 +377,10 @@ pub struct AdaptivePart {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct AdaptivePlan {
     pub polygon: Polygon,
+    /// The open edges of `polygon` (edge i from vertex i to vertex i + 1): no wall there, the
+    /// stock ends ([`plan_adaptive_open`]).
+    #[serde(default)]
+    pub open_edges: Vec<usize>,
     pub settings: PocketSettings,
     pub options: AdaptiveOptions,
     /// Target engagement φ* = arccos(1 − a_e/r) (rad).
@@ -377,7 +390,7 @@ pub struct AdaptivePlan {
     /// what `segments[i]` does.
     pub segments: Vec<Segment>,
     pub kinds: Vec<MoveKind>,
-    /// The evaluator's profile along `segments`, the helix bores counted as cut.
+    /// The evaluator's profile along `segments`, the helix and ramp bores counted as cut.
     pub profile: EngagementProfile,
     /// Per kind of move: maximum and where, length.
     pub maxima: Vec<KindMax>,
@@ -388,9 +401,9 @@ pub struct AdaptivePlan {
     pub length_at_depth_mm: f64,
     pub link_length_mm: f64,
     pub air_length_mm: f64,
-    /// Length of the helices (mm).
+    /// Length of the entries' descents (mm): helices, ramps, straight down outside the stock.
     pub helix_length_mm: f64,
-    /// Time at the feed: helices and every move at depth (s).
+    /// Time at the feed: the descents and every move at depth (s).
     pub time_s: f64,
     /// Radius of the pocket's convex corners as cut (mm): r + δ after the finishing pass's
     /// corner arcs, r + ρ_fin without a finishing pass ([`corner_point_bound_rad`]).
@@ -721,9 +734,26 @@ pub fn plan_adaptive(
     settings: PocketSettings,
     options: AdaptiveOptions,
 ) -> Result<AdaptivePlan, Error> {
-    let (parts, b, corner_radius_left_mm) = plan_path(polygon, &settings, &options)?;
+    plan_adaptive_open(polygon, &[], settings, options)
+}
+
+/// Plan the adaptive clearing of `polygon` open on the edges `open_edges` (edge i runs from
+/// vertex i to vertex i + 1 of the polygon as stored, counter-clockwise; none: a closed
+/// pocket). The walls of an open edge do not constrain the tool: the tool-centre region
+/// reaches beyond it ([`OPEN_REACH_FACTOR`]); the stock stays the polygon, so outside it is
+/// air. The part that reaches an open edge starts there: straight down outside the stock
+/// ([`Entry::Outside`]), then rings grown inward from what lies outside ([`grown_rings`]).
+pub fn plan_adaptive_open(
+    polygon: &Polygon,
+    open_edges: &[usize],
+    settings: PocketSettings,
+    options: AdaptiveOptions,
+) -> Result<AdaptivePlan, Error> {
+    let (parts, b, corner_radius_left_mm) = plan_path(polygon, open_edges, &settings, &options)?;
     let phi = options.target_rad(&settings)?;
-    measure(polygon.clone(), settings, options, phi, parts, b, corner_radius_left_mm)
+    let mut plan = measure(polygon.clone(), settings, options, phi, parts, b, corner_radius_left_mm)?;
+    plan.open_edges = open_edges.to_vec();
+    Ok(plan)
 }
 
 /// The parts, their moves at depth and kinds, and the corner radius left (mm).
@@ -735,26 +765,31 @@ pub fn adaptive_path(
     settings: PocketSettings,
     options: AdaptiveOptions,
 ) -> Result<AdaptivePath, Error> {
-    let (parts, b, left) = plan_path(polygon, &settings, &options)?;
+    let (parts, b, left) = plan_path(polygon, &[], &settings, &options)?;
     Ok((parts, b.segments, b.kinds, left))
 }
 
 fn plan_path(
     polygon: &Polygon,
+    open_edges: &[usize],
     settings: &PocketSettings,
     options: &AdaptiveOptions,
 ) -> Result<(Vec<AdaptivePart>, Builder, f64), Error> {
     let (settings, options) = (*settings, *options);
     settings.validate()?;
     options.validate(&settings)?;
+    validate_open_edges(polygon, open_edges)?;
     let mirror = options.direction == Direction::Conventional;
     let work = if mirror { mirrored_polygon(polygon)? } else { polygon.clone() };
+    // the open edges of `work`: the mirror image reverses the vertex order
+    let n_v = polygon.vertices().len();
+    let work_open: Vec<usize> = open_edges.iter().map(|&i| if mirror { (2 * n_v - 2 - i) % n_v } else { i }).collect();
     let r = settings.tool_radius;
     let phi = options.target_rad(&settings)?;
     let sf = options.finish_stock_mm;
     let outline = pline_of(work.vertices());
-    let regions = offset(&outline, r + sf);
-    if regions.is_empty() {
+    let closed_regions = offset(&outline, r + sf);
+    if closed_regions.is_empty() {
         return Err(Error::param(
             Param::Polygon,
             "narrower than the tool",
@@ -764,15 +799,19 @@ fn plan_path(
     // The finishing corner radius: the finishing arc of radius ρ_fin + s_f removes s_f
     // concentrically, within φ* (concave-cut step); at least r/10.
     let rho_fin = if sf > 0.0 { fin_radius(sf, r, phi) } else { 0.1 * r };
-    let (mut parts, mut b) = clear_regions(&regions, &work, &settings, &options, phi, rho_fin)?;
+    let (mut parts, mut b) = if work_open.is_empty() {
+        clear_regions(&closed_regions, &work, &settings, &options, phi, rho_fin)?
+    } else {
+        let open = OpenPocket::new(&work, &work_open, &closed_regions, r + sf)?;
+        let regions = offset(&open.near, r + sf);
+        clear_parts(&regions, &open.near_polygon, &settings, &options, phi, rho_fin, Some(&open))?
+    };
     if mirror {
         for s in &mut b.segments {
             *s = mirror_segment(s);
         }
         for p in &mut parts {
-            p.helix.center.x = -p.helix.center.x;
-            p.helix.start_angle = PI - p.helix.start_angle;
-            p.helix.sense = -p.helix.sense;
+            p.entry = p.entry.mirrored();
             for c in &mut p.corners {
                 c.vertex.x = -c.vertex.x;
             }
@@ -797,19 +836,47 @@ pub(crate) fn clear_regions(
     phi: f64,
     rho_fin: f64,
 ) -> Result<(Vec<AdaptivePart>, Builder), Error> {
+    clear_parts(regions, work, settings, options, phi, rho_fin, None)
+}
+
+/// [`clear_regions`], each region from its seed: outside the stock where the region reaches
+/// past an open edge of `open`, else a helix.
+fn clear_parts(
+    regions: &[Polyline<f64>],
+    work: &Polygon,
+    settings: &PocketSettings,
+    options: &AdaptiveOptions,
+    phi: f64,
+    rho_fin: f64,
+    open: Option<&OpenPocket>,
+) -> Result<(Vec<AdaptivePart>, Builder), Error> {
     let mut b = Builder { segments: Vec::new(), kinds: Vec::new(), radii: Vec::new() };
     let mut parts = Vec::new();
     for region in regions {
         // The core radius trades ring length against corner caps: plan with T starting at each
         // fraction of the inscribed radius and keep the shortest path (geometry only).
-        let (inscribed_radius, k0) = inscribed(region);
+        let (mut inscribed_radius, k0) = inscribed(region);
+        let seed = open.and_then(|o| o.seed_of(region)).unwrap_or(Seed::Helix);
+        if let Seed::Outside { closed, .. } = &seed {
+            inscribed_radius = inscribed(closed).0;
+        }
         let mut best: Option<(f64, Builder, AdaptivePart)> = None;
         let mut last_err = None;
         let mut radii = Vec::new();
         for fraction in CORE_FRACTIONS {
             let mut bb = Builder { segments: Vec::new(), kinds: Vec::new(), radii: std::mem::take(&mut radii) };
-            let planned =
-                plan_part(region, (inscribed_radius, k0), work, settings, options, phi, rho_fin, fraction, &mut bb);
+            let planned = plan_part(
+                region,
+                (inscribed_radius, k0),
+                work,
+                settings,
+                options,
+                phi,
+                rho_fin,
+                fraction,
+                &mut bb,
+                &seed,
+            );
             radii = std::mem::take(&mut bb.radii);
             match planned {
                 Ok(part) => {
@@ -846,57 +913,19 @@ pub(crate) fn fin_radius(sf: f64, r: f64, phi: f64) -> f64 {
     (hi - sf).max(0.1 * r)
 }
 
-/// Entry, spiral, rings and corners of one region of tool centres; the finishing pass.
+/// Helix about k0, the spiral out of its bore into the stadium (ring 0) and the rings along the
+/// core `core` = C ⊖ T (module docs, steps 1–3); the helix, the end ring 0 left to the corner
+/// passes (its centre, the other end's, the gap) and the number of rings.
 #[allow(clippy::too_many_arguments)]
-fn plan_part(
+fn spiral_and_rings(
+    b: &mut Builder,
     region: &Polyline<f64>,
+    core: &Polyline<f64>,
     (inscribed, k0): (f64, P2),
     polygon: &Polygon,
-    settings: &PocketSettings,
+    (r, t, r_h, phi): (f64, f64, f64, f64),
     options: &AdaptiveOptions,
-    phi: f64,
-    rho_fin: f64,
-    fraction: f64,
-    b: &mut Builder,
-) -> Result<AdaptivePart, Error> {
-    let r = settings.tool_radius;
-    let r_h = super::entry::helix_radius(options, r, inscribed)?;
-    let area = region.area();
-    let corners_all = convex_corners(&to_segments(region));
-    let cusps_all =
-        super::cusp::cusps(&to_segments(region), polygon, r + options.finish_stock_mm, options.finish_stock_mm);
-    // Core radius T: the largest (from 0.995 × the inscribed radius, −10 % a step) whose
-    // opening of the region leaves only the corner caps.
-    let mut t = 0.995 * fraction * inscribed;
-    let core = loop {
-        if t < r_h {
-            t = r_h;
-        }
-        let ks = offset(region, t);
-        if ks.len() == 1
-            && let Some(opened) = largest(offset(&ks[0], -t))
-        {
-            let caps: f64 = corners_all.iter().map(|c| c.cap_area(t)).sum::<f64>()
-                + cusps_all.iter().map(|c| c.cap_area(t)).sum::<f64>();
-            // the corner passes start from the opening's arc of radius T: it must fit the walls
-            let fits = corners_all.iter().all(|c| t <= c.len_in.min(c.len_out) * (0.5 * c.alpha).tan() + 1e-9)
-                && cusps_all.iter().all(|c| t <= c.rho_max + 1e-9);
-            if (fits && area - opened.area() <= caps + 1e-3 * area) || t <= r_h {
-                break ks.into_iter().next();
-            }
-        }
-        if t <= r_h {
-            break None;
-        }
-        t *= 0.9;
-    };
-    let Some(core) = core else {
-        return Err(Error::param(
-            Param::Polygon,
-            "a region whose core does not hold the helix",
-            "a pocket whose tool-centre region is one piece at least the helix radius wide",
-        ));
-    };
+) -> (Helix, Option<(P2, P2, f64)>, usize) {
     // Wall point nearest k0: every ring passes within (inscribed − T) of it.
     let walls = to_segments(region);
     let foot = walls
@@ -1049,6 +1078,93 @@ fn plan_part(
     }
     let rings = 1 + rings_cut.len();
     cut_rings(b, polygon, r, k0, &stadium, rings_cut);
+    (helix, trimmed, rings)
+}
+
+/// Entry, spiral, rings and corners of one region of tool centres; the finishing pass.
+#[allow(clippy::too_many_arguments)]
+fn plan_part(
+    region: &Polyline<f64>,
+    (inscribed, k0): (f64, P2),
+    polygon: &Polygon,
+    settings: &PocketSettings,
+    options: &AdaptiveOptions,
+    phi: f64,
+    rho_fin: f64,
+    fraction: f64,
+    b: &mut Builder,
+    seed: &Seed<'_>,
+) -> Result<AdaptivePart, Error> {
+    let r = settings.tool_radius;
+    // The least core radius: the helix radius; from outside a share of the inscribed radius.
+    let r_h = match seed {
+        Seed::Helix => super::entry::helix_radius(options, r, inscribed)?,
+        _ => MIN_CORE_SHARE * inscribed,
+    };
+    // Open: T is chosen on the closed pocket's region (the open one reaches far past the edges).
+    let t_region = match seed {
+        Seed::Outside { closed, .. } => closed,
+        _ => region,
+    };
+    let area = t_region.area();
+    let corners_all = convex_corners(&to_segments(region));
+    let t_corners = match seed {
+        Seed::Outside { .. } => convex_corners(&to_segments(t_region)),
+        _ => Vec::new(),
+    };
+    let t_corners = if t_corners.is_empty() { &corners_all } else { &t_corners };
+    let sf = options.finish_stock_mm;
+    let cusps_all = super::cusp::cusps(&to_segments(region), polygon, r + sf, sf);
+    let t_cusps = match seed {
+        Seed::Outside { .. } => super::cusp::cusps(&to_segments(t_region), polygon, r + sf, sf),
+        _ => cusps_all.clone(),
+    };
+    // Core radius T: the largest (from 0.995 × the inscribed radius, −10 % a step) whose
+    // opening of the region leaves only the corner caps.
+    let mut t = 0.995 * fraction * inscribed;
+    let core = loop {
+        if t < r_h {
+            t = r_h;
+        }
+        let ks = offset(t_region, t);
+        if ks.len() == 1
+            && let Some(opened) = largest(offset(&ks[0], -t))
+        {
+            let caps: f64 = t_corners.iter().map(|c| c.cap_area(t)).sum::<f64>()
+                + t_cusps.iter().map(|c| c.cap_area(t)).sum::<f64>();
+            // the corner passes start from the opening's arc of radius T: it must fit the walls
+            let fits = t_corners.iter().all(|c| t <= c.len_in.min(c.len_out) * (0.5 * c.alpha).tan() + 1e-9)
+                && t_cusps.iter().all(|c| t <= c.rho_max + 1e-9);
+            if (fits && area - opened.area() <= caps + 1e-3 * area) || t <= r_h {
+                break ks.into_iter().next();
+            }
+        }
+        if t <= r_h {
+            break None;
+        }
+        t *= 0.9;
+    };
+    let Some(core) = core else {
+        return Err(Error::param(
+            Param::Polygon,
+            "a region whose core does not hold the helix",
+            "a pocket whose tool-centre region is one piece at least the helix radius wide",
+        ));
+    };
+    let (entry, trimmed, rings, k0) = match seed {
+        Seed::Helix => {
+            let (helix, trimmed, rings) =
+                spiral_and_rings(b, region, &core, (inscribed, k0), polygon, (r, t, r_h, phi), options);
+            (Entry::Helix(helix), trimmed, rings, k0)
+        }
+        Seed::Outside { stock, grow, .. } => {
+            let grow_core = largest(offset(grow, t)).ok_or_else(|| {
+                Error::param(Param::OpenEdges, "no core beyond the open edges", "open edges at least D long")
+            })?;
+            let (rings, at) = grown_rings(b, polygon, r, &grow_core, t, phi, k0, stock)?;
+            (Entry::Outside { at }, None, rings, at)
+        }
+    };
     // Corners: the caps between the opening (radius T) and ρ_fin.
     // The first corner pass's radius: T, or Δ/k more at the end whose half-circle ring 0 left.
     let first_radius = |c: &Corner| {
@@ -1138,7 +1254,6 @@ fn plan_part(
     }
     // Finishing contour: the opening of the final wall offset with radius ρ_fin + s_f, and at
     // every convex corner arc of it the arcs into the corner point.
-    let sf = options.finish_stock_mm;
     let mut corner_points = Vec::new();
     if sf > 0.0 {
         let inner = largest(offset(region, rho_fin)).ok_or_else(|| {
@@ -1198,7 +1313,256 @@ fn plan_part(
             }
         }
     }
-    Ok(AdaptivePart { helix, first_segment: 0, end_segment: 0, core_radius_mm: t, rings, corners, corner_points })
+    Ok(AdaptivePart { entry, first_segment: 0, end_segment: 0, core_radius_mm: t, rings, corners, corner_points })
+}
+
+/// The least core radius T grown from outside the stock, as a share of the inscribed radius
+/// of the closed pocket's tool-centre region (a helix's radius bounds T otherwise).
+const MIN_CORE_SHARE: f64 = 0.25;
+
+/// Margin by which ring 0 grown from outside keeps off the stock (mm), beyond r: the tool
+/// goes down there.
+const OUTSIDE_MARGIN_MM: f64 = 0.05;
+
+/// Where a part's clearing grows from.
+pub(crate) enum Seed<'a> {
+    /// A helix bore about k0 and the spiral out of it ([`spiral_and_rings`]).
+    Helix,
+    /// Outside the stock, beyond open edges: `stock` the pocket outline (the material ends
+    /// there), `grow` the tool-centre region of the pocket extended far enough across its open
+    /// edges that its core holds tool centres off the stock, `closed` the tool-centre region
+    /// of the closed pocket, on which T is chosen.
+    Outside { stock: &'a Polyline<f64>, grow: &'a Polyline<f64>, closed: &'a Polyline<f64> },
+}
+
+/// Rings grown from outside the stock in the core `core` = C ⊖ T of the pocket extended across
+/// its open edges, cut where they add (DERIVED like the rings of step 3 of the module docs,
+/// the disc about k0 replaced by a dilation): G₀ is the largest piece of the core at least
+/// T + r (+ [`OUTSIDE_MARGIN_MM`]) from the stock `stock`, so G₀ ⊕ T ⊕ r is air, and
+/// G_j+1 = core ∩ (G_j ⊕ a), a = the concave-cut step of radius T (geodesic growth in the
+/// core: each set lies within a of the previous). Ring j = ∂(G_j ⊕ T) (one loop a piece):
+/// smooth (arcs of radius ≥ T about the core), at most a step outside ring j − 1, so a pass
+/// cuts at most the concave-cut step of radius T: within φ. Ring 0 cuts nothing and is not
+/// cut; a ring is cut only where it adds to the previous one ([`new_runs`]) and comes within
+/// r of the stock, its runs in order ([`cut_runs`]). The tool goes down on ring 0 (off the
+/// stock) nearest the first run. Returns the rings cut and that point.
+#[allow(clippy::too_many_arguments)]
+fn grown_rings(
+    b: &mut Builder,
+    polygon: &Polygon,
+    r: f64,
+    core: &Polyline<f64>,
+    t: f64,
+    phi: f64,
+    k0: P2,
+    stock: &Polyline<f64>,
+) -> Result<(usize, P2), Error> {
+    let step = concave_step(t, r, phi);
+    let pieces = |res: Vec<cavalier_contours::polyline::BooleanResultPline<Polyline<f64>>>| {
+        res.into_iter()
+            .map(|p| {
+                let mut pl = p.pline;
+                if pl.area() < 0.0 {
+                    pl.invert_direction_mut();
+                }
+                pl
+            })
+            .filter(|pl| pl.area() > 1e-9)
+            .collect::<Vec<_>>()
+    };
+    let near = largest(offset(stock, -(t + r + OUTSIDE_MARGIN_MM)))
+        .ok_or_else(|| Error::param(Param::Polygon, "no stock", "a pocket with area"))?;
+    // One seed: the largest piece of air (beyond two opposite open edges the rings grow from
+    // one through to the other, instead of crossing uncut stock between two fronts).
+    let mut grown: Vec<Polyline<f64>> =
+        largest(pieces(core.boolean(&near, BooleanOp::Not).pos_plines)).into_iter().collect();
+    if grown.is_empty() {
+        return Err(Error::param(
+            Param::OpenEdges,
+            "no room for the tool beyond the open edges",
+            "open edges the tool can pass through (at least D long)",
+        ));
+    }
+    let loops_of = |g: &[Polyline<f64>]| -> Vec<Vec<Segment>> {
+        g.iter().filter_map(|p| largest(offset(p, -t))).map(|o| to_segments(&o)).collect()
+    };
+    let mut rings = vec![loops_of(&grown)];
+    let mut area: f64 = grown.iter().map(Polyline::area).sum();
+    let least_growth = 1e-6 * core.area().max(1.0);
+    while rings.len() < MAX_PASSES {
+        let mut next: Vec<Polyline<f64>> = Vec::new();
+        for g in &grown {
+            let Some(d) = largest(offset(g, -step)) else { continue };
+            for piece in pieces(core.boolean(&d, BooleanOp::And).pos_plines) {
+                merge_into(&mut next, piece);
+            }
+        }
+        let next_area: f64 = next.iter().map(Polyline::area).sum();
+        if next_area <= area + least_growth {
+            break;
+        }
+        (grown, area) = (next, next_area);
+        rings.push(loops_of(&grown));
+    }
+    // the runs: ring 0 is air (the previous ring of ring 1); not the runs whose tool stays
+    // r off the stock (air)
+    let flat = |loops: &[Vec<Segment>]| loops.iter().flatten().copied().collect::<Vec<Segment>>();
+    let ring0 = flat(&rings[0]);
+    let mut ring_runs: Vec<Vec<Vec<Segment>>> = Vec::new();
+    for pair in rings.windows(2) {
+        let prev = flat(&pair[0]);
+        let mut runs: Vec<Vec<Segment>> = pair[1].iter().flat_map(|lp| new_runs(lp, &prev)).collect();
+        runs.retain(|run| run.iter().any(|sg| reaches_stock(stock, sg, r)));
+        if !runs.is_empty() {
+            ring_runs.push(runs);
+        }
+    }
+    // straight down on ring 0 (off the stock) nearest the first run's start
+    let first = ring_runs.first().and_then(|runs| runs.first()).map_or(k0, |run| run[0].start());
+    let at = ring0
+        .iter()
+        .map(|sg| closest_on(sg, first).0)
+        .min_by(|a, c| (a - first).norm().total_cmp(&(c - first).norm()))
+        .unwrap_or(first);
+    b.push(Segment::Line { start: at, end: first }, MoveKind::Entry);
+    let count = ring_runs.len();
+    cut_runs(b, polygon, r, at, ring_runs);
+    Ok((count, at))
+}
+
+/// Whether the tool on `seg` comes within r of the stock `stock` (at its ends and 15 points
+/// between; the runs are smooth, a step long at most where they start to cut).
+fn reaches_stock(stock: &Polyline<f64>, seg: &Segment, r: f64) -> bool {
+    let walls = to_segments(stock);
+    (0..=16).any(|k| {
+        let p = seg.point(k as f64 / 16.0);
+        stock.winding_number(cavalier_contours::core::math::Vector2::new(p.x, p.y)) != 0
+            || walls.iter().any(|w| (closest_on(w, p).0 - p).norm() < r + 0.5 * OUTSIDE_MARGIN_MM)
+    })
+}
+
+/// Add `p` to the disjoint regions `list`, uniting it with those it overlaps.
+fn merge_into(list: &mut Vec<Polyline<f64>>, p: Polyline<f64>) {
+    let mut p = p;
+    while let Some(i) = list.iter().position(|q| !q.boolean(&p, BooleanOp::And).pos_plines.is_empty()) {
+        let q = list.swap_remove(i);
+        match largest(q.boolean(&p, BooleanOp::Or).pos_plines.into_iter().map(|x| x.pline).collect()) {
+            Some(mut u) => {
+                if u.area() < 0.0 {
+                    u.invert_direction_mut();
+                }
+                p = u;
+            }
+            None => break,
+        }
+    }
+    list.push(p);
+}
+
+/// How far the pocket is extended across an open edge for its tool-centre region, in units of
+/// r + s_f: 3, so that the region reaches 2(r + s_f) past the edge, where the tool's disc is
+/// r + s_f off the stock; the extension's far corners are rounded with radius 1.5(r + s_f),
+/// so the region's far corners are arcs of radius (r + s_f)/2 (no corner passes, no corner
+/// points there: air).
+pub const OPEN_REACH_FACTOR: f64 = 3.0;
+
+/// A pocket open on some edges: the stock and the pocket extended across its open edges.
+struct OpenPocket {
+    /// The pocket outline: the stock.
+    stock: Polyline<f64>,
+    /// Extended by [`OPEN_REACH_FACTOR`] (r + s_f) across the open edges: its tool-centre
+    /// regions are the parts'; as a polygon (arcs by their chords) for the links.
+    near: Polyline<f64>,
+    near_polygon: Polygon,
+    /// The tool-centre regions of the pocket extended by 2T + 2r + s_f + 2 mm (T up to the
+    /// closed region's inscribed radius), so their cores reach past the open edges by more
+    /// than T + r: the rings' seed lies there.
+    far: Vec<Polyline<f64>>,
+    /// The largest tool-centre region of the closed pocket.
+    closed: Polyline<f64>,
+}
+
+impl OpenPocket {
+    /// The open pocket of `work` open on `open` (its edge indices), tool-centre offset `rs`
+    /// = r + s_f; `closed_regions` the closed pocket's tool-centre regions.
+    fn new(work: &Polygon, open: &[usize], closed_regions: &[Polyline<f64>], rs: f64) -> Result<OpenPocket, Error> {
+        let closed = largest(closed_regions.to_vec()).ok_or_else(|| {
+            Error::param(Param::Polygon, "narrower than the tool", "room for the tool plus the finishing stock")
+        })?;
+        let reach = OPEN_REACH_FACTOR * rs;
+        let near = extended(work, open, reach, 0.5 * reach)?;
+        let near_polygon = Polygon::new(near.iter_vertexes().map(|v| p2(v.x, v.y)).collect())?;
+        let far_reach = 2.0 * inscribed(&closed).0 + 2.0 * rs + 2.0;
+        let far = offset(&extended(work, open, far_reach, 0.5 * far_reach)?, rs);
+        Ok(OpenPocket { stock: pline_of(work.vertices()), near, near_polygon, far, closed })
+    }
+
+    /// The seed of a tool-centre region of the extended pocket: outside the stock where the
+    /// region reaches past an open edge (a vertex of it off the stock), from the far region
+    /// that holds it.
+    fn seed_of(&self, region: &Polyline<f64>) -> Option<Seed<'_>> {
+        let off =
+            |v: PlineVertex<f64>| self.stock.winding_number(cavalier_contours::core::math::Vector2::new(v.x, v.y)) == 0;
+        let v = region.iter_vertexes().find(|&v| off(v))?;
+        let here = cavalier_contours::core::math::Vector2::new(v.x, v.y);
+        let grow = self.far.iter().find(|f| f.winding_number(here) != 0).or_else(|| self.far.first())?;
+        Some(Seed::Outside { stock: &self.stock, grow, closed: &self.closed })
+    }
+}
+
+/// `work` extended outward across each open edge by `reach`: the edge swept along its outward
+/// normal, the far corners rounded with radius `round` (at most half the edge).
+fn extended(work: &Polygon, open: &[usize], reach: f64, round: f64) -> Result<Polyline<f64>, Error> {
+    let v = work.vertices();
+    let n = v.len();
+    let quarter = (PI / 8.0).tan();
+    let mut out = pline_of(v);
+    for &i in open {
+        let (a, b) = (v[i], v[(i + 1) % n]);
+        let len = (b - a).norm();
+        let u = (b - a) / len;
+        let out_n = p2(u.y, -u.x);
+        let rho = round.min(0.49 * len).min(reach);
+        let mut q: Polyline<f64> = Polyline::new_closed();
+        for (p, bulge) in [
+            (a, 0.0),
+            (a + out_n * (reach - rho), quarter),
+            (a + out_n * reach + u * rho, 0.0),
+            (b + out_n * reach - u * rho, quarter),
+            (b + out_n * (reach - rho), 0.0),
+            (b, 0.0),
+        ] {
+            q.add(p.x, p.y, bulge);
+        }
+        out = largest(out.boolean(&q, BooleanOp::Or).pos_plines.into_iter().map(|p| p.pline).collect())
+            .map(|mut p| {
+                if p.area() < 0.0 {
+                    p.invert_direction_mut();
+                }
+                p
+            })
+            .ok_or_else(|| Error::param(Param::OpenEdges, i, "edges whose extension joins the pocket"))?;
+    }
+    Ok(out)
+}
+
+/// Each open edge index below the polygon's vertex count, none twice; the error names
+/// `--open-edges`.
+pub fn validate_open_edges(polygon: &Polygon, open_edges: &[usize]) -> Result<(), Error> {
+    let n = polygon.vertices().len();
+    for (k, &i) in open_edges.iter().enumerate() {
+        if i >= n || open_edges[..k].contains(&i) {
+            return Err(Error::param(
+                Param::OpenEdges,
+                i,
+                format!(
+                    "distinct edge numbers from 0 to {} (edge i runs from vertex i to vertex i + 1, 0-based)",
+                    n - 1
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// The runs of a ring (consecutive segments, the ring closed) that do not lie on the previous
@@ -1267,6 +1631,11 @@ fn cut_rings(b: &mut Builder, polygon: &Polygon, r: f64, k0: P2, ring0: &[Segmen
         ring_runs.push(new_runs(&ring, &prev));
         prev = ring;
     }
+    cut_runs(b, polygon, r, k0, ring_runs);
+}
+
+/// Cut the runs of each ring in turn ([`cut_rings`]), each reached by a [`link`].
+fn cut_runs(b: &mut Builder, polygon: &Polygon, r: f64, k0: P2, mut ring_runs: Vec<Vec<Vec<Segment>>>) {
     let n = ring_runs.last().map_or(0, Vec::len);
     let mut split = ring_runs.len();
     if n >= 2 {
@@ -1444,7 +1813,9 @@ fn measure(
     b: Builder,
     corner_radius_left_mm: f64,
 ) -> Result<AdaptivePlan, Error> {
-    let before: Vec<Segment> = parts.iter().map(|p| p.helix.circle()).collect();
+    // the bores of helices and ramps are cut; outside the stock nothing was
+    let before: Vec<Segment> =
+        parts.iter().filter(|p| !matches!(p.entry, Entry::Outside { .. })).map(|p| p.entry.bore()).collect();
     let opts = EvaluatorOptions::new(settings.tool_radius, settings.spacing);
     let profile = engagement_profile(&polygon, &before, &b.segments, &opts)?;
     let (maxima, _) = maxima(&profile, &b.segments, &b.kinds, &[]);
@@ -1484,10 +1855,11 @@ fn measure(
             *where_ = at;
         }
     }
-    let helix_length_mm: f64 = parts.iter().map(|p| p.helix.length(HELIX_START_Z_MM + options.depth_mm)).sum();
+    let helix_length_mm: f64 = parts.iter().map(|p| p.entry.descent_length(options.depth_mm)).sum();
     let time_s = (length_at_depth_mm + helix_length_mm) / settings.feed_mm_per_min * 60.0;
     Ok(AdaptivePlan {
         polygon,
+        open_edges: Vec::new(),
         settings,
         options,
         target_rad: phi,

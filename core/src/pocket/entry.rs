@@ -2,9 +2,11 @@
 //! point of large clearance, or — where not even the smallest helix fits — a straight zig-zag
 //! ramp along the longest line through the region of tool centres around that point. Both start
 //! [`HELIX_START_Z_MM`] above the stock top and descend at most at the ramp angle; neither
-//! plunges. What an entry clears at depth (its *bore*: the helix circle, or the ramp line) is
-//! the first move of the path at depth and the `before` path of the evaluator, so the tool
-//! never cuts from solid material straight down.
+//! plunges. Where a pocket is open on a side (adaptive clearing's `--open-edges`), the tool
+//! goes straight down *outside* the stock instead, beyond the open edge, where its whole disc
+//! is off the material ([`Entry::Outside`]). What an entry clears at depth (its *bore*: the
+//! helix circle, or the ramp line) is the first move of the path at depth and the `before`
+//! path of the evaluator, so the tool never cuts from solid material straight down.
 
 use super::adaptive::{AdaptiveOptions, HELIX_START_Z_MM, Helix};
 use super::mirror::mirror_point;
@@ -66,6 +68,11 @@ impl Ramp {
 pub enum Entry {
     Helix(Helix),
     Ramp(Ramp),
+    /// Straight down at `at`, beyond an open edge of the pocket: the tool's disc there keeps
+    /// at least r from the stock, so the descent cuts nothing (not a plunge).
+    Outside {
+        at: P2,
+    },
 }
 
 impl Entry {
@@ -75,13 +82,15 @@ impl Entry {
         match self {
             Entry::Helix(h) => h.circle(),
             Entry::Ramp(r) => Segment::Line { start: r.start, end: r.end },
+            Entry::Outside { at } => Segment::Line { start: *at, end: *at },
         }
     }
 
     /// What the entry cleared, as the evaluator's `before` path: the helix circle, or the ramp
     /// line lengthened by [`RAMP_END_MM`] at each end (the legs turned at both ends, so their
     /// end discs are cut; the evaluator counts a periphery point exactly r from every position
-    /// as material).
+    /// as material); outside the stock the point of the descent (its disc is off the stock, it
+    /// clears nothing).
     pub fn bore(&self) -> Segment {
         match self {
             Entry::Helix(h) => h.circle(),
@@ -89,15 +98,27 @@ impl Entry {
                 let u = (r.end - r.start) / (r.end - r.start).norm();
                 Segment::Line { start: r.start - u * RAMP_END_MM, end: r.end + u * RAMP_END_MM }
             }
+            Entry::Outside { at } => Segment::Line { start: *at, end: *at },
         }
     }
 
-    /// Length of the descent from [`HELIX_START_Z_MM`] to `depth` below the stock top (mm).
+    /// Where the entry is: the helix centre, the ramp's middle, the point outside the stock.
+    pub fn center(&self) -> P2 {
+        match self {
+            Entry::Helix(h) => h.center,
+            Entry::Ramp(r) => (r.start + r.end) * 0.5,
+            Entry::Outside { at } => *at,
+        }
+    }
+
+    /// Length of the descent from [`HELIX_START_Z_MM`] to `depth` below the stock top (mm);
+    /// outside the stock straight down.
     pub fn descent_length(&self, depth: f64) -> f64 {
         let drop = HELIX_START_Z_MM + depth;
         match self {
             Entry::Helix(h) => h.length(drop),
             Entry::Ramp(r) => r.length(drop),
+            Entry::Outside { .. } => drop,
         }
     }
 
@@ -111,6 +132,7 @@ impl Entry {
                 ..h
             }),
             Entry::Ramp(r) => Entry::Ramp(Ramp { start: mirror_point(r.start), end: mirror_point(r.end), ..r }),
+            Entry::Outside { at } => Entry::Outside { at: mirror_point(at) },
         }
     }
 }

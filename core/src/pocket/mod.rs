@@ -14,7 +14,9 @@ pub mod mirror;
 pub mod perforative;
 pub mod rings;
 
-pub use adaptive::{AdaptiveOptions, AdaptivePart, AdaptivePlan, CornerPasses, Helix, plan_adaptive};
+pub use adaptive::{
+    AdaptiveOptions, AdaptivePart, AdaptivePlan, CornerPasses, Helix, plan_adaptive, plan_adaptive_open,
+};
 pub use entry::{Entry, Ramp};
 pub use perforative::{AxisCircle, KindMax, MoveKind, PerforativePlan, plan_perforative};
 pub use rings::{
@@ -25,7 +27,7 @@ pub use rings::{
 use crate::corner::CornerMethod;
 use crate::corner::strategy::{tool_diameter, validate_tool_and_step_over};
 use crate::error::{Error, Param, num};
-use crate::geom::{Polygon, Segment, p2};
+use crate::geom::{P2, Polygon, Segment, p2};
 use crate::job::Direction;
 use serde::{Deserialize, Serialize};
 
@@ -167,6 +169,11 @@ pub struct PocketRequest {
     /// Helix, finishing and corner tolerance of adaptive clearing (ignored by the other
     /// strategies), and the milling direction of every strategy.
     pub adaptive: AdaptiveOptions,
+    /// Edges of `polygon` without a wall (`--open-edges`; edge i runs from vertex i to vertex
+    /// i + 1 of the stored, counter-clockwise polygon, 0-based): the stock ends there and the
+    /// tool enters from outside. Adaptive clearing only ([`plan_adaptive_open`]).
+    #[serde(default)]
+    pub open_edges: Vec<usize>,
 }
 
 impl Default for PocketRequest {
@@ -183,6 +190,7 @@ impl Default for PocketRequest {
             strategy: PocketStrategy::Adaptive,
             spacing_mm: 0.25,
             adaptive: AdaptiveOptions::default(),
+            open_edges: Vec::new(),
         }
     }
 }
@@ -279,6 +287,34 @@ impl PocketPlan {
     }
 }
 
+/// The open edges of the stored polygon (counter-clockwise, a repeated closing vertex dropped)
+/// given as edges of the vertex list `points` it was made from (edge i from point i to point
+/// i + 1, as a user numbers them in the file): matched by their ends. Error naming
+/// `--open-edges` for an edge the polygon does not have.
+pub fn stored_open_edges(polygon: &Polygon, points: &[P2], open: &[usize]) -> Result<Vec<usize>, Error> {
+    let v = polygon.vertices();
+    let n = v.len();
+    let same = |a: P2, b: P2| (a - b).norm() <= 1e-9;
+    open.iter()
+        .map(|&i| {
+            let ends = (i < n).then(|| (points[i], points[(i + 1) % points.len()]));
+            ends.and_then(|(a, b)| {
+                (0..n).find(|&k| {
+                    let (p, q) = (v[k], v[(k + 1) % n]);
+                    (same(p, a) && same(q, b)) || (same(p, b) && same(q, a))
+                })
+            })
+            .ok_or_else(|| {
+                Error::param(
+                    Param::OpenEdges,
+                    i,
+                    format!("an edge of the polygon, 0 to {} (edge i runs from vertex i to vertex i + 1)", n - 1),
+                )
+            })
+        })
+        .collect()
+}
+
 /// Most tool positions a pocket plan may measure, as estimated before planning by
 /// [`estimated_positions`]: at this bound a plan takes seconds, not minutes.
 pub const MAX_ESTIMATED_POSITIONS: f64 = 1.0e5;
@@ -309,6 +345,13 @@ pub const MEDIAL_AXIS_MIN_STEP_OVER_RATIO: f64 = 0.05;
 /// smallest step-over allowed.
 pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
     let settings = req.settings()?;
+    if !req.open_edges.is_empty() && req.strategy != PocketStrategy::Adaptive {
+        return Err(Error::param(
+            Param::OpenEdges,
+            format!("{:?} with --method {}", req.open_edges, req.strategy.name()),
+            "no open edges for this method: open sides are cleared by --method adaptive (the default)",
+        ));
+    }
     let least = MEDIAL_AXIS_MIN_STEP_OVER_RATIO * 2.0 * settings.tool_radius;
     if req.strategy == PocketStrategy::MedialAxis && settings.step_over < least {
         return Err(Error::param(
@@ -349,7 +392,9 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
         PocketStrategy::MedialAxis => {
             plan_perforative(&polygon, settings, &req.adaptive).map(PocketPlan::MedialAxis).map(back)
         }
-        PocketStrategy::Adaptive => plan_adaptive(&req.polygon, settings, req.adaptive).map(PocketPlan::Adaptive),
+        PocketStrategy::Adaptive => {
+            plan_adaptive_open(&req.polygon, &req.open_edges, settings, req.adaptive).map(PocketPlan::Adaptive)
+        }
     }
 }
 

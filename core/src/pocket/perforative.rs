@@ -748,7 +748,7 @@ impl Planner<'_> {
                 Current { s: 0.0, center, offset_radius: rho_root.max(h.radius) + self.r(), entry }
             }
             // the ramp cleared its line: the chain starts from the tool at the root
-            Entry::Ramp(_) => Current { s: 0.0, center, offset_radius: self.r(), entry: None },
+            Entry::Ramp(_) | Entry::Outside { .. } => Current { s: 0.0, center, offset_radius: self.r(), entry: None },
         };
         let walks = g.leaf_walks(root);
         let mut prev: Option<(Vec<usize>, Guide, Vec<Current>, f64)> = None;

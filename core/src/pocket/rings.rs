@@ -789,11 +789,11 @@ pub fn plan_ring_pocket(
                             if i > 0 {
                                 core.retract_before.push(part.first_segment);
                             }
-                            entries.push(Entry::Helix(part.helix));
+                            entries.push(part.entry);
                         }
                         core.segments = b.segments;
                         core.kinds = b.kinds;
-                        let hubs = parts.iter().map(|p| p.helix.center).collect::<Vec<_>>();
+                        let hubs = parts.iter().map(|p| p.entry.center()).collect::<Vec<_>>();
                         break Ok((kc, loops, hubs));
                     }
                     Err(e) => last_err = Some(e),
