@@ -294,3 +294,28 @@ fn straight_engagement_of_the_acceptance_step_over_is_46_degrees() {
     // Guards the helper above: arccos(1 − a_e/r) = 46°.
     assert!((straight_engagement(ae46(), R).unwrap().to_degrees() - 46.0).abs() < 1e-9);
 }
+
+#[test]
+fn a_pocket_too_narrow_for_a_helix_grows_out_of_its_ramp_within_the_target() {
+    // 60 × 14 with D = 10: no helix of 0.25·D fits (clearance 7 < r + 0.25·D), so the tool
+    // ramps down on the middle line. The two-circle model cannot start from a ramp (it reads
+    // ≥ 90° for any first circle, module docs); the spiral out of the ramp's slot is measured
+    // by the evaluator instead, then circles run along the axis and corner-point arcs thin the
+    // four corners: every move within a* + 1°, no straight tip (was 146.51° there).
+    let narrow: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 14.0), (0.0, 14.0)];
+    let p = plan_perforative(&poly(narrow), settings(R, 1.527), &AdaptiveOptions::default()).unwrap();
+    check_plan("narrow", &p);
+    assert!(matches!(p.entries.as_slice(), [Entry::Ramp(_)]), "{:?}", p.entries);
+    eprintln!(
+        "narrow: peak {:.2}° at {:?}, p95 {:.2}°, {:.1} mm at depth, {:?}",
+        p.max_engagement_rad.to_degrees(),
+        p.profile.max().map(|s| (s.x_mm, s.y_mm)),
+        p.p95_engagement_rad.to_degrees(),
+        p.length_at_depth_mm,
+        p.maxima.iter().map(|m| (m.kind, m.max_rad.to_degrees(), m.length_mm)).collect::<Vec<_>>()
+    );
+    let limit = p.target_rad + 1f64.to_radians();
+    assert!(p.max_engagement_rad <= limit, "{:.2}°", p.max_engagement_rad.to_degrees());
+    assert_eq!(p.max_of(MoveKind::Tip), 0.0);
+    assert_eq!(p.corner_points.len(), 4, "{:?}", p.corner_points);
+}

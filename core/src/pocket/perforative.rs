@@ -592,6 +592,7 @@ pub fn plan_perforative(
         walls: &walls,
         cs,
         corner_tolerance: options.corner_tolerance_mm,
+        opts: EvaluatorOptions::new(r, settings.spacing),
         b: Builder { segments: Vec::new(), kinds: Vec::new(), pos: graph.nodes[parts[0][0]] },
         circles: Vec::new(),
         corner_points: Vec::new(),
@@ -733,6 +734,8 @@ struct Planner<'a> {
     cs: CornerSettings,
     /// Corner tolerance δ of the corner-point arcs (mm, `--corner-tolerance`).
     corner_tolerance: f64,
+    /// The evaluator's options (for the spiral out of a ramp's slot).
+    opts: EvaluatorOptions,
     b: Builder,
     circles: Vec<AxisCircle>,
     /// The tips thinned by corner-point arcs, with the range of their segments.
@@ -805,11 +808,21 @@ impl Planner<'_> {
         let mut cur = match way_in {
             Entry::Helix(h) => {
                 self.push_circle(center, h.radius, None, MoveKind::Entry)?;
-                let entry = self.spiral(center, h.radius, h.start_angle, rho_root)?;
+                let entry = self.spiral(center, h.radius, h.start_angle, rho_root, None)?;
                 Current { s: 0.0, center, offset_radius: rho_root.max(h.radius) + self.r(), entry }
             }
             // the ramp cleared its line: the chain starts from the tool at the root
-            Entry::Ramp(_) => Current { s: 0.0, center, offset_radius: self.r(), entry: None },
+            // The ramp cleared its line, a slot of width D through the root: back to the root
+            // along it, then concentric circles grow out of the slot, each measured.
+            Entry::Ramp(ramp) => {
+                self.b.line(center, MoveKind::Link);
+                let d = ramp.end - ramp.start;
+                let cut = vec![way_in.bore()];
+                match self.spiral(center, 0.0, d.y.atan2(d.x), rho_root, Some(cut))? {
+                    Some(entry) => Current { s: 0.0, center, offset_radius: rho_root + self.r(), entry: Some(entry) },
+                    None => Current { s: 0.0, center, offset_radius: self.r(), entry: None },
+                }
+            }
         };
         let walks = g.leaf_walks(root);
         let mut prev: Option<(Vec<usize>, Guide, Vec<Current>, f64)> = None;
@@ -835,7 +848,21 @@ impl Planner<'_> {
     /// Concentric circles about the helix centre `c`, from the helix circle (tool-centre radius
     /// `rho0`, the tool at angle `theta0` on it) up to tool-centre radius `rho_max`. Returns
     /// the entry angle of the last circle (`None` if none was cut).
-    fn spiral(&mut self, c: P2, rho0: f64, theta0: f64, rho_max: f64) -> Result<Option<f64>, Error> {
+    ///
+    /// After a ramp (`cut`: what it cleared; `rho0` = 0, the tool at `c`) the two-circle
+    /// model does not hold: it counts the whole disc outside the tool as material, and reads
+    /// π/2 + arcsin(ρ/2r) ≥ 90° for any first circle (a plunge hole, module docs), where the
+    /// ramp's slot has cleared most of it. Each candidate radius is then measured instead: the
+    /// evaluator over its half-circle and circle, with the ramp's line and the spiral so far
+    /// as cut, in the same bisection.
+    fn spiral(
+        &mut self,
+        c: P2,
+        rho0: f64,
+        theta0: f64,
+        rho_max: f64,
+        mut cut: Option<Vec<Segment>>,
+    ) -> Result<Option<f64>, Error> {
         let (r, target, eps, r_min) = (self.r(), self.cs.target, self.cs.tolerance, self.cs.r_min());
         if rho_max <= rho0 + 1e-9 {
             return Ok(None);
@@ -844,8 +871,19 @@ impl Planner<'_> {
         loop {
             // Next radius: the largest in (ρ, ρ_max] within the target (bisection, §3.3).
             let prev_c = Circle::new(c, prev_rho + r);
-            let m = |x: f64| {
-                self.engagement(prev_c, Circle::new(c, x + r)).max(self.transition_engagement(c, prev_rho, c, x))
+            let e = P2::new(theta.cos(), theta.sin());
+            let m = |x: f64| match &cut {
+                None => {
+                    self.engagement(prev_c, Circle::new(c, x + r)).max(self.transition_engagement(c, prev_rho, c, x))
+                }
+                Some(before) => {
+                    let (mid, rt, _) = transition_along(c, prev_rho, c, x, e);
+                    let moves = [
+                        Segment::Arc { center: mid, radius: rt, start_angle: theta, sweep: PI },
+                        Segment::Arc { center: c, radius: x, start_angle: theta + PI, sweep: TAU },
+                    ];
+                    engagement_profile(self.poly, before, &moves, &self.opts).map_or(PI, |p| p.max_angle())
+                }
             };
             let mut next = bisect(prev_rho, rho_max, target, eps, m);
             if next.0 <= prev_rho + 1e-6 {
@@ -853,7 +891,7 @@ impl Planner<'_> {
                 next = (x, m(x));
             }
             let rho = next.0;
-            let e = P2::new(theta.cos(), theta.sin());
+            let first = self.b.segments.len();
             let (mid, rt, _) = transition_along(c, prev_rho, c, rho, e);
             self.b.arc(mid, rt, theta, PI, MoveKind::Spiral);
             theta += PI;
@@ -862,6 +900,9 @@ impl Planner<'_> {
                 return Ok(Some(theta)); // its full turn is cut by the chain (`link`, `finish`)
             }
             self.b.arc(c, rho, theta, TAU, MoveKind::Spiral);
+            if let Some(before) = &mut cut {
+                before.extend_from_slice(&self.b.segments[first..]);
+            }
             prev_rho = rho;
         }
     }
