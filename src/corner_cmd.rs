@@ -220,7 +220,8 @@ pub struct PocketArgs {
     /// step-over's straight engagement φ* = arccos(1 − a_e/r) to 90. Default: the step-over
     /// read as FreeCAD reads it, an area rate (a_e mm² per mm), on a 90° corner pass, capped
     /// at 50° and never below φ*: 50° for D = 10, a_e = 1.527 (φ* = 46.0°); the JSON's
-    /// `target_deg` reports it.
+    /// `target_deg` reports it. With `--method medial-axis` it replaces the corner strategies'
+    /// a* = a_str·(1 + t1) (52.9° there), which is its default.
     #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
     target_engagement: Option<f64>,
     /// How near the corner-point arcs reach each convex corner point (mm): those of the

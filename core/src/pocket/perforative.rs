@@ -563,8 +563,9 @@ impl Current {
 }
 
 /// Plan the pocket `polygon` with perforative trochoids along its medial axis; the target is
-/// the corner strategies' a* = a_str·(1 + t1). `options` gives the entry (helix radius, ramp
-/// angle) and the depth the entries descend to.
+/// the corner strategies' a* = a_str·(1 + t1), or `options.target_deg` when given. `options`
+/// gives the entry (helix radius, ramp angle), the depth the entries descend to and the corner
+/// tolerance of the corner-point arcs.
 pub fn plan_perforative(
     polygon: &Polygon,
     settings: PocketSettings,
@@ -574,7 +575,11 @@ pub fn plan_perforative(
     // the entry's options (no finishing pass here)
     AdaptiveOptions { finish_stock_mm: 0.0, ..*options }.validate(&settings)?;
     let (r, ae) = (settings.tool_radius, settings.step_over);
-    let cs = CornerSettings { feed_mm_per_min: settings.feed_mm_per_min, ..CornerSettings::new(r, ae)? };
+    let mut cs = CornerSettings { feed_mm_per_min: settings.feed_mm_per_min, ..CornerSettings::new(r, ae)? };
+    if options.target_deg.is_some() {
+        // `--target-engagement` (validated above: from φ* to 90°) instead of a*
+        cs.target = options.target_rad(&settings)?;
+    }
     let axis = medial_axis(polygon, VORONOI_RESOLUTION_MM)?;
     let walls = Walls::new(polygon);
     let graph = AxisGraph::new(&walls, &axis, r);
