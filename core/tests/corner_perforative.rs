@@ -72,6 +72,12 @@ fn check_plan(name: &str, p: &PerforativePlan) {
             wall_distance(&p.polygon, q)
         );
     }
+    // No arc turns twice (a circle's turn and the way on to its exit stay below 4π).
+    for s in &p.segments {
+        if let Segment::Arc { sweep, .. } = s {
+            assert!(sweep.abs() < 2.0 * std::f64::consts::TAU - 1e-6, "{name}: an arc of {sweep} rad");
+        }
+    }
     for (i, w) in p.segments.windows(2).enumerate() {
         if !p.retract_before.contains(&(i + 1)) {
             assert!((w[0].end() - w[1].start()).norm() < 1e-9, "{name}: gap before segment {}", i + 1);

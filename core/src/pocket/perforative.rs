@@ -84,6 +84,10 @@ const NODE_TOL_MM: f64 = 1e-6;
 const COVER_TOL_MM: f64 = 1e-3;
 /// A circle ends this far short of a full turn at most when its exit precedes its entry (rad).
 const SHORT_TURN_RAD: f64 = PI / 6.0;
+/// Largest spacing of the evaluator's positions when it places the circles out of a ramp's
+/// slot (mm): fine whatever the user's `--spacing` (at 1 mm a peak of 65° between positions
+/// was missed where 0.25 mm read 53.4°).
+const RAMP_SPIRAL_SPACING_MM: f64 = 0.1;
 /// Corner-point arcs allowed into one tip (the bound on hostile input; 0.005 mm from a
 /// 4.75 mm circle takes 11 at 90°, 31 at 30°).
 const MAX_CORNER_ARCS: usize = 200;
@@ -597,7 +601,7 @@ pub fn plan_perforative(
         walls: &walls,
         cs,
         corner_tolerance: options.corner_tolerance_mm,
-        opts: EvaluatorOptions::new(r, settings.spacing),
+        opts: EvaluatorOptions::new(r, settings.spacing.min(RAMP_SPIRAL_SPACING_MM)),
         b: Builder { segments: Vec::new(), kinds: Vec::new(), pos: graph.nodes[parts[0][0]] },
         circles: Vec::new(),
         corner_points: Vec::new(),
@@ -739,7 +743,7 @@ struct Planner<'a> {
     cs: CornerSettings,
     /// Corner tolerance δ of the corner-point arcs (mm, `--corner-tolerance`).
     corner_tolerance: f64,
-    /// The evaluator's options (for the spiral out of a ramp's slot).
+    /// The evaluator's options for the spiral out of a ramp's slot.
     opts: EvaluatorOptions,
     b: Builder,
     circles: Vec<AxisCircle>,
@@ -1051,14 +1055,12 @@ impl Planner<'_> {
         let first = self.b.segments.len();
         let at0 = cur.center + toward(f_in, cur.center) * rho_cur;
         match cur.entry {
-            // the circle's full turn, then on to its touching point on the first feature
-            Some(a) => self.b.arc(
-                cur.center,
-                rho_cur,
-                a,
-                TAU + (angle(at0 - cur.center) - a).rem_euclid(TAU),
-                MoveKind::Circle,
-            ),
+            // the circle's full turn, then on to its touching point on the first feature (no
+            // further where the turn ends there: a rounding error must not add a turn)
+            Some(a) => {
+                let on = (angle(at0 - cur.center) - a + 1e-9).rem_euclid(TAU) - 1e-9;
+                self.b.arc(cur.center, rho_cur, a, TAU + on.max(0.0), MoveKind::Circle)
+            }
             None => {
                 self.b.line(cur.center, MoveKind::Link);
                 self.b.line(at0, MoveKind::Link);
