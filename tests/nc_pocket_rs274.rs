@@ -14,7 +14,7 @@
 mod nc_common;
 mod pocket_common;
 
-use nc_common::{DUMBBELL, Motion, budget, check_path_cut, cut, interpret, motions, segments_of};
+use nc_common::{DUMBBELL, DUMBBELL_8, Motion, budget, check_path_cut, cut, interpret, motions, segments_of};
 use pocket_common::{DEPTH, check_pocket_program, export, star_polygon, wall_clearance};
 
 /// Tool radius (the `pocket` default D = 10 mm).
@@ -308,20 +308,6 @@ fn medial_axis_pockets_read_back_through_rs274_stay_within_the_target() {
     use trochoplan_core::corner::{EvaluatorOptions, engagement_profile};
     use trochoplan_core::geom::{P2, Polygon, Segment, p2};
     use trochoplan_core::pocket::{Entry, Ramp};
-    const DUMBBELL_8: &[(f64, f64)] = &[
-        (0.0, 0.0),
-        (30.0, 0.0),
-        (30.0, 11.0),
-        (40.0, 11.0),
-        (40.0, 0.0),
-        (70.0, 0.0),
-        (70.0, 30.0),
-        (40.0, 30.0),
-        (40.0, 19.0),
-        (30.0, 19.0),
-        (30.0, 30.0),
-        (0.0, 30.0),
-    ];
     const NARROW: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 14.0), (0.0, 14.0)];
     let dir = tempfile::tempdir().expect("tempdir");
     for (shape, polygon) in [("rect", RECT), ("l", L_ISSUE), ("dumbbell 8", DUMBBELL_8), ("narrow", NARROW)] {

@@ -7,7 +7,7 @@
 
 mod nc_common;
 
-use nc_common::DUMBBELL;
+use nc_common::{DUMBBELL, DUMBBELL_8};
 
 use std::f64::consts::PI;
 use trochoplan_core::corner::straight_engagement;
@@ -134,22 +134,6 @@ fn rectangle_is_cleared_within_the_target() {
         assert!((nearest - residual).abs() < 1e-5, "{corner:?}: nearest {nearest} vs {residual}");
     }
 }
-
-/// The brief's dumbbell: two 30 × 30 lobes joined by a 10 mm long neck 8 mm wide (w < D = 10).
-const DUMBBELL_8: &[(f64, f64)] = &[
-    (0.0, 0.0),
-    (30.0, 0.0),
-    (30.0, 11.0),
-    (40.0, 11.0),
-    (40.0, 0.0),
-    (70.0, 0.0),
-    (70.0, 30.0),
-    (40.0, 30.0),
-    (40.0, 19.0),
-    (30.0, 19.0),
-    (30.0, 30.0),
-    (0.0, 30.0),
-];
 
 #[test]
 fn every_move_stays_within_the_target_with_corner_point_arcs_into_every_tip() {

@@ -1052,13 +1052,12 @@ impl Planner<'_> {
         let sweep12 = (angle(toward(f2, o1)) - angle(toward(f1, o1))).rem_euclid(TAU);
         let (f_in, f_out) =
             if (angle(u0 - o1) - angle(toward(f1, o1))).rem_euclid(TAU) < sweep12 { (f1, f2) } else { (f2, f1) };
-        let first = self.b.segments.len();
         let at0 = cur.center + toward(f_in, cur.center) * rho_cur;
         match cur.entry {
             // the circle's full turn, then on to its touching point on the first feature (no
             // further where the turn ends there: a rounding error must not add a turn)
             Some(a) => {
-                let on = (angle(at0 - cur.center) - a + 1e-9).rem_euclid(TAU) - 1e-9;
+                let on = (angle(at0 - cur.center) - a + 1e-6).rem_euclid(TAU) - 1e-6;
                 self.b.arc(cur.center, rho_cur, a, TAU + on.max(0.0), MoveKind::Circle)
             }
             None => {
@@ -1066,6 +1065,7 @@ impl Planner<'_> {
                 self.b.line(at0, MoveKind::Link);
             }
         }
+        let first = self.b.segments.len();
         // material left on the axis before U0, and the deepest cut of one arc there
         let (mut left, mut deepest) = ((cur.center - u0).norm() - rho_cur, 0.0_f64);
         for (i, &(_, o, rho)) in arcs.iter().enumerate() {
