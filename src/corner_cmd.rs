@@ -220,11 +220,13 @@ pub struct PocketArgs {
     /// step-over's straight engagement φ* = arccos(1 − a_e/r) to 90. Default: the step-over
     /// read as FreeCAD reads it, an area rate (a_e mm² per mm), on a 90° corner pass, capped
     /// at 50° and never below φ*: 50° for D = 10, a_e = 1.527 (φ* = 46.0°); the JSON's
-    /// `target_deg` reports it.
+    /// `target_deg` reports it. With `--method medial-axis` it replaces the corner strategies'
+    /// a* = a_str·(1 + t1) (52.9° there), which is its default.
     #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
     target_engagement: Option<f64>,
-    /// How near the finishing pass's corner arcs reach each convex corner point (mm,
-    /// `--method adaptive`): the pocket corners are cut to radius r + this, 0.001 to 1.
+    /// How near the corner-point arcs reach each convex corner point (mm): those of the
+    /// finishing pass (`--method adaptive`) and of the medial axis's tips; the pocket corners
+    /// are cut to radius r + this, 0.001 to 1.
     #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = AdaptiveOptions::default().corner_tolerance_mm)]
     corner_tolerance: f64,
     /// Edges of the pocket that have no wall (`--method adaptive`): the stock ends there, e.g.
@@ -337,7 +339,7 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
     };
     let text = match &plan {
         PocketPlan::Rings(rings) => ring_pocket_json(&req, rings, nc_export),
-        PocketPlan::MedialAxis(perforative) => perforative_pocket_json(perforative, req.adaptive.depth_mm, nc_export),
+        PocketPlan::MedialAxis(perforative) => perforative_pocket_json(perforative, &req.adaptive, nc_export),
         PocketPlan::Adaptive(adaptive) => adaptive_pocket_json(adaptive, nc_export),
     }?;
     match &args.machine {
@@ -519,6 +521,20 @@ fn hmax_per_fz(phi: f64) -> f64 {
     phi.min(0.5 * std::f64::consts::PI).sin()
 }
 
+fn corner_point_out(c: &pocket::adaptive::CornerPoint) -> CornerPointOut {
+    CornerPointOut {
+        vertex: [c.vertex.x, c.vertex.y],
+        angle_deg: c.angle_rad.to_degrees(),
+        arcs: c.arcs,
+        last_radius_mm: c.last_radius_mm,
+        residual_mm: c.residual_mm,
+        max_radial_depth_mm: c.max_radial_depth_mm,
+        max_engagement_deg: c.max_engagement_rad.to_degrees(),
+        at: [c.at.x, c.at.y],
+        hmax_per_fz: hmax_per_fz(c.max_engagement_rad),
+    }
+}
+
 fn kind_out(m: &pocket::KindMax) -> KindOut {
     KindOut { kind: m.kind, max_engagement_deg: m.max_rad.to_degrees(), at: [m.at.x, m.at.y], length_mm: m.length_mm }
 }
@@ -556,22 +572,7 @@ fn adaptive_pocket_json(plan: &AdaptivePlan, nc_export: Option<NcExportOut>) -> 
                 corner_point_bound_deg: corner_point_bound_rad(c.angle_rad).to_degrees(),
             })
             .collect(),
-        corner_points: plan
-            .parts
-            .iter()
-            .flat_map(|p| &p.corner_points)
-            .map(|c| CornerPointOut {
-                vertex: xy(c.vertex),
-                angle_deg: c.angle_rad.to_degrees(),
-                arcs: c.arcs,
-                last_radius_mm: c.last_radius_mm,
-                residual_mm: c.residual_mm,
-                max_radial_depth_mm: c.max_radial_depth_mm,
-                max_engagement_deg: c.max_engagement_rad.to_degrees(),
-                at: xy(c.at),
-                hmax_per_fz: hmax_per_fz(c.max_engagement_rad),
-            })
-            .collect(),
+        corner_points: plan.parts.iter().flat_map(|p| &p.corner_points).map(corner_point_out).collect(),
         corner_radius_left_mm: plan.corner_radius_left_mm,
         finish_stock_mm: plan.options.finish_stock_mm,
         max_engagement_deg: plan.max_engagement_rad.to_degrees(),
@@ -709,9 +710,22 @@ struct PerforativeOut {
     helices: Vec<HelixOut>,
     ramps: Vec<RampOut>,
     entry_length_mm: f64,
-    /// Per kind of move: entry (first circle after a plunge), spiral, circle, link, straight
-    /// (through a neck), tip (into a corner point), return (back through cut material).
+    /// Per kind of move: entry (the helix's flat turn or the ramp's pass), spiral, circle,
+    /// link, straight (through a neck), tip (straight into a corner point), corner-point (the
+    /// arcs into it), return (back through cut material). `by_kind` is the same list under the
+    /// name the other pocket methods use; `by_move` is kept for scripts.
+    by_kind: Vec<KindOut>,
     by_move: Vec<KindOut>,
+    /// Every move is at depth: the path length; of it the links and returns, and the moves
+    /// below 1° engagement.
+    length_at_depth_mm: f64,
+    link_length_mm: f64,
+    air_length_mm: f64,
+    /// Corner tolerance δ of the corner-point arcs (`--corner-tolerance`).
+    corner_tolerance_mm: f64,
+    /// Each tip thinned by corner-point arcs: the corner of the tool-centre region, its angle,
+    /// the arcs, the material left, the measured peak, where, and h_max/f_z there.
+    corner_points: Vec<CornerPointOut>,
     /// The tool path, and what each segment does.
     segments: Vec<Segment>,
     kinds: Vec<MoveKind>,
@@ -724,10 +738,11 @@ struct PerforativeOut {
 /// The JSON of a pocket cleared by perforative trochoids along its medial axis.
 fn perforative_pocket_json(
     plan: &PerforativePlan,
-    depth_mm: f64,
+    options: &AdaptiveOptions,
     nc_export: Option<NcExportOut>,
 ) -> Result<String, String> {
-    let (helices, ramps) = entries_out(&plan.entries, depth_mm);
+    let (helices, ramps) = entries_out(&plan.entries, options.depth_mm);
+    let corner_tolerance_mm = options.corner_tolerance_mm;
     let xy = |p: P2| [p.x, p.y];
     let settings = plan.settings;
     let out = PerforativeOut {
@@ -762,7 +777,13 @@ fn perforative_pocket_json(
         helices,
         ramps,
         entry_length_mm: plan.entry_length_mm,
+        by_kind: plan.maxima.iter().map(kind_out).collect(),
         by_move: plan.maxima.iter().map(kind_out).collect(),
+        length_at_depth_mm: plan.length_at_depth_mm,
+        link_length_mm: plan.link_length_mm,
+        air_length_mm: plan.air_length_mm,
+        corner_tolerance_mm,
+        corner_points: plan.corner_points.iter().map(corner_point_out).collect(),
         segments: plan.segments.clone(),
         kinds: plan.kinds.clone(),
         retract_before: plan.retract_before.clone(),

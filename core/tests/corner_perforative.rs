@@ -7,7 +7,7 @@
 
 mod nc_common;
 
-use nc_common::DUMBBELL;
+use nc_common::{DUMBBELL, DUMBBELL_8};
 
 use std::f64::consts::PI;
 use trochoplan_core::corner::straight_engagement;
@@ -31,6 +31,8 @@ fn poly(pts: &[(f64, f64)]) -> Polygon {
 
 const RECT: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)];
 const L_SHAPE: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 25.0), (25.0, 25.0), (25.0, 60.0), (0.0, 60.0)];
+/// The L of issue #12's acceptance: 60 × 60, arms 25 wide.
+const L_ISSUE: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 25.0), (25.0, 25.0), (25.0, 60.0), (0.0, 60.0)];
 const TRIANGLE: &[(f64, f64)] = &[(0.0, 0.0), (80.0, 0.0), (20.0, 50.0)];
 
 fn dist_to_edge(p: P2, a: P2, b: P2) -> f64 {
@@ -70,13 +72,21 @@ fn check_plan(name: &str, p: &PerforativePlan) {
             wall_distance(&p.polygon, q)
         );
     }
+    // No arc turns twice (a circle's turn and the way on to its exit stay below 4π).
+    for s in &p.segments {
+        if let Segment::Arc { sweep, .. } = s {
+            assert!(sweep.abs() < 2.0 * std::f64::consts::TAU - 1e-6, "{name}: an arc of {sweep} rad");
+        }
+    }
     for (i, w) in p.segments.windows(2).enumerate() {
         if !p.retract_before.contains(&(i + 1)) {
             assert!((w[0].end() - w[1].start()).norm() < 1e-9, "{name}: gap before segment {}", i + 1);
         }
         // Tangent continuity at every join of an arc (circle, transition) with an arc or a line,
-        // except lines along a radius (moves into or out of a circle's centre) and axis moves.
-        let axis = |k: MoveKind| matches!(k, MoveKind::Tip | MoveKind::Return | MoveKind::Straight);
+        // except lines along a radius (moves into or out of a circle's centre), axis moves and
+        // the corner-point arcs' moves (back on each arc's chord: a corner, as in `corner`).
+        let axis =
+            |k: MoveKind| matches!(k, MoveKind::Tip | MoveKind::Return | MoveKind::Straight | MoveKind::CornerPoint);
         if p.retract_before.contains(&(i + 1)) || axis(p.kinds[i]) || axis(p.kinds[i + 1]) {
             continue;
         }
@@ -112,11 +122,61 @@ fn rectangle_is_cleared_within_the_target() {
     let spiral: Vec<_> = p.circles.iter().filter(|c| c.kind == MoveKind::Spiral).collect();
     let last = spiral.last().unwrap();
     assert!((last.tool_circle.radius - 15.0).abs() < 1e-6 && (last.tool_circle.center.y - 20.0).abs() < 1e-3);
-    // The four tips end at the tool corner points (r, r) from each vertex.
-    let ends: Vec<P2> =
-        p.segments.iter().zip(&p.kinds).filter(|(_, k)| **k == MoveKind::Tip).map(|(s, _)| s.end()).collect();
+    // The four corners are reached by corner-point arcs, not by straight tips: the path comes
+    // to within the residual δ(1/sin 45° − 1) of each tool corner point (r, r) from a vertex
+    // (DERIVED: the last arc, of radius δ, is centred δ/sin 45° from it), and no nearer.
+    assert_eq!(p.max_of(MoveKind::Tip), 0.0, "{:?}", p.maxima);
+    let delta = AdaptiveOptions::default().corner_tolerance_mm;
+    let residual = delta * (1.0 / (PI / 4.0).sin() - 1.0);
+    let pts = samples(&p.segments, 0.001);
     for corner in [p2(5.0, 5.0), p2(55.0, 5.0), p2(55.0, 35.0), p2(5.0, 35.0)] {
-        assert!(ends.iter().any(|e| (e - corner).norm() < 1e-3), "{corner:?} not reached: {ends:?}");
+        let nearest = pts.iter().map(|q| (q - corner).norm()).fold(f64::INFINITY, f64::min);
+        assert!((nearest - residual).abs() < 1e-5, "{corner:?}: nearest {nearest} vs {residual}");
+    }
+}
+
+#[test]
+fn every_move_stays_within_the_target_with_corner_point_arcs_into_every_tip() {
+    // Issue #12 item 3 for the medial axis: the straight tips into the corner points read
+    // π − α (+ the last circle's cap: 92.83° at 90°); corner-point arcs from the last circle's
+    // radius down to δ keep every move at depth within a* + 1°, the peak over everything
+    // (entry, spiral, circles, links, corner points, returns) measured by the evaluator.
+    // Rectangle and L: every convex corner is 90° (residual δ(1/sin 45° − 1), DERIVED).
+    // Dumbbell with an 8 mm neck: the tips into the neck mouths end where C, the pocket offset
+    // by r, has a corner between the circles of radius r about the two reflex vertices, of
+    // angle π − 2·asin(w/D) (DERIVED: the vertices are w/2 off the axis at distance r from U0),
+    // 73.74° for w = 8, D = 10; a straight tip there reads 2·asin(w/D) = 106.26°.
+    let delta = AdaptiveOptions::default().corner_tolerance_mm;
+    let ninety = delta * (1.0 / (PI / 4.0).sin() - 1.0);
+    for (name, pts, parts, corners, mouths) in
+        [("rect", RECT, 1, 4, 0), ("L", L_ISSUE, 1, 5, 0), ("dumbbell 8", DUMBBELL_8, 2, 8, 2)]
+    {
+        let p = plan_perforative(&poly(pts), settings(R, 1.527), &AdaptiveOptions::default()).unwrap();
+        check_plan(name, &p);
+        let limit = p.target_rad + 1f64.to_radians();
+        assert_eq!(p.parts, parts, "{name}");
+        assert!(p.max_engagement_rad <= limit, "{name}: {:.2}° ({:?})", p.max_engagement_rad.to_degrees(), p.maxima);
+        assert_eq!(p.max_of(MoveKind::Tip), 0.0, "{name}: a straight tip is left: {:?}", p.maxima);
+        assert_eq!(p.corner_points.len(), corners + mouths, "{name}: {:?}", p.corner_points);
+        let mouth = PI - 2.0 * (8.0f64 / 10.0).asin();
+        for c in &p.corner_points {
+            assert!(c.max_engagement_rad <= limit && c.max_engagement_rad > 0.0, "{name}: {c:?}");
+            assert!((c.last_radius_mm - delta).abs() < 1e-12, "{name}: {c:?}");
+            if (c.angle_rad - PI / 2.0).abs() < 1e-9 {
+                assert!((c.residual_mm - ninety).abs() < 1e-9, "{name}: {c:?}");
+            } else {
+                assert!((c.angle_rad - mouth).abs() < 1e-6, "{name}: {c:?}");
+                // at a mouth C is narrower than its tangent wedge: at most the wedge's residual
+                assert!(c.residual_mm <= delta * (1.0 / (0.5 * mouth).sin() - 1.0) + 1e-9, "{name}: {c:?}");
+            }
+        }
+        eprintln!(
+            "{name}: peak {:.2}°, p95 {:.2}°, {:.1} mm at depth, corner points ≤ {:.2}°",
+            p.max_engagement_rad.to_degrees(),
+            p.p95_engagement_rad.to_degrees(),
+            p.length_at_depth_mm,
+            p.max_of(MoveKind::CornerPoint).to_degrees()
+        );
     }
 }
 
@@ -223,4 +283,29 @@ fn bad_inputs_are_named() {
 fn straight_engagement_of_the_acceptance_step_over_is_46_degrees() {
     // Guards the helper above: arccos(1 − a_e/r) = 46°.
     assert!((straight_engagement(ae46(), R).unwrap().to_degrees() - 46.0).abs() < 1e-9);
+}
+
+#[test]
+fn a_pocket_too_narrow_for_a_helix_grows_out_of_its_ramp_within_the_target() {
+    // 60 × 14 with D = 10: no helix of 0.25·D fits (clearance 7 < r + 0.25·D), so the tool
+    // ramps down on the middle line. The two-circle model cannot start from a ramp (it reads
+    // ≥ 90° for any first circle, module docs); the spiral out of the ramp's slot is measured
+    // by the evaluator instead, then circles run along the axis and corner-point arcs thin the
+    // four corners: every move within a* + 1°, no straight tip (was 146.51° there).
+    let narrow: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 14.0), (0.0, 14.0)];
+    let p = plan_perforative(&poly(narrow), settings(R, 1.527), &AdaptiveOptions::default()).unwrap();
+    check_plan("narrow", &p);
+    assert!(matches!(p.entries.as_slice(), [Entry::Ramp(_)]), "{:?}", p.entries);
+    eprintln!(
+        "narrow: peak {:.2}° at {:?}, p95 {:.2}°, {:.1} mm at depth, {:?}",
+        p.max_engagement_rad.to_degrees(),
+        p.profile.max().map(|s| (s.x_mm, s.y_mm)),
+        p.p95_engagement_rad.to_degrees(),
+        p.length_at_depth_mm,
+        p.maxima.iter().map(|m| (m.kind, m.max_rad.to_degrees(), m.length_mm)).collect::<Vec<_>>()
+    );
+    let limit = p.target_rad + 1f64.to_radians();
+    assert!(p.max_engagement_rad <= limit, "{:.2}°", p.max_engagement_rad.to_degrees());
+    assert_eq!(p.max_of(MoveKind::Tip), 0.0);
+    assert_eq!(p.corner_points.len(), 4, "{:?}", p.corner_points);
 }

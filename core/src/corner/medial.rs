@@ -126,6 +126,63 @@ impl Walls {
         }
         best
     }
+
+    /// The wall features nearest to `p`: every edge whose distance is within `tol` of the
+    /// clearance, as the point of it nearest to p; an edge's end counts as the vertex (shared
+    /// by two edges, reported once). A point on the medial axis between two features (e.g. a
+    /// corner's bisector, or the axis through a neck between two reflex vertices) has two.
+    pub fn nearest_features(&self, p: P2, tol: f64) -> Vec<WallFeature> {
+        let found: Vec<(f64, WallFeature)> = self
+            .edges
+            .iter()
+            .map(|&(a, b)| {
+                let d = b - a;
+                let t = ((p - a).dot(&d) / d.norm_squared()).clamp(0.0, 1.0);
+                let f = if t <= 0.0 {
+                    WallFeature::Vertex(a)
+                } else if t >= 1.0 {
+                    WallFeature::Vertex(b)
+                } else {
+                    WallFeature::Edge(a, b)
+                };
+                ((p - (a + d * t)).norm(), f)
+            })
+            .collect();
+        let best = found.iter().map(|f| f.0).fold(f64::INFINITY, f64::min);
+        let mut out: Vec<WallFeature> = Vec::new();
+        for (d, f) in found {
+            if d <= best + tol && !out.contains(&f) {
+                out.push(f);
+            }
+        }
+        out
+    }
+}
+
+/// A wall feature of a polygon: a vertex (its tool-centre boundary is a circle of radius r
+/// about it) or the inside of an edge (a line at distance r).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum WallFeature {
+    Vertex(P2),
+    Edge(P2, P2),
+}
+
+impl WallFeature {
+    /// The point of the feature nearest to `p` (of the edge's line for an edge).
+    pub fn nearest(&self, p: P2) -> P2 {
+        match *self {
+            WallFeature::Vertex(v) => v,
+            WallFeature::Edge(a, b) => {
+                let d = b - a;
+                a + d * ((p - a).dot(&d) / d.norm_squared())
+            }
+        }
+    }
+
+    /// Distance from `p` to the feature (to the edge's line for an edge).
+    pub fn distance(&self, p: P2) -> f64 {
+        (p - self.nearest(p)).norm()
+    }
 }
 
 /// Medial axis of `poly` on a grid of `resolution` mm (e.g. 1e-4).

@@ -103,6 +103,9 @@ impl PerforativePlan {
         for m in &mut self.maxima {
             m.at = mirror_point(m.at);
         }
+        for c in &mut self.corner_points {
+            (c.vertex, c.at) = (mirror_point(c.vertex), mirror_point(c.at));
+        }
         self
     }
 }

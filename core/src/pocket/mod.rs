@@ -166,8 +166,9 @@ pub struct PocketRequest {
     pub strategy: PocketStrategy,
     /// Arc-length spacing of the tool positions measured by the evaluator (mm).
     pub spacing_mm: f64,
-    /// Helix, finishing and corner tolerance of adaptive clearing (ignored by the other
-    /// strategies), and the milling direction of every strategy.
+    /// Helix, finishing and corner tolerance of adaptive clearing (the medial axis uses the
+    /// entry, the target engagement when given and the corner tolerance), and the milling
+    /// direction of every strategy.
     pub adaptive: AdaptiveOptions,
     /// Edges of `polygon` without a wall (`--open-edges`; edge i runs from vertex i to vertex
     /// i + 1 of the stored, counter-clockwise polygon, 0-based): the stock ends there and the

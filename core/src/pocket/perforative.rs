@@ -57,10 +57,10 @@
 //! maximum is reported per class and over everything.
 
 use super::PocketSettings;
-use super::adaptive::AdaptiveOptions;
+use super::adaptive::{AIR_ENGAGEMENT_RAD, AdaptiveOptions, CornerPoint, corner_point_radii};
 use super::entry::{Entry, entry_at};
 use super::rings::link_is_inside;
-use crate::corner::medial::{MedialAxis, Walls, medial_axis};
+use crate::corner::medial::{MedialAxis, WallFeature, Walls, medial_axis};
 use crate::corner::{CornerSettings, EngagementProfile, EvaluatorOptions, Turn, TwoCircle, engagement_profile};
 use crate::error::{Error, Param};
 use crate::geom::{Circle, P2, Polygon, Segment, golden_min, rot90};
@@ -84,6 +84,13 @@ const NODE_TOL_MM: f64 = 1e-6;
 const COVER_TOL_MM: f64 = 1e-3;
 /// A circle ends this far short of a full turn at most when its exit precedes its entry (rad).
 const SHORT_TURN_RAD: f64 = PI / 6.0;
+/// Largest spacing of the evaluator's positions when it places the circles out of a ramp's
+/// slot (mm): fine whatever the user's `--spacing` (at 1 mm a peak of 65° between positions
+/// was missed where 0.25 mm read 53.4°).
+const RAMP_SPIRAL_SPACING_MM: f64 = 0.1;
+/// Corner-point arcs allowed into one tip (the bound on hostile input; 0.005 mm from a
+/// 4.75 mm circle takes 11 at 90°, 31 at 30°).
+const MAX_CORNER_ARCS: usize = 200;
 
 /// What a move of the perforative path does (the evaluator's samples are reported per kind).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -100,7 +107,9 @@ pub enum MoveKind {
     Link,
     /// Along the axis where the tool-centre circle would be smaller than r_min (a neck).
     Straight,
-    /// Along the axis into the tool corner point of a convex corner.
+    /// Along the axis into the tool corner point of a convex corner, where no corner-point
+    /// arcs are cut (the tip's end is not between two wall features, or the last circle does
+    /// not touch both).
     Tip,
     /// Back along the axis through cleared material.
     Return,
@@ -110,8 +119,9 @@ pub enum MoveKind {
     Corner,
     /// The finishing contour ([`super::adaptive`]).
     Finish,
-    /// The finishing pass's arcs into a convex corner point, within the corner tolerance, with
-    /// their approach along the wall and their way out ([`super::adaptive`]).
+    /// Arcs into a convex corner point, within the corner tolerance, with their approach
+    /// along the wall and their way out: after the finishing pass ([`super::adaptive`]), or
+    /// after the last circle of a medial-axis tip ([`Planner::thin_tip`]).
     CornerPoint,
 }
 
@@ -164,10 +174,18 @@ pub struct PerforativePlan {
     pub entry_length_mm: f64,
     /// Axis length where the tool does not fit (Rc < r), left uncut (mm).
     pub unreachable_axis_mm: f64,
+    /// Each tip thinned by corner-point arcs ([`Planner::thin_tip`]): the corner of the
+    /// tool-centre region (`vertex`), its angle, the arcs and the measured peak over their moves.
+    pub corner_points: Vec<CornerPoint>,
     /// Feed path length at depth, all moves (mm), and the machining time of it and the
     /// entries' descents at the feed (s).
     pub path_length_mm: f64,
     pub time_s: f64,
+    /// Length at depth (= `path_length_mm`), of it the moves between cuts (links and returns
+    /// along the axis), and the air: samples below 1° (mm).
+    pub length_at_depth_mm: f64,
+    pub link_length_mm: f64,
+    pub air_length_mm: f64,
     /// The evaluator's profile along `segments` (positions `settings.spacing` apart).
     pub profile: EngagementProfile,
     /// Per kind of move present: maximum measured engagement and length.
@@ -549,8 +567,9 @@ impl Current {
 }
 
 /// Plan the pocket `polygon` with perforative trochoids along its medial axis; the target is
-/// the corner strategies' a* = a_str·(1 + t1). `options` gives the entry (helix radius, ramp
-/// angle) and the depth the entries descend to.
+/// the corner strategies' a* = a_str·(1 + t1), or `options.target_deg` when given. `options`
+/// gives the entry (helix radius, ramp angle), the depth the entries descend to and the corner
+/// tolerance of the corner-point arcs.
 pub fn plan_perforative(
     polygon: &Polygon,
     settings: PocketSettings,
@@ -560,7 +579,11 @@ pub fn plan_perforative(
     // the entry's options (no finishing pass here)
     AdaptiveOptions { finish_stock_mm: 0.0, ..*options }.validate(&settings)?;
     let (r, ae) = (settings.tool_radius, settings.step_over);
-    let cs = CornerSettings { feed_mm_per_min: settings.feed_mm_per_min, ..CornerSettings::new(r, ae)? };
+    let mut cs = CornerSettings { feed_mm_per_min: settings.feed_mm_per_min, ..CornerSettings::new(r, ae)? };
+    if options.target_deg.is_some() {
+        // `--target-engagement` (validated above: from φ* to 90°) instead of a*
+        cs.target = options.target_rad(&settings)?;
+    }
     let axis = medial_axis(polygon, VORONOI_RESOLUTION_MM)?;
     let walls = Walls::new(polygon);
     let graph = AxisGraph::new(&walls, &axis, r);
@@ -577,8 +600,11 @@ pub fn plan_perforative(
         poly: polygon,
         walls: &walls,
         cs,
+        corner_tolerance: options.corner_tolerance_mm,
+        opts: EvaluatorOptions::new(r, settings.spacing.min(RAMP_SPIRAL_SPACING_MM)),
         b: Builder { segments: Vec::new(), kinds: Vec::new(), pos: graph.nodes[parts[0][0]] },
         circles: Vec::new(),
+        corner_points: Vec::new(),
     };
     let mut retract_before = Vec::new();
     let mut entries = Vec::new();
@@ -587,13 +613,21 @@ pub fn plan_perforative(
         entries.push(p.part(&graph, part[0], options)?);
     }
     retract_before.retain(|&i| i > 0); // the first part is reached by the program's first entry
-    let Planner { b, circles, .. } = p;
+    let Planner { b, circles, corner_points, .. } = p;
     let opts = EvaluatorOptions::new(r, settings.spacing);
     let bores: Vec<Segment> = entries.iter().map(Entry::bore).collect();
     let profile = engagement_profile(polygon, &bores, &b.segments, &opts)?;
     let (maxima, body_max_rad) = maxima(&profile, &b.segments, &b.kinds, &[]);
     let (max_engagement_rad, p95_engagement_rad) = peak_and_p95(&profile);
+    let corner_points = measure_corner_points(&profile, &b.segments, corner_points);
     let len: f64 = b.segments.iter().map(Segment::length).sum();
+    let link_length_mm: f64 = b
+        .segments
+        .iter()
+        .zip(&b.kinds)
+        .filter(|(_, k)| matches!(k, MoveKind::Link | MoveKind::Return))
+        .map(|(s, _)| s.length())
+        .sum();
     let entry_length_mm: f64 = entries.iter().map(|e| e.descent_length(options.depth_mm)).sum();
     Ok(PerforativePlan {
         polygon: polygon.clone(),
@@ -609,8 +643,12 @@ pub fn plan_perforative(
         entries,
         entry_length_mm,
         unreachable_axis_mm: graph.unreachable_mm,
+        corner_points,
         path_length_mm: len,
         time_s: (len + entry_length_mm) / settings.feed_mm_per_min * 60.0,
+        length_at_depth_mm: len,
+        link_length_mm,
+        air_length_mm: profile.air_length_mm(AIR_ENGAGEMENT_RAD),
         profile,
         maxima,
         body_max_rad,
@@ -670,12 +708,47 @@ pub(crate) fn maxima(
     (out, body)
 }
 
+/// Each corner point's peak and where: the largest sample over its moves (`range` of the
+/// segments), measured by the evaluator.
+fn measure_corner_points(
+    profile: &EngagementProfile,
+    segments: &[Segment],
+    points: Vec<(CornerPoint, std::ops::Range<usize>)>,
+) -> Vec<CornerPoint> {
+    let mut starts = Vec::with_capacity(segments.len() + 1);
+    let mut acc = 0.0;
+    starts.push(acc);
+    for s in segments {
+        acc += s.length();
+        starts.push(acc);
+    }
+    points
+        .into_iter()
+        .map(|(mut cp, range)| {
+            let (s0, s1) = (starts[range.start], starts[range.end]);
+            for smp in profile.samples.iter().filter(|m| m.s_mm > s0 + 1e-9 && m.s_mm <= s1 + 1e-9) {
+                if smp.angle_rad > cp.max_engagement_rad {
+                    cp.max_engagement_rad = smp.angle_rad;
+                    cp.at = P2::new(smp.x_mm, smp.y_mm);
+                }
+            }
+            cp
+        })
+        .collect()
+}
+
 struct Planner<'a> {
     poly: &'a Polygon,
     walls: &'a Walls,
     cs: CornerSettings,
+    /// Corner tolerance δ of the corner-point arcs (mm, `--corner-tolerance`).
+    corner_tolerance: f64,
+    /// The evaluator's options for the spiral out of a ramp's slot.
+    opts: EvaluatorOptions,
     b: Builder,
     circles: Vec<AxisCircle>,
+    /// The tips thinned by corner-point arcs, with the range of their segments.
+    corner_points: Vec<(CornerPoint, std::ops::Range<usize>)>,
 }
 
 impl Planner<'_> {
@@ -744,11 +817,22 @@ impl Planner<'_> {
         let mut cur = match way_in {
             Entry::Helix(h) => {
                 self.push_circle(center, h.radius, None, MoveKind::Entry)?;
-                let entry = self.spiral(center, h.radius, h.start_angle, rho_root)?;
+                let entry = self.spiral(center, h.radius, h.start_angle, rho_root, None)?;
                 Current { s: 0.0, center, offset_radius: rho_root.max(h.radius) + self.r(), entry }
             }
-            // the ramp cleared its line: the chain starts from the tool at the root
-            Entry::Ramp(_) | Entry::Outside { .. } => Current { s: 0.0, center, offset_radius: self.r(), entry: None },
+            // The ramp cleared its line, a slot of width D through the root: back to the root
+            // along it, then concentric circles grow out of the slot, each measured.
+            Entry::Ramp(ramp) => {
+                self.b.line(center, MoveKind::Link);
+                let d = ramp.end - ramp.start;
+                let cut = vec![way_in.bore()];
+                match self.spiral(center, 0.0, d.y.atan2(d.x), rho_root, Some(cut))? {
+                    Some(entry) => Current { s: 0.0, center, offset_radius: rho_root + self.r(), entry: Some(entry) },
+                    None => Current { s: 0.0, center, offset_radius: self.r(), entry: None },
+                }
+            }
+            // (open sides are adaptive clearing's only: `--open-edges` errors for this method)
+            Entry::Outside { .. } => Current { s: 0.0, center, offset_radius: self.r(), entry: None },
         };
         let walks = g.leaf_walks(root);
         let mut prev: Option<(Vec<usize>, Guide, Vec<Current>, f64)> = None;
@@ -774,7 +858,21 @@ impl Planner<'_> {
     /// Concentric circles about the helix centre `c`, from the helix circle (tool-centre radius
     /// `rho0`, the tool at angle `theta0` on it) up to tool-centre radius `rho_max`. Returns
     /// the entry angle of the last circle (`None` if none was cut).
-    fn spiral(&mut self, c: P2, rho0: f64, theta0: f64, rho_max: f64) -> Result<Option<f64>, Error> {
+    ///
+    /// After a ramp (`cut`: what it cleared; `rho0` = 0, the tool at `c`) the two-circle
+    /// model does not hold: it counts the whole disc outside the tool as material, and reads
+    /// π/2 + arcsin(ρ/2r) ≥ 90° for any first circle (a plunge hole, module docs), where the
+    /// ramp's slot has cleared most of it. Each candidate radius is then measured instead: the
+    /// evaluator over its half-circle and circle, with the ramp's line and the spiral so far
+    /// as cut, in the same bisection.
+    fn spiral(
+        &mut self,
+        c: P2,
+        rho0: f64,
+        theta0: f64,
+        rho_max: f64,
+        mut cut: Option<Vec<Segment>>,
+    ) -> Result<Option<f64>, Error> {
         let (r, target, eps, r_min) = (self.r(), self.cs.target, self.cs.tolerance, self.cs.r_min());
         if rho_max <= rho0 + 1e-9 {
             return Ok(None);
@@ -783,8 +881,19 @@ impl Planner<'_> {
         loop {
             // Next radius: the largest in (ρ, ρ_max] within the target (bisection, §3.3).
             let prev_c = Circle::new(c, prev_rho + r);
-            let m = |x: f64| {
-                self.engagement(prev_c, Circle::new(c, x + r)).max(self.transition_engagement(c, prev_rho, c, x))
+            let e = P2::new(theta.cos(), theta.sin());
+            let m = |x: f64| match &cut {
+                None => {
+                    self.engagement(prev_c, Circle::new(c, x + r)).max(self.transition_engagement(c, prev_rho, c, x))
+                }
+                Some(before) => {
+                    let (mid, rt, _) = transition_along(c, prev_rho, c, x, e);
+                    let moves = [
+                        Segment::Arc { center: mid, radius: rt, start_angle: theta, sweep: PI },
+                        Segment::Arc { center: c, radius: x, start_angle: theta + PI, sweep: TAU },
+                    ];
+                    engagement_profile(self.poly, before, &moves, &self.opts).map_or(PI, |p| p.max_angle())
+                }
             };
             let mut next = bisect(prev_rho, rho_max, target, eps, m);
             if next.0 <= prev_rho + 1e-6 {
@@ -792,7 +901,7 @@ impl Planner<'_> {
                 next = (x, m(x));
             }
             let rho = next.0;
-            let e = P2::new(theta.cos(), theta.sin());
+            let first = self.b.segments.len();
             let (mid, rt, _) = transition_along(c, prev_rho, c, rho, e);
             self.b.arc(mid, rt, theta, PI, MoveKind::Spiral);
             theta += PI;
@@ -801,6 +910,9 @@ impl Planner<'_> {
                 return Ok(Some(theta)); // its full turn is cut by the chain (`link`, `finish`)
             }
             self.b.arc(c, rho, theta, TAU, MoveKind::Spiral);
+            if let Some(before) = &mut cut {
+                before.extend_from_slice(&self.b.segments[first..]);
+            }
             prev_rho = rho;
         }
     }
@@ -858,10 +970,16 @@ impl Planner<'_> {
                 }
                 None => {
                     // ρ < r_min ahead: finish the circle, go along the axis to where circles
-                    // fit again (a neck) or to the guide's end (a corner tip).
+                    // fit again (a neck) or to the guide's end (a corner tip), unless the tip
+                    // is thinned by corner-point arcs.
+                    let resume = self.zone_start(guide, cur.s, end);
+                    if resume.is_none()
+                        && let Some(stop) = self.thin_tip(guide, &cur, rho_cur, end)
+                    {
+                        return Ok(stop);
+                    }
                     self.finish(&cur, rho_cur);
                     self.b.line(cur.center, MoveKind::Link);
-                    let resume = self.zone_start(guide, cur.s, end);
                     match resume {
                         Some(s) => {
                             self.b.polyline(&guide.walk(cur.s, s), MoveKind::Straight);
@@ -880,6 +998,117 @@ impl Planner<'_> {
                         }
                     }
                 }
+            }
+        }
+    }
+
+    /// The way into the end of a guide, where the tool-centre region C (the pocket offset
+    /// by r) has a corner U0 (Rc = r) between two wall features: two edges (a convex corner
+    /// of the pocket), two reflex vertices (the mouth of a neck narrower than the tool) or an
+    /// edge and a reflex vertex. Instead of the straight tip into U0, which reads π − α at U0
+    /// for the corner angle α of C there ([`super::adaptive::corner_point_bound_rad`]; at a
+    /// neck mouth of width w, C's boundary arcs meet at α = π − 2·asin(w/D), so 2·asin(w/D)),
+    /// corner-point arcs as in `trochoplan corner`: the arc of tool-centre radius ρ is
+    /// centred at the axis point o(ρ) with clearance r + ρ (the matching vertex of C offset
+    /// inward by ρ), so it touches both features' tool-centre boundaries (the lines at r from
+    /// the edges, the circles of radius r about the vertices), and runs counter-clockwise
+    /// between the two touching points through the side of U0. The radii come from
+    /// [`corner_point_radii`] with C's angle at U0, from the last circle's ρ (which touches
+    /// both features: it left the cap that derivation models) down to the corner tolerance δ;
+    /// exact for two edges, for a vertex C is narrower than that wedge (its boundary is an
+    /// arc bulging inward), and the evaluator measures every move. Per arc: along the first
+    /// feature's boundary to its touching point (a line, or an arc of radius r about the
+    /// vertex), the arc, back on its chord (within ρ of o, so at least r from the walls); after
+    /// the last, back to its centre on the axis. What is left is the sliver within reach of
+    /// U0 only: |o_n − U0| − δ on the axis (`residual_mm`; for two edges δ(1/sin(α/2) − 1)).
+    /// Returns the arc length of the last centre on the guide (where the tool stops), or
+    /// `None` where the arcs do not apply (no two features at U0, or the last circle does not
+    /// touch both) and the straight tip is cut.
+    fn thin_tip(&mut self, guide: &Guide, cur: &Current, rho_cur: f64, end: f64) -> Option<f64> {
+        let (r, delta) = (self.r(), self.corner_tolerance);
+        let tol = 1e-6 * (1.0 + r);
+        let u0 = guide.at(end);
+        let [f1, f2] = self.walls.nearest_features(u0, tol)[..] else { return None };
+        let touches = |f: WallFeature, o: P2, rho: f64| (f.distance(o) - (rho + r)).abs() <= 1e3 * tol;
+        if !(touches(f1, cur.center, rho_cur) && touches(f2, cur.center, rho_cur)) {
+            return None;
+        }
+        let (n1, n2) = ((u0 - f1.nearest(u0)).normalize(), (u0 - f2.nearest(u0)).normalize());
+        let alpha = PI - n1.dot(&n2).clamp(-1.0, 1.0).acos();
+        let radii = corner_point_radii(rho_cur, alpha, r, self.cs.target, delta, MAX_CORNER_ARCS);
+        // Each arc's centre on the guide (Rc falls towards U0), checked to touch both features.
+        let mut arcs = Vec::with_capacity(radii.len());
+        for &rho in &radii {
+            let s = edge(cur.s, end, 60, |s| self.rho(guide.at(s)) >= rho);
+            let o = guide.at(s);
+            if !(touches(f1, o, rho) && touches(f2, o, rho)) {
+                return None;
+            }
+            arcs.push((s, o, rho));
+        }
+        let (&(_, o1, _), &(s_last, o_last, rho_last)) = (arcs.first()?, arcs.last()?);
+        let toward = |f: WallFeature, o: P2| (f.nearest(o) - o).normalize();
+        let angle = |v: P2| v.y.atan2(v.x);
+        // Counter-clockwise from the first feature to the second through the side of U0.
+        let sweep12 = (angle(toward(f2, o1)) - angle(toward(f1, o1))).rem_euclid(TAU);
+        let (f_in, f_out) =
+            if (angle(u0 - o1) - angle(toward(f1, o1))).rem_euclid(TAU) < sweep12 { (f1, f2) } else { (f2, f1) };
+        let at0 = cur.center + toward(f_in, cur.center) * rho_cur;
+        match cur.entry {
+            // the circle's full turn, then on to its touching point on the first feature (no
+            // further where the turn ends there: a rounding error must not add a turn)
+            Some(a) => {
+                let on = (angle(at0 - cur.center) - a + 1e-6).rem_euclid(TAU) - 1e-6;
+                self.b.arc(cur.center, rho_cur, a, TAU + on.max(0.0), MoveKind::Circle)
+            }
+            None => {
+                self.b.line(cur.center, MoveKind::Link);
+                self.b.line(at0, MoveKind::Link);
+            }
+        }
+        let first = self.b.segments.len();
+        // material left on the axis before U0, and the deepest cut of one arc there
+        let (mut left, mut deepest) = ((cur.center - u0).norm() - rho_cur, 0.0_f64);
+        for (i, &(_, o, rho)) in arcs.iter().enumerate() {
+            let (a, e) = (o + toward(f_in, o) * rho, o + toward(f_out, o) * rho);
+            self.along(f_in, a);
+            let sweep = (angle(e - o) - angle(a - o)).rem_euclid(TAU);
+            self.b.arc(o, rho, angle(a - o), sweep, MoveKind::CornerPoint);
+            if i + 1 < arcs.len() {
+                self.b.line(a, MoveKind::CornerPoint);
+            }
+            let now = (o - u0).norm() - rho;
+            deepest = deepest.max(left - now);
+            left = now;
+        }
+        self.b.line(o_last, MoveKind::CornerPoint);
+        let point = CornerPoint {
+            vertex: u0,
+            angle_rad: alpha,
+            arcs: arcs.len(),
+            last_radius_mm: rho_last,
+            residual_mm: left,
+            max_radial_depth_mm: deepest,
+            max_engagement_rad: 0.0,
+            at: u0,
+        };
+        self.corner_points.push((point, first..self.b.segments.len()));
+        Some(s_last)
+    }
+
+    /// Along a feature's tool-centre boundary to `to`: a line along an edge, the arc of radius
+    /// r about a vertex (the shorter way).
+    fn along(&mut self, f: WallFeature, to: P2) {
+        match f {
+            WallFeature::Edge(..) => self.b.line(to, MoveKind::CornerPoint),
+            WallFeature::Vertex(v) => {
+                let (a, b) = (self.b.pos - v, to - v);
+                let a0 = a.y.atan2(a.x);
+                let sweep = (b.y.atan2(b.x) - a0 + PI).rem_euclid(TAU) - PI;
+                if sweep.abs() * a.norm() > 1e-9 {
+                    self.b.arc(v, a.norm(), a0, sweep, MoveKind::CornerPoint);
+                }
+                self.b.pos = to;
             }
         }
     }

@@ -439,3 +439,20 @@ pub const DUMBBELL: &[(f64, f64)] = &[
     (40.0, 40.0),
     (0.0, 40.0),
 ];
+
+/// Two 30 × 30 lobes joined by a 10 mm long neck 8 mm wide: narrower than D = 10, so the tool
+/// cannot pass it (issue #12's neck mouths).
+pub const DUMBBELL_8: &[(f64, f64)] = &[
+    (0.0, 0.0),
+    (30.0, 0.0),
+    (30.0, 11.0),
+    (40.0, 11.0),
+    (40.0, 0.0),
+    (70.0, 0.0),
+    (70.0, 30.0),
+    (40.0, 30.0),
+    (40.0, 19.0),
+    (30.0, 19.0),
+    (30.0, 30.0),
+    (0.0, 30.0),
+];
