@@ -286,6 +286,11 @@ struct PocketOut {
     by_kind: Vec<KindOut>,
     /// Every move at depth (entries' flat moves included), of it the links.
     length_at_depth_mm: f64,
+    /// Moves at depth with engagement below 1°.
+    air_length_mm: f64,
+    /// The ring corners whose strategy ends with corner-point arcs (within the corner
+    /// tolerance): arcs, residual, peak over them and their moves, where, h_max/f_z.
+    corner_points: Vec<CornerPointOut>,
     /// The entries: helices, or zig-zag ramps where no helix fits; their descents' length.
     helices: Vec<HelixOut>,
     ramps: Vec<RampOut>,
@@ -489,6 +494,20 @@ fn hmax_per_fz(phi: f64) -> f64 {
     phi.min(0.5 * std::f64::consts::PI).sin()
 }
 
+fn corner_point_out(c: &pocket::adaptive::CornerPoint) -> CornerPointOut {
+    CornerPointOut {
+        vertex: [c.vertex.x, c.vertex.y],
+        angle_deg: c.angle_rad.to_degrees(),
+        arcs: c.arcs,
+        last_radius_mm: c.last_radius_mm,
+        residual_mm: c.residual_mm,
+        max_radial_depth_mm: c.max_radial_depth_mm,
+        max_engagement_deg: c.max_engagement_rad.to_degrees(),
+        at: [c.at.x, c.at.y],
+        hmax_per_fz: hmax_per_fz(c.max_engagement_rad),
+    }
+}
+
 fn kind_out(m: &pocket::KindMax) -> KindOut {
     KindOut { kind: m.kind, max_engagement_deg: m.max_rad.to_degrees(), at: [m.at.x, m.at.y], length_mm: m.length_mm }
 }
@@ -524,22 +543,7 @@ fn adaptive_pocket_json(plan: &AdaptivePlan, nc_export: Option<NcExportOut>) -> 
                 corner_point_bound_deg: corner_point_bound_rad(c.angle_rad).to_degrees(),
             })
             .collect(),
-        corner_points: plan
-            .parts
-            .iter()
-            .flat_map(|p| &p.corner_points)
-            .map(|c| CornerPointOut {
-                vertex: xy(c.vertex),
-                angle_deg: c.angle_rad.to_degrees(),
-                arcs: c.arcs,
-                last_radius_mm: c.last_radius_mm,
-                residual_mm: c.residual_mm,
-                max_radial_depth_mm: c.max_radial_depth_mm,
-                max_engagement_deg: c.max_engagement_rad.to_degrees(),
-                at: xy(c.at),
-                hmax_per_fz: hmax_per_fz(c.max_engagement_rad),
-            })
-            .collect(),
+        corner_points: plan.parts.iter().flat_map(|p| &p.corner_points).map(corner_point_out).collect(),
         corner_radius_left_mm: plan.corner_radius_left_mm,
         finish_stock_mm: plan.options.finish_stock_mm,
         max_engagement_deg: plan.max_engagement_rad.to_degrees(),
@@ -602,6 +606,8 @@ fn ring_pocket_json(req: &PocketRequest, plan: &RingPlan, nc_export: Option<NcEx
         p95_engagement_deg: plan.p95_engagement_rad.to_degrees(),
         by_kind: plan.maxima.iter().map(kind_out).collect(),
         length_at_depth_mm: plan.length_at_depth_mm,
+        air_length_mm: plan.air_length_mm,
+        corner_points: plan.corner_points.iter().map(corner_point_out).collect(),
         helices,
         ramps,
         entry_length_mm: plan.entry_length_mm,
