@@ -492,6 +492,9 @@ pub fn ring_with_corner_trochoids(
     Ok((tagged.into_iter().map(|(s, _)| s).collect(), done, skipped))
 }
 
+/// A ring with its corners: tagged segments, (corners done, left plain), corner-point arcs.
+type CorneredRing = (Tagged, (usize, usize), Vec<RingCorner>);
+
 /// A ring corner whose strategy ends with corner-point arcs: the ring vertex U0, the corner's
 /// interior angle (rad) and the arcs.
 type RingCorner = (P2, f64, CornerPointArcs);
@@ -830,7 +833,7 @@ pub fn plan_ring_pocket(
     let outline = pline_of(polygon.vertices());
     // Every ring with its corners; k_c from the helix and the corners.
     let delta = Some(core_options.corner_tolerance_mm);
-    let mut rings: Vec<Vec<(Tagged, (usize, usize), Vec<RingCorner>)>> = Vec::with_capacity(levels.len());
+    let mut rings: Vec<Vec<CorneredRing>> = Vec::with_capacity(levels.len());
     for (_, d, loops) in &levels {
         let mut level = Vec::with_capacity(loops.len());
         for plain in loops {
