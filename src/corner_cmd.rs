@@ -294,6 +294,11 @@ struct PocketOut {
     by_kind: Vec<KindOut>,
     /// Every move at depth (entries' flat moves included), of it the links.
     length_at_depth_mm: f64,
+    /// Moves at depth with engagement below 1°.
+    air_length_mm: f64,
+    /// The ring corners whose strategy ends with corner-point arcs (within the corner
+    /// tolerance): arcs, residual, peak over them and their moves, where, h_max/f_z.
+    corner_points: Vec<CornerPointOut>,
     /// The entries: helices, or zig-zag ramps where no helix fits; their descents' length.
     helices: Vec<HelixOut>,
     ramps: Vec<RampOut>,
@@ -635,6 +640,8 @@ fn ring_pocket_json(req: &PocketRequest, plan: &RingPlan, nc_export: Option<NcEx
         p95_engagement_deg: plan.p95_engagement_rad.to_degrees(),
         by_kind: plan.maxima.iter().map(kind_out).collect(),
         length_at_depth_mm: plan.length_at_depth_mm,
+        air_length_mm: plan.air_length_mm,
+        corner_points: plan.corner_points.iter().map(corner_point_out).collect(),
         helices,
         ramps,
         entry_length_mm: plan.entry_length_mm,

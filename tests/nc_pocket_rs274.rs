@@ -281,6 +281,14 @@ fn every_method_in_both_directions_passes_rs274_and_mirrors_its_peak() {
                 prof.path_length_mm,
                 prof.max().map(|s| (s.x_mm, s.y_mm))
             );
+            // the ring methods with their corner strategies (issue #12 items 2 and 3): every
+            // move within the strategies' target a* = a_str·(1 + t1) (Wu et al. eq. 23, t1 = 15 %)
+            // + 1°, read back (plain keeps plain corners on purpose, the papers' baseline)
+            if method == "variable" || method == "isometric" {
+                let a_star = trochoplan_core::corner::CornerSettings::new(R, 1.527).expect("settings").target;
+                assert!(peak <= a_star.to_degrees() + 1.0, "{label}: {peak:.2}° > a* {:.2}° + 1°", a_star.to_degrees());
+                assert!(p95 <= 50.0, "{label}: p95 {p95:.2}°");
+            }
             peaks.push(peak);
         }
         assert!((peaks[0] - peaks[1]).abs() < 1.0, "{method}: climb {:.2}° vs conventional {:.2}°", peaks[0], peaks[1]);

@@ -106,38 +106,47 @@ fn variable_and_isometric_rings_get_their_strategy_at_every_corner_and_no_slot()
         assert!(levels.windows(2).all(|w| w[0] == w[1] + 1), "{levels:?}");
         let prof = measured(&p);
         let all = samples(&p, &prof);
-        let corners = ring_corners(&p);
         let theta = largest_link_turn(&p);
         let slack = 1f64.to_radians();
         let mut corner_circles: f64 = 0.0;
         for (at, a, kind) in &all {
-            let near_corner = corners.iter().any(|c| (c - at).norm() < 1.0);
-            if *kind == MoveKind::Corner && !near_corner {
+            if *kind == MoveKind::Corner {
                 corner_circles = corner_circles.max(*a);
             }
             let bound = match kind {
                 MoveKind::Entry => 1e-3, // inside the bore, up to rounding at its edge
                 // the core: adaptive clearing's target
-                MoveKind::Spiral | MoveKind::Ring | MoveKind::Finish | MoveKind::CornerPoint => phi_core + slack,
+                MoveKind::Spiral | MoveKind::Ring | MoveKind::Finish => phi_core + slack,
                 // the diagonal into a band: φ* + θ (derived at `diagonal_link`)
                 MoveKind::Link => phi + theta + slack,
-                // the corner strategies' own target, but at the ring's corner points, which
-                // read π − α (`corner_point_bound_rad`, derived): 90° here, measured 91.5°;
-                // the 2° allowance is ours, not derived
-                MoveKind::Corner if near_corner => corner_point_bound_rad(FRAC_PI_2) + 2.0 * slack,
-                // away from them the strategies' target a* is not met on ring 1's first
-                // circles (README "Not met"): they must beat the plain rings' corners
-                MoveKind::Corner => plain_peak,
+                // the strategies' circles and their corner-point arcs (issue #12 items 2 and
+                // 3): the strategies' target a* (the core's corner points: its own, lower)
+                MoveKind::Corner | MoveKind::CornerPoint => corner_target + slack,
                 other => panic!("{other:?} in a ring plan"),
             };
             assert!(*a <= bound, "{method:?}: {kind:?} {:.2}° > {:.2}° at {at:?}", a.to_degrees(), bound.to_degrees());
         }
+        // every ring corner ends with corner-point arcs down to δ, not at the corner point:
+        // the residual is δ(1/sin 45° − 1) at 90° (derived in `corner::strategy`), the peak
+        // over the arcs within a*, below the π − α = 90° of any path into the corner point
+        let corners = ring_corners(&p);
+        assert_eq!(p.corner_points.len(), corners.len(), "{method:?}");
+        let delta = trochoplan_core::pocket::adaptive::DEFAULT_CORNER_TOLERANCE_MM;
+        for c in &p.corner_points {
+            assert!(corners.iter().any(|v| (v - c.vertex).norm() < 1e-6), "{c:?}");
+            assert!((c.angle_rad - FRAC_PI_2).abs() < 1e-9 && (c.last_radius_mm - delta).abs() < 1e-12, "{c:?}");
+            assert!((c.residual_mm - delta * (2f64.sqrt() - 1.0)).abs() < 1e-9, "{c:?}");
+            assert!(c.max_engagement_rad <= corner_target + slack, "{c:?}");
+            assert!(c.max_engagement_rad < corner_point_bound_rad(FRAC_PI_2) - 30f64.to_radians(), "{c:?}");
+        }
+        // the air (engagement < 1°) is a part of the length at depth
+        assert!(p.air_length_mm > 0.0 && p.air_length_mm < p.length_at_depth_mm);
         // the plan's own numbers are this profile's
         let peak = prof.iter().map(|s| s.2).fold(0.0, f64::max);
         assert!((peak - p.max_engagement_rad).abs() < 1e-9);
         eprintln!(
             "{method:?}: {} rings, peak {:.2}°, corner circles {:.2}° (a* {:.2}°, plain corners {:.2}°), p95 {:.2}°, \
-             links θ ≤ {:.2}°, at depth {:.1} mm",
+             links θ ≤ {:.2}°, at depth {:.1} mm, air {:.1} mm",
             p.rings.len(),
             peak.to_degrees(),
             corner_circles.to_degrees(),
@@ -145,7 +154,8 @@ fn variable_and_isometric_rings_get_their_strategy_at_every_corner_and_no_slot()
             plain_peak.to_degrees(),
             p.p95_engagement_rad.to_degrees(),
             theta.to_degrees(),
-            p.length_at_depth_mm
+            p.length_at_depth_mm,
+            p.air_length_mm
         );
     }
 }

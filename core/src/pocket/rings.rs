@@ -62,12 +62,14 @@
 
 use super::PocketSettings;
 use super::adaptive::{
-    AdaptiveOptions, AdaptivePart, Builder, clear_regions, closest_on, fin_radius, inscribed, offset, pline_of,
+    AIR_ENGAGEMENT_RAD, AdaptiveOptions, AdaptivePart, Builder, CornerPoint, clear_regions, closest_on, fin_radius,
+    inscribed, offset, pline_of,
 };
 use super::entry::{Entry, entry_at, helix_radius};
 use super::perforative::{KindMax, MoveKind, maxima, peak_and_p95};
 use crate::corner::{
     Corner, CornerMethod, CornerScenario, CornerSettings, EvaluatorOptions, engagement_profile, plan_corner,
+    strategy::CornerPointArcs,
 };
 use crate::error::{Error, Param};
 use crate::geom::{P2, Polygon, Segment, p2};
@@ -82,6 +84,10 @@ const MIN_RING_LENGTH: f64 = 1e-6;
 /// Rounding allowance of the link engagement bound (rad): far above the evaluator's
 /// refinement (~1e-8 rad), far below any engagement difference that matters (0.006°).
 pub const LINK_ENGAGEMENT_SLACK_RAD: f64 = 1e-4;
+
+/// Rounding allowance (mm) of "the strategy keeps the ring's offset from every wall": the
+/// ring's own lines are at exactly that offset, up to the offsetting's rounding (~1e-12 mm).
+const RING_SLACK_MM: f64 = 1e-6;
 
 /// One closed tool-centre ring.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -151,6 +157,14 @@ pub struct RingPlan {
     pub length_at_depth_mm: f64,
     #[serde(default)]
     pub entry_length_mm: f64,
+    /// [`plan_ring_pocket`]: moves at depth with engagement below 1° (mm).
+    #[serde(default)]
+    pub air_length_mm: f64,
+    /// [`plan_ring_pocket`]: the ring corners whose strategy ends with corner-point arcs
+    /// (issue #12 item 3), each with its arcs and the peak over them and their moves (the
+    /// core's own corner points are not in this list; they are in `maxima`).
+    #[serde(default)]
+    pub corner_points: Vec<CornerPoint>,
 }
 
 /// How the tool gets from one ring to the next.
@@ -430,6 +444,8 @@ pub fn plan_rings(polygon: &Polygon, settings: PocketSettings, method: CornerMet
         p95_engagement_rad: 0.0,
         length_at_depth_mm: 0.0,
         entry_length_mm: 0.0,
+        air_length_mm: 0.0,
+        corner_points: Vec::new(),
     })
 }
 
@@ -472,51 +488,129 @@ pub fn ring_with_corner_trochoids(
     settings: PocketSettings,
     method: CornerMethod,
 ) -> Result<(Vec<Segment>, usize, usize), Error> {
-    let (tagged, done, skipped) = corner_ring(polygon, ring, settings, method)?;
+    let (tagged, done, skipped, _) = corner_ring(polygon, ring, settings, method, None, settings.tool_radius)?;
     Ok((tagged.into_iter().map(|(s, _)| s).collect(), done, skipped))
 }
 
+/// A ring with its corners: tagged segments, (corners done, left plain), corner-point arcs.
+type CorneredRing = (Tagged, (usize, usize), Vec<RingCorner>);
+
+/// A ring corner whose strategy ends with corner-point arcs: the ring vertex U0, the corner's
+/// interior angle (rad) and the arcs.
+type RingCorner = (P2, f64, CornerPointArcs);
+
 /// [`ring_with_corner_trochoids`] with each segment tagged: [`MoveKind::Corner`] for the
-/// strategy's pieces, [`MoveKind::Ring`] for the ring's own.
+/// strategy's pieces (its circles and links), [`MoveKind::CornerPoint`] for its corner-point
+/// arcs and their moves, [`MoveKind::Ring`] for the ring's own. With a corner tolerance δ
+/// (issue #12 item 3) each strategy ends with the corner-point arcs of
+/// [`crate::corner::plan_corner`] instead of Wu et al.'s move into U0: its last arc ends on the
+/// outgoing ring line, δ·cot α past U0 (tangent to it), and the next ring segment starts there
+/// (for the last corner, the loop's first segment: the loop stays closed). Returns also the
+/// corners that got arcs.
 fn corner_ring(
     polygon: &Polygon,
     ring: &[Segment],
     settings: PocketSettings,
     method: CornerMethod,
-) -> Result<(Tagged, usize, usize), Error> {
+    corner_tolerance: Option<f64>,
+    clearance: f64,
+) -> Result<(Tagged, usize, usize, Vec<RingCorner>), Error> {
     let (r, ae) = (settings.tool_radius, settings.step_over);
-    let base = CornerSettings { feed_mm_per_min: settings.feed_mm_per_min, ..CornerSettings::new(r, ae)? };
+    let base =
+        CornerSettings { feed_mm_per_min: settings.feed_mm_per_min, corner_tolerance, ..CornerSettings::new(r, ae)? };
     let n = ring.len();
-    let mut out = Vec::with_capacity(n);
-    let (mut done, mut skipped) = (0, 0);
+    // the piece at each convex line–line vertex i (between ring[i] and ring[i + 1]), or why not
+    let mut pieces: Vec<Option<Piece>> = Vec::with_capacity(n);
+    let mut convex = vec![false; n];
     for i in 0..n {
         let (seg, next) = (ring[i], ring[(i + 1) % n]);
         let (Segment::Line { start: a, end: u0 }, Segment::Line { end: c, .. }) = (seg, next) else {
-            out.push((seg, MoveKind::Ring));
+            pieces.push(None);
             continue;
         };
         let (u, v) = (u0 - a, c - u0);
         if crate::geom::cross(u, v) <= 1e-9 * u.norm() * v.norm() {
-            out.push((seg, MoveKind::Ring)); // straight or reflex (concave-of-pocket) vertex
+            pieces.push(None); // straight or reflex (concave-of-pocket) vertex
             continue;
         }
-        match corner_piece(a, u0, c, base, method).filter(|p| piece_is_inside(polygon, p, r)) {
-            Some(piece) => {
-                out.extend(piece.into_iter().map(|s| (s, MoveKind::Corner)));
+        convex[i] = true;
+        pieces.push(corner_piece(a, u0, c, base, method).filter(|p| piece_is_inside(polygon, &p.path, clearance)));
+    }
+    // Each segment starts where the piece before it ended. A piece whose first move would
+    // not run forward from there is dropped (its corner stays plain), which may move the start
+    // of the segment after it: repeat until nothing changes (drops only, so this ends).
+    let start_of =
+        |pieces: &[Option<Piece>], i: usize| pieces[(i + n - 1) % n].as_ref().map_or(ring[i].start(), |p| p.end);
+    loop {
+        let mut dropped = false;
+        for i in 0..n {
+            let from = start_of(&pieces, i);
+            if let Some(p) = &pieces[i]
+                && !p.starts_after(from)
+            {
+                pieces[i] = None;
+                dropped = true;
+            }
+        }
+        if !dropped {
+            break;
+        }
+    }
+    let mut out = Vec::with_capacity(n);
+    let (mut done, mut skipped, mut points) = (0, 0, Vec::new());
+    for i in 0..n {
+        let from = start_of(&pieces, i);
+        match &pieces[i] {
+            Some(p) => {
+                let mut path = p.path.clone();
+                if let Some(Segment::Line { start, .. }) = path.first_mut() {
+                    *start = from;
+                }
+                out.extend(path.into_iter().zip(p.kinds.iter().copied()));
+                if let Some(arcs) = &p.arcs {
+                    points.push((ring[i].end(), p.angle, arcs.clone()));
+                }
                 done += 1;
             }
             None => {
+                let seg = match ring[i] {
+                    Segment::Line { end, .. } => Segment::Line { start: from, end },
+                    other => other,
+                };
                 out.push((seg, MoveKind::Ring));
-                skipped += 1;
+                skipped += usize::from(convex[i]);
             }
         }
     }
-    Ok((out, done, skipped))
+    Ok((out, done, skipped, points))
+}
+
+/// A corner strategy's path in place of the incoming ring line (see [`corner_piece`]).
+struct Piece {
+    path: Vec<Segment>,
+    kinds: Vec<MoveKind>,
+    /// Where it ends: U0, or on the outgoing line past it (after corner-point arcs).
+    end: P2,
+    /// Interior angle of the corner (rad) and its corner-point arcs, if any.
+    angle: f64,
+    arcs: Option<CornerPointArcs>,
+}
+
+impl Piece {
+    /// Whether its first move (along the incoming line) can start at `from` instead: `from`
+    /// on that line before the move's end.
+    fn starts_after(&self, from: P2) -> bool {
+        let Some(Segment::Line { start, end }) = self.path.first() else { return false };
+        let len = (end - start).norm();
+        let dir = (end - start) / len;
+        crate::geom::cross(dir, from - start).abs() < 1e-6 && (from - start).dot(&dir) < len - 1e-9
+    }
 }
 
 /// The strategy's path from `a` (start of the incoming ring line) to the corner vertex `u0`,
-/// or `None` where the corner scenario does not apply.
-fn corner_piece(a: P2, u0: P2, c: P2, base: CornerSettings, method: CornerMethod) -> Option<Vec<Segment>> {
+/// or with corner-point arcs to the end of the last arc on the outgoing line u0→`c` (between
+/// them), or `None` where the corner scenario does not apply.
+fn corner_piece(a: P2, u0: P2, c: P2, base: CornerSettings, method: CornerMethod) -> Option<Piece> {
     let r = base.tool_radius;
     let at_vertex = Corner::new(u0, u0 - a, c - u0).ok()?;
     let (alpha, b) = (at_vertex.half_angle, at_vertex.bisector);
@@ -526,8 +620,10 @@ fn corner_piece(a: P2, u0: P2, c: P2, base: CornerSettings, method: CornerMethod
     let edge_length = (u0 - a).norm().min((c - u0).norm()) + r / alpha.tan();
     let sc = CornerScenario::new(corner, CornerSettings { edge_length, ..base }).ok()?;
     let plan = plan_corner(&sc, method).ok()?;
-    let mut path = plan.path;
-    path.pop(); // corner point → ring end: the next ring segment
+    let (mut path, mut kinds) = (plan.path, plan.kinds);
+    path.pop(); // the V leg: the next ring segment
+    kinds.pop();
+    let kinds = kinds.into_iter().map(|k| if k == MoveKind::CornerPoint { k } else { MoveKind::Corner }).collect();
     let first = path.first_mut()?;
     let Segment::Line { end: e, .. } = *first else { return None };
     // The strategy's first move must end on the incoming line, between a and u0.
@@ -537,10 +633,14 @@ fn corner_piece(a: P2, u0: P2, c: P2, base: CornerSettings, method: CornerMethod
         return None;
     }
     *first = Segment::Line { start: a, end: e };
-    if path.last().map(Segment::end).is_none_or(|p| (p - u0).norm() > 1e-6) {
+    // It ends at U0, or after corner-point arcs on the outgoing line short of its end.
+    let end = path.last().map(Segment::end)?;
+    let (out_dir, out_len) = ((c - u0) / (c - u0).norm(), (c - u0).norm());
+    let along = (end - u0).dot(&out_dir);
+    if (end - u0).norm() > 1e-6 && !(crate::geom::cross(out_dir, end - u0).abs() < 1e-6 && along < out_len - 1e-6) {
         return None;
     }
-    Some(path)
+    Some(Piece { path, kinds, end, angle: 2.0 * alpha, arcs: plan.corner_point })
 }
 
 /// The core of [`plan_ring_pocket`]: adaptive clearing of the regions (inward offsets of the
@@ -575,6 +675,8 @@ struct Candidate {
     offset: f64,
     segments: Vec<(Segment, MoveKind)>,
     corners: (usize, usize),
+    /// Its corners with corner-point arcs.
+    points: Vec<RingCorner>,
     hub: P2,
     /// The loop inside it that was cut before it: the previous ring, or the boundary of the
     /// region the core cleared.
@@ -730,15 +832,17 @@ pub fn plan_ring_pocket(
     let phi = options.target_rad(&settings)?;
     let outline = pline_of(polygon.vertices());
     // Every ring with its corners; k_c from the helix and the corners.
-    let mut rings: Vec<Vec<(Tagged, (usize, usize))>> = Vec::with_capacity(levels.len());
-    for (_, _, loops) in &levels {
+    let delta = Some(core_options.corner_tolerance_mm);
+    let mut rings: Vec<Vec<CorneredRing>> = Vec::with_capacity(levels.len());
+    for (_, d, loops) in &levels {
         let mut level = Vec::with_capacity(loops.len());
         for plain in loops {
             level.push(if method == CornerMethod::Plain {
-                (plain.iter().map(|s| (*s, MoveKind::Ring)).collect(), (0, 0))
+                (plain.iter().map(|s| (*s, MoveKind::Ring)).collect(), (0, 0), Vec::new())
             } else {
-                let (segs, done, skipped) = corner_ring(polygon, plain, settings, method)?;
-                (segs, (done, skipped))
+                let (segs, done, skipped, points) =
+                    corner_ring(polygon, plain, settings, method, delta, *d - RING_SLACK_MM)?;
+                (segs, (done, skipped), points)
             });
         }
         rings.push(level);
@@ -753,9 +857,9 @@ pub fn plan_ring_pocket(
     // corners differ), so the two compare like for like.
     let first_plain = if method == CornerMethod::Plain {
         let mut first = None;
-        'levels: for (k, (_, _, loops)) in levels.iter().enumerate() {
+        'levels: for (k, (_, d, loops)) in levels.iter().enumerate() {
             for plain in loops {
-                if corner_ring(polygon, plain, settings, CornerMethod::Variable)?.2 > 0 {
+                if corner_ring(polygon, plain, settings, CornerMethod::Variable, delta, *d - RING_SLACK_MM)?.2 > 0 {
                     first = Some(k);
                     break 'levels;
                 }
@@ -763,7 +867,7 @@ pub fn plan_ring_pocket(
         }
         first
     } else {
-        rings.iter().position(|l| l.iter().any(|(_, (_, skipped))| *skipped > 0))
+        rings.iter().position(|l| l.iter().any(|(_, (_, skipped), _)| *skipped > 0))
     };
     let mut core = Assembled {
         segments: Vec::new(),
@@ -826,7 +930,7 @@ pub fn plan_ring_pocket(
     let mut inside: Vec<Vec<Segment>> = inner_loops;
     for k in (0..kc).rev() {
         let mut next = Vec::new();
-        for (plain, (segs, corners)) in levels[k].2.iter().zip(&rings[k]) {
+        for (plain, (segs, corners, points)) in levels[k].2.iter().zip(&rings[k]) {
             let p = plain[0].start();
             let inner = inside
                 .iter()
@@ -836,7 +940,15 @@ pub fn plan_ring_pocket(
             let hub = hubs.iter().copied().min_by(|a, b| (a - p).norm().total_cmp(&(b - p).norm())).unwrap_or(p);
             let segments = start_on_longest_line(segs.clone(), r);
             next.push(segments.iter().map(|(s, _)| *s).collect());
-            candidates.push(Candidate { level: k, offset: levels[k].1, segments, corners: *corners, hub, inner });
+            candidates.push(Candidate {
+                level: k,
+                offset: levels[k].1,
+                segments,
+                corners: *corners,
+                points: points.clone(),
+                hub,
+                inner,
+            });
         }
         inside = next;
     }
@@ -861,8 +973,40 @@ pub fn plan_ring_pocket(
     };
     let mut out_rings = Vec::with_capacity(candidates.len());
     let mut links = Vec::with_capacity(candidates.len());
+    let mut corner_points = Vec::new();
     for (i, c) in candidates.iter().enumerate() {
         let (lo, hi) = a.rings[i];
+        // each run of corner-point moves belongs to the corner whose vertex its last arc ends
+        // next to (δ·cot α from it; the corners of a ring are at least a wall length apart)
+        let mut j = lo;
+        while j < hi {
+            if a.kinds[j] != MoveKind::CornerPoint {
+                j += 1;
+                continue;
+            }
+            let run = j;
+            while j < hi && a.kinds[j] == MoveKind::CornerPoint {
+                j += 1;
+            }
+            let end = a.segments[j - 1].end();
+            let Some((vertex, angle, arcs)) =
+                c.points.iter().min_by(|p, q| (p.0 - end).norm().total_cmp(&(q.0 - end).norm()))
+            else {
+                continue;
+            };
+            let (max, at) = in_range(run, j)
+                .fold((0.0, end), |b, s| if s.angle_rad > b.0 { (s.angle_rad, p2(s.x_mm, s.y_mm)) } else { b });
+            corner_points.push(CornerPoint {
+                vertex: *vertex,
+                angle_rad: *angle,
+                arcs: arcs.radii_mm.len(),
+                last_radius_mm: arcs.radii_mm.last().copied().unwrap_or(0.0),
+                residual_mm: arcs.residual_mm,
+                max_radial_depth_mm: arcs.max_radial_depth_mm,
+                max_engagement_rad: max,
+                at,
+            });
+        }
         let segments: Vec<Segment> = a.segments[lo..hi].to_vec();
         let best = in_range(lo, hi).fold(None, |b: Option<(f64, P2)>, s| match b {
             Some((m, _)) if m >= s.angle_rad => b,
@@ -914,5 +1058,7 @@ pub fn plan_ring_pocket(
         p95_engagement_rad,
         length_at_depth_mm,
         entry_length_mm,
+        air_length_mm: profile.air_length_mm(AIR_ENGAGEMENT_RAD),
+        corner_points,
     })
 }
