@@ -231,6 +231,13 @@ fn a_pocket_too_narrow_for_a_helix_gets_a_ramp_in_every_method() {
         let peak = planned.max_engagement_rad().to_degrees();
         eprintln!("{strategy:?}: narrow pocket peak {peak:.2}°");
         assert!(peak < 179.0, "{strategy:?}: {peak:.2}°");
+        // Variable and isometric rings do not fit here: their core is the medial-axis clearing
+        // of the whole pocket (item 2), which keeps a* (Wu et al. eq. 23) + 1° like the medial
+        // axis itself; plain keeps its plain corners on purpose.
+        if strategy != PocketStrategy::Rings(CornerMethod::Plain) {
+            let a_star = CornerSettings::new(5.0, req.settings().unwrap().step_over).unwrap().target.to_degrees();
+            assert!(peak <= a_star + 1.0, "{strategy:?}: {peak:.2}° against a* = {a_star:.2}°");
+        }
     }
     // Not even a ramp of D fits: an error naming the flag.
     let tiny: &[(f64, f64)] = &[(0.0, 0.0), (14.0, 0.0), (14.0, 14.0), (0.0, 14.0)];

@@ -907,6 +907,18 @@ pub fn plan_ring_pocket(
                 last_err.take().unwrap_or_else(|| Error::param(Param::Polygon, "no core", "a pocket the tool fits"))
             })?
         }
+        None if method != CornerMethod::Plain => {
+            // No helix anywhere, so no adaptive core, and the corner strategies do not fit these
+            // narrow rings either (issue #12 item 2: "clear that region another way"): the
+            // medial-axis clearing of the whole pocket (ramp entry, circles out of its slot,
+            // corner-point arcs) is the core, and no ring is left outside it.
+            let m = super::perforative::plan_perforative(polygon, settings, &core_options)?;
+            core.segments = m.segments;
+            core.kinds = m.kinds;
+            core.retract_before = m.retract_before;
+            entries = m.entries;
+            (0, Vec::new(), Vec::new())
+        }
         None => {
             // No helix anywhere: a ramp in each region of tool centres, every level a ring.
             let mut hubs = Vec::new();
