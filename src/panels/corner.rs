@@ -248,10 +248,14 @@ pub fn compute_pocket(i: &CornerInputs) -> Result<PocketResult, String> {
         PocketPlan::MedialAxis(p) => (
             vec![(0, 0.0, p.body_max_rad.to_degrees(), segment_points(&p.segments, MAX_PATH_POINTS))],
             format!(
-                "{} circles along the medial axis, {} part(s); tips up to {:.1}°",
+                "{} circles along the medial axis, {} part(s); corner points up to {:.1}°{}",
                 p.circles.len(),
                 p.parts,
-                p.max_of(MoveKind::Tip).to_degrees()
+                p.max_of(MoveKind::CornerPoint).to_degrees(),
+                match p.max_of(MoveKind::Tip).to_degrees() {
+                    tip if tip > 0.0 => format!(", straight tips {tip:.1}°"),
+                    _ => String::new(),
+                }
             ),
         ),
         // One pass: the whole path at depth (shown as one entry of the ring list).
