@@ -420,7 +420,7 @@ fn assert_no_plunge(label: &str, all: &[Motion], json: &serde_json::Value) {
                 let off_stock = (pb - pa).norm() < 1e-9
                     && outside.iter().any(|&o| (o - pa).norm() < 1e-3)
                     && !inside_polygon(pa, &stock)
-                    && distance_to_polygon(pa, &stock) >= R - 1e-3;
+                    && trochoplan_core::geom::loop_distance(pa, &stock) >= R - 1e-3;
                 assert!(leg || off_stock, "{label}: straight move down into the stock: {m:?}");
             }
             Motion::Rapid { .. } => panic!("{label}: rapid below Z0: {m:?}"),
@@ -438,17 +438,6 @@ fn inside_polygon(p: trochoplan_core::geom::P2, v: &[trochoplan_core::geom::P2])
         }
     }
     c
-}
-
-/// Distance from `p` to the nearest edge of the polygon `v`.
-fn distance_to_polygon(p: trochoplan_core::geom::P2, v: &[trochoplan_core::geom::P2]) -> f64 {
-    (0..v.len())
-        .map(|i| {
-            let (a, b) = (v[i], v[(i + 1) % v.len()]);
-            let t = ((p - a).dot(&(b - a)) / (b - a).norm_squared()).clamp(0.0, 1.0);
-            (p - (a + (b - a) * t)).norm()
-        })
-        .fold(f64::INFINITY, f64::min)
 }
 
 /// Issue #12 item 1, entry from outside the stock: the rectangle (D = 10, a_e = 1.527 mm) open
@@ -490,7 +479,7 @@ fn open_pockets_enter_from_outside_and_read_back_within_the_issue_limits() {
             .map(|&p| {
                 closed
                     .iter()
-                    .map(|&i| distance_to_polygon(p, &[v[i], v[(i + 1) % v.len()]]))
+                    .map(|&i| trochoplan_core::geom::loop_distance(p, &[v[i], v[(i + 1) % v.len()]]))
                     .fold(f64::INFINITY, f64::min)
             })
             .fold(f64::INFINITY, f64::min);

@@ -7,7 +7,7 @@
 
 use std::f64::consts::{PI, TAU};
 use trochoplan_core::corner::{EvaluatorOptions, engagement_profile};
-use trochoplan_core::geom::{P2, Polygon, Segment, p2};
+use trochoplan_core::geom::{P2, Polygon, Segment, loop_distance, p2};
 use trochoplan_core::job::Direction;
 use trochoplan_core::pocket::adaptive::{
     DEFAULT_TARGET_CAP_DEG, concave_step, corner_pass_mean_depth_ratio, corner_point_bound_rad, default_target_rad,
@@ -448,17 +448,7 @@ fn corner_points_are_reached_within_the_tolerance_and_the_target() {
 
 /// Distance from `p` to the polygon `v` (0 inside): how far a tool centre is off the stock.
 fn off_stock(p: P2, v: &[P2]) -> f64 {
-    let poly = Polygon::new(v.to_vec()).unwrap();
-    if poly.contains(p) {
-        return 0.0;
-    }
-    (0..v.len())
-        .map(|i| {
-            let (a, b) = (v[i], v[(i + 1) % v.len()]);
-            let t = ((p - a).dot(&(b - a)) / (b - a).norm_squared()).clamp(0.0, 1.0);
-            (p - (a + (b - a) * t)).norm()
-        })
-        .fold(f64::INFINITY, f64::min)
+    if Polygon::new(v.to_vec()).unwrap().contains(p) { 0.0 } else { loop_distance(p, v) }
 }
 
 /// The rectangle (a_e = 1.527 mm, D = 10) open on its bottom edge (a step), on its

@@ -11,7 +11,7 @@ mod segment;
 
 pub use biarc::{FitPiece, biarc, distance_to_piece, fit_biarcs, polyline};
 pub use circle::Circle;
-pub use polygon::Polygon;
+pub use polygon::{Polygon, loop_distance};
 pub use quad::gauss_legendre;
 pub use segment::{Segment, SegmentPoint};
 

@@ -93,6 +93,11 @@ impl Polygon {
         signed_area(&self.vertices)
     }
 
+    /// Distance from `p` to the polygon's edges (mm).
+    pub fn boundary_distance(&self, p: P2) -> f64 {
+        loop_distance(p, &self.vertices)
+    }
+
     /// Even-odd point-in-polygon test.
     pub fn contains(&self, p: P2) -> bool {
         let v = &self.vertices;
@@ -133,6 +138,22 @@ fn segments_intersect(a: P2, b: P2, c: P2, d: P2) -> bool {
             && x.y <= p.y.max(q.y) + 1e-12
     };
     on(c, d, a, d1) || on(c, d, b, d2) || on(a, b, c, d3) || on(a, b, d, d4)
+}
+
+/// Distance from `p` to the closed loop through `v` (its edges v_i v_i+1 and v_n−1 v_0; two
+/// points: the segment between them) (mm).
+pub fn loop_distance(p: P2, v: &[P2]) -> f64 {
+    (0..v.len())
+        .map(|i| {
+            let (a, b) = (v[i], v[(i + 1) % v.len()]);
+            let t = if (b - a).norm_squared() > 0.0 {
+                ((p - a).dot(&(b - a)) / (b - a).norm_squared()).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            (p - (a + (b - a) * t)).norm()
+        })
+        .fold(f64::INFINITY, f64::min)
 }
 
 #[cfg(test)]
