@@ -164,8 +164,15 @@ fn any_job() -> impl Strategy<Value = Job> {
 
 proptest! {
     // Each case plans once and bisects the engagement-limited step (31 engagement analyses),
-    // each bounded by MAX_TOOTH_SAMPLES teeth: the cases bound the test's time.
-    #![proptest_config(ProptestConfig { cases: 40, ..ProptestConfig::default() })]
+    // each bounded by MAX_TOOTH_SAMPLES teeth: the cases bound the test's time. The jobs' plan
+    // times differ tenfold across the range, so with a random seed the run took 88 s in one CI
+    // run and 491 s in the next on the same machine: a fixed seed keeps the sample (and CI's
+    // time) reproducible.
+    #![proptest_config(ProptestConfig {
+        cases: 40,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(12),
+        ..ProptestConfig::default()
+    })]
 
     /// Every job of the allowed range plans — with at most MAX_TOOTH_SAMPLES analysed teeth
     /// per cycle and finite numbers inside their physical bounds — or is rejected by name,
