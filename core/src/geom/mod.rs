@@ -36,6 +36,20 @@ pub fn cross(a: P2, b: P2) -> f64 {
     a.x * b.y - a.y * b.x
 }
 
+/// Bisection on a predicate that holds at `good` and fails at `bad` (either order): after
+/// `steps` halvings, the end where it still holds.
+pub fn bisect_edge(mut good: f64, mut bad: f64, steps: usize, holds: impl Fn(f64) -> bool) -> f64 {
+    for _ in 0..steps {
+        let m = 0.5 * (good + bad);
+        if holds(m) {
+            good = m;
+        } else {
+            bad = m;
+        }
+    }
+    good
+}
+
 /// Golden-section search for the minimum of a unimodal `f` on `[lo, hi]`, to `tol` in x.
 /// Returns `(x, f(x))`.
 pub fn golden_min(mut lo: f64, mut hi: f64, tol: f64, f: impl Fn(f64) -> f64) -> (f64, f64) {

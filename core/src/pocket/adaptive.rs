@@ -112,7 +112,7 @@ use super::perforative::{KindMax, MoveKind, maxima, peak_and_p95};
 use super::rings::{link_is_inside, to_segments};
 use crate::corner::{EngagementProfile, EvaluatorOptions, engagement_profile};
 use crate::error::{Error, Param, num};
-use crate::geom::{P2, Polygon, Segment, cross, p2};
+use crate::geom::{P2, Polygon, Segment, bisect_edge, cross, p2};
 use crate::job::Direction;
 use cavalier_contours::polyline::{BooleanOp, PlineSource, PlineSourceMut, PlineVertex, Polyline};
 use serde::{Deserialize, Serialize};
@@ -901,16 +901,7 @@ fn clear_parts(
 
 /// ρ_fin: the concave step of radius ρ_fin + s_f reaches s_f.
 pub(crate) fn fin_radius(sf: f64, r: f64, phi: f64) -> f64 {
-    let (mut lo, mut hi) = (1e-6, 100.0 * r);
-    for _ in 0..80 {
-        let mid = 0.5 * (lo + hi);
-        if concave_step(mid, r, phi) >= sf {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    (hi - sf).max(0.1 * r)
+    (bisect_edge(100.0 * r, 1e-6, 80, |rho| concave_step(rho, r, phi) >= sf) - sf).max(0.1 * r)
 }
 
 /// Helix about k0, the spiral out of its bore into the stadium (ring 0) and the rings along the
@@ -1115,9 +1106,13 @@ fn plan_part(
     let t_corners = if t_corners.is_empty() { &corners_all } else { &t_corners };
     let sf = options.finish_stock_mm;
     let cusps_all = super::cusp::cusps(&to_segments(region), polygon, r + sf, sf);
+    let open_cusps;
     let t_cusps = match seed {
-        Seed::Outside { .. } => super::cusp::cusps(&to_segments(t_region), polygon, r + sf, sf),
-        _ => cusps_all.clone(),
+        Seed::Outside { .. } => {
+            open_cusps = super::cusp::cusps(&to_segments(t_region), polygon, r + sf, sf);
+            &open_cusps
+        }
+        _ => &cusps_all,
     };
     // Core radius T: the largest (from 0.995 × the inscribed radius, −10 % a step) whose
     // opening of the region leaves only the corner caps.
@@ -1240,17 +1235,15 @@ fn plan_part(
             deepest = deepest.max(c.depth(rho_prev, rho));
             (rho_prev, a_prev) = (rho, a);
         }
-        {
-            corners.push(CornerPasses {
-                vertex: c.vertex,
-                angle_rad: c.alpha,
-                passes: radii.len(),
-                last_radius_mm: rho_prev,
-                max_radial_depth_mm: deepest,
-                max_engagement_rad: 0.0,
-                at: c.vertex,
-            });
-        }
+        corners.push(CornerPasses {
+            vertex: c.vertex,
+            angle_rad: c.alpha,
+            passes: radii.len(),
+            last_radius_mm: rho_prev,
+            max_radial_depth_mm: deepest,
+            max_engagement_rad: 0.0,
+            at: c.vertex,
+        });
     }
     // Finishing contour: the opening of the final wall offset with radius ρ_fin + s_f, and at
     // every convex corner arc of it the arcs into the corner point.

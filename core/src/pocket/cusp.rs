@@ -21,7 +21,7 @@
 //! the concave-cut step of ρ_k+1 ([`super::adaptive::concave_step`]); ρ_k+1 by bisection.
 
 use super::adaptive::concave_step;
-use crate::geom::{P2, Polygon, Segment, cross, rot90};
+use crate::geom::{P2, Polygon, Segment, bisect_edge, cross, rot90};
 use std::f64::consts::{PI, TAU};
 
 /// Most passes into one cusp (bounds run time on hostile input).
@@ -219,20 +219,7 @@ impl Cusp {
         let mut rho = rho0;
         while rho > rho_fin + 1e-6 && out.len() < MAX_CUSP_PASSES {
             let fits = |next: f64| self.depth(rho, next) <= concave_step(next, r, phi);
-            let next = if fits(rho_fin) {
-                rho_fin
-            } else {
-                let (mut lo, mut hi) = (rho_fin, rho);
-                for _ in 0..BISECTION_STEPS {
-                    let mid = 0.5 * (lo + hi);
-                    if fits(mid) {
-                        hi = mid;
-                    } else {
-                        lo = mid;
-                    }
-                }
-                hi
-            };
+            let next = if fits(rho_fin) { rho_fin } else { bisect_edge(rho, rho_fin, BISECTION_STEPS, fits) };
             if rho - next < 1e-9 {
                 break;
             }
@@ -306,29 +293,15 @@ pub(crate) fn cusps(loop_segs: &[Segment], polygon: &Polygon, clearance: f64, sf
 fn largest_radius(cusp: &Cusp, loop_segs: &[Segment], polygon: &Polygon, clearance: f64) -> f64 {
     let on_loop =
         |q: P2| loop_segs.iter().any(|sg| (super::adaptive::closest_on(sg, q).0 - q).norm() < 1e-6 * (1.0 + q.norm()));
-    let v = polygon.vertices();
-    let edges: Vec<Segment> = (0..v.len()).map(|i| Segment::Line { start: v[i], end: v[(i + 1) % v.len()] }).collect();
-    let clear =
-        |q: P2| edges.iter().map(|sg| (super::adaptive::closest_on(sg, q).0 - q).norm()).fold(f64::MAX, f64::min);
     let ok = |rho: f64| {
         cusp.arc(rho).is_some_and(|(a, e, arc)| {
-            on_loop(a) && on_loop(e) && (0..=8).all(|j| clear(arc.point(j as f64 / 8.0)) >= clearance - 1e-6)
+            on_loop(a)
+                && on_loop(e)
+                && (0..=8).all(|j| polygon.boundary_distance(arc.point(j as f64 / 8.0)) >= clearance - 1e-6)
         })
     };
     let ext = loop_segs.iter().map(|sg| (sg.start() - cusp.vertex).norm()).fold(0.0, f64::max);
-    let (mut lo, mut hi) = (0.0, ext);
-    if ok(hi) {
-        return hi;
-    }
-    for _ in 0..BISECTION_STEPS {
-        let mid = 0.5 * (lo + hi);
-        if ok(mid) {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    lo
+    if ok(ext) { ext } else { bisect_edge(0.0, ext, BISECTION_STEPS, ok) }
 }
 
 #[cfg(test)]

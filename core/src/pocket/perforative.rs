@@ -63,7 +63,7 @@ use super::rings::link_is_inside;
 use crate::corner::medial::{MedialAxis, WallFeature, Walls, medial_axis};
 use crate::corner::{CornerSettings, EngagementProfile, EvaluatorOptions, Turn, TwoCircle, engagement_profile};
 use crate::error::{Error, Param};
-use crate::geom::{Circle, P2, Polygon, Segment, golden_min, rot90};
+use crate::geom::{Circle, P2, Polygon, Segment, bisect_edge, golden_min, rot90};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 
@@ -448,21 +448,7 @@ fn fit_flags(walls: &Walls, p: P2, q: P2, n: usize, r: f64) -> Vec<bool> {
 
 /// Fraction t ∈ (0, 1) along a→b where the clearance drops to r (a fits, b does not).
 fn crossing(poly: &Walls, a: P2, b: P2, r: f64) -> f64 {
-    edge(0.0, 1.0, 60, |t| poly.clearance(a + (b - a) * t) >= r)
-}
-
-/// Bisection on a predicate that holds at `good` and fails at `bad` (either order): after
-/// `steps` halvings, the end where it still holds.
-fn edge(mut good: f64, mut bad: f64, steps: usize, holds: impl Fn(f64) -> bool) -> f64 {
-    for _ in 0..steps {
-        let m = 0.5 * (good + bad);
-        if holds(m) {
-            good = m;
-        } else {
-            bad = m;
-        }
-    }
-    good
+    bisect_edge(0.0, 1.0, 60, |t| poly.clearance(a + (b - a) * t) >= r)
 }
 
 /// A polyline guide with arc-length parametrisation.
@@ -1039,7 +1025,7 @@ impl Planner<'_> {
         // Each arc's centre on the guide (Rc falls towards U0), checked to touch both features.
         let mut arcs = Vec::with_capacity(radii.len());
         for &rho in &radii {
-            let s = edge(cur.s, end, 60, |s| self.rho(guide.at(s)) >= rho);
+            let s = bisect_edge(cur.s, end, 60, |s| self.rho(guide.at(s)) >= rho);
             let o = guide.at(s);
             if !(touches(f1, o, rho) && touches(f2, o, rho)) {
                 return None;
@@ -1195,7 +1181,7 @@ impl Planner<'_> {
             let s = at(k);
             let above = self.rho(guide.at(s)) - r_min;
             if above < 0.0 {
-                return edge(at(k - 1), s, 50, ok);
+                return bisect_edge(at(k - 1), s, 50, ok);
             }
             let same = (above - 1e-9 * (1.0 + above + r_min)) / ((s1 - s0) / n as f64);
             k += 1 + if same.is_finite() && same > 1.0 { same.ceil() as usize - 1 } else { 0 };
@@ -1216,7 +1202,7 @@ impl Planner<'_> {
             if !good {
                 left = true;
             } else if left {
-                return Some(edge(s, prev, 50, ok));
+                return Some(bisect_edge(s, prev, 50, ok));
             }
             prev = s;
         }
