@@ -108,7 +108,7 @@
 use super::PocketSettings;
 use super::entry::Entry;
 use super::mirror::{mirror_segment, mirrored_polygon};
-use super::perforative::{KindMax, MoveKind, maxima, peak_and_p95};
+use super::perforative::{KindMax, MoveKind, maxima, peak_and_p95, sample_owners};
 use super::rings::{link_is_inside, to_segments};
 use crate::corner::{EngagementProfile, EvaluatorOptions, engagement_profile};
 use crate::error::{Error, Param, num};
@@ -1818,14 +1818,7 @@ fn measure(
     let link_length_mm: f64 =
         b.segments.iter().zip(&b.kinds).filter(|(_, k)| **k == MoveKind::Link).map(|(s, _)| s.length()).sum();
     // Corner maxima: the samples on each part's corner passes nearest each corner.
-    let mut ends = Vec::with_capacity(b.segments.len());
-    let mut acc = 0.0;
-    for s in &b.segments {
-        acc += s.length();
-        ends.push(acc);
-    }
-    for smp in &profile.samples {
-        let i = ends.partition_point(|&e| e < smp.s_mm - 1e-9).min(b.kinds.len().saturating_sub(1));
+    for (smp, &i) in profile.samples.iter().zip(&sample_owners(&profile, &b.segments)) {
         let at = p2(smp.x_mm, smp.y_mm);
         let nearest = |v: P2, w: P2| (v - at).norm().total_cmp(&(w - at).norm());
         let slot = match b.kinds.get(i) {

@@ -654,6 +654,19 @@ pub(crate) fn peak_and_p95(profile: &EngagementProfile) -> (f64, f64) {
 /// Per-kind maxima of the profile and the body maximum (spiral, circles, links). The
 /// positions where the tool plunges (the start of each part) are left out: there the tool
 /// drills its own hole and the evaluator reads the whole periphery (360°).
+/// The segment each sample of `profile` belongs to: the first whose end is at or beyond it (a
+/// sample on a joint belongs to the segment that ends there).
+pub(crate) fn sample_owners(profile: &EngagementProfile, segments: &[Segment]) -> Vec<usize> {
+    let mut ends = Vec::with_capacity(segments.len());
+    let mut acc = 0.0;
+    for s in segments {
+        acc += s.length();
+        ends.push(acc);
+    }
+    let last = segments.len().saturating_sub(1);
+    profile.samples.iter().map(|smp| ends.partition_point(|&e| e < smp.s_mm - 1e-9).min(last)).collect()
+}
+
 pub(crate) fn maxima(
     profile: &EngagementProfile,
     segments: &[Segment],
@@ -661,7 +674,6 @@ pub(crate) fn maxima(
     plunges: &[usize],
 ) -> (Vec<KindMax>, f64) {
     let mut out: Vec<KindMax> = Vec::new();
-    let mut ends = Vec::with_capacity(segments.len());
     let mut plunge_s = Vec::new();
     let mut acc = 0.0;
     for (i, (s, &k)) in segments.iter().zip(kinds).enumerate() {
@@ -669,16 +681,15 @@ pub(crate) fn maxima(
             plunge_s.push(acc);
         }
         acc += s.length();
-        ends.push(acc);
         match out.iter_mut().find(|m| m.kind == k) {
             Some(m) => m.length_mm += s.length(),
             None => out.push(KindMax { kind: k, max_rad: 0.0, at: s.start(), length_mm: s.length() }),
         }
     }
-    for smp in profile.samples.iter().filter(|m| plunge_s.iter().all(|p| (m.s_mm - p).abs() > 1e-9)) {
-        // The segment a sample belongs to: the first whose end is at or beyond it (a sample on
-        // a joint belongs to the segment that ends there).
-        let i = ends.partition_point(|&e| e < smp.s_mm - 1e-9).min(kinds.len() - 1);
+    let owners = sample_owners(profile, segments);
+    for (smp, &i) in
+        profile.samples.iter().zip(&owners).filter(|(m, _)| plunge_s.iter().all(|p| (m.s_mm - p).abs() > 1e-9))
+    {
         if let Some(m) = out.iter_mut().find(|m| m.kind == kinds[i])
             && smp.angle_rad > m.max_rad
         {

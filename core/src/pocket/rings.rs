@@ -66,7 +66,7 @@ use super::adaptive::{
     inscribed, offset, pline_of,
 };
 use super::entry::{Entry, entry_at, helix_radius};
-use super::perforative::{KindMax, MoveKind, maxima, peak_and_p95};
+use super::perforative::{KindMax, MoveKind, maxima, peak_and_p95, sample_owners};
 use crate::corner::{
     Corner, CornerMethod, CornerScenario, CornerSettings, EvaluatorOptions, engagement_profile, plan_corner,
     strategy::CornerPointArcs,
@@ -968,18 +968,7 @@ pub fn plan_ring_pocket(
     let opts = EvaluatorOptions::new(r, settings.spacing);
     let bores: Vec<Segment> = entries.iter().map(Entry::bore).collect();
     let profile = engagement_profile(polygon, &bores, &a.segments, &opts)?;
-    let mut ends = Vec::with_capacity(a.segments.len());
-    let mut acc = 0.0;
-    for s in &a.segments {
-        acc += s.length();
-        ends.push(acc);
-    }
-    // the segment each sample belongs to (a sample on a joint: the segment ending there)
-    let owner: Vec<usize> = profile
-        .samples
-        .iter()
-        .map(|smp| ends.partition_point(|&e| e < smp.s_mm - 1e-9).min(a.segments.len().saturating_sub(1)))
-        .collect();
+    let owner = sample_owners(&profile, &a.segments);
     let in_range = |lo: usize, hi: usize| {
         profile.samples.iter().zip(&owner).filter(move |(_, o)| (lo..hi).contains(*o)).map(|(s, _)| s)
     };
