@@ -800,11 +800,11 @@ fn plan_path(
     // concentrically, within φ* (concave-cut step); at least r/10.
     let rho_fin = if sf > 0.0 { fin_radius(sf, r, phi) } else { 0.1 * r };
     let (mut parts, mut b) = if work_open.is_empty() {
-        clear_regions(&closed_regions, &work, &settings, &options, phi, rho_fin)?
+        clear_regions(&closed_regions, &work, &settings, &options, phi, rho_fin, None)?
     } else {
         let open = OpenPocket::new(&work, &work_open, &closed_regions, r + sf)?;
         let regions = offset(&open.near, r + sf);
-        clear_parts(&regions, &open.near_polygon, &settings, &options, phi, rho_fin, Some(&open))?
+        clear_regions(&regions, &open.near_polygon, &settings, &options, phi, rho_fin, Some(&open))?
     };
     if mirror {
         for s in &mut b.segments {
@@ -826,22 +826,10 @@ fn plan_path(
 
 /// Entry, spiral, rings, corner passes down to `rho_fin` and (with a finishing stock) the
 /// finishing pass of each region of tool centres of `work`, one part each: for each, the
-/// shortest plan over the core fractions. Also the core of the ring methods
-/// ([`super::rings::plan_ring_pocket`]).
+/// shortest plan over the core fractions. Each region grows from its seed: outside the stock
+/// where it reaches past an open edge of `open`, else a helix. Also the core of the ring
+/// methods ([`super::rings::plan_ring_pocket`], closed: `open` = `None`).
 pub(crate) fn clear_regions(
-    regions: &[Polyline<f64>],
-    work: &Polygon,
-    settings: &PocketSettings,
-    options: &AdaptiveOptions,
-    phi: f64,
-    rho_fin: f64,
-) -> Result<(Vec<AdaptivePart>, Builder), Error> {
-    clear_parts(regions, work, settings, options, phi, rho_fin, None)
-}
-
-/// [`clear_regions`], each region from its seed: outside the stock where the region reaches
-/// past an open edge of `open`, else a helix.
-fn clear_parts(
     regions: &[Polyline<f64>],
     work: &Polygon,
     settings: &PocketSettings,
@@ -1460,7 +1448,7 @@ fn merge_into(list: &mut Vec<Polyline<f64>>, p: Polyline<f64>) {
 pub const OPEN_REACH_FACTOR: f64 = 3.0;
 
 /// A pocket open on some edges: the stock and the pocket extended across its open edges.
-struct OpenPocket {
+pub(crate) struct OpenPocket {
     /// The pocket outline: the stock.
     stock: Polyline<f64>,
     /// Extended by [`OPEN_REACH_FACTOR`] (r + s_f) across the open edges: its tool-centre
