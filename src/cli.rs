@@ -1,7 +1,7 @@
 //! Headless command-line interface. The subcommand and flag names are a fixed contract that
 //! scripts rely on: `analyze`, `sweep`, and the job flags below (same names as job-file keys).
 
-use crate::files::{read_input, write_atomic};
+use crate::files::{Role, check_distinct, read_input, write_atomic};
 // Pocket-corner commands (issue #5) live in their own file next to this one.
 #[path = "corner_cmd.rs"]
 mod corner_cmd;
@@ -10,7 +10,7 @@ mod corner_cmd;
 mod optimize_cmd;
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use trochoplan_core::job::{Direction, teeth_error};
 use trochoplan_core::material::{self, Library};
@@ -32,7 +32,8 @@ enum Command {
     Analyze {
         #[command(flatten)]
         job: JobArgs,
-        /// Also write the per-tooth series of a steady-state cycle as CSV.
+        /// Also write the per-tooth series of a steady-state cycle as CSV (`-`: the standard
+        /// output, the JSON report then goes to stderr).
         #[arg(long, value_name = "FILE.csv")]
         series: Option<PathBuf>,
         /// Engagement limit (degrees) for the engagement-limited step of this path type.
@@ -192,6 +193,11 @@ pub struct JobArgs {
 }
 
 impl JobArgs {
+    /// The input files named by these flags, for [`check_distinct`].
+    pub fn inputs(&self) -> [(&'static str, Option<&Path>, Role); 2] {
+        [("--job", self.job.as_deref(), Role::Input), ("--materials", self.materials.as_deref(), Role::Input)]
+    }
+
     /// Defaults, then the job file, then the flags.
     pub fn job(&self) -> Result<Job, String> {
         let mut job = match &self.job {
@@ -246,12 +252,18 @@ impl JobArgs {
     }
 }
 
-/// Run the CLI; errors go to stderr with a non-zero exit code.
+/// Run the CLI; errors go to stderr with a non-zero exit code. The report goes to stdout,
+/// or to stderr when an output file is the standard output (`-o -`).
 pub fn main() -> ExitCode {
+    crate::files::remove_temporaries_on_exit();
     let cli = Cli::parse();
     match run(cli.command) {
         Ok(out) => {
-            print!("{out}");
+            if crate::files::stdout_taken() {
+                eprint!("{out}");
+            } else {
+                print!("{out}");
+            }
             ExitCode::SUCCESS
         }
         Err(e) => {
@@ -264,6 +276,16 @@ pub fn main() -> ExitCode {
 fn run(cmd: Command) -> Result<String, String> {
     match cmd {
         Command::Analyze { job, series, engagement_limit, force_series, variable_feed } => {
+            check_distinct(
+                &[
+                    &job.inputs()[..],
+                    &[
+                        ("--series", series.as_deref(), Role::Output),
+                        ("--force-series", force_series.as_deref(), Role::Output),
+                    ],
+                ]
+                .concat(),
+            )?;
             let job = job.job()?;
             let p = plan(&job).map_err(|e| e.to_string())?;
             let limited = engagement_limited_step(&job, engagement_limit.to_radians()).map_err(|e| e.to_string())?;
@@ -284,11 +306,20 @@ fn run(cmd: Command) -> Result<String, String> {
             text.push('\n');
             Ok(text)
         }
-        Command::Sweep { job, param, from, to, steps } => sweep(job.job()?, param, from, to, steps),
-        Command::Export { job, nc } => crate::export::run(&job.job()?, &nc),
+        Command::Sweep { job, param, from, to, steps } => {
+            check_distinct(&job.inputs())?;
+            sweep(job.job()?, param, from, to, steps)
+        }
+        Command::Export { job, nc } => {
+            check_distinct(&[&job.inputs()[..], &[("--output", Some(nc.output()), Role::Output)]].concat())?;
+            crate::export::run(&job.job()?, &nc)
+        }
         Command::Corner { args } => corner_cmd::corner(&args),
         Command::Engagement { args } => corner_cmd::engagement(&args),
-        Command::Pocket { args } => corner_cmd::pocket(&args),
+        Command::Pocket { args } => {
+            check_distinct(&args.files())?;
+            corner_cmd::pocket(&args)
+        }
         Command::Calibrate { slot_forces, teeth, depth } => calibrate(&slot_forces, teeth, depth),
         Command::Optimize { args } => optimize_cmd::run(&args),
     }

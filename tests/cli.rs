@@ -155,7 +155,7 @@ fn negative_counts_get_the_core_message_not_clap_unexpected_argument() {
     fails_with(&["analyze", "--teeth", "-1"], "invalid teeth = -1: must be a whole number from 1 to 64");
     fails_with(
         &["sweep", "--param", "step", "--from", "0.5", "--to", "1", "--steps", "-1"],
-        "invalid steps = -1: must be a whole number from 1 to 10000",
+        "invalid steps = -1: must be a whole number from 1 to 300",
     );
 }
 

@@ -246,6 +246,7 @@ pub fn schedule(plan: &Plan, vf: &VariableFeed) -> Result<FeedSchedule, Error> {
     let block_time = job.machine.as_ref().map_or(DEFAULT_BLOCK_TIME_S, |m| m.block_time);
     let min_len = |feed: f64| (feed / 60.0 * block_time).max(vf.min_block_mm);
     let ret = vf.return_feed_mm_per_min.unwrap_or(3.0 * f);
+    check_min_feed(plan, vf, target)?;
     let q = vf.band_ratio;
     let spacing = plan.tooth_stride as f64 * job.f_z();
     let len = plan.path.cycle.length();
@@ -328,6 +329,43 @@ pub fn schedule(plan: &Plan, vf: &VariableFeed) -> Result<FeedSchedule, Error> {
         })
         .collect();
     Ok(sched)
+}
+
+/// No block may run below the machine's smallest feed ([`ValidJob::min_feed`]): the options
+/// that set a block's feed are refused by name when they would. A block runs at least at the
+/// lowest need of its teeth, F·target/h, whose least is F·target/h_top at the thickest chip
+/// h_top of the series at the programmed feed F (the default target, h_top itself, needs F,
+/// at least the smallest feed); it runs at most at the maximum feed, which the tool's D/8
+/// and the machine's feed leave at least F; air runs at the return feed.
+///
+/// [`ValidJob::min_feed`]: crate::job::ValidJob::min_feed
+fn check_min_feed(plan: &Plan, vf: &VariableFeed, target: f64) -> Result<(), Error> {
+    let job = &plan.job;
+    let min_feed = job.min_feed();
+    let machine = format!("the machine's min-feed {} mm/min", num(min_feed));
+    for (param, v) in [(Param::MaxFeed, vf.max_feed_mm_per_min), (Param::ReturnFeed, vf.return_feed_mm_per_min)] {
+        if let Some(v) = v.filter(|&v| v < min_feed) {
+            return Err(Error::param(param, v, format!("from {machine} to 1000000 mm/min")));
+        }
+    }
+    let h_top = plan.series.iter().filter(|t| t.cutting).map(|t| t.h_mm).fold(0.0, f64::max);
+    if h_top > 0.0 && job.feed * target / h_top < min_feed {
+        // the smallest target whose lowest need is the smallest feed, rounded up in its
+        // 12th digit so that the bound itself passes
+        let lowest = min_feed * h_top / job.feed;
+        return Err(Error::param(
+            Param::TargetHmax,
+            target,
+            format!(
+                "from {} to 1000000 mm: at the job's thickest chip h = {} mm at feed {} mm/min a \
+                 smaller target needs a feed below {machine}",
+                num(lowest * (1.0 + 1e-11)),
+                num(h_top),
+                num(job.feed)
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// The ideal machine's time: every piece at its feed, steps at once.

@@ -7,7 +7,7 @@
 //! and a 20 mm long slot.
 
 use crate::error::{Error, Param, num};
-use crate::machine::{Machine, MachineChoice};
+use crate::machine::{DEFAULT_MIN_FEED_MM_PER_MIN, Machine, MachineChoice};
 use crate::material::{Coefficients, DEFAULT_MATERIAL, Library};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
@@ -188,6 +188,12 @@ pub mod limits {
     pub const MIN_FZ: f64 = 1.0e-4;
     /// Most teeth.
     pub const MAX_TEETH: u32 = 64;
+    /// Deepest cut a_p, in tool diameters: the flutes of extra-long end mills reach about 5–6·D
+    /// (long series 3–4·D), and the tool cannot cut deeper than its flutes; 10·D leaves room.
+    /// The force model's work grows with a_p/D (a helical flute wraps a_p·tanβ/(π·D) times
+    /// round the tool): `optimize` at a_p = 10·D = 100 mm on the default tool takes 3.8 s,
+    /// at 10⁴ mm over a minute (one `analyze` there: 1.7 s).
+    pub const MAX_DEPTH_PER_DIAMETER: f64 = 10.0;
     /// Most tooth positions analysed per cycle. A cycle holds (cycle length)/f_z tooth
     /// positions — up to ~10⁹ within the limits above (a cycle of ~10⁵ mm at f_z = 10⁻⁴ mm) —
     /// and each costs a fixed amount of work and memory (engagement, h, engaged arcs). Past
@@ -287,10 +293,32 @@ impl Job {
                 ),
             ));
         }
+        if depth > MAX_DEPTH_PER_DIAMETER * d_t {
+            return Err(Error::param(
+                Param::Depth,
+                depth,
+                format!(
+                    "from {} to {}·D = {} mm (the deepest cut of a tool {} mm across)",
+                    num(MIN_SIZE_MM),
+                    num(MAX_DEPTH_PER_DIAMETER),
+                    num(MAX_DEPTH_PER_DIAMETER * d_t),
+                    num(d_t)
+                ),
+            ));
+        }
         if self.teeth == 0 || self.teeth > MAX_TEETH {
             return Err(teeth_error(i64::from(self.teeth)));
         }
+        let machine = self.machine.as_ref().map(MachineChoice::machine).transpose()?;
         let feed = positive(Param::Feed, self.feed, 1.0e6)?;
+        let min_feed = machine.as_ref().map_or(DEFAULT_MIN_FEED_MM_PER_MIN, |m| m.min_feed);
+        if feed < min_feed {
+            return Err(Error::param(
+                Param::Feed,
+                feed,
+                format!("from the machine's min-feed {} to {} mm/min", num(min_feed), num(1.0e6)),
+            ));
+        }
         let rpm = positive(Param::Rpm, self.rpm, 1.0e6)?;
         let step = positive(Param::Step, self.step, MAX_SIZE_MM)?;
         if step >= d_t {
@@ -365,7 +393,7 @@ impl Job {
             aspect_ratio: r_e,
             linear_distance: d,
             direction: self.direction,
-            machine: self.machine.as_ref().map(MachineChoice::machine).transpose()?,
+            machine,
         })
     }
 
@@ -419,6 +447,12 @@ impl Job {
 }
 
 impl ValidJob {
+    /// The smallest feed of the job's machine (mm/min; the ideal machine's without one): no
+    /// feed of its programs is lower.
+    pub fn min_feed(&self) -> f64 {
+        self.machine.as_ref().map_or(DEFAULT_MIN_FEED_MM_PER_MIN, |m| m.min_feed)
+    }
+
     /// Tool radius R = D/2 (mm).
     pub fn tool_radius(&self) -> f64 {
         self.tool_diameter / 2.0

@@ -18,6 +18,10 @@ use std::f64::consts::{PI, TAU};
 
 /// Largest coordinate written (mm); job validation keeps paths far below.
 const MAX_ABS_MM: f64 = 1.0e7;
+/// Largest feed written (mm/min); job and machine validation keep feeds far below.
+const MAX_FEED_MM_PER_MIN: f64 = 1.0e7;
+/// Largest spindle speed written (rpm); job validation keeps speeds far below.
+const MAX_RPM: f64 = 1.0e7;
 
 /// How the Y word of a block is written.
 #[derive(Clone, Debug)]
@@ -178,16 +182,54 @@ impl Writer {
         }
     }
 
+    /// `feed` in the written steps of 0.1 mm/min, at least one step: a feed that is not
+    /// finite, or that would be written as `F0.0` or negative, records an error (the last
+    /// check: the options that set feeds are checked against the machine's `min-feed` before).
+    fn feed_quanta(&mut self, feed: f64) -> i64 {
+        let f = if feed.is_finite() && feed <= MAX_FEED_MM_PER_MIN { (feed * 10.0).round() as i64 } else { 0 };
+        if f < 1 && self.error.is_none() {
+            self.error = Some(Error::nc(
+                "feed",
+                feed,
+                format!("a finite number from 0.05 to {} mm/min (written as F0.1 or more)", num(MAX_FEED_MM_PER_MIN)),
+            ));
+        }
+        f.max(1)
+    }
+
+    /// A feed as a loop parameter (six decimals), with the checks of the F word.
+    pub fn feed_param(&mut self, feed: f64) -> String {
+        let f = self.feed_quanta(feed);
+        format!("{}.{}00000", f / 10, f % 10)
+    }
+
+    /// A loop parameter (a length in mm) with six decimals: R-parameters and named parameters
+    /// are doubles, and the step must not be rounded to the coordinate quantum, or cycles would
+    /// drift. A non-finite or huge value records an error instead of writing `NaN` or `inf`.
+    pub fn param(&mut self, what: &'static str, v: f64) -> String {
+        if !(v.is_finite() && v.abs() <= MAX_ABS_MM) {
+            if self.error.is_none() {
+                self.error = Some(Error::nc(what, v, format!("a finite number of at most {} mm", num(MAX_ABS_MM))));
+            }
+            return "0.000000".into();
+        }
+        let s = format!("{v:.6}");
+        if s.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') { "0.000000".into() } else { s }
+    }
+
+    /// The spindle-on block `S… M3`; a speed that is not finite or rounds to `S0` records an
+    /// error (a tool that does not turn must not be fed into the stock).
+    pub fn spindle_on(&mut self, rpm: f64) {
+        let s = if rpm.is_finite() && rpm <= MAX_RPM { rpm.round() } else { 0.0 };
+        if s < 1.0 && self.error.is_none() {
+            self.error = Some(Error::nc("rpm", rpm, "a finite number from 0.5 rpm (written as S1 or more)"));
+        }
+        self.raw(&format!("S{:.0} M3", s.max(1.0)));
+    }
+
     fn feed_word(&mut self, feed: f64, words: &mut Vec<String>) {
         // feeds in 0.1 mm/min
-        let f = if feed.is_finite() && feed > 0.0 && feed <= 1e7 {
-            (feed * 10.0).round() as i64
-        } else {
-            if self.error.is_none() {
-                self.error = Some(Error::nc("feed", feed, "a finite number > 0"));
-            }
-            1
-        };
+        let f = self.feed_quanta(feed);
         if self.feed != Some(f) {
             words.push(format!("F{}.{}", f / 10, f % 10));
             self.feed = Some(f);
