@@ -420,3 +420,72 @@ fn travel_before(profile: &FeedProfile, s: f64, period: f64) -> (f64, bool) {
     let held = pts.iter().filter(inside).all(FeedPoint::held);
     (s - s0, held)
 }
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+mod tests {
+    use super::*;
+    use crate::job::Job;
+    use crate::machine::{Machine, MachineChoice};
+
+    /// The default job with a custom machine whose smallest feed is `min_feed`.
+    fn planned(min_feed: f64) -> Plan {
+        let mut m = Machine::preset("vmc").expect("vmc");
+        m.min_feed = min_feed;
+        crate::plan(&Job { machine: Some(MachineChoice::Custom(m)), ..Job::default() }).expect("plan")
+    }
+
+    /// The thickest chip of the series at the programmed feed (mm).
+    fn h_top(p: &Plan) -> f64 {
+        p.series.iter().filter(|t| t.cutting).map(|t| t.h_mm).fold(0.0, f64::max)
+    }
+
+    #[test]
+    fn targets_below_the_smallest_feed_are_refused_and_the_smallest_is_held() {
+        for min_feed in [1.0, 50.0] {
+            let p = planned(min_feed);
+            // the least target: its lowest need F·target/h_top is the smallest feed
+            let least = min_feed * h_top(&p) / p.job.feed;
+            let vf = |t: f64| VariableFeed { target_h_mm: Some(t), ..VariableFeed::default() };
+            for t in [1e-6, least * 0.999] {
+                let e = schedule(&p, &vf(t)).expect_err("below the smallest feed");
+                assert_eq!(e.parameter(), Some(Param::TargetHmax), "{e}");
+                assert!(e.to_string().contains(&format!("min-feed {}", num(min_feed))), "{e}");
+            }
+            let s = schedule(&p, &vf(least * 1.001)).expect("at the bound");
+            for b in &s.blocks {
+                assert!(b.feed_mm_per_min >= min_feed, "{b:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn max_and_return_feeds_below_the_smallest_feed_are_refused_by_name() {
+        let p = planned(10.0);
+        for (vf, param) in [
+            (VariableFeed { max_feed_mm_per_min: Some(9.0), ..VariableFeed::default() }, Param::MaxFeed),
+            (VariableFeed { return_feed_mm_per_min: Some(9.0), ..VariableFeed::default() }, Param::ReturnFeed),
+        ] {
+            let e = schedule(&p, &vf).expect_err("below min-feed");
+            assert_eq!(e.parameter(), Some(param), "{e}");
+        }
+        // the default settings never go below it: the default target needs F at the top chip
+        let s = schedule(&p, &VariableFeed::default()).expect("defaults");
+        assert!(s.blocks.iter().all(|b| b.feed_mm_per_min >= 10.0));
+    }
+
+    #[test]
+    fn job_feeds_below_the_smallest_feed_are_refused() {
+        let mut m = Machine::preset("vmc").expect("vmc");
+        m.min_feed = 700.0;
+        let job = Job { machine: Some(MachineChoice::Custom(m)), ..Job::default() };
+        // the default feed is 600 mm/min
+        let e = job.validate().expect_err("feed below min-feed");
+        assert_eq!(e.parameter(), Some(Param::Feed), "{e}");
+        assert!(e.to_string().contains("min-feed 700"), "{e}");
+        // without a machine: the ideal machine's 1 mm/min (f_z = 0.5/(1·1) mm is valid)
+        let slow = Job { feed: 0.5, rpm: 1.0, teeth: 1, ..Job::default() };
+        assert_eq!(slow.validate().expect_err("0.5 < 1").parameter(), Some(Param::Feed));
+        Job { feed: 1.0, rpm: 1.0, teeth: 1, ..Job::default() }.validate().expect("1 mm/min");
+    }
+}

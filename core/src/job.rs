@@ -188,12 +188,12 @@ pub mod limits {
     pub const MIN_FZ: f64 = 1.0e-4;
     /// Most teeth.
     pub const MAX_TEETH: u32 = 64;
-    /// Deepest cut a_p, in tool diameters: the flutes of extra-long end mills reach about 5–6·D
-    /// (long series 3–4·D), and the tool cannot cut deeper than its flutes; 10·D leaves room.
-    /// The force model's work grows with a_p/D (a helical flute wraps a_p·tanβ/(π·D) times
-    /// round the tool): `optimize` at a_p = 10·D = 100 mm on the default tool takes 3.8 s,
-    /// at 10⁴ mm over a minute (one `analyze` there: 1.7 s).
-    pub const MAX_DEPTH_PER_DIAMETER: f64 = 10.0;
+    /// Deepest cut a_p, in tool diameters: the flutes of extra-long end mills reach about
+    /// 5·D (long series 3–4·D), and a tool cannot cut deeper than its flutes. The force
+    /// model's work grows with a_p/D (a helical flute wraps a_p·tanβ/(π·D) times round the
+    /// tool): `optimize` at a_p = 5·D = 50 mm on the default tool with β = 60° and 8 teeth
+    /// takes 4.8 s (at 10·D 6.1 s, at 10⁴ mm over a minute; one `analyze` there 1.7 s).
+    pub const MAX_DEPTH_PER_DIAMETER: f64 = 5.0;
     /// Most tooth positions analysed per cycle. A cycle holds (cycle length)/f_z tooth
     /// positions — up to ~10⁹ within the limits above (a cycle of ~10⁵ mm at f_z = 10⁻⁴ mm) —
     /// and each costs a fixed amount of work and memory (engagement, h, engaged arcs). Past

@@ -264,9 +264,15 @@ fn distinct_feeds(tests: &[SlotTest]) -> usize {
     f.len()
 }
 
-/// Reads slot tests from CSV: a header naming the columns `f_z`, `fx`, `fy`, `fz` (any order,
-/// any case, units after an underscore allowed: `f_z_mm,fx_n,fy_n,fz_n`), then one test per
-/// line; `#` comments and blank lines skipped. Errors name the line.
+/// Most slot tests in one calibration file: a calibration takes a handful of feeds (the
+/// usual series is 4–10), each test a few bytes of input but a residual object in the report;
+/// 2 million rows (a 66 MB file) take 14 s and 3.3 GB, 1000 take milliseconds.
+pub const MAX_SLOT_TESTS: usize = 1000;
+
+/// Reads slot tests (at most [`MAX_SLOT_TESTS`]) from CSV: a header naming the columns `f_z`,
+/// `fx`, `fy`, `fz` (any order, any case, units after an underscore allowed:
+/// `f_z_mm,fx_n,fy_n,fz_n`), then one test per line; `#` comments and blank lines skipped.
+/// Errors name the line.
 pub fn parse_slot_forces(text: &str, what: &str) -> Result<Vec<SlotTest>, Error> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut columns: Option<[usize; 4]> = None;
@@ -299,6 +305,13 @@ pub fn parse_slot_forces(text: &str, what: &str) -> Result<Vec<SlotTest>, Error>
                 .ok()
                 .filter(|x| x.is_finite())
                 .ok_or_else(|| bad(format!("field {} is not a finite number", c + 1)))?;
+        }
+        if tests.len() == MAX_SLOT_TESTS {
+            return Err(Error::param(
+                Param::SlotForces,
+                format!("{what}: more than {MAX_SLOT_TESTS} tests"),
+                format!("a file of at most {MAX_SLOT_TESTS} tests (one per line)"),
+            ));
         }
         tests.push(SlotTest { f_z_mm: v[0], fx_n: v[1], fy_n: v[2], fz_n: v[3] });
     }
@@ -404,5 +417,41 @@ mod tests {
             let e = parse_slot_forces(bad, "f.csv").expect_err(bad);
             assert!(e.to_string().contains("f.csv line"), "{e}");
         }
+    }
+
+    #[test]
+    fn libraries_and_slot_files_are_bounded_before_the_work() {
+        let entry = |i: usize| {
+            format!(
+                "[[material]]\nname = \"m{i}\"\nlabel = \"\"\nktc = 1e3\nkrc = 4e2\nkac = 1e2\nkte = 1e1\nkre = 1e1\nkae = 1e0\n"
+            )
+        };
+        // one byte over the limit, whatever it holds
+        let big = format!("{}#{}", entry(0), "x".repeat(MAX_LIBRARY_BYTES - entry(0).len()));
+        assert_eq!(big.len(), MAX_LIBRARY_BYTES + 1);
+        let e = Library::from_toml(&big, "big.toml").expect_err("too big");
+        assert_eq!(e.parameter(), Some(Param::Materials), "{e}");
+        // one entry over the count (entries of 13 + 16 + 11 + 6·10 = 100 bytes at most: 10 001 of
+        // them fit in 1 MiB)
+        let many: String = (0..=MAX_MATERIALS).map(entry).collect();
+        assert!(many.len() <= MAX_LIBRARY_BYTES, "{}", many.len());
+        let e = Library::from_toml(&many, "many.toml").expect_err("too many");
+        assert_eq!(e.parameter(), Some(Param::Materials), "{e}");
+        // at the count: loads, repeated names still found (a set, not pairs)
+        let lib =
+            Library::from_toml(&many[..many.rfind("[[material]]").expect("entry")], "ok.toml").expect("at the limit");
+        assert_eq!(lib.materials.len(), MAX_MATERIALS);
+        let e = lib.get("none").expect_err("unknown");
+        assert!(e.to_string().contains(&format!("and {} more", MAX_MATERIALS - LISTED_NAMES)), "{e}");
+        let twice = format!("{}{}", entry(7), entry(7));
+        assert!(Library::from_toml(&twice, "twice.toml").expect_err("repeated").to_string().contains("repeated"));
+        // slot tests: the limit passes, one more is named
+        let rows = |n: usize| -> String {
+            let body: String = (0..n).map(|i| format!("{},1,2,3\n", 0.01 + 1e-6 * i as f64)).collect();
+            format!("f_z,fx,fy,fz\n{body}")
+        };
+        assert_eq!(parse_slot_forces(&rows(MAX_SLOT_TESTS), "s.csv").expect("at the limit").len(), MAX_SLOT_TESTS);
+        let e = parse_slot_forces(&rows(MAX_SLOT_TESTS + 1), "s.csv").expect_err("one more");
+        assert_eq!(e.parameter(), Some(Param::SlotForces), "{e}");
     }
 }

@@ -204,7 +204,7 @@ mod tests {
     fn bad_limits_are_rejected_by_name() {
         let good = Machine::preset("vmc").expect("vmc");
         type Setter = fn(&mut Machine, f64);
-        let cases: [(Setter, Param); 8] = [
+        let cases: [(Setter, Param); 9] = [
             (|m, v| m.max_feed_x = v, Param::MaxFeedX),
             (|m, v| m.max_feed_y = v, Param::MaxFeedY),
             (|m, v| m.acceleration_x = v, Param::AccelerationX),
@@ -213,6 +213,7 @@ mod tests {
             (|m, v| m.jerk_y = v, Param::JerkY),
             (|m, v| m.path_tolerance = v, Param::PathTolerance),
             (|m, v| m.block_time = v, Param::BlockTime),
+            (|m, v| m.min_feed = v, Param::MinFeed),
         ];
         for (set, param) in cases {
             for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
@@ -223,5 +224,32 @@ mod tests {
                 assert!(e.to_string().contains(param.cli_name()), "{e}");
             }
         }
+    }
+
+    #[test]
+    fn min_feed_is_at_most_each_axis_feed_and_defaults_to_one() {
+        // every preset states it: 1 mm/min (GRBL's MINIMUM_FEED_RATE, see the preset files)
+        for name in preset_names() {
+            assert_eq!(Machine::preset(name).expect("preset").min_feed, 1.0, "{name}");
+        }
+        let mut m = Machine::preset("vmc").expect("vmc");
+        // the axis feeds may equal the smallest feed, not fall below it
+        m.min_feed = 20000.0;
+        m.validate().expect("max = min is valid");
+        for (set, param) in [
+            (|m: &mut Machine| m.max_feed_x = 1e-9, Param::MaxFeedX),
+            (|m: &mut Machine| m.max_feed_y = 19999.0, Param::MaxFeedY),
+        ] {
+            let mut bad = m.clone();
+            set(&mut bad);
+            let e = bad.validate().expect_err("below min-feed");
+            assert_eq!(e.parameter(), Some(param), "{e}");
+            assert!(e.to_string().contains("min-feed 20000"), "{e}");
+        }
+        // a [machine] table without the key takes the default
+        let text = "name = \"m\"\nmax-feed-x = 100.0\nmax-feed-y = 100.0\nacceleration-x = 1.0\n\
+                    acceleration-y = 1.0\njerk-x = 1.0\njerk-y = 1.0\npath-tolerance = 0.01\n";
+        let m: Machine = toml::from_str(text).expect("parse");
+        assert_eq!(m.min_feed, DEFAULT_MIN_FEED_MM_PER_MIN);
     }
 }

@@ -500,4 +500,39 @@ mod tests {
         assert_eq!(w.finish().expect("ok").0, "G1 X-5.0000 Y[#<oy>-1.5000] F600.0\n");
         assert_eq!(s.finish().expect("ok").0, "G1 X-5.000 Y=R10+1.500 F600.0\n");
     }
+
+    #[test]
+    fn feeds_written_as_zero_and_non_finite_numbers_are_errors() {
+        let spec = Dialect::LinuxCnc.spec();
+        // F is written in 0.1 mm/min: 0.05 rounds to F0.1, 0.04 would be F0.0
+        let mut w = Writer::new(spec);
+        w.linear(Some(1.0), None, None, Some(0.05));
+        assert!(w.finish().expect("F0.1").0.contains("F0.1"));
+        for bad in [0.04, 0.0, -600.0, f64::NAN, f64::INFINITY] {
+            let mut w = Writer::new(spec);
+            w.linear(Some(1.0), None, None, Some(bad));
+            let e = w.finish().expect_err("refused");
+            assert_eq!(e.subject(), Some("feed"), "{bad}: {e}");
+            let mut w = Writer::new(spec);
+            let _ = w.feed_param(bad);
+            assert!(w.finish().is_err(), "{bad} as a loop feed");
+        }
+        for bad in [0.4, 0.0, f64::NAN] {
+            let mut w = Writer::new(spec);
+            w.spindle_on(bad);
+            assert_eq!(w.finish().expect_err("S0").subject(), Some("rpm"), "{bad}");
+        }
+        for bad in [f64::NAN, f64::NEG_INFINITY, 1e300] {
+            let mut w = Writer::new(spec);
+            assert_eq!(w.param("step", bad), "0.000000");
+            assert_eq!(w.finish().expect_err("refused").subject(), Some("step"), "{bad}");
+            let mut w = Writer::new(spec);
+            w.linear(Some(bad), None, None, None);
+            assert_eq!(w.finish().expect_err("refused").subject(), Some("x"), "{bad}");
+        }
+        let mut w = Writer::new(spec);
+        assert_eq!((w.param("y", -0.0000001), w.param("y", 2.5)), ("0.000000".into(), "2.500000".into()));
+        assert_eq!(w.feed_param(1234.56), "1234.600000");
+        w.finish().expect("valid");
+    }
 }
