@@ -2,10 +2,10 @@
 //! scripts rely on: `analyze`, `sweep`, and the job flags below (same names as job-file keys).
 
 use crate::files::{Role, check_distinct, read_input, write_atomic};
-// Pocket-corner commands (issue #5) live in their own file next to this one.
+// Pocket-corner commands live in their own file next to this one.
 #[path = "corner_cmd.rs"]
 mod corner_cmd;
-// The optimiser (issue #11) likewise.
+// The optimiser likewise.
 #[path = "optimize_cmd.rs"]
 mod optimize_cmd;
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
@@ -40,10 +40,10 @@ enum Command {
         #[arg(long, value_name = "DEG", default_value_t = 46.0, allow_hyphen_values = true)]
         engagement_limit: f64,
         /// Also write the cutting-force series of the steady-state cycle as CSV (one row per
-        /// spindle step ≤ 1°).
+        /// spindle step ≤ 1°; `-`: the standard output).
         #[arg(long, value_name = "FILE.csv")]
         force_series: Option<PathBuf>,
-        /// Also report the real times with the variable feed (issue #11; default settings).
+        /// Also report the real times with the variable feed (default settings).
         #[arg(long)]
         variable_feed: bool,
     },
@@ -386,14 +386,14 @@ fn metrics_json(p: &Plan) -> serde_json::Map<String, serde_json::Value> {
         let v = q.of(m);
         obj.insert(q.key.into(), if q.whole { (v as u64).into() } else { v.into() });
     }
-    // The resolution of the per-tooth analysis where it is not every tooth (issue #13).
+    // The resolution of the per-tooth analysis where it is not every tooth.
     if p.tooth_stride > 1 {
         obj.insert("tooth_stride".into(), p.tooth_stride.into());
     }
     obj
 }
 
-/// The variable feed's real times and chip figures (issue #11) under their keys.
+/// The variable feed's real times and chip figures under their keys.
 fn variable_feed_json(p: &Plan, obj: &mut serde_json::Map<String, serde_json::Value>) -> Result<(), String> {
     let s = trochoplan_core::feed::schedule(p, &Default::default()).map_err(|e| e.to_string())?;
     let m = &p.metrics;

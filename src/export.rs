@@ -33,7 +33,7 @@ pub struct ExportArgs {
     /// Text for the header comment.
     #[arg(long, value_name = "TEXT")]
     title: Option<String>,
-    /// Per-block feed so that each tooth's h_max follows a target (issue #11), in blocks of at
+    /// Per-block feed so that each tooth's h_max follows a target, in blocks of at
     /// least the machine's block time; air moves at the return feed (default 3 × feed).
     #[arg(long)]
     variable_feed: bool,

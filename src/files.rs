@@ -391,7 +391,7 @@ mod tests {
 
     #[test]
     fn longest_legal_names_can_be_written() {
-        // issue #13: names of 246–255 bytes failed, the temporary name was 9+ bytes longer
+        // names of 246–255 bytes failed, the temporary name was 9+ bytes longer
         let dir = tempfile::tempdir().expect("tempdir");
         for len in [246, 250, 255] {
             let p = dir.path().join(format!("{}.nc", "n".repeat(len - 3)));
@@ -420,7 +420,7 @@ mod tests {
 
     #[test]
     fn devices_are_written_in_place_not_replaced() {
-        // issue #13: `-o /dev/null` as root replaced /dev/null by a regular file
+        // `-o /dev/null` as root replaced /dev/null by a regular file
         write_atomic(Path::new("/dev/null"), b"G0 X0\n").expect("write to /dev/null");
         let meta = std::fs::metadata("/dev/null").expect("meta");
         assert!(!meta.is_file(), "/dev/null must still be a device");
@@ -439,7 +439,7 @@ mod tests {
         let job = dir.path().join("job.toml");
         std::fs::write(&job, "feed = 600\n").expect("write");
         assert_eq!(read_input(&job, "job file").expect("read"), "feed = 600\n");
-        // issue #13: `--job /dev/zero` read without bound, a FIFO hung
+        // `--job /dev/zero` read without bound, a FIFO hung
         for p in ["/dev/zero", "/dev/null"] {
             let err = read_input(Path::new(p), "job file").expect_err(p);
             assert!(err.contains("job file") && err.contains("regular file"), "{err}");

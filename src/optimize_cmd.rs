@@ -1,4 +1,4 @@
-//! `trochoplan optimize` (issue #11): the job of highest real MRR within the user's limits,
+//! `trochoplan optimize`: the job of highest real MRR within the user's limits,
 //! printed as a TOML job file (the keys of `--job`, so `analyze --job` reproduces it), and the
 //! Pareto front of real MRR against W_max as CSV.
 

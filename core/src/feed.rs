@@ -1,4 +1,4 @@
-//! Variable feed (issue #11 part 2): a feed per block so that each tooth's chip thickness h
+//! Variable feed: a feed per block so that each tooth's chip thickness h
 //! follows a target, in blocks long enough that arcs stay arcs and controllers are not
 //! flooded (PureCutCNC #497: a feed per fragment, a minimum fragment).
 //!

@@ -12,7 +12,7 @@ use crate::material::{Coefficients, DEFAULT_MATERIAL, Library};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
-/// Which tool-centre path to use (issue #2 path models).
+/// Which tool-centre path to use.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum PathKind {
@@ -116,7 +116,7 @@ pub struct Job {
     /// Linear distance d (mm, linear-elliptical path).
     pub linear_distance: f64,
     /// Milling direction with M3: conventional = the paper's clockwise loops (default, its
-    /// Table 2), climb = the loops mirrored in the slot's centre line (issue #12 item 4).
+    /// Table 2), climb = the loops mirrored in the slot's centre line.
     pub direction: Direction,
     /// Work material: a name of the built-in library (`p20`, …), or a label when
     /// [`Job::coefficients`] are given.
@@ -136,7 +136,7 @@ pub struct Job {
     /// The six force coefficients, instead of the material's (TOML table `[coefficients]`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub coefficients: Option<Coefficients>,
-    /// The machine (issue #11): a preset name (`machine = "vmc"`) or a `[machine]` table of
+    /// The machine: a preset name (`machine = "vmc"`) or a `[machine]` table of
     /// limits; none: an ideal machine that holds every programmed feed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub machine: Option<MachineChoice>,
@@ -335,7 +335,7 @@ impl Job {
             ));
         }
         let a = (b_w - d_t) / 2.0;
-        // Every given value is checked, also where the path ignores it (issue #13: NaN or
+        // Every given value is checked, also where the path ignores it (NaN or
         // 1e300 were accepted with `--path circular`).
         let (lo, hi) = ASPECT_RATIO;
         if !(self.aspect_ratio.is_finite() && self.aspect_ratio >= lo && self.aspect_ratio <= hi) {
@@ -474,7 +474,7 @@ impl ValidJob {
 /// Milling direction with the spindle turning M3 (clockwise seen from above): in climb
 /// milling the tooth enters the material at the full chip thickness and leaves it at zero;
 /// the material is on the right of the tool's motion. The paper's eq. (1) loops are clockwise,
-/// i.e. conventional; climb mirrors them (issue #12).
+/// i.e. conventional; climb mirrors them.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Direction {
@@ -520,7 +520,7 @@ mod tests {
     #[test]
     fn errors_name_the_parameter() {
         let cases: [(Job, Param); 12] = [
-            // issue #13: a tiny slot blames the slot, not the tool that no longer fits
+            // a tiny slot blames the slot, not the tool that no longer fits
             (Job { slot_width: 1e-10, ..Job::default() }, Param::SlotWidth),
             (Job { tool_diameter: 1e-9, ..Job::default() }, Param::ToolDiameter),
             (Job { depth: 0.001, ..Job::default() }, Param::Depth),
@@ -534,7 +534,7 @@ mod tests {
             (Job { path: PathKind::Elliptical, aspect_ratio: 0.0, ..Job::default() }, Param::AspectRatio),
             (Job { feed: f64::INFINITY, ..Job::default() }, Param::Feed),
         ];
-        // issue #13: values the path ignores are checked too
+        // values the path ignores are checked too
         let ignored: [(Job, Param); 6] = [
             (Job { path: PathKind::Circular, aspect_ratio: f64::NAN, ..Job::default() }, Param::AspectRatio),
             (Job { path: PathKind::Circular, aspect_ratio: -5.0, ..Job::default() }, Param::AspectRatio),

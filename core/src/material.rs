@@ -323,7 +323,7 @@ pub fn parse_slot_forces(text: &str, what: &str) -> Result<Vec<SlotTest>, Error>
 mod tests {
     use super::*;
 
-    /// The built-in library loads, holds the five materials of issue #10, and its p20 entry is
+    /// The built-in library loads, holds its five materials, and its p20 entry is
     /// the domain-spec §4.2 default set.
     #[test]
     fn builtin_library_loads_with_the_spec_default() {

@@ -1,4 +1,4 @@
-//! The machine model (issue #11): per-axis feed, acceleration and jerk limits and the
+//! The machine model: per-axis feed, acceleration and jerk limits and the
 //! controller's path tolerance, the presets in `assets/machines/`, and the feed planner that
 //! turns a path into the feed over time ([`planner`]).
 //!
@@ -195,7 +195,7 @@ mod tests {
             assert_eq!(m.name, name);
             m.validate().expect("valid");
         }
-        // issue #11: the VMC feeds at 20 m/min
+        // the VMC feeds at 20 m/min
         assert_eq!(Machine::preset("vmc").expect("vmc").max_speed_mm_per_s(), 20000.0 / 60.0);
         assert_eq!(Machine::preset("lathe").expect_err("unknown").parameter(), Some(Param::Machine));
     }
@@ -236,10 +236,9 @@ mod tests {
         // the axis feeds may equal the smallest feed, not fall below it
         m.min_feed = 20000.0;
         m.validate().expect("max = min is valid");
-        for (set, param) in [
-            (|m: &mut Machine| m.max_feed_x = 1e-9, Param::MaxFeedX),
-            (|m: &mut Machine| m.max_feed_y = 19999.0, Param::MaxFeedY),
-        ] {
+        let below: [(fn(&mut Machine), Param); 2] =
+            [(|m| m.max_feed_x = 1e-9, Param::MaxFeedX), (|m| m.max_feed_y = 19999.0, Param::MaxFeedY)];
+        for (set, param) in below {
             let mut bad = m.clone();
             set(&mut bad);
             let e = bad.validate().expect_err("below min-feed");

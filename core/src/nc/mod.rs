@@ -1,4 +1,4 @@
-//! NC output (issue #4, domain-spec §5): one emitter ([`writer::Writer`]), dialects as data
+//! NC output (domain-spec §5): one emitter ([`writer::Writer`]), dialects as data
 //! ([`Dialect`], [`DialectSpec`]).
 //!
 //! Coordinates: the slot starts at X0 Y0 and runs along +Y, top of stock at Z0, depth −a_p;
@@ -65,7 +65,7 @@ pub struct NcOptions {
     pub tool_number: u32,
     /// Free text for the header comment (sanitised).
     pub title: String,
-    /// Per-block feed for a target chip thickness, in bands (issue #11, [`crate::feed`]);
+    /// Per-block feed for a target chip thickness, in bands ([`crate::feed`]);
     /// `None`: the programmed feed (and the return feed, if given).
     pub variable_feed: Option<VariableFeed>,
 }

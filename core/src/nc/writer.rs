@@ -40,7 +40,7 @@ pub enum YForm {
 /// the centre along it by Δh ≈ (q/√2)·cot(θ/2) and the arc between its fixed end points by
 /// Δh·(1 − cos(θ/2)) = (q/√2)·cos(θ/2)·tan(θ/4) for a sweep θ. For θ ≤ π that is ≤ q/√2; as
 /// θ → 2π it grows without bound: a near-full circle of a medial-axis pocket was written
-/// 5.5 mm off its plan, into the wall (issue #13).
+/// 5.5 mm off its plan, into the wall.
 fn max_part_sweep(spec: &DialectSpec, full_circle: bool) -> f64 {
     if full_circle { spec.max_arc_sweep } else { spec.max_arc_sweep.min(PI) }
 }
@@ -426,7 +426,7 @@ mod tests {
 
     #[test]
     fn near_full_circles_stay_on_their_circle() {
-        // Issue #13: a 23-vertex medial-axis pocket had an arc of sweep 2π − 0.0005 rad, radius
+        // a 23-vertex medial-axis pocket had an arc of sweep 2π − 0.0005 rad, radius
         // 21.4 mm, written as one block whose centre the rounding moved by 5.5 mm (gouge).
         // Read back every program through the back-plot: each point must stay on the planned
         // circle within the rounding budget (3q, see tests/nc_common `budget`).

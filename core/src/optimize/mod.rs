@@ -1,4 +1,4 @@
-//! The optimiser (issue #11 part 3): the slot job of highest *real* MRR (machine model on)
+//! The optimiser: the slot job of highest *real* MRR (machine model on)
 //! over path type, r_e, d and step s, within the user's limits, and the Pareto front of real
 //! MRR against the wall waviness W_max.
 //!
@@ -11,7 +11,7 @@
 //!   lengths measured on tool circles f_z apart), so the largest admissible feed is found by
 //!   scaling and checked by planning again.
 //!
-//! The force limit F_R,max (issue #10, linear edge-force model) is feed-scaled too, but
+//! The force limit F_R,max (linear edge-force model) is feed-scaled too, but
 //! affine rather than proportional: F = F_e + F_c with the edge part F_e independent of f_z
 //! (dF = (K_c·h + K_e)·dz, domain-spec §4.1). Lowering the feed by the ratio r = limit/F
 //! therefore leaves F slightly above the limit; the search lowers it by r² instead, which
