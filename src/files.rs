@@ -102,7 +102,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
         if let Some(m) = &existing {
             f.set_permissions(m.permissions())?;
             // the owner and group too where the process may set them (root, or its own group)
-            let _ = std::os::unix::fs::fchown(&f, Some(m.uid()), Some(m.gid()));
+            let _ = std::os::unix::fs::fchown(f, Some(m.uid()), Some(m.gid()));
         }
         f.sync_all()?;
         tmp.rename_to(&target)

@@ -236,7 +236,8 @@ mod tests {
         // the axis feeds may equal the smallest feed, not fall below it
         m.min_feed = 20000.0;
         m.validate().expect("max = min is valid");
-        let below: [(fn(&mut Machine), Param); 2] =
+        type Setter = fn(&mut Machine);
+        let below: [(Setter, Param); 2] =
             [(|m| m.max_feed_x = 1e-9, Param::MaxFeedX), (|m| m.max_feed_y = 19999.0, Param::MaxFeedY)];
         for (set, param) in below {
             let mut bad = m.clone();
