@@ -129,6 +129,15 @@ pub fn core_names<T: Copy + Send + Sync + 'static>(
         .try_map(move |s: String| all.iter().copied().find(|&v| name(v) == s).ok_or("not one of the listed values"))
 }
 
+/// One `--open-edges` index: a negative number is named with the range, as the core names an
+/// index past the last edge.
+pub fn edge_index(s: &str) -> Result<usize, String> {
+    let range = "an edge of the polygon, 0 to its last edge (edge i runs from vertex i to vertex i + 1)";
+    use trochoplan_core::{Error, Param};
+    let v: i64 = s.trim().parse().map_err(|_| Error::param(Param::OpenEdges, s, range).to_string())?;
+    usize::try_from(v).map_err(|_| Error::param(Param::OpenEdges, v, range).to_string())
+}
+
 /// Job flags: each overrides the job file, which overrides the defaults (paper Table 1).
 #[derive(Args)]
 pub struct JobArgs {

@@ -234,7 +234,7 @@ pub struct PocketArgs {
     /// a step, a slot end or a notch at the part edge. Edge i runs from vertex i to vertex i + 1
     /// of the polygon file (0-based; the last edge closes the polygon). The tool goes down
     /// outside the stock beyond an open edge and clears inward from there.
-    #[arg(long, value_name = "I[,J…]", value_delimiter = ',', value_parser = edge_index, allow_hyphen_values = true)]
+    #[arg(long, value_name = "I[,J…]", value_delimiter = ',', value_parser = super::edge_index, allow_hyphen_values = true)]
     open_edges: Vec<usize>,
     #[command(flatten)]
     nc: CornerExportArgs,
@@ -246,14 +246,6 @@ impl PocketArgs {
         use crate::files::Role;
         [("--polygon", Some(&self.polygon), Role::Input), ("--export", self.nc.export.as_deref(), Role::Output)]
     }
-}
-
-/// One `--open-edges` index: a negative number is named with the range, as the core names an
-/// index past the last edge.
-fn edge_index(s: &str) -> Result<usize, String> {
-    let range = "an edge of the polygon, 0 to its last edge (edge i runs from vertex i to vertex i + 1)";
-    let v: i64 = s.trim().parse().map_err(|_| Error::param(Param::OpenEdges, s, range).to_string())?;
-    usize::try_from(v).map_err(|_| Error::param(Param::OpenEdges, v, range).to_string())
 }
 
 #[derive(Serialize)]
