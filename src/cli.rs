@@ -1,16 +1,16 @@
 //! Headless command-line interface. The subcommand and flag names are a fixed contract that
 //! scripts rely on: `analyze`, `sweep`, and the job flags below (same names as job-file keys).
 
-use crate::files::{read_input, write_atomic};
-// Pocket-corner commands (issue #5) live in their own file next to this one.
+use crate::files::{Role, check_distinct, read_input, write_atomic};
+// Pocket-corner commands live in their own file next to this one.
 #[path = "corner_cmd.rs"]
 mod corner_cmd;
-// The optimiser (issue #11) likewise.
+// The optimiser likewise.
 #[path = "optimize_cmd.rs"]
 mod optimize_cmd;
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use trochoplan_core::job::{Direction, teeth_error};
 use trochoplan_core::material::{self, Library};
@@ -32,17 +32,18 @@ enum Command {
     Analyze {
         #[command(flatten)]
         job: JobArgs,
-        /// Also write the per-tooth series of a steady-state cycle as CSV.
+        /// Also write the per-tooth series of a steady-state cycle as CSV (`-`: the standard
+        /// output, the JSON report then goes to stderr).
         #[arg(long, value_name = "FILE.csv")]
         series: Option<PathBuf>,
         /// Engagement limit (degrees) for the engagement-limited step of this path type.
         #[arg(long, value_name = "DEG", default_value_t = 46.0, allow_hyphen_values = true)]
         engagement_limit: f64,
         /// Also write the cutting-force series of the steady-state cycle as CSV (one row per
-        /// spindle step ≤ 1°).
+        /// spindle step ≤ 1°; `-`: the standard output).
         #[arg(long, value_name = "FILE.csv")]
         force_series: Option<PathBuf>,
-        /// Also report the real times with the variable feed (issue #11; default settings).
+        /// Also report the real times with the variable feed (default settings).
         #[arg(long)]
         variable_feed: bool,
     },
@@ -128,6 +129,15 @@ pub fn core_names<T: Copy + Send + Sync + 'static>(
         .try_map(move |s: String| all.iter().copied().find(|&v| name(v) == s).ok_or("not one of the listed values"))
 }
 
+/// One `--open-edges` index: a negative number is named with the range, as the core names an
+/// index past the last edge.
+pub fn edge_index(s: &str) -> Result<usize, String> {
+    let range = "an edge of the polygon, 0 to its last edge (edge i runs from vertex i to vertex i + 1)";
+    use trochoplan_core::{Error, Param};
+    let v: i64 = s.trim().parse().map_err(|_| Error::param(Param::OpenEdges, s, range).to_string())?;
+    usize::try_from(v).map_err(|_| Error::param(Param::OpenEdges, v, range).to_string())
+}
+
 /// Job flags: each overrides the job file, which overrides the defaults (paper Table 1).
 #[derive(Args)]
 pub struct JobArgs {
@@ -192,6 +202,11 @@ pub struct JobArgs {
 }
 
 impl JobArgs {
+    /// The input files named by these flags, for [`check_distinct`].
+    pub fn inputs(&self) -> [(&'static str, Option<&Path>, Role); 2] {
+        [("--job", self.job.as_deref(), Role::Input), ("--materials", self.materials.as_deref(), Role::Input)]
+    }
+
     /// Defaults, then the job file, then the flags.
     pub fn job(&self) -> Result<Job, String> {
         let mut job = match &self.job {
@@ -246,12 +261,18 @@ impl JobArgs {
     }
 }
 
-/// Run the CLI; errors go to stderr with a non-zero exit code.
+/// Run the CLI; errors go to stderr with a non-zero exit code. The report goes to stdout,
+/// or to stderr when an output file is the standard output (`-o -`).
 pub fn main() -> ExitCode {
+    crate::files::remove_temporaries_on_exit();
     let cli = Cli::parse();
     match run(cli.command) {
         Ok(out) => {
-            print!("{out}");
+            if crate::files::stdout_taken() {
+                eprint!("{out}");
+            } else {
+                print!("{out}");
+            }
             ExitCode::SUCCESS
         }
         Err(e) => {
@@ -264,6 +285,16 @@ pub fn main() -> ExitCode {
 fn run(cmd: Command) -> Result<String, String> {
     match cmd {
         Command::Analyze { job, series, engagement_limit, force_series, variable_feed } => {
+            check_distinct(
+                &[
+                    &job.inputs()[..],
+                    &[
+                        ("--series", series.as_deref(), Role::Output),
+                        ("--force-series", force_series.as_deref(), Role::Output),
+                    ],
+                ]
+                .concat(),
+            )?;
             let job = job.job()?;
             let p = plan(&job).map_err(|e| e.to_string())?;
             let limited = engagement_limited_step(&job, engagement_limit.to_radians()).map_err(|e| e.to_string())?;
@@ -284,11 +315,20 @@ fn run(cmd: Command) -> Result<String, String> {
             text.push('\n');
             Ok(text)
         }
-        Command::Sweep { job, param, from, to, steps } => sweep(job.job()?, param, from, to, steps),
-        Command::Export { job, nc } => crate::export::run(&job.job()?, &nc),
+        Command::Sweep { job, param, from, to, steps } => {
+            check_distinct(&job.inputs())?;
+            sweep(job.job()?, param, from, to, steps)
+        }
+        Command::Export { job, nc } => {
+            check_distinct(&[&job.inputs()[..], &[("--output", Some(nc.output()), Role::Output)]].concat())?;
+            crate::export::run(&job.job()?, &nc)
+        }
         Command::Corner { args } => corner_cmd::corner(&args),
         Command::Engagement { args } => corner_cmd::engagement(&args),
-        Command::Pocket { args } => corner_cmd::pocket(&args),
+        Command::Pocket { args } => {
+            check_distinct(&args.files())?;
+            corner_cmd::pocket(&args)
+        }
         Command::Calibrate { slot_forces, teeth, depth } => calibrate(&slot_forces, teeth, depth),
         Command::Optimize { args } => optimize_cmd::run(&args),
     }
@@ -355,14 +395,14 @@ fn metrics_json(p: &Plan) -> serde_json::Map<String, serde_json::Value> {
         let v = q.of(m);
         obj.insert(q.key.into(), if q.whole { (v as u64).into() } else { v.into() });
     }
-    // The resolution of the per-tooth analysis where it is not every tooth (issue #13).
+    // The resolution of the per-tooth analysis where it is not every tooth.
     if p.tooth_stride > 1 {
         obj.insert("tooth_stride".into(), p.tooth_stride.into());
     }
     obj
 }
 
-/// The variable feed's real times and chip figures (issue #11) under their keys.
+/// The variable feed's real times and chip figures under their keys.
 fn variable_feed_json(p: &Plan, obj: &mut serde_json::Map<String, serde_json::Value>) -> Result<(), String> {
     let s = trochoplan_core::feed::schedule(p, &Default::default()).map_err(|e| e.to_string())?;
     let m = &p.metrics;

@@ -114,7 +114,8 @@ impl CornerArgs {
 /// the polygon file's coordinates; stock top Z0).
 #[derive(Args)]
 pub struct CornerExportArgs {
-    /// Write the tool path as an NC program to FILE (atomically).
+    /// Write the tool path as an NC program to FILE (atomically; `-`: the standard output, the
+    /// JSON report then goes to stderr).
     #[arg(long, value_name = "FILE")]
     export: Option<PathBuf>,
     /// Controller dialect of --export.
@@ -233,10 +234,18 @@ pub struct PocketArgs {
     /// a step, a slot end or a notch at the part edge. Edge i runs from vertex i to vertex i + 1
     /// of the polygon file (0-based; the last edge closes the polygon). The tool goes down
     /// outside the stock beyond an open edge and clears inward from there.
-    #[arg(long, value_name = "I[,J…]", value_delimiter = ',')]
+    #[arg(long, value_name = "I[,J…]", value_delimiter = ',', value_parser = super::edge_index, allow_hyphen_values = true)]
     open_edges: Vec<usize>,
     #[command(flatten)]
     nc: CornerExportArgs,
+}
+
+impl PocketArgs {
+    /// The input and output files, for [`crate::files::check_distinct`].
+    pub fn files(&self) -> [(&'static str, Option<&std::path::Path>, crate::files::Role); 2] {
+        use crate::files::Role;
+        [("--polygon", Some(&self.polygon), Role::Input), ("--export", self.nc.export.as_deref(), Role::Output)]
+    }
 }
 
 #[derive(Serialize)]

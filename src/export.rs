@@ -33,7 +33,7 @@ pub struct ExportArgs {
     /// Text for the header comment.
     #[arg(long, value_name = "TEXT")]
     title: Option<String>,
-    /// Per-block feed so that each tooth's h_max follows a target (issue #11), in blocks of at
+    /// Per-block feed so that each tooth's h_max follows a target, in blocks of at
     /// least the machine's block time; air moves at the return feed (default 3 × feed).
     #[arg(long)]
     variable_feed: bool,
@@ -50,9 +50,16 @@ pub struct ExportArgs {
     /// Variable feed: shortest block (mm), on top of the machine's block time.
     #[arg(long, value_name = "MM", default_value_t = VariableFeed::default().min_block_mm, allow_hyphen_values = true)]
     min_block: f64,
-    /// Output file.
+    /// Output file; `-` or /dev/stdout: the standard output (the summary then goes to stderr).
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     output: PathBuf,
+}
+
+impl ExportArgs {
+    /// The output file (`-o`).
+    pub fn output(&self) -> &std::path::Path {
+        &self.output
+    }
 }
 
 /// The NC options of the choices every export offers (`export`, `corner --export`,

@@ -1,9 +1,9 @@
-//! `trochoplan optimize` (issue #11): the job of highest real MRR within the user's limits,
+//! `trochoplan optimize`: the job of highest real MRR within the user's limits,
 //! printed as a TOML job file (the keys of `--job`, so `analyze --job` reproduces it), and the
 //! Pareto front of real MRR against W_max as CSV.
 
 use crate::cli::JobArgs;
-use crate::files::write_atomic;
+use crate::files::{Role, check_distinct, write_atomic};
 use clap::Args;
 use std::path::PathBuf;
 use trochoplan_core::optimize::{Candidate, Control, Limits, optimize};
@@ -29,13 +29,14 @@ pub struct OptimizeArgs {
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub max_force: Option<f64>,
     /// Write the Pareto fronts (real MRR against W_max and against F_R,max) as CSV; the
-    /// column `front` says which front a row is on.
+    /// column `front` says which front a row is on (`-`: the standard output).
     #[arg(long, value_name = "FILE.csv")]
     pub front: Option<PathBuf>,
 }
 
 /// Run the search; the best job as TOML, with its figures as comments.
 pub fn run(args: &OptimizeArgs) -> Result<String, String> {
+    check_distinct(&[&args.job.inputs()[..], &[("--front", args.front.as_deref(), Role::Output)]].concat())?;
     let base = args.job.job()?;
     let mut limits = Limits::new(args.max_hmax, args.max_engagement, args.max_waviness, args.min_cooling)
         .map_err(|e| e.to_string())?;

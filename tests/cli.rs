@@ -155,7 +155,7 @@ fn negative_counts_get_the_core_message_not_clap_unexpected_argument() {
     fails_with(&["analyze", "--teeth", "-1"], "invalid teeth = -1: must be a whole number from 1 to 64");
     fails_with(
         &["sweep", "--param", "step", "--from", "0.5", "--to", "1", "--steps", "-1"],
-        "invalid steps = -1: must be a whole number from 1 to 10000",
+        "invalid steps = -1: must be a whole number from 1 to 200",
     );
 }
 
@@ -435,4 +435,168 @@ fn machine_and_optimize() {
     let (t_slow, t_fast) = (slow["time_real_s"].as_f64().expect("t"), fast["time_real_s"].as_f64().expect("t"));
     assert!(t_slow > t_fast && t_fast > at_feed, "{t_slow} {t_fast} {at_feed}");
     assert!(slow["feed_held_share"].as_f64().expect("share") < fast["feed_held_share"].as_f64().expect("share"));
+}
+
+/// `-` and `/dev/stdout` are the standard output for every output flag; the report then goes
+/// to stderr, so each stream holds one whole thing. No file named "-" is made.
+#[test]
+fn dash_and_dev_stdout_write_to_the_standard_output() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let in_dir = |args: &[&str]| {
+        let out =
+            Command::new(env!("CARGO_BIN_EXE_trochoplan")).args(args).current_dir(dir.path()).output().expect("run");
+        (
+            out.status.success(),
+            String::from_utf8_lossy(&out.stdout).into_owned(),
+            String::from_utf8_lossy(&out.stderr).into_owned(),
+        )
+    };
+    for target in ["-", "/dev/stdout"] {
+        let (ok, out, err) = in_dir(&["export", "--dialect", "grbl", "-o", target]);
+        assert!(ok, "{err}");
+        assert!(out.starts_with("(TrochoPlan") && out.trim_end().ends_with("M30"), "the program on stdout");
+        assert!(err.contains("grbl program") && err.contains(&format!("{} bytes", out.len())), "{err}");
+        let (ok, out, err) = in_dir(&["analyze", "--series", target]);
+        assert!(ok, "{err}");
+        assert!(out.starts_with("time_s,h_mm,"), "the series on stdout: {}", &out[..40.min(out.len())]);
+        let v: serde_json::Value = serde_json::from_str(&err).expect("the JSON report on stderr");
+        assert!(v["h_max_mm"].is_number());
+    }
+    let (ok, out, err) = in_dir(&["optimize", "--max-hmax", "0.075", "--max-engagement", "57.5", "--front", "-"]);
+    assert!(ok && out.starts_with("path,aspect_ratio,") && err.contains("slot-width"), "{err}");
+    assert_eq!(std::fs::read_dir(dir.path()).expect("dir").count(), 0, "no file named - and no temporary file");
+}
+
+/// An output that is one of the inputs, or two outputs that are one file, are refused before
+/// any work, naming both flags; the input is left as it was.
+#[test]
+fn outputs_that_are_inputs_or_each_other_are_refused() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let p = |name: &str| dir.path().join(name).to_str().expect("utf8").to_owned();
+    let polygon = p("in.txt");
+    std::fs::write(&polygon, "0,0\n50,0\n50,30\n0,30\n").expect("write");
+    let job = p("job.toml");
+    std::fs::write(&job, "feed = 600\n").expect("write");
+    let same_polygon = format!("{}/./in.txt", dir.path().display());
+    let (series, series2) = (p("s.csv"), format!("{}/./s.csv", dir.path().display()));
+    let cases: [(Vec<&str>, [&str; 2]); 6] = [
+        (vec!["pocket", "--polygon", &polygon, "--export", &same_polygon], ["--polygon", "--export"]),
+        (vec!["export", "--dialect", "grbl", "--job", &job, "-o", &job], ["--job", "--output"]),
+        (vec!["analyze", "--job", &job, "--series", &job], ["--job", "--series"]),
+        (vec!["analyze", "--materials", &job, "--force-series", &job], ["--materials", "--force-series"]),
+        (vec!["analyze", "--series", &series, "--force-series", &series2], ["--series", "--force-series"]),
+        (vec!["analyze", "--series", "-", "--force-series", "/dev/stdout"], ["--series", "--force-series"]),
+    ];
+    for (args, flags) in cases {
+        let (ok, out, err) = run(&args);
+        assert!(!ok && out.is_empty(), "{args:?} must fail");
+        assert!(flags.iter().all(|f| err.contains(f)), "{args:?}: {err}");
+    }
+    assert_eq!(std::fs::read_to_string(&polygon).expect("read"), "0,0\n50,0\n50,30\n0,30\n");
+    assert_eq!(std::fs::read_to_string(&job).expect("read"), "feed = 600\n");
+    assert!(!dir.path().join("s.csv").exists());
+}
+
+/// A replaced output keeps its mode; a read-only one is refused by name and left whole; a
+/// temporary file of a process no longer alive (a SIGKILL during a large export) is removed by
+/// the next write into its folder.
+#[test]
+fn replaced_outputs_keep_their_mode_and_stale_temporaries_are_cleaned() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = tempfile::tempdir().expect("tempdir");
+    let file = dir.path().join("slot.ngc");
+    let f = file.to_str().expect("utf8");
+    std::fs::write(&file, "old\n").expect("write");
+    std::fs::set_permissions(&file, std::fs::Permissions::from_mode(0o640)).expect("chmod");
+    let mut child = Command::new("true").spawn().expect("spawn");
+    let dead = child.id();
+    child.wait().expect("wait"); // its PID now names no process
+    let stale = dir.path().join(format!(".slot.ngc.trochoplan-tmp-{dead}-0"));
+    std::fs::write(&stale, "half a program").expect("write");
+    let (ok, _, err) = run(&["export", "--dialect", "linuxcnc", "-o", f]);
+    assert!(ok, "{err}");
+    let meta = std::fs::metadata(&file).expect("meta");
+    assert_eq!(meta.permissions().mode() & 0o7777, 0o640);
+    assert!(std::fs::read_to_string(&file).expect("read").contains("M30"));
+    assert!(!stale.exists(), "stale temporary file removed");
+    std::fs::set_permissions(&file, std::fs::Permissions::from_mode(0o444)).expect("chmod");
+    let before = std::fs::read_to_string(&file).expect("read");
+    let (ok, _, err) = run(&["export", "--dialect", "grbl", "-o", f]);
+    assert!(!ok && err.contains("slot.ngc") && err.contains("read-only (mode 0444)"), "{err}");
+    assert_eq!(std::fs::read_to_string(&file).expect("read"), before);
+    assert_eq!(std::fs::read_dir(dir.path()).expect("dir").count(), 1, "only the program");
+}
+
+/// SIGTERM, SIGINT and SIGHUP end the process through its clean-up (exit status 128 + the
+/// signal's number, 143 for SIGTERM, as a shell reports it), not by the default action that
+/// would leave a temporary file. `optimize` runs for seconds: the signal comes mid-work.
+#[test]
+fn termination_signals_go_through_the_clean_up() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    for (sig, code) in [("TERM", 143), ("INT", 130), ("HUP", 129)] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_trochoplan"))
+            .args(["optimize", "--max-hmax", "0.075", "--max-engagement", "57.5", "--front", "front.csv"])
+            .current_dir(dir.path())
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .expect("spawn");
+        std::thread::sleep(std::time::Duration::from_millis(500));
+        let killed = Command::new("kill").args([&format!("-{sig}"), &child.id().to_string()]).status().expect("kill");
+        assert!(killed.success());
+        let status = child.wait().expect("wait");
+        assert_eq!(status.code(), Some(code), "SIG{sig}: {status:?}");
+    }
+    assert_eq!(std::fs::read_dir(dir.path()).expect("dir").count(), 0, "nothing left behind");
+}
+
+/// `--open-edges -1` reached clap as an unknown flag; now the index is named with its range.
+#[test]
+fn a_negative_open_edge_names_open_edges_and_its_range() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let polygon = dir.path().join("p.txt");
+    std::fs::write(&polygon, "0,0\n50,0\n50,30\n0,30\n").expect("write");
+    let p = polygon.to_str().expect("utf8");
+    for v in ["-1", "1,-2"] {
+        let (ok, _, err) = run(&["pocket", "--polygon", p, "--open-edges", v]);
+        assert!(!ok && !err.contains("unexpected argument"), "{err}");
+        assert!(err.contains("invalid open-edges = -") && err.contains("an edge of the polygon, 0 to"), "{err}");
+    }
+    // past the last edge: the core's own check, with the polygon's range (4 edges: 0 to 3)
+    let (ok, _, err) = run(&["pocket", "--polygon", p, "--open-edges", "9"]);
+    assert!(!ok && err.contains("invalid open-edges = 9: must be an edge of the polygon, 0 to 3"), "{err}");
+}
+
+/// Inputs that drive work have limits checked before the work, named with the limit.
+#[test]
+fn work_is_bounded_before_it_starts() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    // 201 sweep values, one over the limit of 200
+    fails_with(
+        &["sweep", "--param", "step", "--from", "0.5", "--to", "1", "--steps", "201"],
+        "invalid steps = 201: must be a whole number from 1 to 200",
+    );
+    // a_p ≤ 5·D: 5 · 10 mm (the default tool) = 50 mm
+    fails_with(
+        &["optimize", "--depth", "1e4", "--max-hmax", "0.1", "--max-engagement", "60"],
+        "invalid depth = 10000: must be from 0.01 to 5·D = 50 mm (the deepest cut of a tool 10 mm across)",
+    );
+    // a library over 1 MiB (1 048 576 bytes): 10 000 entries of 13 + 16 + 12 + 13 + 12 + 12 + 11
+    // + 11 + 10 = 110 bytes (one per line) are 1 100 000 bytes
+    let lib = dir.path().join("lib.toml");
+    let entry = |i: usize| {
+        format!(
+            "[[material]]\nname = \"m{i:05}\"\nlabel = \"x\"\nktc = 2400.0\nkrc = 960.0\nkac = 360.0\nkte = 35.0\nkre = 35.0\nkae = 5.0\n"
+        )
+    };
+    assert_eq!(entry(0).len(), 110);
+    std::fs::write(&lib, (0..10_000).map(entry).collect::<String>()).expect("write");
+    let (ok, _, err) = run(&["analyze", "--materials", lib.to_str().expect("utf8")]);
+    assert!(!ok && err.contains("invalid materials") && err.contains("at most 1048576 bytes"), "{err}");
+    // 1001 slot tests, one over the limit of 1000
+    let csv = dir.path().join("slot.csv");
+    let rows: String = (0..1001).map(|i| format!("{},100,200,30\n", 0.01 + 1e-5 * f64::from(i))).collect();
+    std::fs::write(&csv, format!("f_z,fx,fy,fz\n{rows}")).expect("write");
+    let (ok, _, err) = run(&["calibrate", "--slot-forces", csv.to_str().expect("utf8")]);
+    assert!(!ok && err.contains("invalid slot-forces") && err.contains("at most 1000 tests"), "{err}");
 }

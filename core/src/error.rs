@@ -68,6 +68,8 @@ pub enum Param {
     PathTolerance,
     /// Machine: shortest block time of the controller (s).
     BlockTime,
+    /// Machine: smallest feed the controller runs and the program writes (mm/min).
+    MinFeed,
     MaxHmax,
     MaxEngagement,
     MaxWaviness,
@@ -114,7 +116,7 @@ pub enum Param {
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 73] = [
+    pub const ALL: [Param; 74] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
@@ -161,6 +163,7 @@ impl Param {
         Param::JerkY,
         Param::PathTolerance,
         Param::BlockTime,
+        Param::MinFeed,
         Param::MaxHmax,
         Param::MaxEngagement,
         Param::MaxWaviness,
@@ -240,6 +243,7 @@ impl Param {
             Param::JerkY => "jerk-y",
             Param::PathTolerance => "path-tolerance",
             Param::BlockTime => "block-time",
+            Param::MinFeed => "min-feed",
             Param::MaxHmax => "max-hmax",
             Param::MaxEngagement => "max-engagement",
             Param::MaxWaviness => "max-waviness",
@@ -319,6 +323,7 @@ impl Param {
             Param::JerkY => "Machine jerk Y",
             Param::PathTolerance => "Machine path tolerance",
             Param::BlockTime => "Machine block time",
+            Param::MinFeed => "Machine minimum feed",
             Param::MaxHmax => "Limit h_max",
             Param::MaxEngagement => "Limit engagement",
             Param::MaxWaviness => "Limit waviness W_max",

@@ -1,4 +1,4 @@
-//! Variable feed (issue #11 part 2): a feed per block so that each tooth's chip thickness h
+//! Variable feed: a feed per block so that each tooth's chip thickness h
 //! follows a target, in blocks long enough that arcs stay arcs and controllers are not
 //! flooded (PureCutCNC #497: a feed per fragment, a minimum fragment).
 //!
@@ -246,6 +246,7 @@ pub fn schedule(plan: &Plan, vf: &VariableFeed) -> Result<FeedSchedule, Error> {
     let block_time = job.machine.as_ref().map_or(DEFAULT_BLOCK_TIME_S, |m| m.block_time);
     let min_len = |feed: f64| (feed / 60.0 * block_time).max(vf.min_block_mm);
     let ret = vf.return_feed_mm_per_min.unwrap_or(3.0 * f);
+    check_min_feed(plan, vf, target)?;
     let q = vf.band_ratio;
     let spacing = plan.tooth_stride as f64 * job.f_z();
     let len = plan.path.cycle.length();
@@ -330,6 +331,43 @@ pub fn schedule(plan: &Plan, vf: &VariableFeed) -> Result<FeedSchedule, Error> {
     Ok(sched)
 }
 
+/// No block may run below the machine's smallest feed ([`ValidJob::min_feed`]): the options
+/// that set a block's feed are refused by name when they would. A block runs at least at the
+/// lowest need of its teeth, F·target/h, whose least is F·target/h_top at the thickest chip
+/// h_top of the series at the programmed feed F (the default target, h_top itself, needs F,
+/// at least the smallest feed); it runs at most at the maximum feed, which the tool's D/8
+/// and the machine's feed leave at least F; air runs at the return feed.
+///
+/// [`ValidJob::min_feed`]: crate::job::ValidJob::min_feed
+fn check_min_feed(plan: &Plan, vf: &VariableFeed, target: f64) -> Result<(), Error> {
+    let job = &plan.job;
+    let min_feed = job.min_feed();
+    let machine = format!("the machine's min-feed {} mm/min", num(min_feed));
+    for (param, v) in [(Param::MaxFeed, vf.max_feed_mm_per_min), (Param::ReturnFeed, vf.return_feed_mm_per_min)] {
+        if let Some(v) = v.filter(|&v| v < min_feed) {
+            return Err(Error::param(param, v, format!("from {machine} to 1000000 mm/min")));
+        }
+    }
+    let h_top = plan.series.iter().filter(|t| t.cutting).map(|t| t.h_mm).fold(0.0, f64::max);
+    if h_top > 0.0 && job.feed * target / h_top < min_feed {
+        // the smallest target whose lowest need is the smallest feed, rounded up in its
+        // 12th digit so that the bound itself passes
+        let lowest = min_feed * h_top / job.feed;
+        return Err(Error::param(
+            Param::TargetHmax,
+            target,
+            format!(
+                "from {} to 1000000 mm: at the job's thickest chip h = {} mm at feed {} mm/min a \
+                 smaller target needs a feed below {machine}",
+                num(lowest * (1.0 + 1e-11)),
+                num(h_top),
+                num(job.feed)
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// The ideal machine's time: every piece at its feed, steps at once.
 fn ideal_real_time(segs: &[Segment], feeds: &[f64], cycles: usize) -> RealTime {
     let mut points = vec![FeedPoint {
@@ -381,4 +419,73 @@ fn travel_before(profile: &FeedProfile, s: f64, period: f64) -> (f64, bool) {
     };
     let held = pts.iter().filter(inside).all(FeedPoint::held);
     (s - s0, held)
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+mod tests {
+    use super::*;
+    use crate::job::Job;
+    use crate::machine::{Machine, MachineChoice};
+
+    /// The default job with a custom machine whose smallest feed is `min_feed`.
+    fn planned(min_feed: f64) -> Plan {
+        let mut m = Machine::preset("vmc").expect("vmc");
+        m.min_feed = min_feed;
+        crate::plan(&Job { machine: Some(MachineChoice::Custom(m)), ..Job::default() }).expect("plan")
+    }
+
+    /// The thickest chip of the series at the programmed feed (mm).
+    fn h_top(p: &Plan) -> f64 {
+        p.series.iter().filter(|t| t.cutting).map(|t| t.h_mm).fold(0.0, f64::max)
+    }
+
+    #[test]
+    fn targets_below_the_smallest_feed_are_refused_and_the_smallest_is_held() {
+        for min_feed in [1.0, 50.0] {
+            let p = planned(min_feed);
+            // the least target: its lowest need F·target/h_top is the smallest feed
+            let least = min_feed * h_top(&p) / p.job.feed;
+            let vf = |t: f64| VariableFeed { target_h_mm: Some(t), ..VariableFeed::default() };
+            for t in [1e-6, least * 0.999] {
+                let e = schedule(&p, &vf(t)).expect_err("below the smallest feed");
+                assert_eq!(e.parameter(), Some(Param::TargetHmax), "{e}");
+                assert!(e.to_string().contains(&format!("min-feed {}", num(min_feed))), "{e}");
+            }
+            let s = schedule(&p, &vf(least * 1.001)).expect("at the bound");
+            for b in &s.blocks {
+                assert!(b.feed_mm_per_min >= min_feed, "{b:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn max_and_return_feeds_below_the_smallest_feed_are_refused_by_name() {
+        let p = planned(10.0);
+        for (vf, param) in [
+            (VariableFeed { max_feed_mm_per_min: Some(9.0), ..VariableFeed::default() }, Param::MaxFeed),
+            (VariableFeed { return_feed_mm_per_min: Some(9.0), ..VariableFeed::default() }, Param::ReturnFeed),
+        ] {
+            let e = schedule(&p, &vf).expect_err("below min-feed");
+            assert_eq!(e.parameter(), Some(param), "{e}");
+        }
+        // the default settings never go below it: the default target needs F at the top chip
+        let s = schedule(&p, &VariableFeed::default()).expect("defaults");
+        assert!(s.blocks.iter().all(|b| b.feed_mm_per_min >= 10.0));
+    }
+
+    #[test]
+    fn job_feeds_below_the_smallest_feed_are_refused() {
+        let mut m = Machine::preset("vmc").expect("vmc");
+        m.min_feed = 700.0;
+        let job = Job { machine: Some(MachineChoice::Custom(m)), ..Job::default() };
+        // the default feed is 600 mm/min
+        let e = job.validate().expect_err("feed below min-feed");
+        assert_eq!(e.parameter(), Some(Param::Feed), "{e}");
+        assert!(e.to_string().contains("min-feed 700"), "{e}");
+        // without a machine: the ideal machine's 1 mm/min (f_z = 0.5/(1·1) mm is valid)
+        let slow = Job { feed: 0.5, rpm: 1.0, teeth: 1, ..Job::default() };
+        assert_eq!(slow.validate().expect_err("0.5 < 1").parameter(), Some(Param::Feed));
+        Job { feed: 1.0, rpm: 1.0, teeth: 1, ..Job::default() }.validate().expect("1 mm/min");
+    }
 }

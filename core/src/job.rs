@@ -7,12 +7,12 @@
 //! and a 20 mm long slot.
 
 use crate::error::{Error, Param, num};
-use crate::machine::{Machine, MachineChoice};
+use crate::machine::{DEFAULT_MIN_FEED_MM_PER_MIN, Machine, MachineChoice};
 use crate::material::{Coefficients, DEFAULT_MATERIAL, Library};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
-/// Which tool-centre path to use (issue #2 path models).
+/// Which tool-centre path to use.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum PathKind {
@@ -116,7 +116,7 @@ pub struct Job {
     /// Linear distance d (mm, linear-elliptical path).
     pub linear_distance: f64,
     /// Milling direction with M3: conventional = the paper's clockwise loops (default, its
-    /// Table 2), climb = the loops mirrored in the slot's centre line (issue #12 item 4).
+    /// Table 2), climb = the loops mirrored in the slot's centre line.
     pub direction: Direction,
     /// Work material: a name of the built-in library (`p20`, …), or a label when
     /// [`Job::coefficients`] are given.
@@ -136,7 +136,7 @@ pub struct Job {
     /// The six force coefficients, instead of the material's (TOML table `[coefficients]`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub coefficients: Option<Coefficients>,
-    /// The machine (issue #11): a preset name (`machine = "vmc"`) or a `[machine]` table of
+    /// The machine: a preset name (`machine = "vmc"`) or a `[machine]` table of
     /// limits; none: an ideal machine that holds every programmed feed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub machine: Option<MachineChoice>,
@@ -188,6 +188,12 @@ pub mod limits {
     pub const MIN_FZ: f64 = 1.0e-4;
     /// Most teeth.
     pub const MAX_TEETH: u32 = 64;
+    /// Deepest cut a_p, in tool diameters: the flutes of extra-long end mills reach about
+    /// 5·D (long series 3–4·D), and a tool cannot cut deeper than its flutes. The force
+    /// model's work grows with a_p/D (a helical flute wraps a_p·tanβ/(π·D) times round the
+    /// tool): `optimize` at a_p = 5·D = 50 mm on the default tool with β = 60° and 8 teeth
+    /// takes 4.8 s (at 10·D 6.1 s, at 10⁴ mm over a minute; one `analyze` there 1.7 s).
+    pub const MAX_DEPTH_PER_DIAMETER: f64 = 5.0;
     /// Most tooth positions analysed per cycle. A cycle holds (cycle length)/f_z tooth
     /// positions — up to ~10⁹ within the limits above (a cycle of ~10⁵ mm at f_z = 10⁻⁴ mm) —
     /// and each costs a fixed amount of work and memory (engagement, h, engaged arcs). Past
@@ -287,10 +293,32 @@ impl Job {
                 ),
             ));
         }
+        if depth > MAX_DEPTH_PER_DIAMETER * d_t {
+            return Err(Error::param(
+                Param::Depth,
+                depth,
+                format!(
+                    "from {} to {}·D = {} mm (the deepest cut of a tool {} mm across)",
+                    num(MIN_SIZE_MM),
+                    num(MAX_DEPTH_PER_DIAMETER),
+                    num(MAX_DEPTH_PER_DIAMETER * d_t),
+                    num(d_t)
+                ),
+            ));
+        }
         if self.teeth == 0 || self.teeth > MAX_TEETH {
             return Err(teeth_error(i64::from(self.teeth)));
         }
+        let machine = self.machine.as_ref().map(MachineChoice::machine).transpose()?;
         let feed = positive(Param::Feed, self.feed, 1.0e6)?;
+        let min_feed = machine.as_ref().map_or(DEFAULT_MIN_FEED_MM_PER_MIN, |m| m.min_feed);
+        if feed < min_feed {
+            return Err(Error::param(
+                Param::Feed,
+                feed,
+                format!("from the machine's min-feed {} to {} mm/min", num(min_feed), num(1.0e6)),
+            ));
+        }
         let rpm = positive(Param::Rpm, self.rpm, 1.0e6)?;
         let step = positive(Param::Step, self.step, MAX_SIZE_MM)?;
         if step >= d_t {
@@ -307,7 +335,7 @@ impl Job {
             ));
         }
         let a = (b_w - d_t) / 2.0;
-        // Every given value is checked, also where the path ignores it (issue #13: NaN or
+        // Every given value is checked, also where the path ignores it (NaN or
         // 1e300 were accepted with `--path circular`).
         let (lo, hi) = ASPECT_RATIO;
         if !(self.aspect_ratio.is_finite() && self.aspect_ratio >= lo && self.aspect_ratio <= hi) {
@@ -365,7 +393,7 @@ impl Job {
             aspect_ratio: r_e,
             linear_distance: d,
             direction: self.direction,
-            machine: self.machine.as_ref().map(MachineChoice::machine).transpose()?,
+            machine,
         })
     }
 
@@ -419,6 +447,12 @@ impl Job {
 }
 
 impl ValidJob {
+    /// The smallest feed of the job's machine (mm/min; the ideal machine's without one): no
+    /// feed of its programs is lower.
+    pub fn min_feed(&self) -> f64 {
+        self.machine.as_ref().map_or(DEFAULT_MIN_FEED_MM_PER_MIN, |m| m.min_feed)
+    }
+
     /// Tool radius R = D/2 (mm).
     pub fn tool_radius(&self) -> f64 {
         self.tool_diameter / 2.0
@@ -440,7 +474,7 @@ impl ValidJob {
 /// Milling direction with the spindle turning M3 (clockwise seen from above): in climb
 /// milling the tooth enters the material at the full chip thickness and leaves it at zero;
 /// the material is on the right of the tool's motion. The paper's eq. (1) loops are clockwise,
-/// i.e. conventional; climb mirrors them (issue #12).
+/// i.e. conventional; climb mirrors them.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Direction {
@@ -486,7 +520,7 @@ mod tests {
     #[test]
     fn errors_name_the_parameter() {
         let cases: [(Job, Param); 12] = [
-            // issue #13: a tiny slot blames the slot, not the tool that no longer fits
+            // a tiny slot blames the slot, not the tool that no longer fits
             (Job { slot_width: 1e-10, ..Job::default() }, Param::SlotWidth),
             (Job { tool_diameter: 1e-9, ..Job::default() }, Param::ToolDiameter),
             (Job { depth: 0.001, ..Job::default() }, Param::Depth),
@@ -500,7 +534,7 @@ mod tests {
             (Job { path: PathKind::Elliptical, aspect_ratio: 0.0, ..Job::default() }, Param::AspectRatio),
             (Job { feed: f64::INFINITY, ..Job::default() }, Param::Feed),
         ];
-        // issue #13: values the path ignores are checked too
+        // values the path ignores are checked too
         let ignored: [(Job, Param); 6] = [
             (Job { path: PathKind::Circular, aspect_ratio: f64::NAN, ..Job::default() }, Param::AspectRatio),
             (Job { path: PathKind::Circular, aspect_ratio: -5.0, ..Job::default() }, Param::AspectRatio),

@@ -107,13 +107,40 @@ pub struct Library {
     pub materials: Vec<Material>,
 }
 
+/// Largest material library read (bytes): the built-in one is 4.4 kB for 6 materials with
+/// their sources, so 1 MiB holds over 1000 such entries (10 000 without comments). Reading
+/// takes memory about 40 times the text (a library of 100 000 bare entries, 9.9 MB, took
+/// 381 MB), so this keeps a library within about 40 MB and a fraction of a second.
+pub const MAX_LIBRARY_BYTES: usize = 1 << 20;
+/// Most materials in one library (a bare entry is about 100 bytes: the byte limit allows
+/// about as many).
+pub const MAX_MATERIALS: usize = 10_000;
+/// Most names an unknown-material error lists.
+const LISTED_NAMES: usize = 40;
+
 impl Library {
-    /// Read and check a library (every entry's coefficients pass [`Coefficients::check`], names
-    /// are unique and not empty); `what` names the file in errors.
+    /// Read and check a library (at most [`MAX_LIBRARY_BYTES`] and [`MAX_MATERIALS`] entries,
+    /// every entry's coefficients pass [`Coefficients::check`], names are unique and not
+    /// empty); `what` names the file in errors.
     pub fn from_toml(text: &str, what: &str) -> Result<Library, Error> {
+        if text.len() > MAX_LIBRARY_BYTES {
+            return Err(Error::param(
+                Param::Materials,
+                format!("{what}: {} bytes", text.len()),
+                format!("a library of at most {MAX_LIBRARY_BYTES} bytes"),
+            ));
+        }
         let lib: Library = toml::from_str(text).map_err(|e| Error::File(format!("{what}: {e}")))?;
+        if lib.materials.len() > MAX_MATERIALS {
+            return Err(Error::param(
+                Param::Materials,
+                format!("{what}: {} materials", lib.materials.len()),
+                format!("a library of at most {MAX_MATERIALS} materials"),
+            ));
+        }
+        let mut seen = std::collections::HashSet::with_capacity(lib.materials.len());
         for (i, m) in lib.materials.iter().enumerate() {
-            if m.name.trim().is_empty() || lib.materials[..i].iter().any(|o| o.name == m.name) {
+            if m.name.trim().is_empty() || !seen.insert(m.name.as_str()) {
                 return Err(Error::File(format!("{what}: material {}: empty or repeated name {:?}", i + 1, m.name)));
             }
             m.coefficients.check(m.allow_unusual_ratio).map_err(|e| Error::File(format!("{what}: {}: {e}", m.name)))?;
@@ -135,8 +162,10 @@ impl Library {
     /// The material called `name`, or an error listing the names.
     pub fn get(&self, name: &str) -> Result<&Material, Error> {
         self.materials.iter().find(|m| m.name == name).ok_or_else(|| {
-            let names: Vec<&str> = self.materials.iter().map(|m| m.name.as_str()).collect();
-            Error::param(Param::Material, name, format!("one of {}", names.join(", ")))
+            let names: Vec<&str> = self.materials.iter().take(LISTED_NAMES).map(|m| m.name.as_str()).collect();
+            let more = self.materials.len().saturating_sub(LISTED_NAMES);
+            let more = if more > 0 { format!(" and {more} more") } else { String::new() };
+            Error::param(Param::Material, name, format!("one of {}{more}", names.join(", ")))
         })
     }
 }
@@ -235,9 +264,15 @@ fn distinct_feeds(tests: &[SlotTest]) -> usize {
     f.len()
 }
 
-/// Reads slot tests from CSV: a header naming the columns `f_z`, `fx`, `fy`, `fz` (any order,
-/// any case, units after an underscore allowed: `f_z_mm,fx_n,fy_n,fz_n`), then one test per
-/// line; `#` comments and blank lines skipped. Errors name the line.
+/// Most slot tests in one calibration file: a calibration takes a handful of feeds (the
+/// usual series is 4–10), each test a few bytes of input but a residual object in the report;
+/// 2 million rows (a 66 MB file) take 14 s and 3.3 GB, 1000 take milliseconds.
+pub const MAX_SLOT_TESTS: usize = 1000;
+
+/// Reads slot tests (at most [`MAX_SLOT_TESTS`]) from CSV: a header naming the columns `f_z`,
+/// `fx`, `fy`, `fz` (any order, any case, units after an underscore allowed:
+/// `f_z_mm,fx_n,fy_n,fz_n`), then one test per line; `#` comments and blank lines skipped.
+/// Errors name the line.
 pub fn parse_slot_forces(text: &str, what: &str) -> Result<Vec<SlotTest>, Error> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut columns: Option<[usize; 4]> = None;
@@ -271,6 +306,13 @@ pub fn parse_slot_forces(text: &str, what: &str) -> Result<Vec<SlotTest>, Error>
                 .filter(|x| x.is_finite())
                 .ok_or_else(|| bad(format!("field {} is not a finite number", c + 1)))?;
         }
+        if tests.len() == MAX_SLOT_TESTS {
+            return Err(Error::param(
+                Param::SlotForces,
+                format!("{what}: more than {MAX_SLOT_TESTS} tests"),
+                format!("a file of at most {MAX_SLOT_TESTS} tests (one per line)"),
+            ));
+        }
         tests.push(SlotTest { f_z_mm: v[0], fx_n: v[1], fy_n: v[2], fz_n: v[3] });
     }
     Ok(tests)
@@ -281,7 +323,7 @@ pub fn parse_slot_forces(text: &str, what: &str) -> Result<Vec<SlotTest>, Error>
 mod tests {
     use super::*;
 
-    /// The built-in library loads, holds the five materials of issue #10, and its p20 entry is
+    /// The built-in library loads, holds its five materials, and its p20 entry is
     /// the domain-spec §4.2 default set.
     #[test]
     fn builtin_library_loads_with_the_spec_default() {
@@ -375,5 +417,41 @@ mod tests {
             let e = parse_slot_forces(bad, "f.csv").expect_err(bad);
             assert!(e.to_string().contains("f.csv line"), "{e}");
         }
+    }
+
+    #[test]
+    fn libraries_and_slot_files_are_bounded_before_the_work() {
+        let entry = |i: usize| {
+            format!(
+                "[[material]]\nname = \"m{i}\"\nlabel = \"\"\nktc = 1e3\nkrc = 4e2\nkac = 1e2\nkte = 1e1\nkre = 1e1\nkae = 1e0\n"
+            )
+        };
+        // one byte over the limit, whatever it holds
+        let big = format!("{}#{}", entry(0), "x".repeat(MAX_LIBRARY_BYTES - entry(0).len()));
+        assert_eq!(big.len(), MAX_LIBRARY_BYTES + 1);
+        let e = Library::from_toml(&big, "big.toml").expect_err("too big");
+        assert_eq!(e.parameter(), Some(Param::Materials), "{e}");
+        // one entry over the count (entries of 13 + 16 + 11 + 6·10 = 100 bytes at most: 10 001 of
+        // them fit in 1 MiB)
+        let many: String = (0..=MAX_MATERIALS).map(entry).collect();
+        assert!(many.len() <= MAX_LIBRARY_BYTES, "{}", many.len());
+        let e = Library::from_toml(&many, "many.toml").expect_err("too many");
+        assert_eq!(e.parameter(), Some(Param::Materials), "{e}");
+        // at the count: loads, repeated names still found (a set, not pairs)
+        let lib =
+            Library::from_toml(&many[..many.rfind("[[material]]").expect("entry")], "ok.toml").expect("at the limit");
+        assert_eq!(lib.materials.len(), MAX_MATERIALS);
+        let e = lib.get("none").expect_err("unknown");
+        assert!(e.to_string().contains(&format!("and {} more", MAX_MATERIALS - LISTED_NAMES)), "{e}");
+        let twice = format!("{}{}", entry(7), entry(7));
+        assert!(Library::from_toml(&twice, "twice.toml").expect_err("repeated").to_string().contains("repeated"));
+        // slot tests: the limit passes, one more is named
+        let rows = |n: usize| -> String {
+            let body: String = (0..n).map(|i| format!("{},1,2,3\n", 0.01 + 1e-6 * i as f64)).collect();
+            format!("f_z,fx,fy,fz\n{body}")
+        };
+        assert_eq!(parse_slot_forces(&rows(MAX_SLOT_TESTS), "s.csv").expect("at the limit").len(), MAX_SLOT_TESTS);
+        let e = parse_slot_forces(&rows(MAX_SLOT_TESTS + 1), "s.csv").expect_err("one more");
+        assert_eq!(e.parameter(), Some(Param::SlotForces), "{e}");
     }
 }

@@ -1,4 +1,4 @@
-//! The machine model (issue #11): per-axis feed, acceleration and jerk limits and the
+//! The machine model: per-axis feed, acceleration and jerk limits and the
 //! controller's path tolerance, the presets in `assets/machines/`, and the feed planner that
 //! turns a path into the feed over time ([`planner`]).
 //!
@@ -37,6 +37,12 @@ pub struct Machine {
     /// [`DEFAULT_BLOCK_TIME_S`].
     #[serde(default = "default_block_time")]
     pub block_time: f64,
+    /// Smallest feed the controller runs (mm/min): no program feed is below it, and the
+    /// options that would set one lower (`--target-hmax`, `--max-feed`, `--return-feed`,
+    /// `feed`) are refused by name. At most each axis's maximum feed. Job files without it
+    /// take [`DEFAULT_MIN_FEED_MM_PER_MIN`].
+    #[serde(default = "default_min_feed")]
+    pub min_feed: f64,
 }
 
 /// Block time of a machine that does not state one, and of the ideal machine (s): the `vmc`
@@ -46,6 +52,19 @@ pub const DEFAULT_BLOCK_TIME_S: f64 = 0.004;
 fn default_block_time() -> f64 {
     DEFAULT_BLOCK_TIME_S
 }
+
+/// Smallest feed of a machine that does not state one, and of the ideal machine (mm/min):
+/// GRBL's floor (`MINIMUM_FEED_RATE 1.0 // (mm/min)` in its `config.h`, the planner raises
+/// lower feeds to it). The NC writer writes F in steps of 0.1 mm/min, so a feed of at least
+/// 1 mm/min is written within 5 % (0.05/1) and never as `F0.0`.
+pub const DEFAULT_MIN_FEED_MM_PER_MIN: f64 = 1.0;
+
+fn default_min_feed() -> f64 {
+    DEFAULT_MIN_FEED_MM_PER_MIN
+}
+
+/// Largest feed of any axis, and so of `min-feed` (mm/min).
+pub const MAX_FEED_LIMIT_MM_PER_MIN: f64 = 1.0e6;
 
 /// The presets, in the order the GUI lists them: (name, TOML text with the sources).
 pub const PRESETS: [(&str, &str); 3] = [
@@ -69,7 +88,7 @@ impl Machine {
     }
 
     /// The parameters of a machine: its name and every limit (job keys, GUI error lines).
-    pub const PARAMS: [Param; 9] = [
+    pub const PARAMS: [Param; 10] = [
         Param::Machine,
         Param::MaxFeedX,
         Param::MaxFeedY,
@@ -79,13 +98,16 @@ impl Machine {
         Param::JerkY,
         Param::PathTolerance,
         Param::BlockTime,
+        Param::MinFeed,
     ];
 
-    /// Check every limit: finite and > 0; the error names the key.
+    /// Check every limit: finite and > 0, and each axis's maximum feed at least the minimum
+    /// feed; the error names the key.
     pub fn validate(&self) -> Result<(), Error> {
         let checks = [
-            (Param::MaxFeedX, self.max_feed_x, 1.0e6, "mm/min"),
-            (Param::MaxFeedY, self.max_feed_y, 1.0e6, "mm/min"),
+            (Param::MinFeed, self.min_feed, MAX_FEED_LIMIT_MM_PER_MIN, "mm/min"),
+            (Param::MaxFeedX, self.max_feed_x, MAX_FEED_LIMIT_MM_PER_MIN, "mm/min"),
+            (Param::MaxFeedY, self.max_feed_y, MAX_FEED_LIMIT_MM_PER_MIN, "mm/min"),
             (Param::AccelerationX, self.acceleration_x, 1.0e6, "mm/s²"),
             (Param::AccelerationY, self.acceleration_y, 1.0e6, "mm/s²"),
             (Param::JerkX, self.jerk_x, 1.0e9, "mm/s³"),
@@ -96,6 +118,19 @@ impl Machine {
         for (param, v, max, unit) in checks {
             if !(v.is_finite() && v > 0.0 && v <= max) {
                 return Err(Error::param(param, v, format!("a finite number > 0 and ≤ {} {unit}", num(max))));
+            }
+        }
+        for (param, v) in [(Param::MaxFeedX, self.max_feed_x), (Param::MaxFeedY, self.max_feed_y)] {
+            if v < self.min_feed {
+                return Err(Error::param(
+                    param,
+                    v,
+                    format!(
+                        "from the machine's min-feed {} to {} mm/min",
+                        num(self.min_feed),
+                        num(MAX_FEED_LIMIT_MM_PER_MIN)
+                    ),
+                ));
             }
         }
         Ok(())
@@ -160,7 +195,7 @@ mod tests {
             assert_eq!(m.name, name);
             m.validate().expect("valid");
         }
-        // issue #11: the VMC feeds at 20 m/min
+        // the VMC feeds at 20 m/min
         assert_eq!(Machine::preset("vmc").expect("vmc").max_speed_mm_per_s(), 20000.0 / 60.0);
         assert_eq!(Machine::preset("lathe").expect_err("unknown").parameter(), Some(Param::Machine));
     }
@@ -169,7 +204,7 @@ mod tests {
     fn bad_limits_are_rejected_by_name() {
         let good = Machine::preset("vmc").expect("vmc");
         type Setter = fn(&mut Machine, f64);
-        let cases: [(Setter, Param); 8] = [
+        let cases: [(Setter, Param); 9] = [
             (|m, v| m.max_feed_x = v, Param::MaxFeedX),
             (|m, v| m.max_feed_y = v, Param::MaxFeedY),
             (|m, v| m.acceleration_x = v, Param::AccelerationX),
@@ -178,6 +213,7 @@ mod tests {
             (|m, v| m.jerk_y = v, Param::JerkY),
             (|m, v| m.path_tolerance = v, Param::PathTolerance),
             (|m, v| m.block_time = v, Param::BlockTime),
+            (|m, v| m.min_feed = v, Param::MinFeed),
         ];
         for (set, param) in cases {
             for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
@@ -188,5 +224,32 @@ mod tests {
                 assert!(e.to_string().contains(param.cli_name()), "{e}");
             }
         }
+    }
+
+    #[test]
+    fn min_feed_is_at_most_each_axis_feed_and_defaults_to_one() {
+        // every preset states it: 1 mm/min (GRBL's MINIMUM_FEED_RATE, see the preset files)
+        for name in preset_names() {
+            assert_eq!(Machine::preset(name).expect("preset").min_feed, 1.0, "{name}");
+        }
+        let mut m = Machine::preset("vmc").expect("vmc");
+        // the axis feeds may equal the smallest feed, not fall below it
+        m.min_feed = 20000.0;
+        m.validate().expect("max = min is valid");
+        type Setter = fn(&mut Machine);
+        let below: [(Setter, Param); 2] =
+            [(|m| m.max_feed_x = 1e-9, Param::MaxFeedX), (|m| m.max_feed_y = 19999.0, Param::MaxFeedY)];
+        for (set, param) in below {
+            let mut bad = m.clone();
+            set(&mut bad);
+            let e = bad.validate().expect_err("below min-feed");
+            assert_eq!(e.parameter(), Some(param), "{e}");
+            assert!(e.to_string().contains("min-feed 20000"), "{e}");
+        }
+        // a [machine] table without the key takes the default
+        let text = "name = \"m\"\nmax-feed-x = 100.0\nmax-feed-y = 100.0\nacceleration-x = 1.0\n\
+                    acceleration-y = 1.0\njerk-x = 1.0\njerk-y = 1.0\npath-tolerance = 0.01\n";
+        let m: Machine = toml::from_str(text).expect("parse");
+        assert_eq!(m.min_feed, DEFAULT_MIN_FEED_MM_PER_MIN);
     }
 }

@@ -1,5 +1,5 @@
 //! NC programs of a planned pocket corner ([`CornerPlan`]) and of a whole pocket
-//! ([`PocketPlan`]: rings or the medial axis) (issue #5): the header description of each and the [`PathJob`] written by
+//! ([`PocketPlan`]: rings or the medial axis): the header description of each and the [`PathJob`] written by
 //! the shared program frame [`program_for_path`] (same header, set-up, approach, retract and end
 //! as a slot program). Used by `trochoplan corner/pocket --export` and by the GUI's Corner tab,
 //! so both write the same text.

@@ -254,7 +254,7 @@ mod tests {
 
     #[test]
     fn no_text_forms_an_active_comment() {
-        // Issue #13: LinuxCNC executes these when a comment begins with them (any case,
+        // LinuxCNC executes these when a comment begins with them (any case,
         // leading spaces); each must come out as a plain comment that still shows the text.
         for evil in [
             "ABORT,stop",

@@ -1,4 +1,4 @@
-//! NC output (issue #4, domain-spec §5): one emitter ([`writer::Writer`]), dialects as data
+//! NC output (domain-spec §5): one emitter ([`writer::Writer`]), dialects as data
 //! ([`Dialect`], [`DialectSpec`]).
 //!
 //! Coordinates: the slot starts at X0 Y0 and runs along +Y, top of stock at Z0, depth −a_p;
@@ -65,7 +65,7 @@ pub struct NcOptions {
     pub tool_number: u32,
     /// Free text for the header comment (sanitised).
     pub title: String,
-    /// Per-block feed for a target chip thickness, in bands (issue #11, [`crate::feed`]);
+    /// Per-block feed for a target chip thickness, in bands ([`crate::feed`]);
     /// `None`: the programmed feed (and the return feed, if given).
     pub variable_feed: Option<VariableFeed>,
 }
@@ -202,11 +202,20 @@ pub fn cuts_nothing(plan: &Plan, cycle_len: f64, s0: f64, s1: f64) -> bool {
 /// The NC program of a planned slot (module docs for its structure).
 pub fn program(plan: &Plan, opts: &NcOptions) -> Result<NcProgram, Error> {
     opts.validate()?;
+    let min_feed = plan.job.min_feed();
+    if let Some(f) = opts.return_feed_mm_per_min.filter(|&f| f < min_feed) {
+        return Err(Error::param(
+            Param::ReturnFeed,
+            f,
+            format!("from the machine's min-feed {} to 1000000 mm/min", num(min_feed)),
+        ));
+    }
     let spec = opts.dialect.spec();
     let moves = match &opts.variable_feed {
         Some(vf) => variable_feed_moves(plan, vf, opts)?,
         None => cycle_moves(plan, opts),
     };
+    check_program_size(plan, moves.len(), opts)?;
     let mut w = Writer::new(spec);
     let job = &plan.job;
     preamble(&mut w, &slot_header(plan, opts), opts);
@@ -235,6 +244,35 @@ pub fn program(plan: &Plan, opts: &NcOptions) -> Result<NcProgram, Error> {
     epilogue(&mut w, opts);
     let (text, blocks) = w.finish()?;
     Ok(NcProgram { text, blocks })
+}
+
+/// Most blocks of one expanded slot program: 25–33 bytes a block, so at most about 130 MB of
+/// text, written in about 3.5 s (3.7 million blocks, 98.5 MB: 3.2 s and 106 MB of memory; 8
+/// million blocks, 264 MB: 6.5 s and 268 MB). The loop form (`--compact`) writes one cycle
+/// whatever the cycle count.
+pub const MAX_PROGRAM_BLOCKS: usize = 4_000_000;
+
+/// Refuse, before writing, an expanded program of more than [`MAX_PROGRAM_BLOCKS`] blocks
+/// (`per_cycle` blocks a cycle); the error names the step, which sets the cycle count
+/// slot-length/step.
+fn check_program_size(plan: &Plan, per_cycle: usize, opts: &NcOptions) -> Result<(), Error> {
+    let looped = opts.compact && opts.dialect.spec().loop_style.is_some();
+    let cycles = plan.path.cycles;
+    if looped || per_cycle.saturating_mul(cycles) <= MAX_PROGRAM_BLOCKS {
+        return Ok(());
+    }
+    let job = &plan.job;
+    let least = job.step * (per_cycle * cycles) as f64 / MAX_PROGRAM_BLOCKS as f64;
+    Err(Error::param(
+        Param::Step,
+        job.step,
+        format!(
+            "at least about {} mm for slot-length {} mm: {cycles} cycles of {per_cycle} blocks \
+             make a program of more than {MAX_PROGRAM_BLOCKS} blocks (--compact writes one cycle in a loop)",
+            num(least),
+            num(job.slot_length)
+        ),
+    ))
 }
 
 /// A tool-centre path that is not a slot (a pocket corner, a ring piece) and what its program
@@ -283,6 +321,15 @@ impl PathJob<'_> {
             if !(v.is_finite() && v > 0.0 && v <= max) {
                 return Err(Error::param(param, v, format!("a finite number > 0 and ≤ {max} {unit}")));
             }
+        }
+        // no machine here: the ideal machine's smallest feed
+        let min_feed = crate::machine::DEFAULT_MIN_FEED_MM_PER_MIN;
+        if self.feed_mm_per_min < min_feed {
+            return Err(Error::param(
+                Param::Feed,
+                self.feed_mm_per_min,
+                format!("from the smallest feed {} to 1000000 mm/min", num(min_feed)),
+            ));
         }
         if let Some(&bad) = self.retract_before.iter().find(|&&i| i == 0 || i >= self.segments.len()) {
             return Err(Error::nc(
@@ -500,17 +547,10 @@ fn preamble(w: &mut Writer, header: &Header<'_>, opts: &NcOptions) {
         }
         dialect::ToolCall::CommentOnly => w.comment(&format!("load tool {t}: D {:.3} mm", header.tool_diameter_mm)),
     }
-    w.raw(&format!("S{:.0} M3", header.spindle_rpm));
+    w.spindle_on(header.spindle_rpm);
     if opts.coolant {
         w.raw("M8");
     }
-}
-
-/// Parameter values in loop set-up lines: six decimals (R-parameters and named parameters are
-/// doubles; the step must not be rounded to the coordinate quantum, or cycles would drift).
-fn param(v: f64) -> String {
-    let s = format!("{v:.6}");
-    if s.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') { "0.000000".into() } else { s }
 }
 
 /// Every iteration starts at the cycle start (relative to its origin): the end of the previous
@@ -525,9 +565,11 @@ fn body_start(w: &mut Writer, moves: &[CycleMove]) {
 /// LinuxCNC `while` loop over the cycles (domain-spec §5.2, named parameters).
 fn oword_loop(w: &mut Writer, plan: &Plan, moves: &[CycleMove]) {
     let path = &plan.path;
-    w.block(&[format!("#<y0>={}", param(path.origin(0).y))]);
+    let y0 = w.param("y", path.origin(0).y);
+    w.block(&[format!("#<y0>={y0}")]);
     w.comment("y0: Y of the first cycle origin");
-    w.block(&[format!("#<s>={}", param(path.cycle.step))]);
+    let step = w.param("step", path.cycle.step);
+    w.block(&[format!("#<s>={step}")]);
     w.block(&[format!("#<n>={}", path.cycles)]);
     w.block(&["#<k>=0".to_string()]);
     w.raw("o100 while [#<k> LT #<n>]");
@@ -574,11 +616,14 @@ fn r_common(w: &mut Writer, plan: &Plan) {
     let s = path.cycle.step;
     w.block(&["R1=1".into()]);
     w.comment("R1 cycle counter");
-    w.block(&[format!("R2={}", param(s))]);
+    let r2 = w.param("step", s);
+    w.block(&[format!("R2={r2}")]);
     w.comment("R2 step s mm");
-    w.block(&[format!("R5={}", param(s * path.cycles as f64))]);
+    let r5 = w.param("y", s * path.cycles as f64);
+    w.block(&[format!("R5={r5}")]);
     w.comment(&format!("R5 centre travel = {} cycles x R2", path.cycles));
-    w.block(&[format!("R51={}", param(path.origin(0).y))]);
+    let r51 = w.param("y", path.origin(0).y);
+    w.block(&[format!("R51={r51}")]);
     w.comment("R51 Y of the first cycle origin");
 }
 
@@ -604,19 +649,23 @@ fn grechishnikov_loop(w: &mut Writer, plan: &Plan, moves: &[CycleMove]) {
     r_common(w, plan);
     w.block(&["R3=90".into()]);
     w.comment("R3 slot direction, degrees from +X");
-    w.block(&[format!("R4={}", param(arc_feed))]);
+    let (arc_feed, line_feed) = (w.feed_param(arc_feed), w.feed_param(line_feed));
+    w.block(&[format!("R4={arc_feed}")]);
     w.comment("R4 feed mm/min of the circle");
-    w.block(&[format!("R6={}", param(line_feed))]);
+    w.block(&[format!("R6={line_feed}")]);
     w.comment("R6 feed mm/min of the step move");
-    w.block(&[format!("R50={}", param(path.origin(0).x))]);
+    let r50 = w.param("x", path.origin(0).x);
+    w.block(&[format!("R50={r50}")]);
     w.comment("R50 R51 centre of circle 0");
     // (R11, R12) = R2·u + a·n with u = (0, 1), n = (−1, 0) (conventional) or (1, 0) (climb)
     let (n_x, circle) = match plan.job.direction {
         Direction::Conventional => (-1.0, "G2"),
         Direction::Climb => (1.0, "G3"),
     };
-    w.block(&[format!("R11={}", param(n_x * a))]);
-    w.block(&[format!("R12={}", param(s))]);
+    let r11 = w.param("x", n_x * a);
+    w.block(&[format!("R11={r11}")]);
+    let r12 = w.param("y", s);
+    w.block(&[format!("R12={r12}")]);
     w.block(&["R13=R11".into()]);
     w.block(&["R14=R12".into()]);
     w.comment("R11..R14 circle start and end from centre k-1");

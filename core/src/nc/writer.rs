@@ -18,6 +18,10 @@ use std::f64::consts::{PI, TAU};
 
 /// Largest coordinate written (mm); job validation keeps paths far below.
 const MAX_ABS_MM: f64 = 1.0e7;
+/// Largest feed written (mm/min); job and machine validation keep feeds far below.
+const MAX_FEED_MM_PER_MIN: f64 = 1.0e7;
+/// Largest spindle speed written (rpm); job validation keeps speeds far below.
+const MAX_RPM: f64 = 1.0e7;
 
 /// How the Y word of a block is written.
 #[derive(Clone, Debug)]
@@ -36,7 +40,7 @@ pub enum YForm {
 /// the centre along it by Δh ≈ (q/√2)·cot(θ/2) and the arc between its fixed end points by
 /// Δh·(1 − cos(θ/2)) = (q/√2)·cos(θ/2)·tan(θ/4) for a sweep θ. For θ ≤ π that is ≤ q/√2; as
 /// θ → 2π it grows without bound: a near-full circle of a medial-axis pocket was written
-/// 5.5 mm off its plan, into the wall (issue #13).
+/// 5.5 mm off its plan, into the wall.
 fn max_part_sweep(spec: &DialectSpec, full_circle: bool) -> f64 {
     if full_circle { spec.max_arc_sweep } else { spec.max_arc_sweep.min(PI) }
 }
@@ -178,16 +182,54 @@ impl Writer {
         }
     }
 
+    /// `feed` in the written steps of 0.1 mm/min, at least one step: a feed that is not
+    /// finite, or that would be written as `F0.0` or negative, records an error (the last
+    /// check: the options that set feeds are checked against the machine's `min-feed` before).
+    fn feed_quanta(&mut self, feed: f64) -> i64 {
+        let f = if feed.is_finite() && feed <= MAX_FEED_MM_PER_MIN { (feed * 10.0).round() as i64 } else { 0 };
+        if f < 1 && self.error.is_none() {
+            self.error = Some(Error::nc(
+                "feed",
+                feed,
+                format!("a finite number from 0.05 to {} mm/min (written as F0.1 or more)", num(MAX_FEED_MM_PER_MIN)),
+            ));
+        }
+        f.max(1)
+    }
+
+    /// A feed as a loop parameter (six decimals), with the checks of the F word.
+    pub fn feed_param(&mut self, feed: f64) -> String {
+        let f = self.feed_quanta(feed);
+        format!("{}.{}00000", f / 10, f % 10)
+    }
+
+    /// A loop parameter (a length in mm) with six decimals: R-parameters and named parameters
+    /// are doubles, and the step must not be rounded to the coordinate quantum, or cycles would
+    /// drift. A non-finite or huge value records an error instead of writing `NaN` or `inf`.
+    pub fn param(&mut self, what: &'static str, v: f64) -> String {
+        if !(v.is_finite() && v.abs() <= MAX_ABS_MM) {
+            if self.error.is_none() {
+                self.error = Some(Error::nc(what, v, format!("a finite number of at most {} mm", num(MAX_ABS_MM))));
+            }
+            return "0.000000".into();
+        }
+        let s = format!("{v:.6}");
+        if s.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') { "0.000000".into() } else { s }
+    }
+
+    /// The spindle-on block `S… M3`; a speed that is not finite or rounds to `S0` records an
+    /// error (a tool that does not turn must not be fed into the stock).
+    pub fn spindle_on(&mut self, rpm: f64) {
+        let s = if rpm.is_finite() && rpm <= MAX_RPM { rpm.round() } else { 0.0 };
+        if s < 1.0 && self.error.is_none() {
+            self.error = Some(Error::nc("rpm", rpm, "a finite number from 0.5 rpm (written as S1 or more)"));
+        }
+        self.raw(&format!("S{:.0} M3", s.max(1.0)));
+    }
+
     fn feed_word(&mut self, feed: f64, words: &mut Vec<String>) {
         // feeds in 0.1 mm/min
-        let f = if feed.is_finite() && feed > 0.0 && feed <= 1e7 {
-            (feed * 10.0).round() as i64
-        } else {
-            if self.error.is_none() {
-                self.error = Some(Error::nc("feed", feed, "a finite number > 0"));
-            }
-            1
-        };
+        let f = self.feed_quanta(feed);
         if self.feed != Some(f) {
             words.push(format!("F{}.{}", f / 10, f % 10));
             self.feed = Some(f);
@@ -384,7 +426,7 @@ mod tests {
 
     #[test]
     fn near_full_circles_stay_on_their_circle() {
-        // Issue #13: a 23-vertex medial-axis pocket had an arc of sweep 2π − 0.0005 rad, radius
+        // a 23-vertex medial-axis pocket had an arc of sweep 2π − 0.0005 rad, radius
         // 21.4 mm, written as one block whose centre the rounding moved by 5.5 mm (gouge).
         // Read back every program through the back-plot: each point must stay on the planned
         // circle within the rounding budget (3q, see tests/nc_common `budget`).
@@ -457,5 +499,40 @@ mod tests {
         s.linear(Some(-5.0), Some(1.5), None, Some(600.0));
         assert_eq!(w.finish().expect("ok").0, "G1 X-5.0000 Y[#<oy>-1.5000] F600.0\n");
         assert_eq!(s.finish().expect("ok").0, "G1 X-5.000 Y=R10+1.500 F600.0\n");
+    }
+
+    #[test]
+    fn feeds_written_as_zero_and_non_finite_numbers_are_errors() {
+        let spec = Dialect::LinuxCnc.spec();
+        // F is written in 0.1 mm/min: 0.05 rounds to F0.1, 0.04 would be F0.0
+        let mut w = Writer::new(spec);
+        w.linear(Some(1.0), None, None, Some(0.05));
+        assert!(w.finish().expect("F0.1").0.contains("F0.1"));
+        for bad in [0.04, 0.0, -600.0, f64::NAN, f64::INFINITY] {
+            let mut w = Writer::new(spec);
+            w.linear(Some(1.0), None, None, Some(bad));
+            let e = w.finish().expect_err("refused");
+            assert_eq!(e.subject(), Some("feed"), "{bad}: {e}");
+            let mut w = Writer::new(spec);
+            let _ = w.feed_param(bad);
+            assert!(w.finish().is_err(), "{bad} as a loop feed");
+        }
+        for bad in [0.4, 0.0, f64::NAN] {
+            let mut w = Writer::new(spec);
+            w.spindle_on(bad);
+            assert_eq!(w.finish().expect_err("S0").subject(), Some("rpm"), "{bad}");
+        }
+        for bad in [f64::NAN, f64::NEG_INFINITY, 1e300] {
+            let mut w = Writer::new(spec);
+            assert_eq!(w.param("step", bad), "0.000000");
+            assert_eq!(w.finish().expect_err("refused").subject(), Some("step"), "{bad}");
+            let mut w = Writer::new(spec);
+            w.linear(Some(bad), None, None, None);
+            assert_eq!(w.finish().expect_err("refused").subject(), Some("x"), "{bad}");
+        }
+        let mut w = Writer::new(spec);
+        assert_eq!((w.param("y", -0.0000001), w.param("y", 2.5)), ("0.000000".into(), "2.500000".into()));
+        assert_eq!(w.feed_param(1234.56), "1234.600000");
+        w.finish().expect("valid");
     }
 }

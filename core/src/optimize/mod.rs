@@ -1,4 +1,4 @@
-//! The optimiser (issue #11 part 3): the slot job of highest *real* MRR (machine model on)
+//! The optimiser: the slot job of highest *real* MRR (machine model on)
 //! over path type, r_e, d and step s, within the user's limits, and the Pareto front of real
 //! MRR against the wall waviness W_max.
 //!
@@ -11,7 +11,7 @@
 //!   lengths measured on tool circles f_z apart), so the largest admissible feed is found by
 //!   scaling and checked by planning again.
 //!
-//! The force limit F_R,max (issue #10, linear edge-force model) is feed-scaled too, but
+//! The force limit F_R,max (linear edge-force model) is feed-scaled too, but
 //! affine rather than proportional: F = F_e + F_c with the edge part F_e independent of f_z
 //! (dF = (K_c·h + K_e)·dz, domain-spec §4.1). Lowering the feed by the ratio r = limit/F
 //! therefore leaves F slightly above the limit; the search lowers it by r² instead, which
@@ -375,17 +375,19 @@ impl Search<'_> {
             .collect()
     }
 
-    /// The feeds searched at step `s`: at least the validation's smallest f_z, at most its
-    /// f_z ≤ D/8 and the machine's feed.
+    /// The feeds searched at step `s`: at least the validation's smallest f_z and the
+    /// machine's smallest feed, at most its f_z ≤ D/8 and the machine's feed.
     fn feed_range(&self, shape: Shape, s: f64) -> Result<(ValidJob, f64, f64), Error> {
         let v = self.job(shape, s, self.base.feed).validate()?;
         let per_fz = v.rpm * f64::from(v.teeth);
-        let f_lo = MIN_FZ * per_fz * 1.000_001;
+        let f_lo = (MIN_FZ * per_fz).max(v.min_feed()) * 1.000_001;
         let mut f_hi = v.tool_diameter / 8.0 * per_fz * 0.999_999;
         if let Some(m) = &v.machine {
             f_hi = f_hi.min(m.max_speed_mm_per_s() * 60.0);
         }
-        Ok((v, f_lo, f_hi))
+        // validation keeps the smallest feed ≤ the job's feed ≤ both upper bounds; the
+        // factors above may cross where they meet
+        Ok((v, f_lo.min(f_hi), f_hi))
     }
 
     /// The feed at which each feed-scaled quantity of `quantities` (measured at `feed`) meets
