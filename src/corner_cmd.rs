@@ -316,7 +316,8 @@ struct PocketOut {
 /// perforative trochoids along its medial axis (`--method medial-axis`).
 pub fn pocket(args: &PocketArgs) -> Result<String, String> {
     let what = args.polygon.display().to_string();
-    let points = crate::outline::outline_points(&args.polygon, &read_input(&args.polygon, "polygon file")?)?;
+    let pockets = trochoplan_core::outline::read(&what, &read_input(&args.polygon, "polygon file")?).map_err(err)?;
+    let points = pockets.single().map_err(err)?.to_vec();
     let polygon = Polygon::new(points.clone()).map_err(|e| format!("{what}: {e}"))?;
     let open_edges = pocket::stored_open_edges(&polygon, &points, &args.open_edges).map_err(err)?;
     let req = PocketRequest {
