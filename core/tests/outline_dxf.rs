@@ -32,8 +32,12 @@ const SQUARE: [(f64, f64, f64); 4] = [(10.0, 0.0, 0.0), (20.0, 0.0, 0.0), (20.0,
 fn bulges_and_line_arc_chains_are_arcs() {
     let slot_area = 800.0 + 50.0 * PI;
     let tol = (100.0 + 10.0 * PI) * CHORD_TOLERANCE_MM;
-    let mut d = Dxf::default();
-    d.entities = lwpolyline(&[(0.0, 0.0, 0.0), (40.0, 0.0, 1.0), (40.0, 20.0, 0.0), (0.0, 20.0, 0.0)], true, "0", 1.0);
+    let d = Dxf::with(lwpolyline(
+        &[(0.0, 0.0, 0.0), (40.0, 0.0, 1.0), (40.0, 20.0, 0.0), (0.0, 20.0, 0.0)],
+        true,
+        "0",
+        1.0,
+    ));
     let a = area(&single(&d));
     assert!((a - slot_area).abs() < tol && a <= slot_area, "{a}");
     // the same as LINE and ARC entities, shuffled, one line reversed
@@ -53,13 +57,11 @@ fn bulges_and_line_arc_chains_are_arcs() {
 #[test]
 fn negative_extrusion_mirrors_x_and_other_directions_are_refused() {
     // OCS (0,0,−1): by the arbitrary-axis algorithm Ax = (−1,0,0), Ay = (0,1,0): x → −x
-    let mut d = Dxf::default();
-    d.entities = lwpolyline(&SQUARE, true, "0", -1.0);
+    let d = Dxf::with(lwpolyline(&SQUARE, true, "0", -1.0));
     assert_eq!(single(&d), pts(&[(-10.0, 0.0), (-20.0, 0.0), (-20.0, 10.0), (-10.0, 10.0)]));
     // an ARC about OCS (10,0), r 5, 0°→90°: world centre (−10,0), from (−15,0) to (−10,5)
     // (clockwise seen from +z); two world LINEs close it only if the arc is mirrored
-    let mut d = Dxf::default();
-    d.entities = arc((10.0, 0.0), 5.0, 0.0, 90.0, -1.0);
+    let mut d = Dxf::with(arc((10.0, 0.0), 5.0, 0.0, 90.0, -1.0));
     d.entities.extend(line((-10.0, 5.0), (-10.0, 0.0), "0"));
     d.entities.extend(line((-10.0, 0.0), (-15.0, 0.0), "0"));
     let l = single(&d);
@@ -68,8 +70,7 @@ fn negative_extrusion_mirrors_x_and_other_directions_are_refused() {
     assert!(l.iter().all(|p| p.x <= -10.0 + 1e-9 && p.y >= -1e-9), "{l:?}");
     // quarter disc: area 25π/4 within the chords' loss
     assert!((area(&l).abs() - 25.0 * PI / 4.0).abs() < 5.0 * PI / 2.0 * CHORD_TOLERANCE_MM);
-    let mut d = Dxf::default();
-    d.entities = lwpolyline(&SQUARE, true, "0", 1.0);
+    let mut d = Dxf::with(lwpolyline(&SQUARE, true, "0", 1.0));
     d.entities.iter_mut().filter(|(c, _)| *c == 220).for_each(|(_, v)| *v = "1".into());
     let e = read(&d).unwrap_err();
     assert!(e.contains("LWPOLYLINE") && e.contains("extrusion direction (0, 1, 1)"), "{e}");
@@ -90,20 +91,17 @@ fn insunits_scale_to_mm() {
 #[test]
 fn non_finite_numbers_and_bad_radii_are_errors() {
     for (bulge, why) in [("nan", "bulge NaN"), ("inf", "bulge inf")] {
-        let mut d = Dxf::default();
-        d.entities = lwpolyline(&SQUARE, true, "0", 1.0);
+        let mut d = Dxf::with(lwpolyline(&SQUARE, true, "0", 1.0));
         d.entities.iter_mut().filter(|(c, _)| *c == 42).take(1).for_each(|(_, v)| *v = bulge.into());
         let e = read(&d).unwrap_err();
         assert!(e.contains("LWPOLYLINE") && e.contains("vertex 1") && e.contains(why), "{e}");
     }
-    let mut d = Dxf::default();
-    d.entities = line((0.0, 0.0), (1.0, 0.0), "0");
+    let mut d = Dxf::with(line((0.0, 0.0), (1.0, 0.0), "0"));
     d.entities[2].1 = "1e400".into(); // x of the start: overflows to inf
     let e = read(&d).unwrap_err();
     assert!(e.contains("LINE") && e.contains("must be finite"), "{e}");
     for r in [-5.0, 0.0] {
-        let mut d = Dxf::default();
-        d.entities = arc((0.0, 0.0), r, 0.0, 90.0, 1.0);
+        let d = Dxf::with(arc((0.0, 0.0), r, 0.0, 90.0, 1.0));
         let e = read(&d).unwrap_err();
         assert!(e.contains("ARC") && e.contains("must be > 0"), "{e}");
     }
@@ -113,40 +111,38 @@ fn non_finite_numbers_and_bad_radii_are_errors() {
 /// π/√(2·0.01/2.5e9) ≈ 3.5e5 chords: refused at once, naming the limit.
 #[test]
 fn huge_bulges_are_refused_quickly() {
-    let mut d = Dxf::default();
-    d.entities = lwpolyline(&[(0.0, 0.0, 1e9), (10.0, 0.0, 0.0), (10.0, 10.0, 0.0)], true, "0", 1.0);
+    let d = Dxf::with(lwpolyline(&[(0.0, 0.0, 1e9), (10.0, 0.0, 0.0), (10.0, 10.0, 0.0)], true, "0", 1.0));
     let t = Instant::now();
     let e = read(&d).unwrap_err();
     assert!(e.contains(&format!("more than the {MAX_OUTLINE_VERTICES} vertices")), "{e}");
     assert!(t.elapsed().as_secs_f64() < 1.0);
     // a tiny bulge (sagitta b·c/2 = 5e-4 mm < tolerance) is its chord
-    let mut d = Dxf::default();
-    d.entities = lwpolyline(&[(0.0, 0.0, 1e-4), (10.0, 0.0, 0.0), (10.0, 10.0, 0.0)], true, "0", 1.0);
+    let d = Dxf::with(lwpolyline(&[(0.0, 0.0, 1e-4), (10.0, 0.0, 0.0), (10.0, 10.0, 0.0)], true, "0", 1.0));
     assert_eq!(single(&d).len(), 3);
 }
 
 #[test]
 fn ellipses_are_read_and_splines_refused() {
     // a whole ellipse, semi-axes 20 and 10 (ratio 0.5): area 200π, chords lose < perimeter·tol
-    let mut d = Dxf::default();
-    d.entities = pairs![0 => "ELLIPSE", 8 => "0", 10 => 5.0, 20 => 5.0, 30 => 0.0, 11 => 20.0, 21 => 0.0, 31 => 0.0,
-        210 => 0.0, 220 => 0.0, 230 => 1.0, 40 => 0.5, 41 => 0.0, 42 => 2.0 * PI];
+    let d =
+        Dxf::with(pairs![0 => "ELLIPSE", 8 => "0", 10 => 5.0, 20 => 5.0, 30 => 0.0, 11 => 20.0, 21 => 0.0, 31 => 0.0,
+        210 => 0.0, 220 => 0.0, 230 => 1.0, 40 => 0.5, 41 => 0.0, 42 => 2.0 * PI]);
     let l = single(&d);
     assert!((area(&l).abs() - 200.0 * PI).abs() < 100.0 * CHORD_TOLERANCE_MM, "{}", area(&l));
     assert!(l.iter().all(|p| ((p.x - 5.0) / 20.0).powi(2) + ((p.y - 5.0) / 10.0).powi(2) < 1.0 + 1e-9));
     // the upper half (parameters 0..π) closed by a LINE along the major axis; with normal −z
     // the minor axis is −(z × major): the half lies below
     for (nz, below) in [(1.0, false), (-1.0, true)] {
-        let mut d = Dxf::default();
-        d.entities = pairs![0 => "ELLIPSE", 8 => "0", 10 => 0.0, 20 => 0.0, 30 => 0.0, 11 => 20.0, 21 => 0.0, 31 => 0.0,
-            210 => 0.0, 220 => 0.0, 230 => nz, 40 => 0.5, 41 => 0.0, 42 => PI];
+        let mut d = Dxf::with(
+            pairs![0 => "ELLIPSE", 8 => "0", 10 => 0.0, 20 => 0.0, 30 => 0.0, 11 => 20.0, 21 => 0.0, 31 => 0.0,
+            210 => 0.0, 220 => 0.0, 230 => nz, 40 => 0.5, 41 => 0.0, 42 => PI],
+        );
         d.entities.extend(line((-20.0, 0.0), (20.0, 0.0), "0"));
         let l = single(&d);
         assert!(l.iter().all(|p| if below { p.y <= 1e-9 } else { p.y >= -1e-9 }), "{nz}: {l:?}");
         assert!((area(&l).abs() - 100.0 * PI).abs() < 60.0 * CHORD_TOLERANCE_MM);
     }
-    let mut d = Dxf::default();
-    d.entities = pairs![0 => "SPLINE", 5 => "2F", 8 => "0", 70 => 8, 71 => 3, 72 => 0, 73 => 0];
+    let d = Dxf::with(pairs![0 => "SPLINE", 5 => "2F", 8 => "0", 70 => 8, 71 => 3, 72 => 0, 73 => 0]);
     let e = read(&d).unwrap_err();
     assert!(e.contains("SPLINE 2F on layer 0") && e.contains("not supported"), "{e}");
 }
@@ -201,8 +197,7 @@ fn inserts_place_their_blocks() {
 fn loops_nest_and_open_chains_are_named() {
     // boundary 0..100, island 10..20, a second pocket 200..210: 3 loops, 2 pockets
     let sq = |x: f64, s: f64| [(x, 0.0, 0.0), (x + s, 0.0, 0.0), (x + s, s, 0.0), (x, s, 0.0)];
-    let mut d = Dxf::default();
-    d.entities = lwpolyline(&sq(0.0, 100.0), true, "0", 1.0);
+    let mut d = Dxf::with(lwpolyline(&sq(0.0, 100.0), true, "0", 1.0));
     d.entities.extend(lwpolyline(&[(10.0, 10.0, 0.0), (20.0, 10.0, 0.0), (20.0, 20.0, 0.0)], true, "0", 1.0));
     d.entities.extend(lwpolyline(&sq(200.0, 10.0), true, "0", 1.0));
     let p = read(&d).unwrap();
@@ -211,8 +206,7 @@ fn loops_nest_and_open_chains_are_named() {
     assert!(e.starts_with("t.dxf: the drawing has 3 closed loops (2 pockets with 1 island in all"), "{e}");
     assert!(e.contains("not supported yet"), "{e}");
     // an open LINE chain names its entities and free ends
-    let mut d = Dxf::default();
-    d.entities = line((0.0, 0.0), (10.0, 0.0), "0");
+    let mut d = Dxf::with(line((0.0, 0.0), (10.0, 0.0), "0"));
     d.entities.extend(line((10.0, 0.0), (10.0, 10.0), "0"));
     let e = read(&d).unwrap_err();
     assert!(e.contains("open chain of 2 pieces (LINE") && e.contains("free ends at (10, 10) and (0, 0)"), "{e}");

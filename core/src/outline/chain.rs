@@ -29,7 +29,7 @@ pub(crate) fn loops(name: &str, pieces: Vec<Piece>) -> Result<Vec<Loop>, Error> 
     // end 2k is piece k's start, 2k + 1 its end
     let end = |e: usize| {
         let p = &pieces[e / 2].pts;
-        if e % 2 == 0 { p[0] } else { p[p.len() - 1] }
+        if e.is_multiple_of(2) { p[0] } else { p[p.len() - 1] }
     };
     let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
     for e in 0..2 * pieces.len() {
@@ -123,7 +123,7 @@ fn open_chain(name: &str, pieces: &[Piece], partner: &[usize], k0: usize) -> Err
             let f = partner[e];
             if f == usize::MAX || steps > pieces.len() {
                 let p = &pieces[e / 2].pts;
-                free.push(if e % 2 == 0 { p[0] } else { p[p.len() - 1] });
+                free.push(if e.is_multiple_of(2) { p[0] } else { p[p.len() - 1] });
                 break;
             }
             if f / 2 == k0 {

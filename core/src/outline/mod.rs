@@ -204,7 +204,7 @@ impl Budget {
     /// infinite) for `what`, or the error naming the limit.
     pub fn take(&mut self, n: f64, what: &str) -> Result<usize, Error> {
         let left = MAX_OUTLINE_VERTICES - self.vertices.min(MAX_OUTLINE_VERTICES);
-        if !(n <= left as f64) {
+        if n.is_nan() || n > left as f64 {
             return Err(self.over(n + self.vertices as f64, what));
         }
         let n = n.max(0.0) as usize;

@@ -24,13 +24,13 @@ pub(crate) fn pockets(name: &str, loops: Vec<Loop>) -> Result<Vec<Outline>, Erro
     let mut slot: Vec<Option<usize>> = vec![None; loops.len()];
     let mut out: Vec<Outline> = Vec::new();
     for (i, l) in loops.iter().enumerate() {
-        if depth[i] % 2 == 0 {
+        if depth[i].is_multiple_of(2) {
             slot[i] = Some(out.len());
             out.push(Outline { boundary: l.pts.clone(), islands: Vec::new() });
         }
     }
     for (i, l) in loops.iter().enumerate() {
-        if depth[i] % 2 == 1 {
+        if !depth[i].is_multiple_of(2) {
             // the parent is the loop around it one level up
             let parent = around[i].iter().copied().find(|&j| depth[j] + 1 == depth[i]).and_then(|j| slot[j]);
             let Some(k) = parent else {

@@ -5,16 +5,20 @@
 
 use trochoplan_core::geom::P2;
 
+/// A block definition: name, base point, the groups of its entities.
+pub type Block = (String, f64, f64, Vec<(i32, String)>);
+
 /// An ASCII DXF file: group codes and values, one per line.
 #[derive(Default)]
 pub struct Dxf {
     pub header: Vec<(i32, String)>,
     pub layers: Vec<(String, i32, i32)>,
-    pub blocks: Vec<(String, f64, f64, Vec<(i32, String)>)>,
+    /// Blocks: name, base point x and y, entity groups.
+    pub blocks: Vec<Block>,
     pub entities: Vec<(i32, String)>,
 }
 
-fn push(out: &mut String, pairs: &[(i32, String)]) {
+fn push(out: &mut String, pairs: Vec<(i32, String)>) {
     for (c, v) in pairs {
         out.push_str(&format!("{c}\n{v}\n"));
     }
@@ -27,6 +31,11 @@ macro_rules! pairs {
 }
 
 impl Dxf {
+    /// A file of these entity groups.
+    pub fn with(entities: Vec<(i32, String)>) -> Dxf {
+        Dxf { entities, ..Dxf::default() }
+    }
+
     /// `$INSUNITS` = `units`.
     pub fn units(mut self, units: i32) -> Dxf {
         self.header.push((9, "$INSUNITS".into()));
@@ -42,31 +51,31 @@ impl Dxf {
 
     pub fn text(&self) -> String {
         let mut out = String::new();
-        push(&mut out, &pairs![0 => "SECTION", 2 => "HEADER", 9 => "$ACADVER", 1 => "AC1015"]);
-        push(&mut out, &self.header);
-        push(&mut out, &pairs![0 => "ENDSEC"]);
+        push(&mut out, pairs![0 => "SECTION", 2 => "HEADER", 9 => "$ACADVER", 1 => "AC1015"]);
+        push(&mut out, self.header.clone());
+        push(&mut out, pairs![0 => "ENDSEC"]);
         if !self.layers.is_empty() {
-            push(&mut out, &pairs![0 => "SECTION", 2 => "TABLES", 0 => "TABLE", 2 => "LAYER", 70 => self.layers.len()]);
+            push(&mut out, pairs![0 => "SECTION", 2 => "TABLES", 0 => "TABLE", 2 => "LAYER", 70 => self.layers.len()]);
             for (name, color, flags) in &self.layers {
-                push(&mut out, &pairs![0 => "LAYER", 2 => name, 70 => flags, 62 => color, 6 => "CONTINUOUS"]);
+                push(&mut out, pairs![0 => "LAYER", 2 => name, 70 => flags, 62 => color, 6 => "CONTINUOUS"]);
             }
-            push(&mut out, &pairs![0 => "ENDTAB", 0 => "ENDSEC"]);
+            push(&mut out, pairs![0 => "ENDTAB", 0 => "ENDSEC"]);
         }
         if !self.blocks.is_empty() {
-            push(&mut out, &pairs![0 => "SECTION", 2 => "BLOCKS"]);
+            push(&mut out, pairs![0 => "SECTION", 2 => "BLOCKS"]);
             for (name, bx, by, body) in &self.blocks {
                 push(
                     &mut out,
-                    &pairs![0 => "BLOCK", 8 => "0", 2 => name, 70 => 0, 10 => bx, 20 => by, 30 => 0, 3 => name],
+                    pairs![0 => "BLOCK", 8 => "0", 2 => name, 70 => 0, 10 => bx, 20 => by, 30 => 0, 3 => name],
                 );
-                push(&mut out, body);
-                push(&mut out, &pairs![0 => "ENDBLK", 8 => "0"]);
+                push(&mut out, body.clone());
+                push(&mut out, pairs![0 => "ENDBLK", 8 => "0"]);
             }
-            push(&mut out, &pairs![0 => "ENDSEC"]);
+            push(&mut out, pairs![0 => "ENDSEC"]);
         }
-        push(&mut out, &pairs![0 => "SECTION", 2 => "ENTITIES"]);
-        push(&mut out, &self.entities);
-        push(&mut out, &pairs![0 => "ENDSEC", 0 => "EOF"]);
+        push(&mut out, pairs![0 => "SECTION", 2 => "ENTITIES"]);
+        push(&mut out, self.entities.clone());
+        push(&mut out, pairs![0 => "ENDSEC", 0 => "EOF"]);
         out
     }
 }
