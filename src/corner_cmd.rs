@@ -170,9 +170,13 @@ pub struct EngagementArgs {
 /// Flags of `trochoplan pocket` (defaults: [`PocketRequest::default`]).
 #[derive(Args)]
 pub struct PocketArgs {
-    /// Pocket boundary: one vertex "x,y" per line (mm), '#' comments allowed; or a drawing,
-    /// `.dxf` (closed LWPOLYLINE, or LINE/ARC chain) or `.svg` (first path or polygon, mm),
-    /// arcs and curves as chords within 0.01 mm; a simple polygon.
+    /// Pocket boundary: one vertex "x,y" per line (mm), '#' comments allowed, loops separated
+    /// by an empty line; or a drawing, `.dxf` (closed polylines, circles, ellipses and LINE/ARC
+    /// chains; $INSUNITS, extrusion ±z and block inserts applied, hidden layers skipped) or
+    /// `.svg` (every rendered shape and subpath; transforms, nested viewports, <use> and the
+    /// root's size in mm applied, y up), arcs and curves as chords within 0.01 mm. It must hold
+    /// exactly one closed loop, a simple polygon (islands and several pockets are refused);
+    /// at most 20000 vertices. Full rules: docs/outlines.md.
     #[arg(long, value_name = "FILE")]
     polygon: PathBuf,
     /// Machine preset for the real time at depth (issue #11): adds `time_real_s` and
