@@ -97,6 +97,14 @@ fn layer_states(text: &str) -> HashMap<String, (bool, bool)> {
 
 /// The loops of an ASCII DXF drawing.
 pub(crate) fn loops(name: &str, text: &str, budget: &mut Budget) -> Result<Vec<Loop>, Error> {
+    let objects = text.lines().step_by(2).filter(|code| code.trim() == "0").count();
+    if objects > super::MAX_DXF_OBJECTS {
+        return Err(Error::File(format!(
+            "{name}: {objects} objects (entities, vertices, table and block records): more than the {} a drawing \
+             may have",
+            super::MAX_DXF_OBJECTS
+        )));
+    }
     let drawing = ::dxf::Drawing::load(&mut text.as_bytes())
         .map_err(|e| Error::File(format!("{name}: not a readable DXF drawing ({e})")))?;
     let units = mm_per_unit(drawing.header.default_drawing_units);
@@ -304,6 +312,7 @@ impl Reader<'_, '_> {
             return Ok(()); // a point draws no outline
         }
         let tol = m.tolerance();
+        self.budget.check(v.len() as f64, &what)?;
         let mut pts = vec![v[0].0];
         let segments = if closed { v.len() } else { v.len() - 1 };
         for i in 0..segments {

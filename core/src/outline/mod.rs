@@ -23,8 +23,9 @@
 //!
 //! Arcs and curves become chords within [`CHORD_TOLERANCE_MM`] of the drawing. The work is
 //! bounded: at most [`MAX_OUTLINE_VERTICES`] vertices after flattening (counted before any
-//! point is made), at most [`MAX_EXPANSIONS`] block or `<use>` expansions, coordinates within
-//! ±[`MAX_COORDINATE_MM`]. Every error names the file and the line, element or entity.
+//! point is made), at most [`MAX_EXPANSIONS`] block or `<use>` expansions, at most
+//! [`MAX_DXF_OBJECTS`] DXF objects and [`MAX_SVG_NODES`] SVG nodes (counted in the text before
+//! it is parsed), coordinates within ±[`MAX_COORDINATE_MM`]. Every error names the file and the line, element or entity.
 
 mod chain;
 pub mod dxf;
@@ -45,6 +46,12 @@ pub const JOIN_TOLERANCE_MM: f64 = 1e-4;
 /// Most vertices an outline file may give, all loops together, after flattening arcs and
 /// curves.
 pub const MAX_OUTLINE_VERTICES: usize = 20_000;
+/// Most DXF objects (group-code-0 records: entities, vertices, table and block records) a
+/// drawing may have, counted before it is parsed (the parser needs about 2 kB per object).
+pub const MAX_DXF_OBJECTS: usize = 100_000;
+/// Most SVG markup items (`<` characters: elements, comments, declarations), counted before
+/// the file is parsed (the XML tree needs about 220 bytes per node).
+pub const MAX_SVG_NODES: usize = 200_000;
 /// Most DXF block INSERTs (array copies included) or SVG `<use>` references expanded.
 pub const MAX_EXPANSIONS: usize = 100_000;
 /// Largest coordinate of an outline (mm), after units and transforms: 1 km.
@@ -212,8 +219,16 @@ impl Budget {
         Ok(n)
     }
 
-    /// The error for `total` vertices, the last made by `what`.
+    /// Checks that `n` more vertices would fit, without taking them.
+    pub fn check(&self, n: f64, what: &str) -> Result<(), Error> {
+        let left = MAX_OUTLINE_VERTICES - self.vertices.min(MAX_OUTLINE_VERTICES);
+        if n.is_nan() || n > left as f64 { Err(self.over(n + self.vertices as f64, what)) } else { Ok(()) }
+    }
+
+    /// The error for `total` vertices, the last made by `what` (which may start with the
+    /// file's name).
     pub fn over(&self, total: f64, what: &str) -> Error {
+        let what = what.strip_prefix(&format!("{}: ", self.name)).unwrap_or(what);
         let total = if total.is_finite() && total < 1e15 { format!("{}", total.ceil()) } else { num(total) };
         Error::File(format!(
             "{}: {what} would bring the outline to {total} vertices (arcs and curves as chords within {} mm): \

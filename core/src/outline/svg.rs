@@ -81,6 +81,13 @@ enum Axis {
 
 /// The loops of an SVG file.
 pub(crate) fn loops(name: &str, text: &str, budget: &mut Budget) -> Result<Vec<Loop>, Error> {
+    let nodes = text.bytes().filter(|&b| b == b'<').count();
+    if nodes > super::MAX_SVG_NODES {
+        return Err(Error::File(format!(
+            "{name}: {nodes} markup items (elements, comments): more than the {} an SVG file may have",
+            super::MAX_SVG_NODES
+        )));
+    }
     let doc = Document::parse(text).map_err(|e| Error::File(format!("{name}: not a readable SVG file ({e})")))?;
     let root = doc.root_element();
     if root.tag_name().name() != "svg" {

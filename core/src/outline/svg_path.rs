@@ -132,10 +132,11 @@ fn segment_numbers(seg: &PathSegment) -> Vec<f64> {
 /// The points of a `points` attribute: pairs of numbers; a bad number or an odd count is an
 /// error quoting the text.
 pub(crate) fn points(text: &str, budget: &mut Budget, what: &str) -> Result<Vec<P2>, Error> {
-    let mut numbers = Vec::new();
+    // first the count (and every number's check), then the points: no memory for a refused list
+    let mut count = 0usize;
     for v in NumberListParser::from(text) {
         match v {
-            Ok(v) if v.is_finite() => numbers.push(v),
+            Ok(v) if v.is_finite() => count += 1,
             Ok(v) => {
                 return Err(Error::File(format!(
                     "{what}: points {}: the number {} is not finite",
@@ -146,14 +147,14 @@ pub(crate) fn points(text: &str, budget: &mut Budget, what: &str) -> Result<Vec<
             Err(e) => return Err(Error::File(format!("{what}: points {}: {e}", quoted(text)))),
         }
     }
-    if numbers.len() % 2 == 1 {
+    if count % 2 == 1 {
         return Err(Error::File(format!(
-            "{what}: points {}: {} numbers, an odd count: the last x has no y",
-            quoted(text),
-            numbers.len()
+            "{what}: points {}: {count} numbers, an odd count: the last x has no y",
+            quoted(text)
         )));
     }
-    budget.take((numbers.len() / 2) as f64, what)?;
+    budget.take((count / 2) as f64, what)?;
+    let numbers: Vec<f64> = NumberListParser::from(text).filter_map(Result::ok).collect();
     Ok(numbers.chunks_exact(2).map(|c| p2(c[0], c[1])).collect())
 }
 

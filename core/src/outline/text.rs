@@ -17,6 +17,7 @@ pub(crate) fn loops(name: &str, text: &str) -> Result<Vec<Loop>, Error> {
     let mut pts: Vec<P2> = Vec::new();
     let mut lines = (0, 0);
     let mut first = true;
+    let mut total = 0;
     let close = |pts: &mut Vec<P2>, lines: (usize, usize), loops: &mut Vec<Loop>| {
         if pts.is_empty() {
             return;
@@ -55,7 +56,8 @@ pub(crate) fn loops(name: &str, text: &str) -> Result<Vec<Loop>, Error> {
                 }
                 lines.1 = i + 1;
                 pts.push(p2(x, y));
-                if pts.len() + loops.iter().map(|l: &Loop| l.pts.len()).sum::<usize>() > super::MAX_OUTLINE_VERTICES {
+                total += 1;
+                if total > super::MAX_OUTLINE_VERTICES {
                     return Err(bad(&format!(
                         "more than the {} vertices an outline may have",
                         super::MAX_OUTLINE_VERTICES
