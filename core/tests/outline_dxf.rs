@@ -237,3 +237,27 @@ fn twenty_thousand_lines_chain_fast_and_the_limit_is_named() {
         assert!(secs < 3.0, "{secs} s");
     }
 }
+
+/// The objects of a drawing are counted in its text before it is parsed (the parser needs
+/// about 2 kB each): one POINT more than the limit is refused at once, naming it.
+#[test]
+fn the_object_count_is_bounded_before_parsing() {
+    use trochoplan_core::outline::MAX_DXF_OBJECTS;
+    let mut d = Dxf::with(lwpolyline(&SQUARE, true, "0", 1.0));
+    // the file's objects: SECTION and ENDSEC (×2), EOF, the LWPOLYLINE, and the POINTs
+    let points = MAX_DXF_OBJECTS - 6;
+    let point = pairs![0 => "POINT", 8 => "0", 10 => 1.0, 20 => 2.0];
+    for _ in 0..points {
+        d.entities.extend(point.iter().cloned());
+    }
+    assert_eq!(read(&d).unwrap().loop_count(), 1, "at the limit");
+    d.entities.extend(point);
+    let t = Instant::now();
+    let e = read(&d).unwrap_err();
+    assert!(
+        e.contains(&format!("{} objects", MAX_DXF_OBJECTS + 1))
+            && e.contains(&format!("more than the {MAX_DXF_OBJECTS}")),
+        "{e}"
+    );
+    assert!(t.elapsed().as_secs_f64() < 0.5);
+}

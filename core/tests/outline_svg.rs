@@ -203,3 +203,16 @@ fn huge_arcs_and_vertex_counts_are_bounded() {
     assert!(e.contains(&format!("more than the {MAX_OUTLINE_VERTICES} vertices")), "{e}");
     assert!(t.elapsed().as_secs_f64() < 2.0);
 }
+
+/// Markup items are counted in the text before it is parsed: one more than the limit is
+/// refused at once, naming it.
+#[test]
+fn the_markup_count_is_bounded_before_parsing() {
+    use trochoplan_core::outline::MAX_SVG_NODES;
+    // the root's start and end tags and the polygon are 3 items
+    let groups = |n: usize| "<g/>".repeat(n);
+    let tri = r#"<polygon points="0,0 1,0 1,1"/>"#;
+    assert_eq!(read(&format!("{tri}{}", groups(MAX_SVG_NODES - 3)), "").unwrap().loop_count(), 1);
+    let e = read(&format!("{tri}{}", groups(MAX_SVG_NODES - 2)), "").unwrap_err();
+    assert!(e.contains(&format!("{} markup items", MAX_SVG_NODES + 1)), "{e}");
+}

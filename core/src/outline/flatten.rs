@@ -145,6 +145,11 @@ pub fn svg_arc(
     }
     let lambda = (u * u + w * w).min(1.0);
     let k = (1.0 / lambda - 1.0).max(0.0).sqrt();
+    if !k.is_finite() {
+        // radii so large that the half chord vanishes against them: the arc is its chord
+        budget.take(1.0, what)?;
+        return Ok(vec![p2_]);
+    }
     let sign = if large_arc != sweep_flag { 1.0 } else { -1.0 };
     // centre, start and end in the unit-circle frame; the angle from start to end is
     // atan2(2·sign·k, k² − 1) exactly (no difference of nearly equal vectors)
@@ -213,6 +218,9 @@ mod tests {
         let mut b = Budget::new("t");
         let pts = svg_arc(p2(0.0, 0.0), (1e12, 1e12), 0.0, false, true, p2(10.0, 0.0), 0.01, &mut b, "arc").unwrap();
         assert_eq!(pts, vec![p2(10.0, 0.0)]);
+        // radii of 1e300: the half chord over the radius underflows; still the chord
+        let pts = svg_arc(p2(0.0, 0.0), (1e300, 1e300), 0.0, false, true, p2(1e-10, 0.0), 0.01, &mut b, "arc").unwrap();
+        assert_eq!(pts, vec![p2(1e-10, 0.0)]);
         // a semicircle: sweep-flag 1 is the positive angle direction (from +x toward +y)
         let pts = svg_arc(p2(0.0, 0.0), (10.0, 10.0), 0.0, false, true, p2(0.0, 20.0), 0.01, &mut b, "arc").unwrap();
         assert!(pts.iter().all(|p| p.x >= -1e-9 && ((p - p2(0.0, 10.0)).norm() - 10.0).abs() < 1e-9), "{pts:?}");
