@@ -98,5 +98,7 @@ mod tests {
         assert_eq!(e, "p.txt line 3: expected two numbers x,y, got \"1,1 2\"");
         let e = loops("p.txt", "0,0\n1,nan\n").unwrap_err().to_string();
         assert!(e.contains("line 2: x and y must be finite"), "{e}");
+        let e = loops("p.txt", "0,0\n1e300,0\n1e300,1e300\n").unwrap_err().to_string();
+        assert!(e.contains("line 2: coordinates must be within ±1000000 mm"), "{e}");
     }
 }
