@@ -171,9 +171,13 @@ pub struct EngagementArgs {
 /// Flags of `trochoplan pocket` (defaults: [`PocketRequest::default`]).
 #[derive(Args)]
 pub struct PocketArgs {
-    /// Pocket boundary: one vertex "x,y" per line (mm), '#' comments allowed; or a drawing,
-    /// `.dxf` (closed LWPOLYLINE, or LINE/ARC chain) or `.svg` (first path or polygon, mm),
-    /// arcs and curves as chords within 0.01 mm; a simple polygon.
+    /// Pocket boundary: one vertex "x,y" per line (mm), '#' comments allowed, loops separated
+    /// by an empty line; or a drawing, `.dxf` (closed polylines, circles, ellipses and LINE/ARC
+    /// chains; $INSUNITS, extrusion ±z and block inserts applied, hidden layers skipped) or
+    /// `.svg` (every rendered shape and subpath; transforms, nested viewports, <use> and the
+    /// root's size in mm applied, y up), arcs and curves as chords within 0.01 mm. It must hold
+    /// exactly one closed loop, a simple polygon (islands and several pockets are refused);
+    /// at most 20000 vertices. Full rules: docs/outlines.md.
     #[arg(long, value_name = "FILE")]
     polygon: PathBuf,
     /// Machine preset for the real time at depth (issue #11): adds `time_real_s` and
@@ -325,7 +329,8 @@ struct PocketOut {
 /// perforative trochoids along its medial axis (`--method medial-axis`).
 pub fn pocket(args: &PocketArgs) -> Result<String, String> {
     let what = args.polygon.display().to_string();
-    let points = crate::outline::outline_points(&args.polygon, &read_input(&args.polygon, "polygon file")?)?;
+    let pockets = trochoplan_core::outline::read(&what, &read_input(&args.polygon, "polygon file")?).map_err(err)?;
+    let points = pockets.single().map_err(err)?.to_vec();
     let polygon = Polygon::new(points.clone()).map_err(|e| format!("{what}: {e}"))?;
     let open_edges = pocket::stored_open_edges(&polygon, &points, &args.open_edges).map_err(err)?;
     let req = PocketRequest {

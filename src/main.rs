@@ -5,7 +5,6 @@ mod app;
 mod cli;
 mod export;
 mod files;
-mod outline;
 mod worker;
 
 use std::process::ExitCode;

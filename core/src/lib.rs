@@ -23,6 +23,8 @@
 //! - [`nc`]: NC programs (LinuxCNC, Fanuc-style ISO, GRBL, Sinumerik), biarc output.
 //! - [`corner`]: pocket corners (issue #5): engagement model, corner trochoids, evaluator;
 //!   [`corner::evaluate`] — corner request in, plans, profiles and acceptance row out.
+//! - [`outline`]: pocket outlines from point lists, DXF and SVG files: loops in mm, nested
+//!   into pockets with islands; [`outline::read`].
 //! - [`pocket`]: polygonal pockets by rings or along the medial axis; [`pocket::plan`].
 //! - [`plan`]: [`plan()`] — job in, [`Plan`] out; used by the GUI and the CLI.
 //! - [`quantity`]: every metric and per-tooth series column as data (key, label, unit, source).
@@ -39,6 +41,7 @@ pub mod machine;
 pub mod material;
 pub mod nc;
 pub mod optimize;
+pub mod outline;
 pub mod path;
 pub mod plan;
 pub mod pocket;

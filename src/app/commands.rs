@@ -185,8 +185,11 @@ impl App {
 
     /// Read a pocket outline (`pocket --polygon`'s formats) into the Pocket mode's vertices.
     pub fn open_outline(&mut self, path: &Path) {
-        let read =
-            crate::files::read_input(path, "outline").and_then(|text| crate::outline::outline_points(path, &text));
+        let read = crate::files::read_input(path, "outline").and_then(|text| {
+            let pockets =
+                trochoplan_core::outline::read(&path.display().to_string(), &text).map_err(|e| e.to_string())?;
+            pockets.single().map(<[_]>::to_vec).map_err(|e| e.to_string())
+        });
         match read {
             Ok(points) => {
                 self.state.corner.polygon_text = points.iter().map(|p| format!("{},{}\n", p.x, p.y)).collect();
