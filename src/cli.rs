@@ -268,12 +268,20 @@ pub fn main() -> ExitCode {
     let cli = Cli::parse();
     match run(cli.command) {
         Ok(out) => {
-            if crate::files::stdout_taken() {
-                eprint!("{out}");
+            use std::io::Write;
+            let written = if crate::files::stdout_taken() {
+                std::io::stderr().write_all(out.as_bytes())
             } else {
-                print!("{out}");
+                std::io::stdout().lock().write_all(out.as_bytes()).and_then(|()| std::io::stdout().flush())
+            };
+            match written {
+                // a reader that stopped early (`| head`) took what it wanted
+                Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+                    eprintln!("trochoplan: cannot write the report: {e}");
+                    ExitCode::from(2)
+                }
+                _ => ExitCode::SUCCESS,
             }
-            ExitCode::SUCCESS
         }
         Err(e) => {
             eprintln!("trochoplan: {e}");

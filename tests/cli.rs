@@ -600,3 +600,30 @@ fn work_is_bounded_before_it_starts() {
     let (ok, _, err) = run(&["calibrate", "--slot-forces", csv.to_str().expect("utf8")]);
     assert!(!ok && err.contains("invalid slot-forces") && err.contains("at most 1000 tests"), "{err}");
 }
+
+/// A reader that stops early (`trochoplan … | head -c 1`) closes the pipe: the report is cut
+/// short, but the process neither panics nor reports an error.
+#[test]
+fn a_reader_closing_the_pipe_early_is_not_a_panic() {
+    use std::io::Read;
+    use std::process::Stdio;
+    // a pocket report (about 90 kB) is larger than a pipe's buffer (64 kB on Linux), so the
+    // writer meets the closed pipe rather than finishing into the buffer
+    let dir = tempfile::tempdir().expect("tempdir");
+    let polygon = dir.path().join("rect.txt");
+    std::fs::write(&polygon, "0,0\n60,0\n60,40\n0,40\n").expect("write");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_trochoplan"))
+        .args(["pocket", "--polygon", polygon.to_str().expect("utf-8"), "--step-over", "1.527"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("binary runs");
+    let mut first = [0u8; 1];
+    child.stdout.take().expect("stdout").read_exact(&mut first).ok();
+    // the read end is dropped here: every later write of the report meets a closed pipe
+    let mut stderr = String::new();
+    child.stderr.take().expect("stderr").read_to_string(&mut stderr).expect("stderr");
+    let status = child.wait().expect("wait");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(status.success(), "exit {status:?}: {stderr}");
+}
