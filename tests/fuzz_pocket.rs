@@ -1,12 +1,13 @@
 //! Fuzz of the pocket planners against their walls: random simple polygons with teeth (combs),
 //! notches, necks, spikes (acute corners), slanted steps, reflex corners and arms (L, U), with
-//! random open edges, for every method and both milling directions, plus the pockets that
-//! once cut through their walls (a comb, an L open on one side, a U channel). Every exported
-//! program is read back through LinuxCNC's `rs274` and EVERY move below the stock top — feeds
-//! at depth, links, helix and ramp moves, rapids — is checked exactly against the walls
-//! ([`pocket_common::below_top_violations`]: segment-to-segment and arc-to-segment distances,
-//! not samples). A pocket the command refuses (exit 2, a message naming a parameter) is
-//! counted; most must plan. Fixed seeds: a failure names a case that can be run again.
+//! random open edges, for every method and both milling directions, plus three fixed pockets
+//! where a straight link at depth would cross a wall (a comb, an L open on one side, a U
+//! channel). Every exported program is read back through LinuxCNC's `rs274` and EVERY move
+//! below the stock top — feeds at depth, links, helix and ramp moves, rapids — is checked
+//! exactly against the walls ([`pocket_common::below_top_violations`]: segment-to-segment and
+//! arc-to-segment distances, not samples). A pocket the command refuses (exit 2, a message
+//! naming a parameter) is counted; most must plan. Fixed seeds: a failure names a case that
+//! can be run again.
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
@@ -114,7 +115,7 @@ fn run_cases(name: &str, cases: &[Case], min_planned: usize) {
     assert!(planned >= min_planned, "{name}: only {planned} of {} cases planned; refused: {refused:?}", cases.len());
 }
 
-/// The comb of the reproduction: a 100 × 15 base with five prongs up to y = 50 and four
+/// A comb: a 100 × 15 base with five prongs up to y = 50 and four
 /// wall teeth between them (x 20–28, 40–48, 60–68, 80–88).
 const COMB: &[(f64, f64)] = &[
     (0.0, 0.0),
@@ -139,10 +140,10 @@ const COMB: &[(f64, f64)] = &[
     (0.0, 50.0),
 ];
 
-/// The L of the reproduction: 60 × 60, arms 25 wide, reflex vertex (25, 25).
+/// An L: 60 × 60, arms 25 wide, reflex vertex (25, 25).
 const L_ARMS: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 25.0), (25.0, 25.0), (25.0, 60.0), (0.0, 60.0)];
 
-/// FreeCAD's u-channel outline (the reproduction's file, copied): 80 × 50 with a 30 × 30
+/// FreeCAD's u-channel outline (its coordinates copied): 80 × 50 with a 30 × 30
 /// notch from the top between x 25 and 55.
 const U_CHANNEL: &[(f64, f64)] =
     &[(0.0, 0.0), (80.0, 0.0), (80.0, 50.0), (55.0, 50.0), (55.0, 20.0), (25.0, 20.0), (25.0, 50.0), (0.0, 50.0)];
@@ -159,12 +160,12 @@ fn case(label: &str, polygon: &[(f64, f64)], open: &[usize], method: &'static st
     }
 }
 
-/// The reproductions, with the defaults (D = 10): the comb with every method and direction,
+/// The fixed pockets, with the defaults (D = 10): the comb with every method and direction,
 /// the L open on edge 5, 2 or 3 in both directions (adaptive: the only method that takes open
 /// edges), the U channel with every method and direction. Each must plan: they are plain
 /// pockets a tool of D = 10 fits.
 #[test]
-fn reproduced_pockets_keep_every_move_below_the_top_off_the_walls() {
+fn comb_l_and_u_channel_pockets_keep_every_move_below_the_top_off_the_walls() {
     let mut cases = Vec::new();
     for method in METHODS {
         for direction in DIRECTIONS {
@@ -178,7 +179,7 @@ fn reproduced_pockets_keep_every_move_below_the_top_off_the_walls() {
         }
     }
     let n = cases.len();
-    run_cases("reproduced", &cases, n);
+    run_cases("fixed", &cases, n);
 }
 
 /// A random x-monotone pocket between two chains separated by the line y = 0 (so it is always
