@@ -339,3 +339,66 @@ fn random_arms_and_stars_keep_every_move_below_the_top_off_the_walls() {
         .collect();
     run_cases("arms", &cases, 20);
 }
+
+/// The checker itself: the exact distance of an arc or a line motion from a segment agrees
+/// with a dense sampling of the motion (10⁵ points: the sampled minimum exceeds the exact one
+/// by at most the sampling's reach, R·Δθ for arcs, the step for lines, and never falls below
+/// it); random arcs of any sense and up to two turns, random segments crossing them or not.
+#[test]
+fn motion_distance_is_exact() {
+    use nc_common::Motion;
+    use pocket_common::{dist_to_edge, motion_edge_distance};
+    use trochoplan_core::geom::p2;
+    let mut rng = Rng::new(3);
+    for k in 0..300 {
+        let c = p2(rng.range(-5.0, 5.0), rng.range(-5.0, 5.0));
+        let r = rng.range(0.5, 6.0);
+        let (a0, turns) = (rng.range(0.0, TAU), [1i32, -1, 2, -2][rng.below(4)]);
+        let sweep = if turns.abs() == 2 { TAU + rng.range(0.0, TAU) } else { rng.range(0.05, TAU) };
+        let a1 = a0 + sweep * f64::from(turns.signum());
+        let at = |t: f64| [c.x + r * t.cos(), c.y + r * t.sin(), -1.0];
+        let arc = Motion::Arc { start: at(a0), end: at(a1), center: c, turns };
+        let (a, b) =
+            (p2(rng.range(-12.0, 12.0), rng.range(-12.0, 12.0)), p2(rng.range(-12.0, 12.0), rng.range(-12.0, 12.0)));
+        let n = 100_000;
+        let total = if turns.abs() == 2 { TAU } else { sweep };
+        let sampled = (0..=n)
+            .map(|i| {
+                let t = a0 + f64::from(turns.signum()) * total * f64::from(i) / f64::from(n);
+                dist_to_edge(c + p2(t.cos(), t.sin()) * r, a, b)
+            })
+            .fold(f64::INFINITY, f64::min);
+        let exact = motion_edge_distance(&arc, a, b);
+        let reach = r * total / f64::from(n);
+        assert!(exact <= sampled + 1e-9 && sampled - exact <= reach + 1e-9, "arc {k}: exact {exact} sampled {sampled}");
+        let (p, q) =
+            (p2(rng.range(-12.0, 12.0), rng.range(-12.0, 12.0)), p2(rng.range(-12.0, 12.0), rng.range(-12.0, 12.0)));
+        let line = Motion::Line { start: [p.x, p.y, -1.0], end: [q.x, q.y, -1.0] };
+        let sampled = (0..=n)
+            .map(|i| dist_to_edge(p + (q - p) * (f64::from(i) / f64::from(n)), a, b))
+            .fold(f64::INFINITY, f64::min);
+        let exact = motion_edge_distance(&line, a, b);
+        let reach = (q - p).norm() / f64::from(n);
+        assert!(
+            exact <= sampled + 1e-9 && sampled - exact <= reach + 1e-9,
+            "line {k}: exact {exact} sampled {sampled}"
+        );
+    }
+}
+
+/// The checker's walls: a closed pocket's walls are its edges; the L open on its inner edge
+/// (edge 2, from (60, 25) to (25, 25)) has air above that edge, so the edge from (25, 25) up
+/// to (25, 60) has air on both sides and is no wall, while the strip's side above (25, 60)
+/// is one; a point above the open edge is in the region, one above the left arm is not.
+#[test]
+fn walls_of_open_and_closed_pockets() {
+    use pocket_common::Walls;
+    use trochoplan_core::geom::p2;
+    let closed = Walls::new(L_ARMS, &[]);
+    assert_eq!(closed.pieces.len(), L_ARMS.len());
+    let open = Walls::new(L_ARMS, &[2]);
+    let on = |x: f64, y: f64| open.pieces.iter().any(|&(a, b)| pocket_common::dist_to_edge(p2(x, y), a, b) < 1e-9);
+    assert!(!on(25.0, 40.0), "edge 3 beside the open edge is a wall: {:?}", open.pieces);
+    assert!(on(25.0, 70.0) && on(60.0, 40.0) && on(40.0, 0.0), "{:?}", open.pieces);
+    assert!(open.contains(p2(40.0, 40.0)) && !open.contains(p2(10.0, 70.0)) && !open.contains(p2(70.0, 10.0)));
+}
