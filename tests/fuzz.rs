@@ -11,54 +11,10 @@
 mod nc_common;
 mod pocket_common;
 
-use nc_common::{check_cut, cut, interpret, motions};
-use pocket_common::{Rng, check_pocket_program, pocket_export, star_polygon};
+use nc_common::{budget, check_cut, cut, interpret, motions};
+use pocket_common::{Rng, below_top_violations, check_pocket_program, pocket_export, run, star_polygon};
 use std::path::Path;
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
 use trochoplan_core::{Job, PathKind, plan};
-
-/// A run that takes longer than this is a hang (the bound).
-const WATCHDOG: Duration = Duration::from_secs(10);
-
-struct Run {
-    code: i32,
-    stdout: String,
-    stderr: String,
-}
-
-/// Run the binary with a watchdog: a run over [`WATCHDOG`] is killed and fails the test, a
-/// crash (signal, panic message, exit code other than 0/1/2) fails it too.
-fn run(label: &str, args: &[&str]) -> Run {
-    let dir = tempfile::tempdir().expect("tempdir");
-    let (out, err) = (dir.path().join("out"), dir.path().join("err"));
-    let mut child = Command::new(env!("CARGO_BIN_EXE_trochoplan"))
-        .args(args)
-        .stdin(Stdio::null())
-        .stdout(std::fs::File::create(&out).expect("stdout file"))
-        .stderr(std::fs::File::create(&err).expect("stderr file"))
-        .spawn()
-        .expect("run trochoplan");
-    let start = Instant::now();
-    let status = loop {
-        if let Some(s) = child.try_wait().expect("wait") {
-            break s;
-        }
-        if start.elapsed() > WATCHDOG {
-            let _ = child.kill();
-            panic!("{label}: ran over {WATCHDOG:?}: trochoplan {args:?}");
-        }
-        std::thread::sleep(Duration::from_millis(5));
-    };
-    let r = Run {
-        code: status.code().unwrap_or_else(|| panic!("{label}: killed by a signal: trochoplan {args:?}")),
-        stdout: std::fs::read_to_string(out).expect("stdout"),
-        stderr: std::fs::read_to_string(err).expect("stderr"),
-    };
-    assert!(!r.stderr.contains("panicked"), "{label}: panic: {}", r.stderr);
-    assert!((0..=2).contains(&r.code), "{label}: exit {}: {}", r.code, r.stderr);
-    r
-}
 
 /// A random slot job over the whole valid range of each parameter (and somewhat past it: the
 /// checks then expect a named rejection).
@@ -169,6 +125,10 @@ fn random_pockets_of_every_method_never_gouge() {
                 continue; // rejected by name (e.g. the tool does not fit): checked inside
             };
             check_pocket_program(&label, &e, &polygon, 0.5 * d, 0.005, 3);
+            // every move below the stock top, links included, exactly against the walls
+            let all = motions(&interpret(&e.file).unwrap_or_else(|err| panic!("{label}: {err}")));
+            let bad = below_top_violations(&all, &polygon, &[], 0.5 * d, budget(0.005, 1e-3));
+            assert!(bad.is_empty(), "{label}: {}", bad.join("\n"));
             checked += 1;
         }
     }
