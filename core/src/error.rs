@@ -57,7 +57,7 @@ pub enum Param {
     StockPolygon,
     /// `engagement --path-csv`.
     PathCsv,
-    /// Machine (issue #11): a preset name, and the keys of a job's `[machine]` table.
+    /// Machine: a preset name, and the keys of a job's `[machine]` table.
     Machine,
     MaxFeedX,
     MaxFeedY,
@@ -76,7 +76,7 @@ pub enum Param {
     MinCooling,
     /// `optimize --max-force`: limit on F_R,max (N).
     MaxForce,
-    /// Variable feed (issue #11).
+    /// Variable feed: the target chip thickness.
     TargetHmax,
     MaxFeed,
     FeedBand,

@@ -40,7 +40,7 @@ pub struct VariableFeed {
     /// Target h (mm); default: the plan's h_max at the programmed feed (equal peak load).
     pub target_h_mm: Option<f64>,
     /// Largest cutting feed (mm/min); default 3 × the programmed feed (the return feed of
-    /// Grechishnikov's program, domain-spec §5.1), within f_z ≤ D/8 and the machine's feed.
+    /// the program of Grechishnikov et al. 2017), within f_z ≤ D/8 and the machine's feed.
     pub max_feed_mm_per_min: Option<f64>,
     /// Feed where no tooth cuts (mm/min); default 3 × the programmed feed.
     pub return_feed_mm_per_min: Option<f64>,
@@ -109,7 +109,7 @@ pub struct ToothShares {
     pub not_held_outside: f64,
 }
 
-/// The tolerance on h where cutting: within 2 % of the target.
+/// The tolerance on h where cutting: within 2 % of the target.
 pub const TOLERANCE: f64 = 0.02;
 
 /// The variable feed of a plan: blocks, the expected h per tooth and the real times.

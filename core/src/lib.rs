@@ -18,10 +18,10 @@
 //!   cutting forces (linear edge-force model with helix) and bottom imprints.
 //! - [`material`]: force coefficients, the material library, slot-test calibration.
 //! - [`feed`]: variable feed: per-block feed for a target chip thickness, in bands.
-//! - [`machine`]: machine limits, presets and the feed planner (real cycle time, issue #11).
+//! - [`machine`]: machine limits, presets and the feed planner (real cycle time).
 //! - [`optimize`]: the job of highest real MRR within the user's limits; Pareto front.
 //! - [`nc`]: NC programs (LinuxCNC, Fanuc-style ISO, GRBL, Sinumerik), biarc output.
-//! - [`corner`]: pocket corners (issue #5): engagement model, corner trochoids, evaluator;
+//! - [`corner`]: pocket corners: engagement model, corner trochoids, evaluator;
 //!   [`corner::evaluate`] — corner request in, plans, profiles and acceptance row out.
 //! - [`outline`]: pocket outlines from point lists, DXF and SVG files: loops in mm, nested
 //!   into pockets with islands; [`outline::read`].

@@ -1,7 +1,8 @@
 //! Work materials for the cutting-force model: the six coefficients of the linear edge-force
-//! model (Altintas & Lee 1996; domain-spec §4.1), the built-in library
+//! model (Altintas & Lee 1996), the built-in library
 //! (`assets/materials/library.toml`, every value with its source), the checks a coefficient
-//! set must pass, and their calibration from full-slot tests (domain-spec §4.1).
+//! set must pass, and their calibration from full-slot tests (derivation in
+//! docs/process-model.md, "Cutting forces").
 //!
 //! Units: Ktc, Krc, Kac in N/mm² (force per chip area), Kte, Kre, Kae in N/mm (force per edge
 //! length).
@@ -10,17 +11,18 @@ use crate::error::{Error, Param, num};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
-/// Name of the default material: the paper's P20, unhardened (domain-spec §4.2).
+/// Name of the default material: the paper's P20, unhardened (docs/process-model.md, "The P20
+/// default set").
 pub const DEFAULT_MATERIAL: &str = "p20";
 
-/// The usual range of Krc/Ktc (process-model.md §1: public fitted sets with negative or odd
+/// The usual range of Krc/Ktc (docs/process-model.md: public fitted sets with negative or odd
 /// entries exist; a set outside this range is refused unless the user allows it).
 pub const RADIAL_RATIO_RANGE: (f64, f64) = (0.2, 0.6);
 
 /// The built-in library's text (also written out by the GUI and CLI for users to edit).
 pub const LIBRARY_TOML: &str = include_str!("../../assets/materials/library.toml");
 
-/// The six coefficients of the linear edge-force model, domain-spec §4.1:
+/// The six coefficients of the linear edge-force model (Altintas & Lee 1996):
 /// dF_t = (Ktc·h + Kte)·dz, dF_r = (Krc·h + Kre)·dz, dF_a = (Kac·h + Kae)·dz.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -171,7 +173,7 @@ impl Library {
 }
 
 /// One full-slot test for calibration: feed per tooth and the mean forces over a revolution
-/// in the frame of domain-spec §4.1 (feed along +x, φ clockwise from +y).
+/// in the frame of Altintas & Lee 1996 (feed along +x, φ clockwise from +y).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct SlotTest {
     pub f_z_mm: f64,
@@ -190,7 +192,8 @@ pub struct Calibration {
     pub rms_residual_n: [f64; 3],
 }
 
-/// Mean forces of a full slot (φ from 0 to π) by the closed form of domain-spec §4.1:
+/// Mean forces of a full slot (φ from 0 to π) by the closed form of the edge-force model
+/// (derived in docs/process-model.md):
 /// F̄x = −N·a_p·Krc·f_z/4 − N·a_p·Kre/π, F̄y = N·a_p·Ktc·f_z/4 + N·a_p·Kte/π,
 /// F̄z = N·a_p·Kac·f_z/π + N·a_p·Kae/2.
 pub fn slot_mean_forces(k: &Coefficients, teeth: u32, depth_mm: f64, f_z_mm: f64) -> [f64; 3] {
@@ -202,7 +205,7 @@ pub fn slot_mean_forces(k: &Coefficients, teeth: u32, depth_mm: f64, f_z_mm: f64
     ]
 }
 
-/// The six coefficients from full-slot tests (domain-spec §4.1): each mean force is linear in
+/// The six coefficients from full-slot tests (docs/process-model.md): each mean force is linear in
 /// f_z; the least-squares slope and intercept of F̄y give Ktc = 4·slope/(N·a_p) and
 /// Kte = π·intercept/(N·a_p), of F̄x Krc = −4·slope/(N·a_p) and Kre = −π·intercept/(N·a_p), of F̄z
 /// Kac = π·slope/(N·a_p) and Kae = 2·intercept/(N·a_p).
@@ -324,14 +327,14 @@ mod tests {
     use super::*;
 
     /// The built-in library loads, holds its five materials, and its p20 entry is
-    /// the domain-spec §4.2 default set.
+    /// the default set of docs/process-model.md ("The P20 default set").
     #[test]
-    fn builtin_library_loads_with_the_spec_default() {
+    fn builtin_library_loads_with_the_documented_default() {
         let lib = Library::from_toml(LIBRARY_TOML, "library").expect("loads");
         let names: Vec<&str> = lib.materials.iter().map(|m| m.name.as_str()).collect();
         assert_eq!(names, ["p20", "p20-prehardened", "aisi-1045", "al-6061-t6", "ti-6al-4v"]);
         let p20 = lib.get(DEFAULT_MATERIAL).expect("p20").coefficients;
-        // domain-spec §4.2 table
+        // docs/process-model.md, "The P20 default set"
         assert_eq!(p20, Coefficients { ktc: 2400.0, krc: 960.0, kac: 360.0, kte: 35.0, kre: 35.0, kae: 5.0 });
         assert_eq!(Library::builtin(), &lib);
         let err = lib.get("unobtainium").expect_err("unknown");
@@ -376,7 +379,8 @@ mod tests {
                 SlotTest { f_z_mm: f, fx_n: fx, fy_n: fy, fz_n: fz }
             })
             .collect();
-        // domain-spec §4.1 TEST: the slot at f_z = 0.075 has means (−699.38, 1347.38, 266.26) N.
+        // The worked example of docs/process-model.md ("Checks"): the slot at f_z = 0.075 has
+        // means (−699.38, 1347.38, 266.26) N.
         let m = slot_mean_forces(&k, 4, 6.0, 0.075);
         for (got, want) in m.iter().zip([-699.38, 1347.38, 266.26]) {
             assert!((got - want).abs() < 0.01, "{got} vs {want}");

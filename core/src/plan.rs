@@ -70,7 +70,7 @@ pub struct Metrics {
     /// Largest step for a straight-cut-equivalent depth of 15 % of D (mm).
     pub step_limit_15pct_depth_mm: f64,
     /// F_R,max: largest resultant cutting force over a steady-state cycle (N), linear
-    /// edge-force model with helix (domain-spec §4.1).
+    /// edge-force model with helix (Altintas & Lee 1996; docs/process-model.md).
     pub force_resultant_max_n: f64,
     /// Mean F_R over the part of the cycle in which the tool cuts (N).
     pub force_resultant_mean_n: f64,

@@ -214,8 +214,8 @@ pub const FORCE_RESULTANT_MAX: Metric = Metric::new(
     1,
     |m| m.force_resultant_max_n,
     "Largest resultant cutting force F_R = sqrt(Fx² + Fy² + Fz²) over a steady-state cycle: linear \
-     edge-force model with helix, dF_t,r,a = (K_t,r,a c·h + K_t,r,a e)·dz per tooth and slice (domain-spec \
-     §4.1, Altintas & Lee 1996), h(φ) from the material left by previous cycles (Figs. 14–16).",
+     edge-force model with helix, dF_t,r,a = (K_t,r,a c·h + K_t,r,a e)·dz per tooth and slice (Altintas & \
+     Lee 1996), h(φ) from the material left by previous cycles (Figs. 14–16).",
 )
 .lower_is_better();
 pub const FORCE_RESULTANT_MEAN: Metric = Metric::new(
@@ -278,7 +278,7 @@ pub const PERFORMANCE_INDEX_WITHOUT_RA: Metric = Metric::new(
     3,
     |m| m.performance_index_without_ra,
     "Eq. (7) without Ra: MRR / (F_R,max · W_max) (mm³/min, N, µm) ranks paths by the predictable part; \
-     Ra,max is not predicted (domain-spec §4.3).",
+     Ra,max is not predicted (docs/process-model.md).",
 )
 .higher_is_better();
 pub const IMPRINT_DENSITY_MEAN: Metric = Metric::new(

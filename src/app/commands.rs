@@ -35,7 +35,7 @@ pub enum Command {
     RestartCornerTable,
     /// Ask for a file and write the Corner tab's previewed NC program.
     ExportCornerNc,
-    /// Run the optimiser on a worker thread (issue #11).
+    /// Run the optimiser on a worker thread.
     StartOptimise,
     CancelOptimise,
     /// Load a job of the optimiser's front (`None`: its best job).

@@ -1,6 +1,6 @@
 //! The planner window (eframe/egui).
 //!
-//! Architecture (see `../shared/design.md`): the user's [`Inputs`] and the [`View`] are
+//! Architecture (docs/architecture.md): the user's [`Inputs`] and the [`View`] are
 //! persisted by eframe ([`State`]), and one undo history covers the inputs; [`App`] keeps the
 //! last plan ([`Planner`], on a [`crate::worker::Worker`]) and replans only when the job
 //! changed, keeping the last *valid* plan on screen while the job is invalid. The tabs are
@@ -102,7 +102,7 @@ pub struct App {
     undoer: Undoer<Inputs>,
     pub anim: Animation,
     pub sweep: Option<SweepRun>,
-    /// The optimiser's run (issue #11).
+    /// The optimiser's run.
     pub optimise: Option<panels::optimise::OptimiseRun>,
     /// The Corner tab's last result (planned inline, or on a thread in the window).
     pub corner: panels::corner::CornerView,

@@ -17,13 +17,13 @@ pub enum Tab {
     Plots,
     Compare,
     Sweep,
-    /// Cutting forces and bottom imprints (issue #10).
+    /// Cutting forces and bottom imprints.
     Forces,
     /// The "Export NC" panel.
     Export,
-    /// One pocket corner and its corner trochoids (issue #5).
+    /// One pocket corner and its corner trochoids.
     Corner,
-    /// Feed over the cycle on the machine, and the optimiser (issue #11).
+    /// Feed over the cycle on the machine, and the optimiser.
     Optimise,
 }
 
@@ -60,7 +60,7 @@ pub struct Inputs {
     pub corner: CornerInputs,
     /// NC export options of the Corner tab.
     pub corner_nc: CornerNcSettings,
-    /// Limits of the optimiser (issue #11).
+    /// Limits of the optimiser.
     pub optimise: OptimiseSettings,
 }
 

@@ -1,4 +1,4 @@
-//! The Corner tab (issue #5): one line–line pocket corner planned by the core's corner
+//! The Corner tab: one line–line pocket corner planned by the core's corner
 //! strategies (Wu et al. 2016), the corner drawn with equal axes, and the engagement measured by
 //! the core's independent evaluator along the plain ring and along the strategy's path.
 //!
@@ -485,7 +485,7 @@ fn tool_inputs(ui: &mut egui::Ui, inputs: &mut CornerInputs) {
                 .labelled_by(l.id)
                 .on_hover_text(
                     "Engagement angle of the ring on the straight part of the walls, a_str = arccos(1 − a_e/r) \
-                     (domain-spec §1.1); the acceptance table uses 46°.",
+                     (straight cut); the acceptance table uses 46°.",
                 );
         }
         ui.separator();
@@ -688,7 +688,7 @@ fn teaching(ui: &mut egui::Ui) {
     egui::ScrollArea::vertical().id_salt("corner_teach").max_height(TEACH_HEIGHT).show(ui, |ui| {
         ui.label(
             "Engagement: on a straight wall the tool of radius r cuts the arc a_str = arccos(1 − a_e/r) \
-             (domain-spec §1.1). At an inside corner the next ring's tool wraps around the material the \
+             (the straight cut). At an inside corner the next ring's tool wraps around the material the \
              previous ring left, and the engaged arc jumps (two-circle model, Wu et al. 2016 eqs. 2–6): \
              forces spike. The right plot is measured by the independent evaluator (material left by \
              everything cut before, engaged arc per tool position every 0.1 mm), not by the model.",

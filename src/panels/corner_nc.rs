@@ -1,4 +1,4 @@
-//! NC export from the Corner tab (issue #5): the program of the planned corner or pocket, with
+//! NC export from the Corner tab: the program of the planned corner or pocket, with
 //! dialect, tolerance, arcs or G1 chords, coolant, depth and spindle speed; previewed read-only
 //! and saved through the app's file dialog (`Command::ExportCornerNc`).
 //!
@@ -160,7 +160,7 @@ fn format_options(ui: &mut egui::Ui, settings: &mut CornerNcSettings) {
     ui.separator();
     let l = ui.label(label::CORNER_NC_TOLERANCE).on_hover_text(
         "Largest distance of the written path from the planned one before rounding (mm); \
-         curves become biarcs (or chords) within it. Default 0.005 mm (domain-spec §5.4).",
+         curves become biarcs (or chords) within it. Default 0.005 mm (docs/nc-export.md).",
     );
     ui.spacing_mut().slider_width = 110.0;
     ui.add(tolerance_slider(&mut settings.tolerance_mm)).labelled_by(l.id);

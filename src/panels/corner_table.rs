@@ -1,4 +1,4 @@
-//! The acceptance table of the Corner tab (issue #5): at every corner angle of the core's
+//! The acceptance table of the Corner tab: at every corner angle of the core's
 //! `acceptance::ANGLES_DEG`, the plain ring and the three corner strategies measured by the
 //! independent evaluator — the rows of `trochoplan corner --method M --table`, one command per
 //! strategy — for the tab's tool, step-over and target.

@@ -1,4 +1,4 @@
-//! "Export NC…" panel (issue #4, GUI part): dialect, tolerance and options, a read-only preview
+//! "Export NC…" panel: dialect, tolerance and options, a read-only preview
 //! of the program text, the program's own back-plot over the planned path, and a save button.
 //!
 //! The program comes from the core (`nc::program`), the back-plot from interpreting that text
@@ -250,7 +250,7 @@ fn dialect_row(ui: &mut egui::Ui, settings: &mut ExportSettings) {
 fn options_row(ui: &mut egui::Ui, settings: &mut ExportSettings) {
     let l = ui.label(label::NC_TOLERANCE).on_hover_text(
         "Largest distance of the written path from the planned one before rounding (mm). \
-         Curves become biarcs (or chords) within it; domain-spec §5.4 default 0.005 mm.",
+         Curves become biarcs (or chords) within it; default 0.005 mm (docs/nc-export.md).",
     );
     ui.spacing_mut().slider_width = 140.0;
     ui.add(tolerance_slider(&mut settings.tolerance_mm)).labelled_by(l.id);

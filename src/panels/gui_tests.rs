@@ -109,7 +109,7 @@ fn climb_milling_mirrors_the_loops_and_swaps_the_walls() {
     h.run();
     assert_eq!(h.state().state.job.direction, trochoplan_core::job::Direction::Climb);
     let climb = metrics(&h);
-    // issue #12 item 4: the mirror image — same h_max, the walls' waviness swapped
+    // climb is the mirror image — same h_max, the walls' waviness swapped
     assert_eq!(climb.direction, trochoplan_core::job::Direction::Climb);
     assert!((climb.h_max_mm - conv.h_max_mm).abs() < 1e-12);
     assert!((climb.waviness_left_mm - conv.waviness_right_mm).abs() < 1e-12);
@@ -372,7 +372,7 @@ fn threaded_planner_delivers_the_newest_plan_and_validates_at_once() {
 
 /// egui frame time (UI + tessellation, no rasteriser) while the step changes every frame as it
 /// does while a slider is dragged, at 60 frames per second with the planning thread running
-/// (every plan includes the force series and the imprints, issue #10), on the Plots tab and
+/// (every plan includes the force series and the imprints), on the Plots tab and
 /// on the Forces tab (its force and imprint plots drawn every frame).
 /// Run: `cargo test --release -p trochoplan frame_time -- --ignored --nocapture`.
 #[test]
@@ -581,7 +581,7 @@ fn pocket_mode_shows_the_rings_and_reports_a_bad_polygon() {
     let mut h = corner_harness();
     h.get_by_label("Pocket").click();
     h.run();
-    // adaptive clearing is the default (issue #12); the rings are the corner method's
+    // adaptive clearing is the default; the rings are the corner method's
     assert!(h.state().state.corner.pocket_adaptive);
     h.get_by_label(label::POCKET_ADAPTIVE).click();
     h.run();
@@ -657,7 +657,7 @@ fn pocket_mode_plans_adaptive_clearing() {
     h.get_by_label("Pocket").click();
     h.run();
     wait_for_corner(&mut h);
-    // the default (issue #12)
+    // adaptive clearing is the default
     assert!(h.state().state.corner.pocket_adaptive);
     assert!(h.state().corner.error.is_none(), "{:?}", h.state().corner.error);
     let p = h.state().corner.last_pocket.clone().expect("a pocket");
@@ -670,7 +670,7 @@ fn pocket_mode_plans_adaptive_clearing() {
     assert!(p.detail.contains(&format!("{:.0} mm at depth", want.length_at_depth_mm)), "{}", p.detail);
 }
 
-/// The Pocket tab's open-edges field (issue #12 item 1): typed into, the tab plans the pocket
+/// The Pocket tab's open-edges field: typed into, the tab plans the pocket
 /// open on that edge (entered from outside the stock); a bad list is an error naming it.
 #[test]
 fn pocket_mode_takes_open_edges() {
@@ -840,7 +840,7 @@ fn corner_export_previews_the_core_program_saves_it_and_reports_a_bad_depth() {
     assert_eq!(std::fs::read_to_string(&file).expect("saved"), preview);
 }
 
-/// Issue #10: F_R,max and PI without Ra are among the derived values; the Forces tab draws;
+/// F_R,max and PI without Ra are among the derived values; the Forces tab draws;
 /// the helix slider and the material picker replan with new forces (a lower helix angle puts
 /// fewer edges in the cut at once: a higher peak; titanium's set has lower cutting but higher
 /// axial coefficients than P20's).
@@ -916,7 +916,7 @@ fn machine_tab_shows_the_feed_and_the_optimiser_runs_in_the_background_and_loads
     assert!(h.state().optimise.as_ref().is_some_and(|r| !r.running() && r.cancelled));
 }
 
-/// Issue #11: the Optimise panel's minimum cooling share (`optimize --min-cooling`): the
+/// The Optimise panel's minimum cooling share (`optimize --min-cooling`): the
 /// checkbox turns the limit on, and the best job it loads keeps a tooth out of the cut at
 /// least that share of the cycle. 0.49 binds: the optimum without it reads 0.47 and the best
 /// reachable is 0.504 (`trochoplan optimize … --min-cooling 0.6` names it).

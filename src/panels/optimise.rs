@@ -1,4 +1,4 @@
-//! The Machine & optimise tab (issue #11): the feed over one cycle on the job's machine (where
+//! The Machine & optimise tab: the feed over one cycle on the job's machine (where
 //! it cannot hold the programmed feed), and the optimiser — limits, a run on a worker thread
 //! with progress and cancel, the Pareto front of real MRR against W_max; a click on a point
 //! loads its job.
@@ -33,7 +33,8 @@ pub struct OptimiseSettings {
 }
 
 impl Default for OptimiseSettings {
-    /// The acceptance case of issue #11: FreeCAD's peak chip and engagement.
+    /// The comparison with FreeCAD Adaptive in docs/process-model.md ("Optimiser"): its peak
+    /// chip thickness (0.075 mm) and engagement (57.5°) on the paper's slot as the limits.
     fn default() -> Self {
         OptimiseSettings {
             max_hmax_mm: 0.075,
@@ -184,7 +185,7 @@ pub fn show(
                     .suffix(" of the cycle"),
             );
             ui.checkbox(&mut settings.limit_force, "F_R,max <=").on_hover_text(
-                "Limit the largest resultant cutting force of the force model (Forces tab, domain-spec §4.1)",
+                "Limit the largest resultant cutting force of the force model (Forces tab; Altintas & Lee 1996)",
             );
             ui.add_enabled(
                 settings.limit_force,

@@ -120,7 +120,7 @@ fn process_fields(ui: &mut egui::Ui, job: &mut Job, error: Option<&Error>) {
     let lib = trochoplan_core::material::Library::builtin();
     let lab = ui.label(Param::Material.label());
     let tip = "Work material: the six coefficients of the linear edge-force model \
-        (dF = (K_c·h + K_e)·dz, domain-spec §4.1) from the library assets/materials/library.toml, \
+        (dF = (K_c·h + K_e)·dz, Altintas & Lee 1996) from the library assets/materials/library.toml, \
         each value with its source. The paper's material is P20, unhardened.";
     lab.clone().on_hover_text(tip);
     let current = lib.get(&job.material).map_or(job.material.as_str(), |m| m.label.as_str()).to_owned();
@@ -185,7 +185,7 @@ fn process_fields(ui: &mut egui::Ui, job: &mut Job, error: Option<&Error>) {
     }
 }
 
-/// The machine for the real cycle time (issue #11): ideal, a preset, or the job file's own.
+/// The machine for the real cycle time: ideal, a preset, or the job file's own.
 fn machine_picker(ui: &mut egui::Ui, job: &mut Job, error: Option<&Error>) {
     use trochoplan_core::machine::{MachineChoice, preset_names};
     ui.heading("Machine");

@@ -68,7 +68,7 @@ pub mod explain {
         Figs. 8–9). Waviness W = peak-to-valley height; its spacing is the step s. Smaller r_e \
         raises W (Fig. 9); a linear distance d along the walls lowers it (Figs. 12, 28).";
     pub const FORCES: &str = "Cutting forces on the tool over one steady-state cycle (paper \
-        Figs. 14–15): linear edge-force model with helix (Altintas & Lee 1996; domain-spec §4.1). \
+        Figs. 14–15): linear edge-force model with helix (Altintas & Lee 1996; docs/process-model.md). \
         Every tooth, every axial slice dz = a_p/50, spindle steps ≤ 1°: dF_t = (Ktc·h + Kte)·dz, \
         dF_r = (Krc·h + Kre)·dz, dF_a = (Kac·h + Kae)·dz with h(φ) the chip thickness at the slice's \
         angle on the engaged arc (the same material model as h, eqs. 3–6); F_R = sqrt(Fx² + Fy² + Fz²). \

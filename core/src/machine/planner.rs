@@ -1,4 +1,5 @@
-//! A 1-D arc-length feed planner, as a motion controller plans a path (process-model §3).
+//! A 1-D arc-length feed planner, as a motion controller plans a path (docs/process-model.md,
+//! "Machine model").
 //!
 //! The path is sampled every [`DS_MM`] or finer; at each node the speed is bounded by
 //! - the programmed feed of the block and the machine's feed limit;
@@ -6,7 +7,7 @@
 //!   normal acceleration ≤ 0.866·a, so v ≤ √(0.866·a/κ);
 //! - the normal jerk: at constant speed the normal acceleration v²κ changes at
 //!   v³·√(κ'² + κ⁴) (κ' = dκ/ds; the κ⁴ term is the turning of the normal), so
-//!   v ≤ (J/√(κ'² + κ⁴))^⅓ (process-model §3, method of its table);
+//!   v ≤ (J/√(κ'² + κ⁴))^⅓ (the independent estimate of docs/process-model.md uses it too);
 //! - at a joint of two blocks with a curvature jump Δκ (line–arc) the controller blends over
 //!   the length ℓ whose clothoid shifts the path by its tolerance δ: a clothoid of length ℓ
 //!   between a line and a circle of radius 1/Δκ shifts the circle by ℓ²·Δκ/24 (derived,
@@ -48,7 +49,8 @@ pub struct Dynamics {
     /// Jerk J of the normal acceleration (mm/s³).
     pub j: f64,
     /// Jerk of the tangential acceleration (mm/s³); `None`: acceleration may step (a
-    /// trapezoidal planner, as process-model §3 computed its factors).
+    /// trapezoidal planner, as the independent estimate in docs/process-model.md computes its
+    /// factors).
     pub j_tangential: Option<f64>,
     /// Blend tolerance δ (mm).
     pub tolerance: f64,

@@ -1,5 +1,5 @@
 //! NC dialects as data: what differs between controllers is written down here, once; the
-//! emitter ([`super::writer`]) reads it (design.md "dialects as data").
+//! emitter ([`super::writer`]) reads it (docs/architecture.md).
 
 use crate::error::{Error, Param};
 use serde::{Deserialize, Serialize};
@@ -47,9 +47,9 @@ pub enum ToolCall {
 /// Compact (looped) program form a dialect supports.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LoopStyle {
-    /// LinuxCNC `o100 while [...]` … `o100 endwhile` with named parameters (domain-spec §5.2).
+    /// LinuxCNC `o100 while [...]` … `o100 endwhile` with named parameters (docs/nc-export.md).
     OWord,
-    /// Sinumerik R-parameters, a label and `IF … GOTOB` (Grechishnikov et al. 2017; §5.1).
+    /// Sinumerik R-parameters, a label and `IF … GOTOB` (Grechishnikov et al. 2017).
     RParameter,
 }
 
@@ -213,8 +213,9 @@ const ACTIVE_COMMENT_WORDS: [&str; 7] = ["MSG", "DEBUG", "PRINT", "LOG", "ABORT"
 /// delimiters, never an active comment. `(`/`)` become `[`/`]` (LinuxCNC rejects a nested "("
 /// and a ")" would end the comment early), `;` becomes `,`, `%` (Fanuc/LinuxCNC tape mark)
 /// becomes `_`, control characters and newlines become spaces, other characters `?`; text
-/// whose first word begins with one of [`ACTIVE_COMMENT_WORDS`] gets a leading `- ` (issue
-/// #13: `ABORT,stop` aborted the program, `LOGOPEN,/path` opened a file on the controller);
+/// whose first word begins with one of [`ACTIVE_COMMENT_WORDS`] gets a leading `- `
+/// (LinuxCNC executes such comments: `ABORT,stop` would abort the program, `LOGOPEN,/path`
+/// would open a file on the controller);
 /// at most 70 characters.
 pub fn sanitize_comment(text: &str) -> String {
     let mapped: String = text

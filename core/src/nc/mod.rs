@@ -1,4 +1,4 @@
-//! NC output (domain-spec §5): one emitter ([`writer::Writer`]), dialects as data
+//! NC output (docs/nc-export.md): one emitter ([`writer::Writer`]), dialects as data
 //! ([`Dialect`], [`DialectSpec`]).
 //!
 //! Coordinates: the slot starts at X0 Y0 and runs along +Y, top of stock at Z0, depth −a_p;
@@ -11,12 +11,12 @@
 //! depth there, the cycles, retract, program end.
 //!
 //! Geometry: lines as G1, exact arcs (circular-type path) as G2/G3 with I/J, trochoid pieces
-//! (eq. 1, never a circular arc) as biarcs within the tolerance (§5.4), or, only when asked
+//! (eq. 1, never a circular arc) as biarcs within the tolerance (docs/nc-export.md, "Biarcs"), or, only when asked
 //! for, everything as G1 chords within the tolerance. The cycle is fitted once and translated
 //! (the fit is translation-invariant), so every cycle gets the same blocks.
 //!
-//! Compact forms ([`NcOptions::compact`]): LinuxCNC `while` loop (§5.2) and Sinumerik
-//! R-parameter loop (§5.1, Grechishnikov et al. 2017) with the same per-cycle blocks, written
+//! Compact forms ([`NcOptions::compact`], docs/nc-export.md "Loop forms"): LinuxCNC `while`
+//! loop and Sinumerik R-parameter loop (Grechishnikov et al. 2017) with the same per-cycle blocks, written
 //! relative to the cycle origin (`Y[#<oy>+…]`, `Y=R10+…`).
 
 pub mod backplot;
@@ -39,7 +39,8 @@ use crate::pocket::adaptive::HELIX_START_Z_MM;
 use crate::pocket::{Entry, Helix, Ramp};
 use std::f64::consts::TAU;
 
-/// Default chord/biarc tolerance (mm), domain-spec §5.4.
+/// Default chord/biarc tolerance (mm); docs/nc-export.md ("Biarcs") gives the arc counts it
+/// takes.
 pub const DEFAULT_TOLERANCE_MM: f64 = 0.005;
 /// Allowed tolerance range (mm): below 0.1 µm the fit only chases rounding, above 1 mm it is
 /// no longer the planned path.
@@ -562,7 +563,7 @@ fn body_start(w: &mut Writer, moves: &[CycleMove]) {
     }
 }
 
-/// LinuxCNC `while` loop over the cycles (domain-spec §5.2, named parameters).
+/// LinuxCNC `while` loop over the cycles (named parameters; docs/nc-export.md "Loop forms").
 fn oword_loop(w: &mut Writer, plan: &Plan, moves: &[CycleMove]) {
     let path = &plan.path;
     let y0 = w.param("y", path.origin(0).y);
@@ -599,7 +600,7 @@ fn end_loop(w: &mut Writer) {
 
 /// Sinumerik loop for any path: the cycle's blocks relative to R10, the Y of cycle R1's
 /// origin; R1 counts cycles, R2 = s, R5 = n·s, R51 = y of the first origin (the R names of
-/// domain-spec §5.1). R1 is whole, so `R1<R5/R2+0.5` is R1 ≤ n without float-equality traps.
+/// Grechishnikov et al. 2017). R1 is whole, so `R1<R5/R2+0.5` is R1 ≤ n without float-equality traps.
 fn r_parameter_loop(w: &mut Writer, plan: &Plan, moves: &[CycleMove]) {
     r_common(w, plan);
     w.raw("LOOP:");
@@ -634,13 +635,13 @@ fn is_circle_cycle(plan: &Plan, moves: &[CycleMove]) -> bool {
         && matches!(moves, [CycleMove { seg: Segment::Line { .. }, .. }, CycleMove { seg: Segment::Arc { sweep, .. }, .. }] if sweep.abs() >= TAU - 1e-9)
 }
 
-/// The parametric program of Grechishnikov et al. (2017) (domain-spec §5.1) for the
+/// The parametric program of Grechishnikov et al. (2017) for the
 /// circular-type path: shaping circle k (R1 = k) has centre (R50, R51) + k·R2·(cos R3, sin R3);
 /// G1 to the circle start, given from centre k−1 by (R11, R12) = R2·u + a·n, then the full
 /// circle back to it, (R13, R14) = (R11, R12), centre by I=AC(…) J=AC(…). u = (cos R3, sin R3)
 /// = slot direction (+Y: R3 = 90°). Conventional: n = the left normal of u and G2 (the clockwise
 /// loops of eq. 1); climb: the mirror image, n = the right normal and G3.
-/// Consistency (§5.1): |(R11, R12) − R2·u| = a.
+/// Consistency: |(R11, R12) − R2·u| = a.
 fn grechishnikov_loop(w: &mut Writer, plan: &Plan, moves: &[CycleMove]) {
     let path = &plan.path;
     let a = plan.job.trochoidal_radius();

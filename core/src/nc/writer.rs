@@ -6,7 +6,7 @@
 //! (motion G-code, X, Y, Z, F), as svg2gcode's `Machine` does; arc blocks always carry X and Y
 //! (a full circle ends where it starts).
 //!
-//! Arc centres (domain-spec §5.3): controllers recompute the radius from the *written* start,
+//! Arc centres: controllers recompute the radius from the *written* start,
 //! end and I/J and reject a block whose two radii differ (see [`DialectSpec`]). So the centre
 //! written is the true centre moved onto the perpendicular bisector of the rounded start and
 //! end (equal radii before rounding I/J), then rounded: the radii differ by at most q·√2.

@@ -1,4 +1,4 @@
-//! Slot tool-centre paths (Wagih et al. 2023, sections 2–3; domain-spec §2).
+//! Slot tool-centre paths (Wagih et al. 2023, sections 2–3; docs/slot-paths.md).
 //!
 //! The slot runs along +y, centred on x = 0, stock from y = 0 to y = L. A path is one *cycle*
 //! (a list of exact segments starting at the left extreme x = −a, y = 0 and ending at
@@ -7,7 +7,7 @@
 //! extreme moving +y and turns clockwise seen from +z — conventional milling with M3; the
 //! analysis works in this frame. A [`SlotPath`] is the job's path in the job's
 //! [`Direction`]: for climb milling every cycle is mirrored in the slot's centre line x = 0
-//! (it starts at the right extreme and turns counter-clockwise, issue #12 item 4).
+//! (it starts at the right extreme and turns counter-clockwise; docs/slot-paths.md).
 
 use crate::geom::{P2, Segment, SegmentPoint, p2};
 use crate::job::{Direction, PathKind, ValidJob};
@@ -38,7 +38,7 @@ impl Cycle {
         Cycle { segments, step, lengths }
     }
 
-    /// The cycle of the given path kind (paper eq. 1 and section 3; issue #2 path models).
+    /// The cycle of the given path kind (paper eq. 1 and section 3; docs/slot-paths.md).
     pub fn for_job(job: &ValidJob) -> Cycle {
         let (a, s) = (job.trochoidal_radius(), job.step);
         let b = job.b();
