@@ -143,7 +143,7 @@ fn bad_input_names_the_parameter_and_exits_non_zero() {
     }
 }
 
-/// Issue #13 "Messages": the flag as typed, the value short, the allowed range.
+/// An error message names the flag as typed, the value short, and the allowed range.
 fn fails_with(args: &[&str], message: &str) {
     let (ok, out, err) = run(args);
     assert!(!ok && out.is_empty(), "{args:?} must fail: {out}");
@@ -229,8 +229,8 @@ fn corrupt_job_file_is_a_clear_error() {
 
 #[test]
 fn job_files_must_be_regular_files_and_devices_stay_devices() {
-    // Issue #13: `--job /dev/zero` read without bound and a FIFO hung; `-o /dev/null` replaced
-    // /dev/null by a regular file (as root).
+    // `--job /dev/zero` must not be read without bound nor a FIFO hang the command; `-o /dev/null`
+    // must not replace /dev/null by a regular file (as root).
     let (ok, _, err) = run(&["analyze", "--job", "/dev/zero"]);
     assert!(!ok && err.contains("/dev/zero") && err.contains("regular file"), "{err}");
     let dir = tempfile::tempdir().expect("tempdir");
@@ -286,8 +286,8 @@ fn pocket_medial_axis_prints_circles_axis_and_engagement_by_move() {
     assert_eq!(v["axis"].as_array().unwrap().len(), 5);
     let target = v["target_deg"].as_f64().unwrap();
     assert!(v["body_max_engagement_deg"].as_f64().unwrap() <= target + 1.0, "{}", v["body_max_engagement_deg"]);
-    // the peak over everything at depth includes the corner-point arcs (issue #12: no straight
-    // tips), within the target + 1° too
+    // the peak over everything at depth includes the corner-point arcs (no straight
+    // tips into the corner point), within the target + 1° too
     let peak = v["max_engagement_deg"].as_f64().unwrap();
     assert!(peak >= v["body_max_engagement_deg"].as_f64().unwrap() && peak <= target + 1.0, "{peak}");
     assert_eq!(v["helices"].as_array().unwrap().len(), 1, "a helix, no plunge");
@@ -300,7 +300,7 @@ fn pocket_medial_axis_prints_circles_axis_and_engagement_by_move() {
     assert_eq!(v["segments"].as_array().unwrap().len(), v["kinds"].as_array().unwrap().len());
 }
 
-/// Issue #10 keys: the force, PI and imprint metrics; PI is null without `--ra-um` and
+/// The force, PI and imprint keys; PI is null without `--ra-um` and
 /// PI-without-Ra divided by Ra with it (eq. 7); the force-series CSV has one row per spindle
 /// step ≤ 1° over the cycle (t_cycle·n/60·360 steps).
 #[test]
@@ -340,7 +340,8 @@ fn analyze_reports_forces_pi_and_imprints() {
     assert!(!ok && err.contains("ra-um"), "{err}");
 }
 
-/// `calibrate` inverts domain-spec §4.1: slot tests made from the p20 set by the closed form
+/// `calibrate` inverts the edge-force model's full-slot means (docs/process-model.md): slot tests
+/// made from the p20 set by the closed form
 /// (F̄x = −N·a_p·Krc·f_z/4 − N·a_p·Kre/π etc., computed here) give the set back; fewer than two
 /// feeds is refused naming the file's flag.
 #[test]
@@ -368,7 +369,7 @@ fn calibrate_recovers_the_coefficients_of_slot_tests() {
     assert!(!ok && err.contains("slot-forces") && err.contains("different feeds"), "{err}");
 }
 
-/// Issue #11: `--machine` and the real-time keys; `optimize` prints a job that `analyze --job`
+/// `--machine` and the real-time keys; `optimize` prints a job that `analyze --job`
 /// reproduces and writes its front; contradictory limits name the tightest one.
 #[test]
 fn machine_and_optimize() {
@@ -406,7 +407,8 @@ fn machine_and_optimize() {
     // The printed figures are the job's own (comment line "real MRR … mm³/min").
     let mrr = v["mrr_real_mm3_per_min"].as_f64().expect("mrr");
     assert!(toml.contains(&format!("real MRR {mrr:.0} mm³/min")), "{toml}\n{mrr}");
-    // And its time with the variable feed is analyze's (issue #11: optimiser vs FreeCAD).
+    // And its time with the variable feed is analyze's (the optimiser vs FreeCAD table of
+    // docs/process-model.md).
     let vf = json(&["analyze", "--job", job_file.to_str().expect("utf-8"), "--variable-feed"]);
     let t_vf = vf["machining_time_real_variable_feed_s"].as_f64().expect("t vf");
     assert!(toml.contains(&format!("with --variable-feed: real machining time {t_vf:.1} s")), "{toml}\n{t_vf}");
@@ -550,7 +552,7 @@ fn termination_signals_go_through_the_clean_up() {
     assert_eq!(std::fs::read_dir(dir.path()).expect("dir").count(), 0, "nothing left behind");
 }
 
-/// `--open-edges -1` reached clap as an unknown flag; now the index is named with its range.
+/// `--open-edges -1` is not taken for an unknown flag: the index is named with its range.
 #[test]
 fn a_negative_open_edge_names_open_edges_and_its_range() {
     let dir = tempfile::tempdir().expect("tempdir");

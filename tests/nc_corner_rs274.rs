@@ -1,4 +1,4 @@
-//! End to end for pocket corners (issue #5): `trochoplan corner --export` writes LinuxCNC,
+//! End to end for pocket corners: `trochoplan corner --export` writes LinuxCNC,
 //! Fanuc-style and GRBL programs of the variable-circle, isometric-circle and medial-axis corner
 //! paths; LinuxCNC's standalone interpreter `rs274` runs them and the motion it prints must
 //! retrace the path the same command reports in its JSON: the same checks as the slot programs
@@ -148,12 +148,12 @@ fn export_errors_name_the_problem() {
     assert!(!f.exists(), "no file on error");
 }
 
-/// FreeCAD 0.20 Adaptive's peak at a corner of this angle cleared from outside (issue #12).
+/// FreeCAD 0.20 Adaptive's peak at a corner of this angle cleared from outside (docs/corners.md).
 fn freecad_peak_deg(angle: f64) -> Option<f64> {
     [(60.0, 74.0), (90.0, 66.0), (120.0, 59.5)].iter().find(|(a, _)| *a == angle).map(|&(_, p)| p)
 }
 
-/// Issue #12 acceptance for corners cleared from outside, by the evaluator over the program
+/// The acceptance for corners cleared from outside (docs/corners.md), by the evaluator over the program
 /// read back through rs274: the peak over every move at depth (legs, circles, links, the
 /// corner-point arcs) stays within a* + 1° and below FreeCAD's corner peak at 60°, 90° and 120°;
 /// the JSON's peak is the read-back one within 0.5°; and no plunge: wherever the tool moves down

@@ -1,4 +1,4 @@
-//! End to end for whole pockets (issue #5): `trochoplan pocket --export` writes LinuxCNC,
+//! End to end for whole pockets: `trochoplan pocket --export` writes LinuxCNC,
 //! Fanuc-style and GRBL programs of a rectangle and an L-shaped pocket, plain and with
 //! variable corner circles; LinuxCNC's standalone interpreter `rs274` runs them. The checks are
 //! those of the slot and corner programs (harness in `core/tests/nc_common`): zero interpreter
@@ -25,9 +25,9 @@ const RECT: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)
 /// at (40, 40).
 const L_SHAPE: &[(f64, f64)] = &[(0.0, 0.0), (100.0, 0.0), (100.0, 40.0), (40.0, 40.0), (40.0, 90.0), (0.0, 90.0)];
 
-/// The pockets of issue #12's acceptance: the 60 × 40 rectangle and an L of 60 × 60 with arms
+/// The pockets of the pocket acceptance (docs/adaptive-clearing.md): the 60 × 40 rectangle and an L of 60 × 60 with arms
 /// 25 wide (reflex vertex at (25, 25)).
-const L_ISSUE: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 25.0), (25.0, 25.0), (25.0, 60.0), (0.0, 60.0)];
+const L_60X60: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 25.0), (25.0, 25.0), (25.0, 60.0), (0.0, 60.0)];
 
 const DIALECTS: [(&str, &str, i32); 3] = [("linuxcnc", "ngc", 4), ("fanuc", "nc", 3), ("grbl", "gcode", 3)];
 
@@ -55,7 +55,7 @@ fn pocket_programs_pass_rs274_and_stay_inside_the_offset() {
 
 #[test]
 fn rectangle_pocket_program_enters_on_a_helix_and_is_one_connected_cut() {
-    // 60 × 40, D = 10, a_e = 2.5 (the defaults), plain rings (issue #12): a helix, the core
+    // 60 × 40, D = 10, a_e = 2.5 (the defaults), plain rings: a helix, the core
     // cleared out of its bore, the rings around it joined by feed links: no retract, one
     // approach (safe Z, rapid to the helix start, rapid to Z0.5) and one final retract; the
     // program retraces the JSON's path, every move down is on the helix.
@@ -148,8 +148,8 @@ fn medial_axis_pocket_programs_pass_rs274_and_stay_inside_the_offset() {
 
 #[test]
 fn random_medial_axis_pockets_retrace_their_plan_and_never_gouge() {
-    // Issue #13: near-full circles of medial-axis pockets were written with a moved centre (up
-    // to 4.59 mm off the plan, closer than r to a wall in 10 of 31 random pockets). Random
+    // Near-full circles of medial-axis pockets must keep their centre when written (a moved
+    // centre can put the arc mm off the plan and closer than r to a wall). Random
     // simple polygons, random tool and step-over, Fanuc (3 decimals, where it showed) and
     // LinuxCNC: the program read back by rs274 must retrace the plan within tolerance +
     // rounding and keep the tool centre r from every wall.
@@ -170,19 +170,19 @@ fn random_medial_axis_pockets_retrace_their_plan_and_never_gouge() {
     }
 }
 
-/// Issue #12's acceptance, measured on the program read back by rs274, not on the plan:
+/// The pocket acceptance, measured on the program read back by rs274, not on the plan:
 /// D = 10, a_e = 1.527 mm (46.0° on a straight wall). The cut at depth (every feed move at
 /// Z = −6, the flat turn after the helix included) is measured by the evaluator over the pocket
 /// polygon with the helix bore counted as cut (the tool ramps into it): peak ≤ 60°, 95th
-/// percentile ≤ 50° (the issue's numbers; FreeCAD's Adaptive reads 66.5° and 49° here). No
+/// percentile ≤ 50° (the acceptance limits; FreeCAD's Adaptive reads 66.5° and 49° here). No
 /// plunge: every move that descends below Z0 is a helical arc about the helix centre the JSON
 /// reports; no straight feed move goes down below Z0. Both directions.
 #[test]
-fn adaptive_pockets_read_back_through_rs274_stay_within_the_issue_limits() {
+fn adaptive_pockets_read_back_through_rs274_stay_within_the_acceptance_limits() {
     use trochoplan_core::corner::{EvaluatorOptions, engagement_profile};
     use trochoplan_core::geom::{Polygon, Segment, p2};
     let dir = tempfile::tempdir().expect("tempdir");
-    for (shape, polygon) in [("rect", RECT), ("l", L_ISSUE)] {
+    for (shape, polygon) in [("rect", RECT), ("l", L_60X60)] {
         // the default target (50° here) in both directions, and planned to φ* = 46.0° (46.01:
         // the option takes φ* and above) for the README's table
         for (direction, target) in [("climb", None), ("conventional", None), ("climb", Some("46.01"))] {
@@ -214,7 +214,7 @@ fn adaptive_pockets_read_back_through_rs274_stay_within_the_issue_limits() {
             let at_depth = prof.path_length_mm;
             eprintln!("{label}: read back {at_depth:.1} mm at depth, peak {peak:.2}°, p95 {p95:.2}°");
             assert!(peak <= 60.0 && p95 <= 50.0, "{label}: peak {peak:.2}°, p95 {p95:.2}° at {:?}", prof.max());
-            // at the default target the rectangle beats FreeCAD's 2280 mm (issue #12)
+            // at the default target the rectangle beats FreeCAD's 2280 mm (docs/adaptive-clearing.md)
             if shape == "rect" && target.is_none() {
                 assert!(at_depth <= 2280.0, "{label}: {at_depth:.1} mm at depth");
             }
@@ -225,7 +225,7 @@ fn adaptive_pockets_read_back_through_rs274_stay_within_the_issue_limits() {
     }
 }
 
-/// Every pocket method in both directions (issue #12 items 2 and 4) on the issue's rectangle
+/// Every pocket method in both directions on the 60 × 40 rectangle
 /// (D = 10, a_e = 1.527 mm): the program passes rs274 with the wall check; conventional turns
 /// the arcs at depth the other way (the read-back arcs' senses, counted), and its read-back peak is the
 /// climb program's (the rectangle is its own mirror image) within 1°. No method plunges: every
@@ -281,7 +281,7 @@ fn every_method_in_both_directions_passes_rs274_and_mirrors_its_peak() {
                 prof.path_length_mm,
                 prof.max().map(|s| (s.x_mm, s.y_mm))
             );
-            // the ring methods with their corner strategies (issue #12 items 2 and 3): every
+            // the ring methods with their corner strategies: every
             // move within the strategies' target a* = a_str·(1 + t1) (Wu et al. eq. 23, t1 = 15 %)
             // + 1°, read back (plain keeps plain corners on purpose, the papers' baseline)
             if method == "variable" || method == "isometric" {
@@ -301,8 +301,8 @@ fn every_method_in_both_directions_passes_rs274_and_mirrors_its_peak() {
     }
 }
 
-/// Issue #12 for the medial axis (`--method medial-axis`, D = 10, a_e = 1.527 mm), on the
-/// program read back through rs274, both directions: the rectangle, the issue's L, the
+/// The medial axis (`--method medial-axis`, D = 10, a_e = 1.527 mm), on the
+/// program read back through rs274, both directions: the rectangle, the 60 × 60 L, the
 /// dumbbell with an 8 mm neck (two parts) and the 60 × 14 pocket (a ramp). Every move at depth
 /// (entries' flat turns, spirals, circles, links, corner-point arcs, returns) is measured by
 /// the evaluator over the pocket polygon with the entries' bores as cut, and stays within
@@ -318,7 +318,7 @@ fn medial_axis_pockets_read_back_through_rs274_stay_within_the_target() {
     use trochoplan_core::pocket::{Entry, Ramp};
     const NARROW: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 14.0), (0.0, 14.0)];
     let dir = tempfile::tempdir().expect("tempdir");
-    for (shape, polygon) in [("rect", RECT), ("l", L_ISSUE), ("dumbbell 8", DUMBBELL_8), ("narrow", NARROW)] {
+    for (shape, polygon) in [("rect", RECT), ("l", L_60X60), ("dumbbell 8", DUMBBELL_8), ("narrow", NARROW)] {
         for direction in ["climb", "conventional"] {
             let label = format!("{shape} medial-axis {direction}");
             let args = ["--method", "medial-axis", "--step-over", "1.527", "--direction", direction];
@@ -360,7 +360,7 @@ fn medial_axis_pockets_read_back_through_rs274_stay_within_the_target() {
             let corners = list("corner_points");
             assert!(!corners.is_empty(), "{label}");
             assert!(corners.iter().all(|c| c["max_engagement_deg"].as_f64().is_some_and(|m| m <= limit)), "{label}");
-            // the item-6 keys, and the old ones kept
+            // `length_at_depth_mm` and `by_kind`, with their aliases `path_length_mm` and `by_move`
             let at_depth = e.json["length_at_depth_mm"].as_f64().expect("length_at_depth_mm");
             assert_eq!(e.json["path_length_mm"].as_f64(), Some(at_depth), "{label}");
             assert_eq!(e.json["by_kind"], e.json["by_move"], "{label}");
@@ -375,7 +375,7 @@ fn cross2(a: trochoplan_core::geom::P2, b: trochoplan_core::geom::P2) -> f64 {
     a.x * b.y - a.y * b.x
 }
 
-/// Issue #12's "no plunge": every feed move that goes down below Z0 is a helical arc about a
+/// No plunge: every feed move that goes down below Z0 is a helical arc about a
 /// helix centre the JSON reports, or a straight leg on a ramp line it reports, descending at
 /// most at the ramp angle (+ the written rounding).
 fn assert_no_plunge(label: &str, all: &[Motion], json: &serde_json::Value) {
@@ -440,7 +440,7 @@ fn inside_polygon(p: trochoplan_core::geom::P2, v: &[trochoplan_core::geom::P2])
     c
 }
 
-/// Issue #12 item 1, entry from outside the stock: the rectangle (D = 10, a_e = 1.527 mm) open
+/// Entry from outside the stock: the rectangle (D = 10, a_e = 1.527 mm) open
 /// on its bottom edge (`--open-edges 0`, climb and conventional) and on its bottom and top
 /// edges (a through slot, `--open-edges 0,2`). The program passes rs274, retraces the JSON's
 /// path, keeps no rapid below the safe height, keeps the tool centre r from every closed wall
@@ -448,7 +448,7 @@ fn inside_polygon(p: trochoplan_core::geom::P2, v: &[trochoplan_core::geom::P2])
 /// is off it ([`assert_no_plunge`]); the read-back path measured by the evaluator over the
 /// rectangle alone (nothing cut before it) peaks within 60° with p95 ≤ 50°, and the JSON agrees.
 #[test]
-fn open_pockets_enter_from_outside_and_read_back_within_the_issue_limits() {
+fn open_pockets_enter_from_outside_and_read_back_within_the_acceptance_limits() {
     use trochoplan_core::corner::{EvaluatorOptions, engagement_profile};
     use trochoplan_core::geom::{Polygon, p2};
     let dir = tempfile::tempdir().expect("tempdir");

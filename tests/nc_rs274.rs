@@ -38,7 +38,7 @@ fn jobs() -> Vec<(Vec<&'static str>, Job)> {
             vec!["--path", "linear-elliptical", "--aspect-ratio", "0.6", "--linear-distance", "0.75"],
             Job { path: PathKind::LinearElliptical, aspect_ratio: 0.6, linear_distance: 0.75, ..d.clone() },
         ),
-        // climb milling (issue #12 item 4): every loop mirrored, counter-clockwise
+        // climb milling: every loop mirrored, counter-clockwise
         (vec!["--direction", "climb"], Job { direction: Direction::Climb, ..d.clone() }),
         (
             vec![
@@ -159,9 +159,9 @@ fn the_harness_catches_interpreter_errors_and_wrong_motion() {
 
 #[test]
 fn hostile_titles_cannot_form_active_comments() {
-    // Issue #13: LinuxCNC executes comments that begin with MSG, DEBUG, PRINT, LOG…, ABORT,
-    // PROBEOPEN/PROBECLOSE (any case, after spaces). `ABORT,stop` aborted the program before any
-    // motion; `LOGOPEN,/path` opened a file. The interpreter must run each program silently (any
+    // LinuxCNC executes comments that begin with MSG, DEBUG, PRINT, LOG…, ABORT,
+    // PROBEOPEN/PROBECLOSE (any case, after spaces): `ABORT,stop` would abort the program before
+    // any motion, `LOGOPEN,/path` would open a file. The interpreter must run each program silently (any
     // message on stderr fails `interpret`) and create no file, and the program must still cut.
     let dir = tempfile::tempdir().expect("tempdir");
     let log = dir.path().join("controller.log");
@@ -180,8 +180,8 @@ fn hostile_titles_cannot_form_active_comments() {
     assert!(!log.exists(), "the program opened a log file on the controller");
 }
 
-/// Issue #11: variable feed in every dialect rs274 reads (and the LinuxCNC loop): the path is
-/// retraced as before, and the feeds rs274 sets are the schedule's block feeds (the plunge at
+/// Variable feed in every dialect rs274 reads (and the LinuxCNC loop): the path is
+/// retraced as with the programmed feed, and the feeds rs274 sets are the schedule's block feeds (the plunge at
 /// the programmed feed aside), several of them, none above 3 × feed.
 #[test]
 fn variable_feed_programs_pass_rs274_with_the_scheduled_feeds() {

@@ -1,7 +1,7 @@
-//! Adaptive pocket clearing (issue #12), checked by the independent evaluator: the step rule
-//! against a measured concave cut, the corner-point bound against a measured arrival, the
-//! issue's limits on its rectangle and L, corners of 30°–150°, the mirrored (conventional)
-//! plan, and the inputs it must reject or split.
+//! Adaptive pocket clearing (docs/adaptive-clearing.md), checked by the independent evaluator:
+//! the step rule against a measured concave cut, the corner-point bound against a measured
+//! arrival, the acceptance limits on the 60 × 40 rectangle and the L, corners of 30°–150°, the
+//! mirrored (conventional) plan, and the inputs it must reject or split.
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
@@ -17,7 +17,7 @@ use trochoplan_core::pocket::{
 };
 
 const R: f64 = 5.0;
-/// Issue #12's step-over: 46.0° on a straight wall with D = 10.
+/// The acceptance step-over: 46.0° on a straight wall with D = 10.
 const AE: f64 = 1.527;
 
 fn poly(v: &[(f64, f64)]) -> Polygon {
@@ -40,7 +40,7 @@ fn adaptive(polygon: Polygon, options: AdaptiveOptions) -> AdaptivePlan {
 fn concave_step_gives_the_target_engagement_measured_by_the_evaluator() {
     // Independent check: a full circle of radius ρ about the origin after the circle of radius
     // ρ − a (a = concave_step(ρ)) in a large block; the evaluator's steady engagement on the
-    // second circle is φ. For ρ → ∞ the rule is §1.1's a = r(1 − cos φ).
+    // second circle is φ. For ρ → ∞ the rule is the straight cut's a = r(1 − cos φ).
     let phi = (1.0 - AE / R).acos();
     assert!((concave_step(1e9, R, phi) - AE).abs() < 1e-6);
     let stock = poly(&[(-60.0, -60.0), (60.0, -60.0), (60.0, 60.0), (-60.0, 60.0)]);
@@ -109,7 +109,7 @@ fn default_target_reads_the_step_over_as_an_area_rate() {
     assert!((default_target_rad(2.0, R).unwrap() - (1.0 - 2.0 / R).acos()).abs() < 1e-12);
 }
 
-/// Issue #12's acceptance on the plan (the read-back program is checked in
+/// The acceptance limits on the plan (the read-back program is checked in
 /// `tests/nc_pocket_rs274.rs`): peak ≤ 60°, p95 ≤ 50°, every kind within the target (the
 /// default, 50°) up to 1°, the helix bore counted as cut, and lengths that add up.
 #[test]
@@ -172,7 +172,8 @@ fn rectangle_and_l_keep_every_move_within_the_target() {
 
 /// Corners 30°–150° of a pocket (a kite: the corner of angle α at the origin, the other three
 /// corners wider), cleared from outside: the corner passes stay within the target + 1°, below
-/// FreeCAD's corner peaks (60°: 74°, 90°: 66°, 120°: 59.5°, issue #12). At the default target
+/// FreeCAD's corner peaks (60°: 74°, 90°: 66°, 120°: 59.5°; docs/adaptive-clearing.md). At the
+/// default target
 /// (50°) and at φ* = 46.0°.
 #[test]
 fn corners_from_30_to_150_degrees_stay_within_the_target() {
@@ -189,7 +190,7 @@ fn corners_from_30_to_150_degrees_stay_within_the_target() {
         let polygon = Polygon::new(vec![P2::zeros(), a, b, c]).unwrap();
         let p = adaptive(polygon, AdaptiveOptions { target_deg, ..AdaptiveOptions::default() });
         let target = p.target_rad;
-        // FreeCAD Adaptive's corner peaks where the issue gives one
+        // FreeCAD Adaptive's corner peaks where one was measured
         let freecad = match alpha_deg as u32 {
             60 => Some(74.0_f64),
             90 => Some(66.0),
@@ -303,7 +304,7 @@ fn neck_narrower_than_the_tool_gives_parts_with_their_own_helix() {
 }
 
 #[test]
-fn reflex_vertex_near_a_wall_is_thinned_below_the_issue_peak() {
+fn reflex_vertex_near_a_wall_is_thinned_below_the_acceptance_peak() {
     // A 10 mm tab hangs from the top of the 60 × 40 rectangle to 8 mm above the bottom
     // (< D = 10): two parts, each with a cusp where the circle about the tab's corner meets the
     // bottom wall's offset. Before the cusp passes the finishing pass read 121.4° there.
@@ -319,8 +320,9 @@ fn reflex_vertex_near_a_wall_is_thinned_below_the_issue_peak() {
     ]);
     let p = adaptive(u, AdaptiveOptions::default());
     assert_eq!(p.parts.len(), 2);
-    // the issue's acceptance peak (60°); measured 56.8° on the cusp passes (README: the first
-    // pass runs past the circle onto the tab's side, where the gap under the tab is open)
+    // the acceptance peak (60°); measured 56.8° on the cusp passes (docs/adaptive-clearing.md,
+    // "Limitations": the first pass runs past the circle onto the tab's side, where the gap
+    // under the tab is open)
     assert!(p.max_engagement_rad <= 60f64.to_radians(), "{}°", p.max_engagement_rad.to_degrees());
     assert!(p.p95_engagement_rad <= 50f64.to_radians());
 }
@@ -356,7 +358,7 @@ fn helix_that_does_not_fit_and_bad_options_are_named() {
 
 /// `--target-engagement`: the passes are planned to the given engagement instead of φ*; every
 /// kind of move keeps it within 1° (the same tolerance as at φ*), and the rectangle gets
-/// shorter than at φ* (larger steps), within the issue's limits (peak 60°, p95 50°).
+/// shorter than at φ* (larger steps), within the acceptance limits (peak 60°, p95 50°).
 #[test]
 fn a_higher_target_engagement_is_kept_and_shortens_the_path() {
     let rect = poly(&[(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)]);
@@ -394,7 +396,7 @@ fn a_higher_target_engagement_is_kept_and_shortens_the_path() {
     );
 }
 
-/// The corner points (issue #12 item 3): after the finishing arc every convex corner gets arcs
+/// The corner points: after the finishing arc every convex corner gets arcs
 /// tangent to both final walls down to the corner tolerance δ; the corner is then cut to radius
 /// r + δ, with δ(1/sin(α/2) − 1) left on the bisector. Every one of those moves (arcs, their
 /// approach along the wall, their way out) stays within the target + 1° (the tolerance every
@@ -451,11 +453,11 @@ fn off_stock(p: P2, v: &[P2]) -> f64 {
     if Polygon::new(v.to_vec()).unwrap().contains(p) { 0.0 } else { loop_distance(p, v) }
 }
 
-/// The issue's rectangle (a_e = 1.527 mm, D = 10) open on its bottom edge (a step), on its
+/// The 60 × 40 rectangle (a_e = 1.527 mm, D = 10) open on its bottom edge (a step), on its
 /// bottom and top edges (a through slot), on its left and right edges, and on the bottom and
 /// right edges (a notch at a part corner), climb and conventional: the tool goes down outside
 /// the stock — its whole disc at least r off the material, computed here from the polygon — no
-/// helix, no spiral; every move at depth within the target + 1° (and the issue's 60°/p95 50°);
+/// helix, no spiral; every move at depth within the target + 1° (and the acceptance limits 60°/p95 50°);
 /// corner passes and corner points only at the closed corners (both ends of a closed edge
 /// whose neighbours are closed too); the evaluator's stock is the rectangle alone (the moves
 /// beyond the open edges read 0°).

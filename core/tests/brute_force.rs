@@ -104,7 +104,7 @@ fn circular_type_path_agrees_with_brute_force() {
     check_job(Job { path: PathKind::CircularType, ..Job::default() });
 }
 
-/// Climb milling (issue #12 item 4): the analysis mirrors the paper's loops; here the brute
+/// Climb milling: the analysis mirrors the paper's loops; here the brute
 /// force sees only the climb path itself (counter-clockwise loops from the right extreme).
 #[test]
 fn climb_paths_agree_with_brute_force() {
@@ -130,7 +130,7 @@ fn waviness_agrees_with_brute_force() {
         // nearly touching linear moves: a narrow cusp (0.05 mm wide) between them
         Job { path: PathKind::LinearElliptical, aspect_ratio: 0.5, linear_distance: 0.95, ..Job::default() },
         Job { path: PathKind::CircularType, ..Job::default() },
-        // climb (issue #12 item 4): the walls swap, measured on the climb path itself
+        // climb: the walls swap, measured on the climb path itself
         Job {
             path: PathKind::Elliptical,
             aspect_ratio: 0.6,

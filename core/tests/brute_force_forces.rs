@@ -1,4 +1,4 @@
-//! Independent brute-force check of the cutting-force series (issue #10 acceptance): the
+//! Independent brute-force check of the cutting-force series: the
 //! material left by a dense polyline of the previous cycles and of the current one ("swept =
 //! within R of a path point before now", `dense_common`), none of the analysis' machinery.
 //!
@@ -12,7 +12,7 @@
 //!   axial grid, [`SLICES`] slices) spans the world angles ψ₀ − Ω·t − j·2π/z + z·tanβ/R over
 //!   its height; it counts the share of that span inside the engaged intervals, with h
 //!   (bilinear in time and angle) and the direction at the middle of that share; the element
-//!   forces of domain-spec §4.1 written out here. Interval ends are linear in time between
+//!   forces of the edge-force model (Altintas & Lee 1996) written out here. Interval ends are linear in time between
 //!   the positions; within 1.5 tooth periods of a position where the number of intervals
 //!   changes (the tool meets or leaves material, S ∝ √t there), the periphery is scanned at
 //!   each sample's own position instead.
@@ -141,8 +141,8 @@ fn force_series_agrees_with_brute_force_at_every_sample() {
     check(Job::default());
 }
 
-/// Climb milling (issue #12 item 4): the model mirrors the paper's engaged arcs (φ → π − φ)
-/// and turns the spindle M3 as before; the brute force sees only the climb path itself.
+/// Climb milling: the model mirrors the paper's engaged arcs (φ → π − φ)
+/// and keeps the spindle M3 of conventional milling; the brute force sees only the climb path itself.
 #[test]
 fn climb_force_series_agrees_with_brute_force_at_every_sample() {
     check(Job { direction: trochoplan_core::job::Direction::Climb, ..Job::default() });

@@ -1,9 +1,9 @@
-//! Issue #5 acceptance, measured with the generic evaluator (not the analytic model): D = 10,
-//! step-over giving 46° on the straight part (a_e = r(1 − cos 46°), domain-spec §1.1), target
-//! a* = 46°·1.15 (Wu et al. eq. 23, t1 = 15 %), corner angles 30°…150°. Issue #12 item 3: with
-//! the corner-point arcs (the default corner tolerance) the whole path, the way into the corner
-//! point included, stays within a* + 1°, below FreeCAD Adaptive's corner peaks (the issue's
-//! figures: 74° at 60°, 66° at 90°, 59.5° at 120°); without them (tolerance 0, Wu et al.'s
+//! The corner acceptance table (docs/corners.md), measured with the generic evaluator (not the
+//! analytic model): D = 10, step-over giving 46° on the straight part (a_e = r(1 − cos 46°), the
+//! straight cut), target a* = 46°·1.15 (Wu et al. 2016 eq. 23, t1 = 15 %), corner angles
+//! 30°…150°. With the corner-point arcs (the default corner tolerance) the whole path, the way
+//! into the corner point included, stays within a* + 1°, below FreeCAD Adaptive's corner peaks
+//! (measured: 74° at 60°, 66° at 90°, 59.5° at 120°); without them (tolerance 0, Wu et al.'s
 //! move into the corner point) only the body does, the tip reads about π − angle.
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
@@ -16,7 +16,7 @@ fn settings() -> CornerSettings {
     CornerSettings::new(r, radial_depth_for_engagement(46f64.to_radians(), r)).unwrap()
 }
 
-/// FreeCAD 0.20 Adaptive's peak at a corner of this angle cleared from outside (issue #12).
+/// FreeCAD 0.20 Adaptive's peak at a corner of this angle cleared from outside (docs/corners.md).
 fn freecad_peak_deg(angle: f64) -> Option<f64> {
     [(60.0, 74.0), (90.0, 66.0), (120.0, 59.5)].iter().find(|(a, _)| *a == angle).map(|&(_, p)| p)
 }
@@ -65,7 +65,7 @@ fn into_the_corner_point_the_tip_reads_its_stated_limit() {
         assert!(row.body_max_deg <= row.target_deg + 1.0, "{row:?}");
         assert!(row.tip_deg > row.target_deg + 1.0, "{angle}°: tip {} within the target", row.tip_deg);
         assert!(row.tip_deg <= row.tip_limit_deg + 1.0, "{row:?}");
-        // the issue's readings of this move: 91.5–92.5° at 90°, 123° at 60°: at least π − angle
+        // measured on this move: 91.5–92.5° at 90°, 123° at 60°: at least π − angle
         assert!(row.tip_deg >= 180.0 - angle - 1.0, "{angle}°: tip {}", row.tip_deg);
     }
 }

@@ -1,6 +1,6 @@
-//! Independent check both ways between the analytic two-circle model (domain-spec §1.2) and the
-//! generic evaluator (§1.3): the evaluator reproduces the spec's TEST values, and the model
-//! agrees with the evaluator on configurations the spec does not list.
+//! Independent check both ways between the analytic two-circle model (Wu et al. 2016 eqs. 2–6)
+//! and the generic evaluator: the evaluator reproduces the worked examples of docs/corners.md,
+//! and the model agrees with the evaluator on configurations the examples do not cover.
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
@@ -28,8 +28,8 @@ fn measured_at(p: &EngagementProfile, phi0: f64, phi: f64) -> f64 {
 }
 
 #[test]
-fn evaluator_reproduces_spec_two_circle_values() {
-    // domain-spec §1.2 TEST (CCW, O1 = (0,0), R1 = R2 = 10, r = 5, O2 = (1,0)). Start at φ = 180°
+fn evaluator_reproduces_the_two_circle_worked_examples() {
+    // docs/corners.md worked example (CCW, O1 = (0,0), R1 = R2 = 10, r = 5, O2 = (1,0)). Start at φ = 180°
     // where C = (−4, 0) and the tool is wholly inside the previous circle (d + r = 9 < 10).
     let rho = 5.0;
     let p = cut(p2(0.0, 0.0), 10.0, p2(1.0, 0.0), 10.0, 5.0, PI, rho * 0.25f64.to_radians());
@@ -57,8 +57,8 @@ fn measured_by_lead_in(o1: P2, r1: f64, o2: P2, r2: f64, r: f64, phi: f64) -> f6
 }
 
 #[test]
-fn evaluator_reproduces_spec_unequal_radii_values() {
-    // domain-spec §1.2 TEST: O1 = (0,0), R1 = 8, O2 = (1.5,0), R2 = 10, r = 5: a(0) = 92.866°,
+fn evaluator_reproduces_the_unequal_radii_worked_example() {
+    // docs/corners.md worked example: O1 = (0,0), R1 = 8, O2 = (1.5,0), R2 = 10, r = 5: a(0) = 92.866°,
     // a_max = 98.917° at φ ≈ −49.5°.
     let (o1, o2) = (p2(0.0, 0.0), p2(1.5, 0.0));
     let got = measured_by_lead_in(o1, 8.0, o2, 10.0, 5.0, 0.0);
@@ -71,7 +71,7 @@ fn evaluator_reproduces_spec_unequal_radii_values() {
 
 #[test]
 fn model_agrees_with_evaluator_on_other_circles() {
-    // Configurations not in the spec: the model's value equals the evaluator's at every 5° of
+    // Configurations not among the worked examples: the model's value equals the evaluator's at every 5° of
     // the circle (both ways: neither is the oracle here), and so do the maxima.
     let r = 5.0;
     for (o2x, o2y, r1, r2) in

@@ -1,4 +1,4 @@
-//! Regression tests of issue #13 for pockets and the evaluator: random simple polygons plan with
+//! Hostile input for pockets and the evaluator: random simple polygons plan with
 //! every strategy in bounded work (no hang), a many-sided circle keeps its medial axis in one
 //! part, tiny step-overs are rejected before planning, engagement after a move never exceeds
 //! 180°, the fast evaluator and wall clearance agree with brute-force computations written
@@ -57,9 +57,8 @@ fn profiles(plan: &PocketPlan) -> Vec<(f64, f64)> {
 proptest! {
     #![proptest_config(ProptestConfig { cases: 3, failure_persistence: None, ..ProptestConfig::default() })]
 
-    /// Issue #13 item 3: random simple polygons of 14–40 vertices took minutes with plain,
-    /// variable and medial-axis. Every strategy plans them (or names what does not fit), and
-    /// the engagement it reports is at most 180°.
+    /// Random simple polygons of 14–40 vertices: every strategy plans them in bounded work (or
+    /// names what does not fit), and the engagement it reports is at most 180°.
     #[test]
     fn random_star_pockets_plan_with_every_strategy(polygon in stars()) {
         for strategy in PocketStrategy::ALL {
@@ -127,7 +126,7 @@ proptest! {
         prop_assert_eq!(walls.clearance(q), clearance(&polygon, q));
     }
 
-    /// Issue #13 item 5: every line parses completely or is an error naming the line.
+    /// Every line parses completely or is an error naming the line.
     #[test]
     fn points_files_never_drop_a_line(xs in prop::collection::vec((-1e3..1e3f64, -1e3..1e3f64), 1..20), junk in "[A-Za-z0-9#,; .]{1,12}") {
         let body: String = xs.iter().map(|(x, y)| format!("{x},{y}\n")).collect();
@@ -199,9 +198,9 @@ fn distance(p: P2, seg: &Segment) -> f64 {
     }
 }
 
-/// Issue #13 item 3: the medial axis of a 1000-sided circle fell apart at its centre into
-/// dozens of parts, each cleared by its own spiral (78 m of path for 100 sides, minutes for
-/// 1000). One part now, and a path of about the area / step-over.
+/// The medial axis of a 1000-sided circle stays one part at its centre (split into dozens, each
+/// would be cleared by its own spiral: tens of metres of path and minutes of planning), and the
+/// path is about the area / step-over.
 #[test]
 fn many_sided_circle_is_one_medial_axis_part() {
     let polygon = circle(1000, 50.0);
@@ -214,8 +213,8 @@ fn many_sided_circle_is_one_medial_axis_part() {
     assert!(plan.body_max_rad <= PI);
 }
 
-/// Issue #13 item 3: `--step-over 1e-4` with medial-axis was rejected only after 90 s. Every
-/// strategy rejects it before planning, naming the step-over and the smallest one allowed.
+/// `--step-over 1e-4`: every strategy, medial-axis included, rejects it before planning, naming
+/// the step-over and the smallest one allowed.
 #[test]
 fn tiny_step_over_is_rejected_before_planning() {
     for strategy in PocketStrategy::ALL {
@@ -226,9 +225,9 @@ fn tiny_step_over_is_rejected_before_planning() {
     }
 }
 
-/// Issue #13 "Messages": engagement read 180.00043° on a full slot and 202.96° with a 1e-9 mm
-/// tool (the material test's tolerance at the side tangency). After the tool has moved it is
-/// at most 180°; at the first position (a plunge) the whole periphery may be in material.
+/// Engagement on a full slot and with a 1e-9 mm tool, where the material test's tolerance at
+/// the side tangency could read more than 180° (180.00043°, 202.96°): after the tool has moved
+/// it is at most 180°; at the first position (a plunge) the whole periphery may be in material.
 /// (A 1e-9 mm tool 20 mm from the origin is below f64 resolution: only the bound is checked.)
 #[test]
 fn engagement_after_a_move_is_at_most_half_the_periphery() {
@@ -245,7 +244,7 @@ fn engagement_after_a_move_is_at_most_half_the_periphery() {
     }
 }
 
-/// Issue #13 item 5: a BOM is accepted; `0,0 # note`, `O,0` (letter O), `0,5;25` and a third
+/// A BOM is accepted; `0,0 # note`, `O,0` (letter O), `0,5;25` and a third
 /// column are errors naming the file and line; `x,y` is a header.
 #[test]
 fn points_files_parse_every_line_or_name_it() {

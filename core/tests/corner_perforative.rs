@@ -1,5 +1,5 @@
-//! Perforative trochoids along the medial axis of whole pockets (issue #5 item 5, domain-spec
-//! §3.5). Everything is measured independently of the planner's own model: the engagement by
+//! Perforative trochoids along the medial axis of whole pockets (docs/pockets.md, "Medial-axis
+//! clearing"). Everything is measured independently of the planner's own model: the engagement by
 //! the evaluator (stock polygon + swept path), wall clearance and coverage from the polygon
 //! and the path geometry alone.
 
@@ -16,7 +16,7 @@ use trochoplan_core::pocket::{AdaptiveOptions, Entry, MoveKind, PerforativePlan,
 
 const R: f64 = 5.0;
 
-/// Step-over giving 46° on a straight cut (the issue's acceptance setting): a_e = r(1 − cos 46°).
+/// Step-over giving 46° on a straight cut (the acceptance setting): a_e = r(1 − cos 46°).
 fn ae46() -> f64 {
     R * (1.0 - 46f64.to_radians().cos())
 }
@@ -31,8 +31,8 @@ fn poly(pts: &[(f64, f64)]) -> Polygon {
 
 const RECT: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)];
 const L_SHAPE: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 25.0), (25.0, 25.0), (25.0, 60.0), (0.0, 60.0)];
-/// The L of issue #12's acceptance: 60 × 60, arms 25 wide.
-const L_ISSUE: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 25.0), (25.0, 25.0), (25.0, 60.0), (0.0, 60.0)];
+/// The L of the pocket acceptance (docs/pockets.md): 60 × 60, arms 25 wide.
+const L_60X60: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 25.0), (25.0, 25.0), (25.0, 60.0), (0.0, 60.0)];
 const TRIANGLE: &[(f64, f64)] = &[(0.0, 0.0), (80.0, 0.0), (20.0, 50.0)];
 
 fn dist_to_edge(p: P2, a: P2, b: P2) -> f64 {
@@ -137,7 +137,7 @@ fn rectangle_is_cleared_within_the_target() {
 
 #[test]
 fn every_move_stays_within_the_target_with_corner_point_arcs_into_every_tip() {
-    // Issue #12 item 3 for the medial axis: the straight tips into the corner points read
+    // The medial axis's way into the corner points: the straight tips read
     // π − α (+ the last circle's cap: 92.83° at 90°); corner-point arcs from the last circle's
     // radius down to δ keep every move at depth within a* + 1°, the peak over everything
     // (entry, spiral, circles, links, corner points, returns) measured by the evaluator.
@@ -149,7 +149,7 @@ fn every_move_stays_within_the_target_with_corner_point_arcs_into_every_tip() {
     let delta = AdaptiveOptions::default().corner_tolerance_mm;
     let ninety = delta * (1.0 / (PI / 4.0).sin() - 1.0);
     for (name, pts, parts, corners, mouths) in
-        [("rect", RECT, 1, 4, 0), ("L", L_ISSUE, 1, 5, 0), ("dumbbell 8", DUMBBELL_8, 2, 8, 2)]
+        [("rect", RECT, 1, 4, 0), ("L", L_60X60, 1, 5, 0), ("dumbbell 8", DUMBBELL_8, 2, 8, 2)]
     {
         let p = plan_perforative(&poly(pts), settings(R, 1.527), &AdaptiveOptions::default()).unwrap();
         check_plan(name, &p);
@@ -182,7 +182,7 @@ fn every_move_stays_within_the_target_with_corner_point_arcs_into_every_tip() {
 
 #[test]
 fn first_circles_grow_out_of_the_helix_bore_within_the_target() {
-    // Issue #12: no plunge. The tool descends on a helix of 0.375·D about the axis point of
+    // No plunge. The tool descends on a helix of 0.375·D about the axis point of
     // largest clearance (the option's default), whose flat turn at depth is the first move
     // (inside its own bore: 0°); the concentric circles then grow out of the bore within the
     // target. From a plunge hole the first circle would read π/2 + arcsin(a_e/2r) (DERIVED,

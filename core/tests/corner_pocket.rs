@@ -1,5 +1,5 @@
-//! Polygonal pocket cleared by contour-parallel rings (issue #5 item 5): ring count and ring
-//! lengths against analytic offsets, engagement against the straight-cut formula (§1.1,
+//! Polygonal pocket cleared by contour-parallel rings: ring count and ring
+//! lengths against analytic offsets, engagement against the straight-cut formula (docs/corners.md,
 //! computed here independently), and named errors for bad input.
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
@@ -59,7 +59,7 @@ fn rectangle_rings_count_and_lengths() {
     // Engagement. Innermost ring: nothing cut before → a full slot on its first leg, 180°.
     assert!((plan.rings[0].max_engagement_rad.to_degrees() - 180.0).abs() < ANGLE_TOL_DEG, "{:?}", plan.rings[0]);
     // Outer rings on straight parts, away from corners: a band of a_e = 4 left by the previous
-    // ring → straight-cut engagement arccos(1 − a_e/r) = arccos(0.2) (domain-spec §1.1).
+    // ring → straight-cut engagement arccos(1 − a_e/r) = arccos(0.2) (the straight cut).
     let a_str = (1.0f64 - 4.0 / 5.0).acos().to_degrees();
     let stock = pocket.clone();
     let opts = EvaluatorOptions::new(5.0, 0.5);
@@ -77,7 +77,7 @@ fn rectangle_rings_count_and_lengths() {
         }
     }
     assert!(checked >= 10, "{checked} straight samples");
-    // The plain ring's corners exceed the straight value: the engagement jump this issue is about.
+    // The plain ring's corners exceed the straight value: the engagement jump the corner strategies remove.
     assert!(outer.max_engagement_rad.to_degrees() > a_str + 10.0, "{:?}", outer.max_engagement_rad.to_degrees());
     assert!(
         (plan.max_engagement_rad - plan.rings.iter().map(|g| g.max_engagement_rad).fold(0.0, f64::max)).abs() < 1e-15
@@ -186,7 +186,7 @@ fn bad_input_gives_named_errors() {
 fn variable_circles_at_ring_corners_where_they_fit() {
     // 60 × 40 rectangle, D = 10 (r = 5), a_e = 1.6: rings d = 5 + 1.6k < 20, k < 15/1.6 = 9.375
     // → k = 0..9, ten rings. Straight-part engagement a_str = arccos(1 − a_e/r) = arccos(0.68),
-    // target a* = 1.15·a_str (Wu et al. t1 = 15 %). First variable circle (domain-spec §3.3):
+    // target a* = 1.15·a_str (Wu et al. t1 = 15 %). First variable circle (docs/corners.md, "Variable circles"):
     // R1 = (2r²(1 − cos a*) − a_e²)/(2r(cos a_str − cos a*)) ≈ 19.09 mm; at a 90° corner it
     // touches the walls R1·cot 45° = R1 from the apex and needs walls of R1 + 2r. The adapter's
     // wall length is the ring's shorter edge plus r·cot 45°: 40 − 2d + 5 ≥ R1 + 10 ↔ d ≤ 7.95,

@@ -1,4 +1,4 @@
-//! Climb and conventional milling of a slot (issue #12 item 4): the paper's eq. (1) loops turn
+//! Climb and conventional milling of a slot (docs/slot-paths.md): the paper's eq. (1) loops turn
 //! clockwise, which with M3 is conventional milling; climb mirrors each loop in the slot's
 //! centre line. The slot analysis must give the mirrored numbers for climb: the same path
 //! length, times, MRR, h_max and engagement, the two walls' waviness swapped, the imprint
@@ -33,7 +33,7 @@ fn rel(a: f64, b: f64) -> f64 {
 fn the_default_slot_direction_is_the_papers_conventional() {
     assert_eq!(Job::default().direction, Direction::Conventional);
     let p = plan(&Job::default()).expect("valid");
-    // eq. (1): the first cycle starts at the left extreme x = −a (domain-spec §2.1).
+    // eq. (1): the first cycle starts at the left extreme x = −a (Wagih et al. 2023).
     let first = p.path.cycle.segments[0].start();
     assert!((first.x + p.metrics.a_mm).abs() < 1e-12, "{first:?}");
 }

@@ -1,5 +1,5 @@
 //! The paper's force, MRR and imprint claims (Wagih et al. 2023, abstract and section 5;
-//! process-model.md §6 claims 6–9, 13) against the model, and bad process input by name.
+//! the claims table of docs/process-model.md) against the model, and bad process input by name.
 //! The README's table lists the numbers; tolerances are stated at each assertion.
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
@@ -90,7 +90,7 @@ fn imprints_peak_mid_slot_and_vanish_at_the_walls() {
     }
 }
 
-/// Bad process input is refused by name (issue #10): unknown material, negative or
+/// Bad process input is refused by name: unknown material, negative or
 /// non-finite coefficients, β outside 0–60°, Ra,max and runout out of range.
 #[test]
 fn bad_process_input_names_the_field() {

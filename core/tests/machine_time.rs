@@ -1,4 +1,4 @@
-//! Real cycle time (issue #11): the derived cases of process-model §3 and an independent
+//! Real cycle time: the derived cases of docs/process-model.md ("Machine model") and an independent
 //! 1 kHz time-stepping check of the feed planner.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
@@ -19,7 +19,7 @@ fn linuxcnc(j_tangential: Option<f64>) -> Dynamics {
     Dynamics { v_max: 1e9, a: 1000.0, j: 10_000.0, j_tangential, tolerance: 0.01 }
 }
 
-/// process-model §3 "VMC (3000, 50 000)".
+/// The "VMC (3000, 50 000)" machine of docs/process-model.md's real-cycle-time table.
 fn vmc(j_tangential: Option<f64>) -> Dynamics {
     Dynamics { v_max: 1e9, a: 3000.0, j: 50_000.0, j_tangential, tolerance: 0.01 }
 }
@@ -28,8 +28,9 @@ fn steady(c: &Cycle, feed: f64, d: &Dynamics) -> f64 {
     real_time(&c.segments, p2(0.0, c.step), 5, &vec![feed; c.segments.len()], d).t_cycle_s
 }
 
-/// process-model §3 table (D: forward/backward time-optimal profile, tangential 0.5·a, no
-/// tangential jerk limit), F = 6000 mm/min: real/programmed time factors.
+/// The real-cycle-time table of docs/process-model.md (an independent estimate: forward/backward
+/// time-optimal profile, tangential 0.5·a, no tangential jerk limit), F = 6000 mm/min:
+/// real/programmed time factors.
 #[test]
 fn process_model_factors_are_reproduced() {
     let cases = [
@@ -56,7 +57,7 @@ fn process_model_factors_are_reproduced() {
     }
 }
 
-/// process-model §3: on the LinuxCNC example r_e = 0.5 is slower than the circle although its
+/// docs/process-model.md: on the LinuxCNC example r_e = 0.5 is slower than the circle although its
 /// path is 23 % shorter — with and without the tangential jerk limit; at 600 mm/min it is
 /// faster (kinematics do not matter there).
 #[test]
@@ -68,7 +69,7 @@ fn ranking_flips_at_high_feed() {
         assert!(t05 > 1.05 * t1, "6000 mm/min: r_e 0.5 {t05} s vs circle {t1} s");
         let (t1, t05) = (steady(&circle, 600.0, &d), steady(&ellipse, 600.0, &d));
         assert!(t05 < 0.8 * t1, "600 mm/min: r_e 0.5 {t05} s vs circle {t1} s");
-        // At 600 mm/min every cycle runs at the programmed feed (process-model: ×1.00).
+        // At 600 mm/min every cycle runs at the programmed feed (docs/process-model.md: ×1.00).
         assert!((t1 / (circle.length() / 10.0) - 1.0).abs() < 1e-3);
     }
     // The jerk limit on the tangential acceleration only slows the planned feed.

@@ -37,7 +37,7 @@ fn deviation(bp: &[P2], p: &Plan) -> f64 {
 
 #[test]
 fn backplot_of_every_dialect_retraces_the_planned_path() {
-    // Conventional (the paper's loops) and climb (mirrored, issue #12 item 4).
+    // Conventional (the paper's loops) and climb (mirrored).
     let climb = |path| {
         let v = job(path).job;
         let (aspect_ratio, linear_distance) = (v.aspect_ratio, v.linear_distance);
@@ -46,7 +46,7 @@ fn backplot_of_every_dialect_retraces_the_planned_path() {
     };
     for (kind, p) in PathKind::ALL.into_iter().flat_map(|k| [(k, job(k)), (k, climb(k))]) {
         for d in Dialect::ALL {
-            // Issue #11: the variable feed's split blocks retrace the path too (Sinumerik
+            // The variable feed's split blocks retrace the path too (Sinumerik
             // included, which rs274 cannot read).
             let vf = Some(trochoplan_core::feed::VariableFeed::default());
             for (linear_segments, variable_feed) in [(false, None), (true, None), (false, vf)] {

@@ -34,7 +34,7 @@ fn cases() -> Vec<(&'static str, Job, NcOptions)> {
         ("circular_type.nc", circular_type.clone(), o(Dialect::Fanuc)),
         ("circular_type.gcode", circular_type.clone(), o(Dialect::Grbl)),
         ("circular_type_loop.mpf", circular_type.clone(), NcOptions { compact: true, ..o(Dialect::Sinumerik) }),
-        // climb (issue #12 item 4): the loop mirrored, G3 from the right extreme
+        // climb: the loop mirrored, G3 from the right extreme
         (
             "circular_type_climb_loop.mpf",
             Job { direction: trochoplan_core::job::Direction::Climb, ..circular_type },

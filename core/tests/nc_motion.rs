@@ -285,7 +285,7 @@ fn sinumerik_loops_move_like_the_expanded_programs() {
     }
 }
 
-/// Pocket corners (issue #5) through `program_for_path`, in every dialect (Sinumerik too,
+/// Pocket corners through `program_for_path`, in every dialect (Sinumerik too,
 /// which rs274 cannot run): the evaluator's motion follows the corner path within the
 /// tolerance plus rounding and has its length (`nc_common::check_path_cut`).
 #[test]

@@ -1,4 +1,4 @@
-//! The optimiser (issue #11 part 3): against an independent grid search, its front, and
+//! The optimiser (docs/process-model.md, "Optimiser"): against an independent grid search, its front, and
 //! contradictory limits.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
@@ -62,7 +62,7 @@ fn range(lo: f64, hi: f64, step: f64) -> Vec<f64> {
     (0..=n).map(|i| lo + step * i as f64).collect()
 }
 
-/// Issue #11: the optimiser finds the optimum of a grid search on the same space within 1 %.
+/// The optimiser finds the optimum of a grid search on the same space within 1 %.
 /// Acceptance limits: engagement ≤ 57.5°, h_max ≤ 0.075 mm, no waviness limit. The grid: r_e
 /// 0.5–1.2 by 0.05, q 0–1.2 by 0.3, s 0.1–2.5 by 0.05; then a finer grid (r_e by 0.01,
 /// s by 0.005) around the best coarse point of the elliptical family.
@@ -139,7 +139,7 @@ fn contradictory_limits_name_the_tightest() {
 /// Real MRR of one grid point under h_max, engagement and F_R,max limits, or `None` if
 /// infeasible. The feed: the h-limited feed as in [`grid_point`]; where F_R,max is above the
 /// limit there, the feed at which F_R,max meets it by the secant through two plans (F_R is
-/// close to affine in the feed, dF = (K_c·h + K_e)·dz, domain-spec §4.1), then lowered by
+/// close to affine in the feed, dF = (K_c·h + K_e)·dz, Altintas & Lee 1996), then lowered by
 /// 0.1 % steps until every limit holds.
 fn grid_point_force(job: Job, h_lim: f64, a_lim: f64, f_lim: f64) -> Option<f64> {
     let m0 = plan(&job).ok()?.metrics;
@@ -166,7 +166,7 @@ fn grid_point_force(job: Job, h_lim: f64, a_lim: f64, f_lim: f64) -> Option<f64>
     (meets(&m, h_lim, a_lim, None) && m.force_resultant_max_n <= f_lim).then_some(m.mrr_real_mm3_per_min)
 }
 
-/// Issue #11 with the force model of issue #10: `--max-force` is one more limit. At 600 N
+/// With the force model, `--max-force` is one more limit. At 600 N
 /// (the paper's circular path reads 781 N at its feed, `trochoplan analyze`) the force binds:
 /// the best job meets it, beats an independent grid over the circular, circular-type and
 /// elliptical paths within 1 % (the optimiser also searches the linear-elliptical family, so

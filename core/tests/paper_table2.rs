@@ -25,7 +25,7 @@ fn rel(ours: f64, paper: f64) -> f64 {
     (ours - paper) / paper
 }
 
-/// Issue #2 tolerance: h_max within 2 % of Table 2 at every r_e.
+/// h_max within 2 % of Table 2 at every r_e (docs/slot-paths.md).
 #[test]
 fn h_max_matches_table2_within_2_percent() {
     for (r_e, h, ..) in TABLE2 {
@@ -34,7 +34,7 @@ fn h_max_matches_table2_within_2_percent() {
     }
 }
 
-/// Issue #2 tolerance: t_cycle and MRR within 4 % (the paper's lengths are rounded).
+/// t_cycle and MRR within 4 % (the paper's lengths are rounded).
 #[test]
 fn cycle_time_and_mrr_match_table2_within_4_percent() {
     for (r_e, _, t_cycle, _, _, mrr) in TABLE2 {
@@ -45,7 +45,7 @@ fn cycle_time_and_mrr_match_table2_within_4_percent() {
 }
 
 /// Our cooling time counts the teeth that remove no material (strict geometry). The paper's
-/// values read 8–13 % longer (issue #2: "about 10 %"); the trend must be the paper's.
+/// values read 8–13 % longer (8.6–12.6 %, docs/slot-paths.md); the trend must be the paper's.
 #[test]
 fn cooling_time_is_the_strict_reading_of_table2() {
     let mut last = 0.0;

@@ -127,7 +127,7 @@ fn log_uniform(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
     (lo.ln()..=hi.ln()).prop_map(f64::exp)
 }
 
-/// Jobs from the whole allowed range (issue #13): slot widths from 10 µm to the largest size,
+/// Jobs from the whole allowed range: slot widths from 10 µm to the largest size,
 /// tools from half the slot to just below it, steps from 10⁻⁶ of the loop limit up to it,
 /// slot lengths up to the largest size or the most cycles, rpm up to the largest, any teeth,
 /// and the feed per tooth at either end of its range or between. Most are valid; the rest
@@ -176,8 +176,8 @@ proptest! {
 
     /// Every job of the allowed range plans — with at most MAX_TOOTH_SAMPLES analysed teeth
     /// per cycle and finite numbers inside their physical bounds — or is rejected by name,
-    /// and so does the CLI's engagement-limited step (issue #13: valid jobs aborted on a
-    /// 38 GB allocation or ran for minutes).
+    /// and so does the CLI's engagement-limited step (without the bound, valid jobs would need
+    /// tens of GB or minutes).
     #[test]
     fn every_job_of_the_allowed_range_plans_within_bounds(job in any_job()) {
         let p = match plan(&job) {
@@ -213,12 +213,12 @@ proptest! {
     }
 }
 
-/// The four jobs of issue #13 item 2: the big slot (aborted on a 37.7 GB allocation), a
-/// 1 m slot (10 min, 6.2 GB), the big slot at s = 100 mm (hung), and the default job at
-/// 10⁶ rpm (15 s). Each plans with a bounded number of analysed teeth, and the last one agrees
+/// Four extreme jobs: the big slot (unbounded, 37.7 GB of tooth samples), a 1 m slot
+/// (unbounded: 10 min, 6.2 GB), the big slot at s = 100 mm, and the default job at
+/// 10⁶ rpm (unbounded: 15 s). Each plans with a bounded number of analysed teeth, and the last one agrees
 /// with its full analysis of every tooth (the values before the bound) within the resolution.
 #[test]
-fn issue_13_jobs_plan_with_bounded_teeth() {
+fn extreme_jobs_plan_with_bounded_teeth() {
     let big = Job {
         slot_width: 100_000.0,
         tool_diameter: 50_000.0,
@@ -273,7 +273,7 @@ fn slot_length_changes_only_totals() {
 }
 
 /// The numeric engagement limit on the circular-type path (whose circles are the shaping
-/// circles of the two-circle model) reproduces the closed form P(a) of domain-spec §2.2 —
+/// circles of the two-circle model) reproduces the closed form P(a) of docs/slot-paths.md —
 /// an independent check of the engagement engine against the analytic model.
 #[test]
 fn circular_type_engagement_matches_two_circle_closed_form() {

@@ -1,4 +1,4 @@
-//! Issue #12 items 1, 2 and 4 for the ring methods and the entries: rings around a core that
+//! The ring methods and the entries (docs/pockets.md): rings around a core that
 //! adaptive clearing cuts out of a helix bore (no plunge, no full slot), the corner strategy
 //! at every convex corner of every ring, diagonal links, and a zig-zag ramp where no helix
 //! fits. Everything is measured by the evaluator over the pocket polygon, the bores counted as
@@ -16,7 +16,7 @@ use trochoplan_core::pocket::{
 };
 
 const R: f64 = 5.0;
-/// The issue's step-over: 46.0° on a straight cut.
+/// The acceptance step-over: 46.0° on a straight cut.
 const AE: f64 = 1.527;
 
 fn poly(pts: &[(f64, f64)]) -> Polygon {
@@ -24,7 +24,7 @@ fn poly(pts: &[(f64, f64)]) -> Polygon {
 }
 
 const RECT: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)];
-const L_ISSUE: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 25.0), (25.0, 25.0), (25.0, 60.0), (0.0, 60.0)];
+const L_60X60: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 25.0), (25.0, 25.0), (25.0, 60.0), (0.0, 60.0)];
 
 fn rings(pts: &[(f64, f64)], method: CornerMethod, ae: f64) -> RingPlan {
     let req = PocketRequest {
@@ -119,8 +119,8 @@ fn variable_and_isometric_rings_get_their_strategy_at_every_corner_and_no_slot()
                 MoveKind::Spiral | MoveKind::Ring | MoveKind::Finish => phi_core + slack,
                 // the diagonal into a band: φ* + θ (derived at `diagonal_link`)
                 MoveKind::Link => phi + theta + slack,
-                // the strategies' circles and their corner-point arcs (issue #12 items 2 and
-                // 3): the strategies' target a* (the core's corner points: its own, lower)
+                // the strategies' circles and their corner-point arcs: the strategies' target a*
+                // (the core's corner points: its own, lower)
                 MoveKind::Corner | MoveKind::CornerPoint => corner_target + slack,
                 other => panic!("{other:?} in a ring plan"),
             };
@@ -196,7 +196,7 @@ fn an_l_whose_ring_corners_do_not_take_circles_is_cleared_by_the_core() {
     // target (the default for this a_e) + 1°.
     let phi = default_target_rad(AE, R).unwrap();
     for method in [CornerMethod::Plain, CornerMethod::Variable] {
-        let p = rings(L_ISSUE, method, AE);
+        let p = rings(L_60X60, method, AE);
         assert!(p.rings.is_empty(), "{method:?}: {:?}", p.rings.iter().map(|g| g.level).collect::<Vec<_>>());
         assert!(p.max_engagement_rad <= phi + 1f64.to_radians(), "{}", p.max_engagement_rad.to_degrees());
     }
@@ -204,7 +204,7 @@ fn an_l_whose_ring_corners_do_not_take_circles_is_cleared_by_the_core() {
 
 #[test]
 fn a_pocket_too_narrow_for_a_helix_gets_a_ramp_in_every_method() {
-    // 60 × 14 with D = 10 (step 4 of the brief): tool centres in [5, 55] × [5, 9], inscribed
+    // 60 × 14 with D = 10: tool centres in [5, 55] × [5, 9], inscribed
     // radius 2 < 0.25·D/0.98: no helix; the ramp runs on the middle line y = 7, 50 mm long.
     let narrow: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 14.0), (0.0, 14.0)];
     for strategy in PocketStrategy::ALL {
@@ -232,7 +232,7 @@ fn a_pocket_too_narrow_for_a_helix_gets_a_ramp_in_every_method() {
         eprintln!("{strategy:?}: narrow pocket peak {peak:.2}°");
         assert!(peak < 179.0, "{strategy:?}: {peak:.2}°");
         // Variable and isometric rings do not fit here: their core is the medial-axis clearing
-        // of the whole pocket (item 2), which keeps a* (Wu et al. eq. 23) + 1° like the medial
+        // of the whole pocket, which keeps a* (Wu et al. eq. 23) + 1° like the medial
         // axis itself; plain keeps its plain corners on purpose.
         if strategy != PocketStrategy::Rings(CornerMethod::Plain) {
             let a_star = CornerSettings::new(5.0, req.settings().unwrap().step_over).unwrap().target.to_degrees();

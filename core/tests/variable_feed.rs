@@ -1,4 +1,4 @@
-//! Variable feed (issue #11 part 2).
+//! Variable feed (docs/process-model.md, "Variable feed").
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use trochoplan_core::feed::{TOLERANCE, VariableFeed, schedule};
@@ -20,7 +20,7 @@ fn chip_thickness_scales_with_the_feed() {
     }
 }
 
-/// Issue #11 acceptance, on the default job with the default settings, for each preset:
+/// Acceptance, on the default job with the default settings, for each preset:
 /// every cutting tooth that is neither capped (its need above the maximum feed, where the
 /// tool leaves the cut) nor where the machine does not hold the programmed feed (the
 /// planner's real feed) has its real h within 2 % of the target; no tooth at all is more than
@@ -55,7 +55,7 @@ fn default_job_follows_the_target_and_gains_time() {
             assert!((b.s1 - b.s0) / b.feed_mm_per_min * 60.0 >= block_time * (1.0 - 1e-9), "{name}: {b:?}");
         }
         // Air at 3 × feed and faster cutting where the chip is thin: at least the
-        // process-model bound for air alone, 1 − (0.48 + 0.52/3) = 35 %, less the ramps.
+        // bound for air alone (docs/process-model.md, "Variable feed"), 1 − (0.48 + 0.52/3) = 35 %, less the ramps.
         let gain = 1.0 - s.real.t_cycle_s / p.metrics.t_cycle_real_s;
         assert!(gain > 0.3 && gain < 0.6, "{name}: gain {gain}");
         assert!(s.real.total_s < p.metrics.machining_time_real_s);

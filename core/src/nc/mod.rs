@@ -361,7 +361,7 @@ impl PathJob<'_> {
 /// segments at the cutting feed, fitted like a slot cycle (lines as G1, arcs as G2/G3, trochoid
 /// pieces as biarcs, or all as chords with [`NcOptions::linear_segments`]). Before each segment
 /// in [`PathJob::retract_before`]: retract to safe Z, rapid to its start, feed down (the
-/// approach again). A connected path (no retracts) is written exactly as before.
+/// approach again). A connected path (no retracts) has one approach and one final retract.
 ///
 /// The loop form and the return feed need the repeating cycles and the tooth series of a slot
 /// plan: asking for them here is an error naming the option.

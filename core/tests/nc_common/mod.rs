@@ -270,7 +270,7 @@ pub fn budget(tol: f64, q: f64) -> f64 {
     tol + 3.0 * q + 2e-4
 }
 
-/// Every check of issue #4 on a cut read back from a program: it follows the plan within
+/// Every check of a slot cut read back from a program (docs/nc-export.md): it follows the plan within
 /// `budget`, never leaves |x| ≤ (B − D)/2 by more than the rounding, and has the analysis'
 /// path length within 0.1 %. Returns a description of the first failure.
 pub fn check_cut(label: &str, cut: &[Motion], plan: &Plan, tol: f64, q: f64) -> Result<(), String> {
@@ -441,7 +441,7 @@ pub const DUMBBELL: &[(f64, f64)] = &[
 ];
 
 /// Two 30 × 30 lobes joined by a 10 mm long neck 8 mm wide: narrower than D = 10, so the tool
-/// cannot pass it (issue #12's neck mouths).
+/// cannot pass it (the neck's mouths get cusp passes, docs/adaptive-clearing.md).
 pub const DUMBBELL_8: &[(f64, f64)] = &[
     (0.0, 0.0),
     (30.0, 0.0),
