@@ -468,9 +468,17 @@ fn sweep(mut job: Job, param: SweepParam, from: f64, to: f64, steps: i64) -> Res
         .ok_or_else(|| format!("--param {} needs {}, not {}", param.name(), param.needs(), job.path.name()))?;
     let keys: Vec<&str> = COLUMNS.iter().map(|q| q.key).collect();
     let mut out = format!("path,{},{}\n", param.metric().key, keys.join(","));
-    for v in values {
-        let mut j = job.clone();
-        param.set(&mut j, v);
+    let jobs: Vec<(f64, Job)> = values
+        .into_iter()
+        .map(|v| {
+            let mut j = job.clone();
+            param.set(&mut j, v);
+            (v, j)
+        })
+        .collect();
+    // Every value is checked, and the whole sweep's work estimated, before any is planned.
+    sweep::check_cost(&jobs.iter().map(|(_, j)| j.clone()).collect::<Vec<_>>()).map_err(|e| e.to_string())?;
+    for (v, j) in jobs {
         let m = plan(&j).map_err(|e| e.to_string())?.metrics;
         // A metric without a value (PI without Ra,max) is an empty cell.
         let cells: Vec<String> = COLUMNS

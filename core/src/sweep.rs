@@ -2,8 +2,10 @@
 //! parameter, on which path type, over which values. The rules both front ends follow (the
 //! CLI's `sweep` command and the GUI's sweep panel).
 
-use crate::error::{Error, Param};
-use crate::job::{Job, PathKind};
+use crate::error::{Error, Param, num};
+use crate::job::limits::{MAX_FORCE_TOOTH_SAMPLES, MAX_TOOTH_SAMPLES};
+use crate::job::{Job, PathKind, ValidJob};
+use crate::path::Cycle;
 use crate::quantity::{self, Metric};
 use serde::{Deserialize, Serialize};
 
@@ -146,6 +148,79 @@ pub fn values(from: f64, to: f64, steps: usize) -> Result<Vec<f64>, Error> {
         .collect())
 }
 
+/// Estimated time of one analysed tooth position (chip geometry, engaged arcs) in ms, and of
+/// one (force sample × tooth) pair of the force series, fitted on the reference machine
+/// (2 cores, loaded by other work, so on the slow side) to whole plans of a slot of
+/// `--slot-width 1000 --tool-diameter 900 --step 100 --depth 10 --teeth 4 --rpm 1000`, an
+/// engagement near 180° (the costliest): 17 ms a plan at 403 tooth positions a cycle
+/// (145 000 pairs), 45 ms at 1611 and 75 ms at 4027 (both at the 400 000 pairs' cap). The
+/// difference of the last two gives 30 ms / 2416 positions = 0.0124 ms a position; the 1611
+/// case then leaves 25 ms for 400 000 pairs.
+const POSITION_MS: f64 = 0.0124;
+/// See [`POSITION_MS`].
+const PAIR_MS: f64 = 25.0 / 400_000.0;
+/// Teeth over which a plan's estimate doubles: with 64 teeth a plan at the caps took 154 ms
+/// against 88 ms with 4, more than the counts above explain (runout minimum over the teeth,
+/// more arcs per force sample); (1 + z/32) covers it (×3 for 64 teeth, ×1.125 for 4).
+const TEETH_DOUBLING: f64 = 32.0;
+
+/// Most estimated work of one sweep (ms, [`plan_cost_ms`] summed over the values): under the
+/// 5 s a command may take with room for the writing and a loaded machine. The paper's default
+/// job is estimated at 16 ms a plan, so its sweeps of r_e 0.5–1.2 and d 0–1.5 mm (the paper's
+/// ranges) keep all [`MAX_STEPS`] values.
+pub const MAX_SWEEP_COST_MS: f64 = 4000.0;
+
+/// The estimated time (ms, reference machine) of one plan of `job`, from counts known before
+/// planning: a cycle holds n = (cycle length)/f_z tooth positions, of which the chip analysis
+/// takes at most [`MAX_TOOTH_SAMPLES`], and the force series one sample per spindle degree for
+/// each tooth, 360·n pairs, at most [`MAX_FORCE_TOOTH_SAMPLES`]; each count at its cost per
+/// unit ([`POSITION_MS`], [`PAIR_MS`]), times (1 + z/32) for the teeth. The costs are those of
+/// an engagement near 180°, so the estimate is on the high side for lighter cuts.
+pub fn plan_cost_ms(job: &ValidJob) -> f64 {
+    let n = tooth_positions(job);
+    let positions = n.min(MAX_TOOTH_SAMPLES as f64);
+    let pairs = (360.0 * n).min(MAX_FORCE_TOOTH_SAMPLES as f64);
+    (POSITION_MS * positions + PAIR_MS * pairs) * (1.0 + f64::from(job.teeth) / TEETH_DOUBLING)
+}
+
+/// Tooth positions in one cycle of `job`: cycle length / f_z.
+fn tooth_positions(job: &ValidJob) -> f64 {
+    Cycle::for_job(job).length() / job.f_z()
+}
+
+/// Check a sweep before planning any of it: every job valid (the first error is the one
+/// planning would give) and their estimated work ([`plan_cost_ms`]) at most
+/// [`MAX_SWEEP_COST_MS`]; the error names `steps`, the most values this job allows, and what
+/// drives a plan's work (tooth positions per cycle, teeth).
+pub fn check_cost(jobs: &[Job]) -> Result<(), Error> {
+    let mut total = 0.0;
+    let (mut worst, mut worst_n, mut teeth) = (0.0, 0.0, 0);
+    for job in jobs {
+        let valid = job.validate()?;
+        let cost = plan_cost_ms(&valid);
+        total += cost;
+        if cost > worst {
+            (worst, worst_n, teeth) = (cost, tooth_positions(&valid), valid.teeth);
+        }
+    }
+    if total <= MAX_SWEEP_COST_MS {
+        return Ok(());
+    }
+    let most = ((MAX_SWEEP_COST_MS / worst).floor() as usize).max(1);
+    Err(Error::param(
+        Param::Steps,
+        jobs.len(),
+        format!(
+            "at most {most} for this job: a plan of it is estimated at up to {} ms ({} tooth positions \
+             a cycle, {teeth} teeth), and a sweep may take at most {} ms of estimated work (fewer tooth \
+             positions a cycle, i.e. a larger feed per tooth f_z = feed/(rpm·teeth), allow more values)",
+            num((worst * 10.0).round() / 10.0),
+            num(worst_n.round()),
+            num(MAX_SWEEP_COST_MS)
+        ),
+    ))
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 mod tests {
@@ -191,5 +266,34 @@ mod tests {
         let old: SweepParam = serde_json::from_str("\"LinearDistance\"").expect("old spelling");
         assert_eq!(old, SweepParam::LinearDistance);
         assert_eq!(serde_json::to_string(&SweepParam::AspectRatio).expect("json"), "\"aspect-ratio\"");
+    }
+
+    #[test]
+    fn the_cost_estimate_follows_the_counts() {
+        // Default job (paper Table 1): a cycle of 31.424 mm at f_z = 0.075 mm holds 419.0 tooth
+        // positions (the plan's own teeth_per_cycle); 360·419 = 150 839 force pairs; 4 teeth.
+        let job = Job::default().validate().expect("valid");
+        let n = 31.42388478711044 / 0.075;
+        let want = (POSITION_MS * n + PAIR_MS * 360.0 * n) * (1.0 + 4.0 / 32.0);
+        assert!((plan_cost_ms(&job) / want - 1.0).abs() < 1e-6, "{} vs {want}", plan_cost_ms(&job));
+        // 64 teeth at 20 000 rpm: f_z = 600/(20000·64) = 4.69e-4 mm, 67 025 positions: both caps.
+        let heavy = Job { teeth: 64, rpm: 20_000.0, ..Job::default() }.validate().expect("valid");
+        let capped = (POSITION_MS * 4096.0 + PAIR_MS * 400_000.0) * 3.0;
+        assert!((plan_cost_ms(&heavy) / capped - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_sweep_over_its_budget_is_refused_naming_steps() {
+        // The default job's 200 values: 200 × 16.5 ms = 3.3 s ≤ 4 s, accepted.
+        assert_eq!(check_cost(&vec![Job::default(); MAX_STEPS]), Ok(()));
+        // At the caps (227 ms a plan, previous test) 4000/227.4 = 17.6: 17 values pass, 18 not.
+        let heavy = Job { teeth: 64, rpm: 20_000.0, ..Job::default() };
+        assert_eq!(check_cost(&vec![heavy.clone(); 17]), Ok(()));
+        let err = check_cost(&vec![heavy; 18]).expect_err("over the budget");
+        assert_eq!(err.parameter(), Some(Param::Steps));
+        assert!(err.to_string().contains("at most 17 for this job"), "{err}");
+        // An invalid value is its own error, as planning it would say.
+        let bad = Job { step: -1.0, ..Job::default() };
+        assert_eq!(check_cost(&[bad]).expect_err("invalid").parameter(), Some(Param::Step));
     }
 }
