@@ -60,7 +60,9 @@ enum Command {
         /// Last value.
         #[arg(long, allow_hyphen_values = true)]
         to: f64,
-        /// Number of values from `from` to `to`, both included.
+        /// Number of values from `from` to `to`, both included: 1 to 200, and for a job of costly
+        /// plans (many tooth positions a cycle: a small feed per tooth) as many as its estimated
+        /// work allows (the refusal says how many).
         #[arg(long, allow_hyphen_values = true)]
         steps: i64,
     },

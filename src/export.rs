@@ -23,7 +23,8 @@ pub struct ExportArgs {
     /// Largest distance of the written path from the planned one, before rounding (mm).
     #[arg(long, value_name = "MM", default_value_t = DEFAULT_TOLERANCE_MM, allow_hyphen_values = true)]
     tolerance: f64,
-    /// Write curves as G1 chords instead of G2/G3 arcs.
+    /// Write curves as G1 chords instead of G2/G3 arcs (their count, estimated before fitting,
+    /// must keep the program within its block limit).
     #[arg(long)]
     linear_segments: bool,
     /// Coolant on (M8) during the cut.
