@@ -602,29 +602,30 @@ fn work_is_bounded_before_it_starts() {
 }
 
 /// A sweep's work is estimated before any value is planned. With 64 teeth at 20 000 rpm the
-/// default slot holds 31.42 mm / (600/(20000·64) mm) = 67 025 tooth positions a cycle, so a
-/// plan is at both caps of the estimate (core `sweep::plan_cost_ms`): 4096 positions ×
-/// 0.0124 ms + 400 000 force pairs × 25/400 000 ms = 75.79 ms, × (1 + 64/32) = 227.4 ms;
-/// 4000 ms of budget / 227.4 ms = 17.6, so 17 values are planned and 18 refused at once.
+/// default slot holds 31.424 mm / (600/(20000·64) mm) = 67 038 tooth positions a cycle at
+/// step 1 (the most of the values 0.5–1), so a plan is at both caps of the estimate (core
+/// `sweep::plan_cost_ms`): 4096 positions × 0.0124 ms + 400 000 force pairs × 19/400 000 ms =
+/// 69.79 ms, plus 10 ms × log2(67 038/4096) = 40.33 ms, × 1.15 = 126.6 ms; 5000 ms of budget /
+/// 126.6 ms = 39.5, so 39 values are planned and 40 refused at once.
 #[test]
 fn a_sweep_of_costly_plans_is_refused_before_the_work_naming_steps_and_the_limit() {
     let args = |steps: &'static str| {
         ["sweep", "--teeth", "64", "--rpm", "20000", "--param", "step", "--from", "0.5", "--to", "1", "--steps", steps]
     };
     let started = std::time::Instant::now();
-    let (ok, out, err) = run(&args("18"));
+    let (ok, out, err) = run(&args("40"));
     assert!(!ok && out.is_empty(), "{out}");
     assert!(
-        err.starts_with("trochoplan: invalid steps = 18: must be at most 17 for this job")
-            && err.contains("227.4 ms")
-            && err.contains("at most 4000 ms of estimated work"),
+        err.starts_with("trochoplan: invalid steps = 40: must be at most 39 for this job")
+            && err.contains("126.6 ms")
+            && err.contains("at most 5000 ms of estimated work"),
         "{err}"
     );
     // refused before any plan: far below one plan's time
     assert!(started.elapsed().as_secs_f64() < 1.0);
-    let (ok, out, err) = run(&args("17"));
+    let (ok, out, err) = run(&args("39"));
     assert!(ok, "{err}");
-    assert_eq!(out.lines().count(), 1 + 17);
+    assert_eq!(out.lines().count(), 1 + 39);
 }
 
 /// The chords of `export --linear-segments` are counted from the curvature before fitting.
