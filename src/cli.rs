@@ -60,7 +60,9 @@ enum Command {
         /// Last value.
         #[arg(long, allow_hyphen_values = true)]
         to: f64,
-        /// Number of values from `from` to `to`, both included.
+        /// Number of values from `from` to `to`, both included: 1 to 200, and for a job of costly
+        /// plans (many tooth positions a cycle: a small feed per tooth) as many as its estimated
+        /// work allows (the refusal says how many).
         #[arg(long, allow_hyphen_values = true)]
         steps: i64,
     },
@@ -476,9 +478,17 @@ fn sweep(mut job: Job, param: SweepParam, from: f64, to: f64, steps: i64) -> Res
         .ok_or_else(|| format!("--param {} needs {}, not {}", param.name(), param.needs(), job.path.name()))?;
     let keys: Vec<&str> = COLUMNS.iter().map(|q| q.key).collect();
     let mut out = format!("path,{},{}\n", param.metric().key, keys.join(","));
-    for v in values {
-        let mut j = job.clone();
-        param.set(&mut j, v);
+    let jobs: Vec<(f64, Job)> = values
+        .into_iter()
+        .map(|v| {
+            let mut j = job.clone();
+            param.set(&mut j, v);
+            (v, j)
+        })
+        .collect();
+    // Every value is checked, and the whole sweep's work estimated, before any is planned.
+    sweep::check_cost(&jobs.iter().map(|(_, j)| j.clone()).collect::<Vec<_>>()).map_err(|e| e.to_string())?;
+    for (v, j) in jobs {
         let m = plan(&j).map_err(|e| e.to_string())?.metrics;
         // A metric without a value (PI without Ra,max) is an empty cell.
         let cells: Vec<String> = COLUMNS

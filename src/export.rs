@@ -5,9 +5,11 @@ use crate::cli::core_names;
 use crate::files::write_atomic;
 use clap::Args;
 use std::path::PathBuf;
+use trochoplan_core::error::num;
 use trochoplan_core::feed::VariableFeed;
-use trochoplan_core::nc::{DEFAULT_TOLERANCE_MM, Dialect, NcOptions, program};
-use trochoplan_core::{Job, plan};
+use trochoplan_core::geom::polyline_estimate;
+use trochoplan_core::nc::{DEFAULT_TOLERANCE_MM, Dialect, MAX_PROGRAM_BLOCKS, NcOptions, program};
+use trochoplan_core::{Error, Job, Param, Plan, plan};
 
 /// NC options of `export`.
 #[derive(Args)]
@@ -21,7 +23,8 @@ pub struct ExportArgs {
     /// Largest distance of the written path from the planned one, before rounding (mm).
     #[arg(long, value_name = "MM", default_value_t = DEFAULT_TOLERANCE_MM, allow_hyphen_values = true)]
     tolerance: f64,
-    /// Write curves as G1 chords instead of G2/G3 arcs.
+    /// Write curves as G1 chords instead of G2/G3 arcs (their count, estimated before fitting,
+    /// must keep the program within its block limit).
     #[arg(long)]
     linear_segments: bool,
     /// Coolant on (M8) during the cut.
@@ -84,6 +87,10 @@ pub fn run(job: &Job, args: &ExportArgs) -> Result<String, String> {
         }),
         ..nc_options(args.dialect, args.tolerance, args.linear_segments, args.coolant)
     };
+    opts.validate().map_err(|e| e.to_string())?;
+    if opts.linear_segments {
+        check_chords(&p, &opts)?;
+    }
     let prog = program(&p, &opts).map_err(|e| e.to_string())?;
     write_atomic(&args.output, prog.text.as_bytes())?;
     Ok(format!(
@@ -94,4 +101,51 @@ pub fn run(job: &Job, args: &ExportArgs) -> Result<String, String> {
         prog.text.len(),
         p.metrics.cycles
     ))
+}
+
+/// How far over [`MAX_PROGRAM_BLOCKS`] the chord estimate must be before the program is refused
+/// without fitting: the estimate is within 20 % of the fitted count (core test
+/// `the_chord_estimate_is_near_the_fitted_count`), so a program estimated 25 % over the limit
+/// is over it, and nearer ones are fitted and counted exactly by the writer.
+const CLEARLY_OVER: f64 = 1.25;
+
+/// Refuse, before fitting, an expanded program of chords at `tol` (mm) clearly over
+/// [`MAX_PROGRAM_BLOCKS`] blocks (estimated per cycle from the curvature, times the cycles;
+/// a loop writes one cycle whatever the count). The chords of one cycle grow as 1/√tol and the
+/// cycles as 1/step, so the message names both with the least value that fits.
+fn check_chords(p: &Plan, opts: &NcOptions) -> Result<(), String> {
+    if opts.compact && opts.dialect.spec().loop_style.is_some() {
+        return Ok(());
+    }
+    let tol = opts.tolerance_mm;
+    let per_cycle: f64 = p.path.cycle.segments.iter().map(|s| polyline_estimate(s, tol)).sum();
+    let cycles = p.path.cycles as f64;
+    let blocks = per_cycle * cycles;
+    let limit = MAX_PROGRAM_BLOCKS as f64;
+    if blocks <= CLEARLY_OVER * limit {
+        return Ok(());
+    }
+    let least_tol = tol * (blocks / limit).powi(2);
+    let least_step = p.job.step * blocks / limit;
+    Err(Error::param(
+        Param::Tolerance,
+        tol,
+        format!(
+            "at least about {} mm with --linear-segments for this job: {} cycles of about {:.0} chords make \
+             about {:.0} blocks, more than the {MAX_PROGRAM_BLOCKS} a program may have (or a step of at least \
+             about {} mm, or --compact, or arcs without --linear-segments)",
+            num(up_to_two_digits(least_tol)),
+            p.path.cycles,
+            per_cycle,
+            blocks,
+            num(up_to_two_digits(least_step))
+        ),
+    )
+    .to_string())
+}
+
+/// `x` > 0 rounded up to two significant digits (a least value stays sufficient).
+fn up_to_two_digits(x: f64) -> f64 {
+    let unit = 10f64.powf(x.log10().floor() - 1.0);
+    (x / unit).ceil() * unit
 }

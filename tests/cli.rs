@@ -629,3 +629,95 @@ fn a_reader_closing_the_pipe_early_is_not_a_panic() {
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert!(status.success(), "exit {status:?}: {stderr}");
 }
+
+/// A sweep's work is estimated before any value is planned. With 64 teeth at 20 000 rpm the
+/// default slot holds 31.424 mm / (600/(20000·64) mm) = 67 038 tooth positions a cycle at
+/// step 1 (the most of the values 0.5–1), so a plan is at both caps of the estimate (core
+/// `sweep::plan_cost_ms`): 4096 positions × 0.0124 ms + 400 000 force pairs × 19/400 000 ms =
+/// 69.79 ms, plus 10 ms × log2(67 038/4096) = 40.33 ms, × 1.15 = 126.6 ms; 5000 ms of budget /
+/// 126.6 ms = 39.5, so 39 values are planned and 40 refused at once.
+#[test]
+fn a_sweep_of_costly_plans_is_refused_before_the_work_naming_steps_and_the_limit() {
+    let args = |steps: &'static str| {
+        ["sweep", "--teeth", "64", "--rpm", "20000", "--param", "step", "--from", "0.5", "--to", "1", "--steps", steps]
+    };
+    let started = std::time::Instant::now();
+    let (ok, out, err) = run(&args("40"));
+    assert!(!ok && out.is_empty(), "{out}");
+    assert!(
+        err.starts_with("trochoplan: invalid steps = 40: must be at most 39 for this job")
+            && err.contains("126.6 ms")
+            && err.contains("at most 5000 ms of estimated work"),
+        "{err}"
+    );
+    // refused before any plan: far below one plan's time
+    assert!(started.elapsed().as_secs_f64() < 1.0);
+    let (ok, out, err) = run(&args("39"));
+    assert!(ok, "{err}");
+    assert_eq!(out.lines().count(), 1 + 39);
+}
+
+/// The chords of `export --linear-segments` are counted from the curvature before fitting.
+/// The largest slot of the allowed ranges (B 100 000, D 50 000, r_e 3: a = 12 500, b = 37 500)
+/// at step 1000 has 202 cycles (as `analyze` reports); its cycle needs about 43 770 chords at
+/// 1e-4 mm (the writer fits 43 769, from its own refusal message without this check), so
+/// 202 × 43 770 = 8.8 million blocks, over the 4 000 000 a program may have by more than the
+/// estimate's 25 % margin: refused at once, naming the tolerance, and no file written.
+#[test]
+fn a_chord_program_over_the_block_limit_is_refused_before_fitting_naming_the_tolerance() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let nc = dir.path().join("big.ngc");
+    let started = std::time::Instant::now();
+    let (ok, out, err) = run(&[
+        "export",
+        "--dialect",
+        "linuxcnc",
+        "--slot-width",
+        "100000",
+        "--tool-diameter",
+        "50000",
+        "--slot-length",
+        "100000",
+        "--path",
+        "elliptical",
+        "--aspect-ratio",
+        "3",
+        "--step",
+        "1000",
+        "--linear-segments",
+        "--tolerance",
+        "1e-4",
+        "-o",
+        nc.to_str().expect("utf8"),
+    ]);
+    assert!(!ok && out.is_empty(), "{out}");
+    assert!(err.starts_with("trochoplan: invalid tolerance = 0.0001: must be at least about"), "{err}");
+    assert!(err.contains("202 cycles") && err.contains("more than the 4000000 a program may have"), "{err}");
+    assert!(started.elapsed().as_secs_f64() < 1.0, "fitted before refusing");
+    assert!(!nc.exists());
+    // the loop form, which the message offers, writes one cycle
+    let (ok, _, err) = run(&[
+        "export",
+        "--dialect",
+        "linuxcnc",
+        "--compact",
+        "--slot-width",
+        "100000",
+        "--tool-diameter",
+        "50000",
+        "--slot-length",
+        "100000",
+        "--path",
+        "elliptical",
+        "--aspect-ratio",
+        "3",
+        "--step",
+        "1000",
+        "--linear-segments",
+        "--tolerance",
+        "1e-4",
+        "-o",
+        nc.to_str().expect("utf8"),
+    ]);
+    assert!(ok, "{err}");
+}

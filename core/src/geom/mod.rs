@@ -9,7 +9,7 @@ mod polygon;
 mod quad;
 mod segment;
 
-pub use biarc::{FitPiece, biarc, distance_to_piece, fit_biarcs, polyline};
+pub use biarc::{FitPiece, biarc, distance_to_piece, fit_biarcs, polyline, polyline_estimate};
 pub use circle::Circle;
 pub use polygon::{Polygon, loop_distance};
 pub use quad::gauss_legendre;
