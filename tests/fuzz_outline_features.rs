@@ -169,7 +169,8 @@ fn each_drawing_feature_alone_is_applied_or_named() {
         (
             "two loops",
             "txt",
-            format!("{}\n{}", polygon_points(&rect).replace(' ', "\n"), polygon_points(&hole).replace(' ', "\n")),
+            // a point list separates its loops by an empty line
+            format!("{}\n\n{}", polygon_points(&rect).replace(' ', "\n"), polygon_points(&hole).replace(' ', "\n")),
             expect(&[&rect, &hole], &id, &[], &[]),
         ),
     ];
