@@ -109,7 +109,7 @@ use super::PocketSettings;
 use super::entry::Entry;
 use super::mirror::{mirror_segment, mirrored_polygon};
 use super::perforative::{KindMax, MoveKind, maxima, peak_and_p95, sample_owners};
-use super::rings::{link_is_inside, to_segments};
+use super::rings::to_segments;
 use crate::corner::{EngagementProfile, EvaluatorOptions, engagement_profile};
 use crate::error::{Error, Param, num};
 use crate::geom::{P2, Polygon, Segment, bisect_edge, cross, p2};
@@ -390,6 +390,9 @@ pub struct AdaptivePlan {
     /// what `segments[i]` does.
     pub segments: Vec<Segment>,
     pub kinds: Vec<MoveKind>,
+    /// Moves reached by a retract inside a part (a link with no path at depth).
+    #[serde(default)]
+    pub retracts: Vec<usize>,
     /// The evaluator's profile along `segments`, the helix and ramp bores counted as cut.
     pub profile: EngagementProfile,
     /// Per kind of move: maximum and where, length.
@@ -610,6 +613,9 @@ pub(crate) struct Builder {
     /// Corner-point radii already derived, by (α, ρ₀): the finishing pass is the same for every
     /// core fraction, so each sequence is computed once per region.
     pub(crate) radii: Vec<(f64, f64, Vec<f64>)>,
+    /// The links' router (kept across the core fractions) and the moves reached by a retract.
+    pub(crate) router: super::route::RouterCache,
+    pub(crate) retracts: Vec<usize>,
 }
 
 impl Builder {
@@ -838,7 +844,13 @@ pub(crate) fn clear_regions(
     rho_fin: f64,
     open: Option<&OpenPocket>,
 ) -> Result<(Vec<AdaptivePart>, Builder), Error> {
-    let mut b = Builder { segments: Vec::new(), kinds: Vec::new(), radii: Vec::new() };
+    let mut b = Builder {
+        segments: Vec::new(),
+        kinds: Vec::new(),
+        radii: Vec::new(),
+        router: Default::default(),
+        retracts: Vec::new(),
+    };
     let mut parts = Vec::new();
     for region in regions {
         // The core radius trades ring length against corner caps: plan with T starting at each
@@ -850,9 +862,11 @@ pub(crate) fn clear_regions(
         }
         let mut best: Option<(f64, Builder, AdaptivePart)> = None;
         let mut last_err = None;
-        let mut radii = Vec::new();
+        let (mut radii, mut router) = (Vec::new(), std::mem::take(&mut b.router));
         for fraction in CORE_FRACTIONS {
-            let mut bb = Builder { segments: Vec::new(), kinds: Vec::new(), radii: std::mem::take(&mut radii) };
+            let (taken, routes) = (std::mem::take(&mut radii), std::mem::take(&mut router));
+            let mut bb =
+                Builder { segments: Vec::new(), kinds: Vec::new(), radii: taken, router: routes, retracts: Vec::new() };
             let planned = plan_part(
                 region,
                 (inscribed_radius, k0),
@@ -865,7 +879,7 @@ pub(crate) fn clear_regions(
                 &mut bb,
                 &seed,
             );
-            radii = std::mem::take(&mut bb.radii);
+            (radii, router) = (std::mem::take(&mut bb.radii), std::mem::take(&mut bb.router));
             match planned {
                 Ok(part) => {
                     let len: f64 = bb.segments.iter().map(Segment::length).sum();
@@ -880,6 +894,8 @@ pub(crate) fn clear_regions(
             return Err(last_err.unwrap_or_else(|| Error::param(Param::Polygon, "no plan", "a pocket the tool fits")));
         };
         let first = b.segments.len();
+        b.router = router;
+        b.retracts.extend(bb.retracts.iter().map(|i| i + first));
         b.segments.extend(bb.segments);
         b.kinds.extend(bb.kinds);
         parts.push(AdaptivePart { first_segment: first, end_segment: b.segments.len(), ..part });
@@ -1056,7 +1072,7 @@ fn spiral_and_rings(
         b.push(seg, MoveKind::Ring);
     }
     let rings = 1 + rings_cut.len();
-    cut_rings(b, polygon, r, k0, &stadium, rings_cut);
+    cut_rings(b, polygon, r, &stadium, rings_cut);
     (helix, trimmed, rings)
 }
 
@@ -1134,18 +1150,18 @@ fn plan_part(
             "a pocket whose tool-centre region is one piece at least the helix radius wide",
         ));
     };
-    let (entry, trimmed, rings, k0) = match seed {
+    let (entry, trimmed, rings) = match seed {
         Seed::Helix => {
             let (helix, trimmed, rings) =
                 spiral_and_rings(b, region, &core, (inscribed, k0), polygon, (r, t, r_h, phi), options);
-            (Entry::Helix(helix), trimmed, rings, k0)
+            (Entry::Helix(helix), trimmed, rings)
         }
         Seed::Outside { stock, grow, .. } => {
             let grow_core = largest(offset(grow, t)).ok_or_else(|| {
                 Error::param(Param::OpenEdges, "no core beyond the open edges", "open edges at least D long")
             })?;
             let (rings, at) = grown_rings(b, polygon, r, &grow_core, t, phi, k0, stock)?;
-            (Entry::Outside { at }, None, rings, at)
+            (Entry::Outside { at }, None, rings)
         }
     };
     // Corners: the caps between the opening (radius T) and ρ_fin.
@@ -1174,7 +1190,7 @@ fn plan_part(
             continue;
         }
         let (a0, _, _) = c.arc(rho);
-        link(b, polygon, r, a0, k0);
+        link(b, polygon, r, a0);
         let mut passes = 0;
         let mut deepest: f64 = 0.0;
         while rho > rho_fin + 1e-6 && passes < MAX_PASSES {
@@ -1211,7 +1227,7 @@ fn plan_part(
         let rho0 = t.min(c.rho_max);
         let radii = c.radii(rho0, rho_fin, r, phi);
         let (Some((a0, _, _)), false) = (c.arc(rho0), radii.is_empty()) else { continue };
-        link(b, polygon, r, a0, k0);
+        link(b, polygon, r, a0);
         let (mut rho_prev, mut a_prev, mut deepest) = (rho0, a0, 0.0_f64);
         for &rho in &radii {
             let Some((a, _, arc)) = c.arc(rho) else { break };
@@ -1274,7 +1290,7 @@ fn plan_part(
         let inward = crate::geom::rot90(dir);
         let center = mid + inward * lead;
         let from = center - dir * lead;
-        link(b, polygon, r, from, k0);
+        link(b, polygon, r, from);
         let start_angle = (-dir.y).atan2(-dir.x);
         b.push(Segment::Arc { center, radius: lead, start_angle, sweep: 0.5 * PI }, MoveKind::Finish);
         let fin_loop = start_near(&loop_segs, mid);
@@ -1407,7 +1423,7 @@ fn grown_rings(
         .unwrap_or(first);
     b.push(Segment::Line { start: at, end: first }, MoveKind::Entry);
     let count = ring_runs.len();
-    cut_runs(b, polygon, r, at, ring_runs);
+    cut_runs(b, polygon, r, ring_runs);
     Ok((count, at))
 }
 
@@ -1605,18 +1621,18 @@ fn new_runs(ring: &[Segment], prev: &[Segment]) -> Vec<Vec<Segment>> {
 /// core grew). Where every later ring adds at the same number n ≥ 2 of places (the ends of a
 /// pocket's arms), each place is cleared in turn, ring after ring: the tool crosses back
 /// through what the last run cleared instead of walking the cleared walls to the other ends.
-fn cut_rings(b: &mut Builder, polygon: &Polygon, r: f64, k0: P2, ring0: &[Segment], rings: Vec<Vec<Segment>>) {
+fn cut_rings(b: &mut Builder, polygon: &Polygon, r: f64, ring0: &[Segment], rings: Vec<Vec<Segment>>) {
     let mut prev = ring0.to_vec();
     let mut ring_runs = Vec::with_capacity(rings.len());
     for ring in rings {
         ring_runs.push(new_runs(&ring, &prev));
         prev = ring;
     }
-    cut_runs(b, polygon, r, k0, ring_runs);
+    cut_runs(b, polygon, r, ring_runs);
 }
 
 /// Cut the runs of each ring in turn ([`cut_rings`]), each reached by a [`link`].
-fn cut_runs(b: &mut Builder, polygon: &Polygon, r: f64, k0: P2, mut ring_runs: Vec<Vec<Vec<Segment>>>) {
+fn cut_runs(b: &mut Builder, polygon: &Polygon, r: f64, mut ring_runs: Vec<Vec<Vec<Segment>>>) {
     let n = ring_runs.last().map_or(0, Vec::len);
     let mut split = ring_runs.len();
     if n >= 2 {
@@ -1625,7 +1641,7 @@ fn cut_runs(b: &mut Builder, polygon: &Polygon, r: f64, k0: P2, mut ring_runs: V
         }
     }
     let emit = |b: &mut Builder, run: &[Segment]| {
-        link(b, polygon, r, run[0].start(), k0);
+        link(b, polygon, r, run[0].start());
         for seg in run {
             b.push(*seg, MoveKind::Ring);
         }
@@ -1750,15 +1766,13 @@ fn stadium_axis(region: &Polyline<f64>, q: f64, k0: P2, width: f64) -> Option<(P
     }
 }
 
-/// A link through cleared material from the current position to `to`: straight where the tool
-/// keeps r from the walls, else by the helix centre `k0`.
-fn link(b: &mut Builder, polygon: &Polygon, r: f64, to: P2, k0: P2) {
+/// A link through cleared material from the current position to `to`: the shortest path on
+/// which the tool keeps r from the walls ([`super::route`]); a retract where there is none.
+fn link(b: &mut Builder, polygon: &Polygon, r: f64, to: P2) {
     let from = b.at();
-    if link_is_inside(polygon, from, to, r - 1e-6) {
-        b.line(to, MoveKind::Link);
-    } else {
-        b.line(k0, MoveKind::Link);
-        b.line(to, MoveKind::Link);
+    match b.router.get(polygon, r).route(from, to) {
+        Some(pts) => pts.iter().skip(1).for_each(|&p| b.line(p, MoveKind::Link)),
+        None => b.retracts.push(b.segments.len()),
     }
 }
 
@@ -1840,6 +1854,7 @@ fn measure(
         parts,
         segments: b.segments,
         kinds: b.kinds,
+        retracts: b.retracts,
         profile,
         maxima,
         max_engagement_rad,

@@ -13,6 +13,7 @@ pub mod entry;
 pub mod mirror;
 pub mod perforative;
 pub mod rings;
+pub mod route;
 
 pub use adaptive::{
     AdaptiveOptions, AdaptivePart, AdaptivePlan, CornerPasses, Helix, plan_adaptive, plan_adaptive_open,
@@ -283,7 +284,13 @@ impl PocketPlan {
         match self {
             PocketPlan::Rings(p) => p.tool_path(),
             PocketPlan::MedialAxis(p) => (p.segments.clone(), p.retract_before.clone()),
-            PocketPlan::Adaptive(p) => (p.segments.clone(), p.parts.iter().skip(1).map(|q| q.first_segment).collect()),
+            PocketPlan::Adaptive(p) => {
+                let mut at: Vec<usize> =
+                    p.parts.iter().skip(1).map(|q| q.first_segment).chain(p.retracts.iter().copied()).collect();
+                at.sort_unstable();
+                at.dedup();
+                (p.segments.clone(), at)
+            }
         }
     }
 }
