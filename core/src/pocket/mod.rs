@@ -10,6 +10,7 @@
 pub mod adaptive;
 mod cusp;
 pub mod entry;
+pub mod guard;
 pub mod mirror;
 pub mod perforative;
 pub mod rings;
@@ -278,6 +279,24 @@ impl PocketPlan {
         }
     }
 
+    /// What each move of [`Self::tool_path`] does (empty for [`plan_rings`]' layout).
+    pub fn kinds(&self) -> &[MoveKind] {
+        match self {
+            PocketPlan::Rings(p) => &p.kinds,
+            PocketPlan::MedialAxis(p) => &p.kinds,
+            PocketPlan::Adaptive(p) => &p.kinds,
+        }
+    }
+
+    /// The entries of the plan's parts.
+    pub fn entries(&self) -> Vec<Entry> {
+        match self {
+            PocketPlan::Rings(p) => p.entries.clone(),
+            PocketPlan::MedialAxis(p) => p.entries.clone(),
+            PocketPlan::Adaptive(p) => p.parts.iter().map(|q| q.entry).collect(),
+        }
+    }
+
     /// The whole tool path in machining order, and the indices of the segments reached by
     /// retract, rapid and a new entry or a feed down into cleared material ([`RingPlan::tool_path`], [`PerforativePlan::retract_before`]).
     pub fn tool_path(&self) -> (Vec<Segment>, Vec<usize>) {
@@ -360,6 +379,7 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
             "no open edges for this method: open sides are cleared by --method adaptive (the default)",
         ));
     }
+    guard::validate_open_corners(&req.polygon, &req.open_edges)?;
     let least = MEDIAL_AXIS_MIN_STEP_OVER_RATIO * 2.0 * settings.tool_radius;
     if req.strategy == PocketStrategy::MedialAxis && settings.step_over < least {
         return Err(Error::param(
@@ -393,7 +413,7 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
         PocketPlan::MedialAxis(m) if conventional => PocketPlan::MedialAxis(m.mirrored(&req.polygon)),
         other => other,
     };
-    match req.strategy {
+    let plan = match req.strategy {
         PocketStrategy::Rings(method) => {
             plan_ring_pocket(&polygon, settings, method, &req.adaptive).map(PocketPlan::Rings).map(back)
         }
@@ -403,7 +423,15 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
         PocketStrategy::Adaptive => {
             plan_adaptive_open(&req.polygon, &req.open_edges, settings, req.adaptive).map(PocketPlan::Adaptive)
         }
-    }
+    }?;
+    // No program that gouges a wall: every move at depth, checked exactly ([`guard`]).
+    let (segments, _) = plan.tool_path();
+    let kinds = plan.kinds();
+    let name = |i: usize| {
+        format!("move #{} ({})", i + 1, kinds.get(i).map_or("move".into(), |k| format!("{k:?}").to_lowercase()))
+    };
+    guard::check_clearance(&req.polygon, &req.open_edges, settings.tool_radius, &segments, name, &plan.entries())?;
+    Ok(plan)
 }
 
 #[cfg(test)]
