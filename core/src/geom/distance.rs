@@ -150,7 +150,7 @@ mod tests {
         for (c, rho, s, sw, a, b, want) in cases {
             let d = arc_segment_distance(c, rho, s, sw, a, b);
             assert!((d - want).abs() < 1e-12, "{d} vs {want} (derived by hand)");
-            assert!((d - sampled(c, rho, s, sw, a, b)).abs() < 1e-6);
+            assert!((d - sampled(c, rho, s, sw, a, b)).abs() < 7e-4, "sampled within its spacing");
         }
         // random arcs and edges against the brute force (fixed seed)
         let mut x: u64 = 0x1234_5678_9abc_def1;

@@ -517,7 +517,7 @@ pub(crate) fn pline_of(vertices: &[P2]) -> Polyline<f64> {
     pl
 }
 
-fn disc(c: P2, s: f64) -> Polyline<f64> {
+pub(crate) fn disc(c: P2, s: f64) -> Polyline<f64> {
     let mut pl: Polyline<f64> = Polyline::new_closed();
     pl.add(c.x + s, c.y, 1.0);
     pl.add(c.x - s, c.y, 1.0);
@@ -539,7 +539,7 @@ pub(crate) fn offset(pl: &Polyline<f64>, d: f64) -> Vec<Polyline<f64>> {
         .collect()
 }
 
-fn largest(loops: Vec<Polyline<f64>>) -> Option<Polyline<f64>> {
+pub(crate) fn largest(loops: Vec<Polyline<f64>>) -> Option<Polyline<f64>> {
     loops.into_iter().max_by(|a, b| a.area().total_cmp(&b.area()))
 }
 
@@ -1031,23 +1031,21 @@ fn spiral_and_rings(
     let step = concave_step(t, r, phi);
     let reach = core.iter_vertexes().map(|v| (p2(v.x, v.y) - k0).norm()).fold(0.0, f64::max);
     let mut s = (s0 + step).min(reach);
-    let mut rings_cut: Vec<Vec<Segment>> = Vec::new();
+    let (mut rings_cut, mut prev): (Vec<Vec<Segment>>, Option<Polyline<f64>>) = (Vec::new(), None);
     while s > s0 + 1e-9 && rings_cut.len() < MAX_PASSES {
-        let grown = if s >= reach {
-            Some(core.clone())
-        } else {
-            largest(core.boolean(&disc(k0, s), BooleanOp::And).pos_plines.into_iter().map(|p| p.pline).collect())
-        };
-        if let Some(o) = grown.and_then(|g| largest(offset(&g, -t))) {
+        let grown = super::growth::grown(core, k0, s, reach, prev.as_ref(), step);
+        let filled = grown.as_ref().is_none_or(|g| super::growth::fills(g, core));
+        if let Some(o) = grown.as_ref().and_then(|g| largest(offset(g, -t))) {
             let outside: f64 = o.boolean(&cut, BooleanOp::Not).pos_plines.iter().map(|p| p.pline.area().abs()).sum();
             if outside >= 0.02 * step * o.path_length() {
                 rings_cut.push(start_near(&to_segments(&o), q0));
             }
         }
-        if s >= reach {
+        let stalled = prev.as_ref().zip(grown.as_ref()).is_some_and(|(p, g)| g.area() <= p.area() * (1.0 + 1e-9));
+        if s >= reach && (filled || stalled) {
             break;
         }
-        s = (s + step).min(reach);
+        (s, prev) = ((s + step).min(reach), grown.or(prev));
     }
     // Where no ring follows the stadium, ring 0 stops before the end half-circle the spiral
     // ended on: that half-turn left a crescent from Δ = q_f − q_{n−1} at its start to 0 at its

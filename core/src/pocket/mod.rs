@@ -10,6 +10,7 @@
 pub mod adaptive;
 mod cusp;
 pub mod entry;
+mod growth;
 pub mod guard;
 pub mod mirror;
 pub mod perforative;
