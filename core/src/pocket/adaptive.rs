@@ -221,6 +221,7 @@ impl AdaptiveOptions {
             return Err(Error::param(Param::Depth, self.depth_mm, "greater than 0 and at most 1000 mm"));
         }
         validate_corner_tolerance(self.corner_tolerance_mm)?;
+        super::entry::validate_descent(self, r)?;
         if let Some(t) = self.target_deg {
             let phi = crate::corner::straight_engagement(settings.step_over, r)?.to_degrees();
             if !(t.is_finite() && t >= phi - 1e-9 && t <= 90.0) {
@@ -1271,26 +1272,32 @@ fn plan_part(
                 _ => None,
             })
             .collect();
+        // (a lead-in whose quarter circle would come within r of another wall is not taken;
+        // where none is clear, the link goes straight to the wall point)
+        let lead_in = |(mid, dir): (P2, P2)| {
+            let (center, start_angle) = (mid + crate::geom::rot90(dir) * lead, (-dir.y).atan2(-dir.x));
+            (mid, Segment::Arc { center, radius: lead, start_angle, sweep: 0.5 * PI })
+        };
+        let clear = |(_, arc): &(P2, Segment)| super::guard::keeps_off_walls(polygon, arc, r);
         let nearest = lines
             .iter()
             .filter(|(a, c)| (c - a).norm() >= 2.0 * lead)
             .map(|&(a, c)| {
                 let (len, dir) = ((c - a).norm(), (c - a).normalize());
-                let along = (here - a).dot(&dir).clamp(lead, len - 1e-3);
-                (a + dir * along, dir)
+                lead_in((a + dir * (here - a).dot(&dir).clamp(lead, len - 1e-3), dir))
             })
+            .filter(clear)
             .min_by(|x, y| (x.0 - here).norm().total_cmp(&(y.0 - here).norm()));
-        let longest = lines
-            .iter()
-            .max_by(|a, c| (a.1 - a.0).norm().total_cmp(&(c.1 - c.0).norm()))
-            .map_or((loop_segs[0].start(), p2(1.0, 0.0)), |(a, c)| ((a + c) * 0.5, (c - a).normalize()));
-        let (mid, dir) = nearest.unwrap_or(longest);
-        let inward = crate::geom::rot90(dir);
-        let center = mid + inward * lead;
-        let from = center - dir * lead;
-        link(b, polygon, r, from);
-        let start_angle = (-dir.y).atan2(-dir.x);
-        b.push(Segment::Arc { center, radius: lead, start_angle, sweep: 0.5 * PI }, MoveKind::Finish);
+        let longest = lead_in(
+            lines
+                .iter()
+                .max_by(|a, c| (a.1 - a.0).norm().total_cmp(&(c.1 - c.0).norm()))
+                .map_or((loop_segs[0].start(), p2(1.0, 0.0)), |(a, c)| ((a + c) * 0.5, (c - a).normalize())),
+        );
+        let (mid, arc) = nearest.unwrap_or(longest);
+        let arc = Some(arc).filter(|a| clear(&(mid, *a)));
+        link(b, polygon, r, arc.map_or(mid, |a| a.start()));
+        arc.into_iter().for_each(|a| b.push(a, MoveKind::Finish));
         let fin_loop = start_near(&loop_segs, mid);
         let n = fin_loop.len();
         for (i, seg) in fin_loop.iter().enumerate() {

@@ -225,3 +225,13 @@ pub fn validate_open_corners(polygon: &Polygon, open_edges: &[usize]) -> Result<
     }
     Ok(())
 }
+
+/// Whether the tool centre on `seg` stays inside `polygon` and at least r − half the
+/// [`GUARD_TOLERANCE_MM`] from every edge (exact distances): what a planner checks before it
+/// takes a move that is not built on the offsets of the walls (a lead-in arc).
+pub(crate) fn keeps_off_walls(polygon: &Polygon, seg: &Segment, r: f64) -> bool {
+    let v = polygon.vertices();
+    let n = v.len();
+    polygon.contains(seg.start())
+        && (0..n).all(|i| segment_edge_distance(seg, v[i], v[(i + 1) % n]) >= r - 0.5 * GUARD_TOLERANCE_MM)
+}
