@@ -496,3 +496,47 @@ fn open_pockets_enter_from_outside_and_read_back_within_the_issue_limits() {
         assert!((planned - peak).abs() < 0.5, "{label}: plan {planned:.2}° vs read back {peak:.2}°");
     }
 }
+
+/// The comb whose links crossed its teeth at depth, and the U-channel whose link and ring cut
+/// into the wall corner (55, 20), exported by every method in both directions: the programs pass
+/// rs274, retrace the JSON's path, and the tool centre keeps r from every wall within the
+/// budget, every move of every kind (links included), sampled from the read-back cut
+/// ([`check_pocket_program`], its wall distances from the polygon file alone).
+#[test]
+fn comb_and_u_channel_programs_keep_r_from_every_wall() {
+    const COMB: &[(f64, f64)] = &[
+        (0.0, 0.0),
+        (100.0, 0.0),
+        (100.0, 50.0),
+        (88.0, 50.0),
+        (88.0, 15.0),
+        (80.0, 15.0),
+        (80.0, 50.0),
+        (68.0, 50.0),
+        (68.0, 15.0),
+        (60.0, 15.0),
+        (60.0, 50.0),
+        (48.0, 50.0),
+        (48.0, 15.0),
+        (40.0, 15.0),
+        (40.0, 50.0),
+        (28.0, 50.0),
+        (28.0, 15.0),
+        (20.0, 15.0),
+        (20.0, 50.0),
+        (0.0, 50.0),
+    ];
+    const U_CHANNEL: &[(f64, f64)] =
+        &[(0.0, 0.0), (80.0, 0.0), (80.0, 50.0), (55.0, 50.0), (55.0, 20.0), (25.0, 20.0), (25.0, 50.0), (0.0, 50.0)];
+    let dir = tempfile::tempdir().expect("tempdir");
+    for (shape, polygon, step_over) in [("comb", COMB, "2.5"), ("u-channel", U_CHANNEL, "1.527")] {
+        for method in ["adaptive", "plain", "variable", "isometric", "medial-axis"] {
+            for direction in ["climb", "conventional"] {
+                let label = format!("{shape} {method} {direction}");
+                let args = ["--method", method, "--direction", direction, "--step-over", step_over];
+                let e = export(dir.path(), &format!("{shape}_{method}_{direction}.ngc"), polygon, &args);
+                check_pocket_program(&label, &e, polygon, R, 0.005, 4);
+            }
+        }
+    }
+}

@@ -51,7 +51,7 @@
 //!    T²(cot(α/2) − (π − α)/2)). A ring is cut only where it adds to the previous one (its
 //!    runs off the previous ring: the ends where the core grew); where every later ring adds
 //!    at the same n ≥ 2 places (the ends of an L's arms), each place is cleared in turn, ring
-//!    after ring, the tool crossing back through what the last run cleared ([`cut_rings`]).
+//!    after ring, the tool crossing back through what the last run cleared ([`super::runs::cut_rings`]).
 //! 4. **Corners.** Every convex corner V of C (angle α) is thinned by arcs tangent to both
 //!    walls with radii ρ_k from T down to ρ_fin, centre V + b·ρ/sin(α/2) on the bisector b.
 //!    Consecutive arcs are a distance (ρ_k − ρ_k+1)(1/sin(α/2) − 1) apart on the bisector and
@@ -571,7 +571,7 @@ pub(crate) fn closest_on(seg: &Segment, q: P2) -> (P2, f64) {
 }
 
 /// The two pieces of a line or arc split at local parameter t.
-fn split(seg: &Segment, t: f64) -> (Segment, Segment) {
+pub(crate) fn split(seg: &Segment, t: f64) -> (Segment, Segment) {
     match *seg {
         Segment::Line { start, end } => {
             let m = seg.point(t);
@@ -620,7 +620,7 @@ pub(crate) struct Builder {
 }
 
 impl Builder {
-    fn push(&mut self, seg: Segment, kind: MoveKind) {
+    pub(crate) fn push(&mut self, seg: Segment, kind: MoveKind) {
         if seg.length() > 1e-9 {
             self.segments.push(seg);
             self.kinds.push(kind);
@@ -1071,7 +1071,7 @@ fn spiral_and_rings(
         b.push(seg, MoveKind::Ring);
     }
     let rings = 1 + rings_cut.len();
-    cut_rings(b, polygon, r, &stadium, rings_cut);
+    super::runs::cut_rings(b, polygon, r, &stadium, rings_cut);
     (helix, trimmed, rings)
 }
 
@@ -1185,7 +1185,8 @@ fn plan_part(
     for c in corners_all[first..].iter().chain(&corners_all[..first]) {
         let k = 1.0 / (0.5 * c.alpha).sin() - 1.0;
         let mut rho = first_radius(c);
-        if rho <= rho_fin + 1e-6 {
+        // (a corner that leaves no more than the corner tolerance on its bisector has no passes)
+        if rho <= rho_fin + 1e-6 || (rho - rho_fin) * k <= options.corner_tolerance_mm {
             continue;
         }
         let (a0, _, _) = c.arc(rho);
@@ -1306,6 +1307,8 @@ fn plan_part(
             if let Segment::Arc { center, radius, start_angle, sweep } = *seg
                 && sweep > 1e-9
                 && (radius - (rho_fin + sf)).abs() < 1e-6
+                && (radius - options.corner_tolerance_mm) * (1.0 / (0.5 * sweep).cos() - 1.0)
+                    > options.corner_tolerance_mm
                 && is_line(&fin_loop[(i + n - 1) % n])
                 && is_line(&fin_loop[(i + 1) % n])
             {
@@ -1345,8 +1348,8 @@ pub(crate) enum Seed<'a> {
 /// core: each set lies within a of the previous). Ring j = ∂(G_j ⊕ T) (one loop a piece):
 /// smooth (arcs of radius ≥ T about the core), at most a step outside ring j − 1, so a pass
 /// cuts at most the concave-cut step of radius T: within φ. Ring 0 cuts nothing and is not
-/// cut; a ring is cut only where it adds to the previous one ([`new_runs`]) and comes within
-/// r of the stock, its runs in order ([`cut_runs`]). The tool goes down on ring 0 (off the
+/// cut; a ring is cut only where it adds to the previous one ([`super::runs::new_runs`]) and comes within
+/// r of the stock, its runs in order ([`super::runs::cut_runs`]). The tool goes down on ring 0 (off the
 /// stock) nearest the first run. Returns the rings cut and that point.
 #[allow(clippy::too_many_arguments)]
 fn grown_rings(
@@ -1413,7 +1416,7 @@ fn grown_rings(
     let mut ring_runs: Vec<Vec<Vec<Segment>>> = Vec::new();
     for pair in rings.windows(2) {
         let prev = flat(&pair[0]);
-        let mut runs: Vec<Vec<Segment>> = pair[1].iter().flat_map(|lp| new_runs(lp, &prev)).collect();
+        let mut runs: Vec<Vec<Segment>> = pair[1].iter().flat_map(|lp| super::runs::new_runs(lp, &prev)).collect();
         runs.retain(|run| run.iter().any(|sg| reaches_stock(stock, sg, r)));
         if !runs.is_empty() {
             ring_runs.push(runs);
@@ -1428,7 +1431,7 @@ fn grown_rings(
         .unwrap_or(first);
     b.push(Segment::Line { start: at, end: first }, MoveKind::Entry);
     let count = ring_runs.len();
-    cut_runs(b, polygon, r, ring_runs);
+    super::runs::cut_runs(b, polygon, r, ring_runs);
     Ok((count, at))
 }
 
@@ -1567,118 +1570,6 @@ pub fn validate_open_edges(polygon: &Polygon, open_edges: &[usize]) -> Result<()
     Ok(())
 }
 
-/// The runs of a ring (consecutive segments, the ring closed) that do not lie on the previous
-/// ring `prev`: what the ring adds. A segment lies on `prev` where its ends and middle are
-/// within 1 µm of it (the rings are offsets of growing sets: where the set did not grow there,
-/// the ring repeats the previous one along the walls).
-fn new_runs(ring: &[Segment], prev: &[Segment]) -> Vec<Vec<Segment>> {
-    let on_prev = |p: P2| prev.iter().any(|sg| (closest_on(sg, p).0 - p).norm() < 1e-3);
-    let needed: Vec<bool> =
-        ring.iter().map(|sg| !(on_prev(sg.start()) && on_prev(sg.point(0.5)) && on_prev(sg.end()))).collect();
-    let mut runs: Vec<Vec<Segment>> = Vec::new();
-    let mut open = false;
-    for (sg, &need) in ring.iter().zip(&needed) {
-        match (need, open) {
-            (true, true) => runs.last_mut().into_iter().for_each(|run| run.push(*sg)),
-            (true, false) => runs.push(vec![*sg]),
-            _ => {}
-        }
-        open = need;
-    }
-    // the ring is closed: a run through its start joins its last run
-    if runs.len() > 1 && needed.first() == Some(&true) && needed.last() == Some(&true) {
-        let head = runs.remove(0);
-        runs.last_mut().into_iter().for_each(|run| run.extend(head.iter().copied()));
-    }
-    // a run's first segment may start along `prev` and its last end along it (the walls):
-    // cut from where it leaves `prev` to where it rejoins it (bisection)
-    let edge = |sg: &Segment, from_start: bool| {
-        let (mut on, mut off) = if from_start { (0.0, 1.0) } else { (1.0, 0.0) };
-        for _ in 0..40 {
-            let mid = 0.5 * (on + off);
-            if on_prev(sg.point(mid)) {
-                on = mid;
-            } else {
-                off = mid;
-            }
-        }
-        on
-    };
-    for run in &mut runs {
-        if let Some(first) = run.first().copied()
-            && on_prev(first.start())
-        {
-            let t = edge(&first, true);
-            run[0] = split(&first, t).1;
-        }
-        if let Some(last) = run.last().copied()
-            && on_prev(last.end())
-        {
-            let t = edge(&last, false);
-            let n = run.len();
-            run[n - 1] = split(&last, t).0;
-        }
-    }
-    runs
-}
-
-/// Cut the rings after ring 0, each only where it adds to the previous one (its ends, where the
-/// core grew). Where every later ring adds at the same number n ≥ 2 of places (the ends of a
-/// pocket's arms), each place is cleared in turn, ring after ring: the tool crosses back
-/// through what the last run cleared instead of walking the cleared walls to the other ends.
-fn cut_rings(b: &mut Builder, polygon: &Polygon, r: f64, ring0: &[Segment], rings: Vec<Vec<Segment>>) {
-    let mut prev = ring0.to_vec();
-    let mut ring_runs = Vec::with_capacity(rings.len());
-    for ring in rings {
-        ring_runs.push(new_runs(&ring, &prev));
-        prev = ring;
-    }
-    cut_runs(b, polygon, r, ring_runs);
-}
-
-/// Cut the runs of each ring in turn ([`cut_rings`]), each reached by a [`link`].
-fn cut_runs(b: &mut Builder, polygon: &Polygon, r: f64, mut ring_runs: Vec<Vec<Vec<Segment>>>) {
-    let n = ring_runs.last().map_or(0, Vec::len);
-    let mut split = ring_runs.len();
-    if n >= 2 {
-        while split > 0 && ring_runs[split - 1].len() == n {
-            split -= 1;
-        }
-    }
-    let emit = |b: &mut Builder, run: &[Segment]| {
-        link(b, polygon, r, run[0].start());
-        for seg in run {
-            b.push(*seg, MoveKind::Ring);
-        }
-    };
-    let tail = ring_runs.split_off(split);
-    for runs in &ring_runs {
-        for run in runs {
-            emit(b, run);
-        }
-    }
-    // places: each place takes the run that starts nearest its last run's start
-    let mut places: Vec<Vec<Vec<Segment>>> = vec![Vec::new(); n];
-    for runs in tail {
-        let mut left = runs;
-        for place in places.iter_mut() {
-            let Some(end) = place.last().and_then(|run| run.first()).map(Segment::start) else {
-                place.push(left.remove(0));
-                continue;
-            };
-            let i = (0..left.len())
-                .min_by(|&i, &j| (left[i][0].start() - end).norm().total_cmp(&(left[j][0].start() - end).norm()))
-                .unwrap_or(0);
-            place.push(left.remove(i));
-        }
-    }
-    for place in places {
-        for run in place {
-            emit(b, &run);
-        }
-    }
-}
-
 /// Pieces each corner-point arc is cut into, so that the evaluator measures it at its
 /// bisector and quarter points (the arcs are shorter than the sampling spacing).
 const CORNER_POINT_PIECES: usize = 4;
@@ -1773,7 +1664,7 @@ fn stadium_axis(region: &Polyline<f64>, q: f64, k0: P2, width: f64) -> Option<(P
 
 /// A link through cleared material from the current position to `to`: the shortest path on
 /// which the tool keeps r from the walls ([`super::route`]); a retract where there is none.
-fn link(b: &mut Builder, polygon: &Polygon, r: f64, to: P2) {
+pub(crate) fn link(b: &mut Builder, polygon: &Polygon, r: f64, to: P2) {
     let from = b.at();
     match b.router.get(polygon, r).route(from, to) {
         Some(pts) => pts.iter().skip(1).for_each(|&p| b.line(p, MoveKind::Link)),

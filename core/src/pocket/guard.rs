@@ -162,7 +162,7 @@ pub fn check_clearance(
     for (stamp, (seg, name, i)) in all.enumerate() {
         let name = || name.clone().unwrap_or_else(|| what(i));
         let at = seg.start();
-        if !(at.x.is_finite() && at.y.is_finite()) || !in_pocket(polygon, open_edges, at) {
+        if !(at.x.is_finite() && at.y.is_finite() && in_pocket(polygon, open_edges, at)) {
             return Err(Error::geometry(
                 "tool path",
                 format!("{} starts at ({}, {}), outside the pocket", name(), num(at.x), num(at.y)),

@@ -16,6 +16,7 @@ pub mod mirror;
 pub mod perforative;
 pub mod rings;
 pub mod route;
+mod runs;
 
 pub use adaptive::{
     AdaptiveOptions, AdaptivePart, AdaptivePlan, CornerPasses, Helix, plan_adaptive, plan_adaptive_open,
@@ -361,6 +362,67 @@ pub fn estimated_positions(polygon: &Polygon, strategy: PocketStrategy, settings
     k * polygon.area().abs() / (settings.step_over * settings.spacing)
 }
 
+/// Most vertices of a pocket polygon: every offset, corner and link of a plan walks the
+/// outline, and at this bound each method plans in seconds (a finer outline, e.g. arcs cut into
+/// more chords, is refused with this number).
+pub const MAX_POCKET_VERTICES: usize = 1000;
+
+/// The work a plan will do, checked before it starts: the polygon's vertices
+/// ([`MAX_POCKET_VERTICES`]) and the tool positions the evaluator will measure
+/// ([`estimated_positions`], at most [`MAX_ESTIMATED_POSITIONS`]). The error names what to
+/// change: the step-over (the least that fits, with the spacing as given or by default), else
+/// the spacing (up to r), else the polygon (too large for the tool at any step-over).
+fn check_work(polygon: &Polygon, strategy: PocketStrategy, settings: &PocketSettings) -> Result<(), Error> {
+    let n = polygon.vertices().len();
+    if n > MAX_POCKET_VERTICES {
+        return Err(Error::param(
+            Param::Polygon,
+            format!("{n} vertices"),
+            format!("at most {MAX_POCKET_VERTICES} vertices for a pocket (outline arcs as fewer, longer chords)"),
+        ));
+    }
+    let positions = estimated_positions(polygon, strategy, settings);
+    if positions <= MAX_ESTIMATED_POSITIONS {
+        return Ok(());
+    }
+    let (r, ae, h) = (settings.tool_radius, settings.step_over, settings.spacing);
+    let how = format!(
+        "its area / (step-over × spacing) estimates the tool positions measured, at most {MAX_ESTIMATED_POSITIONS}"
+    );
+    let least = ae * positions / MAX_ESTIMATED_POSITIONS;
+    if least < 2.0 * r {
+        return Err(Error::param(
+            Param::StepOver,
+            ae,
+            format!(
+                "at least {} mm for this pocket at a spacing of {} mm (--spacing, default 0.25 mm; {how})",
+                num(least),
+                num(h)
+            ),
+        ));
+    }
+    let least_spacing = h * positions / MAX_ESTIMATED_POSITIONS;
+    if least_spacing <= r {
+        return Err(Error::param(
+            Param::Spacing,
+            h,
+            format!("at least {} mm for this pocket at a step-over of {} mm ({how})", num(least_spacing), num(ae)),
+        ));
+    }
+    let largest = polygon.area().abs() * MAX_ESTIMATED_POSITIONS / positions;
+    Err(Error::param(
+        Param::Polygon,
+        format!("area {} mm²", num(polygon.area().abs())),
+        format!(
+            "at most {} mm² for this method and a tool of D = {} mm at step-over {} mm and spacing {} mm ({how})",
+            num(largest),
+            num(2.0 * r),
+            num(ae),
+            num(h)
+        ),
+    ))
+}
+
 /// Smallest step-over of the medial axis as a fraction of the tool diameter, a_e/D: the lowest
 /// radial depth of the papers' range (25.8° of straight engagement). Below it the number of
 /// circles and of their bisection steps grows without a useful gain.
@@ -392,19 +454,7 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
             ),
         ));
     }
-    let positions = estimated_positions(&req.polygon, req.strategy, &settings);
-    if positions > MAX_ESTIMATED_POSITIONS {
-        let least = settings.step_over * positions / MAX_ESTIMATED_POSITIONS;
-        return Err(Error::param(
-            Param::StepOver,
-            settings.step_over,
-            format!(
-                "at least {least:.4} mm for this pocket with --spacing {} mm (its area / (step-over × spacing) \
-                 estimates the tool positions measured, at most {MAX_ESTIMATED_POSITIONS})",
-                settings.spacing
-            ),
-        ));
-    }
+    check_work(&req.polygon, req.strategy, &settings)?;
     // Conventional milling: the ring and medial-axis planners cut climb; they plan the mirrored
     // pocket and mirror the plan back ([`mirror`]); adaptive clearing mirrors inside.
     let conventional = req.adaptive.direction == Direction::Conventional;
