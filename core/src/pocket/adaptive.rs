@@ -1313,8 +1313,15 @@ fn plan_part(
                 && is_line(&fin_loop[(i + 1) % n])
             {
                 let corner = Corner::of_arc(center, radius, start_angle, sweep);
-                let point = corner_point_arcs(b, &corner, radius, r, phi, options.corner_tolerance_mm);
-                corner_points.push(point);
+                let (before, point) =
+                    (b.segments.len(), corner_point_arcs(b, &corner, radius, r, phi, options.corner_tolerance_mm));
+                // not where they would come within r of a wall whose offset the loop has lost
+                // (a short edge between the corner's walls, farther than r + s_f from the region)
+                if b.segments[before..].iter().all(|sg| super::guard::keeps_off_walls(polygon, sg, r)) {
+                    corner_points.push(point);
+                } else {
+                    (b.segments.truncate(before), b.kinds.truncate(before));
+                }
             }
         }
     }

@@ -1050,6 +1050,20 @@ impl Planner<'_> {
         let sweep12 = (angle(toward(f2, o1)) - angle(toward(f1, o1))).rem_euclid(TAU);
         let (f_in, f_out) =
             if (angle(u0 - o1) - angle(toward(f1, o1))).rem_euclid(TAU) < sweep12 { (f1, f2) } else { (f2, f1) };
+        // every arc keeps r from every wall, exactly (its centre's clearance comes from a
+        // bisection): else the straight tip
+        let arc_of = |o: P2, rho: f64| {
+            let (a, e) = (o + toward(f_in, o) * rho, o + toward(f_out, o) * rho);
+            Segment::Arc {
+                center: o,
+                radius: rho,
+                start_angle: angle(a - o),
+                sweep: (angle(e - o) - angle(a - o)).rem_euclid(TAU),
+            }
+        };
+        if !arcs.iter().all(|&(_, o, rho)| super::guard::keeps_off_walls(self.poly, &arc_of(o, rho), r)) {
+            return None;
+        }
         let at0 = cur.center + toward(f_in, cur.center) * rho_cur;
         match cur.entry {
             // the circle's full turn, then on to its touching point on the first feature (no
