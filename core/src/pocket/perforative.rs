@@ -1065,6 +1065,7 @@ impl Planner<'_> {
             return None;
         }
         let at0 = cur.center + toward(f_in, cur.center) * rho_cur;
+        let (undo, pos) = (self.b.segments.len(), self.b.pos);
         match cur.entry {
             // the circle's full turn, then on to its touching point on the first feature (no
             // further where the turn ends there: a rounding error must not add a turn)
@@ -1103,6 +1104,11 @@ impl Planner<'_> {
             max_engagement_rad: 0.0,
             at: u0,
         };
+        // the moves along the features and back keep r from every wall too, else the tip
+        if !self.b.segments[undo..].iter().all(|sg| super::guard::keeps_off_walls(self.poly, sg, r)) {
+            (self.b.segments.truncate(undo), self.b.kinds.truncate(undo), self.b.pos = pos);
+            return None;
+        }
         self.corner_points.push((point, first..self.b.segments.len()));
         Some(s_last)
     }
