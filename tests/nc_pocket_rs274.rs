@@ -220,7 +220,11 @@ fn adaptive_pockets_read_back_through_rs274_stay_within_the_issue_limits() {
             }
             // the plan's own numbers agree with the read-back within the written rounding
             let planned = e.json["max_engagement_deg"].as_f64().expect("max");
-            assert!((planned - peak).abs() < 0.5, "{label}: plan {planned:.2}° vs read back {peak:.2}°");
+            assert!(
+                (planned - peak).abs() < 0.5,
+                "{label}: plan {planned:.2}° vs read back {peak:.2}° at {:?}",
+                prof.max()
+            );
         }
     }
 }
@@ -355,7 +359,11 @@ fn medial_axis_pockets_read_back_through_rs274_stay_within_the_target() {
             let limit = e.json["target_deg"].as_f64().expect("target") + 1.0;
             assert!(peak <= limit, "{label}: read back {peak:.2}° > a* + 1° = {limit:.2}° at {at:?}");
             let planned = e.json["max_engagement_deg"].as_f64().expect("max");
-            assert!((planned - peak).abs() < 0.5, "{label}: plan {planned:.2}° vs read back {peak:.2}°");
+            assert!(
+                (planned - peak).abs() < 0.5,
+                "{label}: plan {planned:.2}° vs read back {peak:.2}° at {:?}",
+                prof.max()
+            );
             assert!(list("by_kind").iter().all(|k| k["kind"] != "tip"), "{label}: {}", e.json["by_kind"]);
             let corners = list("corner_points");
             assert!(!corners.is_empty(), "{label}");

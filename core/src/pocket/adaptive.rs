@@ -845,13 +845,9 @@ pub(crate) fn clear_regions(
     rho_fin: f64,
     open: Option<&OpenPocket>,
 ) -> Result<(Vec<AdaptivePart>, Builder), Error> {
-    let mut b = Builder {
-        segments: Vec::new(),
-        kinds: Vec::new(),
-        radii: Vec::new(),
-        router: Default::default(),
-        retracts: Vec::new(),
-    };
+    let router =
+        open.map_or_else(Default::default, |o| super::route::RouterCache::pinned(&o.far_polygon, settings.tool_radius));
+    let mut b = Builder { segments: Vec::new(), kinds: Vec::new(), radii: Vec::new(), router, retracts: Vec::new() };
     let mut parts = Vec::new();
     for region in regions {
         // The core radius trades ring length against corner caps: plan with T starting at each
@@ -1486,6 +1482,8 @@ pub(crate) struct OpenPocket {
     /// regions are the parts'; as a polygon (arcs by their chords) for the links.
     near: Polyline<f64>,
     near_polygon: Polygon,
+    /// The pocket extended as for `far` (arcs by 32 chords each): where the links are routed.
+    far_polygon: Polygon,
     /// The tool-centre regions of the pocket extended by 2T + 2r + s_f + 2 mm (T up to the
     /// closed region's inscribed radius), so their cores reach past the open edges by more
     /// than T + r: the rings' seed lies there.
@@ -1505,8 +1503,19 @@ impl OpenPocket {
         let near = extended(work, open, reach, 0.5 * reach)?;
         let near_polygon = Polygon::new(near.iter_vertexes().map(|v| p2(v.x, v.y)).collect())?;
         let far_reach = 2.0 * inscribed(&closed).0 + 2.0 * rs + 2.0;
-        let far = offset(&extended(work, open, far_reach, 0.5 * far_reach)?, rs);
-        Ok(OpenPocket { stock: pline_of(work.vertices()), near, near_polygon, far, closed })
+        let far_outline = extended(work, open, far_reach, 0.5 * far_reach)?;
+        let chords = to_segments(&far_outline)
+            .iter()
+            .flat_map(|sg| if matches!(sg, Segment::Arc { .. }) { sg.sample(32) } else { vec![sg.start(), sg.end()] })
+            .skip(1)
+            .fold(Vec::<P2>::new(), |mut v, p| {
+                if v.last().is_none_or(|q| (p - q).norm() > 1e-9) {
+                    v.push(p);
+                }
+                v
+            });
+        let (far_polygon, far) = (Polygon::new(chords)?, offset(&far_outline, rs));
+        Ok(OpenPocket { stock: pline_of(work.vertices()), near, near_polygon, far_polygon, far, closed })
     }
 
     /// The seed of a tool-centre region of the extended pocket: outside the stock where the

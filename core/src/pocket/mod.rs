@@ -5,7 +5,10 @@
 //!
 //! Entry point: [`plan`] — a [`PocketRequest`] in, a [`PocketPlan`] out; used by the GUI and the
 //! CLI. Conventions as in [`crate::corner`]: mm, counter-clockwise pocket boundary, tool-centre
-//! circles and rings counter-clockwise (climb milling with M3).
+//! circles and rings counter-clockwise (climb milling with M3). Every method's links at depth
+//! take the shortest path that keeps the tool r from the walls ([`route`]); every plan ends
+//! with an exact check of each move at depth against the walls ([`guard`]), so a program that
+//! would gouge a wall is an error, never written.
 
 pub mod adaptive;
 mod cusp;

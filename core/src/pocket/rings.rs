@@ -815,7 +815,8 @@ fn assemble(polygon: &Polygon, r: f64, ae: f64, mut a: Assembled, rings: &[Candi
 ///    every level is a ring.
 /// 2. **Links.** Into each ring on a [`diagonal_link`]: a chord through the cleared inside,
 ///    then a diagonal of angle atan(a_e/L) into the ring's band along its longest line (φ* + θ
-///    at most); otherwise straight, through the helix centre, or a retract.
+///    at most); otherwise the shortest path on which the tool keeps r from the walls
+///    ([`super::route`]), or a retract.
 ///
 /// Everything at depth is measured in one profile by the evaluator, the entries' bores counted
 /// as cut; each ring's and link's maximum comes from that profile.

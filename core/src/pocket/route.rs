@@ -217,17 +217,29 @@ impl Router {
     }
 }
 
-/// One router kept for the links of a plan, built for the pocket and radius it is asked for.
+/// One router kept for the links of a plan, built for the pocket and radius it is asked for,
+/// or pinned to another polygon (an open pocket's links run in the air beyond its open edges:
+/// they are routed in the pocket extended across them).
 #[derive(Default)]
-pub struct RouterCache(Option<Router>);
+pub struct RouterCache {
+    router: Option<Router>,
+    pinned: bool,
+}
 
 impl RouterCache {
-    /// The router of `polygon` and `r` (built on first use, rebuilt when they change).
+    /// A cache whose links are routed in `polygon` whatever pocket they are asked for.
+    pub fn pinned(polygon: &Polygon, r: f64) -> RouterCache {
+        RouterCache { router: Some(Router::new(polygon, r)), pinned: true }
+    }
+
+    /// The router of `polygon` and `r` (built on first use, rebuilt when they change), or the
+    /// pinned one.
     pub fn get(&mut self, polygon: &Polygon, r: f64) -> &mut Router {
-        if !self.0.as_ref().is_some_and(|rt| rt.is_for(polygon, r)) {
-            self.0 = Some(Router::new(polygon, r));
+        let keep = self.router.as_ref().is_some_and(|rt| if self.pinned { rt.r == r } else { rt.is_for(polygon, r) });
+        if !keep {
+            (self.router, self.pinned) = (Some(Router::new(polygon, r)), false);
         }
-        self.0.get_or_insert_with(|| Router::new(polygon, r))
+        self.router.get_or_insert_with(|| Router::new(polygon, r))
     }
 }
 
