@@ -218,10 +218,16 @@ fn adaptive_pockets_read_back_through_rs274_stay_within_the_issue_limits() {
             if shape == "rect" && target.is_none() {
                 assert!(at_depth <= 2280.0, "{label}: {at_depth:.1} mm at depth");
             }
-            // the plan's own numbers agree with the read-back within the written rounding
+            // the plan's own numbers agree with the read-back within the written rounding: 0.5°,
+            // plus at a corner point the last corner-point arcs (radius down to the corner
+            // tolerance δ = 0.005 mm) written to 4 decimals: their ends move by up to
+            // 0.5e-4·√2 = 7.1e-5 mm, which turns the direction of motion there by up to
+            // 7.1e-5/0.005 rad = 0.81°, and the front half of the periphery (the engaged arc's
+            // edge) turns with it
             let planned = e.json["max_engagement_deg"].as_f64().expect("max");
+            let allowed = 0.5 + (0.5e-4 * 2f64.sqrt() / 0.005f64).to_degrees();
             assert!(
-                (planned - peak).abs() < 0.5,
+                (planned - peak).abs() < allowed,
                 "{label}: plan {planned:.2}° vs read back {peak:.2}° at {:?}",
                 prof.max()
             );
