@@ -368,7 +368,7 @@ pub fn estimated_positions(polygon: &Polygon, strategy: PocketStrategy, settings
 /// Most vertices of a pocket polygon: every offset, corner and link of a plan walks the
 /// outline, and at this bound each method plans in seconds (a finer outline, e.g. arcs cut into
 /// more chords, is refused with this number).
-pub const MAX_POCKET_VERTICES: usize = 1000;
+pub const MAX_POCKET_VERTICES: usize = 500;
 
 /// The work a plan will do, checked before it starts: the polygon's vertices
 /// ([`MAX_POCKET_VERTICES`]) and the tool positions the evaluator will measure
@@ -413,15 +413,19 @@ fn check_work(polygon: &Polygon, strategy: PocketStrategy, settings: &PocketSett
         ));
     }
     let largest = polygon.area().abs() * MAX_ESTIMATED_POSITIONS / positions;
+    // at the largest step-over (just under D) and spacing (r) the positions scale by ae·h/(D·r)
+    let at_most = largest * (2.0 * r * r) / (ae * h);
     Err(Error::param(
         Param::Polygon,
         format!("area {} mm²", num(polygon.area().abs())),
         format!(
-            "at most {} mm² for this method and a tool of D = {} mm at step-over {} mm and spacing {} mm ({how})",
+            "at most {} mm² for this method and a tool of D = {} mm at step-over {} mm and spacing {} mm, \
+             below {} mm² at any step-over (< D) and spacing (≤ r) ({how})",
             num(largest),
             num(2.0 * r),
             num(ae),
-            num(h)
+            num(h),
+            num(at_most)
         ),
     ))
 }
