@@ -189,7 +189,8 @@ mod tests {
         assert!(Polygon::new(vec![p2(0.0, 0.0), p2(at_limit, 0.0), p2(0.0, at_limit)]).is_ok());
         // one vertex more than the limit, on a circle (simple): refused before the pair check
         let n = MAX_POLYGON_VERTICES + 1;
-        let circle = (0..n).map(|k| p2((k as f64 / n as f64 * 6.283).cos(), (k as f64 / n as f64 * 6.283).sin()));
+        let tau = std::f64::consts::TAU;
+        let circle = (0..n).map(|k| p2((k as f64 / n as f64 * tau).cos(), (k as f64 / n as f64 * tau).sin()));
         let many = Polygon::new(circle.collect()).unwrap_err();
         assert_eq!(many.subject(), Some("polygon vertices"), "{many}");
         let flat = Polygon::new(vec![p2(0.0, 0.0), p2(1.0, 0.0), p2(2.0, 0.0)]).unwrap_err();

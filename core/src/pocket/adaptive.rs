@@ -1316,7 +1316,8 @@ fn plan_part(
                 if b.segments[before..].iter().all(|sg| super::guard::keeps_off_walls(polygon, sg, r)) {
                     corner_points.push(point);
                 } else {
-                    (b.segments.truncate(before), b.kinds.truncate(before));
+                    b.segments.truncate(before);
+                    b.kinds.truncate(before);
                 }
             }
         }

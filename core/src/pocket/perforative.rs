@@ -1106,7 +1106,9 @@ impl Planner<'_> {
         };
         // the moves along the features and back keep r from every wall too, else the tip
         if !self.b.segments[undo..].iter().all(|sg| super::guard::keeps_off_walls(self.poly, sg, r)) {
-            (self.b.segments.truncate(undo), self.b.kinds.truncate(undo), self.b.pos = pos);
+            self.b.segments.truncate(undo);
+            self.b.kinds.truncate(undo);
+            self.b.pos = pos;
             return None;
         }
         self.corner_points.push((point, first..self.b.segments.len()));
