@@ -368,7 +368,7 @@ pub fn estimated_positions(polygon: &Polygon, strategy: PocketStrategy, settings
 /// Most vertices of a pocket polygon: every offset, corner and link of a plan walks the
 /// outline, and at this bound each method plans in seconds (a finer outline, e.g. arcs cut into
 /// more chords, is refused with this number).
-pub const MAX_POCKET_VERTICES: usize = 500;
+pub const MAX_POCKET_VERTICES: usize = 1000;
 
 /// The work a plan will do, checked before it starts: the polygon's vertices
 /// ([`MAX_POCKET_VERTICES`]) and the tool positions the evaluator will measure
