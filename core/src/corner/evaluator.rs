@@ -184,11 +184,23 @@ fn distance(p: P2, k: &Cutter) -> f64 {
         }
         Segment::Arc { center, radius, start_angle, sweep } => {
             let v = p - center;
-            let ang = v.y.atan2(v.x);
-            // Parameter of p's direction along the sweep, in [0, 2π) measured in sweep sense.
-            let rel =
-                if sweep >= 0.0 { (ang - start_angle).rem_euclid(TAU) } else { (start_angle - ang).rem_euclid(TAU) };
-            if rel <= sweep.abs() { (v.norm() - radius).abs() } else { (p - k.start).norm().min((p - k.end).norm()) }
+            let on_arc = if sweep.abs() <= PI {
+                // p's direction lies in the wedge from the start to the end direction (≤ π):
+                // after the start and before the end in the sweep's sense
+                let cross = |a: P2, b: P2| a.x * b.y - a.y * b.x;
+                let sense = sweep.signum();
+                sense * cross(k.start - center, v) >= 0.0 && sense * cross(v, k.end - center) >= 0.0
+            } else {
+                let ang = v.y.atan2(v.x);
+                // Parameter of p's direction along the sweep, in [0, 2π) measured in sweep sense.
+                let rel = if sweep >= 0.0 {
+                    (ang - start_angle).rem_euclid(TAU)
+                } else {
+                    (start_angle - ang).rem_euclid(TAU)
+                };
+                rel <= sweep.abs()
+            };
+            if on_arc { (v.norm() - radius).abs() } else { (p - k.start).norm().min((p - k.end).norm()) }
         }
         // Not reached: trochoid pieces are flattened to lines before evaluation.
         Segment::Trochoid { .. } => f64::INFINITY,

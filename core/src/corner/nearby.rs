@@ -16,7 +16,8 @@ const MAX_CELLS_PER_SEGMENT: usize = 4096;
 #[derive(Clone, Copy, Debug)]
 pub struct Cutter {
     pub seg: Segment,
-    /// Bounding box (mm): tight for a line, the full circle's for an arc.
+    /// Bounding box (mm), tight: a line's ends; an arc's ends and the axis extremes it passes
+    /// (a short arc of a large circle is not binned, nor measured, as its whole circle).
     pub lo: P2,
     pub hi: P2,
     pub start: P2,
@@ -27,10 +28,21 @@ impl Cutter {
     /// A line or arc segment (trochoid pieces are flattened before).
     pub fn new(seg: Segment) -> Cutter {
         let (start, end) = (seg.start(), seg.end());
-        let (lo, hi) = match seg {
-            Segment::Arc { center, radius, .. } => (center - p2(radius, radius), center + p2(radius, radius)),
-            _ => (p2(start.x.min(end.x), start.y.min(end.y)), p2(start.x.max(end.x), start.y.max(end.y))),
-        };
+        let (mut lo, mut hi) = (p2(start.x.min(end.x), start.y.min(end.y)), p2(start.x.max(end.x), start.y.max(end.y)));
+        if let Segment::Arc { center, radius, start_angle, sweep } = seg {
+            // the axis directions k·π/2 the sweep passes
+            for k in -8..=8 {
+                let ang = f64::from(k) * std::f64::consts::FRAC_PI_2;
+                let rel = if sweep >= 0.0 { ang - start_angle } else { start_angle - ang };
+                if sweep.abs() >= std::f64::consts::TAU || rel.rem_euclid(std::f64::consts::TAU) <= sweep.abs() {
+                    let q = center + p2(ang.cos(), ang.sin()) * radius;
+                    (lo, hi) = (p2(lo.x.min(q.x), lo.y.min(q.y)), p2(hi.x.max(q.x), hi.y.max(q.y)));
+                }
+            }
+            // rounding of the trigonometry: the box stays a bound
+            let m = p2(1e-9, 1e-9) * (1.0 + radius);
+            (lo, hi) = (lo - m, hi + m);
+        }
         Cutter { seg, lo, hi, start, end }
     }
 

@@ -5,13 +5,17 @@
 
 mod biarc;
 mod circle;
+mod distance;
 mod polygon;
 mod quad;
 mod segment;
 
 pub use biarc::{FitPiece, biarc, distance_to_piece, fit_biarcs, polyline, polyline_estimate};
 pub use circle::Circle;
-pub use polygon::{Polygon, loop_distance};
+pub use distance::{
+    arc_segment_distance, point_arc_distance, point_segment_distance, segment_edge_distance, segment_segment_distance,
+};
+pub use polygon::{MAX_COORDINATE_MM, MAX_POLYGON_VERTICES, Polygon, loop_distance};
 pub use quad::gauss_legendre;
 pub use segment::{Segment, SegmentPoint};
 

@@ -5,6 +5,14 @@ use super::{P2, cross};
 use crate::error::{Error, num};
 use serde::{Deserialize, Serialize};
 
+/// Most vertices of a polygon: its simplicity check compares every pair of edges, 5·10⁷ pairs
+/// (a fraction of a second) at this bound.
+pub const MAX_POLYGON_VERTICES: usize = 10_000;
+
+/// Largest coordinate of a polygon vertex (mm, 1 km): beyond, areas and lengths derived from
+/// the outline lose their meaning for a machine (1e300 mm squares to infinity).
+pub const MAX_COORDINATE_MM: f64 = 1.0e6;
+
 /// A simple polygon (no self-intersections, no degenerate edges), stored counter-clockwise.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Polygon {
@@ -12,9 +20,10 @@ pub struct Polygon {
 }
 
 impl Polygon {
-    /// Validates and stores a polygon: at least 3 finite vertices (a repeated first vertex at
-    /// the end is dropped), no edge shorter than 1e-9 mm, no two edges crossing or overlapping,
-    /// non-zero area. Clockwise input is reversed.
+    /// Validates and stores a polygon: 3 to [`MAX_POLYGON_VERTICES`] vertices (a repeated first
+    /// vertex at the end is dropped) with coordinates within ±[`MAX_COORDINATE_MM`], no edge
+    /// shorter than 1e-9 mm, no two edges crossing or overlapping, non-zero area. Clockwise
+    /// input is reversed.
     pub fn new(mut vertices: Vec<P2>) -> Result<Polygon, Error> {
         if let (Some(first), Some(last)) = (vertices.first(), vertices.last())
             && vertices.len() > 1
@@ -26,12 +35,15 @@ impl Polygon {
         if n < 3 {
             return Err(Error::geometry("polygon vertices", n, "at least 3 distinct vertices"));
         }
+        if n > MAX_POLYGON_VERTICES {
+            return Err(Error::geometry("polygon vertices", n, format!("at most {MAX_POLYGON_VERTICES} vertices")));
+        }
         for (i, v) in vertices.iter().enumerate() {
-            if !(v.x.is_finite() && v.y.is_finite()) {
+            if !(v.x.is_finite() && v.y.is_finite() && v.x.abs().max(v.y.abs()) <= MAX_COORDINATE_MM) {
                 return Err(Error::geometry(
                     "polygon vertex",
                     format!("#{} ({}, {})", i + 1, num(v.x), num(v.y)),
-                    "finite coordinates",
+                    format!("finite coordinates within ±{MAX_COORDINATE_MM:e} mm"),
                 ));
             }
         }
@@ -171,6 +183,16 @@ mod tests {
         assert_eq!(two.subject(), Some("polygon vertices"));
         let nan = Polygon::new(vec![p2(0.0, 0.0), p2(f64::NAN, 0.0), p2(0.0, 1.0)]).unwrap_err();
         assert_eq!(nan.subject(), Some("polygon vertex"));
+        let huge = Polygon::new(vec![p2(0.0, 0.0), p2(1e300, 0.0), p2(0.0, 1e300)]).unwrap_err();
+        assert_eq!(huge.subject(), Some("polygon vertex"), "{huge}");
+        let at_limit = MAX_COORDINATE_MM;
+        assert!(Polygon::new(vec![p2(0.0, 0.0), p2(at_limit, 0.0), p2(0.0, at_limit)]).is_ok());
+        // one vertex more than the limit, on a circle (simple): refused before the pair check
+        let n = MAX_POLYGON_VERTICES + 1;
+        let tau = std::f64::consts::TAU;
+        let circle = (0..n).map(|k| p2((k as f64 / n as f64 * tau).cos(), (k as f64 / n as f64 * tau).sin()));
+        let many = Polygon::new(circle.collect()).unwrap_err();
+        assert_eq!(many.subject(), Some("polygon vertices"), "{many}");
         let flat = Polygon::new(vec![p2(0.0, 0.0), p2(1.0, 0.0), p2(2.0, 0.0)]).unwrap_err();
         assert!(flat.subject().is_some(), "{flat}");
         // Clockwise input is accepted and turned counter-clockwise.

@@ -51,7 +51,7 @@
 //!    T²(cot(α/2) − (π − α)/2)). A ring is cut only where it adds to the previous one (its
 //!    runs off the previous ring: the ends where the core grew); where every later ring adds
 //!    at the same n ≥ 2 places (the ends of an L's arms), each place is cleared in turn, ring
-//!    after ring, the tool crossing back through what the last run cleared ([`cut_rings`]).
+//!    after ring, the tool crossing back through what the last run cleared ([`super::runs::cut_rings`]).
 //! 4. **Corners.** Every convex corner V of C (angle α) is thinned by arcs tangent to both
 //!    walls with radii ρ_k from T down to ρ_fin, centre V + b·ρ/sin(α/2) on the bisector b.
 //!    Consecutive arcs are a distance (ρ_k − ρ_k+1)(1/sin(α/2) − 1) apart on the bisector and
@@ -109,7 +109,7 @@ use super::PocketSettings;
 use super::entry::Entry;
 use super::mirror::{mirror_segment, mirrored_polygon};
 use super::perforative::{KindMax, MoveKind, maxima, peak_and_p95, sample_owners};
-use super::rings::{link_is_inside, to_segments};
+use super::rings::to_segments;
 use crate::corner::{EngagementProfile, EvaluatorOptions, engagement_profile};
 use crate::error::{Error, Param, num};
 use crate::geom::{P2, Polygon, Segment, bisect_edge, cross, p2};
@@ -221,6 +221,7 @@ impl AdaptiveOptions {
             return Err(Error::param(Param::Depth, self.depth_mm, "greater than 0 and at most 1000 mm"));
         }
         validate_corner_tolerance(self.corner_tolerance_mm)?;
+        super::entry::validate_descent(self, r)?;
         if let Some(t) = self.target_deg {
             let phi = crate::corner::straight_engagement(settings.step_over, r)?.to_degrees();
             if !(t.is_finite() && t >= phi - 1e-9 && t <= 90.0) {
@@ -390,6 +391,9 @@ pub struct AdaptivePlan {
     /// what `segments[i]` does.
     pub segments: Vec<Segment>,
     pub kinds: Vec<MoveKind>,
+    /// Moves reached by a retract inside a part (a link with no path at depth).
+    #[serde(default)]
+    pub retracts: Vec<usize>,
     /// The evaluator's profile along `segments`, the helix and ramp bores counted as cut.
     pub profile: EngagementProfile,
     /// Per kind of move: maximum and where, length.
@@ -514,7 +518,7 @@ pub(crate) fn pline_of(vertices: &[P2]) -> Polyline<f64> {
     pl
 }
 
-fn disc(c: P2, s: f64) -> Polyline<f64> {
+pub(crate) fn disc(c: P2, s: f64) -> Polyline<f64> {
     let mut pl: Polyline<f64> = Polyline::new_closed();
     pl.add(c.x + s, c.y, 1.0);
     pl.add(c.x - s, c.y, 1.0);
@@ -536,7 +540,7 @@ pub(crate) fn offset(pl: &Polyline<f64>, d: f64) -> Vec<Polyline<f64>> {
         .collect()
 }
 
-fn largest(loops: Vec<Polyline<f64>>) -> Option<Polyline<f64>> {
+pub(crate) fn largest(loops: Vec<Polyline<f64>>) -> Option<Polyline<f64>> {
     loops.into_iter().max_by(|a, b| a.area().total_cmp(&b.area()))
 }
 
@@ -567,7 +571,7 @@ pub(crate) fn closest_on(seg: &Segment, q: P2) -> (P2, f64) {
 }
 
 /// The two pieces of a line or arc split at local parameter t.
-fn split(seg: &Segment, t: f64) -> (Segment, Segment) {
+pub(crate) fn split(seg: &Segment, t: f64) -> (Segment, Segment) {
     match *seg {
         Segment::Line { start, end } => {
             let m = seg.point(t);
@@ -610,10 +614,13 @@ pub(crate) struct Builder {
     /// Corner-point radii already derived, by (α, ρ₀): the finishing pass is the same for every
     /// core fraction, so each sequence is computed once per region.
     pub(crate) radii: Vec<(f64, f64, Vec<f64>)>,
+    /// The links' router (kept across the core fractions) and the moves reached by a retract.
+    pub(crate) router: super::route::RouterCache,
+    pub(crate) retracts: Vec<usize>,
 }
 
 impl Builder {
-    fn push(&mut self, seg: Segment, kind: MoveKind) {
+    pub(crate) fn push(&mut self, seg: Segment, kind: MoveKind) {
         if seg.length() > 1e-9 {
             self.segments.push(seg);
             self.kinds.push(kind);
@@ -838,7 +845,9 @@ pub(crate) fn clear_regions(
     rho_fin: f64,
     open: Option<&OpenPocket>,
 ) -> Result<(Vec<AdaptivePart>, Builder), Error> {
-    let mut b = Builder { segments: Vec::new(), kinds: Vec::new(), radii: Vec::new() };
+    let router =
+        open.map_or_else(Default::default, |o| super::route::RouterCache::pinned(&o.far_polygon, settings.tool_radius));
+    let mut b = Builder { segments: Vec::new(), kinds: Vec::new(), radii: Vec::new(), router, retracts: Vec::new() };
     let mut parts = Vec::new();
     for region in regions {
         // The core radius trades ring length against corner caps: plan with T starting at each
@@ -850,9 +859,11 @@ pub(crate) fn clear_regions(
         }
         let mut best: Option<(f64, Builder, AdaptivePart)> = None;
         let mut last_err = None;
-        let mut radii = Vec::new();
+        let (mut radii, mut router) = (Vec::new(), std::mem::take(&mut b.router));
         for fraction in CORE_FRACTIONS {
-            let mut bb = Builder { segments: Vec::new(), kinds: Vec::new(), radii: std::mem::take(&mut radii) };
+            let (taken, routes) = (std::mem::take(&mut radii), std::mem::take(&mut router));
+            let mut bb =
+                Builder { segments: Vec::new(), kinds: Vec::new(), radii: taken, router: routes, retracts: Vec::new() };
             let planned = plan_part(
                 region,
                 (inscribed_radius, k0),
@@ -865,7 +876,7 @@ pub(crate) fn clear_regions(
                 &mut bb,
                 &seed,
             );
-            radii = std::mem::take(&mut bb.radii);
+            (radii, router) = (std::mem::take(&mut bb.radii), std::mem::take(&mut bb.router));
             match planned {
                 Ok(part) => {
                     let len: f64 = bb.segments.iter().map(Segment::length).sum();
@@ -880,6 +891,8 @@ pub(crate) fn clear_regions(
             return Err(last_err.unwrap_or_else(|| Error::param(Param::Polygon, "no plan", "a pocket the tool fits")));
         };
         let first = b.segments.len();
+        b.router = router;
+        b.retracts.extend(bb.retracts.iter().map(|i| i + first));
         b.segments.extend(bb.segments);
         b.kinds.extend(bb.kinds);
         parts.push(AdaptivePart { first_segment: first, end_segment: b.segments.len(), ..part });
@@ -1015,23 +1028,21 @@ fn spiral_and_rings(
     let step = concave_step(t, r, phi);
     let reach = core.iter_vertexes().map(|v| (p2(v.x, v.y) - k0).norm()).fold(0.0, f64::max);
     let mut s = (s0 + step).min(reach);
-    let mut rings_cut: Vec<Vec<Segment>> = Vec::new();
+    let (mut rings_cut, mut prev): (Vec<Vec<Segment>>, Option<Polyline<f64>>) = (Vec::new(), None);
     while s > s0 + 1e-9 && rings_cut.len() < MAX_PASSES {
-        let grown = if s >= reach {
-            Some(core.clone())
-        } else {
-            largest(core.boolean(&disc(k0, s), BooleanOp::And).pos_plines.into_iter().map(|p| p.pline).collect())
-        };
-        if let Some(o) = grown.and_then(|g| largest(offset(&g, -t))) {
+        let grown = super::growth::grown(core, k0, s, reach, prev.as_ref(), step);
+        let filled = grown.as_ref().is_none_or(|g| super::growth::fills(g, core));
+        if let Some(o) = grown.as_ref().and_then(|g| largest(offset(g, -t))) {
             let outside: f64 = o.boolean(&cut, BooleanOp::Not).pos_plines.iter().map(|p| p.pline.area().abs()).sum();
             if outside >= 0.02 * step * o.path_length() {
                 rings_cut.push(start_near(&to_segments(&o), q0));
             }
         }
-        if s >= reach {
+        let stalled = prev.as_ref().zip(grown.as_ref()).is_some_and(|(p, g)| g.area() <= p.area() * (1.0 + 1e-9));
+        if s >= reach && (filled || stalled) {
             break;
         }
-        s = (s + step).min(reach);
+        (s, prev) = ((s + step).min(reach), grown.or(prev));
     }
     // Where no ring follows the stadium, ring 0 stops before the end half-circle the spiral
     // ended on: that half-turn left a crescent from Δ = q_f − q_{n−1} at its start to 0 at its
@@ -1056,7 +1067,7 @@ fn spiral_and_rings(
         b.push(seg, MoveKind::Ring);
     }
     let rings = 1 + rings_cut.len();
-    cut_rings(b, polygon, r, k0, &stadium, rings_cut);
+    super::runs::cut_rings(b, polygon, r, &stadium, rings_cut);
     (helix, trimmed, rings)
 }
 
@@ -1134,18 +1145,18 @@ fn plan_part(
             "a pocket whose tool-centre region is one piece at least the helix radius wide",
         ));
     };
-    let (entry, trimmed, rings, k0) = match seed {
+    let (entry, trimmed, rings) = match seed {
         Seed::Helix => {
             let (helix, trimmed, rings) =
                 spiral_and_rings(b, region, &core, (inscribed, k0), polygon, (r, t, r_h, phi), options);
-            (Entry::Helix(helix), trimmed, rings, k0)
+            (Entry::Helix(helix), trimmed, rings)
         }
         Seed::Outside { stock, grow, .. } => {
             let grow_core = largest(offset(grow, t)).ok_or_else(|| {
                 Error::param(Param::OpenEdges, "no core beyond the open edges", "open edges at least D long")
             })?;
             let (rings, at) = grown_rings(b, polygon, r, &grow_core, t, phi, k0, stock)?;
-            (Entry::Outside { at }, None, rings, at)
+            (Entry::Outside { at }, None, rings)
         }
     };
     // Corners: the caps between the opening (radius T) and ρ_fin.
@@ -1170,11 +1181,12 @@ fn plan_part(
     for c in corners_all[first..].iter().chain(&corners_all[..first]) {
         let k = 1.0 / (0.5 * c.alpha).sin() - 1.0;
         let mut rho = first_radius(c);
-        if rho <= rho_fin + 1e-6 {
+        // (a corner that leaves no more than the corner tolerance on its bisector has no passes)
+        if rho <= rho_fin + 1e-6 || (rho - rho_fin) * k <= options.corner_tolerance_mm {
             continue;
         }
         let (a0, _, _) = c.arc(rho);
-        link(b, polygon, r, a0, k0);
+        link(b, polygon, r, a0);
         let mut passes = 0;
         let mut deepest: f64 = 0.0;
         while rho > rho_fin + 1e-6 && passes < MAX_PASSES {
@@ -1211,7 +1223,7 @@ fn plan_part(
         let rho0 = t.min(c.rho_max);
         let radii = c.radii(rho0, rho_fin, r, phi);
         let (Some((a0, _, _)), false) = (c.arc(rho0), radii.is_empty()) else { continue };
-        link(b, polygon, r, a0, k0);
+        link(b, polygon, r, a0);
         let (mut rho_prev, mut a_prev, mut deepest) = (rho0, a0, 0.0_f64);
         for &rho in &radii {
             let Some((a, _, arc)) = c.arc(rho) else { break };
@@ -1257,26 +1269,32 @@ fn plan_part(
                 _ => None,
             })
             .collect();
+        // (a lead-in whose quarter circle would come within r of another wall is not taken;
+        // where none is clear, the link goes straight to the wall point)
+        let lead_in = |(mid, dir): (P2, P2)| {
+            let (center, start_angle) = (mid + crate::geom::rot90(dir) * lead, (-dir.y).atan2(-dir.x));
+            (mid, Segment::Arc { center, radius: lead, start_angle, sweep: 0.5 * PI })
+        };
+        let clear = |(_, arc): &(P2, Segment)| super::guard::keeps_off_walls(polygon, arc, r);
         let nearest = lines
             .iter()
             .filter(|(a, c)| (c - a).norm() >= 2.0 * lead)
             .map(|&(a, c)| {
                 let (len, dir) = ((c - a).norm(), (c - a).normalize());
-                let along = (here - a).dot(&dir).clamp(lead, len - 1e-3);
-                (a + dir * along, dir)
+                lead_in((a + dir * (here - a).dot(&dir).clamp(lead, len - 1e-3), dir))
             })
+            .filter(clear)
             .min_by(|x, y| (x.0 - here).norm().total_cmp(&(y.0 - here).norm()));
-        let longest = lines
-            .iter()
-            .max_by(|a, c| (a.1 - a.0).norm().total_cmp(&(c.1 - c.0).norm()))
-            .map_or((loop_segs[0].start(), p2(1.0, 0.0)), |(a, c)| ((a + c) * 0.5, (c - a).normalize()));
-        let (mid, dir) = nearest.unwrap_or(longest);
-        let inward = crate::geom::rot90(dir);
-        let center = mid + inward * lead;
-        let from = center - dir * lead;
-        link(b, polygon, r, from, k0);
-        let start_angle = (-dir.y).atan2(-dir.x);
-        b.push(Segment::Arc { center, radius: lead, start_angle, sweep: 0.5 * PI }, MoveKind::Finish);
+        let longest = lead_in(
+            lines
+                .iter()
+                .max_by(|a, c| (a.1 - a.0).norm().total_cmp(&(c.1 - c.0).norm()))
+                .map_or((loop_segs[0].start(), p2(1.0, 0.0)), |(a, c)| ((a + c) * 0.5, (c - a).normalize())),
+        );
+        let (mid, arc) = nearest.unwrap_or(longest);
+        let arc = Some(arc).filter(|a| clear(&(mid, *a)));
+        link(b, polygon, r, arc.map_or(mid, |a| a.start()));
+        arc.into_iter().for_each(|a| b.push(a, MoveKind::Finish));
         let fin_loop = start_near(&loop_segs, mid);
         let n = fin_loop.len();
         for (i, seg) in fin_loop.iter().enumerate() {
@@ -1285,12 +1303,22 @@ fn plan_part(
             if let Segment::Arc { center, radius, start_angle, sweep } = *seg
                 && sweep > 1e-9
                 && (radius - (rho_fin + sf)).abs() < 1e-6
+                && (radius - options.corner_tolerance_mm) * (1.0 / (0.5 * sweep).cos() - 1.0)
+                    > options.corner_tolerance_mm
                 && is_line(&fin_loop[(i + n - 1) % n])
                 && is_line(&fin_loop[(i + 1) % n])
             {
                 let corner = Corner::of_arc(center, radius, start_angle, sweep);
-                let point = corner_point_arcs(b, &corner, radius, r, phi, options.corner_tolerance_mm);
-                corner_points.push(point);
+                let (before, point) =
+                    (b.segments.len(), corner_point_arcs(b, &corner, radius, r, phi, options.corner_tolerance_mm));
+                // not where they would come within r of a wall whose offset the loop has lost
+                // (a short edge between the corner's walls, farther than r + s_f from the region)
+                if b.segments[before..].iter().all(|sg| super::guard::keeps_off_walls(polygon, sg, r)) {
+                    corner_points.push(point);
+                } else {
+                    b.segments.truncate(before);
+                    b.kinds.truncate(before);
+                }
             }
         }
     }
@@ -1324,8 +1352,8 @@ pub(crate) enum Seed<'a> {
 /// core: each set lies within a of the previous). Ring j = ∂(G_j ⊕ T) (one loop a piece):
 /// smooth (arcs of radius ≥ T about the core), at most a step outside ring j − 1, so a pass
 /// cuts at most the concave-cut step of radius T: within φ. Ring 0 cuts nothing and is not
-/// cut; a ring is cut only where it adds to the previous one ([`new_runs`]) and comes within
-/// r of the stock, its runs in order ([`cut_runs`]). The tool goes down on ring 0 (off the
+/// cut; a ring is cut only where it adds to the previous one ([`super::runs::new_runs`]) and comes within
+/// r of the stock, its runs in order ([`super::runs::cut_runs`]). The tool goes down on ring 0 (off the
 /// stock) nearest the first run. Returns the rings cut and that point.
 #[allow(clippy::too_many_arguments)]
 fn grown_rings(
@@ -1392,7 +1420,7 @@ fn grown_rings(
     let mut ring_runs: Vec<Vec<Vec<Segment>>> = Vec::new();
     for pair in rings.windows(2) {
         let prev = flat(&pair[0]);
-        let mut runs: Vec<Vec<Segment>> = pair[1].iter().flat_map(|lp| new_runs(lp, &prev)).collect();
+        let mut runs: Vec<Vec<Segment>> = pair[1].iter().flat_map(|lp| super::runs::new_runs(lp, &prev)).collect();
         runs.retain(|run| run.iter().any(|sg| reaches_stock(stock, sg, r)));
         if !runs.is_empty() {
             ring_runs.push(runs);
@@ -1407,7 +1435,7 @@ fn grown_rings(
         .unwrap_or(first);
     b.push(Segment::Line { start: at, end: first }, MoveKind::Entry);
     let count = ring_runs.len();
-    cut_runs(b, polygon, r, at, ring_runs);
+    super::runs::cut_runs(b, polygon, r, ring_runs);
     Ok((count, at))
 }
 
@@ -1455,6 +1483,8 @@ pub(crate) struct OpenPocket {
     /// regions are the parts'; as a polygon (arcs by their chords) for the links.
     near: Polyline<f64>,
     near_polygon: Polygon,
+    /// The pocket extended as for `far` (arcs by 32 chords each): where the links are routed.
+    far_polygon: Polygon,
     /// The tool-centre regions of the pocket extended by 2T + 2r + s_f + 2 mm (T up to the
     /// closed region's inscribed radius), so their cores reach past the open edges by more
     /// than T + r: the rings' seed lies there.
@@ -1474,8 +1504,19 @@ impl OpenPocket {
         let near = extended(work, open, reach, 0.5 * reach)?;
         let near_polygon = Polygon::new(near.iter_vertexes().map(|v| p2(v.x, v.y)).collect())?;
         let far_reach = 2.0 * inscribed(&closed).0 + 2.0 * rs + 2.0;
-        let far = offset(&extended(work, open, far_reach, 0.5 * far_reach)?, rs);
-        Ok(OpenPocket { stock: pline_of(work.vertices()), near, near_polygon, far, closed })
+        let far_outline = extended(work, open, far_reach, 0.5 * far_reach)?;
+        let chords = to_segments(&far_outline)
+            .iter()
+            .flat_map(|sg| if matches!(sg, Segment::Arc { .. }) { sg.sample(32) } else { vec![sg.start(), sg.end()] })
+            .skip(1)
+            .fold(Vec::<P2>::new(), |mut v, p| {
+                if v.last().is_none_or(|q| (p - q).norm() > 1e-9) {
+                    v.push(p);
+                }
+                v
+            });
+        let (far_polygon, far) = (Polygon::new(chords)?, offset(&far_outline, rs));
+        Ok(OpenPocket { stock: pline_of(work.vertices()), near, near_polygon, far_polygon, far, closed })
     }
 
     /// The seed of a tool-centre region of the extended pocket: outside the stock where the
@@ -1544,118 +1585,6 @@ pub fn validate_open_edges(polygon: &Polygon, open_edges: &[usize]) -> Result<()
         }
     }
     Ok(())
-}
-
-/// The runs of a ring (consecutive segments, the ring closed) that do not lie on the previous
-/// ring `prev`: what the ring adds. A segment lies on `prev` where its ends and middle are
-/// within 1 µm of it (the rings are offsets of growing sets: where the set did not grow there,
-/// the ring repeats the previous one along the walls).
-fn new_runs(ring: &[Segment], prev: &[Segment]) -> Vec<Vec<Segment>> {
-    let on_prev = |p: P2| prev.iter().any(|sg| (closest_on(sg, p).0 - p).norm() < 1e-3);
-    let needed: Vec<bool> =
-        ring.iter().map(|sg| !(on_prev(sg.start()) && on_prev(sg.point(0.5)) && on_prev(sg.end()))).collect();
-    let mut runs: Vec<Vec<Segment>> = Vec::new();
-    let mut open = false;
-    for (sg, &need) in ring.iter().zip(&needed) {
-        match (need, open) {
-            (true, true) => runs.last_mut().into_iter().for_each(|run| run.push(*sg)),
-            (true, false) => runs.push(vec![*sg]),
-            _ => {}
-        }
-        open = need;
-    }
-    // the ring is closed: a run through its start joins its last run
-    if runs.len() > 1 && needed.first() == Some(&true) && needed.last() == Some(&true) {
-        let head = runs.remove(0);
-        runs.last_mut().into_iter().for_each(|run| run.extend(head.iter().copied()));
-    }
-    // a run's first segment may start along `prev` and its last end along it (the walls):
-    // cut from where it leaves `prev` to where it rejoins it (bisection)
-    let edge = |sg: &Segment, from_start: bool| {
-        let (mut on, mut off) = if from_start { (0.0, 1.0) } else { (1.0, 0.0) };
-        for _ in 0..40 {
-            let mid = 0.5 * (on + off);
-            if on_prev(sg.point(mid)) {
-                on = mid;
-            } else {
-                off = mid;
-            }
-        }
-        on
-    };
-    for run in &mut runs {
-        if let Some(first) = run.first().copied()
-            && on_prev(first.start())
-        {
-            let t = edge(&first, true);
-            run[0] = split(&first, t).1;
-        }
-        if let Some(last) = run.last().copied()
-            && on_prev(last.end())
-        {
-            let t = edge(&last, false);
-            let n = run.len();
-            run[n - 1] = split(&last, t).0;
-        }
-    }
-    runs
-}
-
-/// Cut the rings after ring 0, each only where it adds to the previous one (its ends, where the
-/// core grew). Where every later ring adds at the same number n ≥ 2 of places (the ends of a
-/// pocket's arms), each place is cleared in turn, ring after ring: the tool crosses back
-/// through what the last run cleared instead of walking the cleared walls to the other ends.
-fn cut_rings(b: &mut Builder, polygon: &Polygon, r: f64, k0: P2, ring0: &[Segment], rings: Vec<Vec<Segment>>) {
-    let mut prev = ring0.to_vec();
-    let mut ring_runs = Vec::with_capacity(rings.len());
-    for ring in rings {
-        ring_runs.push(new_runs(&ring, &prev));
-        prev = ring;
-    }
-    cut_runs(b, polygon, r, k0, ring_runs);
-}
-
-/// Cut the runs of each ring in turn ([`cut_rings`]), each reached by a [`link`].
-fn cut_runs(b: &mut Builder, polygon: &Polygon, r: f64, k0: P2, mut ring_runs: Vec<Vec<Vec<Segment>>>) {
-    let n = ring_runs.last().map_or(0, Vec::len);
-    let mut split = ring_runs.len();
-    if n >= 2 {
-        while split > 0 && ring_runs[split - 1].len() == n {
-            split -= 1;
-        }
-    }
-    let emit = |b: &mut Builder, run: &[Segment]| {
-        link(b, polygon, r, run[0].start(), k0);
-        for seg in run {
-            b.push(*seg, MoveKind::Ring);
-        }
-    };
-    let tail = ring_runs.split_off(split);
-    for runs in &ring_runs {
-        for run in runs {
-            emit(b, run);
-        }
-    }
-    // places: each place takes the run that starts nearest its last run's start
-    let mut places: Vec<Vec<Vec<Segment>>> = vec![Vec::new(); n];
-    for runs in tail {
-        let mut left = runs;
-        for place in places.iter_mut() {
-            let Some(end) = place.last().and_then(|run| run.first()).map(Segment::start) else {
-                place.push(left.remove(0));
-                continue;
-            };
-            let i = (0..left.len())
-                .min_by(|&i, &j| (left[i][0].start() - end).norm().total_cmp(&(left[j][0].start() - end).norm()))
-                .unwrap_or(0);
-            place.push(left.remove(i));
-        }
-    }
-    for place in places {
-        for run in place {
-            emit(b, &run);
-        }
-    }
 }
 
 /// Pieces each corner-point arc is cut into, so that the evaluator measures it at its
@@ -1750,15 +1679,13 @@ fn stadium_axis(region: &Polyline<f64>, q: f64, k0: P2, width: f64) -> Option<(P
     }
 }
 
-/// A link through cleared material from the current position to `to`: straight where the tool
-/// keeps r from the walls, else by the helix centre `k0`.
-fn link(b: &mut Builder, polygon: &Polygon, r: f64, to: P2, k0: P2) {
+/// A link through cleared material from the current position to `to`: the shortest path on
+/// which the tool keeps r from the walls ([`super::route`]); a retract where there is none.
+pub(crate) fn link(b: &mut Builder, polygon: &Polygon, r: f64, to: P2) {
     let from = b.at();
-    if link_is_inside(polygon, from, to, r - 1e-6) {
-        b.line(to, MoveKind::Link);
-    } else {
-        b.line(k0, MoveKind::Link);
-        b.line(to, MoveKind::Link);
+    match b.router.get(polygon, r).route(from, to) {
+        Some(pts) => pts.iter().skip(1).for_each(|&p| b.line(p, MoveKind::Link)),
+        None => b.retracts.push(b.segments.len()),
     }
 }
 
@@ -1840,6 +1767,7 @@ fn measure(
         parts,
         segments: b.segments,
         kinds: b.kinds,
+        retracts: b.retracts,
         profile,
         maxima,
         max_engagement_rad,

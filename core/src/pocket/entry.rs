@@ -245,6 +245,51 @@ pub fn ramp_line(polygon: &Polygon, r: f64, center: P2) -> (P2, P2, f64) {
     (a, b, longest)
 }
 
+/// Most helix turns (or zig-zag legs) of one descent: beyond, the program grows without a
+/// purpose (a helix of 1e-9 mm radius would turn 10¹⁰ times).
+pub const MAX_DESCENT_TURNS: f64 = 2000.0;
+
+/// The descent's work is bounded: with the smallest helix the pocket may get (the option, else
+/// 0.25·D) and the ramp angle, descending from [`HELIX_START_Z_MM`] to the depth takes at most
+/// [`MAX_DESCENT_TURNS`] turns (a zig-zag ramp, at least D long, takes fewer legs than a helix
+/// of 0.25·D takes turns: a leg descends D·tan θ, a turn π·D/2·tan θ). Error naming
+/// `--helix-radius` (when given) or `--ramp-angle`, and the least value.
+pub(crate) fn validate_descent(options: &AdaptiveOptions, r: f64) -> Result<(), Error> {
+    let drop = HELIX_START_Z_MM + options.depth_mm;
+    let tan = options.ramp_deg.to_radians().tan();
+    let r_h = options.helix_radius_mm.unwrap_or(0.5 * r).min(0.5 * r);
+    let turns = drop / (std::f64::consts::TAU * r_h * tan);
+    if turns <= MAX_DESCENT_TURNS {
+        return Ok(());
+    }
+    let least_radius = drop / (std::f64::consts::TAU * tan * MAX_DESCENT_TURNS);
+    if let Some(h) = options.helix_radius_mm
+        && least_radius <= 0.5 * r
+    {
+        return Err(Error::param(
+            Param::HelixRadius,
+            h,
+            format!(
+                "at least {} mm at a {}° ramp and {} mm depth (at most {MAX_DESCENT_TURNS} turns down)",
+                num(least_radius),
+                num(options.ramp_deg),
+                num(options.depth_mm)
+            ),
+        ));
+    }
+    let least_deg = (drop / (std::f64::consts::TAU * r_h * MAX_DESCENT_TURNS)).atan().to_degrees();
+    Err(Error::param(
+        Param::RampAngle,
+        options.ramp_deg,
+        format!(
+            "at least {}° for a helix of {} mm radius and {} mm depth (at most {MAX_DESCENT_TURNS} turns down)",
+            num(least_deg),
+            num(r_h),
+            num(options.depth_mm)
+        ),
+    ))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -5,14 +5,21 @@
 //!
 //! Entry point: [`plan`] — a [`PocketRequest`] in, a [`PocketPlan`] out; used by the GUI and the
 //! CLI. Conventions as in [`crate::corner`]: mm, counter-clockwise pocket boundary, tool-centre
-//! circles and rings counter-clockwise (climb milling with M3).
+//! circles and rings counter-clockwise (climb milling with M3). Every method's links at depth
+//! take the shortest path that keeps the tool r from the walls ([`route`]); every plan ends
+//! with an exact check of each move at depth against the walls ([`guard`]), so a program that
+//! would gouge a wall is an error, never written.
 
 pub mod adaptive;
 mod cusp;
 pub mod entry;
+mod growth;
+pub mod guard;
 pub mod mirror;
 pub mod perforative;
 pub mod rings;
+pub mod route;
+mod runs;
 
 pub use adaptive::{
     AdaptiveOptions, AdaptivePart, AdaptivePlan, CornerPasses, Helix, plan_adaptive, plan_adaptive_open,
@@ -277,13 +284,37 @@ impl PocketPlan {
         }
     }
 
+    /// What each move of [`Self::tool_path`] does (empty for [`plan_rings`]' layout).
+    pub fn kinds(&self) -> &[MoveKind] {
+        match self {
+            PocketPlan::Rings(p) => &p.kinds,
+            PocketPlan::MedialAxis(p) => &p.kinds,
+            PocketPlan::Adaptive(p) => &p.kinds,
+        }
+    }
+
+    /// The entries of the plan's parts.
+    pub fn entries(&self) -> Vec<Entry> {
+        match self {
+            PocketPlan::Rings(p) => p.entries.clone(),
+            PocketPlan::MedialAxis(p) => p.entries.clone(),
+            PocketPlan::Adaptive(p) => p.parts.iter().map(|q| q.entry).collect(),
+        }
+    }
+
     /// The whole tool path in machining order, and the indices of the segments reached by
     /// retract, rapid and a new entry or a feed down into cleared material ([`RingPlan::tool_path`], [`PerforativePlan::retract_before`]).
     pub fn tool_path(&self) -> (Vec<Segment>, Vec<usize>) {
         match self {
             PocketPlan::Rings(p) => p.tool_path(),
             PocketPlan::MedialAxis(p) => (p.segments.clone(), p.retract_before.clone()),
-            PocketPlan::Adaptive(p) => (p.segments.clone(), p.parts.iter().skip(1).map(|q| q.first_segment).collect()),
+            PocketPlan::Adaptive(p) => {
+                let mut at: Vec<usize> =
+                    p.parts.iter().skip(1).map(|q| q.first_segment).chain(p.retracts.iter().copied()).collect();
+                at.sort_unstable();
+                at.dedup();
+                (p.segments.clone(), at)
+            }
         }
     }
 }
@@ -334,6 +365,71 @@ pub fn estimated_positions(polygon: &Polygon, strategy: PocketStrategy, settings
     k * polygon.area().abs() / (settings.step_over * settings.spacing)
 }
 
+/// Most vertices of a pocket polygon: every offset, corner and link of a plan walks the
+/// outline, and at this bound each method plans in seconds (a finer outline, e.g. arcs cut into
+/// more chords, is refused with this number).
+pub const MAX_POCKET_VERTICES: usize = 1000;
+
+/// The work a plan will do, checked before it starts: the polygon's vertices
+/// ([`MAX_POCKET_VERTICES`]) and the tool positions the evaluator will measure
+/// ([`estimated_positions`], at most [`MAX_ESTIMATED_POSITIONS`]). The error names what to
+/// change: the step-over (the least that fits, with the spacing as given or by default), else
+/// the spacing (up to r), else the polygon (too large for the tool at any step-over).
+fn check_work(polygon: &Polygon, strategy: PocketStrategy, settings: &PocketSettings) -> Result<(), Error> {
+    let n = polygon.vertices().len();
+    if n > MAX_POCKET_VERTICES {
+        return Err(Error::param(
+            Param::Polygon,
+            format!("{n} vertices"),
+            format!("at most {MAX_POCKET_VERTICES} vertices for a pocket (outline arcs as fewer, longer chords)"),
+        ));
+    }
+    let positions = estimated_positions(polygon, strategy, settings);
+    if positions <= MAX_ESTIMATED_POSITIONS {
+        return Ok(());
+    }
+    let (r, ae, h) = (settings.tool_radius, settings.step_over, settings.spacing);
+    let how = format!(
+        "its area / (step-over × spacing) estimates the tool positions measured, at most {MAX_ESTIMATED_POSITIONS}"
+    );
+    let least = ae * positions / MAX_ESTIMATED_POSITIONS;
+    if least < 2.0 * r {
+        return Err(Error::param(
+            Param::StepOver,
+            ae,
+            format!(
+                "at least {} mm for this pocket at a spacing of {} mm (--spacing, default 0.25 mm; {how})",
+                num(least),
+                num(h)
+            ),
+        ));
+    }
+    let least_spacing = h * positions / MAX_ESTIMATED_POSITIONS;
+    if least_spacing <= r {
+        return Err(Error::param(
+            Param::Spacing,
+            h,
+            format!("at least {} mm for this pocket at a step-over of {} mm ({how})", num(least_spacing), num(ae)),
+        ));
+    }
+    let largest = polygon.area().abs() * MAX_ESTIMATED_POSITIONS / positions;
+    // at the largest step-over (just under D) and spacing (r) the positions scale by ae·h/(D·r)
+    let at_most = largest * (2.0 * r * r) / (ae * h);
+    Err(Error::param(
+        Param::Polygon,
+        format!("area {} mm²", num(polygon.area().abs())),
+        format!(
+            "at most {} mm² for this method and a tool of D = {} mm at step-over {} mm and spacing {} mm, \
+             below {} mm² at any step-over (< D) and spacing (≤ r) ({how})",
+            num(largest),
+            num(2.0 * r),
+            num(ae),
+            num(h),
+            num(at_most)
+        ),
+    ))
+}
+
 /// Smallest step-over of the medial axis as a fraction of the tool diameter, a_e/D: the lowest
 /// radial depth of the papers' range (25.8° of straight engagement). Below it the number of
 /// circles and of their bisection steps grows without a useful gain.
@@ -353,6 +449,7 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
             "no open edges for this method: open sides are cleared by --method adaptive (the default)",
         ));
     }
+    guard::validate_open_corners(&req.polygon, &req.open_edges)?;
     let least = MEDIAL_AXIS_MIN_STEP_OVER_RATIO * 2.0 * settings.tool_radius;
     if req.strategy == PocketStrategy::MedialAxis && settings.step_over < least {
         return Err(Error::param(
@@ -364,19 +461,7 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
             ),
         ));
     }
-    let positions = estimated_positions(&req.polygon, req.strategy, &settings);
-    if positions > MAX_ESTIMATED_POSITIONS {
-        let least = settings.step_over * positions / MAX_ESTIMATED_POSITIONS;
-        return Err(Error::param(
-            Param::StepOver,
-            settings.step_over,
-            format!(
-                "at least {least:.4} mm for this pocket with --spacing {} mm (its area / (step-over × spacing) \
-                 estimates the tool positions measured, at most {MAX_ESTIMATED_POSITIONS})",
-                settings.spacing
-            ),
-        ));
-    }
+    check_work(&req.polygon, req.strategy, &settings)?;
     // Conventional milling: the ring and medial-axis planners cut climb; they plan the mirrored
     // pocket and mirror the plan back ([`mirror`]); adaptive clearing mirrors inside.
     let conventional = req.adaptive.direction == Direction::Conventional;
@@ -386,7 +471,7 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
         PocketPlan::MedialAxis(m) if conventional => PocketPlan::MedialAxis(m.mirrored(&req.polygon)),
         other => other,
     };
-    match req.strategy {
+    let plan = match req.strategy {
         PocketStrategy::Rings(method) => {
             plan_ring_pocket(&polygon, settings, method, &req.adaptive).map(PocketPlan::Rings).map(back)
         }
@@ -396,7 +481,15 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
         PocketStrategy::Adaptive => {
             plan_adaptive_open(&req.polygon, &req.open_edges, settings, req.adaptive).map(PocketPlan::Adaptive)
         }
-    }
+    }?;
+    // No program that gouges a wall: every move at depth, checked exactly ([`guard`]).
+    let (segments, _) = plan.tool_path();
+    let kinds = plan.kinds();
+    let name = |i: usize| {
+        format!("move #{} ({})", i + 1, kinds.get(i).map_or("move".into(), |k| format!("{k:?}").to_lowercase()))
+    };
+    guard::check_clearance(&req.polygon, &req.open_edges, settings.tool_radius, &segments, name, &plan.entries())?;
+    Ok(plan)
 }
 
 #[cfg(test)]

@@ -1050,7 +1050,22 @@ impl Planner<'_> {
         let sweep12 = (angle(toward(f2, o1)) - angle(toward(f1, o1))).rem_euclid(TAU);
         let (f_in, f_out) =
             if (angle(u0 - o1) - angle(toward(f1, o1))).rem_euclid(TAU) < sweep12 { (f1, f2) } else { (f2, f1) };
+        // every arc keeps r from every wall, exactly (its centre's clearance comes from a
+        // bisection): else the straight tip
+        let arc_of = |o: P2, rho: f64| {
+            let (a, e) = (o + toward(f_in, o) * rho, o + toward(f_out, o) * rho);
+            Segment::Arc {
+                center: o,
+                radius: rho,
+                start_angle: angle(a - o),
+                sweep: (angle(e - o) - angle(a - o)).rem_euclid(TAU),
+            }
+        };
+        if !arcs.iter().all(|&(_, o, rho)| super::guard::keeps_off_walls(self.poly, &arc_of(o, rho), r)) {
+            return None;
+        }
         let at0 = cur.center + toward(f_in, cur.center) * rho_cur;
+        let (undo, pos) = (self.b.segments.len(), self.b.pos);
         match cur.entry {
             // the circle's full turn, then on to its touching point on the first feature (no
             // further where the turn ends there: a rounding error must not add a turn)
@@ -1089,6 +1104,13 @@ impl Planner<'_> {
             max_engagement_rad: 0.0,
             at: u0,
         };
+        // the moves along the features and back keep r from every wall too, else the tip
+        if !self.b.segments[undo..].iter().all(|sg| super::guard::keeps_off_walls(self.poly, sg, r)) {
+            self.b.segments.truncate(undo);
+            self.b.kinds.truncate(undo);
+            self.b.pos = pos;
+            return None;
+        }
         self.corner_points.push((point, first..self.b.segments.len()));
         Some(s_last)
     }

@@ -67,6 +67,7 @@ use super::adaptive::{
 };
 use super::entry::{Entry, entry_at, helix_radius};
 use super::perforative::{KindMax, MoveKind, maxima, peak_and_p95, sample_owners};
+use super::route::Router;
 use crate::corner::{
     Corner, CornerMethod, CornerScenario, CornerSettings, EvaluatorOptions, engagement_profile, plan_corner,
     strategy::CornerPointArcs,
@@ -529,8 +530,12 @@ fn corner_ring(
             continue;
         };
         let (u, v) = (u0 - a, c - u0);
-        if crate::geom::cross(u, v) <= 1e-9 * u.norm() * v.norm() {
-            pieces.push(None); // straight or reflex (concave-of-pocket) vertex
+        // straight or reflex (concave-of-pocket) vertex, or one that deepens the cut by no more
+        // than the corner tolerance δ: a_e·(1/sin(α/2) − 1) on the bisector, α = π − the turn
+        let turn = crate::geom::cross(u, v).atan2(u.dot(&v));
+        let delta = corner_tolerance.unwrap_or(super::adaptive::DEFAULT_CORNER_TOLERANCE_MM);
+        if crate::geom::cross(u, v) <= 1e-9 * u.norm() * v.norm() || ae * (1.0 / (0.5 * turn).cos() - 1.0) <= delta {
+            pieces.push(None);
             continue;
         }
         convex[i] = true;
@@ -716,11 +721,18 @@ fn nearest_on(lp: &[Segment], q: P2) -> P2 {
 /// Q. Moving at an angle θ = atan(a_e/|A Q|) to a straight band of depth a_e, the tool's front
 /// half reaches θ beyond the band's chord on the side it turns to: engagement φ* + θ at most
 /// (φ* at θ = 0, the straight cut); the wedge it leaves is cut by a'→Q, thinner than the band.
-/// The tool gets to A on a chord through the cleared inside of `inner` (straight where it
-/// keeps r from the walls, else through the hub). `None` where the ring does not start on a
-/// line or A is more than a_e/10 from where it should be (the loops are not offsets of each
-/// other there).
-fn diagonal_link(polygon: &Polygon, r: f64, ae: f64, from: P2, inner: &[Segment], ring: &Candidate) -> Option<Vec<P2>> {
+/// The tool gets to A through the cleared inside of `inner` on the shortest path that keeps r
+/// from the walls ([`Router`]). `None` where the ring does not start on a line or A is more
+/// than a_e/10 from where it should be (the loops are not offsets of each other there), or no
+/// path reaches A.
+fn diagonal_link(
+    router: &mut Router,
+    r: f64,
+    ae: f64,
+    from: P2,
+    inner: &[Segment],
+    ring: &Candidate,
+) -> Option<Vec<P2>> {
     if inner.is_empty() {
         return None;
     }
@@ -729,17 +741,12 @@ fn diagonal_link(polygon: &Polygon, r: f64, ae: f64, from: P2, inner: &[Segment]
     let u = (q - a1) / (q - a1).norm();
     let wanted = a1 + crate::geom::rot90(u) * ae + u * (ae + 0.5 * r);
     let a = nearest_on(inner, wanted);
-    if (a - wanted).norm() > 0.1 * ae || (q - a).dot(&u) <= ae || !link_is_inside(polygon, a, q, r) {
+    if (a - wanted).norm() > 0.1 * ae || (q - a).dot(&u) <= ae || router.route(a, q)?.len() != 2 {
         return None;
     }
-    let e1 = q;
-    if link_is_inside(polygon, from, a, r) {
-        Some(vec![from, a, e1])
-    } else if link_is_inside(polygon, from, ring.hub, r) && link_is_inside(polygon, ring.hub, a, r) {
-        Some(vec![from, ring.hub, a, e1])
-    } else {
-        None
-    }
+    let mut path = router.route(from, a)?;
+    path.push(q);
+    Some(path)
 }
 
 /// The whole path of [`plan_ring_pocket`]: segments, kinds, retracts, and for each ring its
@@ -761,23 +768,20 @@ impl Assembled {
     }
 }
 
-/// Core, then each ring reached by its [`diagonal_link`]; where there is none, straight, or
-/// through the hub, where the tool keeps r from the walls, else a retract (feeding down at the
-/// ring's start, which the core and the rings inside it have cleared).
+/// Core, then each ring reached by its [`diagonal_link`]; where there is none, on the shortest
+/// path that keeps r from the walls ([`Router`]), else a retract (feeding down at the ring's
+/// start, which the core and the rings inside it have cleared).
 fn assemble(polygon: &Polygon, r: f64, ae: f64, mut a: Assembled, rings: &[Candidate]) -> Assembled {
+    let mut router = Router::new(polygon, r);
     for ring in rings {
         let from = a.segments.last().map_or(ring.hub, Segment::end);
         let to = ring.segments[0].0.start();
         let first = a.segments.len();
-        if let Some(pts) = diagonal_link(polygon, r, ae, from, &ring.inner, ring) {
+        if let Some(pts) = diagonal_link(&mut router, r, ae, from, &ring.inner, ring).or_else(|| router.route(from, to))
+        {
             for w in pts.windows(2) {
                 a.line(w[0], w[1]);
             }
-        } else if link_is_inside(polygon, from, to, r) {
-            a.line(from, to);
-        } else if link_is_inside(polygon, from, ring.hub, r) && link_is_inside(polygon, ring.hub, to, r) {
-            a.line(from, ring.hub);
-            a.line(ring.hub, to);
         } else {
             a.retract_before.push(a.segments.len());
         }
@@ -811,7 +815,8 @@ fn assemble(polygon: &Polygon, r: f64, ae: f64, mut a: Assembled, rings: &[Candi
 ///    every level is a ring.
 /// 2. **Links.** Into each ring on a [`diagonal_link`]: a chord through the cleared inside,
 ///    then a diagonal of angle atan(a_e/L) into the ring's band along its longest line (φ* + θ
-///    at most); otherwise straight, through the helix centre, or a retract.
+///    at most); otherwise the shortest path on which the tool keeps r from the walls
+///    ([`super::route`]), or a retract.
 ///
 /// Everything at depth is measured in one profile by the evaluator, the entries' bores counted
 /// as cut; each ring's and link's maximum comes from that profile.
@@ -895,6 +900,8 @@ pub fn plan_ring_pocket(
                             }
                             entries.push(part.entry);
                         }
+                        core.retract_before.extend(b.retracts.iter().copied());
+                        core.retract_before.sort_unstable();
                         core.segments = b.segments;
                         core.kinds = b.kinds;
                         let hubs = parts.iter().map(|p| p.entry.center()).collect::<Vec<_>>();
