@@ -161,9 +161,11 @@ fn case(label: &str, polygon: &[(f64, f64)], open: &[usize], method: &'static st
 }
 
 /// The fixed pockets, with the defaults (D = 10): the comb with every method and direction,
-/// the L open on edge 5, 2 or 3 in both directions (adaptive: the only method that takes open
-/// edges), the U channel with every method and direction. Each must plan: they are plain
-/// pockets a tool of D = 10 fits.
+/// the L open on edge 5 in both directions (adaptive: the only method that takes open edges),
+/// the U channel with every method and direction. Each must plan: they are plain pockets a
+/// tool of D = 10 fits. The L open on edge 2 or 3 must be refused by name: those edges meet
+/// at the reflex corner (25, 25), so the air beyond either one is where the other one's wall
+/// material stands — the drawing contradicts itself there.
 #[test]
 fn comb_l_and_u_channel_pockets_keep_every_move_below_the_top_off_the_walls() {
     let mut cases = Vec::new();
@@ -173,13 +175,25 @@ fn comb_l_and_u_channel_pockets_keep_every_move_below_the_top_off_the_walls() {
             cases.push(case("u-channel", U_CHANNEL, &[], method, direction));
         }
     }
-    for open in [5, 2, 3] {
-        for direction in DIRECTIONS {
-            cases.push(case(&format!("L open {open}"), L_ARMS, &[open], "adaptive", direction));
-        }
+    for direction in DIRECTIONS {
+        cases.push(case("L open 5", L_ARMS, &[5], "adaptive", direction));
     }
     let n = cases.len();
     run_cases("fixed", &cases, n);
+    for open in [2, 3] {
+        for direction in DIRECTIONS {
+            let c = case(&format!("L open {open}"), L_ARMS, &[open], "adaptive", direction);
+            let dir = tempfile::tempdir().expect("tempdir");
+            match check_case(dir.path(), 0, &c) {
+                Outcome::Refused(msg) => assert!(
+                    msg.contains("open-edges") && msg.contains("(25, 25)"),
+                    "{}: refused without naming the open edge and the reflex corner: {msg}",
+                    c.label
+                ),
+                _ => panic!("{} {direction}: an open edge at the reflex corner was not refused", c.label),
+            }
+        }
+    }
 }
 
 /// A random x-monotone pocket between two chains separated by the line y = 0 (so it is always

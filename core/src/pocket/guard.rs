@@ -210,15 +210,19 @@ pub fn validate_open_corners(polygon: &Polygon, open_edges: &[usize]) -> Result<
             if open_edges.contains(&other) || crate::geom::cross(b - a, c - b) >= 0.0 {
                 continue;
             }
+            // edges named by their ends: the user numbers them in the file's order, which may
+            // run the other way round than the stored polygon
+            let xy = |p: P2| format!("({}, {})", num(p.x), num(p.y));
+            let edge = |k: usize| format!("{}–{}", xy(v[k]), xy(v[(k + 1) % n]));
             return Err(Error::param(
                 crate::error::Param::OpenEdges,
-                i,
+                format!("the edge {}", edge(i)),
                 format!(
-                    "open edges that meet a wall at a convex corner or another open edge: edge {i} meets the \
-                     wall of edge {other} at the reflex corner ({}, {}), where the tool clearing beyond the open \
-                     edge would cut behind that wall",
-                    num(b.x),
-                    num(b.y)
+                    "open edges that meet a wall at a convex corner or another open edge: it meets the wall \
+                     {} at the reflex corner {}, where the tool clearing beyond the open edge would cut behind \
+                     that wall",
+                    edge(other),
+                    xy(b)
                 ),
             ));
         }
