@@ -15,7 +15,7 @@
 mod nc_common;
 mod pocket_common;
 
-use nc_common::{budget, interpret, motions};
+use nc_common::{COMB, L_60X60, U_CHANNEL, budget, interpret, motions};
 use pocket_common::{Rng, below_top_violations, run, star_polygon};
 use std::f64::consts::TAU;
 use std::path::Path;
@@ -115,39 +115,6 @@ fn run_cases(name: &str, cases: &[Case], min_planned: usize) {
     assert!(planned >= min_planned, "{name}: only {planned} of {} cases planned; refused: {refused:?}", cases.len());
 }
 
-/// A comb: a 100 × 15 base with five prongs up to y = 50 and four
-/// wall teeth between them (x 20–28, 40–48, 60–68, 80–88).
-const COMB: &[(f64, f64)] = &[
-    (0.0, 0.0),
-    (100.0, 0.0),
-    (100.0, 50.0),
-    (88.0, 50.0),
-    (88.0, 15.0),
-    (80.0, 15.0),
-    (80.0, 50.0),
-    (68.0, 50.0),
-    (68.0, 15.0),
-    (60.0, 15.0),
-    (60.0, 50.0),
-    (48.0, 50.0),
-    (48.0, 15.0),
-    (40.0, 15.0),
-    (40.0, 50.0),
-    (28.0, 50.0),
-    (28.0, 15.0),
-    (20.0, 15.0),
-    (20.0, 50.0),
-    (0.0, 50.0),
-];
-
-/// An L: 60 × 60, arms 25 wide, reflex vertex (25, 25).
-const L_ARMS: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 25.0), (25.0, 25.0), (25.0, 60.0), (0.0, 60.0)];
-
-/// FreeCAD's u-channel outline (its coordinates copied): 80 × 50 with a 30 × 30
-/// notch from the top between x 25 and 55.
-const U_CHANNEL: &[(f64, f64)] =
-    &[(0.0, 0.0), (80.0, 0.0), (80.0, 50.0), (55.0, 50.0), (55.0, 20.0), (25.0, 20.0), (25.0, 50.0), (0.0, 50.0)];
-
 fn case(label: &str, polygon: &[(f64, f64)], open: &[usize], method: &'static str, direction: &'static str) -> Case {
     Case {
         label: label.to_string(),
@@ -176,13 +143,13 @@ fn comb_l_and_u_channel_pockets_keep_every_move_below_the_top_off_the_walls() {
         }
     }
     for direction in DIRECTIONS {
-        cases.push(case("L open 5", L_ARMS, &[5], "adaptive", direction));
+        cases.push(case("L open 5", L_60X60, &[5], "adaptive", direction));
     }
     let n = cases.len();
     run_cases("fixed", &cases, n);
     for open in [2, 3] {
         for direction in DIRECTIONS {
-            let c = case(&format!("L open {open}"), L_ARMS, &[open], "adaptive", direction);
+            let c = case(&format!("L open {open}"), L_60X60, &[open], "adaptive", direction);
             let dir = tempfile::tempdir().expect("tempdir");
             match check_case(dir.path(), 0, &c) {
                 Outcome::Refused(msg) => assert!(
@@ -408,9 +375,9 @@ fn motion_distance_is_exact() {
 fn walls_of_open_and_closed_pockets() {
     use pocket_common::Walls;
     use trochoplan_core::geom::p2;
-    let closed = Walls::new(L_ARMS, &[]);
-    assert_eq!(closed.pieces.len(), L_ARMS.len());
-    let open = Walls::new(L_ARMS, &[2]);
+    let closed = Walls::new(L_60X60, &[]);
+    assert_eq!(closed.pieces.len(), L_60X60.len());
+    let open = Walls::new(L_60X60, &[2]);
     let on = |x: f64, y: f64| open.pieces.iter().any(|&(a, b)| pocket_common::dist_to_edge(p2(x, y), a, b) < 1e-9);
     assert!(!on(25.0, 40.0), "edge 3 beside the open edge is a wall: {:?}", open.pieces);
     assert!(on(25.0, 70.0) && on(60.0, 40.0) && on(40.0, 0.0), "{:?}", open.pieces);

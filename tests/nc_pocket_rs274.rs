@@ -14,7 +14,10 @@
 mod nc_common;
 mod pocket_common;
 
-use nc_common::{DUMBBELL, DUMBBELL_8, Motion, budget, check_path_cut, cut, interpret, motions, segments_of};
+use nc_common::{
+    COMB, DUMBBELL, DUMBBELL_8, L_60X60, Motion, U_CHANNEL, budget, check_path_cut, cut, interpret, motions,
+    segments_of,
+};
 use pocket_common::{DEPTH, check_pocket_program, export, star_polygon, wall_clearance};
 
 /// Tool radius (the `pocket` default D = 10 mm).
@@ -24,10 +27,6 @@ const RECT: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)
 /// An L: 100 × 90 minus the 60 × 50 block at the top right, arms 40 wide; one reflex vertex
 /// at (40, 40).
 const L_SHAPE: &[(f64, f64)] = &[(0.0, 0.0), (100.0, 0.0), (100.0, 40.0), (40.0, 40.0), (40.0, 90.0), (0.0, 90.0)];
-
-/// The pockets of the pocket acceptance (docs/adaptive-clearing.md): the 60 × 40 rectangle and an L of 60 × 60 with arms
-/// 25 wide (reflex vertex at (25, 25)).
-const L_60X60: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 25.0), (25.0, 25.0), (25.0, 60.0), (0.0, 60.0)];
 
 const DIALECTS: [(&str, &str, i32); 3] = [("linuxcnc", "ngc", 4), ("fanuc", "nc", 3), ("grbl", "gcode", 3)];
 
@@ -518,30 +517,6 @@ fn open_pockets_enter_from_outside_and_read_back_within_the_acceptance_limits() 
 /// ([`check_pocket_program`], its wall distances from the polygon file alone).
 #[test]
 fn comb_and_u_channel_programs_keep_r_from_every_wall() {
-    const COMB: &[(f64, f64)] = &[
-        (0.0, 0.0),
-        (100.0, 0.0),
-        (100.0, 50.0),
-        (88.0, 50.0),
-        (88.0, 15.0),
-        (80.0, 15.0),
-        (80.0, 50.0),
-        (68.0, 50.0),
-        (68.0, 15.0),
-        (60.0, 15.0),
-        (60.0, 50.0),
-        (48.0, 50.0),
-        (48.0, 15.0),
-        (40.0, 15.0),
-        (40.0, 50.0),
-        (28.0, 50.0),
-        (28.0, 15.0),
-        (20.0, 15.0),
-        (20.0, 50.0),
-        (0.0, 50.0),
-    ];
-    const U_CHANNEL: &[(f64, f64)] =
-        &[(0.0, 0.0), (80.0, 0.0), (80.0, 50.0), (55.0, 50.0), (55.0, 20.0), (25.0, 20.0), (25.0, 50.0), (0.0, 50.0)];
     let dir = tempfile::tempdir().expect("tempdir");
     for (shape, polygon, step_over) in [("comb", COMB, "2.5"), ("u-channel", U_CHANNEL, "1.527")] {
         for method in ["adaptive", "plain", "variable", "isometric", "medial-axis"] {

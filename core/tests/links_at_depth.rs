@@ -7,6 +7,8 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
+mod nc_common;
+use nc_common::{COMB, L_60X60, U_CHANNEL};
 use trochoplan_core::geom::{P2, Polygon, Segment, p2};
 use trochoplan_core::job::Direction;
 use trochoplan_core::pocket::guard::check_clearance;
@@ -14,32 +16,6 @@ use trochoplan_core::pocket::route::Router;
 use trochoplan_core::pocket::{AdaptiveOptions, Entry, PocketRequest, PocketStrategy, plan};
 
 const R: f64 = 5.0;
-const COMB: &[(f64, f64)] = &[
-    (0.0, 0.0),
-    (100.0, 0.0),
-    (100.0, 50.0),
-    (88.0, 50.0),
-    (88.0, 15.0),
-    (80.0, 15.0),
-    (80.0, 50.0),
-    (68.0, 50.0),
-    (68.0, 15.0),
-    (60.0, 15.0),
-    (60.0, 50.0),
-    (48.0, 50.0),
-    (48.0, 15.0),
-    (40.0, 15.0),
-    (40.0, 50.0),
-    (28.0, 50.0),
-    (28.0, 15.0),
-    (20.0, 15.0),
-    (20.0, 50.0),
-    (0.0, 50.0),
-];
-const L: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 25.0), (25.0, 25.0), (25.0, 60.0), (0.0, 60.0)];
-/// `../shared/freecad/u-channel.txt`.
-const U_CHANNEL: &[(f64, f64)] =
-    &[(0.0, 0.0), (80.0, 0.0), (80.0, 50.0), (55.0, 50.0), (55.0, 20.0), (25.0, 20.0), (25.0, 50.0), (0.0, 50.0)];
 
 fn pts(v: &[(f64, f64)]) -> Vec<P2> {
     v.iter().map(|&(x, y)| p2(x, y)).collect()
@@ -163,9 +139,9 @@ fn comb_and_u_channel_keep_r_from_every_wall_in_every_method_and_direction() {
 
 #[test]
 fn l_open_on_a_side_keeps_r_from_the_walls_and_refuses_an_open_edge_at_the_reflex_corner() {
-    let polygon = Polygon::new(pts(L)).unwrap();
+    let polygon = Polygon::new(pts(L_60X60)).unwrap();
     for direction in [Direction::Climb, Direction::Conventional] {
-        let req = PocketRequest { open_edges: vec![5], ..request(L, PocketStrategy::Adaptive, direction, 2.5) };
+        let req = PocketRequest { open_edges: vec![5], ..request(L_60X60, PocketStrategy::Adaptive, direction, 2.5) };
         let moves = moves_of(&req);
         clearance(&format!("L open 5 {}", direction.name()), polygon.vertices(), &[5], &moves);
         // edges 2 and 3 meet at the reflex corner (25, 25): beyond either is the other's wall
@@ -191,7 +167,7 @@ fn l_open_on_a_side_keeps_r_from_the_walls_and_refuses_an_open_edge_at_the_refle
 /// of 0.0017 mm.
 #[test]
 fn router_goes_round_a_reflex_corner_on_the_taut_string() {
-    let polygon = Polygon::new(pts(L)).unwrap();
+    let polygon = Polygon::new(pts(L_60X60)).unwrap();
     let (a, b, v) = (p2(52.0, 12.0), p2(12.0, 52.0), p2(25.0, 25.0));
     let taut = |rho: f64| {
         let (da, db) = ((a - v).norm(), (b - v).norm());
