@@ -1015,9 +1015,12 @@ pub fn engagement(args: &EngagementArgs) -> Result<String, String> {
     let what_stock = args.stock_polygon.display().to_string();
     let path = polyline(&parse_points(&read_input(&args.path_csv, "path file")?, &what_path).map_err(err)?)
         .map_err(|e| format!("{what_path}: {e}"))?;
-    let stock =
-        Polygon::new(parse_points(&read_input(&args.stock_polygon, "stock polygon file")?, &what_stock).map_err(err)?)
-            .map_err(|e| format!("{what_stock}: {e}"))?;
+    let stock = Polygon::new(
+        trochoplan_core::outline::read(&what_stock, &read_input(&args.stock_polygon, "stock polygon file")?)
+            .and_then(|p| p.single().map(<[P2]>::to_vec))
+            .map_err(err)?,
+    )
+    .map_err(|e| format!("{what_stock}: {e}"))?;
     let before = match &args.cut_csv {
         Some(file) => {
             let what = file.display().to_string();

@@ -21,7 +21,7 @@ use eframe::egui::{self, Color32, DragValue, RichText, Slider, SliderClamping};
 use egui_plot::{HLine, Legend, Line, Plot, PlotPoints};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
-use trochoplan_core::corner::{self, CornerMethod, CornerReport, CornerRequest, EngagementProfile, parse_points};
+use trochoplan_core::corner::{self, CornerMethod, CornerReport, CornerRequest, EngagementProfile};
 use trochoplan_core::geom::{Polygon, Segment};
 use trochoplan_core::pocket::{self, MoveKind, PocketPlan, PocketRequest, PocketStrategy};
 
@@ -108,7 +108,10 @@ impl CornerInputs {
     /// method as a whole-pocket strategy (or adaptive clearing), the other inputs as
     /// `trochoplan pocket`'s defaults.
     pub fn pocket_request(&self) -> Result<PocketRequest, String> {
-        let points = parse_points(&self.polygon_text, "polygon").map_err(|e| e.to_string())?;
+        // read as a point-list outline: loops separated by an empty line are an error naming
+        // them, never joined into one polygon
+        let pockets = trochoplan_core::outline::read("polygon", &self.polygon_text).map_err(|e| e.to_string())?;
+        let points = pockets.single().map_err(|e| e.to_string())?.to_vec();
         let polygon = Polygon::new(points.clone()).map_err(|e| format!("polygon: {e}"))?;
         let open: Vec<usize> = self
             .pocket_open_edges

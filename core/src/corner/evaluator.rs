@@ -30,48 +30,11 @@ const MAX_POSITIONS: f64 = 2.0e5;
 /// Lines used for one trochoid piece (the evaluator works on lines and arcs).
 const TROCHOID_LINES: usize = 256;
 
-/// Reads points "x,y" (or "x y", "x;y"), one per line; `what` names the file in errors.
-///
-/// Every line either parses completely or is an error naming the line: a point is exactly two
-/// fields, both finite numbers (`0,5;25` and `0,0 # note` are errors, not (0, 5) and (0, 0)).
-/// Skipped: a byte-order mark at the start, blank lines, lines starting with '#', and one
-/// header line — only the first line with content, and only when it is clearly a header: two
-/// words of letters, digits or '_', the first starting with x, the second with y, in any case
-/// (`x,y`, `X_mm Y_mm`). A first line such as `O,0` or `O,O` (letter O) is not a header but an
-/// error: it would otherwise drop a vertex without a word.
+/// Reads the points of a tool path "x,y" (or "x y", "x;y"), one per line; `what` names the
+/// file in errors: the point-list reader of outlines ([`crate::outline::text::path_points`]),
+/// its empty lines ignored.
 pub fn parse_points(text: &str, what: &str) -> Result<Vec<P2>, Error> {
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let mut pts = Vec::new();
-    let mut first = true;
-    for (i, line) in text.lines().enumerate() {
-        let line = line.trim();
-        if line.is_empty() || line.starts_with('#') {
-            continue;
-        }
-        let fields: Vec<&str> =
-            line.split(|c: char| c == ',' || c == ';' || c.is_whitespace()).filter(|f| !f.is_empty()).collect();
-        let header = first && matches!(fields[..], [x, y] if is_word(x, 'x') && is_word(y, 'y'));
-        first = false;
-        if header {
-            continue;
-        }
-        let bad = |why: &str| Error::File(format!("{what} line {}: {why}, got {line:?}", i + 1));
-        let [x, y] = fields[..] else { return Err(bad("expected two numbers x,y")) };
-        match (x.parse::<f64>(), y.parse::<f64>()) {
-            (Ok(x), Ok(y)) if x.is_finite() && y.is_finite() => pts.push(p2(x, y)),
-            (Ok(_), Ok(_)) => return Err(bad("x and y must be finite numbers")),
-            _ => return Err(bad("expected two numbers x,y")),
-        }
-    }
-    Ok(pts)
-}
-
-/// A header field: letters, digits or '_', starting with `initial` (either case), and not a
-/// number's name.
-fn is_word(field: &str, initial: char) -> bool {
-    field.chars().next().is_some_and(|c| c.to_ascii_lowercase() == initial)
-        && field.chars().all(|c| c.is_alphanumeric() || c == '_')
-        && field.parse::<f64>().is_err()
+    crate::outline::text::path_points(what, text)
 }
 
 /// A tool-centre polyline from points; consecutive duplicate points are skipped.

@@ -9,29 +9,32 @@ use super::Loop;
 use crate::error::{Error, num};
 use crate::geom::{P2, p2};
 
-/// The loops of a point list.
-pub(crate) fn loops(name: &str, text: &str) -> Result<Vec<Loop>, Error> {
+/// A run of points between empty lines, with its first and last line numbers (1-based).
+struct Run {
+    pts: Vec<P2>,
+    lines: (usize, usize),
+}
+
+/// The runs of points of a point list, in order. Every line either parses completely or is an
+/// error naming the line: a point is exactly two fields, both finite numbers within
+/// ±[`super::MAX_COORDINATE_MM`] (`0,5;25` and `0,0 # note` are errors, not (0, 5) and (0, 0)).
+/// Skipped: a byte-order mark at the start, lines starting with '#', and one header line — only
+/// the first line with content, and only when it is clearly a header: two words of letters,
+/// digits or '_', the first starting with x, the second with y, in any case (`x,y`, `X_mm
+/// Y_mm`). A first line such as `O,0` (letter O) is not a header but an error: it would
+/// otherwise drop a vertex without a word. At most `max_points` points in all.
+fn runs(name: &str, text: &str, max_points: usize) -> Result<Vec<Run>, Error> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let mut loops = Vec::new();
-    // the loop being read: its points and its first and last line numbers
-    let mut pts: Vec<P2> = Vec::new();
-    let mut lines = (0, 0);
+    let mut runs = Vec::new();
+    let mut run = Run { pts: Vec::new(), lines: (0, 0) };
     let mut first = true;
     let mut total = 0;
-    let close = |pts: &mut Vec<P2>, lines: (usize, usize), loops: &mut Vec<Loop>| {
-        if pts.is_empty() {
-            return;
-        }
-        if pts.len() > 1 && (pts[0] - pts[pts.len() - 1]).norm() <= 1e-9 {
-            pts.pop();
-        }
-        let source = format!("loop {} (lines {}-{})", loops.len() + 1, lines.0, lines.1);
-        loops.push(Loop { pts: std::mem::take(pts), source });
-    };
     for (i, line) in text.lines().enumerate() {
         let line = line.trim();
         if line.is_empty() {
-            close(&mut pts, lines, &mut loops);
+            if !run.pts.is_empty() {
+                runs.push(std::mem::replace(&mut run, Run { pts: Vec::new(), lines: (0, 0) }));
+            }
             continue;
         }
         if line.starts_with('#') {
@@ -51,25 +54,49 @@ pub(crate) fn loops(name: &str, text: &str) -> Result<Vec<Loop>, Error> {
                 if x.abs().max(y.abs()) > super::MAX_COORDINATE_MM {
                     return Err(bad(&format!("coordinates must be within ±{} mm", num(super::MAX_COORDINATE_MM))));
                 }
-                if pts.is_empty() {
-                    lines.0 = i + 1;
+                if run.pts.is_empty() {
+                    run.lines.0 = i + 1;
                 }
-                lines.1 = i + 1;
-                pts.push(p2(x, y));
+                run.lines.1 = i + 1;
+                run.pts.push(p2(x, y));
                 total += 1;
-                if total > super::MAX_OUTLINE_VERTICES {
-                    return Err(bad(&format!(
-                        "more than the {} vertices an outline may have",
-                        super::MAX_OUTLINE_VERTICES
-                    )));
+                if total > max_points {
+                    return Err(bad(&format!("more than the {max_points} points this file may have")));
                 }
             }
             (Ok(_), Ok(_)) => return Err(bad("x and y must be finite numbers")),
             _ => return Err(bad("expected two numbers x,y")),
         }
     }
-    close(&mut pts, lines, &mut loops);
-    Ok(loops)
+    if !run.pts.is_empty() {
+        runs.push(run);
+    }
+    Ok(runs)
+}
+
+/// The loops of a point list (at most [`super::MAX_OUTLINE_VERTICES`] vertices in all).
+pub(crate) fn loops(name: &str, text: &str) -> Result<Vec<Loop>, Error> {
+    let runs = runs(name, text, super::MAX_OUTLINE_VERTICES)?;
+    Ok(runs
+        .into_iter()
+        .enumerate()
+        .map(|(k, Run { mut pts, lines })| {
+            if pts.len() > 1 && (pts[0] - pts[pts.len() - 1]).norm() <= 1e-9 {
+                pts.pop();
+            }
+            Loop { pts, source: format!("loop {} (lines {}-{})", k + 1, lines.0, lines.1) }
+        })
+        .collect())
+}
+
+/// Most points of a tool path read from a file ([`path_points`]): the engagement evaluator
+/// measures at most 2·10⁵ positions, so a path of more points cannot be measured anyway.
+pub const MAX_PATH_POINTS: usize = 200_000;
+
+/// The points of a tool path, in order (empty lines do nothing: a path is one sequence; a
+/// last point repeating the first is kept). Errors as [`runs`].
+pub fn path_points(name: &str, text: &str) -> Result<Vec<P2>, Error> {
+    Ok(runs(name, text, MAX_PATH_POINTS)?.into_iter().flat_map(|r| r.pts).collect())
 }
 
 /// A header field: letters, digits or '_', starting with `initial` (either case), and not a
@@ -100,5 +127,15 @@ mod tests {
         assert!(e.contains("line 2: x and y must be finite"), "{e}");
         let e = loops("p.txt", "0,0\n1e300,0\n1e300,1e300\n").unwrap_err().to_string();
         assert!(e.contains("line 2: coordinates must be within ±1000000 mm"), "{e}");
+    }
+
+    #[test]
+    fn a_path_is_one_sequence_that_keeps_its_closing_point() {
+        // the same text as two loops, or as one tool path: the path keeps every point in order
+        let text = "x,y\n0,0\n5,0\n0,0\n\n7,1\n";
+        assert_eq!(loops("p.csv", text).unwrap().len(), 2);
+        assert_eq!(path_points("p.csv", text).unwrap(), vec![p2(0.0, 0.0), p2(5.0, 0.0), p2(0.0, 0.0), p2(7.0, 1.0)]);
+        let e = path_points("p.csv", "0,5;25\n").unwrap_err().to_string();
+        assert_eq!(e, "p.csv line 1: expected two numbers x,y, got \"0,5;25\"");
     }
 }
