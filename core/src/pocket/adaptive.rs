@@ -214,7 +214,12 @@ impl AdaptiveOptions {
             return Err(Error::param(
                 Param::FinishStock,
                 s,
-                format!("from 0 to the step-over {} mm", num(settings.step_over)),
+                format!(
+                    "from 0 to the step-over {} mm (its default is {} mm: with a step-over this fine give \
+                     --finish-stock too)",
+                    num(settings.step_over),
+                    num(AdaptiveOptions::default().finish_stock_mm)
+                ),
             ));
         }
         if !(self.depth_mm.is_finite() && self.depth_mm > 0.0 && self.depth_mm <= 1000.0) {
