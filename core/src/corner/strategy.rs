@@ -1,5 +1,5 @@
 //! Corner trochoids for one line–line corner of a contour-parallel ring (Wu et al. 2016 §4.2;
-//! domain-spec §3.3–3.4), and the corner scenario used to measure them.
+//! eqs. 23–25; docs/corners.md), and the corner scenario used to measure them.
 //!
 //! Scenario (our reading of Fig. 12–14, which are missing from the fragments): a convex corner
 //! of two walls of length `edge_length` from the apex. The previous ring's tool centre ran on
@@ -29,7 +29,8 @@ use crate::pocket::adaptive::{corner_point_radii, validate_corner_tolerance};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 
-/// Bisection steps allowed for one circle (domain-spec §3.3: "max 60 iterations").
+/// Bisection steps allowed for one circle (a cap: each step halves the
+/// bracket, so 60 steps reach far below any length that matters).
 const MAX_BISECTION: usize = 60;
 /// Wu et al.'s example tolerance over the straight-part value, t1 = 15 % (eq. 23).
 pub const DEFAULT_T1: f64 = 0.15;
@@ -51,9 +52,9 @@ pub struct CornerSettings {
     pub edge_length: f64,
     /// Feed rate for the machining time (mm/min).
     pub feed_mm_per_min: f64,
-    /// Tool-centre radius rh of isometric circles (mm); `None` = r (domain-spec §3.4 TEST).
+    /// Tool-centre radius rh of isometric circles (mm); `None` = r (the default of docs/corners.md).
     pub isometric_radius: Option<f64>,
-    /// How the strategies reach the corner point (issue #12 item 3): `Some(δ)` by arcs tangent
+    /// How the strategies reach the corner point (docs/corners.md): `Some(δ)` by arcs tangent
     /// to both walls that shrink to the tool-centre radius δ (mm), each within the target
     /// ([`corner_point_radii`]); `None`: Wu et al.'s straight move into the tool corner point
     /// U0 after the last circle (reads up to π − 2α there, [`super::acceptance`]).
@@ -63,7 +64,7 @@ pub struct CornerSettings {
 
 impl CornerSettings {
     /// Settings with Wu et al.'s target a* = a_str·(1 + t1), t1 = 15 % (eq. 23 analogue,
-    /// domain-spec §3.3), and ε, wall length and feed of [`CornerRequest::DEFAULT`] (0.5°,
+    /// docs/corners.md), and ε, wall length and feed of [`CornerRequest::DEFAULT`] (0.5°,
     /// 100 mm, 600 mm/min).
     pub fn new(tool_radius: f64, step_over: f64) -> Result<CornerSettings, Error> {
         let target = straight_engagement(step_over, tool_radius)? * (1.0 + DEFAULT_T1);
@@ -80,12 +81,12 @@ impl CornerSettings {
         })
     }
 
-    /// Straight-cut engagement of the ring step, a_str = arccos(1 − a_e/r) (domain-spec §1.1).
+    /// Straight-cut engagement of the ring step, a_str = arccos(1 − a_e/r) (docs/corners.md).
     pub fn straight_engagement(&self) -> Result<f64, Error> {
         straight_engagement(self.step_over, self.tool_radius)
     }
 
-    /// Smallest tool-centre circle radius worth cutting: max(0.05 r, 0.05 mm) (domain-spec §3.3).
+    /// Smallest tool-centre circle radius worth cutting: max(0.05 r, 0.05 mm) (docs/corners.md).
     pub fn r_min(&self) -> f64 {
         (0.05 * self.tool_radius).max(0.05)
     }
@@ -247,7 +248,7 @@ pub struct CornerPlan {
     pub corner_point: Option<CornerPointArcs>,
 }
 
-/// The arcs into the corner point (issue #12 item 3): tangent to both walls (tool centre on U
+/// The arcs into the corner point (docs/corners.md): tangent to both walls (tool centre on U
 /// and V), radii shrinking from the last circle's to the corner tolerance δ.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CornerPointArcs {
@@ -260,7 +261,7 @@ pub struct CornerPointArcs {
     pub max_radial_depth_mm: f64,
 }
 
-/// Limit point M of the bisection (Wu et al. §4.2.1 step 1; domain-spec §3.3, DERIVED):
+/// Limit point M of the bisection (Wu et al. 2016 §4.2.1 step 1; derived in docs/corners.md):
 /// `tM = (tN(1 − sin α) + 2r)/(1 + sin α)`, valid while `R_N = tN sin α > r`.
 pub fn limit_point(t_n: f64, alpha: f64, r: f64) -> f64 {
     let s = alpha.sin();
@@ -279,7 +280,7 @@ pub fn engagement_after(corner: &Corner, r: f64, t_n: f64, t: f64) -> f64 {
     model.max_engagement().angle
 }
 
-/// Result of one bisection (domain-spec §3.3).
+/// Result of one bisection (Wu et al. 2016 eqs. 23–24).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct NextCircle {
     /// Accepted bisector parameter t.
@@ -291,7 +292,7 @@ pub struct NextCircle {
 }
 
 /// Next variable circle after the one at `t_n` by bisection on the bisector between `t_n`
-/// (Z < 0: nothing left to cut) and the limit point `tM` (eqs. 23–24, domain-spec §3.3):
+/// (Z < 0: nothing left to cut) and the limit point `tM` (Wu et al. 2016 eqs. 23–24):
 /// accept when `0 < Z ≤ ε` with `Z = m(t) − a*`; if `Z(tM) ≤ 0` take tM. After 60 steps the
 /// low end (Z < 0, under the target) is taken.
 pub fn next_variable_circle(corner: &Corner, r: f64, t_n: f64, target: f64, eps: f64) -> Result<NextCircle, Error> {
@@ -326,7 +327,7 @@ pub fn next_variable_circle(corner: &Corner, r: f64, t_n: f64, target: f64, eps:
 }
 
 /// Variable circles from `t_start` towards the apex until the next tool-centre radius drops
-/// below `r_min` (domain-spec §3.3 stop rule). Returns the circles after the start circle.
+/// below `r_min` (the stop rule of docs/corners.md). Returns the circles after the start circle.
 fn variable_chain(sc: &CornerScenario, t_start: f64) -> Result<Vec<CornerCircle>, Error> {
     let (corner, s) = (&sc.corner, &sc.settings);
     let r = s.tool_radius;
@@ -491,7 +492,7 @@ fn into_corner_point(
     Some(CornerPointArcs { residual_mm: rho * k, max_radial_depth_mm: deepest, radii_mm: radii })
 }
 
-/// Perforative trochoids along the medial axis (Wu et al. §4.2 (c); domain-spec §3.5) for the
+/// Perforative trochoids along the medial axis (Wu et al. 2016 §4.2 (c); docs/pockets.md) for the
 /// corner as part of a triangular pocket (apex, ends of the two walls). The axis comes from
 /// [`super::medial::medial_axis`]; the corner's branch runs from the apex to the first Voronoi
 /// node, whose clearance Rc is the largest circle there. The perforative trochoids that reached
@@ -560,9 +561,9 @@ fn medial_axis_plan(sc: &CornerScenario) -> Result<CornerPlan, Error> {
     })
 }
 
-/// Isometric circles (Wu et al. §4.2.2, domain-spec §3.4), our reading of Fig. 14a (missing
+/// Isometric circles (Wu et al. 2016 §4.2.2, eq. 25), our reading of Fig. 14a (missing
 /// from the fragments). All circles have tool-centre radius rh (offset radius R = rh + r) and
-/// centres on Up (U offset by rh), spaced at most `L = P(a*)` of domain-spec §2.2 with
+/// centres on Up (U offset by rh), spaced at most `L = P(a*)` of docs/slot-paths.md with
 /// `Rs = R`, which bounds the engagement of each circle after its predecessor (assuming
 /// material everywhere outside it). The first circle is placed where it cuts nothing: the U
 /// leg runs to X, one tool radius before the foot of the previous ring's corner P0 (where the
@@ -658,8 +659,8 @@ fn isometric_circles(sc: &CornerScenario, notes: &mut Vec<String>) -> Result<(Ve
     Ok((circles, Some(leg_end)))
 }
 
-/// Centre spacing of equal circles for a peak engagement `a` (domain-spec §2.2, DERIVED from
-/// §1.2 with R1 = R2 = Rs = rh + r, ρ = rh): `P(a) = Rs − sqrt(ρ² + r² + 2ρr·cos a)`.
+/// Centre spacing of equal circles for a peak engagement `a` (derived in docs/slot-paths.md
+/// from the two-circle model of Wu et al. 2016 with R1 = R2 = Rs = rh + r, ρ = rh): `P(a) = Rs − sqrt(ρ² + r² + 2ρr·cos a)`.
 pub fn isometric_spacing(rh: f64, r: f64, a: f64) -> f64 {
     (rh + r) - (rh * rh + r * r + 2.0 * rh * r * a.cos()).max(0.0).sqrt()
 }
@@ -772,8 +773,8 @@ mod tests {
     }
 
     #[test]
-    fn variable_circle_spec_test() {
-        // domain-spec §3.3 TEST: α = 30°, r = 5, tN = 30 (RN = 15), a* = 46°, ε = 0.5°.
+    fn variable_circle_worked_example() {
+        // Worked example of docs/corners.md: α = 30°, r = 5, tN = 30 (RN = 15), a* = 46°, ε = 0.5°.
         let corner = Corner::symmetric(60f64.to_radians()).unwrap();
         let r = 5.0;
         let t_m = limit_point(30.0, corner.half_angle, r);
@@ -804,8 +805,8 @@ mod tests {
     }
 
     #[test]
-    fn variable_circle_sequence_spec_test() {
-        // domain-spec §3.3: R = 15, 13.971, 12.990, 12.054, 11.172, 10.336, 9.572, 8.869, 8.245.
+    fn variable_circle_sequence_worked_example() {
+        // The chain of docs/corners.md: R = 15, 13.971, 12.990, 12.054, 11.172, 10.336, 9.572, 8.869, 8.245.
         let corner = Corner::symmetric(60f64.to_radians()).unwrap();
         let mut t = 30.0;
         for want in [13.971, 12.990, 12.054, 11.172, 10.336, 9.572, 8.869, 8.245] {
@@ -815,8 +816,8 @@ mod tests {
     }
 
     #[test]
-    fn isometric_spacing_spec_test() {
-        // domain-spec §3.4 TEST: rh = 5, r = 5 (Rs = 10), a_lim = 46° → L = 0.7950 mm; §2.2 TEST
+    fn isometric_spacing_worked_example() {
+        // docs/corners.md: rh = 5, r = 5 (Rs = 10), a_lim = 46° → L = 0.7950 mm; docs/slot-paths.md
         // (same relation): P(30°) = 0.3407, P(60°) = 1.3397; D = 12 (r = 6, rh = 4): 0.7618.
         for (rh, r, a, want) in
             [(5.0, 5.0, 46.0, 0.7950), (5.0, 5.0, 30.0, 0.3407), (5.0, 5.0, 60.0, 1.3397), (4.0, 6.0, 46.0, 0.7618)]

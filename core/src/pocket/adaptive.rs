@@ -1,8 +1,8 @@
-//! Adaptive pocket clearing (issue #12): helix entry, a spiral out of the bore, rings that
+//! Adaptive pocket clearing (docs/adaptive-clearing.md): helix entry, a spiral out of the bore, rings that
 //! grow along the pocket's core, thinning passes into every convex corner and a finishing
 //! contour — every move at depth measured by the independent evaluator
 //! ([`crate::corner::evaluator`]). The algorithm is ours (DERIVED below); its engagement model
-//! is domain-spec §1.1/§1.2.
+//! is the straight cut and the two-circle model of Wu et al. 2016 (docs/corners.md).
 //!
 //! Notation: `r` tool radius, `a_e` the step-over, φ* = arccos(1 − a_e/r) its straight-cut
 //! engagement (§1.1), φ the target every pass is planned to (the steps below all follow from
@@ -245,8 +245,8 @@ impl AdaptiveOptions {
     }
 }
 
-/// Ceiling of the default target engagement (deg), DECLARED: issue #12's limit on the 95th
-/// percentile of a pocket's engagement. Every kind of move is planned to the target and read
+/// Ceiling of the default target engagement (deg), DECLARED: the limit we hold the 95th
+/// percentile of a pocket's engagement to (docs/adaptive-clearing.md). Every kind of move is planned to the target and read
 /// within it (up to the evaluator's overshoot at kinks), so the target bounds the percentile.
 pub const DEFAULT_TARGET_CAP_DEG: f64 = 50.0;
 

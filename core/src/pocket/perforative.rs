@@ -1,9 +1,9 @@
-//! Perforative trochoids along the medial axis of a whole polygonal pocket (issue #5 item 5,
-//! "or the medial-axis strategy for the whole pocket"). Wu et al. 2016 §4.2 only say the third
+//! Perforative trochoids along the medial axis of a whole polygonal pocket
+//! (docs/pockets.md). Wu et al. 2016 §4.2 only say the third
 //! method "uses the method of Voronoi diagrams to calculate the medial axis of the cavity and
 //! arrange the perforative trochoid according to the medial axis", with steps (1)–(4): reference
 //! engagement, guiding curve, circles one by one under the engagement control, a linked list.
-//! The algorithm below is ours (domain-spec §3.5, DERIVED), written so that every choice can be
+//! The algorithm below is ours (derived in docs/pockets.md), written so that every choice can be
 //! checked by the independent evaluator.
 //!
 //! 1. **Axis.** The medial axis of the pocket ([`crate::corner::medial`], boostvoronoi; parabolic edges
@@ -71,7 +71,7 @@ use std::f64::consts::{PI, TAU};
 const VORONOI_RESOLUTION_MM: f64 = 1e-4;
 /// Spacing of the clearance samples along the axis before a crossing is refined (mm).
 const CLEARANCE_STEP_MM: f64 = 0.25;
-/// Bisection steps allowed for one circle (domain-spec §3.3).
+/// Bisection steps allowed for one circle (a cap: each step halves the bracket).
 const MAX_BISECTION: usize = 60;
 /// Circles allowed in one pocket.
 const MAX_CIRCLES: usize = 20_000;
