@@ -683,7 +683,7 @@ struct AxisCircleOut {
     offset_radius_mm: f64,
     /// "entry", "spiral" (concentric clearing of the largest circle) or "circle" (on the axis).
     kind: MoveKind,
-    /// Two-circle engagement after the previous circle (§1.2), absent after a plunge or a
+    /// Two-circle engagement after the previous circle (Wu et al. 2016 eqs. 2–6), absent after a plunge or a
     /// straight move.
     #[serde(skip_serializing_if = "Option::is_none")]
     predicted_max_deg: Option<f64>,

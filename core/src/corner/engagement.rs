@@ -104,7 +104,7 @@ impl TwoCircle {
 
     /// Engagement at tool-centre polar angle φ about O2 (docs/corners.md):
     /// `δ = arccos((d² + r² − R1²)/(2dr))` (eqs. 3, 6), `β` = angle from C→E1 to C→O1 turning
-    /// with the travel, `a = max(0, β − δ)` (eq. 4), with the guards of §1.2.
+    /// with the travel, `a = max(0, β − δ)` (eq. 4), with the guards of docs/corners.md.
     pub fn engagement_at(&self, phi: f64) -> EngagementAt {
         let r = self.tool_radius;
         let (o1, r1) = (self.previous.center, self.previous.radius);

@@ -128,7 +128,7 @@ impl Corner {
         self.apex + self.bisector * t
     }
 
-    /// Circle centred at `W0 + t b̂` tangent to both walls: radius `R(t) = t sin α` (§3.2).
+    /// Circle centred at `W0 + t b̂` tangent to both walls: radius `R(t) = t sin α` (docs/corners.md).
     pub fn wall_tangent_circle(&self, t: f64) -> Circle {
         Circle::new(self.on_bisector(t), t * self.half_angle.sin())
     }

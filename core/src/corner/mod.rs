@@ -20,7 +20,7 @@
 //! - [`geometry`]: offset lines, bisector (eqs. 21–22), wall-tangent circles.
 //! - [`strategy`]: the corner scenario, the plain contour-parallel corner, the variable-circle
 //!   (eqs. 23–24) and isometric-circle (eq. 25) corner trochoids and the perforative
-//!   medial-axis trochoids (§4.2).
+//!   medial-axis trochoids (Wu et al. §4.2).
 //! - [`medial`]: medial axis of a polygon (segment Voronoi by `boostvoronoi`).
 //! - [`acceptance`]: the corner acceptance table of docs/corners.md, measured with the evaluator.
 

@@ -1,7 +1,7 @@
 //! Corner trochoids for one line–line corner of a contour-parallel ring (Wu et al. 2016 §4.2;
 //! eqs. 23–25; docs/corners.md), and the corner scenario used to measure them.
 //!
-//! Scenario (our reading of Fig. 12–14, which are missing from the fragments): a convex corner
+//! Scenario (our reading of Figs. 12–14 of Wu et al. 2016): a convex corner
 //! of two walls of length `edge_length` from the apex. The previous ring's tool centre ran on
 //! the walls offset by `r + a_e` with a sharp corner at `P0` (so it left the corner arc PSQ of
 //! radius r about P0), and everything farther inside was cleared before. The current ring U–V
@@ -268,7 +268,7 @@ pub fn limit_point(t_n: f64, alpha: f64, r: f64) -> f64 {
     (t_n * (1.0 - s) + 2.0 * r) / (1.0 + s)
 }
 
-/// Metric m(t) of the bisection: peak two-circle engagement (§1.2) of the wall-tangent circle at
+/// Metric m(t) of the bisection: peak two-circle engagement (Wu et al. 2016 eqs. 2–6) of the wall-tangent circle at
 /// bisector parameter `t` after the one at `t_n` (eq. 24 with the engagement angle).
 pub fn engagement_after(corner: &Corner, r: f64, t_n: f64, t: f64) -> f64 {
     let model = TwoCircle {
@@ -357,7 +357,7 @@ fn variable_chain(sc: &CornerScenario, t_start: f64) -> Result<Vec<CornerCircle>
 /// circle on the end position of the corner"). The previous ring cleared everything inside the
 /// walls offset by a_e except the tip beyond its corner arc, so for a wall-tangent circle of
 /// radius R the concentric circle of radius R − a_e (tangent to the offset walls, radius ≥ r)
-/// is already cut. With that as the previous circle, §1.2's closed form gives
+/// is already cut. With that as the previous circle, the two-circle model's closed form gives
 /// `cos a = ((R − a_e)² − ρ² − r²)/(2ρr)`, ρ = R − r; solving `a = a*` for R:
 /// `R1 = (2r²(1 − cos a*) − a_e²) / (2r(cos a_str − cos a*))`, a_str = arccos(1 − a_e/r).
 /// A concave circle cutting the full band of depth a_e always exceeds a_str (R1 → ∞ as
@@ -498,8 +498,8 @@ fn into_corner_point(
 /// node, whose clearance Rc is the largest circle there. The perforative trochoids that reached
 /// the node along the rest of the axis have cleared that circle (modelled as concentric passes,
 /// `precut`); from it, circles of offset radius Rc(t) = t·sin α (allowance 0) are placed down
-/// the branch by the §3.3 bisection (the axis as guide, §3.5 step 3), linked along U, and the
-/// tool finishes at the tool corner point (§3.5 step 2). With no contour-parallel ring here the
+/// the branch by the variable-circle bisection (the axis as guide; docs/pockets.md), linked
+/// along U, and the tool finishes at the tool corner point. With no contour-parallel ring here the
 /// two-circle model's "material everywhere outside the previous circle" is exact.
 fn medial_axis_plan(sc: &CornerScenario) -> Result<CornerPlan, Error> {
     let s = sc.settings;
@@ -561,8 +561,8 @@ fn medial_axis_plan(sc: &CornerScenario) -> Result<CornerPlan, Error> {
     })
 }
 
-/// Isometric circles (Wu et al. 2016 §4.2.2, eq. 25), our reading of Fig. 14a (missing
-/// from the fragments). All circles have tool-centre radius rh (offset radius R = rh + r) and
+/// Isometric circles (Wu et al. 2016 §4.2.2, eq. 25), our reading of Fig. 14a.
+/// All circles have tool-centre radius rh (offset radius R = rh + r) and
 /// centres on Up (U offset by rh), spaced at most `L = P(a*)` of docs/slot-paths.md with
 /// `Rs = R`, which bounds the engagement of each circle after its predecessor (assuming
 /// material everywhere outside it). The first circle is placed where it cuts nothing: the U
@@ -570,11 +570,11 @@ fn medial_axis_plan(sc: &CornerScenario) -> Result<CornerPlan, Error> {
 /// band ends and the corner material begins), and returns along U to the first circle, whose
 /// disc then lies in the U leg's sweep and keeps a_e clear of wall 2. The circles march
 /// towards the corner to the circle on the bisector (tangent to both walls); the tip beyond
-/// it is finished by variable circles (§3.3) from there (noted), because one size of circle
+/// it is finished by variable circles (Wu et al. 2016 §4.2.1) from there (noted), because one size of circle
 /// cannot reach into the tip.
 ///
 /// eq. 25: `rh1 = |PH1|/2 − r` with P the point of the previous corner arc PSQ farthest from
-/// wall 1 (our reading); if `rh ≤ rh1` the Fig. 14b layout (not in our fragments) would be
+/// wall 1 (our reading); if `rh ≤ rh1` the Fig. 14b layout would be
 /// needed and the variable method is used instead (noted).
 fn isometric_circles(sc: &CornerScenario, notes: &mut Vec<String>) -> Result<(Vec<CornerCircle>, Option<P2>), Error> {
     let s = sc.settings;
@@ -665,7 +665,7 @@ pub fn isometric_spacing(rh: f64, r: f64, a: f64) -> f64 {
     (rh + r) - (rh * rh + r * r + 2.0 * rh * r * a.cos()).max(0.0).sqrt()
 }
 
-/// Variable circles: c1 from [`first_circle_radius`], then the §3.3 chain.
+/// Variable circles: c1 from [`first_circle_radius`], then the chain of [`next_variable_circle`].
 fn variable_circles(sc: &CornerScenario) -> Result<Vec<CornerCircle>, Error> {
     let t1 = first_variable_t(sc)?;
     let sin = sc.corner.half_angle.sin();
@@ -783,7 +783,7 @@ mod tests {
             let m = deg(engagement_after(&corner, r, 30.0, t));
             assert!((m - want).abs() < 1e-3, "m({t}) = {m}, want {want}");
         }
-        // m(tM): the spec's 162.844° is a 0.05° scan; the peak is a kink at the entry point E,
+        // m(tM): a 0.05° scan reads 162.844° (docs/corners.md: 162.8°); the peak is a kink at the entry point E,
         // so refinement can only raise it. An independent dense scan (2·10⁶ points) gives
         // 162.8538° at φ = 84.26°; the closed form (first case) would say 180°.
         let m = deg(engagement_after(&corner, r, 30.0, t_m));
@@ -824,7 +824,7 @@ mod tests {
         {
             let l = isometric_spacing(rh, r, f64::to_radians(a));
             assert!((l - want).abs() < 1e-4, "L({rh}, {r}, {a}°) = {l}, want {want}");
-            // Independent check: two equal circles that far apart peak at exactly a (§1.2 scan).
+            // Independent check: two equal circles that far apart peak at exactly a (two-circle model, scanned).
             let m = TwoCircle {
                 previous: Circle::new(crate::geom::p2(0.0, 0.0), rh + r),
                 current: Circle::new(crate::geom::p2(l, 0.0), rh + r),

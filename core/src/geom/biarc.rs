@@ -2,11 +2,11 @@
 //!
 //! G-code has no trochoid or ellipse word, so a [`Segment::Trochoid`] (Wagih et al. 2023,
 //! eq. 1 — not a circular arc, even for a = b) is written as tangent-continuous circular arcs
-//! (method 1 of §5.4): the piece is split at its x and y extremes (where the tangent is vertical
+//! (docs/nc-export.md, biarcs): the piece is split at its x and y extremes (where the tangent is vertical
 //! or horizontal), each interval gets the equal-tangent-length biarc, and an interval whose
 //! biarc deviates more than the tolerance is halved, recursively. Exact lines and arcs are kept.
 //!
-//! [`polyline`] is the explicit "linear segments" alternative (§5.4 method 2): the longest
+//! [`polyline`] is the explicit "linear segments" alternative: the longest
 //! chords whose distance to the curve stays within the tolerance.
 
 use super::{P2, Segment, cross, golden_min, rot90};
