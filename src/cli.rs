@@ -90,11 +90,12 @@ enum Command {
         #[command(flatten)]
         args: corner_cmd::PocketArgs,
     },
-    /// Fit the six cutting-force coefficients to full-slot tests (domain-spec §4.1); print
+    /// Fit the six cutting-force coefficients to full-slot tests (the edge-force model of
+    /// Altintas & Lee 1996, docs/process-model.md); print
     /// them as JSON with the fit residuals.
     Calibrate {
         /// CSV with a header naming the columns f_z, fx, fy, fz (mean forces of full-slot
-        /// tests, N, in the frame of domain-spec §4.1: feed along +x, φ clockwise from +y).
+        /// tests, N, in the frame of Altintas & Lee: feed along +x, φ clockwise from +y).
         #[arg(long, value_name = "FILE.csv")]
         slot_forces: PathBuf,
         /// Number of teeth z of the test tool.

@@ -1,4 +1,4 @@
-//! CLI handlers of the pocket-corner commands (issue #5): `corner`, `engagement` and `pocket`.
+//! CLI handlers of the pocket-corner commands: `corner`, `engagement` and `pocket`.
 //! Degrees at this edge, radians in the core. Output is JSON (or a Markdown table with
 //! `corner --table`).
 
@@ -180,7 +180,7 @@ pub struct PocketArgs {
     /// at most 20000 vertices. Full rules: docs/outlines.md.
     #[arg(long, value_name = "FILE")]
     polygon: PathBuf,
-    /// Machine preset for the real time at depth (issue #11): adds `time_real_s` and
+    /// Machine preset for the real time at depth (docs/process-model.md): adds `time_real_s` and
     /// `feed_held_share` to the JSON.
     #[arg(long, value_name = "NAME")]
     machine: Option<String>,
@@ -284,7 +284,7 @@ struct PocketOut {
     tool_diameter_mm: f64,
     step_over_mm: f64,
     feed_mm_per_min: f64,
-    /// Straight-cut engagement of the step-over, arccos(1 − a_e/r) (domain-spec §1.1).
+    /// Straight-cut engagement of the step-over, arccos(1 − a_e/r) (docs/corners.md).
     straight_engagement_deg: f64,
     polygon: Vec<[f64; 2]>,
     ring_count: usize,
@@ -367,7 +367,7 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
     }
 }
 
-/// The pocket JSON `text` with the real time at depth on machine `name` (issue #11).
+/// The pocket JSON `text` with the real time at depth on machine `name`.
 fn with_real_time(text: &str, plan: &PocketPlan, name: &str, feed: f64) -> Result<String, String> {
     use trochoplan_core::machine::{Machine, path_real_time, planner::Dynamics};
     let m = Machine::preset(name).map_err(err)?;
@@ -683,7 +683,7 @@ struct AxisCircleOut {
     offset_radius_mm: f64,
     /// "entry", "spiral" (concentric clearing of the largest circle) or "circle" (on the axis).
     kind: MoveKind,
-    /// Two-circle engagement after the previous circle (§1.2), absent after a plunge or a
+    /// Two-circle engagement after the previous circle (Wu et al. 2016 eqs. 2–6), absent after a plunge or a
     /// straight move.
     #[serde(skip_serializing_if = "Option::is_none")]
     predicted_max_deg: Option<f64>,
@@ -703,7 +703,7 @@ struct PerforativeOut {
     tool_diameter_mm: f64,
     step_over_mm: f64,
     feed_mm_per_min: f64,
-    /// Straight-cut engagement of the step-over, arccos(1 − a_e/r) (domain-spec §1.1).
+    /// Straight-cut engagement of the step-over, arccos(1 − a_e/r) (docs/corners.md).
     straight_engagement_deg: f64,
     /// Target a* = a_str·(1 + t1) and the bisection band ε.
     target_deg: f64,
@@ -1077,7 +1077,7 @@ mod tests {
         e: EngagementArgs,
     }
 
-    /// Issue #13 item 5: polygon and path files are read as input files (regular, bounded) and
+    /// Polygon and path files are read as input files (regular, bounded) and
     /// every line parses or the error names the file and the line; a BOM is accepted.
     #[test]
     fn input_files_name_the_file_and_line() {
@@ -1200,7 +1200,7 @@ mod tests {
         let dir = tempfile::tempdir().expect("tempdir");
         let f = dir.path().join("rect.txt");
         // 60 × 40 rectangle, D = 10, a_e = 4: rings at d = 5 + 4k (d < 20), perimeters
-        // 200 − 8d; issue #12: the outer ones around an adaptive core cut out of a helix bore.
+        // 200 − 8d; the outer ones around an adaptive core cut out of a helix bore.
         std::fs::write(&f, "# rectangle\n0,0\n60,0\n60,40\n0,40\n").expect("write");
         let p = f.display().to_string();
         let args = |extra: &[&str]| {

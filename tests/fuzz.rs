@@ -1,4 +1,4 @@
-//! Issue #13's fuzz of every command, kept in the repository and run by the test command: random
+//! Fuzz of every command, kept in the repository and run by the test command: random
 //! valid slot jobs, random simple polygons (exported programs read back through LinuxCNC's
 //! `rs274` and checked against the plan and the walls), malformed job / polygon / CSV files and
 //! hostile titles. Counted: panics, runs over 10 s, gouges, silent misparses, active comments —

@@ -1,5 +1,5 @@
-//! Speed of the optimiser and the feed planner (criterion). Target from issue #11: one
-//! optimiser run for the paper's slot ≤ 2 s on the 2-core machine.
+//! Speed of the optimiser and the feed planner (criterion). Target (docs/benchmarks.md,
+//! optimiser): one optimiser run for the paper's slot ≤ 2 s on the 2-core machine.
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 

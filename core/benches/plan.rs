@@ -1,6 +1,7 @@
-//! Speed of the analysis (criterion). Targets from issue #2: plan() of the default job fast
-//! enough to rerun on every GUI frame (≤ 2 ms) and of a 1 m slot ≤ 100 ms; issue #10: the
-//! force series of the default job ≤ 5 ms and the whole plan with forces ≤ 8 ms.
+//! Speed of the analysis (criterion). Targets (docs/benchmarks.md, slot planning): plan() of
+//! the default job without the force series fast enough to rerun on every GUI frame (≤ 2 ms)
+//! and of a 1 m slot ≤ 100 ms; the force series of the default job ≤ 5 ms and the whole plan
+//! with forces ≤ 8 ms.
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 

@@ -1,7 +1,7 @@
-//! Speed of pocket planning (criterion). Target from issue #13: a 1000-vertex pocket plans in
-//! under 2 s — a circle of radius 50 mm and a random star-shaped polygon, D = 10 mm,
+//! Speed of pocket planning (criterion). Targets (docs/benchmarks.md, adaptive clearing): a
+//! 1000-vertex pocket plans in under 2 s — a circle of radius 50 mm and a random star-shaped polygon, D = 10 mm,
 //! a_e = 2.5 mm, evaluator every 0.25 mm (the `trochoplan pocket` defaults), every strategy but
-//! adaptive. Issue #12: planning the 60 × 40 rectangle adaptively (D = 10, a_e = 1.527 mm),
+//! adaptive; planning the 60 × 40 rectangle adaptively (D = 10, a_e = 1.527 mm),
 //! without the evaluator, in at most 100 ms (FreeCAD's Adaptive: 190 ms).
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]

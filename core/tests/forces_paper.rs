@@ -132,7 +132,7 @@ fn forces_scale_with_the_coefficients_and_runout_raises_the_peak() {
     let double = Coefficients { ktc: 4800.0, krc: 1920.0, kac: 720.0, kte: 70.0, kre: 70.0, kae: 10.0 };
     let a = metrics(Job { coefficients: Some(k), ..Job::default() });
     let b = metrics(Job { coefficients: Some(double), ..Job::default() });
-    assert_eq!(a.force_resultant_max_n, metrics(Job::default()).force_resultant_max_n, "p20 is the spec set");
+    assert_eq!(a.force_resultant_max_n, metrics(Job::default()).force_resultant_max_n, "p20 is the default set");
     for (x, y) in [
         (a.force_resultant_max_n, b.force_resultant_max_n),
         (a.force_resultant_mean_n, b.force_resultant_mean_n),

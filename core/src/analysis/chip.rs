@@ -892,7 +892,7 @@ mod tests {
 
     /// A strided series analyses exactly the teeth it names: with stride k its i-th sample is
     /// tooth k·i of the full series (same h, engagement, arcs), each against its own previous
-    /// tooth f_z behind (issue #13: bounded analysis of jobs with very many teeth per cycle).
+    /// tooth f_z behind (a bounded analysis of jobs with very many teeth per cycle).
     #[test]
     fn strided_series_is_every_kth_tooth_of_the_full_one() {
         for job in [

@@ -1,5 +1,5 @@
 //! Cutting forces per tooth over one steady-state cycle: the mechanistic linear edge-force
-//! model with helix of Altintas & Lee (1996) (domain-spec §4.1; Wagih et al. 2023 cite it as
+//! model with helix of Altintas & Lee (1996) (docs/process-model.md; Wagih et al. 2023 cite it as
 //! [34]), driven by the chip thickness of the material model ([`super::chip`]), not by a
 //! straight-cut formula.
 //!
@@ -17,8 +17,8 @@
 //! and mid-point clipped to the arc), so an arc end moving through a slice changes the force
 //! continuously. On the tool, the tangential force opposes the edge's velocity and the radial
 //! force points to the axis: with u the edge's radial unit vector and v its velocity direction
-//! (spindle M3, clockwise seen from +z), F = −dF_t·v − dF_r·u + dF_a·ẑ, which is domain-spec
-//! §4.1's dFx = −dFt·cos φ − dFr·sin φ, dFy = dFt·sin φ − dFr·cos φ in its frame (feed +x, φ
+//! (spindle M3, clockwise seen from +z), F = −dF_t·v − dF_r·u + dF_a·ẑ, which is Altintas &
+//! Lee's dFx = −dFt·cos φ − dFr·sin φ, dFy = dFt·sin φ − dFr·cos φ in its frame (feed +x, φ
 //! clockwise from +y). Torque T = Σ dF_t·R, power P = T·Ω.
 //!
 //! **Time.** Spindle-angle steps of at most [`SPINDLE_STEP_RAD`] (1°) over one cycle (up to
@@ -46,7 +46,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
-/// Axial slices over the depth a_p (dz = a_p / 50, issue #10).
+/// Axial slices over the depth a_p (dz = a_p / 50; docs/process-model.md).
 pub const SLICES: usize = 50;
 /// Largest spindle-angle step of the force series (rad): 1°.
 pub const SPINDLE_STEP_RAD: f64 = PI / 180.0;
@@ -956,7 +956,7 @@ fn wrap_pi(a: f64) -> f64 {
 mod tests {
     use super::*;
 
-    /// domain-spec §4.2 default set.
+    /// The default P20 set of docs/process-model.md.
     const P20: Coefficients = Coefficients { ktc: 2400.0, krc: 960.0, kac: 360.0, kte: 35.0, kre: 35.0, kae: 5.0 };
 
     fn cutter() -> Cutter {
@@ -975,8 +975,8 @@ mod tests {
         EngagedArc { entry_rad: st, exit_rad: ex, samples }
     }
 
-    /// Mean forces of a straight cut by the closed form of domain-spec §4.1 (re-derived there
-    /// from the model): [G(φ)] from φ_st to φ_ex.
+    /// Mean forces of a straight cut by the closed form of docs/process-model.md (derived
+    /// there from the model): [G(φ)] from φ_st to φ_ex.
     fn closed_form_means(k: &Coefficients, n: f64, ap: f64, fz: f64, st: f64, ex: f64) -> [f64; 3] {
         let gx = |p: f64| {
             n * ap * fz / (8.0 * PI) * (k.ktc * (2.0 * p).cos() - k.krc * (2.0 * p - (2.0 * p).sin()))
@@ -991,7 +991,7 @@ mod tests {
     }
 
     /// Mean (over one tooth period, `m` uniform spindle angles) and peak of the model's force
-    /// for a straight cut; domain-spec §4.1's frame: feed +x, φ clockwise from +y (frame = π/2).
+    /// for a straight cut; Altintas & Lee's frame: feed +x, φ clockwise from +y (frame = π/2).
     fn model_straight(arc: &EngagedArc, m: usize) -> ([f64; 3], f64, f64) {
         let (c, pitch) = (cutter(), TAU / 4.0);
         let pair = ArcPair::new(arc, arc);
@@ -1009,11 +1009,11 @@ mod tests {
         (mean, peak, peak_xy)
     }
 
-    /// domain-spec §4.1 TEST: down-milling, a_e = 1.526708 mm (46°), f_z = 0.075: means
+    /// The worked example of docs/process-model.md: down-milling, a_e = 1.526708 mm (46°), f_z = 0.075: means
     /// (191.55, 312.36, 46.82) N by the closed form, peak F_R 691.5 N and peak |Fxy| 686.0 N;
-    /// slot (0→π): (−699.38, 1347.38, 266.26) N. Tolerance 0.5 % (issue #10 acceptance).
+    /// slot (0→π): (−699.38, 1347.38, 266.26) N. Tolerance 0.5 % (the tolerance docs/process-model.md states).
     #[test]
-    fn straight_cut_and_slot_match_the_spec_test_values() {
+    fn straight_cut_and_slot_match_the_closed_form() {
         let fz = 0.075;
         let st = PI - (1.0 - 1.526708 / 5.0f64).acos();
         let closed = closed_form_means(&P20, 4.0, 6.0, fz, st, PI);
@@ -1038,7 +1038,7 @@ mod tests {
     }
 
     /// Straight flutes (β = 0) put every slice at one angle; the mean force does not depend
-    /// on the helix (domain-spec §4.1's closed form has no β).
+    /// on the helix (the closed form of docs/process-model.md has no β).
     #[test]
     fn mean_force_is_independent_of_the_helix() {
         let st = PI - (1.0 - 1.526708 / 5.0f64).acos();
@@ -1111,7 +1111,7 @@ mod tests {
     /// the cursor, the tabulated slice turns and the flute sums: every slice of every flute
     /// (each branch of its helix), the part of it inside the blended arc, h the blend of both
     /// arcs' exact means over that part (runout by [`Model::flute_chip`]), the element at the
-    /// world angle of the part's middle, domain-spec §4.1's element forces summed in the
+    /// world angle of the part's middle, Altintas & Lee's element forces summed in the
     /// machine frame. `frame`: world angle of φ = 0; tooth 0's bottom at φ = `spindle`.
     fn reference_force(
         c: &Cutter,

@@ -1,4 +1,4 @@
-//! Engagement-limited step (domain-spec §2.2, DERIVED from the two-circle engagement model of
+//! Engagement-limited step (derived in docs/slot-paths.md from the two-circle engagement model of
 //! Wu et al. 2016, eqs. 2–6; Grechishnikov et al. 2017: 46° sector, depth ≤ 15 % of D).
 //!
 //! Shaping circles of radius Rs = B/2 whose centres are P apart, tool radius r, tool-centre
@@ -35,9 +35,9 @@ pub fn max_engagement_for_step(b_w: f64, d: f64, p: f64) -> f64 {
 mod tests {
     use super::*;
 
-    // domain-spec §2.2 TEST values.
+    // The values of docs/slot-paths.md (engagement-limited step).
     #[test]
-    fn spec_test_values() {
+    fn step_limits_of_the_closed_forms() {
         let deg = f64::to_radians;
         assert!((step_for_engagement(20.0, 10.0, deg(30.0)) - 0.3407).abs() < 1e-4);
         assert!((step_for_engagement(20.0, 10.0, deg(46.0)) - 0.7950).abs() < 1e-4);
@@ -49,7 +49,7 @@ mod tests {
         assert!((step_for_engagement(20.0, 10.0, std::f64::consts::PI) - 10.0).abs() < 1e-12);
         // D = B/2 special case: P(a) = D(1 − cos(a/2)).
         assert!((step_for_engagement(20.0, 10.0, deg(46.0)) - 10.0 * (1.0 - deg(23.0).cos())).abs() < 1e-12);
-        // 46° gives the spec's 51.684° at P = 1 the other way round (cos a = 31/50).
+        // 46° gives docs/corners.md's 51.684° at P = 1 the other way round (cos a = 31/50).
         assert!((max_engagement_for_step(20.0, 10.0, 1.0) - (31.0f64 / 50.0).acos()).abs() < 1e-12);
     }
 }

@@ -1,4 +1,4 @@
-//! Slot-wall waviness (Wagih et al. 2023, section 2.3, Figs. 8–9; domain-spec §2.3).
+//! Slot-wall waviness (Wagih et al. 2023, section 2.3, Figs. 8–9).
 //!
 //! The wall profile is the extreme x of the swept region as a function of y:
 //! x_l(y) = min over path points c of c_x − √(R² − (y − c_y)²) (left, −x wall) and

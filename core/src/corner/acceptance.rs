@@ -1,12 +1,12 @@
-//! The issue #5 acceptance table: for corner angles 30°…150° in 15° steps, the peak engagement
+//! The corner acceptance table (docs/corners.md): for corner angles 30°…150° in 15° steps, the peak engagement
 //! of the plain contour-parallel ring and of a corner strategy, measured with the independent
 //! evaluator ([`super::evaluator`]), with path length and machining time.
 //!
 //! Stated limit (DERIVED): every strategy ends its chain of wall-tangent circles when the next
-//! tool-centre radius drops below r_min (domain-spec §3.3). From there the "tip" — the way into
+//! tool-centre radius drops below r_min (docs/corners.md, variable circles). From there the "tip" — the way into
 //! the corner point — is reported apart from the rest of the path ("body", which must stay
 //! within a* + 1°):
-//! - with a corner tolerance δ (the default of `trochoplan corner`, issue #12 item 3), arcs
+//! - with a corner tolerance δ (the default of `trochoplan corner`), arcs
 //!   tangent to both walls shrink to δ, each planned to a* by the derivation of
 //!   [`crate::pocket::adaptive::next_corner_point_radius`]: the tip's limit is a* itself, and
 //!   the corner is left with radius r + δ;
@@ -64,7 +64,7 @@ pub const ANGLES_DEG: [f64; 9] = [30.0, 45.0, 60.0, 75.0, 90.0, 105.0, 120.0, 13
 pub const STRATEGIES: [CornerMethod; 3] = [CornerMethod::Variable, CornerMethod::Isometric, CornerMethod::MedialAxis];
 
 /// Margin over the target a* (and over the tip's stated limit) that still passes (degrees):
-/// issue #5 accepts the measured peak within a* + 1°.
+/// the table accepts the measured peak within a* + 1°.
 pub const MARGIN_DEG: f64 = 1.0;
 
 impl AcceptanceRow {

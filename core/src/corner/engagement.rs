@@ -1,5 +1,5 @@
-//! Analytic engagement angle: the straight cut (domain-spec §1.1) and the two-circle model of
-//! Wu et al. (2016) eqs. (2)–(6) in the cleaned form of domain-spec §1.2.
+//! Analytic engagement angle: the straight cut and the two-circle model of Wu et al. (2016)
+//! eqs. (2)–(6), in the form derived in docs/corners.md.
 //!
 //! Symbols: tool radius `r`; previous offset circle (O1, R1) — everything inside it is already
 //! cut, everything outside is assumed to be material; current offset circle (O2, R2); the tool
@@ -20,7 +20,7 @@ pub enum Turn {
     Cw,
 }
 
-/// Straight-cut engagement `a = arccos(1 − a_e/r)` (domain-spec §1.1) for a radial depth
+/// Straight-cut engagement `a = arccos(1 − a_e/r)` (docs/corners.md) for a radial depth
 /// `0 ≤ a_e ≤ 2r`. Errors name the step-over or the tool diameter and the allowed range.
 pub fn straight_engagement(a_e: f64, r: f64) -> Result<f64, Error> {
     if !(r.is_finite() && r > 0.0) {
@@ -32,7 +32,7 @@ pub fn straight_engagement(a_e: f64, r: f64) -> Result<f64, Error> {
     Ok((1.0 - a_e / r).clamp(-1.0, 1.0).acos())
 }
 
-/// Inverse of [`straight_engagement`]: radial depth `a_e = r(1 − cos a)` (domain-spec §1.1).
+/// Inverse of [`straight_engagement`]: radial depth `a_e = r(1 − cos a)`.
 pub fn radial_depth_for_engagement(a: f64, r: f64) -> f64 {
     r * (1.0 - a.cos())
 }
@@ -57,7 +57,7 @@ pub struct MaxEngagement {
     pub slotting: bool,
 }
 
-/// Two-circle engagement model (Wu et al. 2016 eqs. 2–6; domain-spec §1.2).
+/// Two-circle engagement model (Wu et al. 2016 eqs. 2–6; docs/corners.md).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct TwoCircle {
     /// Previous offset circle (O1, R1): already cut.
@@ -70,7 +70,7 @@ pub struct TwoCircle {
     pub turn: Turn,
 }
 
-/// Scan step of [`TwoCircle::max_engagement`] (0.1°, domain-spec §1.2), then golden refinement.
+/// Scan step of [`TwoCircle::max_engagement`] (0.1°), then golden refinement.
 const SCAN_STEP: f64 = 0.1 * PI / 180.0;
 
 impl TwoCircle {
@@ -102,9 +102,9 @@ impl TwoCircle {
         self.current.center + p2(phi.cos(), phi.sin()) * rho
     }
 
-    /// Engagement at tool-centre polar angle φ about O2 (domain-spec §1.2):
+    /// Engagement at tool-centre polar angle φ about O2 (docs/corners.md):
     /// `δ = arccos((d² + r² − R1²)/(2dr))` (eqs. 3, 6), `β` = angle from C→E1 to C→O1 turning
-    /// with the travel, `a = max(0, β − δ)` (eq. 4), with the guards of §1.2.
+    /// with the travel, `a = max(0, β − δ)` (eq. 4), with the guards of docs/corners.md.
     pub fn engagement_at(&self, phi: f64) -> EngagementAt {
         let r = self.tool_radius;
         let (o1, r1) = (self.previous.center, self.previous.radius);
@@ -135,7 +135,7 @@ impl TwoCircle {
     }
 
     /// Maximum engagement over one full pass of the current circle: scan φ in 0.1° steps, then
-    /// golden-section refinement around the best sample (domain-spec §1.2 "production code").
+    /// golden-section refinement around the best sample.
     pub fn max_engagement(&self) -> MaxEngagement {
         let n = (TAU / SCAN_STEP).round() as usize;
         let mut best = (0.0, -1.0);
@@ -154,7 +154,7 @@ impl TwoCircle {
         MaxEngagement { angle, phi: phi.rem_euclid(TAU), slotting }
     }
 
-    /// Closed form of the peak engagement (domain-spec §1.2, DERIVED):
+    /// Closed form of the peak engagement (derived in docs/corners.md):
     /// `cos a_max = (k² − ρ² − r²)/(2ρr)` with `k = R1 − |O1O2|`, valid only when the peak is
     /// where the tool periphery passes through M (the first case of Wu et al. §2.4.1). A test
     /// oracle and fast path, not a replacement for [`TwoCircle::max_engagement`].
@@ -182,7 +182,7 @@ mod tests {
 
     #[test]
     fn straight_cut_matches_widia_table() {
-        // domain-spec §1.1 TEST: ae/D → engagement (deg), D = 10.
+        // The straight cut's a_e/D table of docs/corners.md: ae/D → engagement (deg), D = 10.
         let r = 5.0;
         for (ae_d, want) in [(0.05, 25.842), (0.10, 36.870), (0.20, 53.130), (0.30, 66.422), (0.50, 90.0), (1.0, 180.0)]
         {
@@ -213,7 +213,7 @@ mod tests {
 
     #[test]
     fn two_circle_equal_radii_spec_values() {
-        // domain-spec §1.2 TEST (CCW, O1 = (0,0), R1 = R2 = 10, r = 5, O2 = (1,0)).
+        // Worked example of docs/corners.md (CCW, O1 = (0,0), R1 = R2 = 10, r = 5, O2 = (1,0)).
         let m = equal_radii();
         m.validate().unwrap();
         for (phi, want) in [(0.0, 49.458), (-30.0, 51.621), (30.0, 41.877), (60.0, 28.842)] {
@@ -231,7 +231,7 @@ mod tests {
 
     #[test]
     fn two_circle_unequal_radii_spec_values() {
-        // domain-spec §1.2 TEST: O1 = (0,0), R1 = 8, O2 = (1.5,0), R2 = 10, r = 5.
+        // Worked example of docs/corners.md: O1 = (0,0), R1 = 8, O2 = (1.5,0), R2 = 10, r = 5.
         let m = TwoCircle {
             previous: Circle::new(p2(0.0, 0.0), 8.0),
             current: Circle::new(p2(1.5, 0.0), 10.0),

@@ -1,4 +1,4 @@
-//! Generic engagement evaluator (domain-spec §1.3; issue #5 item 2): any tool-centre path of
+//! Generic engagement evaluator (docs/corners.md): any tool-centre path of
 //! exact segments over any simple stock polygon.
 //!
 //! Material at a tool position = inside the stock polygon and farther than `r` from every
@@ -127,7 +127,7 @@ impl EngagementProfile {
     }
 
     /// Path length between consecutive samples that both engage less than `threshold` (rad):
-    /// the moves in air (issue #12: engagement < 1°).
+    /// the moves in air (engagement < 1°).
     pub fn air_length_mm(&self, threshold: f64) -> f64 {
         self.samples
             .windows(2)
@@ -404,8 +404,8 @@ mod tests {
 
     #[test]
     fn straight_cut_engagement_is_arccos_of_depth() {
-        // Independent of §1.2: a straight pass with radial depth a_e into a block whose wall is
-        // y = a_e above the tool's edge. Expected arccos(1 − a_e/r) (domain-spec §1.1 TEST).
+        // Independent of the two-circle model: a straight pass with radial depth a_e into a block whose wall is
+        // y = a_e above the tool's edge. Expected arccos(1 − a_e/r), the straight cut of docs/corners.md.
         let r = 5.0;
         for (ae_d, want_deg) in [(0.05, 25.842), (0.10, 36.870), (0.20, 53.130), (0.30, 66.422), (0.50, 90.0)] {
             let ae = ae_d * 10.0;

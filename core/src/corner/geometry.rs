@@ -1,4 +1,4 @@
-//! Line–line corner geometry (Wu et al. 2016 eqs. 21–22; domain-spec §3.2).
+//! Line–line corner geometry (Wu et al. 2016 eqs. 21–22; docs/corners.md).
 //!
 //! A corner is the apex `W0` of two pocket walls. Wall 1 arrives at the apex, wall 2 leaves it;
 //! the pocket interior is on the left of both (counter-clockwise boundary). The interior corner
@@ -9,7 +9,7 @@ use crate::geom::{Circle, P2, cross, p2, rot90};
 use serde::{Deserialize, Serialize};
 
 /// A normalised line `A x + B y + C = 0` (`A² + B² = 1`) with the side factor `F = ±1` such that
-/// `A x + B y + C + F·d = 0` is the line moved a distance `d` into the pocket (domain-spec §3.2).
+/// `A x + B y + C + F·d = 0` is the line moved a distance `d` into the pocket.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct LineEq {
     pub a: f64,
@@ -20,7 +20,7 @@ pub struct LineEq {
 
 impl LineEq {
     /// The line through `p` with direction `dir`, `F` chosen from an interior point `q`:
-    /// `F = −sign(A·xq + B·yq + C)` (domain-spec §3.2 sign rule).
+    /// `F = −sign(A·xq + B·yq + C)` (the sign rule of docs/corners.md).
     pub fn through(p: P2, dir: P2, interior: P2) -> Result<LineEq, Error> {
         let len = dir.norm();
         if !(len.is_finite() && len > 1e-12) {
@@ -128,7 +128,7 @@ impl Corner {
         self.apex + self.bisector * t
     }
 
-    /// Circle centred at `W0 + t b̂` tangent to both walls: radius `R(t) = t sin α` (§3.2).
+    /// Circle centred at `W0 + t b̂` tangent to both walls: radius `R(t) = t sin α` (docs/corners.md).
     pub fn wall_tangent_circle(&self, t: f64) -> Circle {
         Circle::new(self.on_bisector(t), t * self.half_angle.sin())
     }
@@ -164,8 +164,8 @@ mod tests {
     use super::*;
 
     #[test]
-    fn bisector_spec_test() {
-        // domain-spec §3.2 TEST: edge 1 y = 0 (0, 1, 0, −1); edge 2 through the origin at 60°,
+    fn bisector_worked_example() {
+        // Hand-computed: edge 1 y = 0 (0, 1, 0, −1); edge 2 through the origin at 60°,
         // (sin 60°, −cos 60°, 0, −1); T = −0.866025; d = 1 → M = (1.732051, 1).
         let s60 = 60f64.to_radians().sin();
         let c60 = 60f64.to_radians().cos();

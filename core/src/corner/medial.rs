@@ -1,4 +1,4 @@
-//! Medial axis of a simple polygon with straight edges (domain-spec §3.5 step 1), from the
+//! Medial axis of a simple polygon with straight edges (the first step of the medial-axis clearing of docs/pockets.md), from the
 //! segment Voronoi diagram of its edges computed by the `boostvoronoi` crate (a pure-Rust port
 //! of Boost.Polygon's Voronoi, the reference implementation for segment Voronoi diagrams; chosen
 //! over writing one because robust segment Voronoi needs exact predicates, and over

@@ -12,10 +12,10 @@ pub enum CornerMethod {
     /// The plain contour-parallel ring: straight into the tool corner point and out.
     #[serde(alias = "Plain")]
     Plain,
-    /// Variable circles on the bisector (Wu et al. §4.2.1, eqs. 23–24; domain-spec §3.3).
+    /// Variable circles on the bisector (Wu et al. 2016 §4.2.1, eqs. 23–24).
     #[serde(alias = "Variable")]
     Variable,
-    /// Isometric circles along U offset by rh (Wu et al. §4.2.2, eq. 25; domain-spec §3.4).
+    /// Isometric circles along U offset by rh (Wu et al. 2016 §4.2.2, eq. 25).
     #[serde(alias = "Isometric")]
     Isometric,
     /// Perforative circles along the medial axis of the pocket (Wu et al. §4.2; §3.5).
@@ -80,7 +80,7 @@ impl CornerMethod {
             }
             CornerMethod::MedialAxis => {
                 "Perforative circles along the medial axis of the corner's remaining material \
-                 (segment Voronoi diagram, §4.2 / domain-spec §3.5)."
+                 (segment Voronoi diagram; Wu et al. 2016 §4.2)."
             }
         }
     }

@@ -1,9 +1,9 @@
-//! Pocket corners (issue #5): the engagement model, line–line corner geometry, corner trochoids
+//! Pocket corners: the engagement model, line–line corner geometry, corner trochoids
 //! and an independent numeric engagement evaluator.
 //!
 //! Source: Wu S., Ma W., Li B., Wang C., "Trochoidal machining for the high-speed milling of
-//! pockets", J. Mater. Process. Technol. 233 (2016) 29–43 (papers 000_*, 001_*, 004_*), in the
-//! cleaned form of domain-spec §1 and §3. Conventions: mm, radians inside (degrees only at the
+//! pockets", J. Mater. Process. Technol. 233 (2016) 29–43, as derived in docs/corners.md and
+//! docs/pockets.md. Conventions: mm, radians inside (degrees only at the
 //! CLI), XY seen from +Z, counter-clockwise positive. Pockets are walked counter-clockwise with
 //! the pocket on the left, circles are counter-clockwise (G3): climb milling with an M3 spindle.
 //!
@@ -14,15 +14,15 @@
 //! Modules:
 //! - [`method`]: the corner strategies and their names.
 //! - [`request`]: the corner request, its settings and [`evaluate`].
-//! - [`engagement`]: straight cut (§1.1) and two-circle model (eqs. 2–6, §1.2).
-//! - [`evaluator`]: generic engagement of any path over any stock polygon (§1.3), independent
+//! - [`engagement`]: straight cut and two-circle model (eqs. 2–6).
+//! - [`evaluator`]: generic engagement of any path over any stock polygon, independent
 //!   of the analytic model; CSV tool paths.
-//! - [`geometry`]: offset lines, bisector (eqs. 21–22), wall-tangent circles (§3.2).
+//! - [`geometry`]: offset lines, bisector (eqs. 21–22), wall-tangent circles.
 //! - [`strategy`]: the corner scenario, the plain contour-parallel corner, the variable-circle
-//!   (§3.3) and isometric-circle (§3.4) corner trochoids and the perforative medial-axis
-//!   trochoids (§3.5).
-//! - [`medial`]: medial axis of a polygon (segment Voronoi by `boostvoronoi`, §3.5).
-//! - [`acceptance`]: the issue #5 acceptance table, measured with the evaluator.
+//!   (eqs. 23–24) and isometric-circle (eq. 25) corner trochoids and the perforative
+//!   medial-axis trochoids (Wu et al. §4.2).
+//! - [`medial`]: medial axis of a polygon (segment Voronoi by `boostvoronoi`).
+//! - [`acceptance`]: the corner acceptance table of docs/corners.md, measured with the evaluator.
 
 pub mod acceptance;
 pub mod engagement;

@@ -47,7 +47,7 @@ pub struct CornerRequest {
     #[serde(default)]
     pub direction: Direction,
     /// Corner tolerance δ (mm): the way into the corner point ends on an arc of tool-centre
-    /// radius δ (issue #12 item 3); 0: Wu et al.'s straight move into the tool corner point.
+    /// radius δ (docs/corners.md); 0: Wu et al.'s straight move into the tool corner point.
     #[serde(default = "default_corner_tolerance")]
     pub corner_tolerance_mm: f64,
 }
@@ -161,7 +161,7 @@ impl CornerReport {
     }
 
     /// Per kind of move (U and V legs, circles, links, corner-point arcs or the tip): the
-    /// largest engagement measured and where, and the length (issue #12 item 6).
+    /// largest engagement measured and where, and the length.
     pub fn by_kind(&self) -> Vec<KindMax> {
         crate::pocket::perforative::maxima(&self.profile, &self.plan.path, &self.plan.kinds, &[]).0
     }
@@ -212,7 +212,7 @@ pub fn evaluate(req: &CornerRequest) -> Result<CornerReport, Error> {
 }
 
 impl CornerReport {
-    /// Conventional milling (issue #12 item 4): the report reflected in the corner's bisector
+    /// Conventional milling: the report reflected in the corner's bisector
     /// (the x axis, y → −y: the same corner, walls swapped): every circle and the ring turn
     /// clockwise, the engagement is the climb plan's (a reflection of tool, path and stock
     /// leaves every engaged angle unchanged), the acceptance row the same.

@@ -1,7 +1,7 @@
 //! Corner trochoids for one line–line corner of a contour-parallel ring (Wu et al. 2016 §4.2;
-//! domain-spec §3.3–3.4), and the corner scenario used to measure them.
+//! eqs. 23–25; docs/corners.md), and the corner scenario used to measure them.
 //!
-//! Scenario (our reading of Fig. 12–14, which are missing from the fragments): a convex corner
+//! Scenario (our reading of Figs. 12–14 of Wu et al. 2016): a convex corner
 //! of two walls of length `edge_length` from the apex. The previous ring's tool centre ran on
 //! the walls offset by `r + a_e` with a sharp corner at `P0` (so it left the corner arc PSQ of
 //! radius r about P0), and everything farther inside was cleared before. The current ring U–V
@@ -29,7 +29,8 @@ use crate::pocket::adaptive::{corner_point_radii, validate_corner_tolerance};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 
-/// Bisection steps allowed for one circle (domain-spec §3.3: "max 60 iterations").
+/// Bisection steps allowed for one circle (a cap: each step halves the
+/// bracket, so 60 steps reach far below any length that matters).
 const MAX_BISECTION: usize = 60;
 /// Wu et al.'s example tolerance over the straight-part value, t1 = 15 % (eq. 23).
 pub const DEFAULT_T1: f64 = 0.15;
@@ -51,9 +52,9 @@ pub struct CornerSettings {
     pub edge_length: f64,
     /// Feed rate for the machining time (mm/min).
     pub feed_mm_per_min: f64,
-    /// Tool-centre radius rh of isometric circles (mm); `None` = r (domain-spec §3.4 TEST).
+    /// Tool-centre radius rh of isometric circles (mm); `None` = r (the default of docs/corners.md).
     pub isometric_radius: Option<f64>,
-    /// How the strategies reach the corner point (issue #12 item 3): `Some(δ)` by arcs tangent
+    /// How the strategies reach the corner point (docs/corners.md): `Some(δ)` by arcs tangent
     /// to both walls that shrink to the tool-centre radius δ (mm), each within the target
     /// ([`corner_point_radii`]); `None`: Wu et al.'s straight move into the tool corner point
     /// U0 after the last circle (reads up to π − 2α there, [`super::acceptance`]).
@@ -63,7 +64,7 @@ pub struct CornerSettings {
 
 impl CornerSettings {
     /// Settings with Wu et al.'s target a* = a_str·(1 + t1), t1 = 15 % (eq. 23 analogue,
-    /// domain-spec §3.3), and ε, wall length and feed of [`CornerRequest::DEFAULT`] (0.5°,
+    /// docs/corners.md), and ε, wall length and feed of [`CornerRequest::DEFAULT`] (0.5°,
     /// 100 mm, 600 mm/min).
     pub fn new(tool_radius: f64, step_over: f64) -> Result<CornerSettings, Error> {
         let target = straight_engagement(step_over, tool_radius)? * (1.0 + DEFAULT_T1);
@@ -80,12 +81,12 @@ impl CornerSettings {
         })
     }
 
-    /// Straight-cut engagement of the ring step, a_str = arccos(1 − a_e/r) (domain-spec §1.1).
+    /// Straight-cut engagement of the ring step, a_str = arccos(1 − a_e/r) (docs/corners.md).
     pub fn straight_engagement(&self) -> Result<f64, Error> {
         straight_engagement(self.step_over, self.tool_radius)
     }
 
-    /// Smallest tool-centre circle radius worth cutting: max(0.05 r, 0.05 mm) (domain-spec §3.3).
+    /// Smallest tool-centre circle radius worth cutting: max(0.05 r, 0.05 mm) (docs/corners.md).
     pub fn r_min(&self) -> f64 {
         (0.05 * self.tool_radius).max(0.05)
     }
@@ -247,7 +248,7 @@ pub struct CornerPlan {
     pub corner_point: Option<CornerPointArcs>,
 }
 
-/// The arcs into the corner point (issue #12 item 3): tangent to both walls (tool centre on U
+/// The arcs into the corner point (docs/corners.md): tangent to both walls (tool centre on U
 /// and V), radii shrinking from the last circle's to the corner tolerance δ.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CornerPointArcs {
@@ -260,14 +261,14 @@ pub struct CornerPointArcs {
     pub max_radial_depth_mm: f64,
 }
 
-/// Limit point M of the bisection (Wu et al. §4.2.1 step 1; domain-spec §3.3, DERIVED):
+/// Limit point M of the bisection (Wu et al. 2016 §4.2.1 step 1; derived in docs/corners.md):
 /// `tM = (tN(1 − sin α) + 2r)/(1 + sin α)`, valid while `R_N = tN sin α > r`.
 pub fn limit_point(t_n: f64, alpha: f64, r: f64) -> f64 {
     let s = alpha.sin();
     (t_n * (1.0 - s) + 2.0 * r) / (1.0 + s)
 }
 
-/// Metric m(t) of the bisection: peak two-circle engagement (§1.2) of the wall-tangent circle at
+/// Metric m(t) of the bisection: peak two-circle engagement (Wu et al. 2016 eqs. 2–6) of the wall-tangent circle at
 /// bisector parameter `t` after the one at `t_n` (eq. 24 with the engagement angle).
 pub fn engagement_after(corner: &Corner, r: f64, t_n: f64, t: f64) -> f64 {
     let model = TwoCircle {
@@ -279,7 +280,7 @@ pub fn engagement_after(corner: &Corner, r: f64, t_n: f64, t: f64) -> f64 {
     model.max_engagement().angle
 }
 
-/// Result of one bisection (domain-spec §3.3).
+/// Result of one bisection (Wu et al. 2016 eqs. 23–24).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct NextCircle {
     /// Accepted bisector parameter t.
@@ -291,7 +292,7 @@ pub struct NextCircle {
 }
 
 /// Next variable circle after the one at `t_n` by bisection on the bisector between `t_n`
-/// (Z < 0: nothing left to cut) and the limit point `tM` (eqs. 23–24, domain-spec §3.3):
+/// (Z < 0: nothing left to cut) and the limit point `tM` (Wu et al. 2016 eqs. 23–24):
 /// accept when `0 < Z ≤ ε` with `Z = m(t) − a*`; if `Z(tM) ≤ 0` take tM. After 60 steps the
 /// low end (Z < 0, under the target) is taken.
 pub fn next_variable_circle(corner: &Corner, r: f64, t_n: f64, target: f64, eps: f64) -> Result<NextCircle, Error> {
@@ -326,7 +327,7 @@ pub fn next_variable_circle(corner: &Corner, r: f64, t_n: f64, target: f64, eps:
 }
 
 /// Variable circles from `t_start` towards the apex until the next tool-centre radius drops
-/// below `r_min` (domain-spec §3.3 stop rule). Returns the circles after the start circle.
+/// below `r_min` (the stop rule of docs/corners.md). Returns the circles after the start circle.
 fn variable_chain(sc: &CornerScenario, t_start: f64) -> Result<Vec<CornerCircle>, Error> {
     let (corner, s) = (&sc.corner, &sc.settings);
     let r = s.tool_radius;
@@ -356,7 +357,7 @@ fn variable_chain(sc: &CornerScenario, t_start: f64) -> Result<Vec<CornerCircle>
 /// circle on the end position of the corner"). The previous ring cleared everything inside the
 /// walls offset by a_e except the tip beyond its corner arc, so for a wall-tangent circle of
 /// radius R the concentric circle of radius R − a_e (tangent to the offset walls, radius ≥ r)
-/// is already cut. With that as the previous circle, §1.2's closed form gives
+/// is already cut. With that as the previous circle, the two-circle model's closed form gives
 /// `cos a = ((R − a_e)² − ρ² − r²)/(2ρr)`, ρ = R − r; solving `a = a*` for R:
 /// `R1 = (2r²(1 − cos a*) − a_e²) / (2r(cos a_str − cos a*))`, a_str = arccos(1 − a_e/r).
 /// A concave circle cutting the full band of depth a_e always exceeds a_str (R1 → ∞ as
@@ -491,14 +492,14 @@ fn into_corner_point(
     Some(CornerPointArcs { residual_mm: rho * k, max_radial_depth_mm: deepest, radii_mm: radii })
 }
 
-/// Perforative trochoids along the medial axis (Wu et al. §4.2 (c); domain-spec §3.5) for the
+/// Perforative trochoids along the medial axis (Wu et al. 2016 §4.2 (c); docs/pockets.md) for the
 /// corner as part of a triangular pocket (apex, ends of the two walls). The axis comes from
 /// [`super::medial::medial_axis`]; the corner's branch runs from the apex to the first Voronoi
 /// node, whose clearance Rc is the largest circle there. The perforative trochoids that reached
 /// the node along the rest of the axis have cleared that circle (modelled as concentric passes,
 /// `precut`); from it, circles of offset radius Rc(t) = t·sin α (allowance 0) are placed down
-/// the branch by the §3.3 bisection (the axis as guide, §3.5 step 3), linked along U, and the
-/// tool finishes at the tool corner point (§3.5 step 2). With no contour-parallel ring here the
+/// the branch by the variable-circle bisection (the axis as guide; docs/pockets.md), linked
+/// along U, and the tool finishes at the tool corner point. With no contour-parallel ring here the
 /// two-circle model's "material everywhere outside the previous circle" is exact.
 fn medial_axis_plan(sc: &CornerScenario) -> Result<CornerPlan, Error> {
     let s = sc.settings;
@@ -560,20 +561,20 @@ fn medial_axis_plan(sc: &CornerScenario) -> Result<CornerPlan, Error> {
     })
 }
 
-/// Isometric circles (Wu et al. §4.2.2, domain-spec §3.4), our reading of Fig. 14a (missing
-/// from the fragments). All circles have tool-centre radius rh (offset radius R = rh + r) and
-/// centres on Up (U offset by rh), spaced at most `L = P(a*)` of domain-spec §2.2 with
+/// Isometric circles (Wu et al. 2016 §4.2.2, eq. 25), our reading of Fig. 14a.
+/// All circles have tool-centre radius rh (offset radius R = rh + r) and
+/// centres on Up (U offset by rh), spaced at most `L = P(a*)` of docs/slot-paths.md with
 /// `Rs = R`, which bounds the engagement of each circle after its predecessor (assuming
 /// material everywhere outside it). The first circle is placed where it cuts nothing: the U
 /// leg runs to X, one tool radius before the foot of the previous ring's corner P0 (where the
 /// band ends and the corner material begins), and returns along U to the first circle, whose
 /// disc then lies in the U leg's sweep and keeps a_e clear of wall 2. The circles march
 /// towards the corner to the circle on the bisector (tangent to both walls); the tip beyond
-/// it is finished by variable circles (§3.3) from there (noted), because one size of circle
+/// it is finished by variable circles (Wu et al. 2016 §4.2.1) from there (noted), because one size of circle
 /// cannot reach into the tip.
 ///
 /// eq. 25: `rh1 = |PH1|/2 − r` with P the point of the previous corner arc PSQ farthest from
-/// wall 1 (our reading); if `rh ≤ rh1` the Fig. 14b layout (not in our fragments) would be
+/// wall 1 (our reading); if `rh ≤ rh1` the Fig. 14b layout would be
 /// needed and the variable method is used instead (noted).
 fn isometric_circles(sc: &CornerScenario, notes: &mut Vec<String>) -> Result<(Vec<CornerCircle>, Option<P2>), Error> {
     let s = sc.settings;
@@ -658,13 +659,13 @@ fn isometric_circles(sc: &CornerScenario, notes: &mut Vec<String>) -> Result<(Ve
     Ok((circles, Some(leg_end)))
 }
 
-/// Centre spacing of equal circles for a peak engagement `a` (domain-spec §2.2, DERIVED from
-/// §1.2 with R1 = R2 = Rs = rh + r, ρ = rh): `P(a) = Rs − sqrt(ρ² + r² + 2ρr·cos a)`.
+/// Centre spacing of equal circles for a peak engagement `a` (derived in docs/slot-paths.md
+/// from the two-circle model of Wu et al. 2016 with R1 = R2 = Rs = rh + r, ρ = rh): `P(a) = Rs − sqrt(ρ² + r² + 2ρr·cos a)`.
 pub fn isometric_spacing(rh: f64, r: f64, a: f64) -> f64 {
     (rh + r) - (rh * rh + r * r + 2.0 * rh * r * a.cos()).max(0.0).sqrt()
 }
 
-/// Variable circles: c1 from [`first_circle_radius`], then the §3.3 chain.
+/// Variable circles: c1 from [`first_circle_radius`], then the chain of [`next_variable_circle`].
 fn variable_circles(sc: &CornerScenario) -> Result<Vec<CornerCircle>, Error> {
     let t1 = first_variable_t(sc)?;
     let sin = sc.corner.half_angle.sin();
@@ -772,8 +773,8 @@ mod tests {
     }
 
     #[test]
-    fn variable_circle_spec_test() {
-        // domain-spec §3.3 TEST: α = 30°, r = 5, tN = 30 (RN = 15), a* = 46°, ε = 0.5°.
+    fn variable_circle_worked_example() {
+        // Worked example of docs/corners.md: α = 30°, r = 5, tN = 30 (RN = 15), a* = 46°, ε = 0.5°.
         let corner = Corner::symmetric(60f64.to_radians()).unwrap();
         let r = 5.0;
         let t_m = limit_point(30.0, corner.half_angle, r);
@@ -782,7 +783,7 @@ mod tests {
             let m = deg(engagement_after(&corner, r, 30.0, t));
             assert!((m - want).abs() < 1e-3, "m({t}) = {m}, want {want}");
         }
-        // m(tM): the spec's 162.844° is a 0.05° scan; the peak is a kink at the entry point E,
+        // m(tM): a 0.05° scan reads 162.844° (docs/corners.md: 162.8°); the peak is a kink at the entry point E,
         // so refinement can only raise it. An independent dense scan (2·10⁶ points) gives
         // 162.8538° at φ = 84.26°; the closed form (first case) would say 180°.
         let m = deg(engagement_after(&corner, r, 30.0, t_m));
@@ -804,8 +805,8 @@ mod tests {
     }
 
     #[test]
-    fn variable_circle_sequence_spec_test() {
-        // domain-spec §3.3: R = 15, 13.971, 12.990, 12.054, 11.172, 10.336, 9.572, 8.869, 8.245.
+    fn variable_circle_sequence_worked_example() {
+        // The chain of docs/corners.md: R = 15, 13.971, 12.990, 12.054, 11.172, 10.336, 9.572, 8.869, 8.245.
         let corner = Corner::symmetric(60f64.to_radians()).unwrap();
         let mut t = 30.0;
         for want in [13.971, 12.990, 12.054, 11.172, 10.336, 9.572, 8.869, 8.245] {
@@ -815,15 +816,15 @@ mod tests {
     }
 
     #[test]
-    fn isometric_spacing_spec_test() {
-        // domain-spec §3.4 TEST: rh = 5, r = 5 (Rs = 10), a_lim = 46° → L = 0.7950 mm; §2.2 TEST
+    fn isometric_spacing_worked_example() {
+        // docs/corners.md: rh = 5, r = 5 (Rs = 10), a_lim = 46° → L = 0.7950 mm; docs/slot-paths.md
         // (same relation): P(30°) = 0.3407, P(60°) = 1.3397; D = 12 (r = 6, rh = 4): 0.7618.
         for (rh, r, a, want) in
             [(5.0, 5.0, 46.0, 0.7950), (5.0, 5.0, 30.0, 0.3407), (5.0, 5.0, 60.0, 1.3397), (4.0, 6.0, 46.0, 0.7618)]
         {
             let l = isometric_spacing(rh, r, f64::to_radians(a));
             assert!((l - want).abs() < 1e-4, "L({rh}, {r}, {a}°) = {l}, want {want}");
-            // Independent check: two equal circles that far apart peak at exactly a (§1.2 scan).
+            // Independent check: two equal circles that far apart peak at exactly a (two-circle model, scanned).
             let m = TwoCircle {
                 previous: Circle::new(crate::geom::p2(0.0, 0.0), rh + r),
                 current: Circle::new(crate::geom::p2(l, 0.0), rh + r),

@@ -1,12 +1,12 @@
-//! Biarc and polyline approximation of path segments for NC output (domain-spec §5.4).
+//! Biarc and polyline approximation of path segments for NC output (docs/nc-export.md).
 //!
 //! G-code has no trochoid or ellipse word, so a [`Segment::Trochoid`] (Wagih et al. 2023,
 //! eq. 1 — not a circular arc, even for a = b) is written as tangent-continuous circular arcs
-//! (method 1 of §5.4): the piece is split at its x and y extremes (where the tangent is vertical
+//! (docs/nc-export.md, biarcs): the piece is split at its x and y extremes (where the tangent is vertical
 //! or horizontal), each interval gets the equal-tangent-length biarc, and an interval whose
 //! biarc deviates more than the tolerance is halved, recursively. Exact lines and arcs are kept.
 //!
-//! [`polyline`] is the explicit "linear segments" alternative (§5.4 method 2): the longest
+//! [`polyline`] is the explicit "linear segments" alternative: the longest
 //! chords whose distance to the curve stays within the tolerance.
 
 use super::{P2, Segment, cross, golden_min, rot90};
@@ -111,7 +111,7 @@ fn arc_through(p: P2, t: P2, q: P2) -> Segment {
 }
 
 /// Equal-tangent-length biarc from `p0` (unit tangent `t0`) to `p1` (unit tangent `t1`),
-/// domain-spec §5.4: v = p1 − p0, s = t0 + t1, c = 2(1 − t0·t1),
+/// docs/nc-export.md: v = p1 − p0, s = t0 + t1, c = 2(1 − t0·t1),
 /// d = (−v·s + √((v·s)² + c|v|²))/c (d = |v|²/(4 v·t1) for c ≈ 0), control points
 /// q0 = p0 + d t0, q1 = p1 − d t1, joint pm = (q0 + q1)/2. The first arc is tangent to t0 at p0
 /// and ends at pm; the second starts at pm and is tangent to t1 at p1; both have the tangent
@@ -364,8 +364,8 @@ mod tests {
     }
 
     #[test]
-    fn ellipse_arc_count_is_near_the_domain_spec_indication() {
-        // domain-spec §5.4 (indicative): a = 5, b = 4, full ellipse, 0.005 mm → 32 arcs.
+    fn ellipse_arc_count_is_near_the_documented_count() {
+        // docs/nc-export.md: a = 5, b = 4, full ellipse, 0.005 mm → 32 arcs.
         let ellipse = Segment::Trochoid { origin: P2::zeros(), a: 5.0, b: 4.0, step: 0.0, theta0: 0.0, theta1: TAU };
         let n = fit_biarcs(&ellipse, 0.005).len();
         assert!((16..=64).contains(&n), "{n} arcs");
@@ -373,7 +373,7 @@ mod tests {
 
     #[test]
     fn polyline_chords_stay_within_tolerance_and_are_few() {
-        // domain-spec §5.4 method 2: a = 5, b = 4, e = 0.005 → about 80 chords for the ellipse
+        // Chords (docs/nc-export.md): a = 5, b = 4, e = 0.005 → about 80 chords for the ellipse
         // (L ≈ √(8 ρ e) with ρ_min = b²/a); the greedy walk needs no more than that.
         let ellipse = Segment::Trochoid { origin: P2::zeros(), a: 5.0, b: 4.0, step: 0.0, theta0: 0.0, theta1: TAU };
         let pieces = polyline(&ellipse, 0.005);

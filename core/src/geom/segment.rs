@@ -208,8 +208,9 @@ mod tests {
     }
 
     #[test]
-    fn true_trochoid_cycle_length_matches_domain_spec() {
-        // domain-spec §2.3 TEST: B = 20, D = 10 → a = 5, s = 1: 31.424 mm per cycle.
+    fn true_trochoid_cycle_length_matches_the_paper_job() {
+        // Wagih et al. 2023's job B = 20, D = 10 → a = 5, s = 1: 31.424 mm per cycle, t_cycle
+        // 3.142 s at 600 mm/min (docs/slot-paths.md, Table 2 row r_e = 1.0).
         let seg = Segment::Trochoid { origin: P2::zeros(), a: 5.0, b: 5.0, step: 1.0, theta0: 0.0, theta1: TAU };
         assert!((seg.length() - 31.424).abs() < 5e-4, "{}", seg.length());
     }

@@ -13,7 +13,7 @@
 //!
 //! The force limit F_R,max (linear edge-force model) is feed-scaled too, but
 //! affine rather than proportional: F = F_e + F_c with the edge part F_e independent of f_z
-//! (dF = (K_c·h + K_e)·dz, domain-spec §4.1). Lowering the feed by the ratio r = limit/F
+//! (dF = (K_c·h + K_e)·dz, Altintas & Lee 1996). Lowering the feed by the ratio r = limit/F
 //! therefore leaves F slightly above the limit; the search lowers it by r² instead, which
 //! meets the limit whenever F_e ≤ r·F_c (F_e + r²F_c ≤ r(F_e + F_c) ⟺ F_e ≤ r·F_c; the edge
 //! part is about a sixth of the cutting part at the paper's f_z), and then climbs back.

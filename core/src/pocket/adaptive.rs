@@ -1,13 +1,13 @@
-//! Adaptive pocket clearing (issue #12): helix entry, a spiral out of the bore, rings that
+//! Adaptive pocket clearing (docs/adaptive-clearing.md): helix entry, a spiral out of the bore, rings that
 //! grow along the pocket's core, thinning passes into every convex corner and a finishing
 //! contour — every move at depth measured by the independent evaluator
 //! ([`crate::corner::evaluator`]). The algorithm is ours (DERIVED below); its engagement model
-//! is domain-spec §1.1/§1.2.
+//! is the straight cut and the two-circle model of Wu et al. 2016 (docs/corners.md).
 //!
 //! Notation: `r` tool radius, `a_e` the step-over, φ* = arccos(1 − a_e/r) its straight-cut
-//! engagement (§1.1), φ the target every pass is planned to (the steps below all follow from
+//! engagement, φ the target every pass is planned to (the steps below all follow from
 //! it): `--target-engagement`, by default [`default_target_rad`] — a_e read as FreeCAD reads
-//! it, an area rate, capped at 50° (50° for the issue's a_e = 1.527 mm, D = 10) — `C` the
+//! it, an area rate, capped at 50° (50° for a_e = 1.527 mm, D = 10) — `C` the
 //! region of tool centres = the pocket offset inward by r + s_f (s_f the finishing stock).
 //!
 //! **Concave-cut step (DERIVED).** A tool centre on a circle of radius ρ that cuts outward from
@@ -15,7 +15,7 @@
 //! than R from the centre; the periphery point at angle ψ from the outward normal is at
 //! distance² ρ² + r² + 2ρr·cos ψ, and the front half of the periphery is engaged over
 //! ψ ≤ arccos((R² − ρ² − r²)/(2ρr)). With R = ρ + r − a (a radial step a) this reads
-//! `cos φ = 1 − a/r − a/ρ + a²/(2ρr)`, which tends to §1.1's 1 − a/r for ρ → ∞. Solved for a
+//! `cos φ = 1 − a/r − a/ρ + a²/(2ρr)`, which tends to the straight cut's 1 − a/r for ρ → ∞. Solved for a
 //! at φ = φ* it gives [`concave_step`], the step a circle (or a corner arc) of radius ρ may
 //! take; it is below a_e for every finite ρ.
 //!
@@ -250,8 +250,8 @@ impl AdaptiveOptions {
     }
 }
 
-/// Ceiling of the default target engagement (deg), DECLARED: issue #12's limit on the 95th
-/// percentile of a pocket's engagement. Every kind of move is planned to the target and read
+/// Ceiling of the default target engagement (deg), DECLARED: the limit we hold the 95th
+/// percentile of a pocket's engagement to (docs/adaptive-clearing.md). Every kind of move is planned to the target and read
 /// within it (up to the evaluator's overshoot at kinks), so the target bounds the percentile.
 pub const DEFAULT_TARGET_CAP_DEG: f64 = 50.0;
 

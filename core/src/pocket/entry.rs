@@ -1,4 +1,4 @@
-//! How the tool gets down to depth in every pocket method (issue #12 item 1): a helix about a
+//! How the tool gets down to depth in every pocket method (docs/pockets.md): a helix about a
 //! point of large clearance, or — where not even the smallest helix fits — a straight zig-zag
 //! ramp along the longest line through the region of tool centres around that point. Both start
 //! [`HELIX_START_Z_MM`] above the stock top and descend at most at the ramp angle; neither

@@ -1,4 +1,4 @@
-//! Conventional milling of a pocket (issue #12 item 4): the planners cut every loop
+//! Conventional milling of a pocket: the planners cut every loop
 //! counter-clockwise (climb with M3); conventional mirrors the pocket in x (x → −x, vertex order
 //! reversed so that it is counter-clockwise again), plans it, and mirrors the plan back. Every
 //! loop then runs clockwise, and every engagement is the climb plan's of the mirrored pocket

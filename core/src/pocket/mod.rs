@@ -1,4 +1,4 @@
-//! Polygonal pockets (issue #5 item 5; Wu et al. 2016 §4): cleared by contour-parallel rings
+//! Polygonal pockets (Wu et al. 2016 §4; docs/pockets.md): cleared by contour-parallel rings
 //! with a corner strategy at every convex ring corner ([`rings`]), or by perforative trochoids
 //! along the pocket's medial axis ([`perforative`]); both measured by the independent
 //! evaluator ([`crate::corner::evaluator`]).
@@ -152,7 +152,7 @@ impl PocketSettings {
         Ok(())
     }
 
-    /// Straight-cut engagement of the step-over, a_str = arccos(1 − a_e/r) (domain-spec §1.1).
+    /// Straight-cut engagement of the step-over, a_str = arccos(1 − a_e/r) (docs/corners.md).
     pub fn straight_engagement(&self) -> Result<f64, Error> {
         crate::corner::straight_engagement(self.step_over, self.tool_radius)
     }
@@ -186,7 +186,7 @@ pub struct PocketRequest {
 
 impl Default for PocketRequest {
     /// The defaults of `trochoplan pocket`: D = 10 mm, a_e = 2.5 mm (a_e/D = 0.25, 60° on a
-    /// straight wall), 600 mm/min, adaptive clearing (issue #12: no plunge, no full slot), the
+    /// straight wall), 600 mm/min, adaptive clearing (no plunge, no full slot), the
     /// evaluator every 0.25 mm; the pocket is the README's 60 × 40 mm rectangle.
     fn default() -> Self {
         let rectangle = [p2(0.0, 0.0), p2(60.0, 0.0), p2(60.0, 40.0), p2(0.0, 40.0)];

@@ -1,9 +1,9 @@
-//! Perforative trochoids along the medial axis of a whole polygonal pocket (issue #5 item 5,
-//! "or the medial-axis strategy for the whole pocket"). Wu et al. 2016 §4.2 only say the third
+//! Perforative trochoids along the medial axis of a whole polygonal pocket
+//! (docs/pockets.md). Wu et al. 2016 §4.2 only say the third
 //! method "uses the method of Voronoi diagrams to calculate the medial axis of the cavity and
 //! arrange the perforative trochoid according to the medial axis", with steps (1)–(4): reference
 //! engagement, guiding curve, circles one by one under the engagement control, a linked list.
-//! The algorithm below is ours (domain-spec §3.5, DERIVED), written so that every choice can be
+//! The algorithm below is ours (derived in docs/pockets.md), written so that every choice can be
 //! checked by the independent evaluator.
 //!
 //! 1. **Axis.** The medial axis of the pocket ([`crate::corner::medial`], boostvoronoi; parabolic edges
@@ -19,10 +19,10 @@
 //!    as cut. It then clears that largest circle by concentric circles about the helix centre,
 //!    joined by half-circles (G1: the half-circle from radius ρi at angle θ to ρi+1 at θ + π
 //!    has centre `p + (ρi − ρi+1)/2·e(θ)` and radius `(ρi + ρi+1)/2`), starting from the helix
-//!    circle ρ0 = r_h. Each radius is the largest whose two-circle engagement (§1.2) after the
+//!    circle ρ0 = r_h. Each radius is the largest whose two-circle engagement after the
 //!    previous circle, and that of the half-circle to it, stay within the target (bisection as
-//!    §3.3), so the first circles grow out of the bore within the target. (From a plunge hole
-//!    instead, §1.2 gives δ = arccos(ρ/2r), β = π for a tool centre at distance ρ from the
+//!    for variable circles), so the first circles grow out of the bore within the target. (From a plunge hole
+//!    instead, the two-circle model gives δ = arccos(ρ/2r), β = π for a tool centre at distance ρ from the
 //!    hole's centre: π/2 + arcsin(ρ/2r) ≥ 90° for any ρ, DERIVED; that is why the helix.)
 //!    Where not even a helix of 0.25·D fits, the tool ramps down along the longest line
 //!    through that point (a zig-zag [`super::entry::Ramp`]) and the chain starts from there.
@@ -30,11 +30,11 @@
 //!    one root-to-leaf guide at a time (children in counter-clockwise order). On a guide, the
 //!    next circle is centred on the axis at arc length s with offset radius Rc(s) (allowance 0:
 //!    it touches the walls), tool-centre radius ρ = Rc − r, and s is found by bisection exactly as
-//!    §3.3 with the axis as guide: accept when the two-circle engagement after the previous
+//!    for variable circles (Wu et al. 2016 eqs. 23–24) with the axis as guide: accept when the two-circle engagement after the previous
 //!    circle is in (a*, a* + ε], or take the far end of the search if it is under a*. The search
 //!    reaches at most 2·R_prev ahead (no overlap beyond), not past the next Voronoi vertex (so a
 //!    circle that reaches it is the one touching three walls there) and not past the point where
-//!    ρ drops below r_min (§3.3 stop rule). Circles are counter-clockwise (G3, climb with M3), joined by
+//!    ρ drops below r_min (the variable circles' stop rule). Circles are counter-clockwise (G3, climb with M3), joined by
 //!    the common tangent on their right (seen along the guide), so the path is G1 there; each
 //!    circle runs a full turn from its entry and on to the exit tangent point (an extra
 //!    `δ ∈ [−30°, 330°)`; a few degrees short of the full turn are left where the next link runs
@@ -71,7 +71,7 @@ use std::f64::consts::{PI, TAU};
 const VORONOI_RESOLUTION_MM: f64 = 1e-4;
 /// Spacing of the clearance samples along the axis before a crossing is refined (mm).
 const CLEARANCE_STEP_MM: f64 = 0.25;
-/// Bisection steps allowed for one circle (domain-spec §3.3).
+/// Bisection steps allowed for one circle (a cap: each step halves the bracket).
 const MAX_BISECTION: usize = 60;
 /// Circles allowed in one pocket.
 const MAX_CIRCLES: usize = 20_000;
@@ -386,7 +386,7 @@ impl AxisGraph {
     }
 }
 
-/// The §3.3 bisection on (lo, hi] for a metric m with m(lo) = 0 (the same circle): hi if
+/// The variable-circle bisection on (lo, hi] for a metric m with m(lo) = 0 (the same circle): hi if
 /// m(hi) ≤ a*; else the first x with m(x) ∈ (a*, a* + ε]; after 60 steps the last x found
 /// under a* (or lo). Returns (x, m(x)).
 fn bisect(mut lo: f64, mut hi: f64, target: f64, eps: f64, m: impl Fn(f64) -> f64) -> (f64, f64) {
@@ -761,7 +761,7 @@ impl Planner<'_> {
         TwoCircle { previous: prev, current: cur, tool_radius: self.r(), turn: Turn::Ccw }.max_engagement().angle
     }
 
-    /// Largest two-circle engagement (§1.2) along the half-circle transition from the circle
+    /// Largest two-circle engagement along the half-circle transition from the circle
     /// (c1, ρ1) to (c2, ρ2) of [`Planner::transition`], after the first circle was cut: the
     /// half-circle is a piece of a circle, so the model applies to it over its half turn
     /// (scanned every 0.5°, refined by golden section).
@@ -876,7 +876,7 @@ impl Planner<'_> {
         }
         let (mut prev_rho, mut theta) = (rho0, theta0);
         loop {
-            // Next radius: the largest in (ρ, ρ_max] within the target (bisection, §3.3).
+            // Next radius: the largest in (ρ, ρ_max] within the target (bisection).
             let prev_c = Circle::new(c, prev_rho + r);
             let e = P2::new(theta.cos(), theta.sin());
             let m = |x: f64| match &cut {

@@ -1,5 +1,5 @@
-//! Polygonal pocket cleared by contour-parallel rings (issue #5 item 5; Wu et al. 2016 §4,
-//! domain-spec §3.1: the plain contour-parallel path whose corners the strategies replace).
+//! Polygonal pocket cleared by contour-parallel rings (Wu et al. 2016 §4:
+//! the plain contour-parallel path whose corners the strategies replace; docs/pockets.md).
 //!
 //! Conventions as in [`crate::corner`]: mm, counter-clockwise pocket boundary, tool-centre rings walked
 //! counter-clockwise (pocket material on the left: climb milling with M3).
@@ -133,7 +133,7 @@ pub struct RingPlan {
     pub links: Vec<Link>,
     /// Length of the feed links (mm; retract links count 0).
     pub link_length_mm: f64,
-    /// [`plan_ring_pocket`] (issue #12): the entry of each region of tool centres (helix, or
+    /// [`plan_ring_pocket`]: the entry of each region of tool centres (helix, or
     /// ramp where no helix fits); empty for [`plan_rings`], which plunges.
     #[serde(default)]
     pub entries: Vec<Entry>,
@@ -162,7 +162,7 @@ pub struct RingPlan {
     #[serde(default)]
     pub air_length_mm: f64,
     /// [`plan_ring_pocket`]: the ring corners whose strategy ends with corner-point arcs
-    /// (issue #12 item 3), each with its arcs and the peak over them and their moves (the
+    /// (docs/corners.md), each with its arcs and the peak over them and their moves (the
     /// core's own corner points are not in this list; they are in `maxima`).
     #[serde(default)]
     pub corner_points: Vec<CornerPoint>,
@@ -503,7 +503,7 @@ type RingCorner = (P2, f64, CornerPointArcs);
 /// [`ring_with_corner_trochoids`] with each segment tagged: [`MoveKind::Corner`] for the
 /// strategy's pieces (its circles and links), [`MoveKind::CornerPoint`] for its corner-point
 /// arcs and their moves, [`MoveKind::Ring`] for the ring's own. With a corner tolerance δ
-/// (issue #12 item 3) each strategy ends with the corner-point arcs of
+/// (docs/corners.md) each strategy ends with the corner-point arcs of
 /// [`crate::corner::plan_corner`] instead of Wu et al.'s move into U0: its last arc ends on the
 /// outgoing ring line, δ·cot α past U0 (tangent to it), and the next ring segment starts there
 /// (for the last corner, the loop's first segment: the loop stays closed). Returns also the
@@ -796,7 +796,7 @@ fn assemble(polygon: &Polygon, r: f64, ae: f64, mut a: Assembled, rings: &[Candi
     a
 }
 
-/// Contour-parallel rings without a plunge or a full slot (issue #12 items 1 and 2):
+/// Contour-parallel rings without a plunge or a full slot (docs/pockets.md):
 /// 1. **Core.** The rings run from level k_c − 1 out to level 0 (the wall). The region inside
 ///    ring k_c is cleared by adaptive clearing ([`super::adaptive`]: helix at its point of
 ///    largest clearance, spiral out of the bore, rings along its core, corner passes, the
@@ -916,7 +916,7 @@ pub fn plan_ring_pocket(
         }
         None if method != CornerMethod::Plain => {
             // No helix anywhere, so no adaptive core, and the corner strategies do not fit these
-            // narrow rings either (issue #12 item 2: "clear that region another way"): the
+            // narrow rings either, so that region is cleared another way: the
             // medial-axis clearing of the whole pocket (ramp entry, circles out of its slot,
             // corner-point arcs) is the core, and no ring is left outside it.
             let m = super::perforative::plan_perforative(polygon, settings, &core_options)?;
