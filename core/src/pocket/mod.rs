@@ -365,6 +365,40 @@ pub fn estimated_positions(polygon: &Polygon, strategy: PocketStrategy, settings
     k * polygon.area().abs() / (settings.step_over * settings.spacing)
 }
 
+/// Most work of a ring-method plan, in tool positions × earlier passes met per position
+/// ([`check_ring_work`]).
+pub const MAX_RING_WORK: f64 = 2.0e5;
+
+/// The ring methods measure each tool position against the earlier passes within the tool's
+/// reach, about r/a_e rings of them, so their work grows as (A/(a_e·spacing))·(r/a_e): about
+/// 1/a_e², not 1/a_e as the positions do. Measured on the U channel (the slowest of the six
+/// reference outlines, docs/pockets.md), plain rings: 0.62 s at a_e = 1.527 mm (work 2.7·10⁴),
+/// 6.9 s at a_e = 0.25 mm (work 9.9·10⁵), variable circles 2.3× that; at [`MAX_RING_WORK`] a
+/// plan takes about 2 s. Error naming the step-over and the least that fits:
+/// a_e ≥ √(A·r/(spacing·W)).
+fn check_ring_work(polygon: &Polygon, method: CornerMethod, settings: &PocketSettings) -> Result<(), Error> {
+    let (r, ae, h) = (settings.tool_radius, settings.step_over, settings.spacing);
+    let area = polygon.area().abs();
+    let work = area / (ae * h) * (r / ae).max(1.0);
+    if work <= MAX_RING_WORK {
+        return Ok(());
+    }
+    let least = (area * r / (h * MAX_RING_WORK)).sqrt();
+    Err(Error::param(
+        Param::StepOver,
+        ae,
+        format!(
+            "at least {} mm for --method {} on this pocket at a spacing of {} mm (--spacing, default 0.25 mm; \
+             every position is measured against the r/step-over earlier rings within reach, so area / \
+             (step-over × spacing) × r/step-over estimates the work, at most {MAX_RING_WORK}; adaptive clearing \
+             takes finer step-overs)",
+            num(least),
+            method.name(),
+            num(h)
+        ),
+    ))
+}
+
 /// Most vertices of a pocket polygon: every offset, corner and link of a plan walks the
 /// outline, and at this bound each method plans in seconds (a finer outline, e.g. arcs cut into
 /// more chords, is refused with this number).
@@ -383,6 +417,9 @@ fn check_work(polygon: &Polygon, strategy: PocketStrategy, settings: &PocketSett
             format!("{n} vertices"),
             format!("at most {MAX_POCKET_VERTICES} vertices for a pocket (outline arcs as fewer, longer chords)"),
         ));
+    }
+    if let PocketStrategy::Rings(method) = strategy {
+        check_ring_work(polygon, method, settings)?;
     }
     let positions = estimated_positions(polygon, strategy, settings);
     if positions <= MAX_ESTIMATED_POSITIONS {
@@ -495,6 +532,22 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn ring_methods_refuse_a_step_over_whose_work_grows_past_the_bound() {
+        // 60 × 40 rectangle, r = 5, spacing 0.25: the least step-over is
+        // √(A·r/(spacing·W)) = √(2400·5/(0.25·2·10⁵)) = √0.24 = 0.4899 mm
+        let req = PocketRequest::default();
+        let settings = |ae: f64| PocketSettings { step_over: ae, ..req.settings().expect("valid") };
+        for method in [CornerMethod::Plain, CornerMethod::Variable, CornerMethod::Isometric] {
+            let e = check_ring_work(&req.polygon, method, &settings(0.48)).expect_err("refused");
+            assert_eq!(e.subject(), Some("step-over"), "{e}");
+            assert!(e.to_string().contains("at least 0.4898"), "{e}");
+            check_ring_work(&req.polygon, method, &settings(0.49)).expect("fits");
+        }
+        // adaptive clearing is bounded by its positions only: the same step-over passes there
+        check_work(&req.polygon, PocketStrategy::Adaptive, &settings(0.48)).expect("fits");
+    }
 
     #[test]
     fn strategies_are_named_by_their_corner_method() {
