@@ -653,7 +653,10 @@ fn isometric_circles(sc: &CornerScenario, notes: &mut Vec<String>) -> Result<(Ve
     ));
     let tip = variable_chain(sc, big_r / sin)?;
     if !tip.is_empty() {
-        notes.push(format!("corner tip finished with {} variable circles (§3.3) after the bisector circle", tip.len()));
+        notes.push(format!(
+            "corner tip finished with {} variable circles (Wu et al. 2016 §4.2.1) after the bisector circle",
+            tip.len()
+        ));
     }
     circles.extend(tip);
     Ok((circles, Some(leg_end)))

@@ -15,7 +15,7 @@ pub use circle::Circle;
 pub use distance::{
     arc_segment_distance, point_arc_distance, point_segment_distance, segment_edge_distance, segment_segment_distance,
 };
-pub use polygon::{MAX_COORDINATE_MM, MAX_POLYGON_VERTICES, Polygon, loop_distance};
+pub use polygon::{MAX_COORDINATE_MM, MAX_POLYGON_VERTICES, Polygon, loop_contains, loop_distance};
 pub use quad::gauss_legendre;
 pub use segment::{Segment, SegmentPoint};
 

@@ -112,18 +112,22 @@ impl Polygon {
 
     /// Even-odd point-in-polygon test.
     pub fn contains(&self, p: P2) -> bool {
-        let v = &self.vertices;
-        let mut inside = false;
-        let mut j = v.len() - 1;
-        for i in 0..v.len() {
-            let (a, b) = (v[i], v[j]);
-            if (a.y > p.y) != (b.y > p.y) && p.x < (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x {
-                inside = !inside;
-            }
-            j = i;
-        }
-        inside
+        loop_contains(&self.vertices, p)
     }
+}
+
+/// Even-odd point-in-loop test of the closed loop through `v` (either orientation).
+pub fn loop_contains(v: &[P2], p: P2) -> bool {
+    let mut inside = false;
+    let mut j = v.len().saturating_sub(1);
+    for i in 0..v.len() {
+        let (a, b) = (v[i], v[j]);
+        if (a.y > p.y) != (b.y > p.y) && p.x < (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x {
+            inside = !inside;
+        }
+        j = i;
+    }
+    inside
 }
 
 fn signed_area(v: &[P2]) -> f64 {

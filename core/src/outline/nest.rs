@@ -17,7 +17,9 @@ pub(crate) fn pockets(name: &str, loops: Vec<Loop>) -> Result<Vec<Outline>, Erro
     let around: Vec<Vec<usize>> = (0..loops.len())
         .map(|i| {
             let p = loops[i].pts[0];
-            (0..loops.len()).filter(|&j| j != i && in_box(&boxes[j], p) && contains(&loops[j].pts, p)).collect()
+            (0..loops.len())
+                .filter(|&j| j != i && in_box(&boxes[j], p) && crate::geom::loop_contains(&loops[j].pts, p))
+                .collect()
         })
         .collect();
     let depth: Vec<usize> = around.iter().map(Vec::len).collect();
@@ -50,20 +52,6 @@ fn bbox(v: &[P2]) -> [f64; 4] {
 
 fn in_box(b: &[f64; 4], p: P2) -> bool {
     p.x >= b[0] && p.x <= b[2] && p.y >= b[1] && p.y <= b[3]
-}
-
-/// Even-odd point-in-loop test.
-fn contains(v: &[P2], p: P2) -> bool {
-    let mut inside = false;
-    let mut j = v.len() - 1;
-    for i in 0..v.len() {
-        let (a, b) = (v[i], v[j]);
-        if (a.y > p.y) != (b.y > p.y) && p.x < (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x {
-            inside = !inside;
-        }
-        j = i;
-    }
-    inside
 }
 
 /// No edge of one loop crosses or touches an edge of another: edges sorted by their smallest x,

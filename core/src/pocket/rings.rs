@@ -222,7 +222,7 @@ impl RingPlan {
 pub fn link_is_inside(polygon: &Polygon, a: P2, b: P2, r: f64) -> bool {
     let v = polygon.vertices();
     let n = v.len();
-    polygon.contains(a) && (0..n).all(|i| segment_distance(a, b, v[i], v[(i + 1) % n]) >= r - 1e-9)
+    polygon.contains(a) && (0..n).all(|i| crate::geom::segment_segment_distance(a, b, v[i], v[(i + 1) % n]) >= r - 1e-9)
 }
 
 /// Whether the tool centre on `piece` keeps at least `r` from every edge of `polygon` and stays
@@ -235,31 +235,12 @@ pub fn piece_is_inside(polygon: &Polygon, piece: &[Segment], r: f64) -> bool {
     piece.iter().all(|seg| match *seg {
         Segment::Line { start, end } => link_is_inside(polygon, start, end, r),
         Segment::Arc { center, radius, .. } => {
-            polygon.contains(center) && (0..n).all(|i| point_segment(center, v[i], v[(i + 1) % n]) >= radius + r - 1e-9)
+            polygon.contains(center)
+                && (0..n)
+                    .all(|i| crate::geom::point_segment_distance(center, v[i], v[(i + 1) % n]) >= radius + r - 1e-9)
         }
         _ => false,
     })
-}
-
-/// Distance between the closed segments p0–p1 and q0–q1 (0 when they cross).
-fn segment_distance(p0: P2, p1: P2, q0: P2, q1: P2) -> f64 {
-    use crate::geom::cross;
-    let (d1, d2) = (cross(p1 - p0, q0 - p0), cross(p1 - p0, q1 - p0));
-    let (d3, d4) = (cross(q1 - q0, p0 - q0), cross(q1 - q0, p1 - q0));
-    if d1 * d2 < 0.0 && d3 * d4 < 0.0 {
-        return 0.0;
-    }
-    point_segment(p0, q0, q1)
-        .min(point_segment(p1, q0, q1))
-        .min(point_segment(q0, p0, p1))
-        .min(point_segment(q1, p0, p1))
-}
-
-fn point_segment(p: P2, a: P2, b: P2) -> f64 {
-    let ab = b - a;
-    let l2 = ab.dot(&ab);
-    let t = if l2 > 0.0 { ((p - a).dot(&ab) / l2).clamp(0.0, 1.0) } else { 0.0 };
-    (p - (a + ab * t)).norm()
 }
 
 /// The inward offset loops of a validated polygon at distance `d` (> 0, finite), as closed
