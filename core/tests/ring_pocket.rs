@@ -246,3 +246,22 @@ fn a_pocket_too_narrow_for_a_helix_gets_a_ramp_in_every_method() {
         assert_eq!(plan(&req).expect_err("too small").subject(), Some("helix-radius"), "{strategy:?}");
     }
 }
+
+/// The top-level link length is every link move at depth — the core's links as well as those
+/// between rings — so it equals the link row of the per-kind report (summed there from the
+/// measured moves by kind), and it is more than the links between rings alone.
+#[test]
+fn link_length_counts_every_link_move_like_the_per_kind_report() {
+    for method in [CornerMethod::Plain, CornerMethod::Variable, CornerMethod::Isometric] {
+        let p = rings(RECT, method, 1.527);
+        let row = p.maxima.iter().find(|k| k.kind == MoveKind::Link).expect("a link row");
+        assert!(
+            (p.link_length_mm - row.length_mm).abs() < 1e-9,
+            "{method:?}: {} vs {}",
+            p.link_length_mm,
+            row.length_mm
+        );
+        let between_rings: f64 = p.links.iter().map(|l| l.length_mm).sum();
+        assert!(p.link_length_mm > between_rings, "{method:?}: {} ≤ {between_rings}", p.link_length_mm);
+    }
+}

@@ -131,7 +131,8 @@ pub struct RingPlan {
     pub plain_corners: usize,
     /// `links[i]` joins the end of `rings[i]` to the entry of `rings[i + 1]`.
     pub links: Vec<Link>,
-    /// Length of the feed links (mm; retract links count 0).
+    /// Length of the feed links (mm; retract links count 0): for [`plan_ring_pocket`] every link
+    /// move at depth, the core's included.
     pub link_length_mm: f64,
     /// [`plan_ring_pocket`]: the entry of each region of tool centres (helix, or
     /// ramp where no helix fits); empty for [`plan_rings`], which plunges.
@@ -1018,15 +1019,19 @@ pub fn plan_ring_pocket(
         links.push(Link { kind, from, to, length_mm, max_engagement_rad });
     }
     // `links[i]` joins ring i to ring i + 1; the link from the core into the first ring is
-    // part of the path (and of `link_length_mm`), not of that list.
-    let first_link = if links.is_empty() { None } else { Some(links.remove(0)) };
+    // part of the path, not of that list.
+    if !links.is_empty() {
+        links.remove(0);
+    }
     let (maxima, _) = maxima(&profile, &a.segments, &a.kinds, &[]);
     let (max_engagement_rad, p95_engagement_rad) = peak_and_p95(&profile);
     let length_at_depth_mm: f64 = a.segments.iter().map(Segment::length).sum();
     let entry_length_mm: f64 = entries.iter().map(|e| e.descent_length(options.depth_mm)).sum();
     let path_length_mm: f64 = out_rings.iter().map(|g| g.length_mm).sum();
+    // every link move at depth: the core's links as well as those between rings (the same sum
+    // as the link row of the per-kind maxima)
     let link_length_mm =
-        links.iter().chain(&first_link).filter(|l| l.kind == LinkKind::Feed).map(|l| l.length_mm).sum();
+        a.segments.iter().zip(&a.kinds).filter(|(_, k)| **k == MoveKind::Link).map(|(s, _)| s.length()).sum();
     Ok(RingPlan {
         polygon: polygon.clone(),
         settings,
