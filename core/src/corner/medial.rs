@@ -11,7 +11,7 @@
 //! along the directrix (field `points`; `curved` marks them).
 
 use crate::error::{Error, num};
-use crate::geom::{P2, Polygon, p2, rot90};
+use crate::geom::{EdgeGrid, P2, Polygon, p2, rot90};
 use boostvoronoi::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -61,12 +61,7 @@ fn edge_distance(p: P2, a: P2, b: P2) -> f64 {
 /// the edges near the point instead of all of them (the same value: the minimum over the same
 /// distances).
 pub struct Walls {
-    edges: Vec<(P2, P2)>,
-    lo: P2,
-    cell: f64,
-    nx: usize,
-    ny: usize,
-    bins: Vec<Vec<u32>>,
+    grid: EdgeGrid,
 }
 
 impl Walls {
@@ -75,50 +70,33 @@ impl Walls {
         let v = poly.vertices();
         let n = v.len();
         let edges: Vec<(P2, P2)> = (0..n).map(|i| (v[i], v[(i + 1) % n])).collect();
-        let inf = p2(f64::INFINITY, f64::INFINITY);
-        let (lo, hi) = v
-            .iter()
-            .fold((inf, -inf), |(lo, hi), q| (p2(lo.x.min(q.x), lo.y.min(q.y)), p2(hi.x.max(q.x), hi.y.max(q.y))));
+        let (lo, hi) = EdgeGrid::bounds(v);
         let (w, h) = ((hi.x - lo.x).max(1e-9), (hi.y - lo.y).max(1e-9));
         let cell = (4.0 * w * h / n as f64).sqrt().max(w.max(h) / 1024.0);
-        let (nx, ny) = ((w / cell) as usize + 1, (h / cell) as usize + 1);
-        let mut walls = Walls { edges, lo, cell, nx, ny, bins: vec![Vec::new(); nx * ny] };
-        for (i, &(a, b)) in walls.edges.iter().enumerate() {
-            let (x0, y0) = walls.cell_of(p2(a.x.min(b.x), a.y.min(b.y)));
-            let (x1, y1) = walls.cell_of(p2(a.x.max(b.x), a.y.max(b.y)));
-            for y in y0..=y1 {
-                for x in x0..=x1 {
-                    walls.bins[y * nx + x].push(i as u32);
-                }
-            }
-        }
-        walls
-    }
-
-    fn cell_of(&self, p: P2) -> (usize, usize) {
-        let at = |v: f64, n: usize| (((v / self.cell).floor().max(0.0)) as usize).min(n - 1);
-        (at(p.x - self.lo.x, self.nx), at(p.y - self.lo.y, self.ny))
+        Walls { grid: EdgeGrid::new(edges, lo, hi, cell) }
     }
 
     /// [`clearance`]: the rings of cells around p's cell are searched until the nearest edge
     /// found is no farther than the next ring can be (k cells).
     pub fn clearance(&self, p: P2) -> f64 {
-        let (cx, cy) = self.cell_of(p);
+        let g = &self.grid;
+        let (cx, cy) = g.cell_of(p);
+        let (nx, ny) = g.size();
         let mut best = f64::INFINITY;
-        for k in 0..self.nx.max(self.ny) {
+        for k in 0..nx.max(ny) {
             // Every cell of ring k is at least k − 1 cells from p (p is in, or outside, its cell).
-            if best <= (k as f64 - 1.0) * self.cell {
+            if best <= (k as f64 - 1.0) * g.cell() {
                 break;
             }
             let (x0, x1, y0, y1) =
-                (cx.saturating_sub(k), (cx + k).min(self.nx - 1), cy.saturating_sub(k), (cy + k).min(self.ny - 1));
+                (cx.saturating_sub(k), (cx + k).min(nx - 1), cy.saturating_sub(k), (cy + k).min(ny - 1));
             for y in y0..=y1 {
                 for x in x0..=x1 {
                     if x.abs_diff(cx).max(y.abs_diff(cy)) != k {
                         continue;
                     }
-                    for &i in &self.bins[y * self.nx + x] {
-                        let (a, b) = self.edges[i as usize];
+                    for &i in g.bin(x, y) {
+                        let (a, b) = g.edges()[i as usize];
                         best = best.min(edge_distance(p, a, b));
                     }
                 }
@@ -133,7 +111,8 @@ impl Walls {
     /// corner's bisector, or the axis through a neck between two reflex vertices) has two.
     pub fn nearest_features(&self, p: P2, tol: f64) -> Vec<WallFeature> {
         let found: Vec<(f64, WallFeature)> = self
-            .edges
+            .grid
+            .edges()
             .iter()
             .map(|&(a, b)| {
                 let d = b - a;

@@ -6,6 +6,7 @@
 mod biarc;
 mod circle;
 mod distance;
+mod edge_grid;
 mod polygon;
 mod quad;
 mod segment;
@@ -15,6 +16,7 @@ pub use circle::Circle;
 pub use distance::{
     arc_segment_distance, point_arc_distance, point_segment_distance, segment_edge_distance, segment_segment_distance,
 };
+pub use edge_grid::EdgeGrid;
 pub use polygon::{MAX_COORDINATE_MM, MAX_POLYGON_VERTICES, Polygon, loop_contains, loop_distance};
 pub use quad::gauss_legendre;
 pub use segment::{Segment, SegmentPoint};

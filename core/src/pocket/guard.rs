@@ -11,7 +11,7 @@
 
 use super::entry::Entry;
 use crate::error::{Error, num};
-use crate::geom::{P2, Polygon, Segment, p2, segment_edge_distance};
+use crate::geom::{EdgeGrid, P2, Polygon, Segment, p2, segment_edge_distance};
 
 /// How much nearer than the tool radius a move may come to a wall (mm): rounding of the
 /// offsets the path is built from (their own error is ~1e-12 mm).
@@ -20,14 +20,9 @@ pub const GUARD_TOLERANCE_MM: f64 = 1e-6;
 /// Most grid cells per side of the edge index.
 const MAX_CELLS_PER_SIDE: usize = 256;
 
-/// The pocket's walls binned in a grid of square cells.
+/// The pocket's walls binned in a grid of square cells of at least r.
 struct Walls {
-    edges: Vec<(P2, P2)>,
-    origin: P2,
-    cell: f64,
-    nx: usize,
-    ny: usize,
-    bins: Vec<Vec<usize>>,
+    grid: EdgeGrid,
 }
 
 impl Walls {
@@ -35,49 +30,27 @@ impl Walls {
         let v = polygon.vertices();
         let n = v.len();
         let edges: Vec<(P2, P2)> = (0..n).filter(|i| !open_edges.contains(i)).map(|i| (v[i], v[(i + 1) % n])).collect();
-        let (mut lo, mut hi) = (p2(f64::INFINITY, f64::INFINITY), p2(f64::NEG_INFINITY, f64::NEG_INFINITY));
-        for p in v {
-            lo = p2(lo.x.min(p.x), lo.y.min(p.y));
-            hi = p2(hi.x.max(p.x), hi.y.max(p.y));
-        }
+        let (lo, hi) = EdgeGrid::bounds(v);
         let span = (hi - lo).x.max((hi - lo).y).max(1e-9);
         let cell = r.max(span / MAX_CELLS_PER_SIDE as f64);
-        let nx = (((hi.x - lo.x) / cell).floor() as usize + 1).min(MAX_CELLS_PER_SIDE + 1);
-        let ny = (((hi.y - lo.y) / cell).floor() as usize + 1).min(MAX_CELLS_PER_SIDE + 1);
-        let mut walls = Walls { edges, origin: lo, cell, nx, ny, bins: vec![Vec::new(); nx * ny] };
-        for k in 0..walls.edges.len() {
-            let (a, b) = walls.edges[k];
-            let (x0, y0, x1, y1) = walls.cells(p2(a.x.min(b.x), a.y.min(b.y)), p2(a.x.max(b.x), a.y.max(b.y)));
-            for y in y0..=y1 {
-                for x in x0..=x1 {
-                    walls.bins[y * nx + x].push(k);
-                }
-            }
-        }
-        walls
-    }
-
-    /// The cell range covering the box lo–hi (clamped to the grid).
-    fn cells(&self, lo: P2, hi: P2) -> (usize, usize, usize, usize) {
-        let ix = |x: f64, n: usize| (((x - self.origin.x) / self.cell).floor().max(0.0) as usize).min(n - 1);
-        let iy = |y: f64, n: usize| (((y - self.origin.y) / self.cell).floor().max(0.0) as usize).min(n - 1);
-        (ix(lo.x, self.nx), iy(lo.y, self.ny), ix(hi.x, self.nx), iy(hi.y, self.ny))
+        Walls { grid: EdgeGrid::new(edges, lo, hi, cell) }
     }
 
     /// The least distance from `seg` to a wall within `reach` of its bounding box, and that
     /// wall's ends; infinity where none is that near.
     fn nearest(&self, seg: &Segment, reach: f64, seen: &mut [usize], stamp: usize) -> (f64, (P2, P2)) {
         let (lo, hi) = bounds(seg);
-        let (x0, y0, x1, y1) = self.cells(lo - p2(reach, reach), hi + p2(reach, reach));
+        let (x0, y0, x1, y1) = self.grid.cells(lo - p2(reach, reach), hi + p2(reach, reach));
         let mut best = (f64::INFINITY, (P2::zeros(), P2::zeros()));
         for y in y0..=y1 {
             for x in x0..=x1 {
-                for &k in &self.bins[y * self.nx + x] {
+                for &k in self.grid.bin(x, y) {
+                    let k = k as usize;
                     if seen[k] == stamp {
                         continue;
                     }
                     seen[k] = stamp;
-                    let (a, b) = self.edges[k];
+                    let (a, b) = self.grid.edges()[k];
                     let d = segment_edge_distance(seg, a, b);
                     if d < best.0 {
                         best = (d, (a, b));
@@ -145,7 +118,7 @@ pub fn check_clearance(
     entries: &[Entry],
 ) -> Result<(), Error> {
     let walls = Walls::new(polygon, open_edges, r);
-    let mut seen = vec![usize::MAX; walls.edges.len()];
+    let mut seen = vec![usize::MAX; walls.grid.edges().len()];
     let entry_moves: Vec<(Segment, String)> = entries
         .iter()
         .enumerate()
