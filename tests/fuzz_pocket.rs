@@ -266,6 +266,23 @@ fn method_of(k: usize) -> (&'static str, &'static str) {
     (METHODS[k % 5], DIRECTIONS[(k / 5) % 2])
 }
 
+/// Case `k` of a random run: the pocket placed (rotated, moved, maybe reversed), the method and
+/// direction of `k`, random open edges where the method takes them.
+fn random_case(rng: &mut Rng, k: usize, label: &str, poly: Vec<(f64, f64)>, d: f64, step_over: Option<f64>) -> Case {
+    let polygon = place(rng, poly);
+    let (method, direction) = method_of(k);
+    let open = open_edges(rng, method, polygon.len());
+    Case {
+        label: format!("{label} ({} vertices)", polygon.len()),
+        polygon,
+        open,
+        method,
+        direction,
+        tool_diameter: d,
+        step_over,
+    }
+}
+
 #[test]
 fn random_combs_notches_necks_and_spikes_keep_every_move_below_the_top_off_the_walls() {
     let mut rng = Rng::new(2026);
@@ -273,18 +290,7 @@ fn random_combs_notches_necks_and_spikes_keep_every_move_below_the_top_off_the_w
         .map(|k| {
             let (d, step_over) = tool(&mut rng);
             let poly = monotone_pocket(&mut rng, d);
-            let polygon = place(&mut rng, poly);
-            let (method, direction) = method_of(k);
-            let open = open_edges(&mut rng, method, polygon.len());
-            Case {
-                label: format!("monotone ({} vertices)", polygon.len()),
-                polygon,
-                open,
-                method,
-                direction,
-                tool_diameter: d,
-                step_over,
-            }
+            random_case(&mut rng, k, "monotone", poly, d, step_over)
         })
         .collect();
     run_cases("monotone", &cases, 20);
@@ -304,18 +310,7 @@ fn random_arms_and_stars_keep_every_move_below_the_top_off_the_walls() {
             } else {
                 arm_pocket(&mut rng, d)
             };
-            let polygon = place(&mut rng, poly);
-            let (method, direction) = method_of(k);
-            let open = open_edges(&mut rng, method, polygon.len());
-            Case {
-                label: format!("{label} ({} vertices)", polygon.len()),
-                polygon,
-                open,
-                method,
-                direction,
-                tool_diameter: d,
-                step_over,
-            }
+            random_case(&mut rng, k, label, poly, d, step_over)
         })
         .collect();
     run_cases("arms", &cases, 20);
