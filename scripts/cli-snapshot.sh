@@ -114,7 +114,7 @@ invocations() {
     # --- help and version (argv[0] is fixed, no terminal: fixed width)
     run help --help
     run version --version
-    for c in analyze sweep export corner pocket engagement; do
+    for c in analyze sweep export corner pocket engagement optimize; do
         run "help-$c" "$c" --help
     done
 
@@ -204,7 +204,9 @@ invocations() {
     run corner-isometric-60 corner --angle 60 --method isometric
     run corner-medial-axis-90 corner --angle 90 --method medial-axis
     run corner-medial-axis-120 corner --angle 120 --method medial-axis
-    run corner-table-variable corner --method variable --table
+    for d in plain variable isometric medial-axis; do
+        run "corner-table-$d" corner --method "$d" --table
+    done
     run corner-export-variable-90-linuxcnc corner --angle 90 --method variable --spacing 1 \
         --export @P.ngc --dialect linuxcnc
     run corner-export-variable-90-sinumerik corner --angle 90 --method variable --spacing 1 \
@@ -218,7 +220,7 @@ invocations() {
 
     # --- pocket: rectangle and L, plain / variable / isometric / medial axis, exports
     for j in rect l-shape; do
-        for d in plain variable isometric medial-axis; do
+        for d in adaptive plain variable isometric medial-axis; do
             run "pocket-$j-$d" pocket --polygon "inputs/$j.txt" --method "$d"
         done
     done
@@ -233,7 +235,25 @@ invocations() {
         --export @P.ngc --dialect linuxcnc
     run pocket-export-l-shape-medial-axis-fanuc pocket --polygon inputs/l-shape.txt --method medial-axis \
         --export @P.nc --dialect fanuc --nc-tolerance 0.01
+    for d in adaptive plain variable isometric medial-axis; do
+        run "pocket-export-rect-$d-linuxcnc" pocket --polygon inputs/rect.txt --method "$d" \
+            --step-over 1.527 --export @P.ngc --dialect linuxcnc
+    done
+    run pocket-export-l-shape-adaptive-sinumerik pocket --polygon inputs/l-shape.txt --method adaptive \
+        --export @P.mpf --dialect sinumerik
+    run pocket-export-l-shape-adaptive-fanuc-options pocket --polygon inputs/l-shape.txt --depth 4 \
+        --rpm 2500 --coolant --linear-segments --export @P.nc --dialect fanuc --title 'L adaptive'
+    run pocket-rect-adaptive-open-edge0 pocket --polygon inputs/rect.txt --step-over 1.527 --open-edges 0
+    run pocket-export-rect-adaptive-open-edges02-grbl pocket --polygon inputs/rect.txt --step-over 1.527 \
+        --open-edges 0,2 --export @P.gcode --dialect grbl
+    run pocket-l-shape-adaptive-conventional pocket --polygon inputs/l-shape.txt --direction conventional
     run pocket-invalid-bowtie --expect 2 pocket --polygon inputs/bowtie.txt
+
+    # --- optimize: the limits alone, a job file, a machine preset
+    run optimize-hmax0.1-eng60 optimize --max-hmax 0.1 --max-engagement 60
+    run optimize-job-vmc optimize --job assets/linear-elliptical-d1.toml --machine vmc --max-hmax 0.08 \
+        --max-engagement 50 --max-waviness 0.02
+    run optimize-invalid-hmax --expect 2 optimize --max-hmax -1 --max-engagement 60
 
     # --- engagement
     run engagement-straight engagement --path-csv inputs/straight-path.csv \
