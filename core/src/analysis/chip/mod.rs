@@ -29,10 +29,12 @@ mod outline;
 mod swept;
 mod teeth;
 mod thickness;
+mod timing;
 
 pub use outline::chip_outline;
 pub use swept::EarlySweep;
 pub use teeth::{max_engagement, tooth_samples_at, tooth_series, tooth_stride};
+pub use timing::{ChipTiming, chip_timing};
 
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
