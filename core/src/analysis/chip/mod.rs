@@ -23,6 +23,9 @@
 //! - **Engaged arcs** ([`EngagedArc`]): each engaged interval is kept with the radial chip
 //!   thickness h(φ) = R − max(t₁, t_s) sampled along it at most 1° apart, so later models
 //!   (forces, imprints, variable feed) read h(φ) without recomputing the geometry.
+//!
+//! [`PreviousEdge`]: super::PreviousEdge
+//! [`ray_thickness`]: thickness::ray_thickness
 
 mod engagement;
 mod outline;

@@ -12,7 +12,7 @@ use crate::path::{Cycle, CyclePos};
 /// state, cycle origin at (0, 0)): the engaged arc of the tool circle, then back along the
 /// inner boundary of the chip (the previous tooth's circle or the swept edge), as a closed
 /// polygon with `n` points per engaged interval and side. Empty when the tooth cuts nothing.
-/// For drawing the chip (teaching view); the numbers come from [`tooth_series`].
+/// For drawing the chip (teaching view); the numbers come from [`super::tooth_series`].
 pub fn chip_outline(cycle: &Cycle, edge: &PreviousEdge, r: f64, f_z: f64, s: f64, n: usize) -> Vec<P2> {
     let len = cycle.length();
     let start = CyclePos { seg: 0, t: 0.0 };

@@ -38,6 +38,9 @@
 //! m-teeth-back chip taken as m·h), arcs unchanged. Default: no runout.
 //!
 //! Forces are on the tool, in the machine frame (x across the slot, y along it, z up).
+//!
+//! [`ToothSample::arcs`]: super::ToothSample::arcs
+//! [`MAX_FORCE_TOOTH_SAMPLES`]: crate::job::limits::MAX_FORCE_TOOTH_SAMPLES
 
 mod blend;
 mod model;

@@ -18,11 +18,14 @@ pub const PROFILE_CHANGE: f64 = 0.1;
 /// are cut off by the previous tooth's circle at the paper's point B, and B runs along the
 /// arc within a few teeth. Blending the two profiles at the same relative place there
 /// underestimates h by up to a third (against the brute-force check); a real position half-way
-/// ([`super::chip::tooth_samples_at`]) halves the change. The positions of a steady cut
+/// ([`crate::analysis::chip::tooth_samples_at`]) halves the change. The positions of a steady cut
 /// change by about 1 %.
 ///
 /// Only pairs with a position marked in `new` are examined (the others were, in an earlier
 /// round, and kept).
+///
+/// [`growth_share`]: super::blend::growth_share
+/// [`vanish_share`]: super::blend::vanish_share
 pub fn refine_points(series: &[ToothSample], len: f64, new: &[bool]) -> Vec<f64> {
     let n = series.len();
     let fresh = |i: usize| new.get(i).copied().unwrap_or(true);
