@@ -5,7 +5,7 @@ use super::panels::compare::{self, MAX_VARIANTS};
 use super::panels::optimise::OptimiseRun;
 use super::panels::sweep::SweepRun;
 use super::{App, PinnedJob, Variant};
-use crate::files::write_atomic;
+use crate::shared::files::write_atomic;
 use eframe::egui;
 use std::path::Path;
 use trochoplan_core::Job;
@@ -171,7 +171,7 @@ impl App {
 
     /// Read a job file into the edited job (one undo step).
     pub fn open(&mut self, path: &Path) {
-        let read = crate::files::read_input(path, "job file")
+        let read = crate::shared::files::read_input(path, "job file")
             .and_then(|text| Job::from_toml(&text).map_err(|e| e.to_string()));
         match read {
             Ok(job) => {
@@ -185,14 +185,10 @@ impl App {
 
     /// Read a pocket outline (`pocket --polygon`'s formats) into the Pocket mode's vertices.
     pub fn open_outline(&mut self, path: &Path) {
-        let read = crate::files::read_input(path, "outline").and_then(|text| {
-            let pockets =
-                trochoplan_core::outline::read(&path.display().to_string(), &text).map_err(|e| e.to_string())?;
-            pockets.single().map(<[_]>::to_vec).map_err(|e| e.to_string())
-        });
+        let read = crate::shared::outline::read_single(path, "outline");
         match read {
             Ok(points) => {
-                self.state.corner.polygon_text = points.iter().map(|p| format!("{},{}\n", p.x, p.y)).collect();
+                self.state.corner.polygon_text = crate::shared::outline::points_text(&points);
                 self.status = Some((format!("opened outline {} ({} vertices)", path.display(), points.len()), false));
             }
             Err(e) => self.status = Some((format!("cannot open {}: {e}", path.display()), true)),

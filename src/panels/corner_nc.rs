@@ -11,7 +11,7 @@ use super::corner::{CornerMode, CornerResult, CornerView, PocketResult};
 use super::export::{ProgramCache, line_starts, program_text};
 use super::label;
 use super::params::ERROR_COLOR;
-use crate::export::nc_options;
+use crate::shared::nc::{self as shared_nc, NcChoices};
 use eframe::egui::{self, DragValue, RichText, Slider, SliderClamping};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
@@ -52,11 +52,11 @@ impl Default for CornerNcSettings {
 impl CornerNcSettings {
     /// The core's options (validated by the core when the program is written).
     pub fn options(&self) -> NcOptions {
-        nc_options(self.dialect, self.tolerance_mm, self.linear_segments, self.coolant)
+        NcChoices::new(self.dialect, self.tolerance_mm, self.linear_segments, self.coolant).options()
     }
 
     pub fn cut(&self) -> CutSetup {
-        CutSetup { depth_mm: self.depth_mm, spindle_rpm: self.spindle_rpm }
+        shared_nc::cut_setup(self.depth_mm, self.spindle_rpm)
     }
 }
 
