@@ -298,5 +298,5 @@ impl eframe::App for App {
 }
 
 #[cfg(test)]
-#[path = "../panels/gui_tests.rs"]
+#[path = "../panels/gui_tests/mod.rs"]
 mod gui_tests;

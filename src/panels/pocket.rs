@@ -380,7 +380,7 @@ mod tests {
             h.run();
             use egui_kittest::kittest::{NodeT, Queryable};
             let node = h.get_by_label(CornerMethod::Variable.label());
-            node.accesskit_node().is_selected() == Some(true)
+            node.accesskit_node().toggled() == Some(egui::accesskit::Toggled::True)
         };
         assert!(highlighted(false), "the chosen method is shown");
         assert!(!highlighted(true), "no method shown while adaptive is ticked");
