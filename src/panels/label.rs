@@ -1,5 +1,5 @@
 //! The widget labels of every panel, in one place: each is also the widget's accessible name,
-//! which is how the GUI tests (`gui_tests.rs`, egui_kittest) find it. A constant is named after
+//! which is how the GUI tests (`gui_tests/`, egui_kittest) find it. A constant is named after
 //! its text.
 
 // Parameter panel (the slot job): each field's label is the core's `Param::label`.
