@@ -1,10 +1,13 @@
 //! Headless command-line interface. The subcommand and flag names are a fixed contract that
 //! scripts rely on: `analyze`, `sweep`, and the job flags below (same names as job-file keys).
 
-use crate::files::{Role, check_distinct, read_input, write_atomic};
-// Pocket-corner commands live in their own file next to this one.
+use crate::shared::files::{Role, check_distinct, read_input, write_atomic};
+// The command files of the CLI, next to this one: `export`, the pocket-corner commands and the
+// optimiser.
 #[path = "corner_cmd.rs"]
 mod corner_cmd;
+#[path = "export.rs"]
+mod export;
 // The optimiser likewise.
 #[path = "optimize_cmd.rs"]
 mod optimize_cmd;
@@ -71,7 +74,7 @@ enum Command {
         #[command(flatten)]
         job: JobArgs,
         #[command(flatten)]
-        nc: crate::export::ExportArgs,
+        nc: export::ExportArgs,
     },
     /// Plan the trochoids of one pocket corner; print JSON (circles, path length, engagement),
     /// or with --table the acceptance table for corner angles 30°…150°.
@@ -267,12 +270,12 @@ impl JobArgs {
 /// Run the CLI; errors go to stderr with a non-zero exit code. The report goes to stdout,
 /// or to stderr when an output file is the standard output (`-o -`).
 pub fn main() -> ExitCode {
-    crate::files::remove_temporaries_on_exit();
+    crate::shared::files::remove_temporaries_on_exit();
     let cli = Cli::parse();
     match run(cli.command) {
         Ok(out) => {
             use std::io::Write;
-            let written = if crate::files::stdout_taken() {
+            let written = if crate::shared::files::stdout_taken() {
                 std::io::stderr().write_all(out.as_bytes())
             } else {
                 std::io::stdout().lock().write_all(out.as_bytes()).and_then(|()| std::io::stdout().flush())
@@ -332,7 +335,7 @@ fn run(cmd: Command) -> Result<String, String> {
         }
         Command::Export { job, nc } => {
             check_distinct(&[&job.inputs()[..], &[("--output", Some(nc.output()), Role::Output)]].concat())?;
-            crate::export::run(&job.job()?, &nc)
+            export::run(&job.job()?, &nc)
         }
         Command::Corner { args } => corner_cmd::corner(&args),
         Command::Engagement { args } => corner_cmd::engagement(&args),

@@ -3,7 +3,7 @@
 //! `corner --table`).
 
 use super::core_names;
-use crate::files::{read_input, write_atomic};
+use crate::shared::files::{read_input, write_atomic};
 use clap::Args;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -245,9 +245,9 @@ pub struct PocketArgs {
 }
 
 impl PocketArgs {
-    /// The input and output files, for [`crate::files::check_distinct`].
-    pub fn files(&self) -> [(&'static str, Option<&std::path::Path>, crate::files::Role); 2] {
-        use crate::files::Role;
+    /// The input and output files, for [`crate::shared::files::check_distinct`].
+    pub fn files(&self) -> [(&'static str, Option<&std::path::Path>, crate::shared::files::Role); 2] {
+        use crate::shared::files::Role;
         [("--polygon", Some(&self.polygon), Role::Input), ("--export", self.nc.export.as_deref(), Role::Output)]
     }
 }
@@ -891,7 +891,7 @@ struct NcExportOut {
 fn nc_options(nc: &CornerExportArgs) -> NcOptions {
     NcOptions {
         title: nc.title.clone().unwrap_or_default(),
-        ..crate::export::nc_options(nc.dialect, nc.nc_tolerance, nc.linear_segments, nc.coolant)
+        ..crate::shared::nc::nc_options(nc.dialect, nc.nc_tolerance, nc.linear_segments, nc.coolant)
     }
 }
 

@@ -2,7 +2,8 @@
 //! rename), so an existing program is never left half-written.
 
 use crate::cli::core_names;
-use crate::files::write_atomic;
+use crate::shared::files::write_atomic;
+use crate::shared::nc::NcChoices;
 use clap::Args;
 use std::path::PathBuf;
 use trochoplan_core::error::num;
@@ -65,19 +66,13 @@ impl ExportArgs {
     }
 }
 
-/// The NC options of the choices every export offers (`export`, `corner --export`,
-/// `pocket --export` and the GUI's two export panels); the others are the core's defaults.
-pub fn nc_options(dialect: Dialect, tolerance_mm: f64, linear_segments: bool, coolant: bool) -> NcOptions {
-    NcOptions { dialect, tolerance_mm, linear_segments, coolant, ..NcOptions::default() }
-}
-
 /// Plan `job`, write its program to the output file; returns a one-line summary.
 pub fn run(job: &Job, args: &ExportArgs) -> Result<String, String> {
     let p = plan(job).map_err(|e| e.to_string())?;
-    let opts = NcOptions {
-        return_feed_mm_per_min: args.return_feed,
-        compact: args.compact,
+    let opts = NcChoices {
         title: args.title.clone().unwrap_or_default(),
+        compact: args.compact,
+        return_feed_mm_per_min: args.return_feed,
         variable_feed: args.variable_feed.then_some(VariableFeed {
             target_h_mm: args.target_hmax,
             max_feed_mm_per_min: args.max_feed,
@@ -85,8 +80,9 @@ pub fn run(job: &Job, args: &ExportArgs) -> Result<String, String> {
             band_ratio: args.feed_band,
             min_block_mm: args.min_block,
         }),
-        ..nc_options(args.dialect, args.tolerance, args.linear_segments, args.coolant)
-    };
+        ..NcChoices::new(args.dialect, args.tolerance, args.linear_segments, args.coolant)
+    }
+    .options();
     opts.validate().map_err(|e| e.to_string())?;
     if opts.linear_segments {
         check_chords(&p, &opts)?;

@@ -3,9 +3,11 @@
 
 mod app;
 mod cli;
-mod export;
-mod files;
+mod shared;
 mod worker;
+
+#[cfg(test)]
+mod layout_tests;
 
 use std::process::ExitCode;
 

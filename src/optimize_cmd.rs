@@ -3,7 +3,7 @@
 //! Pareto front of real MRR against W_max as CSV.
 
 use crate::cli::JobArgs;
-use crate::files::{Role, check_distinct, write_atomic};
+use crate::shared::files::{Role, check_distinct, write_atomic};
 use clap::Args;
 use std::path::PathBuf;
 use trochoplan_core::optimize::{Candidate, Control, Limits, optimize};

@@ -2,10 +2,11 @@
 //! threads. They run after all panels have drawn ([`App::apply`]).
 
 use super::panels::compare::{self, MAX_VARIANTS};
+use super::panels::corner_nc::NcPreview;
 use super::panels::optimise::OptimiseRun;
 use super::panels::sweep::SweepRun;
 use super::{App, PinnedJob, Variant};
-use crate::files::write_atomic;
+use crate::shared::files::write_atomic;
 use eframe::egui;
 use std::path::Path;
 use trochoplan_core::Job;
@@ -35,12 +36,14 @@ pub enum Command {
     RestartCornerTable,
     /// Ask for a file and write the Corner tab's previewed NC program.
     ExportCornerNc,
+    /// Ask for a file and write the Pocket tab's previewed NC program.
+    ExportPocketNc,
     /// Run the optimiser on a worker thread.
     StartOptimise,
     CancelOptimise,
     /// Load a job of the optimiser's front (`None`: its best job).
     LoadOptimised(Option<usize>),
-    /// Ask for a pocket outline (DXF, SVG or points) and put its vertices in the Pocket mode.
+    /// Ask for a pocket outline (DXF, SVG or points) and put its vertices in the Pocket tab.
     OpenOutline,
 }
 
@@ -76,6 +79,7 @@ impl App {
             Command::CancelCornerTable => self.corner.table.cancel(),
             Command::RestartCornerTable => self.corner.table.restart(),
             Command::ExportCornerNc => self.export_corner_nc(),
+            Command::ExportPocketNc => self.export_pocket_nc(),
             Command::StartOptimise => {
                 let ctx = ctx.clone();
                 self.optimise =
@@ -171,7 +175,7 @@ impl App {
 
     /// Read a job file into the edited job (one undo step).
     pub fn open(&mut self, path: &Path) {
-        let read = crate::files::read_input(path, "job file")
+        let read = crate::shared::files::read_input(path, "job file")
             .and_then(|text| Job::from_toml(&text).map_err(|e| e.to_string()));
         match read {
             Ok(job) => {
@@ -183,16 +187,12 @@ impl App {
         }
     }
 
-    /// Read a pocket outline (`pocket --polygon`'s formats) into the Pocket mode's vertices.
+    /// Read a pocket outline (`pocket --polygon`'s formats) into the Pocket tab's vertices.
     pub fn open_outline(&mut self, path: &Path) {
-        let read = crate::files::read_input(path, "outline").and_then(|text| {
-            let pockets =
-                trochoplan_core::outline::read(&path.display().to_string(), &text).map_err(|e| e.to_string())?;
-            pockets.single().map(<[_]>::to_vec).map_err(|e| e.to_string())
-        });
+        let read = crate::shared::outline::read_single(path, "outline");
         match read {
             Ok(points) => {
-                self.state.corner.polygon_text = points.iter().map(|p| format!("{},{}\n", p.x, p.y)).collect();
+                self.state.pocket.polygon_text = crate::shared::outline::points_text(&points);
                 self.status = Some((format!("opened outline {} ({} vertices)", path.display(), points.len()), false));
             }
             Err(e) => self.status = Some((format!("cannot open {}: {e}", path.display()), true)),
@@ -232,18 +232,28 @@ impl App {
             self.status = Some((format!("cannot export: corner inputs invalid: {e}"), true));
             return;
         }
-        let (text, stem) = match &self.corner_nc.result {
-            Some(Ok(p)) => (p.text.clone(), p.file_stem),
-            Some(Err(e)) => {
-                self.status = Some((format!("cannot export: {e}"), true));
-                return;
-            }
-            None => {
-                self.status = Some(("cannot export: no corner or pocket planned yet".into(), true));
-                return;
-            }
-        };
-        self.write_nc(stem, self.state.corner_nc.dialect.extension(), &text);
+        let result = self.corner_nc.result.clone();
+        self.write_program(result, "corner", self.state.corner_nc.dialect.extension());
+    }
+
+    /// Ask for a file and write the Pocket tab's previewed NC program to it (atomically).
+    fn export_pocket_nc(&mut self) {
+        self.refresh_pocket();
+        if let Some(e) = &self.pocket.error {
+            self.status = Some((format!("cannot export: pocket inputs invalid: {e}"), true));
+            return;
+        }
+        let result = self.pocket_nc.result.clone();
+        self.write_program(result, "pocket", self.state.pocket_nc.dialect.extension());
+    }
+
+    /// Save the previewed program `result` of a tab that plans `what` (through [`Self::write_nc`]).
+    fn write_program(&mut self, result: Option<Result<NcPreview, String>>, what: &str, extension: &str) {
+        match result {
+            Some(Ok(p)) => self.write_nc(p.file_stem, extension, &p.text),
+            Some(Err(e)) => self.status = Some((format!("cannot export: {e}"), true)),
+            None => self.status = Some((format!("cannot export: no {what} planned yet"), true)),
+        }
     }
 
     /// Ask where to save an NC program (`stem`.`extension` proposed) and write `text` there.

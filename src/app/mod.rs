@@ -9,7 +9,8 @@
 //! drawn, and only they touch files or dialogs — dialogs sit behind the [`FileDialogs`] trait so
 //! tests never open one.
 //!
-//! Modules: `state` (what is persisted), `planner`, `commands`, `tabs` (the tab list and each
+//! Modules: `state` (what is persisted; `earlier` moves the pocket of states stored before
+//! the Pocket tab), `planner`, `commands`, `tabs` (the tab list and each
 //! tab's central panel), `layout` (menus, side panels, status bar), `dialogs`, `frames`.
 
 #[path = "../panels/mod.rs"]
@@ -17,6 +18,7 @@ pub(crate) mod panels;
 
 mod commands;
 mod dialogs;
+mod earlier;
 mod frames;
 mod layout;
 mod planner;
@@ -65,6 +67,8 @@ pub fn run(job: Job) -> eframe::Result<()> {
             let mut app = App::with_planner(job, stored, Box::new(NativeDialogs), planner);
             let ctx = cc.egui_ctx.clone();
             app.corner = panels::corner::CornerView::threaded(move || ctx.request_repaint());
+            let ctx = cc.egui_ctx.clone();
+            app.pocket = panels::pocket::PocketView::threaded(move || ctx.request_repaint());
             Ok(Box::new(app))
         }),
     )
@@ -110,6 +114,10 @@ pub struct App {
     pub export: ExportCache,
     /// The NC program of the Corner tab's plan and its export settings.
     pub corner_nc: panels::corner_nc::CornerNcCache,
+    /// The Pocket tab's last pocket (planned inline, or on a thread in the window).
+    pub pocket: panels::pocket::PocketView,
+    /// The NC program of the Pocket tab's pocket and its export settings.
+    pub pocket_nc: panels::corner_nc::CornerNcCache,
     /// The chip of the animated tooth.
     pub chip: Chip,
     dialogs: Box<dyn FileDialogs>,
@@ -142,6 +150,8 @@ impl App {
             corner: panels::corner::CornerView::default(),
             export: ExportCache::default(),
             corner_nc: panels::corner_nc::CornerNcCache::default(),
+            pocket: panels::pocket::PocketView::default(),
+            pocket_nc: panels::corner_nc::CornerNcCache::default(),
             chip: Chip::default(),
             dialogs,
             status: None,
@@ -250,8 +260,22 @@ impl App {
     /// Collect the Corner tab's plans, ask for new ones if its inputs changed, and regenerate
     /// its NC program if the plan or the export settings changed.
     fn refresh_corner(&mut self) {
+        use panels::corner::CornerMode;
+        use panels::corner_nc::Source;
         self.corner.update(&self.state.corner);
-        self.corner_nc.update(&self.corner, self.state.corner.mode, &self.state.corner_nc);
+        let source = match self.state.corner.mode {
+            CornerMode::Corner => self.corner.last.clone().map(Source::Corner),
+            CornerMode::Table => None,
+        };
+        self.corner_nc.update(source, &self.state.corner_nc);
+    }
+
+    /// Collect the Pocket tab's plans, ask for a new one if its inputs changed, and regenerate
+    /// its NC program if the pocket or the export settings changed.
+    fn refresh_pocket(&mut self) {
+        self.pocket.update(&self.state.pocket);
+        let source = self.pocket.last.clone().map(panels::corner_nc::Source::Pocket);
+        self.pocket_nc.update(source, &self.state.pocket_nc);
     }
 
     /// Regenerate the NC program if the plan or the export settings changed.
@@ -274,5 +298,5 @@ impl eframe::App for App {
 }
 
 #[cfg(test)]
-#[path = "../panels/gui_tests.rs"]
+#[path = "../panels/gui_tests/mod.rs"]
 mod gui_tests;

@@ -1,10 +1,12 @@
 //! What the window keeps between sessions ([`State`]): the user's [`Inputs`] (one undo history
 //! covers them all) and the [`View`] (the selected tab and the job file).
 
+use super::earlier::{EarlierRecord, move_pocket};
 use super::panels::corner::CornerInputs;
 use super::panels::corner_nc::CornerNcSettings;
 use super::panels::export::ExportSettings;
 use super::panels::optimise::OptimiseSettings;
+use super::panels::pocket::PocketInputs;
 use super::panels::sweep::SweepSettings;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
@@ -23,6 +25,8 @@ pub enum Tab {
     Export,
     /// One pocket corner and its corner trochoids.
     Corner,
+    /// A whole pocket.
+    Pocket,
     /// Feed over the cycle on the machine, and the optimiser.
     Optimise,
 }
@@ -60,6 +64,10 @@ pub struct Inputs {
     pub corner: CornerInputs,
     /// NC export options of the Corner tab.
     pub corner_nc: CornerNcSettings,
+    /// Inputs of the Pocket tab.
+    pub pocket: PocketInputs,
+    /// NC export options of the Pocket tab.
+    pub pocket_nc: CornerNcSettings,
     /// Limits of the optimiser.
     pub optimise: OptimiseSettings,
 }
@@ -77,6 +85,8 @@ impl Default for Inputs {
             export: ExportSettings::default(),
             corner: CornerInputs::default(),
             corner_nc: CornerNcSettings::default(),
+            pocket: PocketInputs::default(),
+            pocket_nc: CornerNcSettings::default(),
             optimise: OptimiseSettings::default(),
         }
     }
@@ -107,10 +117,14 @@ pub struct State {
 impl State {
     /// The state stored in `storage`, if there is one.
     pub fn load(storage: &dyn eframe::Storage) -> Option<State> {
-        let inputs = eframe::get_value::<Inputs>(storage, INPUTS_KEY)?;
-        let view = eframe::get_value::<View>(storage, VIEW_KEY)
+        let mut inputs = eframe::get_value::<Inputs>(storage, INPUTS_KEY)?;
+        let mut view = eframe::get_value::<View>(storage, VIEW_KEY)
             .or_else(|| eframe::get_value::<View>(storage, INPUTS_KEY))
             .unwrap_or_default();
+        // a record from before the Pocket tab: its pocket moves there
+        if let Some(earlier) = eframe::get_value::<EarlierRecord>(storage, INPUTS_KEY) {
+            move_pocket(earlier, &mut inputs, &mut view);
+        }
         Some(State { inputs, view })
     }
 

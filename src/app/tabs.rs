@@ -13,15 +13,15 @@ pub struct TabSpec {
     pub tab: Tab,
     pub label: &'static str,
     pub tooltip: &'static str,
-    /// The slot's parameter and derived-value panels are shown beside it (the Corner tab has its
-    /// own tool and inputs, and its acceptance table needs the whole width).
+    /// The slot's parameter and derived-value panels are shown beside it (the Corner and Pocket
+    /// tabs have their own tool and inputs, and the acceptance table needs the whole width).
     pub slot_panels: bool,
     /// Draws the tab into the central panel.
     pub show: fn(&mut App, &mut egui::Ui, &mut Vec<Command>),
 }
 
 /// Every tab, in the order of the menu and the tab bar.
-pub const TABS: [TabSpec; 7] = [
+pub const TABS: [TabSpec; 8] = [
     TabSpec {
         tab: Tab::Plots,
         label: "Plots",
@@ -60,9 +60,16 @@ pub const TABS: [TabSpec; 7] = [
     TabSpec {
         tab: Tab::Corner,
         label: "Corner",
-        tooltip: "One pocket corner or a whole pocket with corner trochoids, and the acceptance table",
+        tooltip: "One pocket corner with corner trochoids, and the acceptance table",
         slot_panels: false,
         show: corner_tab,
+    },
+    TabSpec {
+        tab: Tab::Pocket,
+        label: "Pocket",
+        tooltip: "A whole polygonal pocket: adaptive clearing, rings with corner trochoids, or the medial axis",
+        slot_panels: false,
+        show: pocket_tab,
     },
     TabSpec {
         tab: Tab::Optimise,
@@ -158,6 +165,14 @@ fn corner_tab(app: &mut App, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
     cmds.extend(panels::corner::show(ui, inputs, &app.corner, nc, &app.corner_nc));
     // inputs edited this frame: ask for the new plan (and program) now
     app.refresh_corner();
+}
+
+fn pocket_tab(app: &mut App, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
+    app.refresh_pocket();
+    let nc = &mut panels::corner_nc::NcExport { settings: &mut app.state.pocket_nc, cache: &app.pocket_nc };
+    cmds.extend(panels::pocket::show(ui, &mut app.state.pocket, &app.pocket, nc));
+    // inputs edited this frame: ask for the new plan (and program) now
+    app.refresh_pocket();
 }
 
 /// The plotted layers: the edited plan (unless it is pinned) and, with `with_pins`, the pinned

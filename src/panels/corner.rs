@@ -2,10 +2,9 @@
 //! strategies (Wu et al. 2016), the corner drawn with equal axes, and the engagement measured by
 //! the core's independent evaluator along the plain ring and along the strategy's path.
 //!
-//! The inputs are those of `trochoplan corner` and `trochoplan pocket` (the core's
-//! `CornerRequest` and `PocketRequest`, with their defaults); [`compute`] and [`compute_pocket`]
-//! call the same core entry points (`corner::evaluate`, `pocket::plan`) and only convert their
-//! results to plot points. Planning takes 0.1–1 s, so the window runs it on a [`Worker`] thread
+//! The inputs are those of `trochoplan corner` (the core's `CornerRequest`, with its
+//! defaults); [`compute`] calls the same core entry point (`corner::evaluate`) and only
+//! converts its results to plot points. Whole pockets have their own tab ([`super::pocket`]). Planning takes 0.1–1 s, so the window runs it on a [`Worker`] thread
 //! ([`CornerView::threaded`]; the newest request wins); the tests plan inline
 //! ([`CornerView::default`]). The acceptance table
 //! ([`super::corner_table`], always on its own thread) and the NC export
@@ -16,27 +15,25 @@ use super::corner_nc::{self, CornerNcCache, CornerNcSettings, NcExport};
 use super::corner_table::{self, TableView};
 use super::label;
 use super::params::ERROR_COLOR;
+use super::plane::{self, MAX_PATH_POINTS, PLAIN_COLOR, STRATEGY_COLOR, line, plane_plot, segment_points};
 use crate::worker::{Keep, Task, Worker};
 use eframe::egui::{self, Color32, DragValue, RichText, Slider, SliderClamping};
-use egui_plot::{HLine, Legend, Line, Plot, PlotPoints};
+use egui_plot::{HLine, Legend, Plot};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 use trochoplan_core::corner::{self, CornerMethod, CornerReport, CornerRequest, EngagementProfile};
-use trochoplan_core::geom::{Polygon, Segment};
-use trochoplan_core::pocket::{self, MoveKind, PocketPlan, PocketRequest, PocketStrategy};
+use trochoplan_core::geom::Segment;
 
-/// What the tab plans: one corner, the acceptance table of all corner angles, or a whole
-/// polygonal pocket.
+/// What the tab shows: one corner, or the acceptance table of all corner angles.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum CornerMode {
+    /// Also read for the pocket mode of stored states from before the Pocket tab (the state
+    /// loader moves those to the Pocket tab, see `app/state.rs`).
     #[default]
+    #[serde(alias = "Pocket")]
     Corner,
     Table,
-    Pocket,
 }
-
-/// Most points drawn for the tool path.
-const MAX_PATH_POINTS: usize = 6000;
 
 /// Inputs of the Corner tab, persisted with the app state.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -56,35 +53,22 @@ pub struct CornerInputs {
     /// Allowed excess t1: target a* = a_str·(1 + t1).
     pub t1: f64,
     pub mode: CornerMode,
-    /// Pocket boundary, one vertex "x,y" per line.
-    pub polygon_text: String,
-    /// Ring step-over of the pocket (mm).
-    pub pocket_step_over_mm: f64,
-    /// Clear the pocket adaptively (helix entry, climb, finishing pass) instead of by `method`.
-    pub pocket_adaptive: bool,
-    /// The pocket's open edges, "i, j, …" (`--open-edges`: edge i from vertex i to i + 1).
-    pub pocket_open_edges: String,
 }
 
 impl Default for CornerInputs {
-    /// The defaults of `trochoplan corner` and `trochoplan pocket`; the pocket is the README's
-    /// rectangle.
+    /// The defaults of `trochoplan corner`.
     fn default() -> Self {
         let corner = CornerRequest::DEFAULT;
-        let pocket = PocketRequest::default();
         CornerInputs {
             angle_deg: corner.angle_deg,
             method: corner.method,
             tool_diameter_mm: corner.tool_diameter_mm,
             use_step_over: corner.step_over_mm.is_some(),
-            step_over_mm: corner.step_over_mm.unwrap_or(pocket.step_over_mm),
+            // shown when "give step-over" is ticked: the pocket's default ring step-over
+            step_over_mm: corner.step_over_mm.unwrap_or(trochoplan_core::pocket::PocketRequest::default().step_over_mm),
             straight_engagement_deg: corner.straight_engagement_deg,
             t1: corner.t1,
             mode: CornerMode::Corner,
-            polygon_text: pocket.polygon.vertices().iter().map(|v| format!("{},{}\n", v.x, v.y)).collect(),
-            pocket_step_over_mm: pocket.step_over_mm,
-            pocket_adaptive: pocket.strategy == PocketStrategy::Adaptive,
-            pocket_open_edges: String::new(),
         }
     }
 }
@@ -102,37 +86,6 @@ impl CornerInputs {
             t1: self.t1,
             ..CornerRequest::DEFAULT
         }
-    }
-
-    /// The core's pocket request of the tab's inputs: the polygon text read and validated, the
-    /// method as a whole-pocket strategy (or adaptive clearing), the other inputs as
-    /// `trochoplan pocket`'s defaults.
-    pub fn pocket_request(&self) -> Result<PocketRequest, String> {
-        // read as a point-list outline: loops separated by an empty line are an error naming
-        // them, never joined into one polygon
-        let pockets = trochoplan_core::outline::read("polygon", &self.polygon_text).map_err(|e| e.to_string())?;
-        let points = pockets.single().map_err(|e| e.to_string())?.to_vec();
-        let polygon = Polygon::new(points.clone()).map_err(|e| format!("polygon: {e}"))?;
-        let open: Vec<usize> = self
-            .pocket_open_edges
-            .split([',', ' '])
-            .filter(|w| !w.trim().is_empty())
-            .map(|w| w.trim().parse::<usize>())
-            .collect::<Result<_, _>>()
-            .map_err(|_| format!("open edges: \"{}\" is not a list of edge numbers i, j, …", self.pocket_open_edges))?;
-        let open_edges = pocket::stored_open_edges(&polygon, &points, &open).map_err(|e| e.to_string())?;
-        Ok(PocketRequest {
-            open_edges,
-            polygon,
-            tool_diameter_mm: self.tool_diameter_mm,
-            step_over_mm: self.pocket_step_over_mm,
-            strategy: if self.pocket_adaptive {
-                PocketStrategy::Adaptive
-            } else {
-                PocketStrategy::from_method(self.method)
-            },
-            ..PocketRequest::default()
-        })
     }
 }
 
@@ -223,123 +176,16 @@ pub fn compute(i: &CornerInputs) -> Result<CornerResult, String> {
     })
 }
 
-/// A planned pocket converted for drawing.
-#[derive(Clone, Debug)]
-pub struct PocketResult {
-    pub method: &'static str,
-    pub boundary: Vec<[f64; 2]>,
-    /// Rings in machining order: level, offset (mm), max engagement (degrees), points.
-    pub rings: Vec<(usize, f64, f64, Vec<[f64; 2]>)>,
-    pub path_length_mm: f64,
-    pub time_s: f64,
-    pub max_deg: f64,
-    /// What the strategy did: corners given trochoids, or circles along the medial axis.
-    pub detail: String,
-    /// The plan itself (for the NC program).
-    pub plan: PocketPlan,
-}
-
-/// Plan the pocket as `trochoplan pocket` does (`pocket::plan`), converted for drawing.
-pub fn compute_pocket(i: &CornerInputs) -> Result<PocketResult, String> {
-    let plan = pocket::plan(&i.pocket_request()?).map_err(|e| e.to_string())?;
-    let mut boundary: Vec<[f64; 2]> = plan.polygon().vertices().iter().map(|v| [v.x, v.y]).collect();
-    if let Some(&first) = boundary.first() {
-        boundary.push(first);
-    }
-    let (rings, detail) = match &plan {
-        // No rings: one pass along the medial axis (shown as one entry of the ring list).
-        PocketPlan::MedialAxis(p) => (
-            vec![(0, 0.0, p.body_max_rad.to_degrees(), segment_points(&p.segments, MAX_PATH_POINTS))],
-            format!(
-                "{} circles along the medial axis, {} part(s); corner points up to {:.1}°{}",
-                p.circles.len(),
-                p.parts,
-                p.max_of(MoveKind::CornerPoint).to_degrees(),
-                match p.max_of(MoveKind::Tip).to_degrees() {
-                    tip if tip > 0.0 => format!(", straight tips {tip:.1}°"),
-                    _ => String::new(),
-                }
-            ),
-        ),
-        // One pass: the whole path at depth (shown as one entry of the ring list).
-        PocketPlan::Adaptive(p) => (
-            vec![(0, 0.0, p.max_engagement_rad.to_degrees(), segment_points(&p.segments, MAX_PATH_POINTS))],
-            format!(
-                "{} entry, {} rings, {} corners thinned; p95 {:.1}°, {:.0} mm at depth",
-                match p.parts.first().map(|q| q.entry) {
-                    Some(pocket::Entry::Outside { .. }) => "outside",
-                    Some(pocket::Entry::Ramp(_)) => "ramp",
-                    _ => "helix",
-                },
-                p.parts.iter().map(|q| q.rings).sum::<usize>(),
-                p.parts.iter().map(|q| q.corners.len()).sum::<usize>(),
-                p.p95_engagement_rad.to_degrees(),
-                p.length_at_depth_mm
-            ),
-        ),
-        PocketPlan::Rings(p) => (
-            p.rings
-                .iter()
-                .map(|g| {
-                    let pts = segment_points(&g.segments, MAX_PATH_POINTS / 4);
-                    (g.level, g.offset_mm, g.max_engagement_rad.to_degrees(), pts)
-                })
-                .collect(),
-            format!("corners with trochoids {}, plain {}", p.trochoid_corners, p.plain_corners),
-        ),
-    };
-    Ok(PocketResult {
-        method: plan.strategy().name(),
-        boundary,
-        rings,
-        path_length_mm: plan.path_length_mm(),
-        time_s: plan.time_s(),
-        max_deg: plan.max_engagement_rad().to_degrees(),
-        detail,
-        plan,
-    })
-}
-
-/// A finished plan of either mode.
-#[derive(Clone, Debug)]
-pub enum Outcome {
-    Corner(Arc<CornerResult>),
-    Pocket(Arc<PocketResult>),
-}
-
-fn compute_any(i: &CornerInputs) -> Result<Outcome, String> {
-    match i.mode {
-        CornerMode::Corner | CornerMode::Table => compute(i).map(|r| Outcome::Corner(Arc::new(r))),
-        CornerMode::Pocket => compute_pocket(i).map(|r| Outcome::Pocket(Arc::new(r))),
-    }
-}
-
-/// Points along `segments` for drawing: about `max` in all, lines by their ends.
-pub fn segment_points(segments: &[Segment], max: usize) -> Vec<[f64; 2]> {
-    let total: f64 = segments.iter().map(Segment::length).sum::<f64>().max(1e-9);
-    let mut out = Vec::new();
-    for seg in segments {
-        let n = match seg {
-            Segment::Line { .. } => 1,
-            _ => ((seg.length() / total * max as f64).ceil() as usize).clamp(4, max),
-        };
-        let pts = seg.sample(n);
-        let skip = usize::from(!out.is_empty());
-        out.extend(pts.iter().skip(skip).map(|p| [p.x, p.y]));
-    }
-    out
-}
-
 fn profile_points(p: &EngagementProfile) -> Vec<[f64; 2]> {
     p.samples.iter().map(|s| [s.s_mm, s.angle_rad.to_degrees()]).collect()
 }
 
 /// The corner tab's worker: inputs in, their plan (or why they are invalid) out.
-type CornerWorker = Worker<CornerInputs, Result<Outcome, String>>;
+type CornerWorker = Worker<CornerInputs, Result<Arc<CornerResult>, String>>;
 
-/// Plan `inputs` in their mode.
-fn plan_job(inputs: CornerInputs, task: &Task<Result<Outcome, String>>) {
-    task.send(compute_any(&inputs));
+/// Plan the corner of `inputs`.
+fn plan_job(inputs: CornerInputs, task: &Task<Result<Arc<CornerResult>, String>>) {
+    task.send(compute(&inputs).map(Arc::new));
 }
 
 /// The last corner result, its error, and the worker computing it.
@@ -348,8 +194,6 @@ pub struct CornerView {
     pub table: TableView,
     /// The newest valid result (kept while the inputs are invalid).
     pub last: Option<Arc<CornerResult>>,
-    /// The newest valid pocket.
-    pub last_pocket: Option<Arc<PocketResult>>,
     /// The error for the newest inputs, if they are invalid.
     pub error: Option<String>,
     /// Inputs of the newest request.
@@ -379,7 +223,7 @@ impl CornerView {
     }
 
     fn with_worker(worker: CornerWorker, table: TableView) -> CornerView {
-        CornerView { table, last: None, last_pocket: None, error: None, requested: None, replans: 0, worker }
+        CornerView { table, last: None, error: None, requested: None, replans: 0, worker }
     }
 
     /// True while a request is being planned.
@@ -392,12 +236,8 @@ impl CornerView {
         for answer in self.worker.poll() {
             self.replans += 1;
             self.error = match answer {
-                Ok(Outcome::Corner(r)) => {
+                Ok(r) => {
                     self.last = Some(r);
-                    None
-                }
-                Ok(Outcome::Pocket(r)) => {
-                    self.last_pocket = Some(r);
                     None
                 }
                 Err(e) => Some(e),
@@ -422,12 +262,8 @@ impl CornerView {
     }
 }
 
-/// Colours of the two paths.
-pub(super) const PLAIN_COLOR: Color32 = Color32::from_rgb(200, 90, 40);
-const STRATEGY_COLOR: Color32 = Color32::from_rgb(40, 110, 200);
-
 /// The Corner tab: the mode, its inputs and results (one corner with its view and engagement
-/// plot, the acceptance table, or a pocket), and the NC export when it is open.
+/// plot, or the acceptance table), and the NC export when it is open.
 pub fn show(
     ui: &mut egui::Ui,
     inputs: &mut CornerInputs,
@@ -442,7 +278,6 @@ pub fn show(
             tool_inputs(ui, inputs);
             corner_table::show(ui, &view.table)
         }
-        CornerMode::Pocket => pocket(ui, inputs, view, nc),
         CornerMode::Corner => corner(ui, inputs, view, nc),
     }
 }
@@ -456,13 +291,11 @@ fn mode_bar(ui: &mut egui::Ui, inputs: &mut CornerInputs, nc: &mut CornerNcSetti
             "Every corner angle from 30° to 150° in 15° steps: the plain ring and the three strategies, measured \
              by the evaluator (`trochoplan corner --method M --table`)",
         );
-        ui.selectable_value(&mut inputs.mode, CornerMode::Pocket, "Pocket")
-            .on_hover_text("A polygonal pocket cleared by contour-parallel rings, the strategy at every ring corner");
         ui.separator();
         ui.add_enabled_ui(inputs.mode != CornerMode::Table, |ui| {
             ui.toggle_value(&mut nc.open, label::NC_EXPORT)
-                .on_hover_text("Options, preview and save of the NC program of the corner or the pocket")
-                .on_disabled_hover_text("Export one corner or a pocket; the table has no single tool path.");
+                .on_hover_text("Options, preview and save of the NC program of the corner")
+                .on_disabled_hover_text("Export one corner; the table has no single tool path.");
         });
     });
 }
@@ -505,7 +338,8 @@ fn tool_inputs(ui: &mut egui::Ui, inputs: &mut CornerInputs) {
 /// or beside the program when the NC export is open.
 fn corner(ui: &mut egui::Ui, inputs: &mut CornerInputs, view: &CornerView, nc: &mut NcExport) -> Option<Command> {
     corner_inputs(ui, inputs);
-    status(ui, view, view.last.is_some().then_some("Showing the last valid corner."));
+    let kept = view.last.is_some().then_some("Showing the last valid corner.");
+    plane::status(ui, view.error.as_deref(), view.pending(), kept);
     let Some(r) = view.last.as_deref() else {
         if view.error.is_none() {
             ui.label("Planning the corner…");
@@ -533,7 +367,7 @@ fn corner_inputs(ui: &mut egui::Ui, inputs: &mut CornerInputs) {
                 "Interior angle between the two walls (30°–150°); the apex is at the origin, the bisector along +x.",
             );
         ui.separator();
-        method_buttons(ui, &mut inputs.method);
+        plane::method_buttons(ui, &mut inputs.method, true);
     });
     tool_inputs(ui, inputs);
 }
@@ -543,7 +377,7 @@ fn nc_options(ui: &mut egui::Ui, view: &CornerView, nc: &mut NcExport) -> Option
     if !nc.settings.open {
         return None;
     }
-    let cmd = corner_nc::options(ui, nc.settings, nc.cache, view.error.is_some());
+    let cmd = corner_nc::options(ui, nc.settings, nc.cache, view.error.is_some(), Command::ExportCornerNc);
     ui.separator();
     cmd
 }
@@ -563,31 +397,6 @@ fn corner_plots(ui: &mut egui::Ui, r: &CornerResult, nc_open: bool, nc_cache: &C
             engagement_plot(&mut cols[1], r, h - 20.0);
         }
     });
-}
-
-/// The method buttons; labels and tooltips are the core's.
-fn method_buttons(ui: &mut egui::Ui, method: &mut CornerMethod) {
-    ui.label("Method");
-    for m in CornerMethod::ALL {
-        ui.selectable_value(method, m, m.label()).on_hover_text(m.tooltip());
-    }
-}
-
-/// The core's message when the inputs are invalid (then `kept`, what is shown meanwhile), and
-/// a spinner while a plan is being made.
-fn status(ui: &mut egui::Ui, view: &CornerView, kept: Option<&str>) {
-    if let Some(e) = &view.error {
-        ui.add(egui::Label::new(RichText::new(format!("invalid: {e}")).color(ERROR_COLOR)).wrap());
-        if let Some(text) = kept {
-            ui.label(text);
-        }
-    }
-    if view.pending() {
-        ui.horizontal(|ui| {
-            ui.spinner();
-            ui.label("planning…");
-        });
-    }
 }
 
 /// Height of the teaching text under the plots.
@@ -633,20 +442,6 @@ fn numbers(ui: &mut egui::Ui, r: &CornerResult) {
     for n in &r.notes {
         ui.add(egui::Label::new(RichText::new(n).italics()).wrap());
     }
-}
-
-fn line(name: &str, pts: &[[f64; 2]]) -> Line<'static> {
-    Line::new(name.to_owned(), PlotPoints::from(pts.to_vec()))
-}
-
-/// A plot of the plane, `height` high, with equal axis scale and a legend.
-fn plane_plot(id: impl egui::AsIdSalt, height: f32) -> Plot<'static> {
-    Plot::new(id)
-        .data_aspect(1.0)
-        .height(height)
-        .legend(Legend::default())
-        .x_axis_label("x (mm)")
-        .y_axis_label("y (mm)")
 }
 
 fn corner_plot(ui: &mut egui::Ui, r: &CornerResult, height: f32) {
@@ -707,116 +502,6 @@ fn teaching(ui: &mut egui::Ui) {
              remaining material (segment Voronoi diagram). Plain: the ring as it is, for comparison.",
         );
     });
-}
-
-/// The Pocket sub-mode: vertices as text, tool, step-over, method; the rings and their numbers,
-/// and the program beside the rings when the NC export is open.
-fn pocket(ui: &mut egui::Ui, inputs: &mut CornerInputs, view: &CornerView, nc: &mut NcExport) -> Option<Command> {
-    pocket_inputs(ui, inputs);
-    status(ui, view, None);
-    if nc.settings.open {
-        ui.separator();
-    }
-    let cmd = nc_options(ui, view, nc);
-    let h = (ui.available_height() - 10.0).max(220.0);
-    let mut open = false;
-    ui.horizontal_top(|ui| {
-        ui.vertical(|ui| {
-            ui.set_width(230.0);
-            polygon_editor(ui, inputs);
-            if ui
-                .button(label::POCKET_OPEN_OUTLINE)
-                .on_hover_text("A DXF or SVG drawing, or an x,y point list")
-                .clicked()
-            {
-                open = true;
-            }
-            if let Some(r) = view.last_pocket.as_deref() {
-                ui.add_space(6.0);
-                pocket_numbers(ui, r);
-            }
-        });
-        if let Some(r) = view.last_pocket.as_deref() {
-            pocket_view(ui, r, nc.settings.open, nc.cache, h);
-        }
-    });
-    if open { Some(Command::OpenOutline) } else { cmd }
-}
-
-/// The method, the tool diameter and the pocket's step-over.
-fn pocket_inputs(ui: &mut egui::Ui, inputs: &mut CornerInputs) {
-    ui.horizontal_wrapped(|ui| {
-        ui.checkbox(&mut inputs.pocket_adaptive, label::POCKET_ADAPTIVE).on_hover_text(PocketStrategy::Adaptive.help());
-        ui.add_enabled_ui(!inputs.pocket_adaptive, |ui| method_buttons(ui, &mut inputs.method));
-        ui.separator();
-        let l = ui.label(label::CORNER_TOOL_DIAMETER);
-        ui.add(DragValue::new(&mut inputs.tool_diameter_mm).speed(0.1).suffix(" mm")).labelled_by(l.id);
-        let l = ui.label(label::POCKET_STEP_OVER);
-        ui.add(DragValue::new(&mut inputs.pocket_step_over_mm).speed(0.05).suffix(" mm"))
-            .labelled_by(l.id)
-            .on_hover_text("Distance between successive contour-parallel rings, 0 < a_e < D.");
-        let l = ui.label(label::POCKET_OPEN_EDGES);
-        ui.add_enabled(
-            inputs.pocket_adaptive,
-            egui::TextEdit::singleline(&mut inputs.pocket_open_edges).desired_width(60.0),
-        )
-        .labelled_by(l.id)
-        .on_hover_text(
-            "Edges without a wall (adaptive): \"0\" or \"0, 2\"; edge i runs from vertex i to vertex i + 1 \
-             (0-based). The tool goes down outside the stock there and clears inward.",
-        );
-    });
-}
-
-/// The pocket's vertices as editable text.
-fn polygon_editor(ui: &mut egui::Ui, inputs: &mut CornerInputs) {
-    let l = ui.label(label::POCKET_VERTICES);
-    ui.add(egui::TextEdit::multiline(&mut inputs.polygon_text).desired_rows(8).code_editor())
-        .labelled_by(l.id)
-        .on_hover_text("A simple polygon, lines only, one vertex \"x,y\" (mm) per line; '#' comments allowed.");
-}
-
-/// The pocket's method, length, time and engagement, and its rings' offsets and engagement.
-fn pocket_numbers(ui: &mut egui::Ui, r: &PocketResult) {
-    ui.label(format!("method {}", r.method));
-    if matches!(r.plan, PocketPlan::Rings(_)) {
-        ui.label(format!("{} rings", r.rings.len()));
-    }
-    ui.label(format!("path {:.1} mm, {:.1} s", r.path_length_mm, r.time_s));
-    ui.label(format!("max engagement {:.1}°", r.max_deg));
-    ui.label(&r.detail);
-    egui::ScrollArea::vertical().id_salt("pocket_rings_scroll").show(ui, |ui| {
-        egui::Grid::new("pocket_rings").striped(true).show(ui, |ui| {
-            ui.label("ring");
-            ui.label("offset");
-            ui.label("max eng.");
-            ui.end_row();
-            for (level, off, mx, _) in &r.rings {
-                ui.label(format!("{level}"));
-                ui.label(format!("{off:.2} mm"));
-                ui.label(format!("{mx:.1}°"));
-                ui.end_row();
-            }
-        });
-    });
-}
-
-/// The pocket and its rings, `h` high; half as wide, beside the program, when `nc_open`.
-fn pocket_view(ui: &mut egui::Ui, r: &PocketResult, nc_open: bool, nc_cache: &CornerNcCache, h: f32) {
-    let w = ui.available_width();
-    let plot_w = if nc_open { 0.5 * w } else { w };
-    plane_plot("pocket_rings_plot", h).width(plot_w).show(ui, |p| {
-        p.line(line("pocket", &r.boundary).color(Color32::GRAY).width(2.5));
-        for (_, _, _, pts) in &r.rings {
-            p.line(line("rings", pts).color(STRATEGY_COLOR).width(1.0));
-        }
-    });
-    if nc_open {
-        ui.vertical(|ui| {
-            ui.set_min_size(egui::vec2(ui.available_width(), h));
-            corner_nc::preview(ui, nc_cache);
-        });
-    }
 }
 
 #[cfg(test)]

@@ -1,23 +1,25 @@
-//! NC export from the Corner tab: the program of the planned corner or pocket, with
-//! dialect, tolerance, arcs or G1 chords, coolant, depth and spindle speed; previewed read-only
-//! and saved through the app's file dialog (`Command::ExportCornerNc`).
+//! NC export from the Corner and Pocket tabs: the program of the planned corner or pocket,
+//! with dialect, tolerance, arcs or G1 chords, coolant, depth and spindle speed; previewed
+//! read-only and saved through the app's file dialog (`Command::ExportCornerNc`,
+//! `Command::ExportPocketNc`). Each tab has its own settings and program.
 //!
 //! The program comes from the core (`nc::corner_program`, `nc::pocket_program`), the same calls
 //! as `trochoplan corner --export` and `trochoplan pocket --export`, so the GUI writes the
 //! CLI's text. It is generated once per (plan, settings) in [`CornerNcCache`], not per frame.
 
 use super::Command;
-use super::corner::{CornerMode, CornerResult, CornerView, PocketResult};
+use super::corner::CornerResult;
 use super::export::{ProgramCache, line_starts, program_text};
 use super::label;
 use super::params::ERROR_COLOR;
-use crate::export::nc_options;
+use super::pocket::PocketResult;
+use crate::shared::nc::{self as shared_nc, NcChoices};
 use eframe::egui::{self, DragValue, RichText, Slider, SliderClamping};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 use trochoplan_core::nc::{self, CutSetup, DEFAULT_TOLERANCE_MM, Dialect, NcOptions};
 
-/// The export options of the Corner tab (persisted with the app state).
+/// The export options of the Corner tab, or of the Pocket tab (persisted with the app state).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct CornerNcSettings {
@@ -52,11 +54,11 @@ impl Default for CornerNcSettings {
 impl CornerNcSettings {
     /// The core's options (validated by the core when the program is written).
     pub fn options(&self) -> NcOptions {
-        nc_options(self.dialect, self.tolerance_mm, self.linear_segments, self.coolant)
+        NcChoices::new(self.dialect, self.tolerance_mm, self.linear_segments, self.coolant).options()
     }
 
     pub fn cut(&self) -> CutSetup {
-        CutSetup { depth_mm: self.depth_mm, spindle_rpm: self.spindle_rpm }
+        shared_nc::cut_setup(self.depth_mm, self.spindle_rpm)
     }
 }
 
@@ -91,13 +93,9 @@ impl PartialEq for Source {
 pub type CornerNcCache = ProgramCache<(Source, CornerNcSettings), NcPreview>;
 
 impl CornerNcCache {
-    /// Regenerate if the plan shown in `mode` or the settings changed.
-    pub fn update(&mut self, view: &CornerView, mode: CornerMode, settings: &CornerNcSettings) {
-        let source = match mode {
-            CornerMode::Corner => view.last.clone().map(Source::Corner),
-            CornerMode::Pocket => view.last_pocket.clone().map(Source::Pocket),
-            CornerMode::Table => None,
-        };
+    /// Regenerate if the shown plan (`None`: none, or the acceptance table) or the settings
+    /// changed.
+    pub fn update(&mut self, source: Option<Source>, settings: &CornerNcSettings) {
         let Some(source) = source else {
             self.clear();
             return;
@@ -128,13 +126,15 @@ fn generate(source: &Source, settings: &CornerNcSettings) -> Result<NcPreview, S
     Ok(NcPreview { line_starts: line_starts(&program.text), text: program.text, blocks: program.blocks, file_stem })
 }
 
-/// The options, the program's size and the save button. `inputs_error`: the tab's inputs are
-/// invalid (the program would be of the last valid plan, so saving is disabled).
+/// The options, the program's size and the save button (`save`: its command). `inputs_error`:
+/// the tab's inputs are invalid (the program would be of the last valid plan, so saving is
+/// disabled).
 pub fn options(
     ui: &mut egui::Ui,
     settings: &mut CornerNcSettings,
     cache: &CornerNcCache,
     inputs_error: bool,
+    save: Command,
 ) -> Option<Command> {
     ui.horizontal_wrapped(|ui| format_options(ui, settings));
     ui.horizontal_wrapped(|ui| cut_options(ui, settings));
@@ -147,7 +147,7 @@ pub fn options(
             ui.add(egui::Label::new(RichText::new(format!("Cannot write the program: {e}")).color(ERROR_COLOR)).wrap());
             None
         }
-        Some(Ok(p)) => ui.horizontal(|ui| save_row(ui, p, inputs_error)).inner,
+        Some(Ok(p)) => ui.horizontal(|ui| save_row(ui, p, inputs_error)).inner.then_some(save),
     }
 }
 
@@ -192,15 +192,16 @@ fn cut_options(ui: &mut egui::Ui, settings: &mut CornerNcSettings) {
         .on_hover_text("Spindle speed (M3), 0 < n ≤ 1000000 rpm.");
 }
 
-/// The save button (disabled while the inputs are invalid) and the program's size.
-fn save_row(ui: &mut egui::Ui, p: &NcPreview, inputs_error: bool) -> Option<Command> {
+/// The save button (disabled while the inputs are invalid) and the program's size; true when
+/// it was clicked.
+fn save_row(ui: &mut egui::Ui, p: &NcPreview, inputs_error: bool) -> bool {
     let save = ui
         .add_enabled(!inputs_error, egui::Button::new(label::SAVE_PROGRAM_AS))
         .on_hover_text("Choose a file; it is written atomically (temporary file, then rename).")
         .on_disabled_hover_text("The inputs are invalid: fix them first.")
         .clicked();
     ui.label(format!("{} blocks, {} bytes, {} lines", p.blocks, p.text.len(), p.line_starts.len()));
-    save.then_some(Command::ExportCornerNc)
+    save
 }
 
 /// The read-only program text filling `ui`.

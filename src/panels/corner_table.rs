@@ -9,9 +9,9 @@
 //! newest settings win: a change restarts the table, *Cancel* stops it between two angles.
 
 use super::Command;
-use super::corner::PLAIN_COLOR;
 use super::label;
 use super::params::ERROR_COLOR;
+use super::plane::PLAIN_COLOR;
 use crate::worker::{Keep, Task, Worker};
 use eframe::egui::{self, Color32, RichText};
 use egui_plot::{HLine, Legend, Line, LineStyle, Plot, PlotPoints, Points};

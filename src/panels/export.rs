@@ -10,7 +10,7 @@ use super::Command;
 use super::corner_nc::tolerance_slider;
 use super::label;
 use super::params::ERROR_COLOR;
-use crate::export::nc_options;
+use crate::shared::nc::NcChoices;
 use eframe::egui::{self, Color32, RichText};
 use egui_plot::{Corner, Legend, Line, Plot, PlotPoint, PlotPoints};
 use serde::{Deserialize, Serialize};
@@ -55,11 +55,12 @@ impl Default for ExportSettings {
 impl ExportSettings {
     /// The core's options (validated by the core when the program is written).
     pub fn options(&self) -> NcOptions {
-        NcOptions {
+        NcChoices {
             return_feed_mm_per_min: self.return_feed.then_some(self.return_feed_mm_per_min),
             compact: self.compact,
-            ..nc_options(self.dialect, self.tolerance_mm, self.linear_segments, self.coolant)
+            ..NcChoices::new(self.dialect, self.tolerance_mm, self.linear_segments, self.coolant)
         }
+        .options()
     }
 }
 

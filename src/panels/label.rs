@@ -1,5 +1,5 @@
 //! The widget labels of every panel, in one place: each is also the widget's accessible name,
-//! which is how the GUI tests (`gui_tests.rs`, egui_kittest) find it. A constant is named after
+//! which is how the GUI tests (`gui_tests/`, egui_kittest) find it. A constant is named after
 //! its text.
 
 // Parameter panel (the slot job): each field's label is the core's `Param::label`.
@@ -13,12 +13,15 @@ pub const FASTER_RETURN_FEED: &str = "Faster return feed";
 pub const RETURN_FEED: &str = "Return feed";
 pub const SAVE_NC_PROGRAM: &str = "Save NC program…";
 
-// Corner tab: one corner and the pocket.
+// Corner tab: one corner.
 pub const CORNER_ANGLE: &str = "Corner angle (°)";
 pub const CORNER_TOOL_DIAMETER: &str = "Corner tool diameter D (mm)";
 pub const RING_STEP_OVER: &str = "Ring step-over a_e (mm)";
 pub const STRAIGHT_ENGAGEMENT: &str = "Straight engagement a_str (°)";
 pub const ALLOWED_EXCESS_T1: &str = "Allowed excess t1";
+
+// Pocket tab.
+pub const POCKET_TOOL_DIAMETER: &str = "Pocket tool diameter D (mm)";
 pub const POCKET_VERTICES: &str = "Pocket vertices (x,y per line)";
 pub const POCKET_STEP_OVER: &str = "Pocket step-over a_e (mm)";
 pub const POCKET_ADAPTIVE: &str = "Adaptive (helix, climb, finish)";
@@ -30,7 +33,7 @@ pub const POCKET_OPEN_OUTLINE: &str = "Open outline…";
 pub const CANCEL_TABLE: &str = "Cancel table";
 pub const RESTART_TABLE: &str = "Restart table";
 
-// Corner tab: the NC export (its coolant box is [`COOLANT`]).
+// Corner and Pocket tabs: the NC export (its coolant box is [`COOLANT`]).
 pub const NC_EXPORT: &str = "NC export";
 pub const CORNER_NC_TOLERANCE: &str = "Corner NC tolerance";
 pub const G1_CHORDS_ONLY: &str = "G1 chords only";

@@ -11,7 +11,9 @@ pub mod label;
 pub mod metrics;
 pub mod optimise;
 pub mod params;
+pub mod plane;
 pub mod plots;
+pub mod pocket;
 pub mod sweep;
 pub mod teach;
 

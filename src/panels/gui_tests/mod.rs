@@ -1,0 +1,90 @@
+//! Headless GUI tests (egui_kittest, no display): drive the real window contents through the
+//! accessibility tree and check the plan and the shown values. This file holds the harness;
+//! the tests are grouped by what they drive: `slot` (the slot job's tabs), `window` (tabs,
+//! persisted state), `corner` (the Corner tab), `pocket` (the Pocket tab), `machine` (forces,
+//! machine and optimiser).
+
+mod corner;
+mod machine;
+mod pocket;
+mod slot;
+mod window;
+
+use super::panels::label;
+use super::*;
+use egui::accesskit::Role;
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use panels::compare;
+use std::path::Path;
+use trochoplan_core::{Error, Param};
+
+/// Dialogs answering from fixed paths: tests never open a real dialog.
+struct FakeDialogs {
+    open: Option<PathBuf>,
+    save: Option<PathBuf>,
+}
+
+impl FileDialogs for FakeDialogs {
+    fn open_job(&mut self) -> Option<PathBuf> {
+        self.open.clone()
+    }
+    fn save_job(&mut self, _current: Option<&Path>) -> Option<PathBuf> {
+        self.save.clone()
+    }
+    fn save_nc(&mut self, _stem: &str, _extension: &str) -> Option<PathBuf> {
+        self.save.clone()
+    }
+    fn open_outline(&mut self) -> Option<PathBuf> {
+        self.open.clone()
+    }
+}
+
+fn harness_with(app: App) -> Harness<'static, App> {
+    let mut h =
+        Harness::builder().with_size(egui::vec2(1400.0, 900.0)).build_ui_state(|ui, app: &mut App| app.show(ui), app);
+    h.run();
+    h
+}
+
+fn harness() -> Harness<'static, App> {
+    harness_with(App::new(Job::default(), None, Box::new(FakeDialogs { open: None, save: None })))
+}
+
+/// The default job's window whose save dialog answers `file`.
+fn harness_saving_to(file: &std::path::Path) -> Harness<'static, App> {
+    harness_with(App::new(Job::default(), None, Box::new(FakeDialogs { open: None, save: Some(file.to_owned()) })))
+}
+
+fn metrics(h: &Harness<'_, App>) -> trochoplan_core::Metrics {
+    h.state().planner.last.as_ref().expect("a plan").plan.metrics.clone()
+}
+
+fn shows(h: &Harness<'_, App>, text: &str) -> bool {
+    h.query_all_by_label(text).next().is_some()
+}
+
+/// eframe storage in memory.
+#[derive(Default)]
+struct MemoryStorage(std::collections::HashMap<String, String>);
+
+impl eframe::Storage for MemoryStorage {
+    fn get_string(&self, key: &str) -> Option<String> {
+        self.0.get(key).cloned()
+    }
+    fn set_string(&mut self, key: &str, value: String) {
+        self.0.insert(key.to_owned(), value);
+    }
+    fn remove_string(&mut self, key: &str) {
+        self.0.remove(key);
+    }
+    fn flush(&mut self) {}
+}
+
+/// Let the undo history settle: the harness advances 0.25 s a step, the undoer records a state
+/// that stayed unchanged for 1 s.
+fn settle(h: &mut Harness<'_, App>) {
+    for _ in 0..6 {
+        h.step();
+    }
+}

@@ -1,0 +1,201 @@
+//! The Pocket tab: outline editor and outline files, methods, open edges, NC export, and the
+//! pocket of states stored before the tab.
+
+use super::*;
+use trochoplan_core::pocket::PocketPlan;
+
+/// The window on the Pocket tab, its dialogs answering `open` and `save`.
+fn pocket_harness_with(open: Option<PathBuf>, save: Option<PathBuf>) -> Harness<'static, App> {
+    let mut h = harness_with(App::new(Job::default(), None, Box::new(FakeDialogs { open, save })));
+    h.get_by_label("Pocket").click();
+    h.run();
+    assert_eq!(h.state().view.tab, Tab::Pocket);
+    wait_for_pocket(&mut h);
+    h
+}
+
+fn pocket_harness() -> Harness<'static, App> {
+    pocket_harness_with(None, None)
+}
+
+/// Step the harness until the Pocket tab's background plan has arrived (at most 120 s).
+fn wait_for_pocket(h: &mut Harness<'_, App>) {
+    let t0 = Instant::now();
+    while h.state().pocket.pending() && t0.elapsed().as_secs() < 120 {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        h.step();
+    }
+    h.run();
+}
+
+fn pocket_result(h: &Harness<'_, App>) -> std::sync::Arc<panels::pocket::PocketResult> {
+    h.state().pocket.last.clone().expect("a pocket")
+}
+
+#[test]
+fn pocket_tab_shows_the_rings_and_reports_a_bad_polygon() {
+    let mut h = pocket_harness();
+    // adaptive clearing is the default; the rings are the corner method's
+    assert!(h.state().state.pocket.adaptive);
+    h.get_by_label(label::POCKET_ADAPTIVE).click();
+    h.run();
+    wait_for_pocket(&mut h);
+    assert!(h.state().pocket.error.is_none(), "{:?}", h.state().pocket.error);
+    let p = pocket_result(&h);
+    assert!(!p.rings.is_empty());
+    assert!(shows(&h, &format!("{} rings", p.rings.len())));
+    // a self-intersecting bow tie
+    h.state_mut().state.pocket.polygon_text = "0,0\n60,40\n60,0\n0,40\n".to_owned();
+    h.run();
+    assert!(h.state().pocket.error.is_some(), "bow tie rejected");
+    assert!(h.state().pocket.last.is_some(), "last pocket kept");
+}
+
+#[test]
+fn pocket_tab_plans_the_medial_axis_strategy_for_the_whole_pocket() {
+    use trochoplan_core::corner::{CornerMethod, parse_points};
+    use trochoplan_core::geom::Polygon;
+    use trochoplan_core::pocket::{self, PocketRequest, PocketStrategy};
+    let mut h = pocket_harness();
+    h.state_mut().state.pocket.adaptive = false;
+    h.state_mut().state.pocket.method = CornerMethod::MedialAxis;
+    h.run();
+    wait_for_pocket(&mut h);
+    assert!(h.state().pocket.error.is_none(), "{:?}", h.state().pocket.error);
+    let p = pocket_result(&h);
+    let PocketPlan::MedialAxis(plan) = &p.plan else { panic!("medial-axis plan expected, got rings") };
+    // The tab shows what the core plans for the same inputs.
+    let i = &h.state().state.pocket;
+    let polygon = Polygon::new(parse_points(&i.polygon_text, "polygon").unwrap()).unwrap();
+    let req = PocketRequest {
+        polygon,
+        tool_diameter_mm: i.tool_diameter_mm,
+        step_over_mm: i.step_over_mm,
+        strategy: PocketStrategy::MedialAxis,
+        ..PocketRequest::default()
+    };
+    let PocketPlan::MedialAxis(want) = pocket::plan(&req).unwrap() else { panic!("medial-axis plan expected") };
+    assert_eq!(want.segments, plan.segments);
+    assert!(shows(&h, &p.detail), "{}", p.detail);
+    assert!(p.detail.contains(&format!("{} circles along the medial axis", want.circles.len())), "{}", p.detail);
+}
+
+#[test]
+fn pocket_tab_opens_an_svg_outline() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("pocket.svg");
+    std::fs::write(&file, r#"<svg><polygon points="0,0 50,0 50,30 0,30"/></svg>"#).unwrap();
+    let mut h = pocket_harness_with(Some(file), None);
+    h.get_by_label(label::POCKET_OPEN_OUTLINE).click();
+    h.run();
+    // SVG's y points down: the outline is flipped into the planner's y-up frame
+    assert_eq!(h.state().state.pocket.polygon_text, "0,0\n50,0\n50,-30\n0,-30\n");
+    assert!(
+        h.state().status.as_ref().is_some_and(|(m, err)| !err && m.contains("4 vertices")),
+        "{:?}",
+        h.state().status
+    );
+}
+
+#[test]
+fn pocket_tab_plans_adaptive_clearing() {
+    use trochoplan_core::pocket;
+    let mut h = pocket_harness();
+    wait_for_pocket(&mut h);
+    // adaptive clearing is the default
+    assert!(h.state().state.pocket.adaptive);
+    assert!(h.state().pocket.error.is_none(), "{:?}", h.state().pocket.error);
+    let p = pocket_result(&h);
+    let PocketPlan::Adaptive(plan) = &p.plan else { panic!("adaptive plan expected") };
+    // the tab shows what the core plans for the tab's request
+    let req = h.state().state.pocket.request().unwrap();
+    let PocketPlan::Adaptive(want) = pocket::plan(&req).unwrap() else { panic!("adaptive plan expected") };
+    assert_eq!(want.segments, plan.segments);
+    assert!(shows(&h, &p.detail), "{}", p.detail);
+    assert!(p.detail.contains(&format!("{:.0} mm at depth", want.length_at_depth_mm)), "{}", p.detail);
+}
+
+/// The Pocket tab's open-edges field: typed into, the tab plans the pocket
+/// open on that edge (entered from outside the stock); a bad list is an error naming it.
+#[test]
+fn pocket_tab_takes_open_edges() {
+    use trochoplan_core::pocket::Entry;
+    let mut h = pocket_harness();
+    wait_for_pocket(&mut h);
+    h.get_by_label(label::POCKET_OPEN_EDGES).click();
+    h.run();
+    h.get_by_label(label::POCKET_OPEN_EDGES).type_text("0");
+    h.run();
+    wait_for_pocket(&mut h);
+    assert_eq!(h.state().state.pocket.open_edges, "0");
+    assert!(h.state().pocket.error.is_none(), "{:?}", h.state().pocket.error);
+    let p = pocket_result(&h);
+    let PocketPlan::Adaptive(plan) = &p.plan else { panic!("adaptive plan expected") };
+    assert_eq!(plan.open_edges, vec![0]);
+    assert!(matches!(plan.parts[0].entry, Entry::Outside { .. }), "{:?}", plan.parts[0].entry);
+    assert!(shows(&h, &p.detail) && p.detail.starts_with("outside entry"), "{}", p.detail);
+    h.state_mut().state.pocket.open_edges = "0, x".to_owned();
+    h.run();
+    let e = h.state().pocket.error.clone().expect("a bad list is an error");
+    assert!(e.contains("open edges"), "{e}");
+}
+
+/// The Pocket tab's NC export writes the core's program of the shown pocket (`trochoplan
+/// pocket --export`'s call) with the tab's own settings, and saves the previewed text.
+#[test]
+fn pocket_export_previews_the_core_program_and_saves_it() {
+    use trochoplan_core::nc::{CutSetup, Dialect, NcOptions, pocket_program};
+    let dir = tempfile::tempdir().expect("tempdir");
+    let file = dir.path().join("pocket.nc");
+    let mut h = pocket_harness_with(None, Some(file.clone()));
+    assert!(h.query_by_label(label::SAVE_PROGRAM_AS).is_none(), "export closed by default");
+    h.get_by_label(label::NC_EXPORT).click();
+    h.run();
+    assert!(h.state().state.pocket_nc.open && !h.state().state.corner_nc.open, "the tab's own settings");
+    let p = pocket_result(&h);
+    assert!(matches!(p.plan, PocketPlan::Adaptive(_)), "adaptive pocket expected");
+    let want = pocket_program(&p.plan, CutSetup::default(), &NcOptions::default()).expect("core program");
+    assert_eq!(h.state().pocket_nc.view().expect("program").text, want.text, "the CLI's defaults");
+    let first_line = want.text.lines().find(|l| l.starts_with('(')).expect("a comment line");
+    assert!(shows(&h, first_line), "preview shows the program: {first_line}");
+
+    h.get_by_label("Fanuc-style ISO").click();
+    h.get_by_label(label::G1_CHORDS_ONLY).click();
+    h.get_by_role_and_label(Role::SpinButton, label::DEPTH_BELOW_Z0).set_value_accesskit(3.0);
+    h.run();
+    let opts = NcOptions { dialect: Dialect::Fanuc, linear_segments: true, ..NcOptions::default() };
+    let cut = CutSetup { depth_mm: 3.0, ..CutSetup::default() };
+    let want = pocket_program(&p.plan, cut, &opts).expect("core pocket program");
+    let preview = h.state().pocket_nc.view().expect("program").text.clone();
+    assert_eq!(preview, want.text);
+    assert_eq!(h.state().state.corner_nc, panels::corner_nc::CornerNcSettings::default(), "Corner tab untouched");
+    h.get_by_label(label::SAVE_PROGRAM_AS).click();
+    h.run();
+    assert_eq!(std::fs::read_to_string(&file).expect("saved"), preview);
+    let (status, is_err) = h.state().status.clone().expect("status");
+    assert!(!is_err && status.starts_with("exported"), "{status}");
+}
+
+/// While adaptive clearing is ticked the method buttons are disabled and none is shown chosen;
+/// unticked, the chosen method is shown again and a click plans with it.
+#[test]
+fn pocket_method_row_follows_the_adaptive_box() {
+    use egui_kittest::kittest::NodeT;
+    use trochoplan_core::corner::CornerMethod;
+    let mut h = pocket_harness();
+    assert!(h.state().state.pocket.adaptive);
+    let selected = |h: &Harness<'_, App>, m: CornerMethod| {
+        h.get_by_label(m.label()).accesskit_node().toggled() == Some(egui::accesskit::Toggled::True)
+    };
+    assert!(CornerMethod::ALL.iter().all(|&m| !selected(&h, m)), "no method shown while adaptive");
+    h.get_by_label(label::POCKET_ADAPTIVE).click();
+    h.run();
+    assert!(selected(&h, h.state().state.pocket.method), "the chosen method shown");
+    h.get_by_label(CornerMethod::Isometric.label()).click();
+    h.run();
+    wait_for_pocket(&mut h);
+    assert_eq!(h.state().state.pocket.method, CornerMethod::Isometric);
+    assert!(selected(&h, CornerMethod::Isometric));
+    let want = trochoplan_core::pocket::PocketStrategy::from_method(CornerMethod::Isometric).name();
+    assert_eq!(pocket_result(&h).method, want);
+}

@@ -1,0 +1,388 @@
+//! The Pocket tab: a whole polygonal pocket planned by the core (`pocket::plan`, as
+//! `trochoplan pocket`): adaptive clearing, or contour-parallel rings with a corner method at
+//! every ring corner, or circles along the medial axis. The outline is edited as text or read
+//! from a drawing (`Command::OpenOutline`); the rings are drawn with equal axes beside their
+//! numbers, and the NC export ([`super::corner_nc`]) writes the program of the shown plan.
+//!
+//! Planning takes 0.1–1 s, so the window plans on a [`Worker`] thread
+//! ([`PocketView::threaded`]; the newest request wins); the tests plan inline
+//! ([`PocketView::default`]).
+
+use super::Command;
+use super::corner_nc::{self, CornerNcCache, NcExport};
+use super::label;
+use super::plane::{self, MAX_PATH_POINTS, STRATEGY_COLOR, line, plane_plot, segment_points};
+use crate::worker::{Keep, Task, Worker};
+use eframe::egui::{self, Color32, DragValue};
+use serde::{Deserialize, Serialize};
+use std::sync::Arc;
+use trochoplan_core::corner::CornerMethod;
+use trochoplan_core::geom::Polygon;
+use trochoplan_core::pocket::{self, MoveKind, PocketPlan, PocketRequest, PocketStrategy};
+
+/// Inputs of the Pocket tab, persisted with the app state.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct PocketInputs {
+    /// Pocket boundary, one vertex "x,y" per line.
+    pub polygon_text: String,
+    /// Tool diameter D (mm).
+    pub tool_diameter_mm: f64,
+    /// Ring step-over a_e (mm).
+    pub step_over_mm: f64,
+    /// Clear the pocket adaptively (helix entry, climb, finishing pass) instead of by `method`.
+    pub adaptive: bool,
+    /// The whole-pocket method when not adaptive.
+    pub method: CornerMethod,
+    /// The pocket's open edges, "i, j, …" (`--open-edges`: edge i from vertex i to i + 1).
+    pub open_edges: String,
+}
+
+impl Default for PocketInputs {
+    /// The defaults of `trochoplan pocket`: the README's rectangle, adaptive clearing.
+    fn default() -> Self {
+        let pocket = PocketRequest::default();
+        PocketInputs {
+            polygon_text: crate::shared::outline::points_text(pocket.polygon.vertices()),
+            tool_diameter_mm: pocket.tool_diameter_mm,
+            step_over_mm: pocket.step_over_mm,
+            adaptive: pocket.strategy == PocketStrategy::Adaptive,
+            method: CornerMethod::Variable,
+            open_edges: String::new(),
+        }
+    }
+}
+
+impl PocketInputs {
+    /// The core's pocket request of the tab's inputs: the polygon text read and validated, the
+    /// method as a whole-pocket strategy (or adaptive clearing), the other inputs as
+    /// `trochoplan pocket`'s defaults.
+    pub fn request(&self) -> Result<PocketRequest, String> {
+        // read as a point-list outline: loops separated by an empty line are an error naming
+        // them, never joined into one polygon
+        let pockets = trochoplan_core::outline::read("polygon", &self.polygon_text).map_err(|e| e.to_string())?;
+        let points = pockets.single().map_err(|e| e.to_string())?.to_vec();
+        let polygon = Polygon::new(points.clone()).map_err(|e| format!("polygon: {e}"))?;
+        let open: Vec<usize> = self
+            .open_edges
+            .split([',', ' '])
+            .filter(|w| !w.trim().is_empty())
+            .map(|w| w.trim().parse::<usize>())
+            .collect::<Result<_, _>>()
+            .map_err(|_| format!("open edges: \"{}\" is not a list of edge numbers i, j, …", self.open_edges))?;
+        let open_edges = pocket::stored_open_edges(&polygon, &points, &open).map_err(|e| e.to_string())?;
+        Ok(PocketRequest {
+            open_edges,
+            polygon,
+            tool_diameter_mm: self.tool_diameter_mm,
+            step_over_mm: self.step_over_mm,
+            strategy: if self.adaptive { PocketStrategy::Adaptive } else { PocketStrategy::from_method(self.method) },
+            ..PocketRequest::default()
+        })
+    }
+}
+
+/// A planned pocket converted for drawing.
+#[derive(Clone, Debug)]
+pub struct PocketResult {
+    pub method: &'static str,
+    pub boundary: Vec<[f64; 2]>,
+    /// Rings in machining order: level, offset (mm), max engagement (degrees), points.
+    pub rings: Vec<(usize, f64, f64, Vec<[f64; 2]>)>,
+    pub path_length_mm: f64,
+    pub time_s: f64,
+    pub max_deg: f64,
+    /// What the strategy did: corners given trochoids, or circles along the medial axis.
+    pub detail: String,
+    /// The plan itself (for the NC program).
+    pub plan: PocketPlan,
+}
+
+/// Plan the pocket as `trochoplan pocket` does (`pocket::plan`), converted for drawing.
+pub fn compute(i: &PocketInputs) -> Result<PocketResult, String> {
+    let plan = pocket::plan(&i.request()?).map_err(|e| e.to_string())?;
+    let mut boundary: Vec<[f64; 2]> = plan.polygon().vertices().iter().map(|v| [v.x, v.y]).collect();
+    if let Some(&first) = boundary.first() {
+        boundary.push(first);
+    }
+    let (rings, detail) = match &plan {
+        // No rings: one pass along the medial axis (shown as one entry of the ring list).
+        PocketPlan::MedialAxis(p) => (
+            vec![(0, 0.0, p.body_max_rad.to_degrees(), segment_points(&p.segments, MAX_PATH_POINTS))],
+            format!(
+                "{} circles along the medial axis, {} part(s); corner points up to {:.1}°{}",
+                p.circles.len(),
+                p.parts,
+                p.max_of(MoveKind::CornerPoint).to_degrees(),
+                match p.max_of(MoveKind::Tip).to_degrees() {
+                    tip if tip > 0.0 => format!(", straight tips {tip:.1}°"),
+                    _ => String::new(),
+                }
+            ),
+        ),
+        // One pass: the whole path at depth (shown as one entry of the ring list).
+        PocketPlan::Adaptive(p) => (
+            vec![(0, 0.0, p.max_engagement_rad.to_degrees(), segment_points(&p.segments, MAX_PATH_POINTS))],
+            format!(
+                "{} entry, {} rings, {} corners thinned; p95 {:.1}°, {:.0} mm at depth",
+                match p.parts.first().map(|q| q.entry) {
+                    Some(pocket::Entry::Outside { .. }) => "outside",
+                    Some(pocket::Entry::Ramp(_)) => "ramp",
+                    _ => "helix",
+                },
+                p.parts.iter().map(|q| q.rings).sum::<usize>(),
+                p.parts.iter().map(|q| q.corners.len()).sum::<usize>(),
+                p.p95_engagement_rad.to_degrees(),
+                p.length_at_depth_mm
+            ),
+        ),
+        PocketPlan::Rings(p) => (
+            p.rings
+                .iter()
+                .map(|g| {
+                    let pts = segment_points(&g.segments, MAX_PATH_POINTS / 4);
+                    (g.level, g.offset_mm, g.max_engagement_rad.to_degrees(), pts)
+                })
+                .collect(),
+            format!("corners with trochoids {}, plain {}", p.trochoid_corners, p.plain_corners),
+        ),
+    };
+    Ok(PocketResult {
+        method: plan.strategy().name(),
+        boundary,
+        rings,
+        path_length_mm: plan.path_length_mm(),
+        time_s: plan.time_s(),
+        max_deg: plan.max_engagement_rad().to_degrees(),
+        detail,
+        plan,
+    })
+}
+
+/// The Pocket tab's worker: inputs in, their plan (or why they are invalid) out.
+type PocketWorker = Worker<PocketInputs, Result<Arc<PocketResult>, String>>;
+
+/// Plan `inputs`.
+fn plan_job(inputs: PocketInputs, task: &Task<Result<Arc<PocketResult>, String>>) {
+    task.send(compute(&inputs).map(Arc::new));
+}
+
+/// The last pocket, its error, and the worker computing it.
+pub struct PocketView {
+    /// The newest valid pocket (kept while the inputs are invalid).
+    pub last: Option<Arc<PocketResult>>,
+    /// The error for the newest inputs, if they are invalid.
+    pub error: Option<String>,
+    /// Inputs of the newest request.
+    requested: Option<PocketInputs>,
+    /// Completed plans (for the tests and the status line).
+    pub replans: usize,
+    /// Plans inline or on its own thread; an answer overtaken by a newer request is still shown
+    /// if it is newer than the one on screen ([`Keep::Newer`]).
+    worker: PocketWorker,
+}
+
+impl Default for PocketView {
+    /// A view planning inline (the tests).
+    fn default() -> Self {
+        PocketView::with_worker(Worker::inline(Keep::Newer, plan_job))
+    }
+}
+
+impl PocketView {
+    /// A view planning on its own thread; `repaint` is called when an answer is ready.
+    pub fn threaded(repaint: impl Fn() + Send + Sync + 'static) -> PocketView {
+        PocketView::with_worker(Worker::threaded("pocket", Keep::Newer, plan_job, repaint))
+    }
+
+    fn with_worker(worker: PocketWorker) -> PocketView {
+        PocketView { last: None, error: None, requested: None, replans: 0, worker }
+    }
+
+    /// True while a request is being planned.
+    pub fn pending(&self) -> bool {
+        self.worker.running()
+    }
+
+    /// Show the answers that arrived.
+    fn poll(&mut self) {
+        for answer in self.worker.poll() {
+            self.replans += 1;
+            self.error = match answer {
+                Ok(r) => {
+                    self.last = Some(r);
+                    None
+                }
+                Err(e) => Some(e),
+            };
+        }
+    }
+
+    /// Collect answers and ask for a plan of `inputs` if they changed.
+    pub fn update(&mut self, inputs: &PocketInputs) {
+        self.poll();
+        if self.requested.as_ref() == Some(inputs) {
+            return;
+        }
+        self.requested = Some(inputs.clone());
+        self.worker.request(inputs.clone());
+        self.poll();
+    }
+}
+
+/// The Pocket tab: method, tool and step-over; the outline editor beside the rings and their
+/// numbers; the program beside the rings when the NC export is open.
+pub fn show(ui: &mut egui::Ui, inputs: &mut PocketInputs, view: &PocketView, nc: &mut NcExport) -> Option<Command> {
+    pocket_inputs(ui, inputs, nc);
+    plane::status(ui, view.error.as_deref(), view.pending(), None);
+    let cmd = if nc.settings.open {
+        ui.separator();
+        let cmd = corner_nc::options(ui, nc.settings, nc.cache, view.error.is_some(), Command::ExportPocketNc);
+        ui.separator();
+        cmd
+    } else {
+        None
+    };
+    let h = (ui.available_height() - 10.0).max(220.0);
+    let mut open = false;
+    ui.horizontal_top(|ui| {
+        ui.vertical(|ui| {
+            ui.set_width(230.0);
+            polygon_editor(ui, inputs);
+            if ui
+                .button(label::POCKET_OPEN_OUTLINE)
+                .on_hover_text("A DXF or SVG drawing, or an x,y point list")
+                .clicked()
+            {
+                open = true;
+            }
+            if let Some(r) = view.last.as_deref() {
+                ui.add_space(6.0);
+                pocket_numbers(ui, r);
+            }
+        });
+        if let Some(r) = view.last.as_deref() {
+            pocket_view(ui, r, nc.settings.open, nc.cache, h);
+        }
+    });
+    if open { Some(Command::OpenOutline) } else { cmd }
+}
+
+/// Adaptive or a method, the tool diameter, the step-over, the open edges and the NC export's
+/// toggle.
+fn pocket_inputs(ui: &mut egui::Ui, inputs: &mut PocketInputs, nc: &mut NcExport) {
+    ui.horizontal_wrapped(|ui| {
+        ui.checkbox(&mut inputs.adaptive, label::POCKET_ADAPTIVE).on_hover_text(PocketStrategy::Adaptive.help());
+        plane::method_buttons(ui, &mut inputs.method, !inputs.adaptive);
+        ui.separator();
+        let l = ui.label(label::POCKET_TOOL_DIAMETER);
+        ui.add(DragValue::new(&mut inputs.tool_diameter_mm).speed(0.1).suffix(" mm"))
+            .labelled_by(l.id)
+            .on_hover_text("Tool diameter D = 2r.");
+        let l = ui.label(label::POCKET_STEP_OVER);
+        ui.add(DragValue::new(&mut inputs.step_over_mm).speed(0.05).suffix(" mm"))
+            .labelled_by(l.id)
+            .on_hover_text("Distance between successive contour-parallel rings, 0 < a_e < D.");
+        let l = ui.label(label::POCKET_OPEN_EDGES);
+        ui.add_enabled(inputs.adaptive, egui::TextEdit::singleline(&mut inputs.open_edges).desired_width(60.0))
+            .labelled_by(l.id)
+            .on_hover_text(
+                "Edges without a wall (adaptive): \"0\" or \"0, 2\"; edge i runs from vertex i to vertex i + 1 \
+                 (0-based). The tool goes down outside the stock there and clears inward.",
+            );
+        ui.separator();
+        ui.toggle_value(&mut nc.settings.open, label::NC_EXPORT)
+            .on_hover_text("Options, preview and save of the NC program of the pocket");
+    });
+}
+
+/// The pocket's vertices as editable text.
+fn polygon_editor(ui: &mut egui::Ui, inputs: &mut PocketInputs) {
+    let l = ui.label(label::POCKET_VERTICES);
+    ui.add(egui::TextEdit::multiline(&mut inputs.polygon_text).desired_rows(8).code_editor())
+        .labelled_by(l.id)
+        .on_hover_text("A simple polygon, lines only, one vertex \"x,y\" (mm) per line; '#' comments allowed.");
+}
+
+/// The pocket's method, length, time and engagement, and its rings' offsets and engagement.
+fn pocket_numbers(ui: &mut egui::Ui, r: &PocketResult) {
+    ui.label(format!("method {}", r.method));
+    if matches!(r.plan, PocketPlan::Rings(_)) {
+        ui.label(format!("{} rings", r.rings.len()));
+    }
+    ui.label(format!("path {:.1} mm, {:.1} s", r.path_length_mm, r.time_s));
+    ui.label(format!("max engagement {:.1}°", r.max_deg));
+    ui.label(&r.detail);
+    egui::ScrollArea::vertical().id_salt("pocket_rings_scroll").show(ui, |ui| {
+        egui::Grid::new("pocket_rings").striped(true).show(ui, |ui| {
+            ui.label("ring");
+            ui.label("offset");
+            ui.label("max eng.");
+            ui.end_row();
+            for (level, off, mx, _) in &r.rings {
+                ui.label(format!("{level}"));
+                ui.label(format!("{off:.2} mm"));
+                ui.label(format!("{mx:.1}°"));
+                ui.end_row();
+            }
+        });
+    });
+}
+
+/// The pocket and its rings, `h` high; half as wide, beside the program, when `nc_open`.
+fn pocket_view(ui: &mut egui::Ui, r: &PocketResult, nc_open: bool, nc_cache: &CornerNcCache, h: f32) {
+    let w = ui.available_width();
+    let plot_w = if nc_open { 0.5 * w } else { w };
+    plane_plot("pocket_rings_plot", h).width(plot_w).show(ui, |p| {
+        p.line(line("pocket", &r.boundary).color(Color32::GRAY).width(2.5));
+        for (_, _, _, pts) in &r.rings {
+            p.line(line("rings", pts).color(STRATEGY_COLOR).width(1.0));
+        }
+    });
+    if nc_open {
+        ui.vertical(|ui| {
+            ui.set_min_size(egui::vec2(ui.available_width(), h));
+            corner_nc::preview(ui, nc_cache);
+        });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn threaded_view_delivers_the_newest_inputs() {
+        let mut v = PocketView::threaded(|| {});
+        let mut i = PocketInputs { adaptive: false, ..PocketInputs::default() };
+        v.update(&i);
+        i.step_over_mm = 3.0;
+        v.update(&i);
+        let t0 = std::time::Instant::now();
+        while v.pending() && t0.elapsed().as_secs() < 60 {
+            std::thread::sleep(std::time::Duration::from_millis(20));
+            v.update(&i);
+        }
+        assert!(!v.pending(), "answered within 60 s");
+        let want = compute(&i).expect("the core plans the same inputs");
+        let got = v.last.as_ref().expect("a result");
+        assert_eq!((got.path_length_mm, got.rings.len()), (want.path_length_mm, want.rings.len()));
+    }
+
+    /// The method buttons show no method while adaptive clearing overrides it.
+    #[test]
+    fn the_method_is_not_shown_selected_while_adaptive_is_ticked() {
+        let highlighted = |adaptive: bool| {
+            let mut inputs = PocketInputs { adaptive, ..PocketInputs::default() };
+            let mut h = egui_kittest::Harness::new_ui(move |ui| {
+                plane::method_buttons(ui, &mut inputs.method, !inputs.adaptive);
+            });
+            h.run();
+            use egui_kittest::kittest::{NodeT, Queryable};
+            let node = h.get_by_label(CornerMethod::Variable.label());
+            node.accesskit_node().toggled() == Some(egui::accesskit::Toggled::True)
+        };
+        assert!(highlighted(false), "the chosen method is shown");
+        assert!(!highlighted(true), "no method shown while adaptive is ticked");
+    }
+}
