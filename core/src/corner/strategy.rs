@@ -17,17 +17,22 @@
 //! The medial-axis strategy has no rings: it cuts the corner of a triangular pocket down the
 //! corner's medial-axis branch (see `medial_axis_plan`).
 
-use super::engagement::{Turn, TwoCircle, straight_engagement};
 use super::geometry::Corner;
 use super::method::CornerMethod;
+use super::point::{corner_point_radii, validate_corner_tolerance};
 use super::request::CornerRequest;
+use crate::engagement::{Turn, TwoCircle, straight_engagement};
 use crate::error::{Error, Param, num};
 use crate::geom::{Circle, P2, Polygon, Segment};
 use crate::job::limits::MIN_SIZE_MM;
-use crate::pocket::MoveKind;
-use crate::pocket::adaptive::{corner_point_radii, validate_corner_tolerance};
+use crate::toolpath::MoveKind;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
+
+/// Smallest step-over of the medial axis as a fraction of the tool diameter, a_e/D: the lowest
+/// radial depth of the papers' range (25.8° of straight engagement). Below it the number of
+/// circles and of their bisection steps grows without a useful gain.
+pub const MEDIAL_AXIS_MIN_STEP_OVER_RATIO: f64 = 0.05;
 
 /// Bisection steps allowed for one circle (a cap: each step halves the
 /// bracket, so 60 steps reach far below any length that matters).
@@ -494,7 +499,7 @@ fn into_corner_point(
 
 /// Perforative trochoids along the medial axis (Wu et al. 2016 §4.2 (c); docs/pockets.md) for the
 /// corner as part of a triangular pocket (apex, ends of the two walls). The axis comes from
-/// [`super::medial::medial_axis`]; the corner's branch runs from the apex to the first Voronoi
+/// [`crate::geom::medial::medial_axis`]; the corner's branch runs from the apex to the first Voronoi
 /// node, whose clearance Rc is the largest circle there. The perforative trochoids that reached
 /// the node along the rest of the axis have cleared that circle (modelled as concentric passes,
 /// `precut`); from it, circles of offset radius Rc(t) = t·sin α (allowance 0) are placed down
@@ -507,7 +512,7 @@ fn medial_axis_plan(sc: &CornerScenario) -> Result<CornerPlan, Error> {
     let end1 = corner.apex - corner.dir_in * s.edge_length;
     let end2 = corner.apex + corner.dir_out * s.edge_length;
     let pocket = Polygon::new(vec![end1, corner.apex, end2])?;
-    let axis = super::medial::medial_axis(&pocket, 1e-4)?;
+    let axis = crate::geom::medial::medial_axis(&pocket, 1e-4)?;
     let (node, rc) = axis.branch_from(corner.apex, 1e-3).ok_or_else(|| {
         Error::geometry("polygon", "no medial-axis branch at the corner", "a corner with a Voronoi branch")
     })?;

@@ -21,11 +21,10 @@ pub mod rings;
 pub mod route;
 mod runs;
 
-pub use adaptive::{
-    AdaptiveOptions, AdaptivePart, AdaptivePlan, CornerPasses, Helix, plan_adaptive, plan_adaptive_open,
-};
-pub use entry::{Entry, Ramp};
-pub use perforative::{AxisCircle, KindMax, MoveKind, PerforativePlan, plan_perforative};
+pub use crate::engagement::KindMax;
+pub use crate::toolpath::{Entry, Helix, MoveKind, Ramp};
+pub use adaptive::{AdaptiveOptions, AdaptivePart, AdaptivePlan, CornerPasses, plan_adaptive, plan_adaptive_open};
+pub use perforative::{AxisCircle, PerforativePlan, plan_perforative};
 pub use rings::{
     LINK_ENGAGEMENT_SLACK_RAD, Link, LinkKind, Ring, RingPlan, inward_offset, link_is_inside, plan_ring_pocket,
     plan_rings,
@@ -467,10 +466,7 @@ fn check_work(polygon: &Polygon, strategy: PocketStrategy, settings: &PocketSett
     ))
 }
 
-/// Smallest step-over of the medial axis as a fraction of the tool diameter, a_e/D: the lowest
-/// radial depth of the papers' range (25.8° of straight engagement). Below it the number of
-/// circles and of their bisection steps grows without a useful gain.
-pub const MEDIAL_AXIS_MIN_STEP_OVER_RATIO: f64 = 0.05;
+pub use crate::corner::strategy::MEDIAL_AXIS_MIN_STEP_OVER_RATIO;
 
 /// Plan the requested pocket with its strategy. Errors name the input at fault. Checked before
 /// planning, so that no plan runs for minutes: a medial-axis step-over below

@@ -57,13 +57,18 @@
 //! maximum is reported per class and over everything.
 
 use super::PocketSettings;
-use super::adaptive::{AIR_ENGAGEMENT_RAD, AdaptiveOptions, CornerPoint, corner_point_radii};
+use super::adaptive::{AdaptiveOptions, CornerPoint, corner_point_radii};
 use super::entry::{Entry, entry_at};
 use super::rings::link_is_inside;
-use crate::corner::medial::{MedialAxis, WallFeature, Walls, medial_axis};
-use crate::corner::{CornerSettings, EngagementProfile, EvaluatorOptions, Turn, TwoCircle, engagement_profile};
+use crate::corner::CornerSettings;
+use crate::engagement::{
+    AIR_ENGAGEMENT_RAD, EngagementProfile, EvaluatorOptions, KindMax, Turn, TwoCircle, engagement_profile, maxima,
+    peak_and_p95,
+};
 use crate::error::{Error, Param};
+use crate::geom::medial::{MedialAxis, WallFeature, Walls, medial_axis};
 use crate::geom::{Circle, P2, Polygon, Segment, bisect_edge, golden_min, rot90};
+pub use crate::toolpath::MoveKind;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 
@@ -92,39 +97,6 @@ const RAMP_SPIRAL_SPACING_MM: f64 = 0.1;
 /// 4.75 mm circle takes 11 at 90°, 31 at 30°).
 const MAX_CORNER_ARCS: usize = 200;
 
-/// What a move of the perforative path does (the evaluator's samples are reported per kind).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum MoveKind {
-    /// The flat turn at depth after the helix (inside its bore), or the flat pass after a
-    /// zig-zag ramp (on its line).
-    Entry,
-    /// The concentric circles clearing the largest circle.
-    Spiral,
-    /// A trochoid circle on the axis.
-    Circle,
-    /// A tangent link between circles, or from a circle's centre out to its exit point.
-    Link,
-    /// Along the axis where the tool-centre circle would be smaller than r_min (a neck).
-    Straight,
-    /// Along the axis into the tool corner point of a convex corner, where no corner-point
-    /// arcs are cut (the tip's end is not between two wall features, or the last circle does
-    /// not touch both).
-    Tip,
-    /// Back along the axis through cleared material.
-    Return,
-    /// A ring of adaptive clearing ([`super::adaptive`]).
-    Ring,
-    /// A thinning pass into a convex corner ([`super::adaptive`]).
-    Corner,
-    /// The finishing contour ([`super::adaptive`]).
-    Finish,
-    /// Arcs into a convex corner point, within the corner tolerance, with their approach
-    /// along the wall and their way out: after the finishing pass ([`super::adaptive`]), or
-    /// after the last circle of a medial-axis tip ([`Planner::thin_tip`]).
-    CornerPoint,
-}
-
 /// One circle of the path.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct AxisCircle {
@@ -137,17 +109,6 @@ pub struct AxisCircle {
     pub predicted_max_rad: Option<f64>,
     /// Part of the start (concentric) clearing or on the axis.
     pub kind: MoveKind,
-}
-
-/// Maximum engagement of one kind of move, measured by the evaluator.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct KindMax {
-    pub kind: MoveKind,
-    /// Largest engagement (rad) and where.
-    pub max_rad: f64,
-    pub at: P2,
-    /// Length of these moves (mm).
-    pub length_mm: f64,
 }
 
 /// A pocket cleared by perforative trochoids along its medial axis.
@@ -603,7 +564,12 @@ pub fn plan_perforative(
     let opts = EvaluatorOptions::new(r, settings.spacing);
     let bores: Vec<Segment> = entries.iter().map(Entry::bore).collect();
     let profile = engagement_profile(polygon, &bores, &b.segments, &opts)?;
-    let (maxima, body_max_rad) = maxima(&profile, &b.segments, &b.kinds, &[]);
+    let maxima = maxima(&profile, &b.segments, &b.kinds);
+    let body_max_rad = maxima
+        .iter()
+        .filter(|m| matches!(m.kind, MoveKind::Spiral | MoveKind::Circle | MoveKind::Link))
+        .map(|m| m.max_rad)
+        .fold(0.0, f64::max);
     let (max_engagement_rad, p95_engagement_rad) = peak_and_p95(&profile);
     let corner_points = measure_corner_points(&profile, &b.segments, corner_points);
     let len: f64 = b.segments.iter().map(Segment::length).sum();
@@ -641,68 +607,6 @@ pub fn plan_perforative(
         max_engagement_rad,
         p95_engagement_rad,
     })
-}
-
-/// The largest engagement of a profile and the 95th percentile of its samples (rad).
-pub(crate) fn peak_and_p95(profile: &EngagementProfile) -> (f64, f64) {
-    let mut angles: Vec<f64> = profile.samples.iter().map(|s| s.angle_rad).collect();
-    angles.sort_by(f64::total_cmp);
-    let p95 = angles.get(((0.95 * angles.len() as f64).ceil() as usize).saturating_sub(1)).copied().unwrap_or(0.0);
-    (profile.max_angle(), p95)
-}
-
-/// Per-kind maxima of the profile and the body maximum (spiral, circles, links). The
-/// positions where the tool plunges (the start of each part) are left out: there the tool
-/// drills its own hole and the evaluator reads the whole periphery (360°).
-/// The segment each sample of `profile` belongs to: the first whose end is at or beyond it (a
-/// sample on a joint belongs to the segment that ends there).
-pub(crate) fn sample_owners(profile: &EngagementProfile, segments: &[Segment]) -> Vec<usize> {
-    let mut ends = Vec::with_capacity(segments.len());
-    let mut acc = 0.0;
-    for s in segments {
-        acc += s.length();
-        ends.push(acc);
-    }
-    let last = segments.len().saturating_sub(1);
-    profile.samples.iter().map(|smp| ends.partition_point(|&e| e < smp.s_mm - 1e-9).min(last)).collect()
-}
-
-pub(crate) fn maxima(
-    profile: &EngagementProfile,
-    segments: &[Segment],
-    kinds: &[MoveKind],
-    plunges: &[usize],
-) -> (Vec<KindMax>, f64) {
-    let mut out: Vec<KindMax> = Vec::new();
-    let mut plunge_s = Vec::new();
-    let mut acc = 0.0;
-    for (i, (s, &k)) in segments.iter().zip(kinds).enumerate() {
-        if plunges.contains(&i) {
-            plunge_s.push(acc);
-        }
-        acc += s.length();
-        match out.iter_mut().find(|m| m.kind == k) {
-            Some(m) => m.length_mm += s.length(),
-            None => out.push(KindMax { kind: k, max_rad: 0.0, at: s.start(), length_mm: s.length() }),
-        }
-    }
-    let owners = sample_owners(profile, segments);
-    for (smp, &i) in
-        profile.samples.iter().zip(&owners).filter(|(m, _)| plunge_s.iter().all(|p| (m.s_mm - p).abs() > 1e-9))
-    {
-        if let Some(m) = out.iter_mut().find(|m| m.kind == kinds[i])
-            && smp.angle_rad > m.max_rad
-        {
-            m.max_rad = smp.angle_rad;
-            m.at = P2::new(smp.x_mm, smp.y_mm);
-        }
-    }
-    let body = out
-        .iter()
-        .filter(|m| matches!(m.kind, MoveKind::Spiral | MoveKind::Circle | MoveKind::Link))
-        .map(|m| m.max_rad)
-        .fold(0.0, f64::max);
-    (out, body)
 }
 
 /// Each corner point's peak and where: the largest sample over its moves (`range` of the

@@ -6,7 +6,7 @@
 //!
 //! Rings: ring `k` is the inward offset of the pocket boundary by `d_k = r + k·a_e`
 //! (`k = 0, 1, …`) while that offset is non-empty. Offsetting is done by `cavalier_contours`
-//! (J. Buckmccready, MIT/Apache-2.0), called from this module only, and only on a polygon that
+//! (J. Buckmccready, MIT/Apache-2.0) through [`crate::geom::offset`], here on a polygon that
 //! [`Polygon::new`] has validated (≥ 3 finite vertices, no degenerate edges, simple, CCW) and
 //! with a finite positive offset, so the library's preconditions hold (it can panic on
 //! degenerate input; nothing is caught here). Its output keeps arcs exact as bulges; they are
@@ -62,19 +62,19 @@
 
 use super::PocketSettings;
 use super::adaptive::{
-    AIR_ENGAGEMENT_RAD, AdaptiveOptions, AdaptivePart, Builder, CornerPoint, clear_regions, closest_on, fin_radius,
-    inscribed, offset, pline_of,
+    AdaptiveOptions, AdaptivePart, Builder, CornerPoint, clear_regions, closest_on, fin_radius, inscribed,
 };
 use super::entry::{Entry, entry_at, helix_radius};
-use super::perforative::{KindMax, MoveKind, maxima, peak_and_p95, sample_owners};
 use super::route::Router;
 use crate::corner::{
     Corner, CornerMethod, CornerScenario, CornerSettings, EvaluatorOptions, engagement_profile, plan_corner,
     strategy::CornerPointArcs,
 };
+use crate::engagement::{AIR_ENGAGEMENT_RAD, KindMax, maxima, peak_and_p95, sample_owners};
 use crate::error::{Error, Param};
+use crate::geom::offset::Region;
 use crate::geom::{P2, Polygon, Segment, p2};
-use cavalier_contours::polyline::{PlineSource, PlineSourceMut, PlineVertex, Polyline, seg_arc_radius_and_center};
+use crate::toolpath::MoveKind;
 use serde::{Deserialize, Serialize};
 
 /// Upper bound on the number of offset levels (keeps run time bounded for tiny step-overs).
@@ -250,50 +250,16 @@ pub fn inward_offset(polygon: &Polygon, d: f64) -> Result<Vec<Vec<Segment>>, Err
     if !(d.is_finite() && d > 0.0) {
         return Err(Error::geometry("offset", d, "a finite number > 0 mm"));
     }
-    let mut pline: Polyline<f64> = Polyline::new_closed();
-    for v in polygon.vertices() {
-        pline.add(v.x, v.y, 0.0);
-    }
     // Counter-clockwise boundary: positive offset is to the left, i.e. inward.
     let mut loops = Vec::new();
-    for mut off in pline.parallel_offset(d) {
-        if off.vertex_count() < 2 || !off.is_closed() {
-            continue;
-        }
-        if off.area() < 0.0 {
-            off.invert_direction_mut();
-        }
-        let segs = to_segments(&off);
+    for off in Region::polygon(polygon.vertices()).offset_loops(d) {
+        let segs = off.segments();
         let len: f64 = segs.iter().map(Segment::length).sum();
         if len > MIN_RING_LENGTH && segs.iter().all(|s| s.length().is_finite()) {
             loops.push(segs);
         }
     }
     Ok(loops)
-}
-
-/// Closed cavalier_contours polyline to lines and arcs. Arc from bulge b between v1 and v2:
-/// centre and radius by `seg_arc_radius_and_center`, sweep `4·atan(b)` (b > 0: CCW).
-pub(super) fn to_segments(pl: &Polyline<f64>) -> Vec<Segment> {
-    let n = pl.vertex_count();
-    let mut out = Vec::with_capacity(n);
-    for i in 0..n {
-        let v1: PlineVertex<f64> = pl.at(i);
-        let v2: PlineVertex<f64> = pl.at((i + 1) % n);
-        let (a, b) = (p2(v1.x, v1.y), p2(v2.x, v2.y));
-        if (b - a).norm() <= 1e-12 {
-            continue;
-        }
-        if v1.bulge.abs() <= 1e-12 {
-            out.push(Segment::Line { start: a, end: b });
-        } else {
-            let (radius, c) = seg_arc_radius_and_center(v1, v2);
-            let center = p2(c.x, c.y);
-            let start_angle = (a.y - center.y).atan2(a.x - center.x);
-            out.push(Segment::Arc { center, radius, start_angle, sweep: 4.0 * v1.bulge.atan() });
-        }
-    }
-    out
 }
 
 /// An offset level: k, its offset d = r + k·a_e, its loops.
@@ -640,18 +606,18 @@ fn adaptive_core(
     settings: &PocketSettings,
     options: &AdaptiveOptions,
     phi: f64,
-    outline: &Polyline<f64>,
+    outline: &Region,
     d: f64,
 ) -> Result<Core, Error> {
     let (r, sf) = (settings.tool_radius, options.finish_stock_mm);
     // as adaptive clearing: the regions keep the finishing stock from the final wall, ring d
-    let regions = offset(outline, d + sf);
+    let regions = outline.offset(d + sf);
     if regions.is_empty() {
         return Err(Error::param(Param::Polygon, "no region", "a pocket the tool fits"));
     }
     let rho_fin = if sf > 0.0 { fin_radius(sf, r, phi) } else { 0.1 * r };
     let (parts, b) = clear_regions(&regions, polygon, settings, options, phi, rho_fin, None)?;
-    Ok((parts, b, offset(outline, d).iter().map(to_segments).collect()))
+    Ok((parts, b, outline.offset(d).iter().map(Region::segments).collect()))
 }
 
 /// The rings of [`plan_ring_pocket`] from the core outward, each with its tagged segments
@@ -817,7 +783,7 @@ pub fn plan_ring_pocket(
     let (r, ae) = (settings.tool_radius, settings.step_over);
     let levels = ring_levels(polygon, r, ae)?;
     let phi = options.target_rad(&settings)?;
-    let outline = pline_of(polygon.vertices());
+    let outline = Region::polygon(polygon.vertices());
     // Every ring with its corners; k_c from the helix and the corners.
     let delta = Some(core_options.corner_tolerance_mm);
     let mut rings: Vec<Vec<CorneredRing>> = Vec::with_capacity(levels.len());
@@ -836,7 +802,7 @@ pub fn plan_ring_pocket(
     }
     let sf = core_options.finish_stock_mm;
     let holds_helix = |k: usize| {
-        let regions = offset(&outline, levels[k].1 + sf);
+        let regions = outline.offset(levels[k].1 + sf);
         !regions.is_empty() && regions.iter().all(|g| helix_radius(&core_options, r, inscribed(g).0).is_ok())
     };
     let deepest = (0..levels.len()).rev().find(|&k| holds_helix(k));
@@ -911,7 +877,7 @@ pub fn plan_ring_pocket(
         None => {
             // No helix anywhere: a ramp in each region of tool centres, every level a ring.
             let mut hubs = Vec::new();
-            for region in offset(&outline, r) {
+            for region in outline.offset(r) {
                 if !core.segments.is_empty() {
                     core.retract_before.push(core.segments.len());
                 }
@@ -1023,7 +989,7 @@ pub fn plan_ring_pocket(
     if !links.is_empty() {
         links.remove(0);
     }
-    let (maxima, _) = maxima(&profile, &a.segments, &a.kinds, &[]);
+    let maxima = maxima(&profile, &a.segments, &a.kinds);
     let (max_engagement_rad, p95_engagement_rad) = peak_and_p95(&profile);
     let length_at_depth_mm: f64 = a.segments.iter().map(Segment::length).sum();
     let entry_length_mm: f64 = entries.iter().map(|e| e.descent_length(options.depth_mm)).sum();
