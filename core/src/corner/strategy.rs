@@ -25,7 +25,7 @@ use crate::engagement::{Turn, TwoCircle, straight_engagement};
 use crate::error::{Error, Param, num};
 use crate::geom::{Circle, P2, Polygon, Segment};
 use crate::job::limits::MIN_SIZE_MM;
-use crate::toolpath::MoveKind;
+use crate::toolpath::{MoveKind, Toolpath};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 
@@ -251,6 +251,14 @@ pub struct CornerPlan {
     pub tip_segments: Option<std::ops::Range<usize>>,
     /// The corner-point arcs, when the settings ask for them.
     pub corner_point: Option<CornerPointArcs>,
+}
+
+impl CornerPlan {
+    /// The plan's moves as a [`Toolpath`] at depth `0` (the program gives the depth): `path`
+    /// with its `kinds`, no entries (the piece starts in the ring before it), no retracts.
+    pub fn toolpath(&self) -> Toolpath {
+        Toolpath::at_depth(&self.path, &self.kinds, 0.0, Vec::new(), Vec::new())
+    }
 }
 
 /// The arcs into the corner point (docs/corners.md): tangent to both walls (tool centre on U

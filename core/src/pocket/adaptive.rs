@@ -107,18 +107,17 @@
 
 use super::PocketSettings;
 use super::mirror::{mirror_segment, mirrored_polygon};
+use super::path::PocketPath;
 pub use crate::corner::point::{
     DEFAULT_CORNER_TOLERANCE_MM, corner_point_bound_rad, corner_point_radii, next_corner_point_radius,
     validate_corner_tolerance,
 };
-use crate::engagement::{
-    AIR_ENGAGEMENT_RAD, EngagementProfile, EvaluatorOptions, KindMax, engagement_profile, maxima, peak_and_p95,
-    sample_owners,
-};
+use crate::engagement::sample_owners;
 use crate::error::{Error, Param, num};
 use crate::geom::offset::{BoolOp, Region, largest};
 use crate::geom::{P2, Polygon, Segment, bisect_edge, cross, p2};
 use crate::job::Direction;
+use crate::toolpath::Toolpath;
 pub use crate::toolpath::{Entry, HELIX_START_Z_MM, Helix, MoveKind};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
@@ -332,38 +331,19 @@ pub struct AdaptivePart {
 /// A pocket cleared adaptively.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct AdaptivePlan {
-    pub polygon: Polygon,
-    /// The open edges of `polygon` (edge i from vertex i to vertex i + 1): no wall there, the
+    /// The pocket, the settings, every move at depth in machining order (parts one after the
+    /// other; a retract before each part but the first and before a link with no path at
+    /// depth), the parts' entries, and the measurement with the helix and ramp bores counted as
+    /// cut; links are the [`MoveKind::Link`] moves.
+    pub path: PocketPath,
+    /// The open edges of the polygon (edge i from vertex i to vertex i + 1): no wall there, the
     /// stock ends ([`plan_adaptive_open`]).
     #[serde(default)]
     pub open_edges: Vec<usize>,
-    pub settings: PocketSettings,
     pub options: AdaptiveOptions,
     /// Target engagement φ* = arccos(1 − a_e/r) (rad).
     pub target_rad: f64,
     pub parts: Vec<AdaptivePart>,
-    /// Every move at depth in machining order (parts one after the other); `kinds[i]` says
-    /// what `segments[i]` does.
-    pub segments: Vec<Segment>,
-    pub kinds: Vec<MoveKind>,
-    /// Moves reached by a retract inside a part (a link with no path at depth).
-    #[serde(default)]
-    pub retracts: Vec<usize>,
-    /// The evaluator's profile along `segments`, the helix and ramp bores counted as cut.
-    pub profile: EngagementProfile,
-    /// Per kind of move: maximum and where, length.
-    pub maxima: Vec<KindMax>,
-    /// Maximum over every move at depth (rad), and the 95th percentile of the samples.
-    pub max_engagement_rad: f64,
-    pub p95_engagement_rad: f64,
-    /// Length at depth (mm), of it the links, and the air (engagement < 1°).
-    pub length_at_depth_mm: f64,
-    pub link_length_mm: f64,
-    pub air_length_mm: f64,
-    /// Length of the entries' descents (mm): helices, ramps, straight down outside the stock.
-    pub helix_length_mm: f64,
-    /// Time at the feed: the descents and every move at depth (s).
-    pub time_s: f64,
     /// Radius of the pocket's convex corners as cut (mm): r + δ after the finishing pass's
     /// corner arcs, r + ρ_fin without a finishing pass ([`corner_point_bound_rad`]).
     pub corner_radius_left_mm: f64,
@@ -1528,19 +1508,18 @@ fn measure(
     b: Builder,
     corner_radius_left_mm: f64,
 ) -> Result<AdaptivePlan, Error> {
+    // a retract before every part but the first, and before the links with no path at depth
+    let mut retract_before: Vec<usize> =
+        parts.iter().skip(1).map(|q| q.first_segment).chain(b.retracts.iter().copied()).collect();
+    retract_before.sort_unstable();
+    retract_before.dedup();
+    let entries = parts.iter().map(|p| p.entry).collect();
+    let toolpath = Toolpath::at_depth(&b.segments, &b.kinds, -options.depth_mm, entries, retract_before);
     // the bores of helices and ramps are cut; outside the stock nothing was
-    let before: Vec<Segment> =
-        parts.iter().filter(|p| !matches!(p.entry, Entry::Outside { .. })).map(|p| p.entry.bore()).collect();
-    let opts = EvaluatorOptions::new(settings.tool_radius, settings.spacing);
-    let profile = engagement_profile(&polygon, &before, &b.segments, &opts)?;
-    let maxima = maxima(&profile, &b.segments, &b.kinds);
-    let (max_engagement_rad, p95_engagement_rad) = peak_and_p95(&profile);
-    let air_length_mm = profile.air_length_mm(AIR_ENGAGEMENT_RAD);
-    let length_at_depth_mm: f64 = b.segments.iter().map(Segment::length).sum();
-    let link_length_mm: f64 =
-        b.segments.iter().zip(&b.kinds).filter(|(_, k)| **k == MoveKind::Link).map(|(s, _)| s.length()).sum();
+    let path = PocketPath::measured(&polygon, settings, toolpath, options.depth_mm, &[MoveKind::Link])?;
+    let profile = &path.measurement.profile;
     // Corner maxima: the samples on each part's corner passes nearest each corner.
-    for (smp, &i) in profile.samples.iter().zip(&sample_owners(&profile, &b.segments)) {
+    for (smp, &i) in profile.samples.iter().zip(&sample_owners(profile, &b.segments)) {
         let at = p2(smp.x_mm, smp.y_mm);
         let nearest = |v: P2, w: P2| (v - at).norm().total_cmp(&(w - at).norm());
         let slot = match b.kinds.get(i) {
@@ -1563,27 +1542,5 @@ fn measure(
             *where_ = at;
         }
     }
-    let helix_length_mm: f64 = parts.iter().map(|p| p.entry.descent_length(options.depth_mm)).sum();
-    let time_s = (length_at_depth_mm + helix_length_mm) / settings.feed_mm_per_min * 60.0;
-    Ok(AdaptivePlan {
-        polygon,
-        open_edges: Vec::new(),
-        settings,
-        options,
-        target_rad: phi,
-        parts,
-        segments: b.segments,
-        kinds: b.kinds,
-        retracts: b.retracts,
-        profile,
-        maxima,
-        max_engagement_rad,
-        p95_engagement_rad,
-        length_at_depth_mm,
-        link_length_mm,
-        air_length_mm,
-        helix_length_mm,
-        time_s,
-        corner_radius_left_mm,
-    })
+    Ok(AdaptivePlan { path, open_edges: Vec::new(), options, target_rad: phi, parts, corner_radius_left_mm })
 }

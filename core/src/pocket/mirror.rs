@@ -19,20 +19,13 @@ fn mirror_all(segments: &mut [Segment]) {
 impl RingPlan {
     /// The plan of the mirrored pocket mirrored back onto `polygon` (the pocket it mirrors).
     pub fn mirrored(mut self, polygon: &Polygon) -> RingPlan {
-        self.polygon = polygon.clone();
+        self.path = self.path.mirrored(polygon);
         for ring in &mut self.rings {
             mirror_all(&mut ring.segments);
             ring.max_engagement_at = mirror_point(ring.max_engagement_at);
         }
         for link in &mut self.links {
             (link.from, link.to) = (mirror_point(link.from), mirror_point(link.to));
-        }
-        for e in &mut self.entries {
-            *e = e.mirrored();
-        }
-        mirror_all(&mut self.segments);
-        for m in &mut self.maxima {
-            m.at = mirror_point(m.at);
         }
         self
     }
@@ -41,7 +34,7 @@ impl RingPlan {
 impl PerforativePlan {
     /// The plan of the mirrored pocket mirrored back onto `polygon` (the pocket it mirrors).
     pub fn mirrored(mut self, polygon: &Polygon) -> PerforativePlan {
-        self.polygon = polygon.clone();
+        self.path = self.path.mirrored(polygon);
         for e in &mut self.axis.edges {
             (e.a, e.b) = (mirror_point(e.a), mirror_point(e.b));
             for q in &mut e.points {
@@ -50,16 +43,6 @@ impl PerforativePlan {
         }
         for c in &mut self.circles {
             c.tool_circle.center = mirror_point(c.tool_circle.center);
-        }
-        mirror_all(&mut self.segments);
-        for e in &mut self.entries {
-            *e = e.mirrored();
-        }
-        for smp in &mut self.profile.samples {
-            smp.x_mm = -smp.x_mm;
-        }
-        for m in &mut self.maxima {
-            m.at = mirror_point(m.at);
         }
         for c in &mut self.corner_points {
             (c.vertex, c.at) = (mirror_point(c.vertex), mirror_point(c.at));
@@ -129,10 +112,13 @@ mod tests {
             let (ea, eb) = (climb.max_engagement_rad(), conv.max_engagement_rad());
             assert!((ea - eb).abs() < 0.5f64.to_radians(), "{strategy:?}: {} vs {}", ea.to_degrees(), eb.to_degrees());
             if let PocketPlan::MedialAxis(m) = &conv {
-                let bores: Vec<Segment> = m.entries.iter().map(crate::pocket::Entry::bore).collect();
-                let own =
-                    engagement_profile(&rect, &bores, &m.segments, &EvaluatorOptions::new(5.0, 0.5)).expect("profile");
-                assert!((own.max_angle() - m.profile.max_angle()).abs() < 1e-6, "measured again over the rectangle");
+                let bores: Vec<Segment> = m.path.toolpath.entries.iter().map(crate::pocket::Entry::bore).collect();
+                let own = engagement_profile(&rect, &bores, &m.path.segments(), &EvaluatorOptions::new(5.0, 0.5))
+                    .expect("profile");
+                assert!(
+                    (own.max_angle() - m.path.measurement.profile.max_angle()).abs() < 1e-6,
+                    "measured again over the rectangle"
+                );
             }
         }
     }

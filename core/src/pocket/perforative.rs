@@ -59,16 +59,15 @@
 use super::PocketSettings;
 use super::adaptive::{AdaptiveOptions, CornerPoint, corner_point_radii};
 use super::entry::{Entry, entry_at};
+use super::path::PocketPath;
 use super::rings::link_is_inside;
 use crate::corner::CornerSettings;
-use crate::engagement::{
-    AIR_ENGAGEMENT_RAD, EngagementProfile, EvaluatorOptions, KindMax, Turn, TwoCircle, engagement_profile, maxima,
-    peak_and_p95,
-};
+use crate::engagement::{EngagementProfile, EvaluatorOptions, Turn, TwoCircle, engagement_profile};
 use crate::error::{Error, Param};
 use crate::geom::medial::{MedialAxis, WallFeature, Walls, medial_axis};
 use crate::geom::{Circle, P2, Polygon, Segment, bisect_edge, golden_min, rot90};
 pub use crate::toolpath::MoveKind;
+use crate::toolpath::Toolpath;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 
@@ -114,54 +113,31 @@ pub struct AxisCircle {
 /// A pocket cleared by perforative trochoids along its medial axis.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PerforativePlan {
-    pub polygon: Polygon,
-    pub settings: PocketSettings,
+    /// The pocket, the settings, the path in machining order (a retract, rapid and new entry
+    /// before every part but the first, which the program's first entry reaches), the entry of
+    /// each part (helix, or ramp where no helix fits), and the measurement; links are the
+    /// moves between cuts ([`MoveKind::Link`] and [`MoveKind::Return`] along the axis).
+    pub path: PocketPath,
     /// Target engagement a* (rad) and the bisection band ε (rad).
     pub target_rad: f64,
     pub tolerance_rad: f64,
     pub axis: MedialAxis,
     pub circles: Vec<AxisCircle>,
-    /// The tool path in machining order; `kinds[i]` says what `segments[i]` does.
-    pub segments: Vec<Segment>,
-    pub kinds: Vec<MoveKind>,
-    /// Indices of the segments reached by retract, rapid and a new entry: the start of every
-    /// part but the first (which the program's first entry reaches).
-    pub retract_before: Vec<usize>,
     /// Parts of the axis reached separately (one entry each).
     pub parts: usize,
-    /// The entry of each part, in order (helix, or ramp where no helix fits).
-    pub entries: Vec<Entry>,
-    /// Length of the entries' descents from above the stock top (mm).
-    pub entry_length_mm: f64,
     /// Axis length where the tool does not fit (Rc < r), left uncut (mm).
     pub unreachable_axis_mm: f64,
     /// Each tip thinned by corner-point arcs ([`Planner::thin_tip`]): the corner of the
     /// tool-centre region (`vertex`), its angle, the arcs and the measured peak over their moves.
     pub corner_points: Vec<CornerPoint>,
-    /// Feed path length at depth, all moves (mm), and the machining time of it and the
-    /// entries' descents at the feed (s).
-    pub path_length_mm: f64,
-    pub time_s: f64,
-    /// Length at depth (= `path_length_mm`), of it the moves between cuts (links and returns
-    /// along the axis), and the air: samples below 1° (mm).
-    pub length_at_depth_mm: f64,
-    pub link_length_mm: f64,
-    pub air_length_mm: f64,
-    /// The evaluator's profile along `segments` (positions `settings.spacing` apart).
-    pub profile: EngagementProfile,
-    /// Per kind of move present: maximum measured engagement and length.
-    pub maxima: Vec<KindMax>,
     /// Largest engagement of the body (spiral, circles, links; rad): what the target bounds.
     pub body_max_rad: f64,
-    /// Largest engagement over every move at depth (rad), and the 95th percentile.
-    pub max_engagement_rad: f64,
-    pub p95_engagement_rad: f64,
 }
 
 impl PerforativePlan {
     /// Maximum of one kind of move (0 if absent).
     pub fn max_of(&self, kind: MoveKind) -> f64 {
-        self.maxima.iter().find(|m| m.kind == kind).map_or(0.0, |m| m.max_rad)
+        self.path.max_of(kind)
     }
 }
 
@@ -561,51 +537,21 @@ pub fn plan_perforative(
     }
     retract_before.retain(|&i| i > 0); // the first part is reached by the program's first entry
     let Planner { b, circles, corner_points, .. } = p;
-    let opts = EvaluatorOptions::new(r, settings.spacing);
-    let bores: Vec<Segment> = entries.iter().map(Entry::bore).collect();
-    let profile = engagement_profile(polygon, &bores, &b.segments, &opts)?;
-    let maxima = maxima(&profile, &b.segments, &b.kinds);
-    let body_max_rad = maxima
-        .iter()
-        .filter(|m| matches!(m.kind, MoveKind::Spiral | MoveKind::Circle | MoveKind::Link))
-        .map(|m| m.max_rad)
-        .fold(0.0, f64::max);
-    let (max_engagement_rad, p95_engagement_rad) = peak_and_p95(&profile);
-    let corner_points = measure_corner_points(&profile, &b.segments, corner_points);
-    let len: f64 = b.segments.iter().map(Segment::length).sum();
-    let link_length_mm: f64 = b
-        .segments
-        .iter()
-        .zip(&b.kinds)
-        .filter(|(_, k)| matches!(k, MoveKind::Link | MoveKind::Return))
-        .map(|(s, _)| s.length())
-        .sum();
-    let entry_length_mm: f64 = entries.iter().map(|e| e.descent_length(options.depth_mm)).sum();
+    let toolpath = Toolpath::at_depth(&b.segments, &b.kinds, -options.depth_mm, entries, retract_before);
+    let path =
+        PocketPath::measured(polygon, settings, toolpath, options.depth_mm, &[MoveKind::Link, MoveKind::Return])?;
+    let body_max_rad = path.measurement.max_over(&[MoveKind::Spiral, MoveKind::Circle, MoveKind::Link]);
+    let corner_points = measure_corner_points(&path.measurement.profile, &b.segments, corner_points);
     Ok(PerforativePlan {
-        polygon: polygon.clone(),
-        settings,
+        path,
         target_rad: cs.target,
         tolerance_rad: cs.tolerance,
         axis,
         circles,
-        segments: b.segments,
-        kinds: b.kinds,
-        retract_before,
         parts: parts.len(),
-        entries,
-        entry_length_mm,
         unreachable_axis_mm: graph.unreachable_mm,
         corner_points,
-        path_length_mm: len,
-        time_s: (len + entry_length_mm) / settings.feed_mm_per_min * 60.0,
-        length_at_depth_mm: len,
-        link_length_mm,
-        air_length_mm: profile.air_length_mm(AIR_ENGAGEMENT_RAD),
-        profile,
-        maxima,
         body_max_rad,
-        max_engagement_rad,
-        p95_engagement_rad,
     })
 }
 

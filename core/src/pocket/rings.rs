@@ -64,17 +64,19 @@ use super::PocketSettings;
 use super::adaptive::{
     AdaptiveOptions, AdaptivePart, Builder, CornerPoint, clear_regions, closest_on, fin_radius, inscribed,
 };
-use super::entry::{Entry, entry_at, helix_radius};
+use super::entry::{entry_at, helix_radius};
+use super::path::PocketPath;
 use super::route::Router;
 use crate::corner::{
     Corner, CornerMethod, CornerScenario, CornerSettings, EvaluatorOptions, engagement_profile, plan_corner,
     strategy::CornerPointArcs,
 };
-use crate::engagement::{AIR_ENGAGEMENT_RAD, KindMax, maxima, peak_and_p95, sample_owners};
+use crate::engagement::sample_owners;
 use crate::error::{Error, Param};
 use crate::geom::offset::Region;
 use crate::geom::{P2, Polygon, Segment, p2};
 use crate::toolpath::MoveKind;
+use crate::toolpath::Toolpath;
 use serde::{Deserialize, Serialize};
 
 /// Upper bound on the number of offset levels (keeps run time bounded for tiny step-overs).
@@ -112,18 +114,23 @@ pub struct Ring {
 /// A pocket planned as contour-parallel rings.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RingPlan {
-    /// The validated pocket (counter-clockwise).
-    pub polygon: Polygon,
-    pub settings: PocketSettings,
+    /// The pocket, the settings, the tool path and its measurement. [`plan_ring_pocket`]: every
+    /// move at depth in machining order — entries' flat moves, the core cleared out of the
+    /// helix bore, links and rings — the entry of each region of tool centres (helix, or ramp
+    /// where no helix fits), the moves reached by retract, rapid and feed down (into material
+    /// the path has cleared); links are every [`MoveKind::Link`] move at depth, the core's
+    /// included. [`plan_rings`]: the rings and their feed links, a retract before each retract
+    /// link, no entries (it plunges); its time counts the rings only.
+    pub path: PocketPath,
     /// Corner strategy at the ring corners (plain, variable or isometric).
     pub method: CornerMethod,
     /// Rings in machining order (innermost first).
     pub rings: Vec<Ring>,
     /// Total ring length (mm), links excluded.
     pub path_length_mm: f64,
-    /// Machining time of the rings at the feed (s).
-    pub time_s: f64,
-    /// Largest running engagement over all rings (rad), entries excluded.
+    /// Largest engagement (rad): [`plan_ring_pocket`] over every move at depth (the
+    /// measurement's); [`plan_rings`] the largest running engagement over all rings, entries
+    /// excluded.
     pub max_engagement_rad: f64,
     /// Ring corners where the strategy's circles were spliced in.
     pub trochoid_corners: usize,
@@ -131,40 +138,9 @@ pub struct RingPlan {
     pub plain_corners: usize,
     /// `links[i]` joins the end of `rings[i]` to the entry of `rings[i + 1]`.
     pub links: Vec<Link>,
-    /// Length of the feed links (mm; retract links count 0): for [`plan_ring_pocket`] every link
-    /// move at depth, the core's included.
-    pub link_length_mm: f64,
-    /// [`plan_ring_pocket`]: the entry of each region of tool centres (helix, or
-    /// ramp where no helix fits); empty for [`plan_rings`], which plunges.
-    #[serde(default)]
-    pub entries: Vec<Entry>,
-    /// [`plan_ring_pocket`]: every move at depth in machining order — entries' flat moves, the
-    /// core cleared out of the helix bore, links and rings — and what each does; the segments
-    /// reached by retract, rapid and feed down (into material the path has cleared). Empty
-    /// for [`plan_rings`] (its path is [`RingPlan::tool_path`] of the rings and links).
-    #[serde(default)]
-    pub segments: Vec<Segment>,
-    #[serde(default)]
-    pub kinds: Vec<MoveKind>,
-    #[serde(default)]
-    pub retract_before: Vec<usize>,
-    /// [`plan_ring_pocket`]: per kind of move its maximum engagement, where, and length;
-    /// the 95th percentile of every sample at depth (rad); the length at depth (mm) and of the
-    /// entries' descents (mm).
-    #[serde(default)]
-    pub maxima: Vec<KindMax>,
-    #[serde(default)]
-    pub p95_engagement_rad: f64,
-    #[serde(default)]
-    pub length_at_depth_mm: f64,
-    #[serde(default)]
-    pub entry_length_mm: f64,
-    /// [`plan_ring_pocket`]: moves at depth with engagement below 1° (mm).
-    #[serde(default)]
-    pub air_length_mm: f64,
     /// [`plan_ring_pocket`]: the ring corners whose strategy ends with corner-point arcs
     /// (docs/corners.md), each with its arcs and the peak over them and their moves (the
-    /// core's own corner points are not in this list; they are in `maxima`).
+    /// core's own corner points are not in this list; they are in the measurement's maxima).
     #[serde(default)]
     pub corner_points: Vec<CornerPoint>,
 }
@@ -191,30 +167,6 @@ pub struct Link {
     /// Largest engagement along a feed link over the material left before it, by the
     /// evaluator (rad); 0 for a retract link (not cut at depth).
     pub max_engagement_rad: f64,
-}
-
-impl RingPlan {
-    /// The whole pocket as one tool path in machining order: rings and feed links as segments,
-    /// and the indices of the segments the tool reaches by a retract link (retract to safe Z,
-    /// rapid to the segment's start, plunge). Consecutive segments not at such an index join.
-    pub fn tool_path(&self) -> (Vec<Segment>, Vec<usize>) {
-        if !self.segments.is_empty() {
-            return (self.segments.clone(), self.retract_before.clone());
-        }
-        let mut segs = Vec::new();
-        let mut breaks = Vec::new();
-        for (i, ring) in self.rings.iter().enumerate() {
-            segs.extend(ring.segments.iter().copied());
-            match self.links.get(i) {
-                Some(Link { kind: LinkKind::Feed, from, to, .. }) if (*to - *from).norm() > 0.0 => {
-                    segs.push(Segment::Line { start: *from, end: *to });
-                }
-                Some(Link { kind: LinkKind::Retract, .. }) => breaks.push(segs.len()),
-                _ => {}
-            }
-        }
-        (segs, breaks)
-    }
 }
 
 /// Whether every point of the segment `a`–`b` is inside `polygon` at a distance of at least
@@ -370,32 +322,44 @@ pub fn plan_rings(polygon: &Polygon, settings: PocketSettings, method: CornerMet
             before.push(Segment::Line { start: from, end: to });
         }
     }
-    let link_length_mm = links.iter().filter(|l| l.kind == LinkKind::Feed).map(|l| l.length_mm).sum();
     let len: f64 = rings.iter().map(|g| g.length_mm).sum();
     let max = rings.iter().map(|g| g.max_engagement_rad).fold(0.0, f64::max);
+    let toolpath = rings_and_links(&rings, &links);
+    let mut path = PocketPath::measured(polygon, settings, toolpath, 0.0, &[MoveKind::Link])?;
+    path.time_s = len / settings.feed_mm_per_min * 60.0;
     Ok(RingPlan {
-        polygon: polygon.clone(),
-        settings,
+        path,
         method,
         rings,
         path_length_mm: len,
-        time_s: len / settings.feed_mm_per_min * 60.0,
         max_engagement_rad: max,
         trochoid_corners,
         plain_corners,
         links,
-        link_length_mm,
-        entries: Vec::new(),
-        segments: Vec::new(),
-        kinds: Vec::new(),
-        retract_before: Vec::new(),
-        maxima: Vec::new(),
-        p95_engagement_rad: 0.0,
-        length_at_depth_mm: 0.0,
-        entry_length_mm: 0.0,
-        air_length_mm: 0.0,
         corner_points: Vec::new(),
     })
+}
+
+/// The rings and their feed links as one tool path in machining order ([`MoveKind::Ring`],
+/// [`MoveKind::Link`]), a retract before the ring a retract link reaches (retract to safe Z,
+/// rapid to the segment's start, plunge); no entries.
+fn rings_and_links(rings: &[Ring], links: &[Link]) -> Toolpath {
+    let mut segs = Vec::new();
+    let mut kinds = Vec::new();
+    let mut breaks = Vec::new();
+    for (i, ring) in rings.iter().enumerate() {
+        segs.extend(ring.segments.iter().copied());
+        kinds.extend(ring.segments.iter().map(|_| MoveKind::Ring));
+        match links.get(i) {
+            Some(Link { kind: LinkKind::Feed, from, to, .. }) if (*to - *from).norm() > 0.0 => {
+                segs.push(Segment::Line { start: *from, end: *to });
+                kinds.push(MoveKind::Link);
+            }
+            Some(Link { kind: LinkKind::Retract, .. }) => breaks.push(segs.len()),
+            _ => {}
+        }
+    }
+    Toolpath::at_depth(&segs, &kinds, 0.0, Vec::new(), breaks)
 }
 
 /// The same closed loop, restarted at the midpoint of its longest line (split in two), so the
@@ -868,10 +832,11 @@ pub fn plan_ring_pocket(
             // medial-axis clearing of the whole pocket (ramp entry, circles out of its slot,
             // corner-point arcs) is the core, and no ring is left outside it.
             let m = super::perforative::plan_perforative(polygon, settings, &core_options)?;
-            core.segments = m.segments;
-            core.kinds = m.kinds;
-            core.retract_before = m.retract_before;
-            entries = m.entries;
+            let path = m.path.toolpath;
+            core.segments = path.segments();
+            core.kinds = path.kinds();
+            core.retract_before = path.retract_before;
+            entries = path.entries;
             (0, Vec::new(), Vec::new())
         }
         None => {
@@ -920,10 +885,10 @@ pub fn plan_ring_pocket(
         inside = next;
     }
     let a = assemble(polygon, r, ae, core, &candidates);
-    let opts = EvaluatorOptions::new(r, settings.spacing);
-    let bores: Vec<Segment> = entries.iter().map(Entry::bore).collect();
-    let profile = engagement_profile(polygon, &bores, &a.segments, &opts)?;
-    let owner = sample_owners(&profile, &a.segments);
+    let toolpath = Toolpath::at_depth(&a.segments, &a.kinds, -options.depth_mm, entries, a.retract_before.clone());
+    let path = PocketPath::measured(polygon, settings, toolpath, options.depth_mm, &[MoveKind::Link])?;
+    let profile = &path.measurement.profile;
+    let owner = sample_owners(profile, &a.segments);
     let in_range = |lo: usize, hi: usize| {
         profile.samples.iter().zip(&owner).filter(move |(_, o)| (lo..hi).contains(*o)).map(|(s, _)| s)
     };
@@ -989,36 +954,16 @@ pub fn plan_ring_pocket(
     if !links.is_empty() {
         links.remove(0);
     }
-    let maxima = maxima(&profile, &a.segments, &a.kinds);
-    let (max_engagement_rad, p95_engagement_rad) = peak_and_p95(&profile);
-    let length_at_depth_mm: f64 = a.segments.iter().map(Segment::length).sum();
-    let entry_length_mm: f64 = entries.iter().map(|e| e.descent_length(options.depth_mm)).sum();
     let path_length_mm: f64 = out_rings.iter().map(|g| g.length_mm).sum();
-    // every link move at depth: the core's links as well as those between rings (the same sum
-    // as the link row of the per-kind maxima)
-    let link_length_mm =
-        a.segments.iter().zip(&a.kinds).filter(|(_, k)| **k == MoveKind::Link).map(|(s, _)| s.length()).sum();
     Ok(RingPlan {
-        polygon: polygon.clone(),
-        settings,
+        max_engagement_rad: path.measurement.max_engagement_rad,
+        path,
         method,
         rings: out_rings,
         path_length_mm,
-        time_s: (length_at_depth_mm + entry_length_mm) / settings.feed_mm_per_min * 60.0,
-        max_engagement_rad,
         trochoid_corners: candidates.iter().map(|c| c.corners.0).sum(),
         plain_corners: candidates.iter().map(|c| c.corners.1).sum(),
         links,
-        link_length_mm,
-        entries,
-        segments: a.segments,
-        kinds: a.kinds,
-        retract_before: a.retract_before,
-        maxima,
-        p95_engagement_rad,
-        length_at_depth_mm,
-        entry_length_mm,
-        air_length_mm: profile.air_length_mm(AIR_ENGAGEMENT_RAD),
         corner_points,
     })
 }
