@@ -8,25 +8,10 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 /// The allowed order, lowest first: a module may use the modules before it.
+#[rustfmt::skip]
 const ORDER: &[&str] = &[
-    "error",
-    "geom",
-    "outline",
-    "material",
-    "machine",
-    "job",
-    "path",
-    "analysis",
-    "plan",
-    "feed",
-    "optimize",
-    "quantity",
-    "sweep",
-    "toolpath",
-    "engagement",
-    "corner",
-    "pocket",
-    "nc",
+    "error", "geom", "toolpath", "outline", "material", "machine", "job", "path", "analysis", "plan", "feed",
+    "optimize", "quantity", "sweep", "engagement", "corner", "pocket", "nc",
 ];
 
 /// Production code of one file: up to the first `#[cfg(test)]`, `//` comments removed.

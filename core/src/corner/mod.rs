@@ -14,6 +14,7 @@
 //! Modules:
 //! - [`method`]: the corner strategies and their names.
 //! - [`request`]: the corner request, its settings and [`evaluate`].
+//! - [`limits`]: tool diameter and step-over limits shared with the pocket planners.
 //! - [`point`]: arcs into a convex corner point down to the corner tolerance.
 //! - [`geometry`]: offset lines, bisector (eqs. 21–22), wall-tangent circles.
 //! - [`strategy`]: the corner scenario, the plain contour-parallel corner, the variable-circle
@@ -26,6 +27,7 @@
 
 pub mod acceptance;
 pub mod geometry;
+pub mod limits;
 pub mod method;
 pub mod point;
 pub mod request;

@@ -186,14 +186,14 @@ pub fn evaluate(req: &CornerRequest) -> Result<CornerReport, Error> {
     let settings = req.settings()?;
     // circles of a small step-over grow in number as 1/a_e, each found by bisection: below the
     // papers' range they take seconds to minutes for no useful gain (plain has none)
-    let least = super::strategy::MEDIAL_AXIS_MIN_STEP_OVER_RATIO * 2.0 * settings.tool_radius;
+    let least = super::limits::MEDIAL_AXIS_MIN_STEP_OVER_RATIO * 2.0 * settings.tool_radius;
     if req.method != CornerMethod::Plain && settings.step_over < least {
         return Err(Error::param(
             Param::StepOver,
             settings.step_over,
             format!(
                 "at least {} × the tool diameter = {} mm for --method {} (the papers' smallest radial depth)",
-                super::strategy::MEDIAL_AXIS_MIN_STEP_OVER_RATIO,
+                super::limits::MEDIAL_AXIS_MIN_STEP_OVER_RATIO,
                 num(least),
                 req.method.name()
             ),

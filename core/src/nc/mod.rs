@@ -24,7 +24,7 @@ pub mod corner;
 mod dialect;
 mod writer;
 
-pub use backplot::backplot;
+pub use backplot::{backplot, read_toolpath};
 pub use corner::{CutSetup, corner_program, perforative_program, pocket_program};
 
 pub use dialect::{CommentStyle, Dialect, DialectSpec, LoopStyle, ToolCall, sanitize_comment};

@@ -1,7 +1,7 @@
 //! Adaptive pocket clearing (docs/adaptive-clearing.md): helix entry, a spiral out of the bore, rings that
 //! grow along the pocket's core, thinning passes into every convex corner and a finishing
 //! contour — every move at depth measured by the independent evaluator
-//! ([`crate::corner::evaluator`]). The algorithm is ours (DERIVED below); its engagement model
+//! ([`crate::engagement::evaluator`]). The algorithm is ours (DERIVED below); its engagement model
 //! is the straight cut and the two-circle model of Wu et al. 2016 (docs/corners.md).
 //!
 //! Notation: `r` tool radius, `a_e` the step-over, φ* = arccos(1 − a_e/r) its straight-cut

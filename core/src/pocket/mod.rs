@@ -1,7 +1,7 @@
 //! Polygonal pockets (Wu et al. 2016 §4; docs/pockets.md): cleared by contour-parallel rings
 //! with a corner strategy at every convex ring corner ([`rings`]), or by perforative trochoids
 //! along the pocket's medial axis ([`perforative`]); both measured by the independent
-//! evaluator ([`crate::corner::evaluator`]).
+//! evaluator ([`crate::engagement::evaluator`]).
 //!
 //! Entry point: [`plan`] — a [`PocketRequest`] in, a [`PocketPlan`] out; used by the GUI and the
 //! CLI. Conventions as in [`crate::corner`]: mm, counter-clockwise pocket boundary, tool-centre
@@ -33,7 +33,7 @@ pub use rings::{
 };
 
 use crate::corner::CornerMethod;
-use crate::corner::strategy::{tool_diameter, validate_tool_and_step_over};
+use crate::corner::limits::{tool_diameter, validate_tool_and_step_over};
 use crate::error::{Error, Param, num};
 use crate::geom::{P2, Polygon, Segment, p2};
 use crate::job::Direction;
@@ -450,7 +450,7 @@ fn check_work(polygon: &Polygon, strategy: PocketStrategy, settings: &PocketSett
     ))
 }
 
-pub use crate::corner::strategy::MEDIAL_AXIS_MIN_STEP_OVER_RATIO;
+pub use crate::corner::limits::MEDIAL_AXIS_MIN_STEP_OVER_RATIO;
 
 /// Plan the requested pocket with its strategy. Errors name the input at fault. Checked before
 /// planning, so that no plan runs for minutes: a medial-axis step-over below

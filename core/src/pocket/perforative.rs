@@ -6,7 +6,7 @@
 //! The algorithm below is ours (derived in docs/pockets.md), written so that every choice can be
 //! checked by the independent evaluator.
 //!
-//! 1. **Axis.** The medial axis of the pocket ([`crate::corner::medial`], boostvoronoi; parabolic edges
+//! 1. **Axis.** The medial axis of the pocket ([`crate::geom::medial`], boostvoronoi; parabolic edges
 //!    as points of the exact parabola). At an axis point q the clearance Rc(q) (distance to the
 //!    nearest wall) is the radius of the largest circle the walls allow; the tool centre may be
 //!    at q only where Rc(q) ≥ r. The axis is clipped to that part (bisection on Rc = r); a

@@ -2,7 +2,7 @@
 //! plane with its height at both ends, its kind and its feed, together with the entries that
 //! take the tool down to depth and the moves reached by a retract. Every pocket strategy and
 //! the corner planner return one ([`Toolpath`]); the NC writer writes one
-//! ([`crate::nc::toolpath_program`]), the back-plot reads a program into one
+//! ([`crate::nc::program_for_path`]), the back-plot reads a program into one
 //! ([`crate::nc::read_toolpath`]), and [`crate::engagement::measure`] measures one.
 //!
 //! Conventions: mm, mm/min; the plane seen from +Z; heights relative to the stock top (z = 0,
