@@ -117,8 +117,9 @@ use crate::error::{Error, Param, num};
 use crate::geom::offset::{BoolOp, Region, largest};
 use crate::geom::{P2, Polygon, Segment, bisect_edge, cross, p2};
 use crate::job::Direction;
+pub use crate::toolpath::HELIX_START_Z_MM;
 use crate::toolpath::Toolpath;
-pub use crate::toolpath::{Entry, HELIX_START_Z_MM, Helix, MoveKind};
+use crate::toolpath::{Entry, Helix, MoveKind};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 

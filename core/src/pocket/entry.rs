@@ -13,7 +13,7 @@ use super::rings::link_is_inside;
 use crate::error::{Error, Param, num};
 use crate::geom::medial::Walls;
 use crate::geom::{P2, Polygon, p2};
-pub use crate::toolpath::entry::{Entry, HELIX_START_Z_MM, Helix, Ramp};
+use crate::toolpath::entry::{Entry, HELIX_START_Z_MM, Helix, Ramp};
 use std::f64::consts::PI;
 
 /// Directions tried for the ramp line (every 1°).

@@ -1,7 +1,8 @@
 //! Polygonal pockets (Wu et al. 2016 §4; docs/pockets.md): cleared by contour-parallel rings
 //! with a corner strategy at every convex ring corner ([`rings`]), or by perforative trochoids
-//! along the pocket's medial axis ([`perforative`]); both measured by the independent
-//! evaluator ([`crate::engagement::evaluator`]).
+//! along the pocket's medial axis ([`perforative`]), or adaptively ([`adaptive`]). Every plan
+//! holds a [`PocketPath`] — its [`Toolpath`] and the [`crate::engagement::measure`] of it by
+//! the independent evaluator — plus what its strategy adds.
 //!
 //! Entry point: [`plan`] — a [`PocketRequest`] in, a [`PocketPlan`] out; used by the GUI and the
 //! CLI. Conventions as in [`crate::corner`]: mm, counter-clockwise pocket boundary, tool-centre

@@ -58,7 +58,7 @@
 
 use super::PocketSettings;
 use super::adaptive::{AdaptiveOptions, CornerPoint, corner_point_radii};
-use super::entry::{Entry, entry_at};
+use super::entry::entry_at;
 use super::path::PocketPath;
 use super::rings::link_is_inside;
 use crate::corner::CornerSettings;
@@ -66,7 +66,8 @@ use crate::engagement::{EngagementProfile, EvaluatorOptions, Turn, TwoCircle, en
 use crate::error::{Error, Param};
 use crate::geom::medial::{MedialAxis, WallFeature, Walls, medial_axis};
 use crate::geom::{Circle, P2, Polygon, Segment, bisect_edge, golden_min, rot90};
-pub use crate::toolpath::MoveKind;
+use crate::toolpath::Entry;
+use crate::toolpath::MoveKind;
 use crate::toolpath::Toolpath;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};

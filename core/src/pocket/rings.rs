@@ -67,11 +67,8 @@ use super::adaptive::{
 use super::entry::{entry_at, helix_radius};
 use super::path::PocketPath;
 use super::route::Router;
-use crate::corner::{
-    Corner, CornerMethod, CornerScenario, CornerSettings, EvaluatorOptions, engagement_profile, plan_corner,
-    strategy::CornerPointArcs,
-};
-use crate::engagement::sample_owners;
+use crate::corner::{Corner, CornerMethod, CornerScenario, CornerSettings, plan_corner, strategy::CornerPointArcs};
+use crate::engagement::{EvaluatorOptions, engagement_profile, sample_owners};
 use crate::error::{Error, Param};
 use crate::geom::offset::Region;
 use crate::geom::{P2, Polygon, Segment, p2};
