@@ -984,7 +984,7 @@ pub fn corner(args: &CornerArgs) -> Result<String, String> {
         plain_max_engagement_deg: report.plain_profile.max_angle().to_degrees(),
         plain_path_length_mm: report.plain.path_length_mm,
         notes: plan.notes.clone(),
-        path: plan.path.clone(),
+        path: plan.toolpath.segments(),
         nc_export,
     };
     json_text(&out)

@@ -300,9 +300,8 @@ fn corner_programs_in_every_dialect_retrace_the_corner_path() {
             CornerScenario::new(Corner::symmetric(angle.to_radians()).expect("corner"), settings).expect("scenario");
         for method in [CornerMethod::Variable, CornerMethod::Isometric, CornerMethod::MedialAxis] {
             let plan = plan_corner(&sc, method).expect("corner plan");
-            let toolpath = plan.toolpath();
             let job = PathJob {
-                toolpath: &toolpath,
+                toolpath: &plan.toolpath,
                 depth_mm: 6.0,
                 feed_mm_per_min: 600.0,
                 spindle_rpm: 2000.0,

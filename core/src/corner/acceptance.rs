@@ -140,8 +140,9 @@ pub fn row(
     // The way into the corner point is reported apart (see the module docs).
     let (tip_start, tip_end) = match &plan.tip_segments {
         Some(range) => {
-            let start: f64 = plan.path[..range.start].iter().map(|s| s.length()).sum();
-            (start, start + plan.path[range.clone()].iter().map(|s| s.length()).sum::<f64>())
+            let path = plan.toolpath.segments();
+            let start: f64 = path[..range.start].iter().map(|s| s.length()).sum();
+            (start, start + path[range.clone()].iter().map(|s| s.length()).sum::<f64>())
         }
         None => (f64::INFINITY, f64::INFINITY),
     };

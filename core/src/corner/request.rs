@@ -165,13 +165,13 @@ impl CornerReport {
     /// Per kind of move (U and V legs, circles, links, corner-point arcs or the tip): the
     /// largest engagement measured and where, and the length.
     pub fn by_kind(&self) -> Vec<KindMax> {
-        crate::engagement::maxima(&self.profile, &self.plan.path, &self.plan.kinds)
+        crate::engagement::maxima(&self.profile, &self.plan.toolpath.segments(), &self.plan.toolpath.kinds())
     }
 
     /// Length of the moves along U between circles and of the isometric return (mm).
     pub fn link_length_mm(&self) -> f64 {
-        let kinds = self.plan.path.iter().zip(&self.plan.kinds);
-        kinds.filter(|(_, k)| **k == MoveKind::Link).fold(0.0, |sum, (s, _)| sum + s.length())
+        let links = self.plan.toolpath.moves.iter().filter(|m| m.kind == MoveKind::Link);
+        links.fold(0.0, |sum, m| sum + m.segment.length())
     }
 
     /// Length of the moves that engage less than 1° (mm).
@@ -237,7 +237,9 @@ impl CornerReport {
             for circle in &mut plan.circles {
                 circle.tool_circle.center = flip_y(circle.tool_circle.center);
             }
-            plan.path = plan.path.iter().map(flip_y_segment).collect();
+            for m in &mut plan.toolpath.moves {
+                m.segment = flip_y_segment(&m.segment);
+            }
             plan.stock = flipped_y_polygon(&plan.stock)?;
             plan.precut = plan.precut.iter().map(flip_y_segment).collect();
             for s in &mut profile.samples {
@@ -261,7 +263,7 @@ pub(super) fn measured(
     opts: &EvaluatorOptions,
 ) -> Result<(CornerPlan, EngagementProfile), Error> {
     let plan = plan_corner(sc, method)?;
-    let profile = engagement_profile(&plan.stock, &plan.precut, &plan.path, opts)?;
+    let profile = engagement_profile(&plan.stock, &plan.precut, &plan.toolpath.segments(), opts)?;
     Ok((plan, profile))
 }
 

@@ -225,8 +225,11 @@ pub struct CornerPlan {
     pub method: CornerMethod,
     /// Circles in machining order.
     pub circles: Vec<CornerCircle>,
-    /// Tool-centre path of the whole ring piece (U leg, corner, V leg).
-    pub path: Vec<Segment>,
+    /// The moves of the whole ring piece (U leg, corner, V leg) at depth 0 (the program gives
+    /// the depth), no entries (the piece starts in the ring before it), no retracts. Their
+    /// kinds: U and V legs [`MoveKind::Ring`], circles, links along U, corner-point arcs with
+    /// their moves, or Wu et al.'s [`MoveKind::Tip`].
+    pub toolpath: Toolpath,
     /// Path length (mm).
     pub path_length_mm: f64,
     /// Machining time at the feed rate (s).
@@ -237,23 +240,12 @@ pub struct CornerPlan {
     /// the stock polygon and the tool paths cut before.
     pub stock: Polygon,
     pub precut: Vec<Segment>,
-    /// What each move of `path` does: U and V legs [`MoveKind::Ring`], circles, links along U,
-    /// corner-point arcs with their moves, or Wu et al.'s [`MoveKind::Tip`].
-    pub kinds: Vec<MoveKind>,
-    /// Indices in `path` of the way into the corner point (see [`super::acceptance`] for its
+    /// Indices of the moves of the way into the corner point (see [`super::acceptance`] for its
     /// stated engagement limit): the corner-point arcs with their moves along the walls, or
     /// Wu et al.'s final straight move into the tool corner point; `None` for the plain ring.
     pub tip_segments: Option<std::ops::Range<usize>>,
     /// The corner-point arcs, when the settings ask for them.
     pub corner_point: Option<CornerPointArcs>,
-}
-
-impl CornerPlan {
-    /// The plan's moves as a [`Toolpath`] at depth `0` (the program gives the depth): `path`
-    /// with its `kinds`, no entries (the piece starts in the ring before it), no retracts.
-    pub fn toolpath(&self) -> Toolpath {
-        Toolpath::at_depth(&self.path, &self.kinds, 0.0, Vec::new(), Vec::new())
-    }
 }
 
 /// The arcs into the corner point (docs/corners.md): tangent to both walls (tool centre on U
@@ -436,13 +428,12 @@ pub fn plan_corner(sc: &CornerScenario, method: CornerMethod) -> Result<CornerPl
     Ok(CornerPlan {
         method,
         circles,
-        path,
+        toolpath: Toolpath::at_depth(&path, &kinds, 0.0, Vec::new(), Vec::new()),
         path_length_mm: len,
         time_s: len / s.feed_mm_per_min * 60.0,
         notes,
         stock: sc.stock.clone(),
         precut: sc.previous_ring.clone(),
-        kinds,
         tip_segments,
         corner_point,
     })
@@ -557,13 +548,12 @@ fn medial_axis_plan(sc: &CornerScenario) -> Result<CornerPlan, Error> {
     Ok(CornerPlan {
         method: CornerMethod::MedialAxis,
         circles,
-        path,
+        toolpath: Toolpath::at_depth(&path, &kinds, 0.0, Vec::new(), Vec::new()),
         path_length_mm: len,
         time_s: len / s.feed_mm_per_min * 60.0,
         notes,
         stock: pocket,
         precut,
-        kinds,
         tip_segments,
         corner_point,
     })

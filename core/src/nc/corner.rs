@@ -42,9 +42,8 @@ pub fn corner_program(
     }
     let s = settings;
     let a_str = s.straight_engagement()?;
-    let toolpath = plan.toolpath();
     let job = PathJob {
-        toolpath: &toolpath,
+        toolpath: &plan.toolpath,
         depth_mm: cut.depth_mm,
         feed_mm_per_min: s.feed_mm_per_min,
         spindle_rpm: cut.spindle_rpm,

@@ -534,7 +534,7 @@ fn corner_piece(a: P2, u0: P2, c: P2, base: CornerSettings, method: CornerMethod
     let edge_length = (u0 - a).norm().min((c - u0).norm()) + r / alpha.tan();
     let sc = CornerScenario::new(corner, CornerSettings { edge_length, ..base }).ok()?;
     let plan = plan_corner(&sc, method).ok()?;
-    let (mut path, mut kinds) = (plan.path, plan.kinds);
+    let (mut path, mut kinds) = (plan.toolpath.segments(), plan.toolpath.kinds());
     path.pop(); // the V leg: the next ring segment
     kinds.pop();
     let kinds = kinds.into_iter().map(|k| if k == MoveKind::CornerPoint { k } else { MoveKind::Corner }).collect();
