@@ -4,6 +4,8 @@
 //! comments removed; a use is any `crate::<name>` naming a top-level module. A module missing
 //! from [`ORDER`], or a use of a later module, fails with the file that makes it.
 
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
 use std::collections::BTreeMap;
 use std::path::Path;
 

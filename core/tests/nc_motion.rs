@@ -318,7 +318,7 @@ fn corner_programs_in_every_dialect_retrace_the_corner_path() {
                     nc_common::check_path_cut(
                         &label,
                         &cut(&motions, 6.0, 1e-9),
-                        &plan.path,
+                        &plan.toolpath.segments(),
                         o.tolerance_mm,
                         quantum(d),
                     )

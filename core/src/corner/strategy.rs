@@ -815,12 +815,12 @@ mod tests {
             let sc = CornerScenario::new(Corner::symmetric(angle.to_radians()).unwrap(), settings).unwrap();
             for m in [CornerMethod::Plain, CornerMethod::Variable, CornerMethod::Isometric] {
                 let p = plan_corner(&sc, m).unwrap();
-                for w in p.path.windows(2) {
+                let path = p.toolpath.segments();
+                for w in path.windows(2) {
                     assert!((w[0].end() - w[1].start()).norm() < 1e-9, "{angle}° {m:?}: gap");
                 }
-                assert!((p.path[0].start() - sc.ring_start).norm() < 1e-12);
-                assert!((p.path.last().unwrap().end() - sc.ring_end).norm() < 1e-12);
-                assert_eq!(p.kinds.len(), p.path.len());
+                assert!((path[0].start() - sc.ring_start).norm() < 1e-12);
+                assert!((path.last().unwrap().end() - sc.ring_end).norm() < 1e-12);
                 if m == CornerMethod::Variable {
                     for w in p.circles.windows(2) {
                         assert!(w[1].offset_radius < w[0].offset_radius, "{angle}°: radii must shrink");
@@ -846,14 +846,15 @@ mod tests {
                 assert_eq!(*radii.last().unwrap(), delta, "{angle}° {m:?}: ends at δ");
                 assert!(radii.windows(2).all(|w| w[1] < w[0]), "{angle}° {m:?}: radii shrink");
                 assert!(radii[0] < p.circles.last().unwrap().tool_circle.radius);
-                for w in p.path.windows(2) {
+                for w in p.toolpath.segments().windows(2) {
                     assert!((w[0].end() - w[1].start()).norm() < 1e-9, "{angle}° {m:?}: gap");
                 }
                 // Every corner-point arc: its tool envelope (radius ρ + r) touches both walls,
                 // it turns through π − angle, and no tool position comes nearer than r to a wall.
                 let tip = p.tip_segments.clone().expect("tip range");
                 let mut seen = 0;
-                for (seg, kind) in p.path[tip.clone()].iter().zip(&p.kinds[tip]) {
+                for mv in &p.toolpath.moves[tip] {
+                    let (seg, kind) = (&mv.segment, &mv.kind);
                     assert_eq!(*kind, MoveKind::CornerPoint);
                     if let Segment::Arc { center, radius, sweep, .. } = *seg {
                         let want = radius + 5.0;

@@ -222,7 +222,8 @@ mod tests {
         // the program's own motion, read back from its text, from the path start to its end
         let pts = backplot(t, Dialect::LinuxCnc, 1e-3).expect("back-plot");
         let (first, last) = (pts.first().expect("points"), pts.last().expect("points"));
-        let (start, end) = (plan.path[0].start(), plan.path[plan.path.len() - 1].end());
+        let (start, end) =
+            (plan.toolpath.segments()[0].start(), plan.toolpath.segments()[plan.toolpath.segments().len() - 1].end());
         assert!((*first - start).norm() < 1e-4 && (*last - end).norm() < 1e-4, "{first:?} {last:?}");
         let len = polyline_length(&pts);
         assert!(

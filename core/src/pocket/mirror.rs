@@ -135,8 +135,8 @@ mod tests {
             let climb = evaluate(&req).expect("climb");
             let conv = evaluate(&CornerRequest { direction: Direction::Conventional, ..req }).expect("conventional");
             assert_eq!(climb.row, conv.row, "{method:?}");
-            assert_eq!(climb.plan.path.len(), conv.plan.path.len());
-            for (a, b) in climb.plan.path.iter().zip(&conv.plan.path) {
+            assert_eq!(climb.plan.toolpath.segments().len(), conv.plan.toolpath.segments().len());
+            for (a, b) in climb.plan.toolpath.segments().iter().zip(&conv.plan.toolpath.segments()) {
                 for t in [0.0, 0.5, 1.0] {
                     assert!((flip_y(a.point(t)) - b.point(t)).norm() < 1e-9, "{method:?}");
                 }
@@ -147,7 +147,7 @@ mod tests {
             let own = engagement_profile(
                 &conv.plan.stock,
                 &conv.plan.precut,
-                &conv.plan.path,
+                &conv.plan.toolpath.segments(),
                 &EvaluatorOptions::new(5.0, 0.25),
             )
             .expect("profile");
