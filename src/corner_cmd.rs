@@ -561,7 +561,7 @@ fn kind_out(m: &pocket::KindMax) -> KindOut {
 /// The JSON of an adaptively cleared pocket.
 fn adaptive_pocket_json(plan: &AdaptivePlan, nc_export: Option<NcExportOut>) -> Result<String, String> {
     let xy = |p: P2| [p.x, p.y];
-    let s = plan.settings;
+    let s = plan.path.settings;
     let out = AdaptiveOut {
         method: PocketStrategy::Adaptive.name(),
         direction: plan.options.direction.name(),
@@ -569,7 +569,7 @@ fn adaptive_pocket_json(plan: &AdaptivePlan, nc_export: Option<NcExportOut>) -> 
         step_over_mm: s.step_over,
         feed_mm_per_min: s.feed_mm_per_min,
         target_deg: plan.target_rad.to_degrees(),
-        polygon: plan.polygon.vertices().iter().map(|&v| xy(v)).collect(),
+        polygon: plan.path.polygon.vertices().iter().map(|&v| xy(v)).collect(),
         open_edges: plan.open_edges.clone(),
         entries: plan.parts.iter().map(|p| entry_out(&p.entry)).collect(),
         helices: entries_out(&plan.parts.iter().map(|p| p.entry).collect::<Vec<_>>(), plan.options.depth_mm).0,
@@ -594,16 +594,16 @@ fn adaptive_pocket_json(plan: &AdaptivePlan, nc_export: Option<NcExportOut>) -> 
         corner_points: plan.parts.iter().flat_map(|p| &p.corner_points).map(corner_point_out).collect(),
         corner_radius_left_mm: plan.corner_radius_left_mm,
         finish_stock_mm: plan.options.finish_stock_mm,
-        max_engagement_deg: plan.max_engagement_rad.to_degrees(),
-        p95_engagement_deg: plan.p95_engagement_rad.to_degrees(),
-        by_kind: plan.maxima.iter().map(kind_out).collect(),
-        length_at_depth_mm: plan.length_at_depth_mm,
-        link_length_mm: plan.link_length_mm,
-        air_length_mm: plan.air_length_mm,
-        helix_length_mm: plan.helix_length_mm,
-        time_s: plan.time_s,
-        segments: plan.segments.clone(),
-        kinds: plan.kinds.clone(),
+        max_engagement_deg: plan.path.measurement.max_engagement_rad.to_degrees(),
+        p95_engagement_deg: plan.path.measurement.p95_engagement_rad.to_degrees(),
+        by_kind: plan.path.measurement.maxima.iter().map(kind_out).collect(),
+        length_at_depth_mm: plan.path.measurement.length_at_depth_mm,
+        link_length_mm: plan.path.link_length_mm,
+        air_length_mm: plan.path.measurement.air_length_mm,
+        helix_length_mm: plan.path.entry_length_mm,
+        time_s: plan.path.time_s,
+        segments: plan.path.segments(),
+        kinds: plan.path.kinds(),
         retract_before: PocketPlan::Adaptive(plan.clone()).tool_path().1,
         nc_export,
     };
@@ -612,7 +612,7 @@ fn adaptive_pocket_json(plan: &AdaptivePlan, nc_export: Option<NcExportOut>) -> 
 
 /// The JSON of a pocket cleared by rings.
 fn ring_pocket_json(req: &PocketRequest, plan: &RingPlan, nc_export: Option<NcExportOut>) -> Result<String, String> {
-    let (helices, ramps) = entries_out(&plan.entries, req.adaptive.depth_mm);
+    let (helices, ramps) = entries_out(&plan.path.toolpath.entries, req.adaptive.depth_mm);
     let out = PocketOut {
         method: plan.method.name(),
         trochoid_corners: plan.trochoid_corners,
@@ -620,8 +620,8 @@ fn ring_pocket_json(req: &PocketRequest, plan: &RingPlan, nc_export: Option<NcEx
         tool_diameter_mm: req.tool_diameter_mm,
         step_over_mm: req.step_over_mm,
         feed_mm_per_min: req.feed_mm_per_min,
-        straight_engagement_deg: plan.settings.straight_engagement().map_err(err)?.to_degrees(),
-        polygon: plan.polygon.vertices().iter().map(|v| [v.x, v.y]).collect(),
+        straight_engagement_deg: plan.path.settings.straight_engagement().map_err(err)?.to_degrees(),
+        polygon: plan.path.polygon.vertices().iter().map(|v| [v.x, v.y]).collect(),
         ring_count: plan.rings.len(),
         rings: plan
             .rings
@@ -648,20 +648,20 @@ fn ring_pocket_json(req: &PocketRequest, plan: &RingPlan, nc_export: Option<NcEx
             })
             .collect(),
         path_length_mm: plan.path_length_mm,
-        link_length_mm: plan.link_length_mm,
-        time_s: plan.time_s,
+        link_length_mm: plan.path.link_length_mm,
+        time_s: plan.path.time_s,
         max_engagement_deg: plan.max_engagement_rad.to_degrees(),
-        p95_engagement_deg: plan.p95_engagement_rad.to_degrees(),
-        by_kind: plan.maxima.iter().map(kind_out).collect(),
-        length_at_depth_mm: plan.length_at_depth_mm,
-        air_length_mm: plan.air_length_mm,
+        p95_engagement_deg: plan.path.measurement.p95_engagement_rad.to_degrees(),
+        by_kind: plan.path.measurement.maxima.iter().map(kind_out).collect(),
+        length_at_depth_mm: plan.path.measurement.length_at_depth_mm,
+        air_length_mm: plan.path.measurement.air_length_mm,
         corner_points: plan.corner_points.iter().map(corner_point_out).collect(),
         helices,
         ramps,
-        entry_length_mm: plan.entry_length_mm,
-        segments: plan.segments.clone(),
-        kinds: plan.kinds.clone(),
-        retract_before: plan.retract_before.clone(),
+        entry_length_mm: plan.path.entry_length_mm,
+        segments: plan.path.segments(),
+        kinds: plan.path.kinds(),
+        retract_before: plan.path.toolpath.retract_before.clone(),
         nc_export,
     };
     json_text(&out)
@@ -762,10 +762,10 @@ fn perforative_pocket_json(
     options: &AdaptiveOptions,
     nc_export: Option<NcExportOut>,
 ) -> Result<String, String> {
-    let (helices, ramps) = entries_out(&plan.entries, options.depth_mm);
+    let (helices, ramps) = entries_out(&plan.path.toolpath.entries, options.depth_mm);
     let corner_tolerance_mm = options.corner_tolerance_mm;
     let xy = |p: P2| [p.x, p.y];
-    let settings = plan.settings;
+    let settings = plan.path.settings;
     let out = PerforativeOut {
         method: PocketStrategy::MedialAxis.name(),
         tool_diameter_mm: 2.0 * settings.tool_radius,
@@ -774,7 +774,7 @@ fn perforative_pocket_json(
         straight_engagement_deg: settings.straight_engagement().map_err(err)?.to_degrees(),
         target_deg: plan.target_rad.to_degrees(),
         tolerance_deg: plan.tolerance_rad.to_degrees(),
-        polygon: plan.polygon.vertices().iter().map(|&v| xy(v)).collect(),
+        polygon: plan.path.polygon.vertices().iter().map(|&v| xy(v)).collect(),
         axis: plan.axis.edges.iter().map(|e| e.points.iter().map(|&p| xy(p)).collect()).collect(),
         parts: plan.parts,
         unreachable_axis_mm: plan.unreachable_axis_mm,
@@ -790,24 +790,24 @@ fn perforative_pocket_json(
                 predicted_max_deg: c.predicted_max_rad.map(f64::to_degrees),
             })
             .collect(),
-        path_length_mm: plan.path_length_mm,
-        time_s: plan.time_s,
-        max_engagement_deg: plan.max_engagement_rad.to_degrees(),
-        p95_engagement_deg: plan.p95_engagement_rad.to_degrees(),
+        path_length_mm: plan.path.measurement.length_at_depth_mm,
+        time_s: plan.path.time_s,
+        max_engagement_deg: plan.path.measurement.max_engagement_rad.to_degrees(),
+        p95_engagement_deg: plan.path.measurement.p95_engagement_rad.to_degrees(),
         body_max_engagement_deg: plan.body_max_rad.to_degrees(),
         helices,
         ramps,
-        entry_length_mm: plan.entry_length_mm,
-        by_kind: plan.maxima.iter().map(kind_out).collect(),
-        by_move: plan.maxima.iter().map(kind_out).collect(),
-        length_at_depth_mm: plan.length_at_depth_mm,
-        link_length_mm: plan.link_length_mm,
-        air_length_mm: plan.air_length_mm,
+        entry_length_mm: plan.path.entry_length_mm,
+        by_kind: plan.path.measurement.maxima.iter().map(kind_out).collect(),
+        by_move: plan.path.measurement.maxima.iter().map(kind_out).collect(),
+        length_at_depth_mm: plan.path.measurement.length_at_depth_mm,
+        link_length_mm: plan.path.link_length_mm,
+        air_length_mm: plan.path.measurement.air_length_mm,
         corner_tolerance_mm,
         corner_points: plan.corner_points.iter().map(corner_point_out).collect(),
-        segments: plan.segments.clone(),
-        kinds: plan.kinds.clone(),
-        retract_before: plan.retract_before.clone(),
+        segments: plan.path.segments(),
+        kinds: plan.path.kinds(),
+        retract_before: plan.path.toolpath.retract_before.clone(),
         nc_export,
     };
     json_text(&out)
@@ -984,7 +984,7 @@ pub fn corner(args: &CornerArgs) -> Result<String, String> {
         plain_max_engagement_deg: report.plain_profile.max_angle().to_degrees(),
         plain_path_length_mm: report.plain.path_length_mm,
         notes: plan.notes.clone(),
-        path: plan.path.clone(),
+        path: plan.toolpath.segments(),
         nc_export,
     };
     json_text(&out)

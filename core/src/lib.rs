@@ -12,7 +12,7 @@
 //! Modules:
 //! - [`job`]: the job and its validation ([`Job::validate`] → [`ValidJob`]).
 //! - [`geom`]: points, exact segments (line, arc, eq. (1) trochoid piece), circles, simple
-//!   polygons, numerics.
+//!   polygons, numerics, the medial axis, offsets and booleans of loops.
 //! - [`path`]: the four slot path types as one repeated cycle.
 //! - [`analysis`]: edge of previous cycles, per-tooth h and engagement, waviness, step limit,
 //!   cutting forces (linear edge-force model with helix) and bottom imprints.
@@ -21,7 +21,10 @@
 //! - [`machine`]: machine limits, presets and the feed planner (real cycle time).
 //! - [`optimize`]: the job of highest real MRR within the user's limits; Pareto front.
 //! - [`nc`]: NC programs (LinuxCNC, Fanuc-style ISO, GRBL, Sinumerik), biarc output.
-//! - [`corner`]: pocket corners: engagement model, corner trochoids, evaluator;
+//! - [`toolpath`]: a tool path as data: moves (segment, heights, kind, feed), entries, retracts.
+//! - [`engagement`]: the two-circle model, the independent evaluator, and [`engagement::measure`]
+//!   of a tool path (per-kind maxima, 95th percentile, air).
+//! - [`corner`]: pocket corners: corner trochoids, corner-point arcs, acceptance rows;
 //!   [`corner::evaluate`] — corner request in, plans, profiles and acceptance row out.
 //! - [`outline`]: pocket outlines from point lists, DXF and SVG files: loops in mm, nested
 //!   into pockets with islands; [`outline::read`].
@@ -33,6 +36,7 @@
 
 pub mod analysis;
 pub mod corner;
+pub mod engagement;
 pub mod error;
 pub mod feed;
 pub mod geom;
@@ -47,6 +51,7 @@ pub mod plan;
 pub mod pocket;
 pub mod quantity;
 pub mod sweep;
+pub mod toolpath;
 
 pub use error::{Error, Param};
 pub use job::{Job, PathKind, ValidJob};

@@ -10,6 +10,7 @@ use crate::job::{Direction, Job, PathKind, ValidJob};
 use crate::machine::planner::Dynamics;
 use crate::machine::{FeedProfile, RealTime, real_time};
 use crate::path::{Cycle, SlotPath};
+use crate::toolpath::{Move, MoveKind, Toolpath};
 use serde::Serialize;
 
 /// Grechishnikov et al. (2017): optimal engaged sector 46°.
@@ -134,6 +135,24 @@ pub struct Plan {
 }
 
 impl Plan {
+    /// The slot path as a [`Toolpath`]: every cycle's segments in order as cut moves at the
+    /// slot depth, at the job's feed; no entries (a slot program feeds down at the stock face
+    /// outside the material), no retracts.
+    pub fn toolpath(&self) -> Toolpath {
+        let moves = self
+            .path
+            .segments()
+            .map(|segment| Move {
+                segment,
+                z_start_mm: -self.job.depth,
+                z_end_mm: -self.job.depth,
+                kind: MoveKind::Cut,
+                feed_mm_per_min: Some(self.job.feed),
+            })
+            .collect();
+        Toolpath { moves, entries: Vec::new(), retract_before: Vec::new() }
+    }
+
     /// Closed outline of the chip cut by tooth `tooth` of [`Plan::series`] (steady-state frame,
     /// cycle origin at (0, 0)); empty if that tooth cuts nothing or does not exist.
     pub fn chip_outline(&self, tooth: usize) -> Vec<crate::geom::P2> {
@@ -354,4 +373,22 @@ pub fn engagement_limited_step(job: &Job, limit_rad: f64) -> Result<f64, Error> 
         if engagement(mid)? <= limit_rad { lo = mid } else { hi = mid }
     }
     Ok(lo)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The slot's tool path is the planned path: as long as the metrics' path length (the same
+    /// segments summed), every move a cut at the slot depth and the job's feed, consecutive
+    /// moves joined.
+    #[test]
+    fn the_slot_toolpath_is_the_planned_path() {
+        let p = plan(&Job::default()).expect("default job");
+        let tp = p.toolpath();
+        assert!((tp.length_mm() - p.metrics.path_length_mm).abs() < 1e-9 * p.metrics.path_length_mm);
+        assert!(tp.moves.iter().all(|m| m.kind == MoveKind::Cut && m.z_start_mm == -p.job.depth));
+        assert!(tp.moves.iter().all(|m| m.feed_mm_per_min == Some(p.job.feed)));
+        assert!(tp.moves.windows(2).all(|w| (w[1].segment.start() - w[0].segment.end()).norm() < 1e-9));
+    }
 }

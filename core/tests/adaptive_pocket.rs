@@ -120,17 +120,25 @@ fn rectangle_and_l_keep_every_move_within_the_target() {
     for (name, polygon, corners) in [("rect", rect, 4), ("L", l, 5)] {
         let p = adaptive(polygon, AdaptiveOptions::default());
         assert!((p.target_rad - target).abs() < 1e-12);
-        assert!(p.max_engagement_rad <= 60f64.to_radians(), "{name}: {}", p.max_engagement_rad.to_degrees());
-        assert!(p.p95_engagement_rad <= 50f64.to_radians(), "{name}: {}", p.p95_engagement_rad.to_degrees());
+        assert!(
+            p.path.measurement.max_engagement_rad <= 60f64.to_radians(),
+            "{name}: {}",
+            p.path.measurement.max_engagement_rad.to_degrees()
+        );
+        assert!(
+            p.path.measurement.p95_engagement_rad <= 50f64.to_radians(),
+            "{name}: {}",
+            p.path.measurement.p95_engagement_rad.to_degrees()
+        );
         println!(
             "{name}: {:.1} mm at depth, peak {:.2}°, p95 {:.2}°, links {:.1} mm, air {:.1} mm",
-            p.length_at_depth_mm,
-            p.max_engagement_rad.to_degrees(),
-            p.p95_engagement_rad.to_degrees(),
-            p.link_length_mm,
-            p.air_length_mm
+            p.path.measurement.length_at_depth_mm,
+            p.path.measurement.max_engagement_rad.to_degrees(),
+            p.path.measurement.p95_engagement_rad.to_degrees(),
+            p.path.link_length_mm,
+            p.path.measurement.air_length_mm
         );
-        for m in &p.maxima {
+        for m in &p.path.measurement.maxima {
             println!(
                 "  {:?}: {:.2}° at ({:.2}, {:.2}), {:.1} mm",
                 m.kind,
@@ -150,18 +158,23 @@ fn rectangle_and_l_keep_every_move_within_the_target() {
         for kind in
             [MoveKind::Entry, MoveKind::Spiral, MoveKind::Ring, MoveKind::Corner, MoveKind::Link, MoveKind::Finish]
         {
-            assert!(p.maxima.iter().any(|m| m.kind == kind), "{name}: no {kind:?}");
+            assert!(p.path.measurement.maxima.iter().any(|m| m.kind == kind), "{name}: no {kind:?}");
         }
         // the flat turn after the helix is inside its bore
-        assert!(p.maxima.iter().find(|m| m.kind == MoveKind::Entry).unwrap().max_rad < 1f64.to_radians());
+        assert!(
+            p.path.measurement.maxima.iter().find(|m| m.kind == MoveKind::Entry).unwrap().max_rad < 1f64.to_radians()
+        );
         assert_eq!(p.parts.len(), 1);
         assert_eq!(p.parts[0].corners.len(), corners, "{name}");
         for c in &p.parts[0].corners {
             assert!(c.max_engagement_rad <= target + 1f64.to_radians(), "{name}: corner {c:?}");
         }
-        let sum: f64 = p.maxima.iter().map(|m| m.length_mm).sum();
-        assert!((sum - p.length_at_depth_mm).abs() < 1e-6 * sum);
-        assert!(p.link_length_mm < p.length_at_depth_mm && p.air_length_mm < p.length_at_depth_mm);
+        let sum: f64 = p.path.measurement.maxima.iter().map(|m| m.length_mm).sum();
+        assert!((sum - p.path.measurement.length_at_depth_mm).abs() < 1e-6 * sum);
+        assert!(
+            p.path.link_length_mm < p.path.measurement.length_at_depth_mm
+                && p.path.measurement.air_length_mm < p.path.measurement.length_at_depth_mm
+        );
         // the helix: 75 % of D, at most 3° of ramp
         let Entry::Helix(h) = p.parts[0].entry else { panic!("{name}: helix expected") };
         assert!((h.radius - 3.75).abs() < 1e-12 && h.ramp_rad <= 3f64.to_radians() + 1e-12);
@@ -207,7 +220,11 @@ fn corners_from_30_to_150_degrees_stay_within_the_target() {
             "{alpha_deg}°: {}°",
             corner.max_engagement_rad.to_degrees()
         );
-        assert!(p.max_engagement_rad <= 60f64.to_radians(), "{alpha_deg}°: {}", p.max_engagement_rad.to_degrees());
+        assert!(
+            p.path.measurement.max_engagement_rad <= 60f64.to_radians(),
+            "{alpha_deg}°: {}",
+            p.path.measurement.max_engagement_rad.to_degrees()
+        );
         // its corner point, reached within δ by the finishing pass's arcs (their approach and
         // way out included) within the target + 1°
         let point = p.parts[0]
@@ -248,10 +265,16 @@ fn conventional_is_the_mirror_of_climb() {
     // ordered differently): the same length and engagement up to the evaluator's sampling,
     // and every loop turns the other way
     // links between corners start from another first vertex (measured: 2797.5 vs 2776.3 mm)
-    assert!((climb.length_at_depth_mm - conv.length_at_depth_mm).abs() < 0.01 * climb.length_at_depth_mm);
-    assert!((climb.max_engagement_rad - conv.max_engagement_rad).abs() < 0.5f64.to_radians());
+    assert!(
+        (climb.path.measurement.length_at_depth_mm - conv.path.measurement.length_at_depth_mm).abs()
+            < 0.01 * climb.path.measurement.length_at_depth_mm
+    );
+    assert!(
+        (climb.path.measurement.max_engagement_rad - conv.path.measurement.max_engagement_rad).abs()
+            < 0.5f64.to_radians()
+    );
     let sweep = |p: &AdaptivePlan| {
-        p.segments.iter().map(|s| if let Segment::Arc { sweep, .. } = s { *sweep } else { 0.0 }).sum::<f64>()
+        p.path.segments().iter().map(|s| if let Segment::Arc { sweep, .. } = s { *sweep } else { 0.0 }).sum::<f64>()
     };
     assert!(sweep(&climb) > 0.0 && (sweep(&climb) + sweep(&conv)).abs() < 0.01 * sweep(&climb));
     let sense = |p: &AdaptivePlan| match p.parts[0].entry {
@@ -287,7 +310,11 @@ fn neck_narrower_than_the_tool_gives_parts_with_their_own_helix() {
     // every move keeps the target + 1°, the finishing pass included: the cusp between the two
     // offset arcs at each neck mouth is thinned by cusp passes first
     let target = p.target_rad;
-    assert!(p.max_engagement_rad <= target + 1f64.to_radians(), "{}°", p.max_engagement_rad.to_degrees());
+    assert!(
+        p.path.measurement.max_engagement_rad <= target + 1f64.to_radians(),
+        "{}°",
+        p.path.measurement.max_engagement_rad.to_degrees()
+    );
     // one cusp per room at the mouth: on the axis y = 15, √(r_c² − 4²) before the neck's end
     // x = 40 or 60 (r_c = r + s_f = 5.2), the final wall's angle there 180° − 2·atan(4/3) (r = 5:
     // the normals point at the neck's corners, 4 mm off the axis and 3 mm away along x)
@@ -323,8 +350,12 @@ fn reflex_vertex_near_a_wall_is_thinned_below_the_acceptance_peak() {
     // the acceptance peak (60°); measured 56.8° on the cusp passes (docs/adaptive-clearing.md,
     // "Limitations": the first pass runs past the circle onto the tab's side, where the gap
     // under the tab is open)
-    assert!(p.max_engagement_rad <= 60f64.to_radians(), "{}°", p.max_engagement_rad.to_degrees());
-    assert!(p.p95_engagement_rad <= 50f64.to_radians());
+    assert!(
+        p.path.measurement.max_engagement_rad <= 60f64.to_radians(),
+        "{}°",
+        p.path.measurement.max_engagement_rad.to_degrees()
+    );
+    assert!(p.path.measurement.p95_engagement_rad <= 50f64.to_radians());
 }
 
 #[test]
@@ -351,9 +382,9 @@ fn helix_that_does_not_fit_and_bad_options_are_named() {
     // no finishing pass: no finish moves, corners left at r + ρ_fin = 1.1·r
     let p =
         plan_adaptive(&rect, settings, AdaptiveOptions { finish_stock_mm: 0.0, ..AdaptiveOptions::default() }).unwrap();
-    assert!(p.maxima.iter().all(|m| m.kind != MoveKind::Finish));
+    assert!(p.path.measurement.maxima.iter().all(|m| m.kind != MoveKind::Finish));
     assert!((p.corner_radius_left_mm - 1.1 * R).abs() < 1e-12);
-    assert!(p.max_engagement_rad <= PI);
+    assert!(p.path.measurement.max_engagement_rad <= PI);
 }
 
 /// `--target-engagement`: the passes are planned to the given engagement instead of φ*; every
@@ -367,31 +398,34 @@ fn a_higher_target_engagement_is_kept_and_shortens_the_path() {
     let hi = adaptive(rect, AdaptiveOptions { target_deg: Some(50.5), ..AdaptiveOptions::default() });
     let target = 50.5f64.to_radians();
     assert!((hi.target_rad - target).abs() < 1e-12);
-    for m in &hi.maxima {
+    for m in &hi.path.measurement.maxima {
         assert!(m.max_rad <= target + 1f64.to_radians(), "{:?}: {}°", m.kind, m.max_rad.to_degrees());
     }
-    assert!(hi.max_engagement_rad <= 60f64.to_radians() && hi.p95_engagement_rad <= 50f64.to_radians());
     assert!(
-        hi.length_at_depth_mm < base.length_at_depth_mm,
+        hi.path.measurement.max_engagement_rad <= 60f64.to_radians()
+            && hi.path.measurement.p95_engagement_rad <= 50f64.to_radians()
+    );
+    assert!(
+        hi.path.measurement.length_at_depth_mm < base.path.measurement.length_at_depth_mm,
         "{} vs {}",
-        hi.length_at_depth_mm,
-        base.length_at_depth_mm
+        hi.path.measurement.length_at_depth_mm,
+        base.path.measurement.length_at_depth_mm
     );
     // Sampling bound (module docs): ε = (h/2)(1/(r sin β) + 1/(2r) + κ) at h = 0.25 mm, β = the
     // target, κ ≤ 1/3.75 mm (the peak is on the spiral or a first corner arc, radius ≥ r_h).
     let h = 0.25;
     let eps = 0.5 * h * (1.0 / (R * target.sin()) + 0.5 / R + 1.0 / 3.75);
     let fine = plan_adaptive(
-        &hi.polygon,
-        pocket::PocketSettings { spacing: 0.05, ..hi.settings },
+        &hi.path.polygon,
+        pocket::PocketSettings { spacing: 0.05, ..hi.path.settings },
         AdaptiveOptions { target_deg: Some(50.5), ..AdaptiveOptions::default() },
     )
     .unwrap();
     assert!(
-        fine.max_engagement_rad <= hi.max_engagement_rad + eps,
+        fine.path.measurement.max_engagement_rad <= hi.path.measurement.max_engagement_rad + eps,
         "0.05 mm: {}° vs 0.25 mm: {}° + {}°",
-        fine.max_engagement_rad.to_degrees(),
-        hi.max_engagement_rad.to_degrees(),
+        fine.path.measurement.max_engagement_rad.to_degrees(),
+        hi.path.measurement.max_engagement_rad.to_degrees(),
         eps.to_degrees()
     );
 }
@@ -433,16 +467,17 @@ fn corner_points_are_reached_within_the_tolerance_and_the_target() {
             assert!(c.max_engagement_rad <= target + 1f64.to_radians(), "{name}: {c:?}");
             assert!(c.max_engagement_rad > 0.5 * target, "{name}: the arcs cut nothing? {c:?}");
         }
-        let m = p.maxima.iter().find(|m| m.kind == MoveKind::CornerPoint).unwrap();
+        let m = p.path.measurement.maxima.iter().find(|m| m.kind == MoveKind::CornerPoint).unwrap();
         assert!(m.max_rad <= target + 1f64.to_radians(), "{name}: {}°", m.max_rad.to_degrees());
-        let fine = plan_adaptive(&p.polygon, pocket::PocketSettings { spacing: 0.05, ..p.settings }, options).unwrap();
-        let mf = fine.maxima.iter().find(|m| m.kind == MoveKind::CornerPoint).unwrap();
+        let fine = plan_adaptive(&p.path.polygon, pocket::PocketSettings { spacing: 0.05, ..p.path.settings }, options)
+            .unwrap();
+        let mf = fine.path.measurement.maxima.iter().find(|m| m.kind == MoveKind::CornerPoint).unwrap();
         println!(
             "{name}: corner points {:.2}° (0.25 mm), {:.2}° (0.05 mm), {:.1} mm of {:.1} mm at depth",
             m.max_rad.to_degrees(),
             mf.max_rad.to_degrees(),
             m.length_mm,
-            p.length_at_depth_mm
+            p.path.measurement.length_at_depth_mm
         );
         assert!(mf.max_rad <= target + 1f64.to_radians(), "{name} at 0.05 mm: {}°", mf.max_rad.to_degrees());
     }
@@ -480,20 +515,33 @@ fn open_rectangle_is_cleared_from_outside_within_the_target() {
             assert_eq!(p.parts.len(), 1, "{label}");
             let Entry::Outside { at } = p.parts[0].entry else { panic!("{label}: {:?}", p.parts[0].entry) };
             assert!(off_stock(at, &v) >= R, "{label}: goes down {} mm off the stock at {at:?}", off_stock(at, &v));
-            assert!((p.segments[0].start() - at).norm() < 1e-9, "{label}: the path starts where the tool goes down");
-            assert!(!p.kinds.contains(&MoveKind::Spiral), "{label}: a spiral");
+            assert!(
+                (p.path.segments()[0].start() - at).norm() < 1e-9,
+                "{label}: the path starts where the tool goes down"
+            );
+            assert!(!p.path.kinds().contains(&MoveKind::Spiral), "{label}: a spiral");
             let target = p.target_rad;
-            let (peak, p95) = (p.max_engagement_rad.to_degrees(), p.p95_engagement_rad.to_degrees());
+            let (peak, p95) = (
+                p.path.measurement.max_engagement_rad.to_degrees(),
+                p.path.measurement.p95_engagement_rad.to_degrees(),
+            );
             eprintln!(
                 "{label}: peak {peak:.2}°, p95 {p95:.2}°, {:.1} mm at depth, links {:.1} mm, air {:.1} mm, {} rings",
-                p.length_at_depth_mm, p.link_length_mm, p.air_length_mm, p.parts[0].rings
+                p.path.measurement.length_at_depth_mm,
+                p.path.link_length_mm,
+                p.path.measurement.air_length_mm,
+                p.parts[0].rings
             );
-            assert!(p.max_engagement_rad <= target + 1f64.to_radians(), "{label}: peak {peak:.2}°");
+            assert!(p.path.measurement.max_engagement_rad <= target + 1f64.to_radians(), "{label}: peak {peak:.2}°");
             assert!(peak <= 60.0 && p95 <= 50.0, "{label}: peak {peak:.2}°, p95 {p95:.2}°");
             // the evaluator's profile covers the whole path; where the tool goes down it reads 0
-            let sum: f64 = p.maxima.iter().map(|m| m.length_mm).sum();
-            assert!((sum - p.length_at_depth_mm).abs() < 1e-6 * sum, "{label}");
-            assert!(p.profile.samples[0].angle_rad < 1e-9, "{label}: {:?}", p.profile.samples[0]);
+            let sum: f64 = p.path.measurement.maxima.iter().map(|m| m.length_mm).sum();
+            assert!((sum - p.path.measurement.length_at_depth_mm).abs() < 1e-6 * sum, "{label}");
+            assert!(
+                p.path.measurement.profile.samples[0].angle_rad < 1e-9,
+                "{label}: {:?}",
+                p.path.measurement.profile.samples[0]
+            );
             // corners only where two closed edges meet, at the rectangle's corner (±r + stock)
             let part = &p.parts[0];
             assert_eq!(part.corners.len(), closed_corners, "{label}: {:?}", part.corners);

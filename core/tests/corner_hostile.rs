@@ -9,8 +9,8 @@
 
 use proptest::prelude::*;
 use std::f64::consts::{PI, TAU};
-use trochoplan_core::corner::medial::{Walls, clearance};
 use trochoplan_core::corner::{EvaluatorOptions, engagement_profile, parse_points};
+use trochoplan_core::geom::medial::{Walls, clearance};
 use trochoplan_core::geom::{P2, Polygon, Segment, p2};
 use trochoplan_core::pocket::{self, PocketPlan, PocketRequest, PocketStrategy};
 
@@ -49,8 +49,8 @@ fn stars() -> impl Strategy<Value = Polygon> {
 fn profiles(plan: &PocketPlan) -> Vec<(f64, f64)> {
     match plan {
         PocketPlan::Rings(_) => Vec::new(),
-        PocketPlan::MedialAxis(p) => p.profile.samples.iter().map(|s| (s.s_mm, s.angle_rad)).collect(),
-        PocketPlan::Adaptive(p) => p.profile.samples.iter().map(|s| (s.s_mm, s.angle_rad)).collect(),
+        PocketPlan::MedialAxis(p) => p.path.measurement.profile.samples.iter().map(|s| (s.s_mm, s.angle_rad)).collect(),
+        PocketPlan::Adaptive(p) => p.path.measurement.profile.samples.iter().map(|s| (s.s_mm, s.angle_rad)).collect(),
     }
 }
 
@@ -209,7 +209,11 @@ fn many_sided_circle_is_one_medial_axis_part() {
     let PocketPlan::MedialAxis(plan) = pocket::plan(&req).unwrap() else { panic!("medial axis") };
     assert_eq!(plan.parts, 1);
     let bound = 2.0 * polygon.area() / req.step_over_mm;
-    assert!(plan.path_length_mm < bound, "path {} mm, bound {bound} mm", plan.path_length_mm);
+    assert!(
+        plan.path.measurement.length_at_depth_mm < bound,
+        "path {} mm, bound {bound} mm",
+        plan.path.measurement.length_at_depth_mm
+    );
     assert!(plan.body_max_rad <= PI);
 }
 

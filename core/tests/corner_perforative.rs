@@ -62,24 +62,28 @@ fn check_plan(name: &str, p: &PerforativePlan) {
         limit.to_degrees()
     );
     // The evaluator's own profile (not the planner's classification) agrees on the body.
-    assert!(p.max_of(MoveKind::Circle) <= limit && p.max_of(MoveKind::Spiral) <= limit, "{name}: {:?}", p.maxima);
-    let r = p.settings.tool_radius;
-    for q in samples(&p.segments, 0.05) {
-        assert!(p.polygon.contains(q), "{name}: {q:?} outside");
+    assert!(
+        p.max_of(MoveKind::Circle) <= limit && p.max_of(MoveKind::Spiral) <= limit,
+        "{name}: {:?}",
+        p.path.measurement.maxima
+    );
+    let r = p.path.settings.tool_radius;
+    for q in samples(&p.path.segments(), 0.05) {
+        assert!(p.path.polygon.contains(q), "{name}: {q:?} outside");
         assert!(
-            wall_distance(&p.polygon, q) >= r - 1e-6,
+            wall_distance(&p.path.polygon, q) >= r - 1e-6,
             "{name}: {q:?} is {} from a wall",
-            wall_distance(&p.polygon, q)
+            wall_distance(&p.path.polygon, q)
         );
     }
     // No arc turns twice (a circle's turn and the way on to its exit stay below 4π).
-    for s in &p.segments {
+    for s in &p.path.segments() {
         if let Segment::Arc { sweep, .. } = s {
             assert!(sweep.abs() < 2.0 * std::f64::consts::TAU - 1e-6, "{name}: an arc of {sweep} rad");
         }
     }
-    for (i, w) in p.segments.windows(2).enumerate() {
-        if !p.retract_before.contains(&(i + 1)) {
+    for (i, w) in p.path.segments().windows(2).enumerate() {
+        if !p.path.toolpath.retract_before.contains(&(i + 1)) {
             assert!((w[0].end() - w[1].start()).norm() < 1e-9, "{name}: gap before segment {}", i + 1);
         }
         // Tangent continuity at every join of an arc (circle, transition) with an arc or a line,
@@ -87,7 +91,7 @@ fn check_plan(name: &str, p: &PerforativePlan) {
         // the corner-point arcs' moves (back on each arc's chord: a corner, as in `corner`).
         let axis =
             |k: MoveKind| matches!(k, MoveKind::Tip | MoveKind::Return | MoveKind::Straight | MoveKind::CornerPoint);
-        if p.retract_before.contains(&(i + 1)) || axis(p.kinds[i]) || axis(p.kinds[i + 1]) {
+        if p.path.toolpath.retract_before.contains(&(i + 1)) || axis(p.path.kinds()[i]) || axis(p.path.kinds()[i + 1]) {
             continue;
         }
         let needs_g1 = match (w[0], w[1]) {
@@ -125,10 +129,10 @@ fn rectangle_is_cleared_within_the_target() {
     // The four corners are reached by corner-point arcs, not by straight tips: the path comes
     // to within the residual δ(1/sin 45° − 1) of each tool corner point (r, r) from a vertex
     // (DERIVED: the last arc, of radius δ, is centred δ/sin 45° from it), and no nearer.
-    assert_eq!(p.max_of(MoveKind::Tip), 0.0, "{:?}", p.maxima);
+    assert_eq!(p.max_of(MoveKind::Tip), 0.0, "{:?}", p.path.measurement.maxima);
     let delta = AdaptiveOptions::default().corner_tolerance_mm;
     let residual = delta * (1.0 / (PI / 4.0).sin() - 1.0);
-    let pts = samples(&p.segments, 0.001);
+    let pts = samples(&p.path.segments(), 0.001);
     for corner in [p2(5.0, 5.0), p2(55.0, 5.0), p2(55.0, 35.0), p2(5.0, 35.0)] {
         let nearest = pts.iter().map(|q| (q - corner).norm()).fold(f64::INFINITY, f64::min);
         assert!((nearest - residual).abs() < 1e-5, "{corner:?}: nearest {nearest} vs {residual}");
@@ -155,8 +159,13 @@ fn every_move_stays_within_the_target_with_corner_point_arcs_into_every_tip() {
         check_plan(name, &p);
         let limit = p.target_rad + 1f64.to_radians();
         assert_eq!(p.parts, parts, "{name}");
-        assert!(p.max_engagement_rad <= limit, "{name}: {:.2}° ({:?})", p.max_engagement_rad.to_degrees(), p.maxima);
-        assert_eq!(p.max_of(MoveKind::Tip), 0.0, "{name}: a straight tip is left: {:?}", p.maxima);
+        assert!(
+            p.path.measurement.max_engagement_rad <= limit,
+            "{name}: {:.2}° ({:?})",
+            p.path.measurement.max_engagement_rad.to_degrees(),
+            p.path.measurement.maxima
+        );
+        assert_eq!(p.max_of(MoveKind::Tip), 0.0, "{name}: a straight tip is left: {:?}", p.path.measurement.maxima);
         assert_eq!(p.corner_points.len(), corners + mouths, "{name}: {:?}", p.corner_points);
         let mouth = PI - 2.0 * (8.0f64 / 10.0).asin();
         for c in &p.corner_points {
@@ -172,9 +181,9 @@ fn every_move_stays_within_the_target_with_corner_point_arcs_into_every_tip() {
         }
         eprintln!(
             "{name}: peak {:.2}°, p95 {:.2}°, {:.1} mm at depth, corner points ≤ {:.2}°",
-            p.max_engagement_rad.to_degrees(),
-            p.p95_engagement_rad.to_degrees(),
-            p.length_at_depth_mm,
+            p.path.measurement.max_engagement_rad.to_degrees(),
+            p.path.measurement.p95_engagement_rad.to_degrees(),
+            p.path.measurement.length_at_depth_mm,
             p.max_of(MoveKind::CornerPoint).to_degrees()
         );
     }
@@ -189,16 +198,25 @@ fn first_circles_grow_out_of_the_helix_bore_within_the_target() {
     // module docs; 94.4° here).
     let ae = ae46();
     let p = plan_perforative(&poly(RECT), settings(R, ae), &AdaptiveOptions::default()).unwrap();
-    let [Entry::Helix(h)] = p.entries.as_slice() else { panic!("one helix expected: {:?}", p.entries) };
+    let [Entry::Helix(h)] = p.path.toolpath.entries.as_slice() else {
+        panic!("one helix expected: {:?}", p.path.toolpath.entries)
+    };
     assert!((h.radius - 0.75 * R).abs() < 1e-12, "{h:?}");
-    assert_eq!((p.kinds[0], p.circles[0].kind), (MoveKind::Entry, MoveKind::Entry));
+    assert_eq!((p.path.kinds()[0], p.circles[0].kind), (MoveKind::Entry, MoveKind::Entry));
     assert!((p.circles[0].tool_circle.center - h.center).norm() < 1e-12);
-    assert!(p.max_of(MoveKind::Entry) < 1e-3, "{:?}", p.maxima); // rounding at the bore's edge
+    assert!(p.max_of(MoveKind::Entry) < 1e-3, "{:?}", p.path.measurement.maxima); // rounding at the bore's edge
     // the first spiral half-circle and circle, read by the evaluator
-    let start = p.segments[0].length();
-    let end = start + p.segments[1].length() + p.segments[2].length();
-    let max =
-        p.profile.samples.iter().filter(|s| s.s_mm > start && s.s_mm <= end).map(|s| s.angle_rad).fold(0.0, f64::max);
+    let start = p.path.segments()[0].length();
+    let end = start + p.path.segments()[1].length() + p.path.segments()[2].length();
+    let max = p
+        .path
+        .measurement
+        .profile
+        .samples
+        .iter()
+        .filter(|s| s.s_mm > start && s.s_mm <= end)
+        .map(|s| s.angle_rad)
+        .fold(0.0, f64::max);
     let plunge = PI / 2.0 + (ae / (2.0 * R)).asin();
     assert!(max <= p.target_rad + p.tolerance_rad + 0.5f64.to_radians(), "{}°", max.to_degrees());
     assert!(max < plunge - 30f64.to_radians(), "{}° vs plunge {}°", max.to_degrees(), plunge.to_degrees());
@@ -244,7 +262,7 @@ fn walls_are_finished_away_from_the_corners() {
                 if near_corner {
                     continue;
                 }
-                let d = p.segments.iter().map(|s| distance_to_piece(s, w)).fold(f64::INFINITY, f64::min);
+                let d = p.path.segments().iter().map(|s| distance_to_piece(s, w)).fold(f64::INFINITY, f64::min);
                 worst = worst.max(d - R);
             }
         }
@@ -260,9 +278,9 @@ fn a_neck_narrower_than_the_tool_splits_the_pocket() {
     let ae = 9.0 * (1.0 - 46f64.to_radians().cos());
     let p = plan_perforative(&poly(DUMBBELL), settings(9.0, ae), &AdaptiveOptions::default()).unwrap();
     assert_eq!(p.parts, 2);
-    assert_eq!(p.retract_before.len(), 1);
-    assert_eq!(p.entries.len(), 2);
-    assert!(p.entries.iter().all(|e| matches!(e, Entry::Helix(_))), "{:?}", p.entries);
+    assert_eq!(p.path.toolpath.retract_before.len(), 1);
+    assert_eq!(p.path.toolpath.entries.len(), 2);
+    assert!(p.path.toolpath.entries.iter().all(|e| matches!(e, Entry::Helix(_))), "{:?}", p.path.toolpath.entries);
     // At least the 20 mm of neck spine (clearance 8 all along it) is unreachable.
     assert!(p.unreachable_axis_mm > 20.0, "{}", p.unreachable_axis_mm);
     check_plan("dumbbell D18", &p);
@@ -295,17 +313,21 @@ fn a_pocket_too_narrow_for_a_helix_grows_out_of_its_ramp_within_the_target() {
     let narrow: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 14.0), (0.0, 14.0)];
     let p = plan_perforative(&poly(narrow), settings(R, 1.527), &AdaptiveOptions::default()).unwrap();
     check_plan("narrow", &p);
-    assert!(matches!(p.entries.as_slice(), [Entry::Ramp(_)]), "{:?}", p.entries);
+    assert!(matches!(p.path.toolpath.entries.as_slice(), [Entry::Ramp(_)]), "{:?}", p.path.toolpath.entries);
     eprintln!(
         "narrow: peak {:.2}° at {:?}, p95 {:.2}°, {:.1} mm at depth, {:?}",
-        p.max_engagement_rad.to_degrees(),
-        p.profile.max().map(|s| (s.x_mm, s.y_mm)),
-        p.p95_engagement_rad.to_degrees(),
-        p.length_at_depth_mm,
-        p.maxima.iter().map(|m| (m.kind, m.max_rad.to_degrees(), m.length_mm)).collect::<Vec<_>>()
+        p.path.measurement.max_engagement_rad.to_degrees(),
+        p.path.measurement.profile.max().map(|s| (s.x_mm, s.y_mm)),
+        p.path.measurement.p95_engagement_rad.to_degrees(),
+        p.path.measurement.length_at_depth_mm,
+        p.path.measurement.maxima.iter().map(|m| (m.kind, m.max_rad.to_degrees(), m.length_mm)).collect::<Vec<_>>()
     );
     let limit = p.target_rad + 1f64.to_radians();
-    assert!(p.max_engagement_rad <= limit, "{:.2}°", p.max_engagement_rad.to_degrees());
+    assert!(
+        p.path.measurement.max_engagement_rad <= limit,
+        "{:.2}°",
+        p.path.measurement.max_engagement_rad.to_degrees()
+    );
     assert_eq!(p.max_of(MoveKind::Tip), 0.0);
     assert_eq!(p.corner_points.len(), 4, "{:?}", p.corner_points);
 }

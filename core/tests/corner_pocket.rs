@@ -54,7 +54,7 @@ fn rectangle_rings_count_and_lengths() {
     let total = 64.0 + 96.0 + 128.0 + 160.0;
     assert!((plan.path_length_mm - total).abs() < 1e-8);
     // Time at 600 mm/min: 448 mm / 600 mm/min · 60 s/min = 44.8 s.
-    assert!((plan.time_s - 44.8).abs() < 1e-9, "{}", plan.time_s);
+    assert!((plan.path.time_s - 44.8).abs() < 1e-9, "{}", plan.path.time_s);
 
     // Engagement. Innermost ring: nothing cut before → a full slot on its first leg, 180°.
     assert!((plan.rings[0].max_engagement_rad.to_degrees() - 180.0).abs() < ANGLE_TOL_DEG, "{:?}", plan.rings[0]);
@@ -214,7 +214,7 @@ fn variable_circles_at_ring_corners_where_they_fit() {
         assert!(p > a_str.to_degrees() + 89.0 && v < p - 40.0, "ring {k}: plain {p}°, variable {v}°");
         assert!(var.rings[k].length_mm > plain.rings[k].length_mm);
     }
-    assert!(var.path_length_mm > plain.path_length_mm && var.time_s > plain.time_s);
+    assert!(var.path_length_mm > plain.path_length_mm && var.path.time_s > plain.path.time_s);
     // Closed, connected loops.
     for g in &var.rings {
         let n = g.segments.len();
@@ -274,9 +274,9 @@ fn rectangle_links_are_radial_steps_of_one_step_over() {
         assert!((l.from - plan.rings[i].segments.last().unwrap().end()).norm() < LEN_TOL);
         assert!((l.to - plan.rings[i + 1].segments[0].start()).norm() < LEN_TOL);
     }
-    assert!((plan.link_length_mm - 15.0).abs() < LEN_TOL);
+    assert!((plan.path.link_length_mm - 15.0).abs() < LEN_TOL);
     // One connected path: 700 mm of rings (200 − 8d summed over d = 5, 7.5, …, 20) + 15 mm.
-    let (path, breaks) = plan.tool_path();
+    let (path, breaks) = plan.path.tool_path();
     assert!(breaks.is_empty());
     for (k, w) in path.windows(2).enumerate() {
         assert!((w[1].start() - w[0].end()).norm() < 1e-9, "gap after segment {k}");
@@ -302,13 +302,13 @@ fn links_across_uncut_material_or_too_close_to_a_wall_retract() {
             assert!(clearance(DUMBBELL, &seg) >= 5.0 - 1e-9, "{l:?}: {}", clearance(DUMBBELL, &seg));
         }
         // tool_path: a break exactly where a retract link is, connected elsewhere
-        let (path, breaks) = plan.tool_path();
+        let (path, breaks) = plan.path.tool_path();
         assert_eq!(breaks.len(), retracts.len());
         for (k, w) in path.windows(2).enumerate() {
             let gap = (w[1].start() - w[0].end()).norm();
             assert!(breaks.contains(&(k + 1)) || gap < 1e-9, "gap {gap} after segment {k}");
         }
-        let want = plan.path_length_mm + plan.link_length_mm;
+        let want = plan.path_length_mm + plan.path.link_length_mm;
         assert!((length(&path) - want).abs() < 1e-8);
         assert!(clearance(DUMBBELL, &path) >= 5.0 - 1e-9, "{method:?}: {}", clearance(DUMBBELL, &path));
     }
@@ -338,7 +338,7 @@ fn corner_circles_that_would_leave_the_pocket_stay_plain() {
     let pts = [(0.0, 0.0), (60.0, 0.0), (60.0, 25.0), (25.0, 25.0), (25.0, 50.0), (0.0, 50.0)];
     for method in [CornerMethod::Variable, CornerMethod::Isometric] {
         let plan = plan_rings(&poly(&pts), settings(10.0, 2.5), method).unwrap();
-        let (path, _) = plan.tool_path();
+        let (path, _) = plan.path.tool_path();
         let c = clearance(&pts, &path);
         assert!(c >= 5.0 - 1e-9, "{method:?}: clearance {c}");
         assert!(plan.plain_corners > 0, "{method:?}");

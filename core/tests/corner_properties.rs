@@ -38,10 +38,10 @@ proptest! {
         match planned {
             Ok((sc, p)) => {
                 prop_assert!(p.path_length_mm.is_finite() && p.path_length_mm > 0.0);
-                for w in p.path.windows(2) {
+                for w in p.toolpath.segments().windows(2) {
                     prop_assert!((w[0].end() - w[1].start()).norm() < 1e-9);
                 }
-                prop_assert!((p.path[0].start() - sc.ring_start).norm() < 1e-9);
+                prop_assert!((p.toolpath.segments()[0].start() - sc.ring_start).norm() < 1e-9);
                 for c in &p.circles {
                     prop_assert!(c.tool_circle.radius > 0.0 && c.tool_circle.radius.is_finite());
                 }
@@ -64,7 +64,7 @@ fn engagement_is_invariant_under_rotation_and_translation() {
         let measure = |c: Corner| {
             let sc = CornerScenario::new(c, s).unwrap();
             let p = plan_corner(&sc, m).unwrap();
-            let prof = engagement_profile(&sc.stock, &sc.previous_ring, &p.path, &opts).unwrap();
+            let prof = engagement_profile(&sc.stock, &sc.previous_ring, &p.toolpath.segments(), &opts).unwrap();
             (prof.max_angle().to_degrees(), p.path_length_mm, p.circles.len())
         };
         let (a, b) = (measure(base), measure(moved));

@@ -301,9 +301,7 @@ fn corner_programs_in_every_dialect_retrace_the_corner_path() {
         for method in [CornerMethod::Variable, CornerMethod::Isometric, CornerMethod::MedialAxis] {
             let plan = plan_corner(&sc, method).expect("corner plan");
             let job = PathJob {
-                segments: &plan.path,
-                retract_before: &[],
-                entries: &[],
+                toolpath: &plan.toolpath,
                 depth_mm: 6.0,
                 feed_mm_per_min: 600.0,
                 spindle_rpm: 2000.0,
@@ -320,7 +318,7 @@ fn corner_programs_in_every_dialect_retrace_the_corner_path() {
                     nc_common::check_path_cut(
                         &label,
                         &cut(&motions, 6.0, 1e-9),
-                        &plan.path,
+                        &plan.toolpath.segments(),
                         o.tolerance_mm,
                         quantum(d),
                     )

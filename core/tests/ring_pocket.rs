@@ -41,21 +41,24 @@ fn rings(pts: &[(f64, f64)], method: CornerMethod, ae: f64) -> RingPlan {
 fn samples(p: &RingPlan, profile_of: &[(f64, P2, f64)]) -> Vec<(P2, f64, MoveKind)> {
     let mut ends = Vec::new();
     let mut acc = 0.0;
-    for s in &p.segments {
+    for s in &p.path.segments() {
         acc += s.length();
         ends.push(acc);
     }
     profile_of
         .iter()
-        .map(|&(s, at, a)| (at, a, p.kinds[ends.partition_point(|&e| e < s - 1e-9).min(p.kinds.len() - 1)]))
+        .map(|&(s, at, a)| {
+            (at, a, p.path.kinds()[ends.partition_point(|&e| e < s - 1e-9).min(p.path.kinds().len() - 1)])
+        })
         .collect()
 }
 
 /// The plan measured again by the evaluator over the pocket, the entries' bores as cut.
 fn measured(p: &RingPlan) -> Vec<(f64, P2, f64)> {
     use trochoplan_core::corner::{EvaluatorOptions, engagement_profile};
-    let bores: Vec<Segment> = p.entries.iter().map(Entry::bore).collect();
-    let prof = engagement_profile(&p.polygon, &bores, &p.segments, &EvaluatorOptions::new(R, 0.25)).unwrap();
+    let bores: Vec<Segment> = p.path.toolpath.entries.iter().map(Entry::bore).collect();
+    let prof =
+        engagement_profile(&p.path.polygon, &bores, &p.path.segments(), &EvaluatorOptions::new(R, 0.25)).unwrap();
     prof.samples.iter().map(|s| (s.s_mm, p2(s.x_mm, s.y_mm), s.angle_rad)).collect()
 }
 
@@ -63,16 +66,17 @@ fn measured(p: &RingPlan) -> Vec<(f64, P2, f64)> {
 fn ring_corners(p: &RingPlan) -> Vec<P2> {
     p.rings
         .iter()
-        .flat_map(|g| inward_offset(&p.polygon, g.offset_mm).unwrap().into_iter().flatten().map(|s| s.start()))
+        .flat_map(|g| inward_offset(&p.path.polygon, g.offset_mm).unwrap().into_iter().flatten().map(|s| s.start()))
         .collect()
 }
 
 /// The largest angle between a link segment and the move after it: the diagonal's θ.
 fn largest_link_turn(p: &RingPlan) -> f64 {
     let dir = |s: &Segment, t: f64| (s.point((t + 1e-6).min(1.0)) - s.point((t - 1e-6).max(0.0))).normalize();
-    p.segments
+    p.path
+        .segments()
         .windows(2)
-        .zip(&p.kinds)
+        .zip(&p.path.kinds())
         .filter(|(_, k)| **k == MoveKind::Link)
         .map(|(w, _)| {
             let (u, v) = (dir(&w[0], 1.0), dir(&w[1], 0.0));
@@ -94,9 +98,9 @@ fn variable_and_isometric_rings_get_their_strategy_at_every_corner_and_no_slot()
     for method in [CornerMethod::Variable, CornerMethod::Isometric] {
         let p = rings(RECT, method, AE);
         // One helix at the centre of the 50 × 30 tool-centre rectangle, 0.375·D: no plunge.
-        let [Entry::Helix(h)] = p.entries.as_slice() else { panic!("{:?}", p.entries) };
+        let [Entry::Helix(h)] = p.path.toolpath.entries.as_slice() else { panic!("{:?}", p.path.toolpath.entries) };
         assert!((h.center - p2(30.0, 20.0)).norm() < 0.1 && (h.radius - 3.75).abs() < 1e-12, "{h:?}");
-        assert_eq!(p.kinds[0], MoveKind::Entry);
+        assert_eq!(p.path.kinds()[0], MoveKind::Entry);
         // Every convex corner of every ring has the strategy: 4 per ring.
         assert!(!p.rings.is_empty());
         assert_eq!((p.trochoid_corners, p.plain_corners), (4 * p.rings.len(), 0), "{method:?}");
@@ -140,7 +144,10 @@ fn variable_and_isometric_rings_get_their_strategy_at_every_corner_and_no_slot()
             assert!(c.max_engagement_rad < corner_point_bound_rad(FRAC_PI_2) - 30f64.to_radians(), "{c:?}");
         }
         // the air (engagement < 1°) is a part of the length at depth
-        assert!(p.air_length_mm > 0.0 && p.air_length_mm < p.length_at_depth_mm);
+        assert!(
+            p.path.measurement.air_length_mm > 0.0
+                && p.path.measurement.air_length_mm < p.path.measurement.length_at_depth_mm
+        );
         // the plan's own numbers are this profile's
         let peak = prof.iter().map(|s| s.2).fold(0.0, f64::max);
         assert!((peak - p.max_engagement_rad).abs() < 1e-9);
@@ -152,10 +159,10 @@ fn variable_and_isometric_rings_get_their_strategy_at_every_corner_and_no_slot()
             corner_circles.to_degrees(),
             corner_target.to_degrees(),
             plain_peak.to_degrees(),
-            p.p95_engagement_rad.to_degrees(),
+            p.path.measurement.p95_engagement_rad.to_degrees(),
             theta.to_degrees(),
-            p.length_at_depth_mm,
-            p.air_length_mm
+            p.path.measurement.length_at_depth_mm,
+            p.path.measurement.air_length_mm
         );
     }
 }
@@ -217,8 +224,8 @@ fn a_pocket_too_narrow_for_a_helix_gets_a_ramp_in_every_method() {
         }
         let planned = planned.unwrap_or_else(|e| panic!("{strategy:?}: {e}"));
         let entries = match &planned {
-            PocketPlan::Rings(p) => p.entries.clone(),
-            PocketPlan::MedialAxis(p) => p.entries.clone(),
+            PocketPlan::Rings(p) => p.path.toolpath.entries.clone(),
+            PocketPlan::MedialAxis(p) => p.path.toolpath.entries.clone(),
             PocketPlan::Adaptive(_) => unreachable!(),
         };
         let [Entry::Ramp(ramp)] = entries.as_slice() else { panic!("{strategy:?}: {entries:?}") };
@@ -254,14 +261,14 @@ fn a_pocket_too_narrow_for_a_helix_gets_a_ramp_in_every_method() {
 fn link_length_counts_every_link_move_like_the_per_kind_report() {
     for method in [CornerMethod::Plain, CornerMethod::Variable, CornerMethod::Isometric] {
         let p = rings(RECT, method, 1.527);
-        let row = p.maxima.iter().find(|k| k.kind == MoveKind::Link).expect("a link row");
+        let row = p.path.measurement.maxima.iter().find(|k| k.kind == MoveKind::Link).expect("a link row");
         assert!(
-            (p.link_length_mm - row.length_mm).abs() < 1e-9,
+            (p.path.link_length_mm - row.length_mm).abs() < 1e-9,
             "{method:?}: {} vs {}",
-            p.link_length_mm,
+            p.path.link_length_mm,
             row.length_mm
         );
         let between_rings: f64 = p.links.iter().map(|l| l.length_mm).sum();
-        assert!(p.link_length_mm > between_rings, "{method:?}: {} ≤ {between_rings}", p.link_length_mm);
+        assert!(p.path.link_length_mm > between_rings, "{method:?}: {} ≤ {between_rings}", p.path.link_length_mm);
     }
 }

@@ -169,7 +169,7 @@ pub fn compute(i: &CornerInputs) -> Result<CornerResult, String> {
                 full.sample(72).iter().map(|p| [p.x, p.y]).collect()
             })
             .collect(),
-        path: segment_points(&report.plan.path, MAX_PATH_POINTS),
+        path: segment_points(&report.plan.toolpath.segments(), MAX_PATH_POINTS),
         profile: profile_points(&report.profile),
         plain_profile: profile_points(&report.plain_profile),
         report,

@@ -108,7 +108,7 @@ pub fn compute(i: &PocketInputs) -> Result<PocketResult, String> {
     let (rings, detail) = match &plan {
         // No rings: one pass along the medial axis (shown as one entry of the ring list).
         PocketPlan::MedialAxis(p) => (
-            vec![(0, 0.0, p.body_max_rad.to_degrees(), segment_points(&p.segments, MAX_PATH_POINTS))],
+            vec![(0, 0.0, p.body_max_rad.to_degrees(), segment_points(&p.path.segments(), MAX_PATH_POINTS))],
             format!(
                 "{} circles along the medial axis, {} part(s); corner points up to {:.1}°{}",
                 p.circles.len(),
@@ -122,7 +122,7 @@ pub fn compute(i: &PocketInputs) -> Result<PocketResult, String> {
         ),
         // One pass: the whole path at depth (shown as one entry of the ring list).
         PocketPlan::Adaptive(p) => (
-            vec![(0, 0.0, p.max_engagement_rad.to_degrees(), segment_points(&p.segments, MAX_PATH_POINTS))],
+            vec![(0, 0.0, p.max_engagement_rad.to_degrees(), segment_points(&p.path.segments(), MAX_PATH_POINTS))],
             format!(
                 "{} entry, {} rings, {} corners thinned; p95 {:.1}°, {:.0} mm at depth",
                 match p.parts.first().map(|q| q.entry) {
@@ -132,8 +132,8 @@ pub fn compute(i: &PocketInputs) -> Result<PocketResult, String> {
                 },
                 p.parts.iter().map(|q| q.rings).sum::<usize>(),
                 p.parts.iter().map(|q| q.corners.len()).sum::<usize>(),
-                p.p95_engagement_rad.to_degrees(),
-                p.length_at_depth_mm
+                p.path.measurement.p95_engagement_rad.to_degrees(),
+                p.path.measurement.length_at_depth_mm
             ),
         ),
         PocketPlan::Rings(p) => (

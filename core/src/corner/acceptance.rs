@@ -1,6 +1,6 @@
 //! The corner acceptance table (docs/corners.md): for corner angles 30°…150° in 15° steps, the peak engagement
 //! of the plain contour-parallel ring and of a corner strategy, measured with the independent
-//! evaluator ([`super::evaluator`]), with path length and machining time.
+//! evaluator ([`crate::engagement::evaluator`]), with path length and machining time.
 //!
 //! Stated limit (DERIVED): every strategy ends its chain of wall-tangent circles when the next
 //! tool-centre radius drops below r_min (docs/corners.md, variable circles). From there the "tip" — the way into
@@ -8,7 +8,7 @@
 //! within a* + 1°):
 //! - with a corner tolerance δ (the default of `trochoplan corner`), arcs
 //!   tangent to both walls shrink to δ, each planned to a* by the derivation of
-//!   [`crate::pocket::adaptive::next_corner_point_radius`]: the tip's limit is a* itself, and
+//!   [`super::point::next_corner_point_radius`]: the tip's limit is a* itself, and
 //!   the corner is left with radius r + δ;
 //! - without (Wu et al.), the tool moves into the tool corner point U0, where it touches both
 //!   walls. The material left there is a sliver between the last offset circle and the walls;
@@ -17,11 +17,11 @@
 //!   about the bisector), while the sliver is only ρ(1/sin α − 1) thick: the tip is bounded by
 //!   max(a* + 1°, π − 2α + 1°).
 
-use super::evaluator::{EngagementProfile, EvaluatorOptions};
 use super::geometry::Corner;
 use super::method::CornerMethod;
 use super::request::{CornerRequest, measured, symmetric_scenario};
 use super::strategy::{CornerPlan, CornerSettings};
+use crate::engagement::{EngagementProfile, EvaluatorOptions};
 use crate::error::{Error, Param};
 use serde::{Deserialize, Serialize};
 
@@ -140,8 +140,9 @@ pub fn row(
     // The way into the corner point is reported apart (see the module docs).
     let (tip_start, tip_end) = match &plan.tip_segments {
         Some(range) => {
-            let start: f64 = plan.path[..range.start].iter().map(|s| s.length()).sum();
-            (start, start + plan.path[range.clone()].iter().map(|s| s.length()).sum::<f64>())
+            let path = plan.toolpath.segments();
+            let start: f64 = path[..range.start].iter().map(|s| s.length()).sum();
+            (start, start + path[range.clone()].iter().map(|s| s.length()).sum::<f64>())
         }
         None => (f64::INFINITY, f64::INFINITY),
     };
@@ -225,7 +226,7 @@ pub fn markdown(rows: &[AcceptanceRow]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::corner::engagement::radial_depth_for_engagement;
+    use crate::engagement::radial_depth_for_engagement;
 
     /// The table's settings (module docs of the integration test `corner_acceptance.rs`):
     /// D = 10, a_e giving 46° on the straight part, t1 = 15 %.

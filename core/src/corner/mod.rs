@@ -14,33 +14,31 @@
 //! Modules:
 //! - [`method`]: the corner strategies and their names.
 //! - [`request`]: the corner request, its settings and [`evaluate`].
-//! - [`engagement`]: straight cut and two-circle model (eqs. 2–6).
-//! - [`evaluator`]: generic engagement of any path over any stock polygon, independent
-//!   of the analytic model; CSV tool paths.
+//! - [`limits`]: tool diameter and step-over limits shared with the pocket planners.
+//! - [`point`]: arcs into a convex corner point down to the corner tolerance.
 //! - [`geometry`]: offset lines, bisector (eqs. 21–22), wall-tangent circles.
 //! - [`strategy`]: the corner scenario, the plain contour-parallel corner, the variable-circle
 //!   (eqs. 23–24) and isometric-circle (eq. 25) corner trochoids and the perforative
 //!   medial-axis trochoids (Wu et al. §4.2).
-//! - [`medial`]: medial axis of a polygon (segment Voronoi by `boostvoronoi`).
+//!
+//! The engagement model and the evaluator are [`crate::engagement`] (re-exported here), the
+//! medial axis is [`crate::geom::medial`].
 //! - [`acceptance`]: the corner acceptance table of docs/corners.md, measured with the evaluator.
 
 pub mod acceptance;
-pub mod engagement;
-pub mod evaluator;
 pub mod geometry;
-pub mod medial;
+pub mod limits;
 pub mod method;
-pub mod nearby;
+pub mod point;
 pub mod request;
 pub mod strategy;
 
-pub use acceptance::{AcceptanceRow, acceptance_row, acceptance_table};
-pub use engagement::{MaxEngagement, Turn, TwoCircle, radial_depth_for_engagement, straight_engagement};
-pub use evaluator::{
-    EngagementProfile, EngagementSample, EvaluatorOptions, engagement_profile, parse_points, polyline,
+pub use crate::engagement::{
+    EngagementProfile, EngagementSample, EvaluatorOptions, MaxEngagement, Turn, TwoCircle, engagement_profile,
+    parse_points, polyline, radial_depth_for_engagement, straight_engagement,
 };
+pub use acceptance::{AcceptanceRow, acceptance_row, acceptance_table};
 pub use geometry::{Corner, LineEq, bisector_point};
-pub use medial::{AxisEdge, MedialAxis, medial_axis};
 pub use method::CornerMethod;
 pub use request::{CornerReport, CornerRequest, evaluate, finite};
 pub use strategy::{CornerCircle, CornerPlan, CornerScenario, CornerSettings, first_circle_radius, plan_corner};

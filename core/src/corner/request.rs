@@ -3,16 +3,18 @@
 //! measured by the independent evaluator, and their acceptance row ([`super::acceptance`]).
 
 use super::acceptance::{self, AcceptanceRow};
-use super::engagement::{radial_depth_for_engagement, straight_engagement};
-use super::evaluator::{EngagementProfile, EvaluatorOptions, engagement_profile};
 use super::geometry::Corner;
 use super::method::CornerMethod;
+use super::point::{DEFAULT_CORNER_TOLERANCE_MM, validate_corner_tolerance};
 use super::strategy::{CornerPlan, CornerScenario, CornerSettings, DEFAULT_T1, plan_corner, tool_diameter};
+use crate::engagement::AIR_ENGAGEMENT_RAD;
+use crate::engagement::KindMax;
+use crate::engagement::{EngagementProfile, EvaluatorOptions, engagement_profile};
+use crate::engagement::{radial_depth_for_engagement, straight_engagement};
 use crate::error::{Error, Param, num};
+use crate::geom::mirror::{flip_y, flip_y_segment, flipped_y_polygon};
 use crate::job::Direction;
-use crate::pocket::adaptive::{AIR_ENGAGEMENT_RAD, DEFAULT_CORNER_TOLERANCE_MM, validate_corner_tolerance};
-use crate::pocket::mirror::{flip_y, flip_y_segment, flipped_y_polygon};
-use crate::pocket::{KindMax, MoveKind};
+use crate::toolpath::MoveKind;
 use serde::{Deserialize, Serialize};
 
 /// One symmetric corner to plan and measure, in the user's units (degrees, mm, mm/min): the
@@ -163,13 +165,13 @@ impl CornerReport {
     /// Per kind of move (U and V legs, circles, links, corner-point arcs or the tip): the
     /// largest engagement measured and where, and the length.
     pub fn by_kind(&self) -> Vec<KindMax> {
-        crate::pocket::perforative::maxima(&self.profile, &self.plan.path, &self.plan.kinds, &[]).0
+        crate::engagement::maxima(&self.profile, &self.plan.toolpath.segments(), &self.plan.toolpath.kinds())
     }
 
     /// Length of the moves along U between circles and of the isometric return (mm).
     pub fn link_length_mm(&self) -> f64 {
-        let kinds = self.plan.path.iter().zip(&self.plan.kinds);
-        kinds.filter(|(_, k)| **k == MoveKind::Link).fold(0.0, |sum, (s, _)| sum + s.length())
+        let links = self.plan.toolpath.moves.iter().filter(|m| m.kind == MoveKind::Link);
+        links.fold(0.0, |sum, m| sum + m.segment.length())
     }
 
     /// Length of the moves that engage less than 1° (mm).
@@ -184,14 +186,14 @@ pub fn evaluate(req: &CornerRequest) -> Result<CornerReport, Error> {
     let settings = req.settings()?;
     // circles of a small step-over grow in number as 1/a_e, each found by bisection: below the
     // papers' range they take seconds to minutes for no useful gain (plain has none)
-    let least = crate::pocket::MEDIAL_AXIS_MIN_STEP_OVER_RATIO * 2.0 * settings.tool_radius;
+    let least = super::limits::MEDIAL_AXIS_MIN_STEP_OVER_RATIO * 2.0 * settings.tool_radius;
     if req.method != CornerMethod::Plain && settings.step_over < least {
         return Err(Error::param(
             Param::StepOver,
             settings.step_over,
             format!(
                 "at least {} × the tool diameter = {} mm for --method {} (the papers' smallest radial depth)",
-                crate::pocket::MEDIAL_AXIS_MIN_STEP_OVER_RATIO,
+                super::limits::MEDIAL_AXIS_MIN_STEP_OVER_RATIO,
                 num(least),
                 req.method.name()
             ),
@@ -235,7 +237,9 @@ impl CornerReport {
             for circle in &mut plan.circles {
                 circle.tool_circle.center = flip_y(circle.tool_circle.center);
             }
-            plan.path = plan.path.iter().map(flip_y_segment).collect();
+            for m in &mut plan.toolpath.moves {
+                m.segment = flip_y_segment(&m.segment);
+            }
             plan.stock = flipped_y_polygon(&plan.stock)?;
             plan.precut = plan.precut.iter().map(flip_y_segment).collect();
             for s in &mut profile.samples {
@@ -259,7 +263,7 @@ pub(super) fn measured(
     opts: &EvaluatorOptions,
 ) -> Result<(CornerPlan, EngagementProfile), Error> {
     let plan = plan_corner(sc, method)?;
-    let profile = engagement_profile(&plan.stock, &plan.precut, &plan.path, opts)?;
+    let profile = engagement_profile(&plan.stock, &plan.precut, &plan.toolpath.segments(), opts)?;
     Ok((plan, profile))
 }
 

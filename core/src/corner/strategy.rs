@@ -17,15 +17,15 @@
 //! The medial-axis strategy has no rings: it cuts the corner of a triangular pocket down the
 //! corner's medial-axis branch (see `medial_axis_plan`).
 
-use super::engagement::{Turn, TwoCircle, straight_engagement};
 use super::geometry::Corner;
+pub use super::limits::{MAX_TOOL_DIAMETER_MM, tool_diameter, validate_tool_and_step_over};
 use super::method::CornerMethod;
+use super::point::{corner_point_radii, validate_corner_tolerance};
 use super::request::CornerRequest;
+use crate::engagement::{Turn, TwoCircle, straight_engagement};
 use crate::error::{Error, Param, num};
 use crate::geom::{Circle, P2, Polygon, Segment};
-use crate::job::limits::MIN_SIZE_MM;
-use crate::pocket::MoveKind;
-use crate::pocket::adaptive::{corner_point_radii, validate_corner_tolerance};
+use crate::toolpath::{MoveKind, Toolpath};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 
@@ -225,8 +225,11 @@ pub struct CornerPlan {
     pub method: CornerMethod,
     /// Circles in machining order.
     pub circles: Vec<CornerCircle>,
-    /// Tool-centre path of the whole ring piece (U leg, corner, V leg).
-    pub path: Vec<Segment>,
+    /// The moves of the whole ring piece (U leg, corner, V leg) at depth 0 (the program gives
+    /// the depth), no entries (the piece starts in the ring before it), no retracts. Their
+    /// kinds: U and V legs [`MoveKind::Ring`], circles, links along U, corner-point arcs with
+    /// their moves, or Wu et al.'s [`MoveKind::Tip`].
+    pub toolpath: Toolpath,
     /// Path length (mm).
     pub path_length_mm: f64,
     /// Machining time at the feed rate (s).
@@ -237,10 +240,7 @@ pub struct CornerPlan {
     /// the stock polygon and the tool paths cut before.
     pub stock: Polygon,
     pub precut: Vec<Segment>,
-    /// What each move of `path` does: U and V legs [`MoveKind::Ring`], circles, links along U,
-    /// corner-point arcs with their moves, or Wu et al.'s [`MoveKind::Tip`].
-    pub kinds: Vec<MoveKind>,
-    /// Indices in `path` of the way into the corner point (see [`super::acceptance`] for its
+    /// Indices of the moves of the way into the corner point (see [`super::acceptance`] for its
     /// stated engagement limit): the corner-point arcs with their moves along the walls, or
     /// Wu et al.'s final straight move into the tool corner point; `None` for the plain ring.
     pub tip_segments: Option<std::ops::Range<usize>>,
@@ -428,13 +428,12 @@ pub fn plan_corner(sc: &CornerScenario, method: CornerMethod) -> Result<CornerPl
     Ok(CornerPlan {
         method,
         circles,
-        path,
+        toolpath: Toolpath::at_depth(&path, &kinds, 0.0, Vec::new(), Vec::new()),
         path_length_mm: len,
         time_s: len / s.feed_mm_per_min * 60.0,
         notes,
         stock: sc.stock.clone(),
         precut: sc.previous_ring.clone(),
-        kinds,
         tip_segments,
         corner_point,
     })
@@ -494,7 +493,7 @@ fn into_corner_point(
 
 /// Perforative trochoids along the medial axis (Wu et al. 2016 §4.2 (c); docs/pockets.md) for the
 /// corner as part of a triangular pocket (apex, ends of the two walls). The axis comes from
-/// [`super::medial::medial_axis`]; the corner's branch runs from the apex to the first Voronoi
+/// [`crate::geom::medial::medial_axis`]; the corner's branch runs from the apex to the first Voronoi
 /// node, whose clearance Rc is the largest circle there. The perforative trochoids that reached
 /// the node along the rest of the axis have cleared that circle (modelled as concentric passes,
 /// `precut`); from it, circles of offset radius Rc(t) = t·sin α (allowance 0) are placed down
@@ -507,7 +506,7 @@ fn medial_axis_plan(sc: &CornerScenario) -> Result<CornerPlan, Error> {
     let end1 = corner.apex - corner.dir_in * s.edge_length;
     let end2 = corner.apex + corner.dir_out * s.edge_length;
     let pocket = Polygon::new(vec![end1, corner.apex, end2])?;
-    let axis = super::medial::medial_axis(&pocket, 1e-4)?;
+    let axis = crate::geom::medial::medial_axis(&pocket, 1e-4)?;
     let (node, rc) = axis.branch_from(corner.apex, 1e-3).ok_or_else(|| {
         Error::geometry("polygon", "no medial-axis branch at the corner", "a corner with a Voronoi branch")
     })?;
@@ -549,13 +548,12 @@ fn medial_axis_plan(sc: &CornerScenario) -> Result<CornerPlan, Error> {
     Ok(CornerPlan {
         method: CornerMethod::MedialAxis,
         circles,
-        path,
+        toolpath: Toolpath::at_depth(&path, &kinds, 0.0, Vec::new(), Vec::new()),
         path_length_mm: len,
         time_s: len / s.feed_mm_per_min * 60.0,
         notes,
         stock: pocket,
         precut,
-        kinds,
         tip_segments,
         corner_point,
     })
@@ -738,35 +736,6 @@ impl Moves {
     }
 }
 
-/// Largest tool diameter of a corner or pocket (mm).
-pub const MAX_TOOL_DIAMETER_MM: f64 = 1000.0;
-
-/// The tool diameter D of a corner or pocket: from [`MIN_SIZE_MM`] (a smaller tool is a typing
-/// error, named as the tool diameter rather than by the first derived quantity it breaks) to
-/// [`MAX_TOOL_DIAMETER_MM`].
-pub fn tool_diameter(d: f64) -> Result<f64, Error> {
-    if d.is_finite() && (MIN_SIZE_MM..=MAX_TOOL_DIAMETER_MM).contains(&d) {
-        Ok(d)
-    } else {
-        let (lo, hi) = (num(MIN_SIZE_MM), num(MAX_TOOL_DIAMETER_MM));
-        Err(Error::param(Param::ToolDiameter, d, format!("a finite number from {lo} to {hi} mm")))
-    }
-}
-
-/// Checks shared by corner and pocket settings: tool radius r ([`tool_diameter`]) and ring
-/// step-over a_e (0 < a_e < D); each error names the parameter, the value and the range.
-pub fn validate_tool_and_step_over(r: f64, step_over: f64) -> Result<(), Error> {
-    tool_diameter(2.0 * r)?;
-    if !(step_over.is_finite() && step_over > 0.0 && step_over < 2.0 * r) {
-        return Err(Error::param(
-            Param::StepOver,
-            step_over,
-            format!("greater than 0 and less than the tool diameter {} mm", num(2.0 * r)),
-        ));
-    }
-    Ok(())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -846,12 +815,12 @@ mod tests {
             let sc = CornerScenario::new(Corner::symmetric(angle.to_radians()).unwrap(), settings).unwrap();
             for m in [CornerMethod::Plain, CornerMethod::Variable, CornerMethod::Isometric] {
                 let p = plan_corner(&sc, m).unwrap();
-                for w in p.path.windows(2) {
+                let path = p.toolpath.segments();
+                for w in path.windows(2) {
                     assert!((w[0].end() - w[1].start()).norm() < 1e-9, "{angle}° {m:?}: gap");
                 }
-                assert!((p.path[0].start() - sc.ring_start).norm() < 1e-12);
-                assert!((p.path.last().unwrap().end() - sc.ring_end).norm() < 1e-12);
-                assert_eq!(p.kinds.len(), p.path.len());
+                assert!((path[0].start() - sc.ring_start).norm() < 1e-12);
+                assert!((path.last().unwrap().end() - sc.ring_end).norm() < 1e-12);
                 if m == CornerMethod::Variable {
                     for w in p.circles.windows(2) {
                         assert!(w[1].offset_radius < w[0].offset_radius, "{angle}°: radii must shrink");
@@ -877,14 +846,15 @@ mod tests {
                 assert_eq!(*radii.last().unwrap(), delta, "{angle}° {m:?}: ends at δ");
                 assert!(radii.windows(2).all(|w| w[1] < w[0]), "{angle}° {m:?}: radii shrink");
                 assert!(radii[0] < p.circles.last().unwrap().tool_circle.radius);
-                for w in p.path.windows(2) {
+                for w in p.toolpath.segments().windows(2) {
                     assert!((w[0].end() - w[1].start()).norm() < 1e-9, "{angle}° {m:?}: gap");
                 }
                 // Every corner-point arc: its tool envelope (radius ρ + r) touches both walls,
                 // it turns through π − angle, and no tool position comes nearer than r to a wall.
                 let tip = p.tip_segments.clone().expect("tip range");
                 let mut seen = 0;
-                for (seg, kind) in p.path[tip.clone()].iter().zip(&p.kinds[tip]) {
+                for mv in &p.toolpath.moves[tip] {
+                    let (seg, kind) = (&mv.segment, &mv.kind);
                     assert_eq!(*kind, MoveKind::CornerPoint);
                     if let Segment::Arc { center, radius, sweep, .. } = *seg {
                         let want = radius + 5.0;

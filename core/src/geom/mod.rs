@@ -7,6 +7,9 @@ mod biarc;
 mod circle;
 mod distance;
 mod edge_grid;
+pub mod medial;
+pub mod mirror;
+pub mod offset;
 mod polygon;
 mod quad;
 mod segment;
@@ -17,6 +20,7 @@ pub use distance::{
     arc_segment_distance, point_arc_distance, point_segment_distance, segment_edge_distance, segment_segment_distance,
 };
 pub use edge_grid::EdgeGrid;
+pub use medial::{AxisEdge, MedialAxis, WallFeature, Walls, medial_axis};
 pub use polygon::{MAX_COORDINATE_MM, MAX_POLYGON_VERTICES, Polygon, loop_contains, loop_distance};
 pub use quad::gauss_legendre;
 pub use segment::{Segment, SegmentPoint};

@@ -13,9 +13,13 @@
 //! Not interpreted (an error names the line): parameters and expressions (`#<…>`, `R1=…`,
 //! `X=…`), O-word loops, labels and jumps, i.e. the compact loop programs; back-plot the
 //! expanded program of the same options instead (same motion, see `NcOptions::compact`).
+//!
+//! One interpreter gives both readings: [`read_toolpath`], the program as a [`Toolpath`] (every
+//! move with its exact segment, heights and feed), and [`backplot`], the points to draw.
 
 use super::Dialect;
-use crate::geom::{P2, p2};
+use crate::geom::{P2, Segment, p2};
+use crate::toolpath::{Move, MoveKind, Toolpath};
 use std::f64::consts::{FRAC_PI_2, TAU};
 
 /// Default chord tolerance for drawing a back-plot (mm).
@@ -28,15 +32,32 @@ pub const DEFAULT_CHORD_TOLERANCE_MM: f64 = 0.001;
 /// `dialect` is the dialect the program was written for (all four share this subset; it is
 /// taken so that a dialect-specific rule can be added without changing callers).
 pub fn backplot(text: &str, dialect: Dialect, chord_tol_mm: f64) -> Result<Vec<P2>, String> {
-    let _ = dialect;
     if !(chord_tol_mm.is_finite() && chord_tol_mm > 0.0) {
         return Err(format!("chord tolerance {chord_tol_mm} mm: must be a finite number > 0"));
     }
+    Ok(interpret(text, dialect, chord_tol_mm)?.points)
+}
+
+/// The program `text` as a tool path: every block that moves the tool from a known position
+/// is one move — `G0` a [`MoveKind::Rapid`] line, `G1` a [`MoveKind::Cut`] line, `G2`/`G3` a
+/// [`MoveKind::Cut`] arc (centre from I J, radius at its start), a Z move without XY motion a
+/// line of length 0 — with the heights at both ends (0 before the first Z word) and the
+/// modal feed of the `F` word (`None` for rapids and before the first `F`). The program's own
+/// retracts and approaches are moves; `entries` and `retract_before` stay empty.
+pub fn read_toolpath(text: &str, dialect: Dialect) -> Result<Toolpath, String> {
+    let moves = interpret(text, dialect, DEFAULT_CHORD_TOLERANCE_MM)?.moves;
+    Ok(Toolpath { moves, entries: Vec::new(), retract_before: Vec::new() })
+}
+
+/// Run every block of `text` (`dialect` taken so that a dialect-specific rule can be added
+/// without changing callers; all four share the subset).
+fn interpret(text: &str, dialect: Dialect, chord_tol_mm: f64) -> Result<Machine, String> {
+    let _ = dialect;
     let mut m = Machine::default();
     for (k, line) in text.lines().enumerate() {
         m.block(line, chord_tol_mm).map_err(|e| format!("line {}: {e}: {}", k + 1, line.trim()))?;
     }
-    Ok(m.points)
+    Ok(m)
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -53,12 +74,25 @@ struct Machine {
     ij_incremental: bool,
     x: Option<f64>,
     y: Option<f64>,
+    z: Option<f64>,
+    feed: Option<f64>,
     points: Vec<P2>,
+    moves: Vec<Move>,
 }
 
 impl Default for Machine {
     fn default() -> Self {
-        Machine { motion: None, absolute: true, ij_incremental: true, x: None, y: None, points: Vec::new() }
+        Machine {
+            motion: None,
+            absolute: true,
+            ij_incremental: true,
+            x: None,
+            y: None,
+            z: None,
+            feed: None,
+            points: Vec::new(),
+            moves: Vec::new(),
+        }
     }
 }
 
@@ -133,37 +167,44 @@ impl Machine {
         if t.starts_with(['O', 'o']) {
             return Err("O-word control flow is not interpreted (back-plot the expanded program)".into());
         }
-        let (mut x, mut y, mut i, mut j) = (None, None, None, None);
-        let mut moves_z = false;
+        let (mut x, mut y, mut z, mut i, mut j) = (None, None, None, None, None);
         for (letter, v) in words(t)? {
             match letter {
                 'G' => self.g_word(v)?,
                 'X' => x = Some(v),
                 'Y' => y = Some(v),
-                'Z' => moves_z = true,
+                'Z' => z = Some(v),
                 'I' => i = Some(v),
                 'J' => j = Some(v),
+                'F' => self.feed = Some(v),
                 'K' | 'R' => return Err(format!("{letter} words are not interpreted")),
-                // N, F, S, T, M, H, D, P: no XY motion
+                // N, S, T, M, H, D, P: no motion
                 _ => {}
             }
         }
-        if x.is_none() && y.is_none() && i.is_none() && j.is_none() {
-            if moves_z && self.motion.is_none() {
-                return Err("Z move without a motion mode".into());
-            }
-            return Ok(());
-        }
-        let motion = self.motion.ok_or("X/Y without a motion mode (G0, G1, G2, G3)")?;
         let target = |cur: Option<f64>, v: Option<f64>, absolute: bool| match (v, absolute) {
             (Some(v), true) => Some(v),
             (Some(v), false) => cur.map(|c| c + v),
             (None, _) => cur,
         };
+        let z0 = self.z;
+        let nz = target(self.z, z, self.absolute);
+        if x.is_none() && y.is_none() && i.is_none() && j.is_none() {
+            if z.is_some() {
+                let motion = self.motion.ok_or("Z move without a motion mode")?;
+                self.z = nz;
+                if let Some(p) = self.x.zip(self.y).map(|(a, b)| p2(a, b)) {
+                    self.record(Segment::Line { start: p, end: p }, motion, z0, nz);
+                }
+            }
+            return Ok(());
+        }
+        let motion = self.motion.ok_or("X/Y without a motion mode (G0, G1, G2, G3)")?;
         let (nx, ny) = (target(self.x, x, self.absolute), target(self.y, y, self.absolute));
         let start = self.x.zip(self.y).map(|(a, b)| p2(a, b));
         self.x = nx;
         self.y = ny;
+        self.z = nz;
         let Some(end) = nx.zip(ny).map(|(a, b)| p2(a, b)) else {
             return match motion {
                 Motion::Cw | Motion::Ccw => Err("arc from an unknown position".into()),
@@ -171,15 +212,33 @@ impl Machine {
             };
         };
         match (motion, start) {
-            (Motion::Rapid | Motion::Feed, _) => self.push(end),
+            (Motion::Rapid | Motion::Feed, _) => {
+                self.push(end);
+                if let Some(s) = start {
+                    self.record(Segment::Line { start: s, end }, motion, z0, nz);
+                }
+            }
             (Motion::Cw | Motion::Ccw, None) => return Err("arc from an unknown position".into()),
             (Motion::Cw | Motion::Ccw, Some(s)) => {
                 let (i, j) = (i.unwrap_or(0.0), j.unwrap_or(0.0));
                 let center = if self.ij_incremental { s + p2(i, j) } else { p2(i, j) };
-                self.push_arc(s, end, center, motion == Motion::Cw, chord_tol)?;
+                let arc = self.push_arc(s, end, center, motion == Motion::Cw, chord_tol)?;
+                self.record(arc, motion, z0, nz);
             }
         }
         Ok(())
+    }
+
+    /// One move of the tool path from height `z0` to `z1` (0 where not known yet).
+    fn record(&mut self, segment: Segment, motion: Motion, z0: Option<f64>, z1: Option<f64>) {
+        let (kind, feed) = if motion == Motion::Rapid { (MoveKind::Rapid, None) } else { (MoveKind::Cut, self.feed) };
+        self.moves.push(Move {
+            segment,
+            z_start_mm: z0.unwrap_or(0.0),
+            z_end_mm: z1.unwrap_or(0.0),
+            kind,
+            feed_mm_per_min: feed,
+        });
     }
 
     fn g_word(&mut self, v: f64) -> Result<(), String> {
@@ -207,8 +266,9 @@ impl Machine {
         }
     }
 
-    /// Chords of the arc from `s` to `e` around `c` (a full circle when `s` = `e`).
-    fn push_arc(&mut self, s: P2, e: P2, c: P2, clockwise: bool, chord_tol: f64) -> Result<(), String> {
+    /// Chords of the arc from `s` to `e` around `c` (a full circle when `s` = `e`); the arc as
+    /// a segment at its start radius.
+    fn push_arc(&mut self, s: P2, e: P2, c: P2, clockwise: bool, chord_tol: f64) -> Result<Segment, String> {
         let (vs, ve) = (s - c, e - c);
         let (r0, r1) = (vs.norm(), ve.norm());
         if r0 < 1e-9 || r1 < 1e-9 {
@@ -230,7 +290,7 @@ impl Machine {
             self.push(c + p2(a.cos(), a.sin()) * rr);
         }
         self.points.push(e);
-        Ok(())
+        Ok(Segment::Arc { center: c, radius: r0, start_angle: a0, sweep })
     }
 }
 
@@ -271,6 +331,29 @@ mod tests {
         let b = bp("G0 X5 Y0\nG91\nG3 X-5 Y5 I-5 J0\n");
         assert_eq!(a.last(), b.last());
         assert!((a[a.len() / 2].norm() - 5.0).abs() < 1e-9);
+    }
+
+    /// The moves of a small program: the rapid to the start is from an unknown position (no
+    /// move), the feed down is a Z move of length 0 at F100, the line and the quarter arc
+    /// (centre (0, 0), radius √26 at its start (5, 1), on to (0, 5)) keep their exact geometry, the
+    /// retract is a rapid.
+    #[test]
+    fn a_program_reads_into_moves() {
+        let text = "G0 Z5\nX5 Y0\nG1 Z-2 F100\nX5 Y1 F200\nG3 X0 Y5 I-5 J-1\nG0 Z5\n";
+        let tp = read_toolpath(text, Dialect::LinuxCnc).expect("read");
+        let kinds: Vec<MoveKind> = tp.moves.iter().map(|m| m.kind).collect();
+        assert_eq!(kinds, vec![MoveKind::Cut, MoveKind::Cut, MoveKind::Cut, MoveKind::Rapid]);
+        let (down, line, arc) = (tp.moves[0], tp.moves[1], tp.moves[2]);
+        assert_eq!((down.z_start_mm, down.z_end_mm, down.feed_mm_per_min), (5.0, -2.0, Some(100.0)));
+        assert_eq!(line.segment, Segment::Line { start: p2(5.0, 0.0), end: p2(5.0, 1.0) });
+        assert_eq!(line.feed_mm_per_min, Some(200.0));
+        let Segment::Arc { center, radius, sweep, .. } = arc.segment else { panic!("arc") };
+        assert_eq!(center, p2(0.0, 0.0));
+        assert!((radius - 26f64.sqrt()).abs() < 1e-12);
+        // from (5, 1) at atan(1/5) counter-clockwise to (0, 5) at π/2
+        assert!((sweep - (0.5 * std::f64::consts::PI - 0.2f64.atan())).abs() < 1e-12);
+        assert_eq!(tp.moves[3].feed_mm_per_min, None);
+        assert!((tp.length_mm() - (1.0 + radius * sweep)).abs() < 1e-12);
     }
 
     #[test]

@@ -10,8 +10,7 @@
 use super::{NcOptions, NcProgram, PathJob, program_for_path};
 use crate::corner::{CornerPlan, CornerSettings};
 use crate::error::{Error, Param};
-use crate::geom::Segment;
-use crate::pocket::{AdaptivePlan, Entry, LinkKind, PerforativePlan, PocketPlan, PocketSettings, RingPlan};
+use crate::pocket::{AdaptivePlan, Entry, LinkKind, PerforativePlan, PocketPath, PocketPlan, RingPlan};
 
 /// What a corner or pocket plan does not carry: the cutting depth and the spindle speed.
 /// Checked by [`PathJob::validate`] (errors name `depth` and `rpm`).
@@ -44,9 +43,7 @@ pub fn corner_program(
     let s = settings;
     let a_str = s.straight_engagement()?;
     let job = PathJob {
-        segments: &plan.path,
-        retract_before: &[],
-        entries: &[],
+        toolpath: &plan.toolpath,
         depth_mm: cut.depth_mm,
         feed_mm_per_min: s.feed_mm_per_min,
         spindle_rpm: cut.spindle_rpm,
@@ -80,7 +77,7 @@ pub fn corner_program(
     program_for_path(&job, opts)
 }
 
-/// The program of the whole pocket `plan`, rings or medial axis ([`PocketPlan::tool_path`]).
+/// The program of the whole pocket `plan`, any strategy ([`PocketPlan::toolpath`]).
 pub fn pocket_program(plan: &PocketPlan, cut: CutSetup, opts: &NcOptions) -> Result<NcProgram, Error> {
     match plan {
         PocketPlan::Rings(p) => ring_program(p, cut, opts),
@@ -92,8 +89,6 @@ pub fn pocket_program(plan: &PocketPlan, cut: CutSetup, opts: &NcOptions) -> Res
 /// The program of an adaptively cleared pocket: per part a helical entry from above the stock
 /// top (no plunge), then its moves at depth; a retract and rapid between parts.
 pub fn adaptive_program(plan: &AdaptivePlan, cut: CutSetup, opts: &NcOptions) -> Result<NcProgram, Error> {
-    let (segments, retract_before) = PocketPlan::Adaptive(plan.clone()).tool_path();
-    let entries: Vec<Entry> = plan.parts.iter().map(|p| p.entry).collect();
     let way_in = match plan.parts[0].entry {
         Entry::Helix(h) => format!("helix R {:.3} mm {:.1} deg", h.radius, plan.options.ramp_deg),
         Entry::Ramp(_) => format!("zig-zag ramp {:.1} deg", plan.options.ramp_deg),
@@ -102,31 +97,30 @@ pub fn adaptive_program(plan: &AdaptivePlan, cut: CutSetup, opts: &NcOptions) ->
     let summary = [
         format!(
             "pocket of {} vertices, adaptive {}, {} part(s), {}",
-            plan.polygon.vertices().len(),
+            plan.path.polygon.vertices().len(),
             plan.options.direction.name(),
             plan.parts.len(),
             way_in
         ),
         format!(
             "at depth {:.1} mm, links {:.1} mm, peak {:.2} deg, target {:.2} deg",
-            plan.length_at_depth_mm,
-            plan.link_length_mm,
-            plan.max_engagement_rad.to_degrees(),
+            plan.path.measurement.length_at_depth_mm,
+            plan.path.link_length_mm,
+            plan.path.measurement.max_engagement_rad.to_degrees(),
             plan.target_rad.to_degrees()
         ),
     ];
-    pocket_path_program(&segments, &retract_before, &entries, &plan.settings, summary, cut, opts)
+    pocket_path_program(&plan.path, summary, cut, opts)
 }
 
-/// The program of a pocket cleared by rings: its rings and links ([`RingPlan::tool_path`]),
-/// retracting before the links that a straight move cannot take.
+/// The program of a pocket cleared by rings: its tool path ([`RingPlan::path`]), retracting
+/// before the links that a straight move cannot take.
 fn ring_program(plan: &RingPlan, cut: CutSetup, opts: &NcOptions) -> Result<NcProgram, Error> {
-    let (segments, retract_before) = plan.tool_path();
     let feed_links = plan.links.iter().filter(|l| l.kind == LinkKind::Feed).count();
     let summary = [
         format!(
             "pocket of {} vertices, method {}, {} rings, {} corner trochoids",
-            plan.polygon.vertices().len(),
+            plan.path.polygon.vertices().len(),
             plan.method.name(),
             plan.rings.len(),
             plan.trochoid_corners
@@ -135,11 +129,11 @@ fn ring_program(plan: &RingPlan, cut: CutSetup, opts: &NcOptions) -> Result<NcPr
             "rings {:.3} mm, {} feed links {:.3} mm, {} retract links",
             plan.path_length_mm,
             feed_links,
-            plan.link_length_mm,
+            plan.path.link_length_mm,
             plan.links.len() - feed_links
         ),
     ];
-    pocket_path_program(&segments, &retract_before, &plan.entries, &plan.settings, summary, cut, opts)
+    pocket_path_program(&plan.path, summary, cut, opts)
 }
 
 /// The program of a pocket cleared by perforative trochoids along its medial axis: its path
@@ -148,36 +142,32 @@ pub fn perforative_program(plan: &PerforativePlan, cut: CutSetup, opts: &NcOptio
     let summary = [
         format!(
             "pocket of {} vertices, method medial-axis, {} circles, {} part(s)",
-            plan.polygon.vertices().len(),
+            plan.path.polygon.vertices().len(),
             plan.circles.len(),
             plan.parts
         ),
         format!(
             "path {:.3} mm, body engagement {:.2} deg (target {:.2} deg)",
-            plan.path_length_mm,
+            plan.path.measurement.length_at_depth_mm,
             plan.body_max_rad.to_degrees(),
             plan.target_rad.to_degrees()
         ),
     ];
-    pocket_path_program(&plan.segments, &plan.retract_before, &plan.entries, &plan.settings, summary, cut, opts)
+    pocket_path_program(&plan.path, summary, cut, opts)
 }
 
 /// A pocket's program in polygon coordinates: two summary lines of the plan, then the frame
 /// and the tool lines shared by every pocket method.
 fn pocket_path_program(
-    segments: &[Segment],
-    retract_before: &[usize],
-    entries: &[Entry],
-    s: &PocketSettings,
+    path: &PocketPath,
     summary: [String; 2],
     cut: CutSetup,
     opts: &NcOptions,
 ) -> Result<NcProgram, Error> {
     let [first, second] = summary;
+    let s = &path.settings;
     let job = PathJob {
-        segments,
-        retract_before,
-        entries,
+        toolpath: &path.toolpath,
         depth_mm: cut.depth_mm,
         feed_mm_per_min: s.feed_mm_per_min,
         spindle_rpm: cut.spindle_rpm,
@@ -232,7 +222,8 @@ mod tests {
         // the program's own motion, read back from its text, from the path start to its end
         let pts = backplot(t, Dialect::LinuxCnc, 1e-3).expect("back-plot");
         let (first, last) = (pts.first().expect("points"), pts.last().expect("points"));
-        let (start, end) = (plan.path[0].start(), plan.path[plan.path.len() - 1].end());
+        let (start, end) =
+            (plan.toolpath.segments()[0].start(), plan.toolpath.segments()[plan.toolpath.segments().len() - 1].end());
         assert!((*first - start).norm() < 1e-4 && (*last - end).norm() < 1e-4, "{first:?} {last:?}");
         let len = polyline_length(&pts);
         assert!(
@@ -287,7 +278,7 @@ mod tests {
         assert!(t.contains("(rings 448.000 mm, 3 feed links 12.000 mm, 0 retract links)"), "{t}");
         let pts = backplot(t, Dialect::Fanuc, 1e-3).expect("back-plot");
         let PocketPlan::Rings(rings) = &plan else { panic!("rings expected") };
-        let want = rings.path_length_mm + rings.link_length_mm;
+        let want = rings.path_length_mm + rings.path.link_length_mm;
         let len = polyline_length(&pts);
         assert!((len - want).abs() < LENGTH_REL * want, "{len} vs {want}");
     }

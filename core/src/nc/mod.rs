@@ -24,7 +24,7 @@ pub mod corner;
 mod dialect;
 mod writer;
 
-pub use backplot::backplot;
+pub use backplot::{backplot, read_toolpath};
 pub use corner::{CutSetup, corner_program, perforative_program, pocket_program};
 
 pub use dialect::{CommentStyle, Dialect, DialectSpec, LoopStyle, ToolCall, sanitize_comment};
@@ -35,8 +35,7 @@ use crate::feed::VariableFeed;
 use crate::geom::{FitPiece, P2, Segment, fit_biarcs, p2, polyline};
 use crate::job::{Direction, PathKind};
 use crate::plan::Plan;
-use crate::pocket::adaptive::HELIX_START_Z_MM;
-use crate::pocket::{Entry, Helix, Ramp};
+use crate::toolpath::{Entry, HELIX_START_Z_MM, Helix, Ramp, Toolpath};
 use std::f64::consts::TAU;
 
 /// Default chord/biarc tolerance (mm); docs/nc-export.md ("Biarcs") gives the arc counts it
@@ -280,12 +279,16 @@ fn check_program_size(plan: &Plan, per_cycle: usize, opts: &NcOptions) -> Result
 /// header and set-up need: the path is cut at one depth, at one feed, from its first point.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PathJob<'a> {
-    /// Lines, arcs and trochoid pieces in machining order (XY, mm), connected except before
-    /// the indices in `retract_before`.
-    pub segments: &'a [Segment],
-    /// Indices of segments reached by retract to safe Z, rapid to their start and feed down to
-    /// depth (a pocket's links between rings that a straight move cannot take); increasing.
-    pub retract_before: &'a [usize],
+    /// The moves in machining order (XY, mm: lines, arcs and trochoid pieces), connected
+    /// except before the indices in its `retract_before` (reached by retract to safe Z, rapid
+    /// to their start and the next entry or a feed down to depth; increasing), and its entries,
+    /// one per connected part (the path start, then each retract in order): the tool descends
+    /// on the helix or the zig-zag ramp from above the stock top instead of feeding straight
+    /// down, or straight down outside the stock (beyond an open edge of a pocket). Retracts
+    /// beyond them (and all, when there are none): straight down, which a pocket plan uses only
+    /// where it lands in material its path has cleared. A move's own feed, where it has one,
+    /// replaces `feed_mm_per_min`.
+    pub toolpath: &'a Toolpath,
     /// Cutting depth below the stock top Z0 (mm).
     pub depth_mm: f64,
     /// Cutting feed (mm/min).
@@ -296,11 +299,6 @@ pub struct PathJob<'a> {
     pub default_title: &'a str,
     /// Header comment lines describing the job (sanitised when written).
     pub description: Vec<String>,
-    /// Entries, one per connected part (the path start, then each retract in order): the tool
-    /// descends on the helix or the zig-zag ramp from above the stock top instead of feeding
-    /// straight down, or straight down outside the stock (beyond an open edge of a pocket). Retracts beyond them (and all, when empty): straight down, which a pocket
-    /// plan uses only where it lands in material its path has cleared.
-    pub entries: &'a [Entry],
 }
 
 /// Largest gap allowed between consecutive segments of a [`PathJob`] (mm): far below any
@@ -310,7 +308,8 @@ pub const PATH_GAP_MM: f64 = 1e-6;
 impl PathJob<'_> {
     /// Check the job; the error names the parameter, its value and the allowed range.
     pub fn validate(&self) -> Result<(), Error> {
-        if self.segments.is_empty() {
+        let moves = &self.toolpath.moves;
+        if moves.is_empty() {
             return Err(Error::nc("path", "0 segments", "at least one segment"));
         }
         for (param, v, max, unit) in [
@@ -332,18 +331,28 @@ impl PathJob<'_> {
                 format!("from the smallest feed {} to 1000000 mm/min", num(min_feed)),
             ));
         }
-        if let Some(&bad) = self.retract_before.iter().find(|&&i| i == 0 || i >= self.segments.len()) {
+        let retract_before = &self.toolpath.retract_before;
+        if let Some(&bad) = retract_before.iter().find(|&&i| i == 0 || i >= moves.len()) {
             return Err(Error::nc(
                 "retract",
                 format!("before segment {bad}"),
-                format!("before segments 1 to {}", self.segments.len().saturating_sub(1)),
+                format!("before segments 1 to {}", moves.len().saturating_sub(1)),
             ));
         }
-        for (k, pair) in self.segments.windows(2).enumerate() {
-            if self.retract_before.contains(&(k + 1)) {
+        if let Some((k, f)) = moves.iter().enumerate().find_map(|(k, m)| {
+            m.feed_mm_per_min.filter(|f| !(f.is_finite() && *f >= min_feed && *f <= 1.0e6)).map(|f| (k, f))
+        }) {
+            return Err(Error::param(
+                Param::Feed,
+                f,
+                format!("from the smallest feed {} to 1000000 mm/min (move #{})", num(min_feed), k + 1),
+            ));
+        }
+        for (k, pair) in moves.windows(2).enumerate() {
+            if retract_before.contains(&(k + 1)) {
                 continue;
             }
-            let gap = (pair[1].start() - pair[0].end()).norm();
+            let gap = (pair[1].segment.start() - pair[0].segment.end()).norm();
             if gap.is_nan() || gap > PATH_GAP_MM {
                 return Err(Error::nc(
                     "path",
@@ -356,11 +365,11 @@ impl PathJob<'_> {
     }
 }
 
-/// The NC program of any tool-centre path (a pocket corner, a whole pocket): the same
-/// header, set-up, approach, retract and end as a slot program ([`program`]), and the
-/// segments at the cutting feed, fitted like a slot cycle (lines as G1, arcs as G2/G3, trochoid
+/// The NC program of a [`Toolpath`] (a pocket corner, a whole pocket of any strategy): the
+/// same header, set-up, approach, retract and end as a slot program ([`program`]), and the
+/// moves at the cutting feed (or their own), fitted like a slot cycle (lines as G1, arcs as G2/G3, trochoid
 /// pieces as biarcs, or all as chords with [`NcOptions::linear_segments`]). Before each segment
-/// in [`PathJob::retract_before`]: retract to safe Z, rapid to its start, feed down (the
+/// in the tool path's `retract_before`: retract to safe Z, rapid to its start, feed down (the
 /// approach again). A connected path (no retracts) has one approach and one final retract.
 ///
 /// The loop form and the return feed need the repeating cycles and the tooth series of a slot
@@ -382,20 +391,22 @@ pub fn program_for_path(job: &PathJob<'_>, opts: &NcOptions) -> Result<NcProgram
         spindle_rpm: job.spindle_rpm,
     };
     preamble(&mut w, &header, opts);
-    let descend = |w: &mut Writer, part: usize, start: P2| match job.entries.get(part) {
+    let path = job.toolpath;
+    let descend = |w: &mut Writer, part: usize, start: P2| match path.entries.get(part) {
         Some(Entry::Helix(h)) => helical_approach(w, h, job.depth_mm, job.feed_mm_per_min, opts),
         Some(Entry::Ramp(r)) => ramp_approach(w, r, job.depth_mm, job.feed_mm_per_min, opts),
         // beyond an open edge the tool's disc is off the stock: straight down cuts nothing
         Some(Entry::Outside { at }) => approach(w, *at, job.depth_mm, job.feed_mm_per_min, opts),
         None => approach(w, start, job.depth_mm, job.feed_mm_per_min, opts),
     };
-    descend(&mut w, 0, job.segments[0].start());
-    for (i, seg) in job.segments.iter().enumerate() {
-        if let Some(k) = job.retract_before.iter().position(|&j| j == i) {
-            descend(&mut w, k + 1, seg.start());
+    descend(&mut w, 0, path.moves[0].segment.start());
+    for (i, m) in path.moves.iter().enumerate() {
+        if let Some(k) = path.retract_before.iter().position(|&j| j == i) {
+            descend(&mut w, k + 1, m.segment.start());
         }
-        for piece in fit(seg, opts) {
-            w.segment(&piece.seg, job.feed_mm_per_min);
+        let feed = m.feed_mm_per_min.unwrap_or(job.feed_mm_per_min);
+        for piece in fit(&m.segment, opts) {
+            w.segment(&piece.seg, feed);
         }
     }
     epilogue(&mut w, opts);

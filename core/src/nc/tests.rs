@@ -4,6 +4,7 @@
 use super::*;
 use crate::job::Job;
 use crate::plan::plan;
+use crate::toolpath::MoveKind;
 use std::f64::consts::TAU;
 
 fn planned(path: PathKind) -> Plan {
@@ -134,11 +135,15 @@ fn l_path() -> Vec<Segment> {
     ]
 }
 
-fn path_job(segments: &[Segment]) -> PathJob<'_> {
+/// The segments as a tool path of cut moves, retracting before `retract_before`.
+fn toolpath(segments: &[Segment], retract_before: &[usize]) -> Toolpath {
+    let kinds = vec![MoveKind::Cut; segments.len()];
+    Toolpath::at_depth(segments, &kinds, 0.0, Vec::new(), retract_before.to_vec())
+}
+
+fn path_job(toolpath: &Toolpath) -> PathJob<'_> {
     PathJob {
-        segments,
-        retract_before: &[],
-        entries: &[],
+        toolpath,
         depth_mm: 3.0,
         feed_mm_per_min: 500.0,
         spindle_rpm: 4000.0,
@@ -150,7 +155,7 @@ fn path_job(segments: &[Segment]) -> PathJob<'_> {
 
 #[test]
 fn path_program_has_the_slot_program_frame() {
-    let segs = l_path();
+    let segs = toolpath(&l_path(), &[]);
     let prog = program_for_path(&path_job(&segs), &opts(Dialect::LinuxCnc)).expect("program");
     let slot = program(&planned(PathKind::Circular), &opts(Dialect::LinuxCnc)).expect("slot");
     // same set-up lines as a slot program, from the setup block to the spindle start
@@ -178,14 +183,23 @@ fn path_program_has_the_slot_program_frame() {
 
 #[test]
 fn bad_path_jobs_name_the_parameter() {
-    let segs = l_path();
+    let segs = toolpath(&l_path(), &[]);
     let mut gap = l_path();
     gap[2] = Segment::Line { start: crate::geom::p2(10.0, 10.1), end: crate::geom::p2(10.0, 30.0) };
+    let (empty, gap) = (toolpath(&[], &[]), toolpath(&gap, &[]));
+    let (r0, r3) = (toolpath(&l_path(), &[0]), toolpath(&l_path(), &[3]));
+    // a move's own feed must be a feed the program can write: not NaN, not zero
+    let mut nan_feed = toolpath(&l_path(), &[]);
+    nan_feed.moves[1].feed_mm_per_min = Some(f64::NAN);
+    let mut zero_feed = toolpath(&l_path(), &[]);
+    zero_feed.moves[2].feed_mm_per_min = Some(0.0);
     let cases: Vec<(PathJob<'_>, NcOptions, &str)> = vec![
-        (path_job(&[]), opts(Dialect::Fanuc), "path"),
+        (path_job(&empty), opts(Dialect::Fanuc), "path"),
         (path_job(&gap), opts(Dialect::Fanuc), "path"),
-        (PathJob { retract_before: &[0], ..path_job(&segs) }, opts(Dialect::Fanuc), "retract"),
-        (PathJob { retract_before: &[3], ..path_job(&segs) }, opts(Dialect::Fanuc), "retract"),
+        (path_job(&r0), opts(Dialect::Fanuc), "retract"),
+        (path_job(&r3), opts(Dialect::Fanuc), "retract"),
+        (path_job(&nan_feed), opts(Dialect::Fanuc), "feed"),
+        (path_job(&zero_feed), opts(Dialect::Fanuc), "feed"),
         (PathJob { depth_mm: 0.0, ..path_job(&segs) }, opts(Dialect::Fanuc), "depth"),
         (PathJob { feed_mm_per_min: f64::NAN, ..path_job(&segs) }, opts(Dialect::Fanuc), "feed"),
         (PathJob { spindle_rpm: -1.0, ..path_job(&segs) }, opts(Dialect::Fanuc), "rpm"),
@@ -206,12 +220,26 @@ fn a_retract_before_a_segment_repeats_the_approach() {
     // rapid to (10, 10.1), feed down to depth, then the line; nothing else changes.
     let mut segs = l_path();
     segs[2] = Segment::Line { start: crate::geom::p2(10.0, 10.1), end: crate::geom::p2(10.0, 30.0) };
-    let prog = program_for_path(&PathJob { retract_before: &[2], ..path_job(&segs) }, &opts(Dialect::LinuxCnc))
-        .expect("program");
+    let path = toolpath(&segs, &[2]);
+    let prog = program_for_path(&path_job(&path), &opts(Dialect::LinuxCnc)).expect("program");
     assert!(
         prog.text.contains(
             "G3 X10.0000 Y10.0000 I0.0000 J10.0000\nG0 Z5.0000\nY10.1000\nG1 Z-3.0000\nY30.0000\nG0 Z5.0000\nM5\n"
         ),
+        "{}",
+        prog.text
+    );
+}
+
+#[test]
+fn a_move_with_its_own_feed_is_written_at_it() {
+    // The arc at 250 mm/min, the lines at the job's 500: the feed word changes before the arc
+    // and back after it (modal F), nothing else.
+    let mut path = toolpath(&l_path(), &[]);
+    path.moves[1].feed_mm_per_min = Some(250.0);
+    let prog = program_for_path(&path_job(&path), &opts(Dialect::LinuxCnc)).expect("program");
+    assert!(
+        prog.text.contains("X0.0000\nG3 X10.0000 Y10.0000 I0.0000 J10.0000 F250.0\nG1 Y30.0000 F500.0\n"),
         "{}",
         prog.text
     );

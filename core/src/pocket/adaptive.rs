@@ -1,7 +1,7 @@
 //! Adaptive pocket clearing (docs/adaptive-clearing.md): helix entry, a spiral out of the bore, rings that
 //! grow along the pocket's core, thinning passes into every convex corner and a finishing
 //! contour — every move at depth measured by the independent evaluator
-//! ([`crate::corner::evaluator`]). The algorithm is ours (DERIVED below); its engagement model
+//! ([`crate::engagement::evaluator`]). The algorithm is ours (DERIVED below); its engagement model
 //! is the straight cut and the two-circle model of Wu et al. 2016 (docs/corners.md).
 //!
 //! Notation: `r` tool radius, `a_e` the step-over, φ* = arccos(1 − a_e/r) its straight-cut
@@ -106,22 +106,23 @@
 //! loop then runs clockwise, with the same engagement by symmetry.
 
 use super::PocketSettings;
-use super::entry::Entry;
 use super::mirror::{mirror_segment, mirrored_polygon};
-use super::perforative::{KindMax, MoveKind, maxima, peak_and_p95, sample_owners};
-use super::rings::to_segments;
-use crate::corner::{EngagementProfile, EvaluatorOptions, engagement_profile};
+use super::path::PocketPath;
+pub use crate::corner::point::{
+    DEFAULT_CORNER_TOLERANCE_MM, corner_point_bound_rad, corner_point_radii, next_corner_point_radius,
+    validate_corner_tolerance,
+};
+use crate::engagement::sample_owners;
 use crate::error::{Error, Param, num};
+use crate::geom::offset::{BoolOp, Region, largest};
 use crate::geom::{P2, Polygon, Segment, bisect_edge, cross, p2};
 use crate::job::Direction;
-use cavalier_contours::polyline::{BooleanOp, PlineSource, PlineSourceMut, PlineVertex, Polyline};
+pub use crate::toolpath::HELIX_START_Z_MM;
+use crate::toolpath::Toolpath;
+use crate::toolpath::{Entry, Helix, MoveKind};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 
-/// Height above the stock top Z0 where the helix starts (mm).
-pub const HELIX_START_Z_MM: f64 = 0.5;
-/// Engagement below which a move counts as air (rad): 1°.
-pub const AIR_ENGAGEMENT_RAD: f64 = PI / 180.0;
 /// Most rings or corner passes per part (bounds run time on hostile input).
 const MAX_PASSES: usize = 20_000;
 /// Fractions of the inscribed radius the core radius T starts from (the shortest plan wins).
@@ -160,21 +161,8 @@ pub struct AdaptiveOptions {
     pub corner_tolerance_mm: f64,
 }
 
-/// The default corner tolerance δ (mm): a residual of δ(1/sin(α/2) − 1) = 0.002 mm on the
-/// bisector of a 90° corner, far below a finishing tolerance.
-pub const DEFAULT_CORNER_TOLERANCE_MM: f64 = 0.005;
-
 fn default_corner_tolerance() -> f64 {
     DEFAULT_CORNER_TOLERANCE_MM
-}
-
-/// The range of a corner tolerance δ (mm), of adaptive pockets and of `trochoplan corner`:
-/// from 0.001 to 1; the error names `corner-tolerance`.
-pub fn validate_corner_tolerance(d: f64) -> Result<(), Error> {
-    if !(d.is_finite() && (0.001..=1.0).contains(&d)) {
-        return Err(Error::param(Param::CornerTolerance, d, "from 0.001 to 1 mm"));
-    }
-    Ok(())
 }
 
 impl Default for AdaptiveOptions {
@@ -287,44 +275,6 @@ pub fn default_target_rad(a_e: f64, r: f64) -> Result<f64, Error> {
     Ok(by_area.min(DEFAULT_TARGET_CAP_DEG.to_radians()).max(phi_star))
 }
 
-/// A helical entry: the tool centre on a circle, descending from [`HELIX_START_Z_MM`] to the
-/// depth over whole turns in the loops' sense.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Helix {
-    pub center: P2,
-    pub radius: f64,
-    /// Angle of the start (and end) point (rad).
-    pub start_angle: f64,
-    /// +1 counter-clockwise (climb), −1 clockwise.
-    pub sense: f64,
-    /// Ramp angle (rad): the descent per turn is 2π·r_h·tan(ramp) at most.
-    pub ramp_rad: f64,
-}
-
-impl Helix {
-    /// Whole turns needed to descend `drop` mm at the ramp angle.
-    pub fn turns(&self, drop: f64) -> usize {
-        let per_turn = TAU * self.radius * self.ramp_rad.tan();
-        ((drop / per_turn) - 1e-9).ceil().max(1.0) as usize
-    }
-
-    /// The helix as a full circle in the plane (what it clears at depth).
-    pub fn circle(&self) -> Segment {
-        Segment::Arc {
-            center: self.center,
-            radius: self.radius,
-            start_angle: self.start_angle,
-            sweep: self.sense * TAU,
-        }
-    }
-
-    /// Length of the 3D helix descending `drop` mm (mm).
-    pub fn length(&self, drop: f64) -> f64 {
-        let n = self.turns(drop) as f64;
-        ((n * TAU * self.radius).powi(2) + drop * drop).sqrt()
-    }
-}
-
 /// One convex corner of a part, thinned by arcs.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CornerPasses {
@@ -382,126 +332,22 @@ pub struct AdaptivePart {
 /// A pocket cleared adaptively.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct AdaptivePlan {
-    pub polygon: Polygon,
-    /// The open edges of `polygon` (edge i from vertex i to vertex i + 1): no wall there, the
+    /// The pocket, the settings, every move at depth in machining order (parts one after the
+    /// other; a retract before each part but the first and before a link with no path at
+    /// depth), the parts' entries, and the measurement with the helix and ramp bores counted as
+    /// cut; links are the [`MoveKind::Link`] moves.
+    pub path: PocketPath,
+    /// The open edges of the polygon (edge i from vertex i to vertex i + 1): no wall there, the
     /// stock ends ([`plan_adaptive_open`]).
     #[serde(default)]
     pub open_edges: Vec<usize>,
-    pub settings: PocketSettings,
     pub options: AdaptiveOptions,
     /// Target engagement φ* = arccos(1 − a_e/r) (rad).
     pub target_rad: f64,
     pub parts: Vec<AdaptivePart>,
-    /// Every move at depth in machining order (parts one after the other); `kinds[i]` says
-    /// what `segments[i]` does.
-    pub segments: Vec<Segment>,
-    pub kinds: Vec<MoveKind>,
-    /// Moves reached by a retract inside a part (a link with no path at depth).
-    #[serde(default)]
-    pub retracts: Vec<usize>,
-    /// The evaluator's profile along `segments`, the helix and ramp bores counted as cut.
-    pub profile: EngagementProfile,
-    /// Per kind of move: maximum and where, length.
-    pub maxima: Vec<KindMax>,
-    /// Maximum over every move at depth (rad), and the 95th percentile of the samples.
-    pub max_engagement_rad: f64,
-    pub p95_engagement_rad: f64,
-    /// Length at depth (mm), of it the links, and the air (engagement < 1°).
-    pub length_at_depth_mm: f64,
-    pub link_length_mm: f64,
-    pub air_length_mm: f64,
-    /// Length of the entries' descents (mm): helices, ramps, straight down outside the stock.
-    pub helix_length_mm: f64,
-    /// Time at the feed: the descents and every move at depth (s).
-    pub time_s: f64,
     /// Radius of the pocket's convex corners as cut (mm): r + δ after the finishing pass's
     /// corner arcs, r + ρ_fin without a finishing pass ([`corner_point_bound_rad`]).
     pub corner_radius_left_mm: f64,
-}
-
-/// The engagement any path reads when it reaches the corner point of a convex corner of
-/// interior angle α (DERIVED): at that point the periphery arc facing the corner, between the
-/// two wall normals, lies strictly inside the pocket and every point of it is nearer to that
-/// tool position than to any other allowed one (the corner point is the only tool centre within
-/// r of them), so all of it is material when the tool first arrives: π − α (90° at a 90°
-/// corner, 120° at 60°). This is why the plan stops δ short of it ([`next_corner_point_radius`]).
-pub fn corner_point_bound_rad(alpha: f64) -> f64 {
-    PI - alpha
-}
-
-/// The next corner-arc radius ρ_k+1 after ρ_k (mm) in a convex corner of interior angle α whose
-/// walls are final, so that the tool on arc k+1 engages at most φ (DERIVED). Take wall A as
-/// the x axis of the tool centres (the region above it, travel +x), the corner point V at the
-/// origin, t = tan(α/2). Arc k (radius ρ_k, tangent to both walls) has its centre at
-/// O_k = (−ρ_k/t, ρ_k); what it left is the cap outside its tool envelope, the circle of
-/// radius R = ρ_k + r about O_k (tangent to both pocket walls). A tool position T on arc k+1
-/// (centre (−ρ_k+1/t, ρ_k+1), from its tangent point on wall A through π − α) moving in
-/// direction μ: its periphery point at angle ψ is at distance² d² + r² − 2dr·cos(ψ − β₀) from
-/// O_k (d = |O_k − T|, β₀ the direction of O_k − T), so it is material where
-/// |ψ − β₀| > γ, cos γ = (d² + r² − R²)/(2dr), and it lies inside the pocket (T keeps r from
-/// both pocket walls; at the arc's ends the wall contact is the front half's edge). The
-/// engaged angle is that arc within the front half |ψ − μ| ≤ π/2 (behind the tool its own
-/// path has cut, as in the evaluator). At the arc's start this is π/2 + β₀ − γ, for ρ ≪ r
-/// 2·atan((1 − q)/t) with q = ρ_k+1/ρ_k: a fixed ratio q = 1 − t·tan(φ/2) (0.528 at 90° and
-/// φ = 50.5°; q ≤ 0 where φ ≥ π − α: one arc reaches δ). The start is the peak for α ≥ 90°;
-/// for acute corners the peak moves onto the arc, so the maximum is taken over 33 positions
-/// along it. ρ → 0 (the corner point itself) would take infinitely many arcs and reads π − α
-/// at the point ([`corner_point_bound_rad`]): the arcs stop at the corner tolerance δ. The
-/// engaged angle grows as ρ_k+1 shrinks; ρ_k+1 is found by bisection and clamped to [δ, ρ_k].
-/// Checked against the evaluator in `core/tests/adaptive_pocket.rs` (it reads φ at 90°).
-pub fn next_corner_point_radius(rho: f64, alpha: f64, r: f64, phi: f64, delta: f64) -> f64 {
-    let t = (0.5 * alpha).tan();
-    let big_r = rho + r;
-    let o_k = p2(-rho / t, rho);
-    let engagement = |next: f64| {
-        let c1 = p2(-next / t, next);
-        (0..=32)
-            .map(|j| {
-                let theta = -0.5 * PI + (PI - alpha) * j as f64 / 32.0;
-                let tool = c1 + p2(theta.cos(), theta.sin()) * next;
-                let mu = theta + 0.5 * PI;
-                let v = o_k - tool;
-                let d = v.norm().max(1e-12);
-                let cos_gamma = ((d * d + r * r - big_r * big_r) / (2.0 * d * r)).clamp(-1.0, 1.0);
-                // material: the arc of half-width π − γ about β₀ + π; front half: π/2 about μ
-                let w = PI - cos_gamma.acos();
-                let delta_c = (v.y.atan2(v.x) + PI - mu + PI).rem_euclid(TAU) - PI;
-                ((delta_c + w).min(0.5 * PI) - (delta_c - w).max(-0.5 * PI)).max(0.0)
-            })
-            .fold(0.0, f64::max)
-    };
-    if engagement(0.0) <= phi {
-        return delta.min(rho);
-    }
-    let (mut lo, mut hi) = (0.0, rho);
-    for _ in 0..50 {
-        let mid = 0.5 * (lo + hi);
-        if engagement(mid) <= phi {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    hi.clamp(delta.min(rho), rho)
-}
-
-/// The radii (mm) of the arcs into a corner point of interior angle α after an arc of radius
-/// `rho0`, each from [`next_corner_point_radius`] (so within φ), down to the corner tolerance δ;
-/// at most `max_arcs` (the caller's bound on hostile input). Used by adaptive clearing's finishing pass and by
-/// the corner strategies of `trochoplan corner` after their last wall-tangent circle (which
-/// leaves exactly the cap this derivation models).
-pub fn corner_point_radii(rho0: f64, alpha: f64, r: f64, phi: f64, delta: f64, max_arcs: usize) -> Vec<f64> {
-    let mut radii = Vec::new();
-    let mut q = rho0;
-    while q > delta * (1.0 + 1e-9) && radii.len() < max_arcs {
-        let next = next_corner_point_radius(q, alpha, r, phi, delta);
-        if next >= q * (1.0 - 1e-9) {
-            break;
-        }
-        radii.push(next);
-        q = next;
-    }
-    radii
 }
 
 /// The radial step a (mm) a concave cut of tool-centre radius ρ may take at engagement φ
@@ -513,40 +359,6 @@ pub fn concave_step(rho: f64, r: f64, phi: f64) -> f64 {
     let disc = (b * b - 4.0 * c2 * k).max(0.0);
     // a = (b − √disc)/(2·c2), written stably as 2k/(b + √disc).
     2.0 * k / (b + disc.sqrt())
-}
-
-pub(crate) fn pline_of(vertices: &[P2]) -> Polyline<f64> {
-    let mut pl: Polyline<f64> = Polyline::new_closed();
-    for v in vertices {
-        pl.add(v.x, v.y, 0.0);
-    }
-    pl
-}
-
-pub(crate) fn disc(c: P2, s: f64) -> Polyline<f64> {
-    let mut pl: Polyline<f64> = Polyline::new_closed();
-    pl.add(c.x + s, c.y, 1.0);
-    pl.add(c.x - s, c.y, 1.0);
-    pl
-}
-
-/// Closed counter-clockwise loops of an offset (positive: inward for a CCW loop).
-pub(crate) fn offset(pl: &Polyline<f64>, d: f64) -> Vec<Polyline<f64>> {
-    pl.parallel_offset(d)
-        .into_iter()
-        .filter(|o| o.vertex_count() >= 2 && o.is_closed())
-        .map(|mut o| {
-            if o.area() < 0.0 {
-                o.invert_direction_mut();
-            }
-            o
-        })
-        .filter(|o| o.area() > 1e-9)
-        .collect()
-}
-
-pub(crate) fn largest(loops: Vec<Polyline<f64>>) -> Option<Polyline<f64>> {
-    loops.into_iter().max_by(|a, b| a.area().total_cmp(&b.area()))
 }
 
 /// The closest point of a line or arc to `q`, and its local parameter.
@@ -799,8 +611,8 @@ fn plan_path(
     let r = settings.tool_radius;
     let phi = options.target_rad(&settings)?;
     let sf = options.finish_stock_mm;
-    let outline = pline_of(work.vertices());
-    let closed_regions = offset(&outline, r + sf);
+    let outline = Region::polygon(work.vertices());
+    let closed_regions = outline.offset(r + sf);
     if closed_regions.is_empty() {
         return Err(Error::param(
             Param::Polygon,
@@ -815,7 +627,7 @@ fn plan_path(
         clear_regions(&closed_regions, &work, &settings, &options, phi, rho_fin, None)?
     } else {
         let open = OpenPocket::new(&work, &work_open, &closed_regions, r + sf)?;
-        let regions = offset(&open.near, r + sf);
+        let regions = open.near.offset(r + sf);
         clear_regions(&regions, &open.near_polygon, &settings, &options, phi, rho_fin, Some(&open))?
     };
     if mirror {
@@ -842,7 +654,7 @@ fn plan_path(
 /// where it reaches past an open edge of `open`, else a helix. Also the core of the ring
 /// methods ([`super::rings::plan_ring_pocket`], closed: `open` = `None`).
 pub(crate) fn clear_regions(
-    regions: &[Polyline<f64>],
+    regions: &[Region],
     work: &Polygon,
     settings: &PocketSettings,
     options: &AdaptiveOptions,
@@ -916,15 +728,15 @@ pub(crate) fn fin_radius(sf: f64, r: f64, phi: f64) -> f64 {
 #[allow(clippy::too_many_arguments)]
 fn spiral_and_rings(
     b: &mut Builder,
-    region: &Polyline<f64>,
-    core: &Polyline<f64>,
+    region: &Region,
+    core: &Region,
     (inscribed, k0): (f64, P2),
     polygon: &Polygon,
     (r, t, r_h, phi): (f64, f64, f64, f64),
     options: &AdaptiveOptions,
 ) -> (Helix, Option<(P2, P2, f64)>, usize) {
     // Wall point nearest k0: every ring passes within (inscribed − T) of it.
-    let walls = to_segments(region);
+    let walls = region.segments();
     let foot = walls
         .iter()
         .map(|s| closest_on(s, k0).0)
@@ -1021,26 +833,26 @@ fn spiral_and_rings(
     ];
     let q0 = b.at();
     let mut ring0 = start_near(&stadium, q0);
-    let mut cut: Polyline<f64> = Polyline::new_closed();
-    for v in [a_minus - m * spiral_end, a_plus - m * spiral_end, a_plus + m * spiral_end, a_minus + m * spiral_end] {
-        cut.add(v.x, v.y, 0.0);
-    }
-    cut.set_vertex(1, PlineVertex::new(cut[1].x, cut[1].y, 1.0));
-    cut.set_vertex(3, PlineVertex::new(cut[3].x, cut[3].y, 1.0));
+    let cut = Region::with_bulges(&[
+        (a_minus - m * spiral_end, 0.0),
+        (a_plus - m * spiral_end, 1.0),
+        (a_plus + m * spiral_end, 0.0),
+        (a_minus + m * spiral_end, 1.0),
+    ]);
     // Rings: (K ∩ D(k0, s)) ⊕ T a step apart, joined at the wall point q0 where the spiral
     // ended; a ring that adds to the stadium less area than a strip of 2 % of the step along
     // its whole length (it lies inside the stadium but for slivers) is not cut.
     let step = concave_step(t, r, phi);
-    let reach = core.iter_vertexes().map(|v| (p2(v.x, v.y) - k0).norm()).fold(0.0, f64::max);
+    let reach = core.vertices().iter().map(|&v| (v - k0).norm()).fold(0.0, f64::max);
     let mut s = (s0 + step).min(reach);
-    let (mut rings_cut, mut prev): (Vec<Vec<Segment>>, Option<Polyline<f64>>) = (Vec::new(), None);
+    let (mut rings_cut, mut prev): (Vec<Vec<Segment>>, Option<Region>) = (Vec::new(), None);
     while s > s0 + 1e-9 && rings_cut.len() < MAX_PASSES {
         let grown = super::growth::grown(core, k0, s, reach, prev.as_ref(), step);
         let filled = grown.as_ref().is_none_or(|g| super::growth::fills(g, core));
-        if let Some(o) = grown.as_ref().and_then(|g| largest(offset(g, -t))) {
-            let outside: f64 = o.boolean(&cut, BooleanOp::Not).pos_plines.iter().map(|p| p.pline.area().abs()).sum();
+        if let Some(o) = grown.as_ref().and_then(|g| largest(g.offset(-t))) {
+            let outside: f64 = o.boolean(&cut, BoolOp::Not).iter().map(|p| p.area().abs()).sum();
             if outside >= 0.02 * step * o.path_length() {
-                rings_cut.push(start_near(&to_segments(&o), q0));
+                rings_cut.push(start_near(&o.segments(), q0));
             }
         }
         let stalled = prev.as_ref().zip(grown.as_ref()).is_some_and(|(p, g)| g.area() <= p.area() * (1.0 + 1e-9));
@@ -1079,7 +891,7 @@ fn spiral_and_rings(
 /// Entry, spiral, rings and corners of one region of tool centres; the finishing pass.
 #[allow(clippy::too_many_arguments)]
 fn plan_part(
-    region: &Polyline<f64>,
+    region: &Region,
     (inscribed, k0): (f64, P2),
     polygon: &Polygon,
     settings: &PocketSettings,
@@ -1102,18 +914,18 @@ fn plan_part(
         _ => region,
     };
     let area = t_region.area();
-    let corners_all = convex_corners(&to_segments(region));
+    let corners_all = convex_corners(&region.segments());
     let t_corners = match seed {
-        Seed::Outside { .. } => convex_corners(&to_segments(t_region)),
+        Seed::Outside { .. } => convex_corners(&t_region.segments()),
         _ => Vec::new(),
     };
     let t_corners = if t_corners.is_empty() { &corners_all } else { &t_corners };
     let sf = options.finish_stock_mm;
-    let cusps_all = super::cusp::cusps(&to_segments(region), polygon, r + sf, sf);
+    let cusps_all = super::cusp::cusps(&region.segments(), polygon, r + sf, sf);
     let open_cusps;
     let t_cusps = match seed {
         Seed::Outside { .. } => {
-            open_cusps = super::cusp::cusps(&to_segments(t_region), polygon, r + sf, sf);
+            open_cusps = super::cusp::cusps(&t_region.segments(), polygon, r + sf, sf);
             &open_cusps
         }
         _ => &cusps_all,
@@ -1125,9 +937,9 @@ fn plan_part(
         if t < r_h {
             t = r_h;
         }
-        let ks = offset(t_region, t);
+        let ks = t_region.offset(t);
         if ks.len() == 1
-            && let Some(opened) = largest(offset(&ks[0], -t))
+            && let Some(opened) = largest(ks[0].offset(-t))
         {
             let caps: f64 = t_corners.iter().map(|c| c.cap_area(t)).sum::<f64>()
                 + t_cusps.iter().map(|c| c.cap_area(t)).sum::<f64>();
@@ -1157,7 +969,7 @@ fn plan_part(
             (Entry::Helix(helix), trimmed, rings)
         }
         Seed::Outside { stock, grow, .. } => {
-            let grow_core = largest(offset(grow, t)).ok_or_else(|| {
+            let grow_core = largest(grow.offset(t)).ok_or_else(|| {
                 Error::param(Param::OpenEdges, "no core beyond the open edges", "open edges at least D long")
             })?;
             let (rings, at) = grown_rings(b, polygon, r, &grow_core, t, phi, k0, stock)?;
@@ -1254,17 +1066,17 @@ fn plan_part(
     // every convex corner arc of it the arcs into the corner point.
     let mut corner_points = Vec::new();
     if sf > 0.0 {
-        let inner = largest(offset(region, rho_fin)).ok_or_else(|| {
+        let inner = largest(region.offset(rho_fin)).ok_or_else(|| {
             Error::param(Param::Polygon, "no finishing contour", "a pocket wider than the tool plus the stock")
         })?;
-        let fin = largest(offset(&inner, -(rho_fin + sf)))
+        let fin = largest(inner.offset(-(rho_fin + sf)))
             .ok_or_else(|| Error::param(Param::Polygon, "no finishing contour", "a pocket wider than the tool"))?;
         // Start on the straight wall nearest the tool (at its point nearest the tool, at least
         // ρ_l from the wall's start; the longest wall's middle where no wall is 2ρ_l long),
         // entered on a quarter circle of radius ρ_l = max(s_f, r/2) tangent to it (the stock
         // grows from 0 to s_f under a convex arc); the lead-in starts ρ_l from the wall, in
         // cleared material.
-        let loop_segs = to_segments(&fin);
+        let loop_segs = fin.segments();
         let lead = sf.max(0.5 * r);
         let here = b.at();
         let lines: Vec<(P2, P2)> = loop_segs
@@ -1346,7 +1158,7 @@ pub(crate) enum Seed<'a> {
     /// there), `grow` the tool-centre region of the pocket extended far enough across its open
     /// edges that its core holds tool centres off the stock, `closed` the tool-centre region
     /// of the closed pocket, on which T is chosen.
-    Outside { stock: &'a Polyline<f64>, grow: &'a Polyline<f64>, closed: &'a Polyline<f64> },
+    Outside { stock: &'a Region, grow: &'a Region, closed: &'a Region },
 }
 
 /// Rings grown from outside the stock in the core `core` = C ⊖ T of the pocket extended across
@@ -1365,31 +1177,19 @@ fn grown_rings(
     b: &mut Builder,
     polygon: &Polygon,
     r: f64,
-    core: &Polyline<f64>,
+    core: &Region,
     t: f64,
     phi: f64,
     k0: P2,
-    stock: &Polyline<f64>,
+    stock: &Region,
 ) -> Result<(usize, P2), Error> {
     let step = concave_step(t, r, phi);
-    let pieces = |res: Vec<cavalier_contours::polyline::BooleanResultPline<Polyline<f64>>>| {
-        res.into_iter()
-            .map(|p| {
-                let mut pl = p.pline;
-                if pl.area() < 0.0 {
-                    pl.invert_direction_mut();
-                }
-                pl
-            })
-            .filter(|pl| pl.area() > 1e-9)
-            .collect::<Vec<_>>()
-    };
-    let near = largest(offset(stock, -(t + r + OUTSIDE_MARGIN_MM)))
+    let pieces = |res: Vec<Region>| res.into_iter().map(Region::ccw).filter(|pl| pl.area() > 1e-9).collect::<Vec<_>>();
+    let near = largest(stock.offset(-(t + r + OUTSIDE_MARGIN_MM)))
         .ok_or_else(|| Error::param(Param::Polygon, "no stock", "a pocket with area"))?;
     // One seed: the largest piece of air (beyond two opposite open edges the rings grow from
     // one through to the other, instead of crossing uncut stock between two fronts).
-    let mut grown: Vec<Polyline<f64>> =
-        largest(pieces(core.boolean(&near, BooleanOp::Not).pos_plines)).into_iter().collect();
+    let mut grown: Vec<Region> = largest(pieces(core.boolean(&near, BoolOp::Not))).into_iter().collect();
     if grown.is_empty() {
         return Err(Error::param(
             Param::OpenEdges,
@@ -1397,21 +1197,21 @@ fn grown_rings(
             "open edges the tool can pass through (at least D long)",
         ));
     }
-    let loops_of = |g: &[Polyline<f64>]| -> Vec<Vec<Segment>> {
-        g.iter().filter_map(|p| largest(offset(p, -t))).map(|o| to_segments(&o)).collect()
+    let loops_of = |g: &[Region]| -> Vec<Vec<Segment>> {
+        g.iter().filter_map(|p| largest(p.offset(-t))).map(|o| o.segments()).collect()
     };
     let mut rings = vec![loops_of(&grown)];
-    let mut area: f64 = grown.iter().map(Polyline::area).sum();
+    let mut area: f64 = grown.iter().map(Region::area).sum();
     let least_growth = 1e-6 * core.area().max(1.0);
     while rings.len() < MAX_PASSES {
-        let mut next: Vec<Polyline<f64>> = Vec::new();
+        let mut next: Vec<Region> = Vec::new();
         for g in &grown {
-            let Some(d) = largest(offset(g, -step)) else { continue };
-            for piece in pieces(core.boolean(&d, BooleanOp::And).pos_plines) {
+            let Some(d) = largest(g.offset(-step)) else { continue };
+            for piece in pieces(core.boolean(&d, BoolOp::And)) {
                 merge_into(&mut next, piece);
             }
         }
-        let next_area: f64 = next.iter().map(Polyline::area).sum();
+        let next_area: f64 = next.iter().map(Region::area).sum();
         if next_area <= area + least_growth {
             break;
         }
@@ -1446,27 +1246,21 @@ fn grown_rings(
 
 /// Whether the tool on `seg` comes within r of the stock `stock` (at its ends and 15 points
 /// between; the runs are smooth, a step long at most where they start to cut).
-fn reaches_stock(stock: &Polyline<f64>, seg: &Segment, r: f64) -> bool {
-    let walls = to_segments(stock);
+fn reaches_stock(stock: &Region, seg: &Segment, r: f64) -> bool {
+    let walls = stock.segments();
     (0..=16).any(|k| {
         let p = seg.point(k as f64 / 16.0);
-        stock.winding_number(cavalier_contours::core::math::Vector2::new(p.x, p.y)) != 0
-            || walls.iter().any(|w| (closest_on(w, p).0 - p).norm() < r + 0.5 * OUTSIDE_MARGIN_MM)
+        stock.contains(p) || walls.iter().any(|w| (closest_on(w, p).0 - p).norm() < r + 0.5 * OUTSIDE_MARGIN_MM)
     })
 }
 
 /// Add `p` to the disjoint regions `list`, uniting it with those it overlaps.
-fn merge_into(list: &mut Vec<Polyline<f64>>, p: Polyline<f64>) {
+fn merge_into(list: &mut Vec<Region>, p: Region) {
     let mut p = p;
-    while let Some(i) = list.iter().position(|q| !q.boolean(&p, BooleanOp::And).pos_plines.is_empty()) {
+    while let Some(i) = list.iter().position(|q| !q.boolean(&p, BoolOp::And).is_empty()) {
         let q = list.swap_remove(i);
-        match largest(q.boolean(&p, BooleanOp::Or).pos_plines.into_iter().map(|x| x.pline).collect()) {
-            Some(mut u) => {
-                if u.area() < 0.0 {
-                    u.invert_direction_mut();
-                }
-                p = u;
-            }
+        match largest(q.boolean(&p, BoolOp::Or)) {
+            Some(u) => p = u.ccw(),
             None => break,
         }
     }
@@ -1483,34 +1277,35 @@ pub const OPEN_REACH_FACTOR: f64 = 3.0;
 /// A pocket open on some edges: the stock and the pocket extended across its open edges.
 pub(crate) struct OpenPocket {
     /// The pocket outline: the stock.
-    stock: Polyline<f64>,
+    stock: Region,
     /// Extended by [`OPEN_REACH_FACTOR`] (r + s_f) across the open edges: its tool-centre
     /// regions are the parts'; as a polygon (arcs by their chords) for the links.
-    near: Polyline<f64>,
+    near: Region,
     near_polygon: Polygon,
     /// The pocket extended as for `far` (arcs by 32 chords each): where the links are routed.
     far_polygon: Polygon,
     /// The tool-centre regions of the pocket extended by 2T + 2r + s_f + 2 mm (T up to the
     /// closed region's inscribed radius), so their cores reach past the open edges by more
     /// than T + r: the rings' seed lies there.
-    far: Vec<Polyline<f64>>,
+    far: Vec<Region>,
     /// The largest tool-centre region of the closed pocket.
-    closed: Polyline<f64>,
+    closed: Region,
 }
 
 impl OpenPocket {
     /// The open pocket of `work` open on `open` (its edge indices), tool-centre offset `rs`
     /// = r + s_f; `closed_regions` the closed pocket's tool-centre regions.
-    fn new(work: &Polygon, open: &[usize], closed_regions: &[Polyline<f64>], rs: f64) -> Result<OpenPocket, Error> {
+    fn new(work: &Polygon, open: &[usize], closed_regions: &[Region], rs: f64) -> Result<OpenPocket, Error> {
         let closed = largest(closed_regions.to_vec()).ok_or_else(|| {
             Error::param(Param::Polygon, "narrower than the tool", "room for the tool plus the finishing stock")
         })?;
         let reach = OPEN_REACH_FACTOR * rs;
         let near = extended(work, open, reach, 0.5 * reach)?;
-        let near_polygon = Polygon::new(near.iter_vertexes().map(|v| p2(v.x, v.y)).collect())?;
+        let near_polygon = Polygon::new(near.vertices())?;
         let far_reach = 2.0 * inscribed(&closed).0 + 2.0 * rs + 2.0;
         let far_outline = extended(work, open, far_reach, 0.5 * far_reach)?;
-        let chords = to_segments(&far_outline)
+        let chords = far_outline
+            .segments()
             .iter()
             .flat_map(|sg| if matches!(sg, Segment::Arc { .. }) { sg.sample(32) } else { vec![sg.start(), sg.end()] })
             .skip(1)
@@ -1520,54 +1315,43 @@ impl OpenPocket {
                 }
                 v
             });
-        let (far_polygon, far) = (Polygon::new(chords)?, offset(&far_outline, rs));
-        Ok(OpenPocket { stock: pline_of(work.vertices()), near, near_polygon, far_polygon, far, closed })
+        let (far_polygon, far) = (Polygon::new(chords)?, far_outline.offset(rs));
+        Ok(OpenPocket { stock: Region::polygon(work.vertices()), near, near_polygon, far_polygon, far, closed })
     }
 
     /// The seed of a tool-centre region of the extended pocket: outside the stock where the
     /// region reaches past an open edge (a vertex of it off the stock), from the far region
     /// that holds it.
-    fn seed_of(&self, region: &Polyline<f64>) -> Option<Seed<'_>> {
-        let off =
-            |v: PlineVertex<f64>| self.stock.winding_number(cavalier_contours::core::math::Vector2::new(v.x, v.y)) == 0;
-        let v = region.iter_vertexes().find(|&v| off(v))?;
-        let here = cavalier_contours::core::math::Vector2::new(v.x, v.y);
-        let grow = self.far.iter().find(|f| f.winding_number(here) != 0).or_else(|| self.far.first())?;
+    fn seed_of(&self, region: &Region) -> Option<Seed<'_>> {
+        let here = region.vertices().into_iter().find(|&v| !self.stock.contains(v))?;
+        let grow = self.far.iter().find(|f| f.contains(here)).or_else(|| self.far.first())?;
         Some(Seed::Outside { stock: &self.stock, grow, closed: &self.closed })
     }
 }
 
 /// `work` extended outward across each open edge by `reach`: the edge swept along its outward
 /// normal, the far corners rounded with radius `round` (at most half the edge).
-fn extended(work: &Polygon, open: &[usize], reach: f64, round: f64) -> Result<Polyline<f64>, Error> {
+fn extended(work: &Polygon, open: &[usize], reach: f64, round: f64) -> Result<Region, Error> {
     let v = work.vertices();
     let n = v.len();
     let quarter = (PI / 8.0).tan();
-    let mut out = pline_of(v);
+    let mut out = Region::polygon(v);
     for &i in open {
         let (a, b) = (v[i], v[(i + 1) % n]);
         let len = (b - a).norm();
         let u = (b - a) / len;
         let out_n = p2(u.y, -u.x);
         let rho = round.min(0.49 * len).min(reach);
-        let mut q: Polyline<f64> = Polyline::new_closed();
-        for (p, bulge) in [
+        let q = Region::with_bulges(&[
             (a, 0.0),
             (a + out_n * (reach - rho), quarter),
             (a + out_n * reach + u * rho, 0.0),
             (b + out_n * reach - u * rho, quarter),
             (b + out_n * (reach - rho), 0.0),
             (b, 0.0),
-        ] {
-            q.add(p.x, p.y, bulge);
-        }
-        out = largest(out.boolean(&q, BooleanOp::Or).pos_plines.into_iter().map(|p| p.pline).collect())
-            .map(|mut p| {
-                if p.area() < 0.0 {
-                    p.invert_direction_mut();
-                }
-                p
-            })
+        ]);
+        out = largest(out.boolean(&q, BoolOp::Or))
+            .map(Region::ccw)
             .ok_or_else(|| Error::param(Param::OpenEdges, i, "edges whose extension joins the pocket"))?;
     }
     Ok(out)
@@ -1650,10 +1434,10 @@ fn corner_point_arcs(b: &mut Builder, c: &Corner, rho0: f64, r: f64, phi: f64, d
 /// u either side of k0 (u along the core's longest edge), and the widening w of the
 /// stadium's radius q (below). `None` where the core is
 /// not that thin (an L, a square) or its extents are below a tenth of `width`.
-fn stadium_axis(region: &Polyline<f64>, q: f64, k0: P2, width: f64) -> Option<(P2, f64, f64, f64)> {
-    let ks = offset(region, q);
+fn stadium_axis(region: &Region, q: f64, k0: P2, width: f64) -> Option<(P2, f64, f64, f64)> {
+    let ks = region.offset(q);
     let [k] = ks.as_slice() else { return None };
-    let vs: Vec<P2> = k.iter_vertexes().map(|v| p2(v.x, v.y)).collect();
+    let vs: Vec<P2> = k.vertices();
     let (mut u, mut far) = (p2(1.0, 0.0), 0.0);
     for (i, a) in vs.iter().enumerate() {
         let c = vs[(i + 1) % vs.len()];
@@ -1674,7 +1458,7 @@ fn stadium_axis(region: &Polyline<f64>, q: f64, k0: P2, width: f64) -> Option<(P
     // Widened by the core's half-width w (the stadium then reaches the walls the core's offset
     // reaches) and shortened by w, where its axis keeps q + w from every wall.
     let w = vs.iter().map(|v| off(v).abs()).fold(0.0, f64::max);
-    let walls = to_segments(region);
+    let walls = region.segments();
     let clear = |p: P2| walls.iter().map(|sg| (closest_on(sg, p).0 - p).norm()).fold(f64::INFINITY, f64::min);
     let (sp, sm) = ((s_plus - w).max(0.0), (s_minus - w).max(0.0));
     if [k0 + u * sp, k0 - u * sm, k0].iter().all(|&p| clear(p) >= q + w - 1e-9) {
@@ -1696,18 +1480,17 @@ pub(crate) fn link(b: &mut Builder, polygon: &Polygon, r: f64, to: P2) {
 
 /// The radius of the largest circle in the region, by bisection on inward offsets, and its
 /// centre (the middle of the last offset that does not vanish).
-pub(crate) fn inscribed(region: &Polyline<f64>) -> (f64, P2) {
+pub(crate) fn inscribed(region: &Region) -> (f64, P2) {
     let ext = region.extents();
-    let (mut lo, mut hi) = (0.0, ext.map_or(1.0, |e| 0.5 * (e.max_x - e.min_x).min(e.max_y - e.min_y)) + 1e-9);
-    let mut centre = region.iter_vertexes().next().map_or(P2::zeros(), |v| p2(v.x, v.y));
+    let (mut lo, mut hi) = (0.0, ext.map_or(1.0, |(a, b)| 0.5 * (b.x - a.x).min(b.y - a.y)) + 1e-9);
+    let mut centre = region.vertices().first().copied().unwrap_or_else(P2::zeros);
     for _ in 0..INSCRIBED_STEPS {
         let mid = 0.5 * (lo + hi);
-        match largest(offset(region, mid)) {
+        match largest(region.offset(mid)) {
             Some(o) => {
                 lo = mid;
-                let ext = o.extents();
-                if let Some(e) = ext {
-                    centre = p2(0.5 * (e.min_x + e.max_x), 0.5 * (e.min_y + e.max_y));
+                if let Some((a, b)) = o.extents() {
+                    centre = p2(0.5 * (a.x + b.x), 0.5 * (a.y + b.y));
                 }
             }
             None => hi = mid,
@@ -1726,19 +1509,18 @@ fn measure(
     b: Builder,
     corner_radius_left_mm: f64,
 ) -> Result<AdaptivePlan, Error> {
+    // a retract before every part but the first, and before the links with no path at depth
+    let mut retract_before: Vec<usize> =
+        parts.iter().skip(1).map(|q| q.first_segment).chain(b.retracts.iter().copied()).collect();
+    retract_before.sort_unstable();
+    retract_before.dedup();
+    let entries = parts.iter().map(|p| p.entry).collect();
+    let toolpath = Toolpath::at_depth(&b.segments, &b.kinds, -options.depth_mm, entries, retract_before);
     // the bores of helices and ramps are cut; outside the stock nothing was
-    let before: Vec<Segment> =
-        parts.iter().filter(|p| !matches!(p.entry, Entry::Outside { .. })).map(|p| p.entry.bore()).collect();
-    let opts = EvaluatorOptions::new(settings.tool_radius, settings.spacing);
-    let profile = engagement_profile(&polygon, &before, &b.segments, &opts)?;
-    let (maxima, _) = maxima(&profile, &b.segments, &b.kinds, &[]);
-    let (max_engagement_rad, p95_engagement_rad) = peak_and_p95(&profile);
-    let air_length_mm = profile.air_length_mm(AIR_ENGAGEMENT_RAD);
-    let length_at_depth_mm: f64 = b.segments.iter().map(Segment::length).sum();
-    let link_length_mm: f64 =
-        b.segments.iter().zip(&b.kinds).filter(|(_, k)| **k == MoveKind::Link).map(|(s, _)| s.length()).sum();
+    let path = PocketPath::measured(&polygon, settings, toolpath, options.depth_mm, &[MoveKind::Link])?;
+    let profile = &path.measurement.profile;
     // Corner maxima: the samples on each part's corner passes nearest each corner.
-    for (smp, &i) in profile.samples.iter().zip(&sample_owners(&profile, &b.segments)) {
+    for (smp, &i) in profile.samples.iter().zip(&sample_owners(profile, &b.segments)) {
         let at = p2(smp.x_mm, smp.y_mm);
         let nearest = |v: P2, w: P2| (v - at).norm().total_cmp(&(w - at).norm());
         let slot = match b.kinds.get(i) {
@@ -1761,27 +1543,5 @@ fn measure(
             *where_ = at;
         }
     }
-    let helix_length_mm: f64 = parts.iter().map(|p| p.entry.descent_length(options.depth_mm)).sum();
-    let time_s = (length_at_depth_mm + helix_length_mm) / settings.feed_mm_per_min * 60.0;
-    Ok(AdaptivePlan {
-        polygon,
-        open_edges: Vec::new(),
-        settings,
-        options,
-        target_rad: phi,
-        parts,
-        segments: b.segments,
-        kinds: b.kinds,
-        retracts: b.retracts,
-        profile,
-        maxima,
-        max_engagement_rad,
-        p95_engagement_rad,
-        length_at_depth_mm,
-        link_length_mm,
-        air_length_mm,
-        helix_length_mm,
-        time_s,
-        corner_radius_left_mm,
-    })
+    Ok(AdaptivePlan { path, open_edges: Vec::new(), options, target_rad: phi, parts, corner_radius_left_mm })
 }

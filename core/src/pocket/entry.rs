@@ -8,13 +8,12 @@
 //! helix circle, or the ramp line) is the first move of the path at depth and the `before`
 //! path of the evaluator, so the tool never cuts from solid material straight down.
 
-use super::adaptive::{AdaptiveOptions, HELIX_START_Z_MM, Helix};
-use super::mirror::mirror_point;
+use super::adaptive::AdaptiveOptions;
 use super::rings::link_is_inside;
-use crate::corner::medial::Walls;
 use crate::error::{Error, Param, num};
-use crate::geom::{P2, Polygon, Segment, p2};
-use serde::{Deserialize, Serialize};
+use crate::geom::medial::Walls;
+use crate::geom::{P2, Polygon, p2};
+use crate::toolpath::entry::{Entry, HELIX_START_Z_MM, Helix, Ramp};
 use std::f64::consts::PI;
 
 /// Directions tried for the ramp line (every 1°).
@@ -23,119 +22,8 @@ const RAMP_DIRECTIONS: usize = 180;
 const RAMP_LENGTH_SHARE: f64 = 0.95;
 /// Points along a ramp line where its clearance is sampled.
 const RAMP_CLEARANCE_SAMPLES: usize = 16;
-/// How far the ramp's bore reaches beyond its ends for the evaluator (mm): the legs stood at
-/// both ends, whose periphery the evaluator would count as material at exactly r (see
-/// [`Entry::bore`]).
-const RAMP_END_MM: f64 = 1e-3;
 /// Bisection steps for the ramp line's ends.
 const RAMP_BISECTION: usize = 40;
-
-/// A straight zig-zag ramp: legs back and forth on the line between `end` and `start`, each
-/// descending by the same amount at most at the ramp angle, the last one reaching the depth at
-/// `start`; at depth the tool then runs once from `start` to `end` (the flat pass that removes
-/// the last leg's wedge).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Ramp {
-    pub start: P2,
-    pub end: P2,
-    /// Ramp angle (rad): a leg of length L descends L·tan(ramp) at most.
-    pub ramp_rad: f64,
-}
-
-impl Ramp {
-    /// Legs needed to descend `drop` mm at the ramp angle.
-    pub fn legs(&self, drop: f64) -> usize {
-        let per_leg = (self.end - self.start).norm() * self.ramp_rad.tan();
-        ((drop / per_leg) - 1e-9).ceil().max(1.0) as usize
-    }
-
-    /// Where the first leg starts: legs alternate and the last ends at `start`, so the first
-    /// starts at `end` for an odd number of legs and at `start` for an even one.
-    pub fn first_point(&self, drop: f64) -> P2 {
-        if self.legs(drop) % 2 == 1 { self.end } else { self.start }
-    }
-
-    /// Length of the 3D legs descending `drop` mm (mm).
-    pub fn length(&self, drop: f64) -> f64 {
-        let n = self.legs(drop) as f64;
-        ((n * (self.end - self.start).norm()).powi(2) + drop * drop).sqrt()
-    }
-}
-
-/// The way down of one connected part of a pocket.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Entry {
-    Helix(Helix),
-    Ramp(Ramp),
-    /// Straight down at `at`, beyond an open edge of the pocket: the tool's disc there keeps
-    /// at least r from the stock, so the descent cuts nothing (not a plunge).
-    Outside {
-        at: P2,
-    },
-}
-
-impl Entry {
-    /// What the entry clears at depth, and its first move there: the helix's flat turn, or the
-    /// ramp's flat pass.
-    pub fn at_depth(&self) -> Segment {
-        match self {
-            Entry::Helix(h) => h.circle(),
-            Entry::Ramp(r) => Segment::Line { start: r.start, end: r.end },
-            Entry::Outside { at } => Segment::Line { start: *at, end: *at },
-        }
-    }
-
-    /// What the entry cleared, as the evaluator's `before` path: the helix circle, or the ramp
-    /// line lengthened by [`RAMP_END_MM`] at each end (the legs turned at both ends, so their
-    /// end discs are cut; the evaluator counts a periphery point exactly r from every position
-    /// as material); outside the stock the point of the descent (its disc is off the stock, it
-    /// clears nothing).
-    pub fn bore(&self) -> Segment {
-        match self {
-            Entry::Helix(h) => h.circle(),
-            Entry::Ramp(r) => {
-                let u = (r.end - r.start) / (r.end - r.start).norm();
-                Segment::Line { start: r.start - u * RAMP_END_MM, end: r.end + u * RAMP_END_MM }
-            }
-            Entry::Outside { at } => Segment::Line { start: *at, end: *at },
-        }
-    }
-
-    /// Where the entry is: the helix centre, the ramp's middle, the point outside the stock.
-    pub fn center(&self) -> P2 {
-        match self {
-            Entry::Helix(h) => h.center,
-            Entry::Ramp(r) => (r.start + r.end) * 0.5,
-            Entry::Outside { at } => *at,
-        }
-    }
-
-    /// Length of the descent from [`HELIX_START_Z_MM`] to `depth` below the stock top (mm);
-    /// outside the stock straight down.
-    pub fn descent_length(&self, depth: f64) -> f64 {
-        let drop = HELIX_START_Z_MM + depth;
-        match self {
-            Entry::Helix(h) => h.length(drop),
-            Entry::Ramp(r) => r.length(drop),
-            Entry::Outside { .. } => drop,
-        }
-    }
-
-    /// The entry of the mirror image (x → −x): a helix turns the other way.
-    pub fn mirrored(&self) -> Entry {
-        match *self {
-            Entry::Helix(h) => Entry::Helix(Helix {
-                center: mirror_point(h.center),
-                start_angle: PI - h.start_angle,
-                sense: -h.sense,
-                ..h
-            }),
-            Entry::Ramp(r) => Entry::Ramp(Ramp { start: mirror_point(r.start), end: mirror_point(r.end), ..r }),
-            Entry::Outside { at } => Entry::Outside { at: mirror_point(at) },
-        }
-    }
-}
 
 /// The helix radius r_h (mm) for a tool-centre region whose largest inscribed circle has
 /// radius `inscribed` (mm): the option, else 0.375·D reduced down to 0.25·D (a bore of 50 % of

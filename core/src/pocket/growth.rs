@@ -14,47 +14,29 @@
 //! core (geodesic growth) and the rings keep the step; past the disc's reach the sets keep
 //! growing by a until they fill the core.
 
-use super::adaptive::{disc, largest, offset};
 use crate::geom::P2;
-use cavalier_contours::polyline::{BooleanOp, PlineSource, PlineSourceMut, Polyline};
+use crate::geom::offset::{BoolOp, Region, largest};
 
 /// The set G of the ring at disc radius `s` (`reach`: the disc's radius that covers the core),
 /// after the set `prev` (none for the first ring): K ∩ D(k0, s), cut to `prev` ⊕ `step` where it
 /// reaches farther (module docs).
-pub(crate) fn grown(
-    core: &Polyline<f64>,
-    k0: P2,
-    s: f64,
-    reach: f64,
-    prev: Option<&Polyline<f64>>,
-    step: f64,
-) -> Option<Polyline<f64>> {
-    let pieces = |a: &Polyline<f64>, b: &Polyline<f64>, op: BooleanOp| -> Vec<Polyline<f64>> {
-        a.boolean(b, op)
-            .pos_plines
-            .into_iter()
-            .map(|p| {
-                let mut pl = p.pline;
-                if pl.area() < 0.0 {
-                    pl.invert_direction_mut();
-                }
-                pl
-            })
-            .collect()
-    };
-    let by_disc = if s >= reach { Some(core.clone()) } else { largest(pieces(core, &disc(k0, s), BooleanOp::And)) };
+pub(crate) fn grown(core: &Region, k0: P2, s: f64, reach: f64, prev: Option<&Region>, step: f64) -> Option<Region> {
+    let pieces =
+        |a: &Region, b: &Region, op: BoolOp| -> Vec<Region> { a.boolean(b, op).into_iter().map(Region::ccw).collect() };
+    let by_disc =
+        if s >= reach { Some(core.clone()) } else { largest(pieces(core, &Region::disc(k0, s), BoolOp::And)) };
     let (Some(g), Some(prev)) = (by_disc.clone(), prev) else { return by_disc };
     // within a step (with a thousandth of a step for rounding): the disc's set, unchanged
-    let Some(loose) = largest(offset(prev, -step * 1.001)) else { return by_disc };
-    let beyond: f64 = pieces(&g, &loose, BooleanOp::Not).iter().map(|p| p.area().abs()).sum();
+    let Some(loose) = largest(prev.offset(-step * 1.001)) else { return by_disc };
+    let beyond: f64 = pieces(&g, &loose, BoolOp::Not).iter().map(|p| p.area().abs()).sum();
     if beyond <= 1e-9 * g.area().abs().max(1.0) {
         return by_disc;
     }
-    let limit = largest(offset(prev, -step))?;
-    largest(pieces(&g, &limit, BooleanOp::And))
+    let limit = largest(prev.offset(-step))?;
+    largest(pieces(&g, &limit, BoolOp::And))
 }
 
 /// Whether the set `g` fills the core `core` (its area within a millionth).
-pub(crate) fn fills(g: &Polyline<f64>, core: &Polyline<f64>) -> bool {
+pub(crate) fn fills(g: &Region, core: &Region) -> bool {
     g.area().abs() >= core.area().abs() * (1.0 - 1e-6)
 }

@@ -9,9 +9,9 @@
 //! grid, and a move is measured against the edges in the cells its bounding box grown by r
 //! covers (an edge outside that box is farther than r from every point of the move).
 
-use super::entry::Entry;
 use crate::error::{Error, num};
 use crate::geom::{EdgeGrid, P2, Polygon, Segment, p2, segment_edge_distance};
+use crate::toolpath::Entry;
 
 /// How much nearer than the tool radius a move may come to a wall (mm): rounding of the
 /// offsets the path is built from (their own error is ~1e-12 mm).

@@ -5,52 +5,10 @@
 //! (the evaluator's engaged angle does not change under a reflection of tool, path and stock).
 
 use super::{PerforativePlan, RingPlan};
-use crate::error::Error;
-use crate::geom::{P2, Polygon, Segment, p2};
-
-/// `p` mirrored in x.
-pub fn mirror_point(p: P2) -> P2 {
-    p2(-p.x, p.y)
-}
-
-/// The pocket mirrored in x, counter-clockwise again.
-pub fn mirrored_polygon(p: &Polygon) -> Result<Polygon, Error> {
-    let mut v: Vec<P2> = p.vertices().iter().map(|&q| mirror_point(q)).collect();
-    v.reverse();
-    Polygon::new(v)
-}
-
-/// A segment mirrored in x ([`Segment::mirrored_x`]: arcs change their sense, a trochoid keeps
-/// its form with o mirrored and a → −a).
-pub fn mirror_segment(s: &Segment) -> Segment {
-    s.mirrored_x()
-}
-
-/// `p` reflected in the x axis (y → −y): a symmetric corner's bisector ([`crate::corner`]).
-pub fn flip_y(p: P2) -> P2 {
-    p2(p.x, -p.y)
-}
-
-/// The polygon reflected in the x axis, counter-clockwise again.
-pub fn flipped_y_polygon(p: &Polygon) -> Result<Polygon, Error> {
-    let mut v: Vec<P2> = p.vertices().iter().map(|&q| flip_y(q)).collect();
-    v.reverse();
-    Polygon::new(v)
-}
-
-/// A segment reflected in the x axis: arcs change their sense; a trochoid p = o + (−a·cos θ,
-/// b·sin θ + kθ) keeps its form with o reflected, b → −b and the step (k) negated.
-pub fn flip_y_segment(s: &Segment) -> Segment {
-    match *s {
-        Segment::Line { start, end } => Segment::Line { start: flip_y(start), end: flip_y(end) },
-        Segment::Arc { center, radius, start_angle, sweep } => {
-            Segment::Arc { center: flip_y(center), radius, start_angle: -start_angle, sweep: -sweep }
-        }
-        Segment::Trochoid { origin, a, b, step, theta0, theta1 } => {
-            Segment::Trochoid { origin: flip_y(origin), a, b: -b, step: -step, theta0, theta1 }
-        }
-    }
-}
+pub use crate::geom::mirror::{
+    flip_y, flip_y_segment, flipped_y_polygon, mirror_point, mirror_segment, mirrored_polygon,
+};
+use crate::geom::{Polygon, Segment};
 
 fn mirror_all(segments: &mut [Segment]) {
     for s in segments {
@@ -61,20 +19,13 @@ fn mirror_all(segments: &mut [Segment]) {
 impl RingPlan {
     /// The plan of the mirrored pocket mirrored back onto `polygon` (the pocket it mirrors).
     pub fn mirrored(mut self, polygon: &Polygon) -> RingPlan {
-        self.polygon = polygon.clone();
+        self.path = self.path.mirrored(polygon);
         for ring in &mut self.rings {
             mirror_all(&mut ring.segments);
             ring.max_engagement_at = mirror_point(ring.max_engagement_at);
         }
         for link in &mut self.links {
             (link.from, link.to) = (mirror_point(link.from), mirror_point(link.to));
-        }
-        for e in &mut self.entries {
-            *e = e.mirrored();
-        }
-        mirror_all(&mut self.segments);
-        for m in &mut self.maxima {
-            m.at = mirror_point(m.at);
         }
         self
     }
@@ -83,7 +34,7 @@ impl RingPlan {
 impl PerforativePlan {
     /// The plan of the mirrored pocket mirrored back onto `polygon` (the pocket it mirrors).
     pub fn mirrored(mut self, polygon: &Polygon) -> PerforativePlan {
-        self.polygon = polygon.clone();
+        self.path = self.path.mirrored(polygon);
         for e in &mut self.axis.edges {
             (e.a, e.b) = (mirror_point(e.a), mirror_point(e.b));
             for q in &mut e.points {
@@ -92,16 +43,6 @@ impl PerforativePlan {
         }
         for c in &mut self.circles {
             c.tool_circle.center = mirror_point(c.tool_circle.center);
-        }
-        mirror_all(&mut self.segments);
-        for e in &mut self.entries {
-            *e = e.mirrored();
-        }
-        for smp in &mut self.profile.samples {
-            smp.x_mm = -smp.x_mm;
-        }
-        for m in &mut self.maxima {
-            m.at = mirror_point(m.at);
         }
         for c in &mut self.corner_points {
             (c.vertex, c.at) = (mirror_point(c.vertex), mirror_point(c.at));
@@ -114,6 +55,7 @@ impl PerforativePlan {
 mod tests {
     use super::*;
     use crate::corner::{CornerMethod, EvaluatorOptions, engagement_profile};
+    use crate::geom::p2;
     use crate::job::Direction;
     use crate::pocket::{AdaptiveOptions, PocketPlan, PocketRequest, PocketStrategy, plan};
 
@@ -170,10 +112,13 @@ mod tests {
             let (ea, eb) = (climb.max_engagement_rad(), conv.max_engagement_rad());
             assert!((ea - eb).abs() < 0.5f64.to_radians(), "{strategy:?}: {} vs {}", ea.to_degrees(), eb.to_degrees());
             if let PocketPlan::MedialAxis(m) = &conv {
-                let bores: Vec<Segment> = m.entries.iter().map(crate::pocket::Entry::bore).collect();
-                let own =
-                    engagement_profile(&rect, &bores, &m.segments, &EvaluatorOptions::new(5.0, 0.5)).expect("profile");
-                assert!((own.max_angle() - m.profile.max_angle()).abs() < 1e-6, "measured again over the rectangle");
+                let bores: Vec<Segment> = m.path.toolpath.entries.iter().map(crate::pocket::Entry::bore).collect();
+                let own = engagement_profile(&rect, &bores, &m.path.segments(), &EvaluatorOptions::new(5.0, 0.5))
+                    .expect("profile");
+                assert!(
+                    (own.max_angle() - m.path.measurement.profile.max_angle()).abs() < 1e-6,
+                    "measured again over the rectangle"
+                );
             }
         }
     }
@@ -190,8 +135,8 @@ mod tests {
             let climb = evaluate(&req).expect("climb");
             let conv = evaluate(&CornerRequest { direction: Direction::Conventional, ..req }).expect("conventional");
             assert_eq!(climb.row, conv.row, "{method:?}");
-            assert_eq!(climb.plan.path.len(), conv.plan.path.len());
-            for (a, b) in climb.plan.path.iter().zip(&conv.plan.path) {
+            assert_eq!(climb.plan.toolpath.segments().len(), conv.plan.toolpath.segments().len());
+            for (a, b) in climb.plan.toolpath.segments().iter().zip(&conv.plan.toolpath.segments()) {
                 for t in [0.0, 0.5, 1.0] {
                     assert!((flip_y(a.point(t)) - b.point(t)).norm() < 1e-9, "{method:?}");
                 }
@@ -202,7 +147,7 @@ mod tests {
             let own = engagement_profile(
                 &conv.plan.stock,
                 &conv.plan.precut,
-                &conv.plan.path,
+                &conv.plan.toolpath.segments(),
                 &EvaluatorOptions::new(5.0, 0.25),
             )
             .expect("profile");

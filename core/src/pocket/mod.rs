@@ -1,7 +1,8 @@
 //! Polygonal pockets (Wu et al. 2016 §4; docs/pockets.md): cleared by contour-parallel rings
 //! with a corner strategy at every convex ring corner ([`rings`]), or by perforative trochoids
-//! along the pocket's medial axis ([`perforative`]); both measured by the independent
-//! evaluator ([`crate::corner::evaluator`]).
+//! along the pocket's medial axis ([`perforative`]), or adaptively ([`adaptive`]). Every plan
+//! holds a [`PocketPath`] — its [`Toolpath`] and the [`crate::engagement::measure`] of it by
+//! the independent evaluator — plus what its strategy adds.
 //!
 //! Entry point: [`plan`] — a [`PocketRequest`] in, a [`PocketPlan`] out; used by the GUI and the
 //! CLI. Conventions as in [`crate::corner`]: mm, counter-clockwise pocket boundary, tool-centre
@@ -16,23 +17,24 @@ pub mod entry;
 mod growth;
 pub mod guard;
 pub mod mirror;
+pub mod path;
 pub mod perforative;
 pub mod rings;
 pub mod route;
 mod runs;
 
-pub use adaptive::{
-    AdaptiveOptions, AdaptivePart, AdaptivePlan, CornerPasses, Helix, plan_adaptive, plan_adaptive_open,
-};
-pub use entry::{Entry, Ramp};
-pub use perforative::{AxisCircle, KindMax, MoveKind, PerforativePlan, plan_perforative};
+pub use crate::engagement::KindMax;
+pub use crate::toolpath::{Entry, Helix, MoveKind, Ramp, Toolpath};
+pub use adaptive::{AdaptiveOptions, AdaptivePart, AdaptivePlan, CornerPasses, plan_adaptive, plan_adaptive_open};
+pub use path::PocketPath;
+pub use perforative::{AxisCircle, PerforativePlan, plan_perforative};
 pub use rings::{
     LINK_ENGAGEMENT_SLACK_RAD, Link, LinkKind, Ring, RingPlan, inward_offset, link_is_inside, plan_ring_pocket,
     plan_rings,
 };
 
 use crate::corner::CornerMethod;
-use crate::corner::strategy::{tool_diameter, validate_tool_and_step_over};
+use crate::corner::limits::{tool_diameter, validate_tool_and_step_over};
 use crate::error::{Error, Param, num};
 use crate::geom::{P2, Polygon, Segment, p2};
 use crate::job::Direction;
@@ -236,86 +238,68 @@ impl PocketPlan {
         }
     }
 
+    /// What every plan has: pocket, settings, tool path and measurement.
+    pub fn path(&self) -> &PocketPath {
+        match self {
+            PocketPlan::Rings(p) => &p.path,
+            PocketPlan::MedialAxis(p) => &p.path,
+            PocketPlan::Adaptive(p) => &p.path,
+        }
+    }
+
+    /// The tool path: moves at depth, entries, retracts.
+    pub fn toolpath(&self) -> &Toolpath {
+        &self.path().toolpath
+    }
+
     /// The validated pocket (counter-clockwise).
     pub fn polygon(&self) -> &Polygon {
-        match self {
-            PocketPlan::Rings(p) => &p.polygon,
-            PocketPlan::MedialAxis(p) => &p.polygon,
-            PocketPlan::Adaptive(p) => &p.polygon,
-        }
+        &self.path().polygon
     }
 
     /// The settings it was planned with.
     pub fn settings(&self) -> &PocketSettings {
-        match self {
-            PocketPlan::Rings(p) => &p.settings,
-            PocketPlan::MedialAxis(p) => &p.settings,
-            PocketPlan::Adaptive(p) => &p.settings,
-        }
+        &self.path().settings
     }
 
     /// The cutting path length (mm): the whole path at depth (for [`plan_rings`]' layout, which
-    /// has no core: its rings, links excluded).
+    /// has no entries: its rings, links excluded).
     pub fn path_length_mm(&self) -> f64 {
         match self {
-            PocketPlan::Rings(p) if p.segments.is_empty() => p.path_length_mm,
-            PocketPlan::Rings(p) => p.length_at_depth_mm,
-            PocketPlan::MedialAxis(p) => p.path_length_mm,
-            PocketPlan::Adaptive(p) => p.length_at_depth_mm,
+            PocketPlan::Rings(p) if p.path.toolpath.entries.is_empty() => p.path_length_mm,
+            other => other.path().measurement.length_at_depth_mm,
         }
     }
 
     /// Machining time of [`Self::path_length_mm`] at the feed (s).
     pub fn time_s(&self) -> f64 {
-        match self {
-            PocketPlan::Rings(p) => p.time_s,
-            PocketPlan::MedialAxis(p) => p.time_s,
-            PocketPlan::Adaptive(p) => p.time_s,
-        }
+        self.path().time_s
     }
 
     /// The largest engagement over every move at depth, measured by the evaluator with the
-    /// entries' bores as cut (rad).
+    /// entries' bores as cut (rad; [`RingPlan::max_engagement_rad`] for rings).
     pub fn max_engagement_rad(&self) -> f64 {
         match self {
             PocketPlan::Rings(p) => p.max_engagement_rad,
-            PocketPlan::MedialAxis(p) => p.max_engagement_rad,
-            PocketPlan::Adaptive(p) => p.max_engagement_rad,
+            other => other.path().measurement.max_engagement_rad,
         }
     }
 
-    /// What each move of [`Self::tool_path`] does (empty for [`plan_rings`]' layout).
-    pub fn kinds(&self) -> &[MoveKind] {
-        match self {
-            PocketPlan::Rings(p) => &p.kinds,
-            PocketPlan::MedialAxis(p) => &p.kinds,
-            PocketPlan::Adaptive(p) => &p.kinds,
-        }
+    /// What each move of [`Self::tool_path`] does.
+    pub fn kinds(&self) -> Vec<MoveKind> {
+        self.toolpath().kinds()
     }
 
     /// The entries of the plan's parts.
     pub fn entries(&self) -> Vec<Entry> {
-        match self {
-            PocketPlan::Rings(p) => p.entries.clone(),
-            PocketPlan::MedialAxis(p) => p.entries.clone(),
-            PocketPlan::Adaptive(p) => p.parts.iter().map(|q| q.entry).collect(),
-        }
+        self.toolpath().entries.clone()
     }
 
     /// The whole tool path in machining order, and the indices of the segments reached by
-    /// retract, rapid and a new entry or a feed down into cleared material ([`RingPlan::tool_path`], [`PerforativePlan::retract_before`]).
+    /// retract, rapid and a new entry or a feed down into cleared material
+    /// ([`Toolpath::retract_before`]).
     pub fn tool_path(&self) -> (Vec<Segment>, Vec<usize>) {
-        match self {
-            PocketPlan::Rings(p) => p.tool_path(),
-            PocketPlan::MedialAxis(p) => (p.segments.clone(), p.retract_before.clone()),
-            PocketPlan::Adaptive(p) => {
-                let mut at: Vec<usize> =
-                    p.parts.iter().skip(1).map(|q| q.first_segment).chain(p.retracts.iter().copied()).collect();
-                at.sort_unstable();
-                at.dedup();
-                (p.segments.clone(), at)
-            }
-        }
+        self.path().tool_path()
     }
 }
 
@@ -467,10 +451,7 @@ fn check_work(polygon: &Polygon, strategy: PocketStrategy, settings: &PocketSett
     ))
 }
 
-/// Smallest step-over of the medial axis as a fraction of the tool diameter, a_e/D: the lowest
-/// radial depth of the papers' range (25.8° of straight engagement). Below it the number of
-/// circles and of their bisection steps grows without a useful gain.
-pub const MEDIAL_AXIS_MIN_STEP_OVER_RATIO: f64 = 0.05;
+pub use crate::corner::limits::MEDIAL_AXIS_MIN_STEP_OVER_RATIO;
 
 /// Plan the requested pocket with its strategy. Errors name the input at fault. Checked before
 /// planning, so that no plan runs for minutes: a medial-axis step-over below

@@ -6,7 +6,7 @@
 //! The algorithm below is ours (derived in docs/pockets.md), written so that every choice can be
 //! checked by the independent evaluator.
 //!
-//! 1. **Axis.** The medial axis of the pocket ([`crate::corner::medial`], boostvoronoi; parabolic edges
+//! 1. **Axis.** The medial axis of the pocket ([`crate::geom::medial`], boostvoronoi; parabolic edges
 //!    as points of the exact parabola). At an axis point q the clearance Rc(q) (distance to the
 //!    nearest wall) is the radius of the largest circle the walls allow; the tool centre may be
 //!    at q only where Rc(q) ≥ r. The axis is clipped to that part (bisection on Rc = r); a
@@ -57,13 +57,18 @@
 //! maximum is reported per class and over everything.
 
 use super::PocketSettings;
-use super::adaptive::{AIR_ENGAGEMENT_RAD, AdaptiveOptions, CornerPoint, corner_point_radii};
-use super::entry::{Entry, entry_at};
+use super::adaptive::{AdaptiveOptions, CornerPoint, corner_point_radii};
+use super::entry::entry_at;
+use super::path::PocketPath;
 use super::rings::link_is_inside;
-use crate::corner::medial::{MedialAxis, WallFeature, Walls, medial_axis};
-use crate::corner::{CornerSettings, EngagementProfile, EvaluatorOptions, Turn, TwoCircle, engagement_profile};
+use crate::corner::CornerSettings;
+use crate::engagement::{EngagementProfile, EvaluatorOptions, Turn, TwoCircle, engagement_profile};
 use crate::error::{Error, Param};
+use crate::geom::medial::{MedialAxis, WallFeature, Walls, medial_axis};
 use crate::geom::{Circle, P2, Polygon, Segment, bisect_edge, golden_min, rot90};
+use crate::toolpath::Entry;
+use crate::toolpath::MoveKind;
+use crate::toolpath::Toolpath;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 
@@ -92,39 +97,6 @@ const RAMP_SPIRAL_SPACING_MM: f64 = 0.1;
 /// 4.75 mm circle takes 11 at 90°, 31 at 30°).
 const MAX_CORNER_ARCS: usize = 200;
 
-/// What a move of the perforative path does (the evaluator's samples are reported per kind).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum MoveKind {
-    /// The flat turn at depth after the helix (inside its bore), or the flat pass after a
-    /// zig-zag ramp (on its line).
-    Entry,
-    /// The concentric circles clearing the largest circle.
-    Spiral,
-    /// A trochoid circle on the axis.
-    Circle,
-    /// A tangent link between circles, or from a circle's centre out to its exit point.
-    Link,
-    /// Along the axis where the tool-centre circle would be smaller than r_min (a neck).
-    Straight,
-    /// Along the axis into the tool corner point of a convex corner, where no corner-point
-    /// arcs are cut (the tip's end is not between two wall features, or the last circle does
-    /// not touch both).
-    Tip,
-    /// Back along the axis through cleared material.
-    Return,
-    /// A ring of adaptive clearing ([`super::adaptive`]).
-    Ring,
-    /// A thinning pass into a convex corner ([`super::adaptive`]).
-    Corner,
-    /// The finishing contour ([`super::adaptive`]).
-    Finish,
-    /// Arcs into a convex corner point, within the corner tolerance, with their approach
-    /// along the wall and their way out: after the finishing pass ([`super::adaptive`]), or
-    /// after the last circle of a medial-axis tip ([`Planner::thin_tip`]).
-    CornerPoint,
-}
-
 /// One circle of the path.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct AxisCircle {
@@ -139,68 +111,34 @@ pub struct AxisCircle {
     pub kind: MoveKind,
 }
 
-/// Maximum engagement of one kind of move, measured by the evaluator.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct KindMax {
-    pub kind: MoveKind,
-    /// Largest engagement (rad) and where.
-    pub max_rad: f64,
-    pub at: P2,
-    /// Length of these moves (mm).
-    pub length_mm: f64,
-}
-
 /// A pocket cleared by perforative trochoids along its medial axis.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PerforativePlan {
-    pub polygon: Polygon,
-    pub settings: PocketSettings,
+    /// The pocket, the settings, the path in machining order (a retract, rapid and new entry
+    /// before every part but the first, which the program's first entry reaches), the entry of
+    /// each part (helix, or ramp where no helix fits), and the measurement; links are the
+    /// moves between cuts ([`MoveKind::Link`] and [`MoveKind::Return`] along the axis).
+    pub path: PocketPath,
     /// Target engagement a* (rad) and the bisection band ε (rad).
     pub target_rad: f64,
     pub tolerance_rad: f64,
     pub axis: MedialAxis,
     pub circles: Vec<AxisCircle>,
-    /// The tool path in machining order; `kinds[i]` says what `segments[i]` does.
-    pub segments: Vec<Segment>,
-    pub kinds: Vec<MoveKind>,
-    /// Indices of the segments reached by retract, rapid and a new entry: the start of every
-    /// part but the first (which the program's first entry reaches).
-    pub retract_before: Vec<usize>,
     /// Parts of the axis reached separately (one entry each).
     pub parts: usize,
-    /// The entry of each part, in order (helix, or ramp where no helix fits).
-    pub entries: Vec<Entry>,
-    /// Length of the entries' descents from above the stock top (mm).
-    pub entry_length_mm: f64,
     /// Axis length where the tool does not fit (Rc < r), left uncut (mm).
     pub unreachable_axis_mm: f64,
     /// Each tip thinned by corner-point arcs ([`Planner::thin_tip`]): the corner of the
     /// tool-centre region (`vertex`), its angle, the arcs and the measured peak over their moves.
     pub corner_points: Vec<CornerPoint>,
-    /// Feed path length at depth, all moves (mm), and the machining time of it and the
-    /// entries' descents at the feed (s).
-    pub path_length_mm: f64,
-    pub time_s: f64,
-    /// Length at depth (= `path_length_mm`), of it the moves between cuts (links and returns
-    /// along the axis), and the air: samples below 1° (mm).
-    pub length_at_depth_mm: f64,
-    pub link_length_mm: f64,
-    pub air_length_mm: f64,
-    /// The evaluator's profile along `segments` (positions `settings.spacing` apart).
-    pub profile: EngagementProfile,
-    /// Per kind of move present: maximum measured engagement and length.
-    pub maxima: Vec<KindMax>,
     /// Largest engagement of the body (spiral, circles, links; rad): what the target bounds.
     pub body_max_rad: f64,
-    /// Largest engagement over every move at depth (rad), and the 95th percentile.
-    pub max_engagement_rad: f64,
-    pub p95_engagement_rad: f64,
 }
 
 impl PerforativePlan {
     /// Maximum of one kind of move (0 if absent).
     pub fn max_of(&self, kind: MoveKind) -> f64 {
-        self.maxima.iter().find(|m| m.kind == kind).map_or(0.0, |m| m.max_rad)
+        self.path.max_of(kind)
     }
 }
 
@@ -600,109 +538,22 @@ pub fn plan_perforative(
     }
     retract_before.retain(|&i| i > 0); // the first part is reached by the program's first entry
     let Planner { b, circles, corner_points, .. } = p;
-    let opts = EvaluatorOptions::new(r, settings.spacing);
-    let bores: Vec<Segment> = entries.iter().map(Entry::bore).collect();
-    let profile = engagement_profile(polygon, &bores, &b.segments, &opts)?;
-    let (maxima, body_max_rad) = maxima(&profile, &b.segments, &b.kinds, &[]);
-    let (max_engagement_rad, p95_engagement_rad) = peak_and_p95(&profile);
-    let corner_points = measure_corner_points(&profile, &b.segments, corner_points);
-    let len: f64 = b.segments.iter().map(Segment::length).sum();
-    let link_length_mm: f64 = b
-        .segments
-        .iter()
-        .zip(&b.kinds)
-        .filter(|(_, k)| matches!(k, MoveKind::Link | MoveKind::Return))
-        .map(|(s, _)| s.length())
-        .sum();
-    let entry_length_mm: f64 = entries.iter().map(|e| e.descent_length(options.depth_mm)).sum();
+    let toolpath = Toolpath::at_depth(&b.segments, &b.kinds, -options.depth_mm, entries, retract_before);
+    let path =
+        PocketPath::measured(polygon, settings, toolpath, options.depth_mm, &[MoveKind::Link, MoveKind::Return])?;
+    let body_max_rad = path.measurement.max_over(&[MoveKind::Spiral, MoveKind::Circle, MoveKind::Link]);
+    let corner_points = measure_corner_points(&path.measurement.profile, &b.segments, corner_points);
     Ok(PerforativePlan {
-        polygon: polygon.clone(),
-        settings,
+        path,
         target_rad: cs.target,
         tolerance_rad: cs.tolerance,
         axis,
         circles,
-        segments: b.segments,
-        kinds: b.kinds,
-        retract_before,
         parts: parts.len(),
-        entries,
-        entry_length_mm,
         unreachable_axis_mm: graph.unreachable_mm,
         corner_points,
-        path_length_mm: len,
-        time_s: (len + entry_length_mm) / settings.feed_mm_per_min * 60.0,
-        length_at_depth_mm: len,
-        link_length_mm,
-        air_length_mm: profile.air_length_mm(AIR_ENGAGEMENT_RAD),
-        profile,
-        maxima,
         body_max_rad,
-        max_engagement_rad,
-        p95_engagement_rad,
     })
-}
-
-/// The largest engagement of a profile and the 95th percentile of its samples (rad).
-pub(crate) fn peak_and_p95(profile: &EngagementProfile) -> (f64, f64) {
-    let mut angles: Vec<f64> = profile.samples.iter().map(|s| s.angle_rad).collect();
-    angles.sort_by(f64::total_cmp);
-    let p95 = angles.get(((0.95 * angles.len() as f64).ceil() as usize).saturating_sub(1)).copied().unwrap_or(0.0);
-    (profile.max_angle(), p95)
-}
-
-/// Per-kind maxima of the profile and the body maximum (spiral, circles, links). The
-/// positions where the tool plunges (the start of each part) are left out: there the tool
-/// drills its own hole and the evaluator reads the whole periphery (360°).
-/// The segment each sample of `profile` belongs to: the first whose end is at or beyond it (a
-/// sample on a joint belongs to the segment that ends there).
-pub(crate) fn sample_owners(profile: &EngagementProfile, segments: &[Segment]) -> Vec<usize> {
-    let mut ends = Vec::with_capacity(segments.len());
-    let mut acc = 0.0;
-    for s in segments {
-        acc += s.length();
-        ends.push(acc);
-    }
-    let last = segments.len().saturating_sub(1);
-    profile.samples.iter().map(|smp| ends.partition_point(|&e| e < smp.s_mm - 1e-9).min(last)).collect()
-}
-
-pub(crate) fn maxima(
-    profile: &EngagementProfile,
-    segments: &[Segment],
-    kinds: &[MoveKind],
-    plunges: &[usize],
-) -> (Vec<KindMax>, f64) {
-    let mut out: Vec<KindMax> = Vec::new();
-    let mut plunge_s = Vec::new();
-    let mut acc = 0.0;
-    for (i, (s, &k)) in segments.iter().zip(kinds).enumerate() {
-        if plunges.contains(&i) {
-            plunge_s.push(acc);
-        }
-        acc += s.length();
-        match out.iter_mut().find(|m| m.kind == k) {
-            Some(m) => m.length_mm += s.length(),
-            None => out.push(KindMax { kind: k, max_rad: 0.0, at: s.start(), length_mm: s.length() }),
-        }
-    }
-    let owners = sample_owners(profile, segments);
-    for (smp, &i) in
-        profile.samples.iter().zip(&owners).filter(|(m, _)| plunge_s.iter().all(|p| (m.s_mm - p).abs() > 1e-9))
-    {
-        if let Some(m) = out.iter_mut().find(|m| m.kind == kinds[i])
-            && smp.angle_rad > m.max_rad
-        {
-            m.max_rad = smp.angle_rad;
-            m.at = P2::new(smp.x_mm, smp.y_mm);
-        }
-    }
-    let body = out
-        .iter()
-        .filter(|m| matches!(m.kind, MoveKind::Spiral | MoveKind::Circle | MoveKind::Link))
-        .map(|m| m.max_rad)
-        .fold(0.0, f64::max);
-    (out, body)
 }
 
 /// Each corner point's peak and where: the largest sample over its moves (`range` of the

@@ -6,7 +6,7 @@
 //!
 //! Rings: ring `k` is the inward offset of the pocket boundary by `d_k = r + k·a_e`
 //! (`k = 0, 1, …`) while that offset is non-empty. Offsetting is done by `cavalier_contours`
-//! (J. Buckmccready, MIT/Apache-2.0), called from this module only, and only on a polygon that
+//! (J. Buckmccready, MIT/Apache-2.0) through [`crate::geom::offset`], here on a polygon that
 //! [`Polygon::new`] has validated (≥ 3 finite vertices, no degenerate edges, simple, CCW) and
 //! with a finite positive offset, so the library's preconditions hold (it can panic on
 //! degenerate input; nothing is caught here). Its output keeps arcs exact as bulges; they are
@@ -62,19 +62,18 @@
 
 use super::PocketSettings;
 use super::adaptive::{
-    AIR_ENGAGEMENT_RAD, AdaptiveOptions, AdaptivePart, Builder, CornerPoint, clear_regions, closest_on, fin_radius,
-    inscribed, offset, pline_of,
+    AdaptiveOptions, AdaptivePart, Builder, CornerPoint, clear_regions, closest_on, fin_radius, inscribed,
 };
-use super::entry::{Entry, entry_at, helix_radius};
-use super::perforative::{KindMax, MoveKind, maxima, peak_and_p95, sample_owners};
+use super::entry::{entry_at, helix_radius};
+use super::path::PocketPath;
 use super::route::Router;
-use crate::corner::{
-    Corner, CornerMethod, CornerScenario, CornerSettings, EvaluatorOptions, engagement_profile, plan_corner,
-    strategy::CornerPointArcs,
-};
+use crate::corner::{Corner, CornerMethod, CornerScenario, CornerSettings, plan_corner, strategy::CornerPointArcs};
+use crate::engagement::{EvaluatorOptions, engagement_profile, sample_owners};
 use crate::error::{Error, Param};
+use crate::geom::offset::Region;
 use crate::geom::{P2, Polygon, Segment, p2};
-use cavalier_contours::polyline::{PlineSource, PlineSourceMut, PlineVertex, Polyline, seg_arc_radius_and_center};
+use crate::toolpath::MoveKind;
+use crate::toolpath::Toolpath;
 use serde::{Deserialize, Serialize};
 
 /// Upper bound on the number of offset levels (keeps run time bounded for tiny step-overs).
@@ -112,18 +111,23 @@ pub struct Ring {
 /// A pocket planned as contour-parallel rings.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RingPlan {
-    /// The validated pocket (counter-clockwise).
-    pub polygon: Polygon,
-    pub settings: PocketSettings,
+    /// The pocket, the settings, the tool path and its measurement. [`plan_ring_pocket`]: every
+    /// move at depth in machining order — entries' flat moves, the core cleared out of the
+    /// helix bore, links and rings — the entry of each region of tool centres (helix, or ramp
+    /// where no helix fits), the moves reached by retract, rapid and feed down (into material
+    /// the path has cleared); links are every [`MoveKind::Link`] move at depth, the core's
+    /// included. [`plan_rings`]: the rings and their feed links, a retract before each retract
+    /// link, no entries (it plunges); its time counts the rings only.
+    pub path: PocketPath,
     /// Corner strategy at the ring corners (plain, variable or isometric).
     pub method: CornerMethod,
     /// Rings in machining order (innermost first).
     pub rings: Vec<Ring>,
     /// Total ring length (mm), links excluded.
     pub path_length_mm: f64,
-    /// Machining time of the rings at the feed (s).
-    pub time_s: f64,
-    /// Largest running engagement over all rings (rad), entries excluded.
+    /// Largest engagement (rad): [`plan_ring_pocket`] over every move at depth (the
+    /// measurement's); [`plan_rings`] the largest running engagement over all rings, entries
+    /// excluded.
     pub max_engagement_rad: f64,
     /// Ring corners where the strategy's circles were spliced in.
     pub trochoid_corners: usize,
@@ -131,40 +135,9 @@ pub struct RingPlan {
     pub plain_corners: usize,
     /// `links[i]` joins the end of `rings[i]` to the entry of `rings[i + 1]`.
     pub links: Vec<Link>,
-    /// Length of the feed links (mm; retract links count 0): for [`plan_ring_pocket`] every link
-    /// move at depth, the core's included.
-    pub link_length_mm: f64,
-    /// [`plan_ring_pocket`]: the entry of each region of tool centres (helix, or
-    /// ramp where no helix fits); empty for [`plan_rings`], which plunges.
-    #[serde(default)]
-    pub entries: Vec<Entry>,
-    /// [`plan_ring_pocket`]: every move at depth in machining order — entries' flat moves, the
-    /// core cleared out of the helix bore, links and rings — and what each does; the segments
-    /// reached by retract, rapid and feed down (into material the path has cleared). Empty
-    /// for [`plan_rings`] (its path is [`RingPlan::tool_path`] of the rings and links).
-    #[serde(default)]
-    pub segments: Vec<Segment>,
-    #[serde(default)]
-    pub kinds: Vec<MoveKind>,
-    #[serde(default)]
-    pub retract_before: Vec<usize>,
-    /// [`plan_ring_pocket`]: per kind of move its maximum engagement, where, and length;
-    /// the 95th percentile of every sample at depth (rad); the length at depth (mm) and of the
-    /// entries' descents (mm).
-    #[serde(default)]
-    pub maxima: Vec<KindMax>,
-    #[serde(default)]
-    pub p95_engagement_rad: f64,
-    #[serde(default)]
-    pub length_at_depth_mm: f64,
-    #[serde(default)]
-    pub entry_length_mm: f64,
-    /// [`plan_ring_pocket`]: moves at depth with engagement below 1° (mm).
-    #[serde(default)]
-    pub air_length_mm: f64,
     /// [`plan_ring_pocket`]: the ring corners whose strategy ends with corner-point arcs
     /// (docs/corners.md), each with its arcs and the peak over them and their moves (the
-    /// core's own corner points are not in this list; they are in `maxima`).
+    /// core's own corner points are not in this list; they are in the measurement's maxima).
     #[serde(default)]
     pub corner_points: Vec<CornerPoint>,
 }
@@ -191,30 +164,6 @@ pub struct Link {
     /// Largest engagement along a feed link over the material left before it, by the
     /// evaluator (rad); 0 for a retract link (not cut at depth).
     pub max_engagement_rad: f64,
-}
-
-impl RingPlan {
-    /// The whole pocket as one tool path in machining order: rings and feed links as segments,
-    /// and the indices of the segments the tool reaches by a retract link (retract to safe Z,
-    /// rapid to the segment's start, plunge). Consecutive segments not at such an index join.
-    pub fn tool_path(&self) -> (Vec<Segment>, Vec<usize>) {
-        if !self.segments.is_empty() {
-            return (self.segments.clone(), self.retract_before.clone());
-        }
-        let mut segs = Vec::new();
-        let mut breaks = Vec::new();
-        for (i, ring) in self.rings.iter().enumerate() {
-            segs.extend(ring.segments.iter().copied());
-            match self.links.get(i) {
-                Some(Link { kind: LinkKind::Feed, from, to, .. }) if (*to - *from).norm() > 0.0 => {
-                    segs.push(Segment::Line { start: *from, end: *to });
-                }
-                Some(Link { kind: LinkKind::Retract, .. }) => breaks.push(segs.len()),
-                _ => {}
-            }
-        }
-        (segs, breaks)
-    }
 }
 
 /// Whether every point of the segment `a`–`b` is inside `polygon` at a distance of at least
@@ -250,50 +199,16 @@ pub fn inward_offset(polygon: &Polygon, d: f64) -> Result<Vec<Vec<Segment>>, Err
     if !(d.is_finite() && d > 0.0) {
         return Err(Error::geometry("offset", d, "a finite number > 0 mm"));
     }
-    let mut pline: Polyline<f64> = Polyline::new_closed();
-    for v in polygon.vertices() {
-        pline.add(v.x, v.y, 0.0);
-    }
     // Counter-clockwise boundary: positive offset is to the left, i.e. inward.
     let mut loops = Vec::new();
-    for mut off in pline.parallel_offset(d) {
-        if off.vertex_count() < 2 || !off.is_closed() {
-            continue;
-        }
-        if off.area() < 0.0 {
-            off.invert_direction_mut();
-        }
-        let segs = to_segments(&off);
+    for off in Region::polygon(polygon.vertices()).offset_loops(d) {
+        let segs = off.segments();
         let len: f64 = segs.iter().map(Segment::length).sum();
         if len > MIN_RING_LENGTH && segs.iter().all(|s| s.length().is_finite()) {
             loops.push(segs);
         }
     }
     Ok(loops)
-}
-
-/// Closed cavalier_contours polyline to lines and arcs. Arc from bulge b between v1 and v2:
-/// centre and radius by `seg_arc_radius_and_center`, sweep `4·atan(b)` (b > 0: CCW).
-pub(super) fn to_segments(pl: &Polyline<f64>) -> Vec<Segment> {
-    let n = pl.vertex_count();
-    let mut out = Vec::with_capacity(n);
-    for i in 0..n {
-        let v1: PlineVertex<f64> = pl.at(i);
-        let v2: PlineVertex<f64> = pl.at((i + 1) % n);
-        let (a, b) = (p2(v1.x, v1.y), p2(v2.x, v2.y));
-        if (b - a).norm() <= 1e-12 {
-            continue;
-        }
-        if v1.bulge.abs() <= 1e-12 {
-            out.push(Segment::Line { start: a, end: b });
-        } else {
-            let (radius, c) = seg_arc_radius_and_center(v1, v2);
-            let center = p2(c.x, c.y);
-            let start_angle = (a.y - center.y).atan2(a.x - center.x);
-            out.push(Segment::Arc { center, radius, start_angle, sweep: 4.0 * v1.bulge.atan() });
-        }
-    }
-    out
 }
 
 /// An offset level: k, its offset d = r + k·a_e, its loops.
@@ -404,32 +319,44 @@ pub fn plan_rings(polygon: &Polygon, settings: PocketSettings, method: CornerMet
             before.push(Segment::Line { start: from, end: to });
         }
     }
-    let link_length_mm = links.iter().filter(|l| l.kind == LinkKind::Feed).map(|l| l.length_mm).sum();
     let len: f64 = rings.iter().map(|g| g.length_mm).sum();
     let max = rings.iter().map(|g| g.max_engagement_rad).fold(0.0, f64::max);
+    let toolpath = rings_and_links(&rings, &links);
+    let mut path = PocketPath::measured(polygon, settings, toolpath, 0.0, &[MoveKind::Link])?;
+    path.time_s = len / settings.feed_mm_per_min * 60.0;
     Ok(RingPlan {
-        polygon: polygon.clone(),
-        settings,
+        path,
         method,
         rings,
         path_length_mm: len,
-        time_s: len / settings.feed_mm_per_min * 60.0,
         max_engagement_rad: max,
         trochoid_corners,
         plain_corners,
         links,
-        link_length_mm,
-        entries: Vec::new(),
-        segments: Vec::new(),
-        kinds: Vec::new(),
-        retract_before: Vec::new(),
-        maxima: Vec::new(),
-        p95_engagement_rad: 0.0,
-        length_at_depth_mm: 0.0,
-        entry_length_mm: 0.0,
-        air_length_mm: 0.0,
         corner_points: Vec::new(),
     })
+}
+
+/// The rings and their feed links as one tool path in machining order ([`MoveKind::Ring`],
+/// [`MoveKind::Link`]), a retract before the ring a retract link reaches (retract to safe Z,
+/// rapid to the segment's start, plunge); no entries.
+fn rings_and_links(rings: &[Ring], links: &[Link]) -> Toolpath {
+    let mut segs = Vec::new();
+    let mut kinds = Vec::new();
+    let mut breaks = Vec::new();
+    for (i, ring) in rings.iter().enumerate() {
+        segs.extend(ring.segments.iter().copied());
+        kinds.extend(ring.segments.iter().map(|_| MoveKind::Ring));
+        match links.get(i) {
+            Some(Link { kind: LinkKind::Feed, from, to, .. }) if (*to - *from).norm() > 0.0 => {
+                segs.push(Segment::Line { start: *from, end: *to });
+                kinds.push(MoveKind::Link);
+            }
+            Some(Link { kind: LinkKind::Retract, .. }) => breaks.push(segs.len()),
+            _ => {}
+        }
+    }
+    Toolpath::at_depth(&segs, &kinds, 0.0, Vec::new(), breaks)
 }
 
 /// The same closed loop, restarted at the midpoint of its longest line (split in two), so the
@@ -607,7 +534,7 @@ fn corner_piece(a: P2, u0: P2, c: P2, base: CornerSettings, method: CornerMethod
     let edge_length = (u0 - a).norm().min((c - u0).norm()) + r / alpha.tan();
     let sc = CornerScenario::new(corner, CornerSettings { edge_length, ..base }).ok()?;
     let plan = plan_corner(&sc, method).ok()?;
-    let (mut path, mut kinds) = (plan.path, plan.kinds);
+    let (mut path, mut kinds) = (plan.toolpath.segments(), plan.toolpath.kinds());
     path.pop(); // the V leg: the next ring segment
     kinds.pop();
     let kinds = kinds.into_iter().map(|k| if k == MoveKind::CornerPoint { k } else { MoveKind::Corner }).collect();
@@ -640,18 +567,18 @@ fn adaptive_core(
     settings: &PocketSettings,
     options: &AdaptiveOptions,
     phi: f64,
-    outline: &Polyline<f64>,
+    outline: &Region,
     d: f64,
 ) -> Result<Core, Error> {
     let (r, sf) = (settings.tool_radius, options.finish_stock_mm);
     // as adaptive clearing: the regions keep the finishing stock from the final wall, ring d
-    let regions = offset(outline, d + sf);
+    let regions = outline.offset(d + sf);
     if regions.is_empty() {
         return Err(Error::param(Param::Polygon, "no region", "a pocket the tool fits"));
     }
     let rho_fin = if sf > 0.0 { fin_radius(sf, r, phi) } else { 0.1 * r };
     let (parts, b) = clear_regions(&regions, polygon, settings, options, phi, rho_fin, None)?;
-    Ok((parts, b, offset(outline, d).iter().map(to_segments).collect()))
+    Ok((parts, b, outline.offset(d).iter().map(Region::segments).collect()))
 }
 
 /// The rings of [`plan_ring_pocket`] from the core outward, each with its tagged segments
@@ -817,7 +744,7 @@ pub fn plan_ring_pocket(
     let (r, ae) = (settings.tool_radius, settings.step_over);
     let levels = ring_levels(polygon, r, ae)?;
     let phi = options.target_rad(&settings)?;
-    let outline = pline_of(polygon.vertices());
+    let outline = Region::polygon(polygon.vertices());
     // Every ring with its corners; k_c from the helix and the corners.
     let delta = Some(core_options.corner_tolerance_mm);
     let mut rings: Vec<Vec<CorneredRing>> = Vec::with_capacity(levels.len());
@@ -836,7 +763,7 @@ pub fn plan_ring_pocket(
     }
     let sf = core_options.finish_stock_mm;
     let holds_helix = |k: usize| {
-        let regions = offset(&outline, levels[k].1 + sf);
+        let regions = outline.offset(levels[k].1 + sf);
         !regions.is_empty() && regions.iter().all(|g| helix_radius(&core_options, r, inscribed(g).0).is_ok())
     };
     let deepest = (0..levels.len()).rev().find(|&k| holds_helix(k));
@@ -902,16 +829,17 @@ pub fn plan_ring_pocket(
             // medial-axis clearing of the whole pocket (ramp entry, circles out of its slot,
             // corner-point arcs) is the core, and no ring is left outside it.
             let m = super::perforative::plan_perforative(polygon, settings, &core_options)?;
-            core.segments = m.segments;
-            core.kinds = m.kinds;
-            core.retract_before = m.retract_before;
-            entries = m.entries;
+            let path = m.path.toolpath;
+            core.segments = path.segments();
+            core.kinds = path.kinds();
+            core.retract_before = path.retract_before;
+            entries = path.entries;
             (0, Vec::new(), Vec::new())
         }
         None => {
             // No helix anywhere: a ramp in each region of tool centres, every level a ring.
             let mut hubs = Vec::new();
-            for region in offset(&outline, r) {
+            for region in outline.offset(r) {
                 if !core.segments.is_empty() {
                     core.retract_before.push(core.segments.len());
                 }
@@ -954,10 +882,10 @@ pub fn plan_ring_pocket(
         inside = next;
     }
     let a = assemble(polygon, r, ae, core, &candidates);
-    let opts = EvaluatorOptions::new(r, settings.spacing);
-    let bores: Vec<Segment> = entries.iter().map(Entry::bore).collect();
-    let profile = engagement_profile(polygon, &bores, &a.segments, &opts)?;
-    let owner = sample_owners(&profile, &a.segments);
+    let toolpath = Toolpath::at_depth(&a.segments, &a.kinds, -options.depth_mm, entries, a.retract_before.clone());
+    let path = PocketPath::measured(polygon, settings, toolpath, options.depth_mm, &[MoveKind::Link])?;
+    let profile = &path.measurement.profile;
+    let owner = sample_owners(profile, &a.segments);
     let in_range = |lo: usize, hi: usize| {
         profile.samples.iter().zip(&owner).filter(move |(_, o)| (lo..hi).contains(*o)).map(|(s, _)| s)
     };
@@ -1023,36 +951,16 @@ pub fn plan_ring_pocket(
     if !links.is_empty() {
         links.remove(0);
     }
-    let (maxima, _) = maxima(&profile, &a.segments, &a.kinds, &[]);
-    let (max_engagement_rad, p95_engagement_rad) = peak_and_p95(&profile);
-    let length_at_depth_mm: f64 = a.segments.iter().map(Segment::length).sum();
-    let entry_length_mm: f64 = entries.iter().map(|e| e.descent_length(options.depth_mm)).sum();
     let path_length_mm: f64 = out_rings.iter().map(|g| g.length_mm).sum();
-    // every link move at depth: the core's links as well as those between rings (the same sum
-    // as the link row of the per-kind maxima)
-    let link_length_mm =
-        a.segments.iter().zip(&a.kinds).filter(|(_, k)| **k == MoveKind::Link).map(|(s, _)| s.length()).sum();
     Ok(RingPlan {
-        polygon: polygon.clone(),
-        settings,
+        max_engagement_rad: path.measurement.max_engagement_rad,
+        path,
         method,
         rings: out_rings,
         path_length_mm,
-        time_s: (length_at_depth_mm + entry_length_mm) / settings.feed_mm_per_min * 60.0,
-        max_engagement_rad,
         trochoid_corners: candidates.iter().map(|c| c.corners.0).sum(),
         plain_corners: candidates.iter().map(|c| c.corners.1).sum(),
         links,
-        link_length_mm,
-        entries,
-        segments: a.segments,
-        kinds: a.kinds,
-        retract_before: a.retract_before,
-        maxima,
-        p95_engagement_rad,
-        length_at_depth_mm,
-        entry_length_mm,
-        air_length_mm: profile.air_length_mm(AIR_ENGAGEMENT_RAD),
         corner_points,
     })
 }

@@ -4,8 +4,8 @@
 //! pocket's arms) each place cleared in turn.
 
 use super::adaptive::{Builder, closest_on, link, split};
-use super::perforative::MoveKind;
 use crate::geom::{P2, Polygon, Segment};
+use crate::toolpath::MoveKind;
 
 /// The runs of a ring (consecutive segments, the ring closed) that do not lie on the previous
 /// ring `prev`: what the ring adds. A segment lies on `prev` where its ends and middle are

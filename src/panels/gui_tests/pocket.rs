@@ -75,7 +75,7 @@ fn pocket_tab_plans_the_medial_axis_strategy_for_the_whole_pocket() {
         ..PocketRequest::default()
     };
     let PocketPlan::MedialAxis(want) = pocket::plan(&req).unwrap() else { panic!("medial-axis plan expected") };
-    assert_eq!(want.segments, plan.segments);
+    assert_eq!(want.path.segments(), plan.path.segments());
     assert!(shows(&h, &p.detail), "{}", p.detail);
     assert!(p.detail.contains(&format!("{} circles along the medial axis", want.circles.len())), "{}", p.detail);
 }
@@ -110,9 +110,9 @@ fn pocket_tab_plans_adaptive_clearing() {
     // the tab shows what the core plans for the tab's request
     let req = h.state().state.pocket.request().unwrap();
     let PocketPlan::Adaptive(want) = pocket::plan(&req).unwrap() else { panic!("adaptive plan expected") };
-    assert_eq!(want.segments, plan.segments);
+    assert_eq!(want.path.segments(), plan.path.segments());
     assert!(shows(&h, &p.detail), "{}", p.detail);
-    assert!(p.detail.contains(&format!("{:.0} mm at depth", want.length_at_depth_mm)), "{}", p.detail);
+    assert!(p.detail.contains(&format!("{:.0} mm at depth", want.path.measurement.length_at_depth_mm)), "{}", p.detail);
 }
 
 /// The Pocket tab's open-edges field: typed into, the tab plans the pocket

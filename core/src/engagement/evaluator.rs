@@ -12,7 +12,7 @@
 //! are nearer than `r` to the path just travelled and do not.
 //!
 //! This module deliberately shares nothing with the analytic two-circle model
-//! ([`super::engagement`]): it is the independent check of every corner strategy.
+//! ([`super::model`]): it is the independent check of every corner strategy.
 
 use super::nearby::{CutGrid, Cutter, LocalStock};
 use crate::error::{Error, Param, num};

@@ -1,0 +1,117 @@
+//! One measurement of a tool path: the evaluator's profile over the stock with the entries'
+//! bores cut, the largest engagement per kind of move, over everything and its 95th percentile,
+//! the length at depth and the air (moves below [`AIR_ENGAGEMENT_RAD`]).
+
+use super::evaluator::{EngagementProfile, EvaluatorOptions, engagement_profile};
+use crate::error::Error;
+use crate::geom::{P2, Polygon, Segment};
+use crate::toolpath::{MoveKind, Toolpath};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+
+/// Engagement below which a move counts as air (rad): 1°.
+pub const AIR_ENGAGEMENT_RAD: f64 = PI / 180.0;
+
+/// Maximum engagement of one kind of move, measured by the evaluator.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct KindMax {
+    pub kind: MoveKind,
+    /// Largest engagement (rad) and where.
+    pub max_rad: f64,
+    pub at: P2,
+    /// Length of these moves (mm).
+    pub length_mm: f64,
+}
+
+/// The largest engagement of a profile and the 95th percentile of its samples (rad).
+pub fn peak_and_p95(profile: &EngagementProfile) -> (f64, f64) {
+    let mut angles: Vec<f64> = profile.samples.iter().map(|s| s.angle_rad).collect();
+    angles.sort_by(f64::total_cmp);
+    let p95 = angles.get(((0.95 * angles.len() as f64).ceil() as usize).saturating_sub(1)).copied().unwrap_or(0.0);
+    (profile.max_angle(), p95)
+}
+
+/// The segment each sample of `profile` belongs to: the first whose end is at or beyond it (a
+/// sample on a joint belongs to the segment that ends there).
+pub fn sample_owners(profile: &EngagementProfile, segments: &[Segment]) -> Vec<usize> {
+    let mut ends = Vec::with_capacity(segments.len());
+    let mut acc = 0.0;
+    for s in segments {
+        acc += s.length();
+        ends.push(acc);
+    }
+    let last = segments.len().saturating_sub(1);
+    profile.samples.iter().map(|smp| ends.partition_point(|&e| e < smp.s_mm - 1e-9).min(last)).collect()
+}
+
+/// Per kind of move present, in order of first appearance: the largest sample of `profile`
+/// over the moves of that kind, where it is, and their length.
+pub fn maxima(profile: &EngagementProfile, segments: &[Segment], kinds: &[MoveKind]) -> Vec<KindMax> {
+    let mut out: Vec<KindMax> = Vec::new();
+    for (s, &k) in segments.iter().zip(kinds) {
+        match out.iter_mut().find(|m| m.kind == k) {
+            Some(m) => m.length_mm += s.length(),
+            None => out.push(KindMax { kind: k, max_rad: 0.0, at: s.start(), length_mm: s.length() }),
+        }
+    }
+    let owners = sample_owners(profile, segments);
+    for (smp, &i) in profile.samples.iter().zip(&owners) {
+        if let Some(m) = out.iter_mut().find(|m| m.kind == kinds[i])
+            && smp.angle_rad > m.max_rad
+        {
+            m.max_rad = smp.angle_rad;
+            m.at = P2::new(smp.x_mm, smp.y_mm);
+        }
+    }
+    out
+}
+
+/// What [`measure`] finds on a tool path.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Measurement {
+    /// The evaluator's profile along the moves (positions `spacing` apart).
+    pub profile: EngagementProfile,
+    /// Per kind of move present: maximum measured engagement, where, and length.
+    pub maxima: Vec<KindMax>,
+    /// Largest engagement over every move (rad), and the 95th percentile of the samples.
+    pub max_engagement_rad: f64,
+    pub p95_engagement_rad: f64,
+    /// Length of the moves (mm), and of it the air: samples below [`AIR_ENGAGEMENT_RAD`].
+    pub length_at_depth_mm: f64,
+    pub air_length_mm: f64,
+}
+
+impl Measurement {
+    /// Maximum of one kind of move (0 if absent).
+    pub fn max_of(&self, kind: MoveKind) -> f64 {
+        self.max_over(&[kind])
+    }
+
+    /// Largest maximum over the given kinds (0 if none is present).
+    pub fn max_over(&self, kinds: &[MoveKind]) -> f64 {
+        self.maxima.iter().filter(|m| kinds.contains(&m.kind)).map(|m| m.max_rad).fold(0.0, f64::max)
+    }
+}
+
+/// Measure `path` over `stock`: the evaluator's engagement along its moves with the bores of
+/// its entries as cut ([`Toolpath::bores`]), gathered per kind of move.
+pub fn measure(path: &Toolpath, stock: &Polygon, opts: &EvaluatorOptions) -> Result<Measurement, Error> {
+    let segments = path.segments();
+    let kinds = path.kinds();
+    let profile = engagement_profile(stock, &path.bores(), &segments, opts)?;
+    Ok(measured(profile, &segments, &kinds))
+}
+
+/// The measurement of an evaluated profile along `segments` (what each does: `kinds`).
+pub fn measured(profile: EngagementProfile, segments: &[Segment], kinds: &[MoveKind]) -> Measurement {
+    let maxima = maxima(&profile, segments, kinds);
+    let (max_engagement_rad, p95_engagement_rad) = peak_and_p95(&profile);
+    Measurement {
+        maxima,
+        max_engagement_rad,
+        p95_engagement_rad,
+        length_at_depth_mm: segments.iter().map(Segment::length).sum(),
+        air_length_mm: profile.air_length_mm(AIR_ENGAGEMENT_RAD),
+        profile,
+    }
+}

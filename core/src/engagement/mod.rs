@@ -1,0 +1,19 @@
+//! Engagement: how much of the tool's periphery is in material along a path.
+//!
+//! - [`model`]: the analytic straight cut and two-circle model (Wu et al. 2016 eqs. 2–6).
+//! - [`evaluator`]: the independent numeric evaluator of any path over any stock polygon;
+//!   CSV tool paths.
+//! - [`nearby`]: the evaluator's spatial index of the swept path and the local stock.
+//! - [`measure`](mod@measure): one [`Measurement`] of a [`crate::toolpath::Toolpath`] — profile, per-kind
+//!   maxima, peak, 95th percentile, length and air.
+
+pub mod evaluator;
+pub mod measure;
+pub mod model;
+pub mod nearby;
+
+pub use evaluator::{
+    EngagementProfile, EngagementSample, EvaluatorOptions, engagement_profile, parse_points, polyline,
+};
+pub use measure::{AIR_ENGAGEMENT_RAD, KindMax, Measurement, maxima, measure, measured, peak_and_p95, sample_owners};
+pub use model::{MaxEngagement, Turn, TwoCircle, radial_depth_for_engagement, straight_engagement};

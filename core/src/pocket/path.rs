@@ -1,0 +1,94 @@
+//! What every pocket plan has, whatever its strategy: the pocket, the settings, the tool path
+//! ([`Toolpath`]: moves at depth, entries, retracts) and its [`Measurement`], with the lengths
+//! and the time derived from them.
+
+use super::PocketSettings;
+use crate::engagement::{EvaluatorOptions, Measurement, measure};
+use crate::error::Error;
+use crate::geom::mirror::mirror_point;
+use crate::geom::{Polygon, Segment};
+use crate::toolpath::{MoveKind, Toolpath};
+use serde::{Deserialize, Serialize};
+
+/// A pocket's tool path and its measurement.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PocketPath {
+    /// The validated pocket (counter-clockwise).
+    pub polygon: Polygon,
+    pub settings: PocketSettings,
+    /// Every move at depth in machining order, the entries of the parts, the retracts.
+    pub toolpath: Toolpath,
+    /// The evaluator over `polygon` with the entries' bores as cut ([`measure`]).
+    pub measurement: Measurement,
+    /// Length of the link moves at depth (mm): the kinds each strategy counts as links.
+    pub link_length_mm: f64,
+    /// Length of the entries' descents from above the stock top (mm).
+    pub entry_length_mm: f64,
+    /// Time at the feed: the descents and every move at depth (s).
+    pub time_s: f64,
+}
+
+impl PocketPath {
+    /// Measure `toolpath` over `polygon` (positions `settings.spacing` apart), its links being
+    /// the moves of `link_kinds`, its entries descending to `depth_mm` below the stock top.
+    pub fn measured(
+        polygon: &Polygon,
+        settings: PocketSettings,
+        toolpath: Toolpath,
+        depth_mm: f64,
+        link_kinds: &[MoveKind],
+    ) -> Result<PocketPath, Error> {
+        let measurement = measure(&toolpath, polygon, &EvaluatorOptions::new(settings.tool_radius, settings.spacing))?;
+        let link_length_mm = toolpath.length_of(link_kinds);
+        let entry_length_mm = toolpath.entry_length_mm(depth_mm);
+        let time_s = (measurement.length_at_depth_mm + entry_length_mm) / settings.feed_mm_per_min * 60.0;
+        Ok(PocketPath {
+            polygon: polygon.clone(),
+            settings,
+            toolpath,
+            measurement,
+            link_length_mm,
+            entry_length_mm,
+            time_s,
+        })
+    }
+
+    /// The moves' segments in machining order.
+    pub fn segments(&self) -> Vec<Segment> {
+        self.toolpath.segments()
+    }
+
+    /// What each move does, in machining order.
+    pub fn kinds(&self) -> Vec<MoveKind> {
+        self.toolpath.kinds()
+    }
+
+    /// The segments in machining order and the indices of those reached by a retract.
+    pub fn tool_path(&self) -> (Vec<Segment>, Vec<usize>) {
+        (self.toolpath.segments(), self.toolpath.retract_before.clone())
+    }
+
+    /// Maximum measured engagement of one kind of move (0 if absent).
+    pub fn max_of(&self, kind: MoveKind) -> f64 {
+        self.measurement.max_of(kind)
+    }
+
+    /// The same path mirrored in x for the pocket `polygon` (the original of a mirrored plan):
+    /// moves, entries, the profile's positions and the maxima's places.
+    pub fn mirrored(mut self, polygon: &Polygon) -> PocketPath {
+        self.polygon = polygon.clone();
+        for m in &mut self.toolpath.moves {
+            m.segment = m.segment.mirrored_x();
+        }
+        for e in &mut self.toolpath.entries {
+            *e = e.mirrored();
+        }
+        for smp in &mut self.measurement.profile.samples {
+            smp.x_mm = -smp.x_mm;
+        }
+        for m in &mut self.measurement.maxima {
+            m.at = mirror_point(m.at);
+        }
+        self
+    }
+}

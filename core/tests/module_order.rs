@@ -1,0 +1,95 @@
+//! The core's top-level modules form no import cycle: every module uses only modules before
+//! it in [`ORDER`]. Read from the sources: each `core/src/<module>.rs` and every file under
+//! `core/src/<module>/`, up to its `#[cfg(test)]` (unit tests may use anything) and with `//`
+//! comments removed; a use is any `crate::<name>` naming a top-level module. A module missing
+//! from [`ORDER`], or a use of a later module, fails with the file that makes it.
+
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// The allowed order, lowest first: a module may use the modules before it.
+#[rustfmt::skip]
+const ORDER: &[&str] = &[
+    "error", "geom", "toolpath", "outline", "material", "machine", "job", "path", "analysis", "plan", "feed",
+    "optimize", "quantity", "sweep", "engagement", "corner", "pocket", "nc",
+];
+
+/// Production code of one file: up to the first `#[cfg(test)]`, `//` comments removed.
+fn production(text: &str) -> String {
+    let body = text.split("#[cfg(test)]").next().unwrap_or("");
+    body.lines().map(|l| l.split("//").next().unwrap_or("")).collect::<Vec<_>>().join("\n")
+}
+
+/// Top-level module names after `crate::` in `code`.
+fn uses(code: &str) -> Vec<String> {
+    code.match_indices("crate::")
+        .filter(|(i, _)| !code[..*i].ends_with(|c: char| c.is_alphanumeric() || c == '_'))
+        .map(|(i, m)| code[i + m.len()..].chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect())
+        .collect()
+}
+
+/// Files of each top-level module (not lib.rs; a module's `tests.rs` is test code).
+fn modules(src: &Path) -> BTreeMap<String, Vec<std::path::PathBuf>> {
+    let mut out: BTreeMap<String, Vec<std::path::PathBuf>> = BTreeMap::new();
+    for e in std::fs::read_dir(src).expect("core/src").flatten() {
+        let p = e.path();
+        let name = p.file_stem().and_then(|s| s.to_str()).unwrap_or("").to_string();
+        if p.is_dir() {
+            let mut stack = vec![p.clone()];
+            while let Some(d) = stack.pop() {
+                for f in std::fs::read_dir(&d).expect("module dir").flatten() {
+                    let q = f.path();
+                    if q.is_dir() {
+                        stack.push(q);
+                    } else if q.extension().is_some_and(|x| x == "rs") && q.file_name().is_some_and(|n| n != "tests.rs")
+                    {
+                        out.entry(name.clone()).or_default().push(q);
+                    }
+                }
+            }
+        } else if p.extension().is_some_and(|x| x == "rs") && name != "lib" {
+            out.entry(name).or_default().push(p);
+        }
+    }
+    out
+}
+
+#[test]
+fn core_modules_use_only_earlier_modules() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mods = modules(&src);
+    let rank = |m: &str| ORDER.iter().position(|o| *o == m);
+    let mut bad = Vec::new();
+    for (m, files) in &mods {
+        let Some(rm) = rank(m) else {
+            bad.push(format!("module `{m}` is not in ORDER"));
+            continue;
+        };
+        for f in files {
+            let code = production(&std::fs::read_to_string(f).expect("read source"));
+            for u in uses(&code) {
+                if let Some(ru) = rank(&u)
+                    && ru > rm
+                {
+                    bad.push(format!("{} uses crate::{u}, which comes after `{m}`", f.display()));
+                }
+            }
+        }
+    }
+    bad.sort();
+    bad.dedup();
+    assert!(bad.is_empty(), "module order violated:\n{}", bad.join("\n"));
+}
+
+/// The scanner sees the uses it must see (a check of the check): a made-up file using a later
+/// module, in both forms, and nothing in comments or after `#[cfg(test)]`.
+#[test]
+fn scanner_finds_uses_and_skips_comments_and_tests() {
+    let code = production(
+        "use crate::geom::P2;\nfn f() { crate::pocket::plan(); } // crate::nc\n#[cfg(test)]\nuse crate::corner;",
+    );
+    assert_eq!(uses(&code), vec!["geom".to_string(), "pocket".to_string()]);
+    assert!(uses("mycrate::pocket").is_empty());
+}
