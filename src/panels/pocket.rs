@@ -122,7 +122,7 @@ pub fn compute(i: &PocketInputs) -> Result<PocketResult, String> {
         ),
         // One pass: the whole path at depth (shown as one entry of the ring list).
         PocketPlan::Adaptive(p) => (
-            vec![(0, 0.0, p.max_engagement_rad.to_degrees(), segment_points(&p.path.segments(), MAX_PATH_POINTS))],
+            vec![(0, 0.0, plan.max_engagement_rad().to_degrees(), segment_points(&p.path.segments(), MAX_PATH_POINTS))],
             format!(
                 "{} entry, {} rings, {} corners thinned; p95 {:.1}°, {:.0} mm at depth",
                 match p.parts.first().map(|q| q.entry) {
