@@ -13,6 +13,7 @@
 # (apt-get install -y xvfb xdotool imagemagick x11-utils). The click positions below belong to
 # the window's layout at 1400×900: after a layout change, take one picture, check where the
 # controls are and adjust them. Look at every picture before committing it.
+# SCREENSHOT_LOG=FILE keeps the window's own output (default: discarded).
 set -euo pipefail
 
 BIN=$(realpath "${1:?usage: scripts/screenshots.sh BINARY [NAME...]}")
@@ -22,11 +23,12 @@ NAMES=("$@")
 [ ${#NAMES[@]} -gt 0 ] || NAMES=(main invalid-value compare sweep forces teaching export
 	machine corner corner-table pocket pocket-adaptive)
 
-# A display of our own.
-DISP=:${SCREENSHOT_DISPLAY:-57}
-Xvfb "$DISP" -screen 0 1400x900x24 -nolisten tcp >/dev/null 2>&1 &
+# A display of our own: the first free number from 57 on (SCREENSHOT_DISPLAY picks another start).
+N=${SCREENSHOT_DISPLAY:-57}
+while [ -e "/tmp/.X11-unix/X$N" ] || [ -e "/tmp/.X$N-lock" ]; do N=$((N + 1)); done
+Xvfb ":$N" -screen 0 1400x900x24 -nolisten tcp >/dev/null 2>&1 &
 XVFB=$!
-export DISPLAY=$DISP
+export DISPLAY=:$N
 unset WAYLAND_DISPLAY
 APP=
 APP_HOME=
@@ -36,15 +38,20 @@ cleanup() {
 	kill "$XVFB" 2>/dev/null || true
 }
 trap cleanup EXIT
-sleep 1
+for _ in $(seq 50); do
+	[ -e "/tmp/.X11-unix/X$N" ] && break
+	kill -0 "$XVFB" 2>/dev/null || { echo "Xvfb :$N did not start" >&2; exit 1; }
+	sleep .1
+done
+sleep .5
 
 start_app() {
 	APP_HOME=$(mktemp -d)
 	HOME=$APP_HOME XDG_DATA_HOME=$APP_HOME/data XDG_CONFIG_HOME=$APP_HOME/config \
-		"$BIN" >/dev/null 2>&1 &
+		"$BIN" >"${SCREENSHOT_LOG:-/dev/null}" 2>&1 &
 	APP=$!
 	WID=
-	for _ in $(seq 100); do
+	for _ in $(seq 300); do # up to a minute on a busy machine
 		WID=$(xdotool search --pid "$APP" --name TrochoPlan 2>/dev/null | head -1 || true)
 		[ -n "$WID" ] && break
 		sleep .2
