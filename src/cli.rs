@@ -7,9 +7,9 @@ use crate::shared::files::{Role, check_distinct, read_input, write_atomic};
 mod common;
 mod corner;
 mod engagement;
-mod pocket;
 #[path = "export.rs"]
 mod export;
+mod pocket;
 // The optimiser likewise.
 #[path = "optimize_cmd.rs"]
 mod optimize_cmd;

@@ -12,7 +12,6 @@ use trochoplan_core::{Error, Param};
 
 use super::core_names;
 
-
 /// NC export of `trochoplan corner` and `trochoplan pocket` (same program frame as
 /// `trochoplan export`; the corner's own frame: apex at X0 Y0, bisector along +X; the pocket's:
 /// the polygon file's coordinates; stock top Z0).

@@ -141,7 +141,6 @@ mod tests {
         T::try_parse_from(v).expect("parse").c
     }
 
-
     #[test]
     fn bad_corner_inputs_name_the_parameter() {
         for (flags, name) in [

@@ -173,7 +173,6 @@ mod tests {
         e: EngagementArgs,
     }
 
-
     /// Polygon and path files are read as input files (regular, bounded) and
     /// every line parses or the error names the file and the line; a BOM is accepted.
     #[test]
