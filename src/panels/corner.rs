@@ -471,6 +471,6 @@ mod tests {
             v.update(&i);
         }
         assert!(!v.pending(), "answered within 60 s");
-        assert_eq!(v.last.as_ref().expect("a result").angle_deg, 100.0);
+        assert_eq!(v.last.as_ref().expect("a result").summary.corner_angle_deg, 100.0);
     }
 }

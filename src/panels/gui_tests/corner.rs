@@ -19,7 +19,7 @@ fn corner_tab_opens_and_shows_the_measured_engagement() {
     assert_eq!(h.state().view.tab, Tab::Corner);
     assert!(h.state().corner.error.is_none(), "{:?}", h.state().corner.error);
     let r = corner_result(&h);
-    assert_eq!(r.method, "variable");
+    assert_eq!(r.summary.method, "variable");
     assert!(r.summary.circles.len() > 0, "variable circles planned");
     assert!(
         r.summary.plain_max_engagement_deg > r.summary.max_engagement_deg,
@@ -55,7 +55,7 @@ fn corner_angle_and_method_replan_and_change_the_shown_numbers() {
     h.get_by_label(CornerMethod::Isometric.label()).click();
     h.run();
     let iso = corner_result(&h);
-    assert_eq!(iso.method, "isometric");
+    assert_eq!(iso.summary.method, "isometric");
     assert_eq!(h.state().state.corner.method, CornerMethod::Isometric);
     assert_ne!(iso.summary.path_length_mm, after.summary.path_length_mm);
     assert!(shows(&h, &format!("{:.1} mm", iso.summary.path_length_mm)), "isometric length shown");
