@@ -276,6 +276,17 @@ impl<In: Clone + PartialEq + Send + 'static, T: Send + Sync + 'static> Latest<In
         self.worker.request(inputs.clone());
         self.poll();
     }
+
+    /// Update with `inputs` until no request is pending, for at most `seconds` (the tests of a
+    /// threaded view).
+    #[cfg(test)]
+    pub fn settle(&mut self, inputs: &In, seconds: u64) {
+        let t0 = std::time::Instant::now();
+        while self.pending() && t0.elapsed().as_secs() < seconds {
+            std::thread::sleep(std::time::Duration::from_millis(20));
+            self.update(inputs);
+        }
+    }
 }
 
 /// Run `job` for one request unless a newer one superseded it already, then report it done.

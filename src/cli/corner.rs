@@ -96,9 +96,6 @@ impl CornerArgs {
     }
 }
 
-/// NC export of `trochoplan corner` and `trochoplan pocket` (same program frame as
-/// `trochoplan export`; the corner's own frame: apex at X0 Y0, bisector along +X; the pocket's:
-
 /// Write the corner program of `report` to `file` (see [`CornerExportArgs`]).
 fn export_corner(nc: &CornerExportArgs, file: &std::path::Path, report: &CornerReport) -> Result<NcExportOut, String> {
     let opts = nc.options();

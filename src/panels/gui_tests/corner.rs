@@ -20,7 +20,7 @@ fn corner_tab_opens_and_shows_the_measured_engagement() {
     assert!(h.state().corner.error.is_none(), "{:?}", h.state().corner.error);
     let r = corner_result(&h);
     assert_eq!(r.summary.method, "variable");
-    assert!(r.summary.circles.len() > 0, "variable circles planned");
+    assert!(!r.summary.circles.is_empty(), "variable circles planned");
     assert!(
         r.summary.plain_max_engagement_deg > r.summary.max_engagement_deg,
         "plain {} vs variable {}",
