@@ -49,11 +49,6 @@ impl KindRow {
     }
 }
 
-/// Total length of the rows of `kind` (mm; 0 without such moves).
-pub fn kind_length_mm(rows: &[KindRow], kind: MoveKind) -> f64 {
-    rows.iter().filter(|r| r.kind == kind).map(|r| r.length_mm).sum()
-}
-
 /// A convex corner point reached by corner-point arcs (within the corner tolerance).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct CornerPointRow {
