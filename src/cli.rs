@@ -4,10 +4,12 @@
 use crate::shared::files::{Role, check_distinct, read_input, write_atomic};
 // The command files of the CLI, next to this one: `export`, the pocket-corner commands and the
 // optimiser.
-#[path = "corner_cmd.rs"]
-mod corner_cmd;
+mod common;
+mod corner;
+mod engagement;
 #[path = "export.rs"]
 mod export;
+mod pocket;
 // The optimiser likewise.
 #[path = "optimize_cmd.rs"]
 mod optimize_cmd;
@@ -80,18 +82,18 @@ enum Command {
     /// or with --table the acceptance table for corner angles 30°…150°.
     Corner {
         #[command(flatten)]
-        args: corner_cmd::CornerArgs,
+        args: corner::CornerArgs,
     },
     /// Engagement along a tool path (CSV x,y) over a stock polygon; print JSON per position.
     Engagement {
         #[command(flatten)]
-        args: corner_cmd::EngagementArgs,
+        args: engagement::EngagementArgs,
     },
     /// Clear a polygonal pocket by contour-parallel rings; print JSON (rings, path length,
     /// time, engagement per ring measured by the evaluator).
     Pocket {
         #[command(flatten)]
-        args: corner_cmd::PocketArgs,
+        args: pocket::PocketArgs,
     },
     /// Fit the six cutting-force coefficients to full-slot tests (the edge-force model of
     /// Altintas & Lee 1996, docs/process-model.md); print
@@ -337,11 +339,11 @@ fn run(cmd: Command) -> Result<String, String> {
             check_distinct(&[&job.inputs()[..], &[("--output", Some(nc.output()), Role::Output)]].concat())?;
             export::run(&job.job()?, &nc)
         }
-        Command::Corner { args } => corner_cmd::corner(&args),
-        Command::Engagement { args } => corner_cmd::engagement(&args),
+        Command::Corner { args } => corner::corner(&args),
+        Command::Engagement { args } => engagement::engagement(&args),
         Command::Pocket { args } => {
             check_distinct(&args.files())?;
-            corner_cmd::pocket(&args)
+            pocket::pocket(&args)
         }
         Command::Calibrate { slot_forces, teeth, depth } => calibrate(&slot_forces, teeth, depth),
         Command::Optimize { args } => optimize_cmd::run(&args),

@@ -226,6 +226,69 @@ impl<Req, Out> Drop for Worker<Req, Out> {
     }
 }
 
+/// The newest answer of a worker that plans a view's inputs: the last valid result (kept while
+/// the inputs are invalid), the error of the newest inputs, how many plans completed, and the
+/// inputs last asked for, so unchanged inputs are not planned again.
+pub struct Latest<In, T> {
+    /// The newest valid result.
+    pub last: Option<Arc<T>>,
+    /// The error for the newest inputs, if they are invalid.
+    pub error: Option<String>,
+    /// Completed plans (for the tests and the status line).
+    pub replans: usize,
+    /// Inputs of the newest request.
+    requested: Option<In>,
+    worker: Worker<In, Result<Arc<T>, String>>,
+}
+
+impl<In: Clone + PartialEq + Send + 'static, T: Send + Sync + 'static> Latest<In, T> {
+    /// Nothing planned yet; `worker` plans each request.
+    pub fn new(worker: Worker<In, Result<Arc<T>, String>>) -> Self {
+        Latest { last: None, error: None, replans: 0, requested: None, worker }
+    }
+
+    /// True while a request is being planned.
+    pub fn pending(&self) -> bool {
+        self.worker.running()
+    }
+
+    /// Take the answers that arrived.
+    fn poll(&mut self) {
+        for answer in self.worker.poll() {
+            self.replans += 1;
+            self.error = match answer {
+                Ok(r) => {
+                    self.last = Some(r);
+                    None
+                }
+                Err(e) => Some(e),
+            };
+        }
+    }
+
+    /// Collect answers and ask for a plan of `inputs` if they changed.
+    pub fn update(&mut self, inputs: &In) {
+        self.poll();
+        if self.requested.as_ref() == Some(inputs) {
+            return;
+        }
+        self.requested = Some(inputs.clone());
+        self.worker.request(inputs.clone());
+        self.poll();
+    }
+
+    /// Update with `inputs` until no request is pending, for at most `seconds` (the tests of a
+    /// threaded view).
+    #[cfg(test)]
+    pub fn settle(&mut self, inputs: &In, seconds: u64) {
+        let t0 = std::time::Instant::now();
+        while self.pending() && t0.elapsed().as_secs() < seconds {
+            std::thread::sleep(std::time::Duration::from_millis(20));
+            self.update(inputs);
+        }
+    }
+}
+
 /// Run `job` for one request unless a newer one superseded it already, then report it done.
 fn run<Req, Out>(
     job: &JobFn<Req, Out>,

@@ -50,6 +50,7 @@ pub mod path;
 pub mod plan;
 pub mod pocket;
 pub mod quantity;
+pub mod report;
 pub mod sweep;
 pub mod toolpath;
 

@@ -1,6 +1,6 @@
 //! The core's top-level modules form no import cycle: every module uses only modules before
 //! it in [`ORDER`]. Read from the sources: each `core/src/<module>.rs` and every file under
-//! `core/src/<module>/`, up to its `#[cfg(test)]` (unit tests may use anything) and with `//`
+//! `core/src/<module>/` but its test files (`tests.rs`, `*_tests.rs`), up to its `#[cfg(test)]` (unit tests may use anything) and with `//`
 //! comments removed; a use is any `crate::<name>` naming a top-level module. A module missing
 //! from [`ORDER`], or a use of a later module, fails with the file that makes it.
 
@@ -13,7 +13,7 @@ use std::path::Path;
 #[rustfmt::skip]
 const ORDER: &[&str] = &[
     "error", "geom", "toolpath", "outline", "material", "machine", "job", "path", "analysis", "plan", "feed",
-    "optimize", "quantity", "sweep", "engagement", "corner", "pocket", "nc",
+    "optimize", "quantity", "sweep", "engagement", "corner", "pocket", "report", "nc",
 ];
 
 /// Production code of one file: up to the first `#[cfg(test)]`, `//` comments removed.
@@ -30,7 +30,8 @@ fn uses(code: &str) -> Vec<String> {
         .collect()
 }
 
-/// Files of each top-level module (not lib.rs; a module's `tests.rs` is test code).
+/// Files of each top-level module (not lib.rs; a module's `tests.rs` and `*_tests.rs` are test
+/// code, included under `#[cfg(test)]`).
 fn modules(src: &Path) -> BTreeMap<String, Vec<std::path::PathBuf>> {
     let mut out: BTreeMap<String, Vec<std::path::PathBuf>> = BTreeMap::new();
     for e in std::fs::read_dir(src).expect("core/src").flatten() {
@@ -43,7 +44,8 @@ fn modules(src: &Path) -> BTreeMap<String, Vec<std::path::PathBuf>> {
                     let q = f.path();
                     if q.is_dir() {
                         stack.push(q);
-                    } else if q.extension().is_some_and(|x| x == "rs") && q.file_name().is_some_and(|n| n != "tests.rs")
+                    } else if q.extension().is_some_and(|x| x == "rs")
+                        && q.file_name().and_then(|n| n.to_str()).is_some_and(|n| !n.ends_with("tests.rs"))
                     {
                         out.entry(name.clone()).or_default().push(q);
                     }

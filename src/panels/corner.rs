@@ -16,13 +16,14 @@ use super::corner_table::{self, TableView};
 use super::label;
 use super::params::ERROR_COLOR;
 use super::plane::{self, MAX_PATH_POINTS, PLAIN_COLOR, STRATEGY_COLOR, line, plane_plot, segment_points};
-use crate::worker::{Keep, Task, Worker};
+use crate::worker::{Keep, Latest, Task, Worker};
 use eframe::egui::{self, Color32, DragValue, RichText, Slider, SliderClamping};
 use egui_plot::{HLine, Legend, Plot};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 use trochoplan_core::corner::{self, CornerMethod, CornerReport, CornerRequest, EngagementProfile};
 use trochoplan_core::geom::Segment;
+use trochoplan_core::report::CornerSummary;
 
 /// What the tab shows: one corner, or the acceptance table of all corner angles.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -89,21 +90,12 @@ impl CornerInputs {
     }
 }
 
-/// A planned corner converted for drawing (numbers from the core, points sampled from its
-/// segments).
+/// A planned corner converted for drawing: its numbers are the core's report (what
+/// `trochoplan corner` prints) and acceptance row, its points sampled from the plan's segments.
 #[derive(Clone, Debug)]
 pub struct CornerResult {
-    pub method: &'static str,
-    pub angle_deg: f64,
-    pub step_over_mm: f64,
-    pub straight_deg: f64,
-    pub target_deg: f64,
-    pub circles: usize,
-    pub path_length_mm: f64,
-    pub time_s: f64,
-    /// Largest engagement of the strategy's path, measured by the evaluator (degrees).
-    pub max_deg: f64,
-    pub plain_max_deg: f64,
+    /// The core's report of the corner (circles, length, time, engagement, the plain ring).
+    pub summary: CornerSummary,
     /// Largest engagement outside the final move into the corner point (degrees).
     pub body_max_deg: f64,
     /// Largest engagement of the final move into the corner point, and its stated limit (degrees).
@@ -111,9 +103,7 @@ pub struct CornerResult {
     pub tip_limit_deg: f64,
     /// Body within a* + 1° and tip within its allowance (core `AcceptanceRow::passes`).
     pub passes: bool,
-    pub plain_length_mm: f64,
     pub plain_time_s: f64,
-    pub notes: Vec<String>,
     /// Wall 1 to the apex to wall 2.
     pub walls: Vec<[f64; 2]>,
     /// The previous ring's tool-centre path (already cut).
@@ -125,34 +115,24 @@ pub struct CornerResult {
     /// Engagement (degrees) against path position (mm).
     pub profile: Vec<[f64; 2]>,
     pub plain_profile: Vec<[f64; 2]>,
-    /// The core's report (plans, profiles, settings; for the NC program).
+    /// The core's evaluation (plans, profiles, settings; for the NC program).
     pub report: CornerReport,
 }
 
 /// Plan the corner and measure the strategy and the plain ring with the evaluator
-/// (`corner::evaluate`, as `trochoplan corner`), converted for drawing.
+/// (`corner::evaluate` and `report::corner`, as `trochoplan corner`), converted for drawing.
 pub fn compute(i: &CornerInputs) -> Result<CornerResult, String> {
     let report = corner::evaluate(&i.request()).map_err(|e| e.to_string())?;
+    let summary = trochoplan_core::report::corner(&report).map_err(|e| e.to_string())?;
     let (s, c, row) = (report.settings(), report.scenario.corner, &report.row);
     let wall = |p: trochoplan_core::geom::P2| [p.x, p.y];
     Ok(CornerResult {
-        method: row.method.name(),
-        angle_deg: report.angle_deg,
-        step_over_mm: s.step_over,
-        straight_deg: s.straight_engagement().map_err(|e| e.to_string())?.to_degrees(),
-        target_deg: row.target_deg,
-        circles: row.circles,
-        path_length_mm: row.path_length_mm,
-        time_s: row.time_s,
-        max_deg: row.max_deg,
-        plain_max_deg: row.plain_max_deg,
+        summary,
         body_max_deg: row.body_max_deg,
         tip_deg: row.tip_deg,
         tip_limit_deg: row.tip_limit_deg,
         passes: row.passes(),
-        plain_length_mm: row.plain_path_length_mm,
         plain_time_s: row.plain_time_s,
-        notes: report.plan.notes.clone(),
         walls: vec![wall(c.apex - c.dir_in * s.edge_length), wall(c.apex), wall(c.apex + c.dir_out * s.edge_length)],
         previous_ring: segment_points(&report.scenario.previous_ring, MAX_PATH_POINTS / 4),
         circle_points: report
@@ -180,36 +160,32 @@ fn profile_points(p: &EngagementProfile) -> Vec<[f64; 2]> {
     p.samples.iter().map(|s| [s.s_mm, s.angle_rad.to_degrees()]).collect()
 }
 
-/// The corner tab's worker: inputs in, their plan (or why they are invalid) out.
-type CornerWorker = Worker<CornerInputs, Result<Arc<CornerResult>, String>>;
-
 /// Plan the corner of `inputs`.
 fn plan_job(inputs: CornerInputs, task: &Task<Result<Arc<CornerResult>, String>>) {
     task.send(compute(&inputs).map(Arc::new));
 }
 
-/// The last corner result, its error, and the worker computing it.
+/// The last corner result, its error and the worker computing it ([`Latest`], which the view
+/// dereferences to), and the acceptance table. Plans inline or on its own thread; an answer
+/// overtaken by a newer request is still shown if it is newer than the one on screen
+/// ([`Keep::Newer`]), so the view follows a dragged slider.
 pub struct CornerView {
     /// The acceptance table (its own worker thread).
     pub table: TableView,
-    /// The newest valid result (kept while the inputs are invalid).
-    pub last: Option<Arc<CornerResult>>,
-    /// The error for the newest inputs, if they are invalid.
-    pub error: Option<String>,
-    /// Inputs of the newest request.
-    requested: Option<CornerInputs>,
-    /// Completed plans (for the tests and the status line).
-    pub replans: usize,
-    /// Plans inline or on its own thread; an answer overtaken by a newer request is still shown
-    /// if it is newer than the one on screen ([`Keep::Newer`]), so the view follows a dragged
-    /// slider.
-    worker: CornerWorker,
+    corner: Latest<CornerInputs, CornerResult>,
+}
+
+impl std::ops::Deref for CornerView {
+    type Target = Latest<CornerInputs, CornerResult>;
+    fn deref(&self) -> &Self::Target {
+        &self.corner
+    }
 }
 
 impl Default for CornerView {
     /// A view planning inline (the tests).
     fn default() -> Self {
-        CornerView::with_worker(Worker::inline(Keep::Newer, plan_job), TableView::default())
+        CornerView { table: TableView::default(), corner: Latest::new(Worker::inline(Keep::Newer, plan_job)) }
     }
 }
 
@@ -219,30 +195,8 @@ impl CornerView {
         let repaint = Arc::new(repaint);
         let table_repaint = repaint.clone();
         let table = TableView::new(CornerRequest::DEFAULT.spacing_mm, move || table_repaint());
-        CornerView::with_worker(Worker::threaded("corner", Keep::Newer, plan_job, move || repaint()), table)
-    }
-
-    fn with_worker(worker: CornerWorker, table: TableView) -> CornerView {
-        CornerView { table, last: None, error: None, requested: None, replans: 0, worker }
-    }
-
-    /// True while a request is being planned.
-    pub fn pending(&self) -> bool {
-        self.worker.running()
-    }
-
-    /// Show the answers that arrived.
-    fn poll(&mut self) {
-        for answer in self.worker.poll() {
-            self.replans += 1;
-            self.error = match answer {
-                Ok(r) => {
-                    self.last = Some(r);
-                    None
-                }
-                Err(e) => Some(e),
-            };
-        }
+        let worker = Worker::threaded("corner", Keep::Newer, plan_job, move || repaint());
+        CornerView { table, corner: Latest::new(worker) }
     }
 
     /// Collect answers and ask for a plan of `inputs` if they changed; in the table mode, ask
@@ -252,13 +206,7 @@ impl CornerView {
             self.table.update(inputs.request().settings().map_err(|e| e.to_string()));
             return;
         }
-        self.poll();
-        if self.requested.as_ref() == Some(inputs) {
-            return;
-        }
-        self.requested = Some(inputs.clone());
-        self.worker.request(inputs.clone());
-        self.poll();
+        self.corner.update(inputs);
     }
 }
 
@@ -388,7 +336,9 @@ fn corner_plots(ui: &mut egui::Ui, r: &CornerResult, nc_open: bool, nc_cache: &C
     let teach = if nc_open { 0.0 } else { TEACH_HEIGHT + 16.0 };
     let h = (ui.available_height() - teach).max(220.0);
     ui.columns(2, |cols| {
-        cols[0].label(RichText::new(format!("Corner {:.0}°: walls, circles, tool path", r.angle_deg)).strong());
+        cols[0].label(
+            RichText::new(format!("Corner {:.0}°: walls, circles, tool path", r.summary.corner_angle_deg)).strong(),
+        );
         corner_plot(&mut cols[0], r, h - 20.0);
         if nc_open {
             cols[1].allocate_ui(egui::vec2(cols[1].available_width(), h), |ui| corner_nc::preview(ui, nc_cache));
@@ -417,29 +367,29 @@ fn numbers(ui: &mut egui::Ui, r: &CornerResult) {
         ui.label("circles");
         ui.end_row();
         ui.colored_label(PLAIN_COLOR, "plain ring");
-        ui.label(format!("{:.1}°", r.plain_max_deg));
+        ui.label(format!("{:.1}°", r.summary.plain_max_engagement_deg));
         ui.label("–");
-        ui.label(format!("{:.1} mm", r.plain_length_mm));
+        ui.label(format!("{:.1} mm", r.summary.plain_path_length_mm));
         ui.label(format!("{:.2} s", r.plain_time_s));
         ui.label("–");
         ui.end_row();
-        ui.colored_label(STRATEGY_COLOR, r.method);
-        ui.label(format!("{:.1}°", r.max_deg));
+        ui.colored_label(STRATEGY_COLOR, r.summary.method);
+        ui.label(format!("{:.1}°", r.summary.max_engagement_deg));
         let text = RichText::new(format!("{:.1}° / {:.1}° ({:.1}°)", r.body_max_deg, r.tip_deg, r.tip_limit_deg));
         ui.label(if r.passes { text } else { text.color(ERROR_COLOR) });
-        ui.label(format!("{:.1} mm", r.path_length_mm));
-        ui.label(format!("{:.2} s", r.time_s));
-        ui.label(format!("{}", r.circles));
+        ui.label(format!("{:.1} mm", r.summary.path_length_mm));
+        ui.label(format!("{:.2} s", r.summary.time_s));
+        ui.label(format!("{}", r.summary.circles.len()));
         ui.end_row();
     });
     ui.label(format!(
         "a_e {:.3} mm · a_str {:.1}° · target a* {:.1}° · feed {:.0} mm/min",
-        r.step_over_mm,
-        r.straight_deg,
-        r.target_deg,
+        r.summary.step_over_mm,
+        r.summary.straight_engagement_deg,
+        r.summary.target_deg,
         r.report.settings().feed_mm_per_min
     ));
-    for n in &r.notes {
+    for n in &r.summary.notes {
         ui.add(egui::Label::new(RichText::new(n).italics()).wrap());
     }
 }
@@ -449,7 +399,7 @@ fn corner_plot(ui: &mut egui::Ui, r: &CornerResult, height: f32) {
     // A new corner or method gets a new plot memory, so the view follows the plan.
     let reach = r.circle_points.iter().flatten().map(|p| p[0]).fold(0.0f64, f64::max);
     let x_max = (reach * 1.5).max(30.0);
-    plane_plot(("corner_geometry", r.angle_deg.to_bits(), r.method), height)
+    plane_plot(("corner_geometry", r.summary.corner_angle_deg.to_bits(), r.summary.method), height)
         .default_x_bounds(-5.0, x_max)
         .default_y_bounds(-0.5 * (x_max + 5.0), 0.5 * (x_max + 5.0))
         .show(ui, |p| {
@@ -475,9 +425,9 @@ fn engagement_plot(ui: &mut egui::Ui, r: &CornerResult, height: f32) {
         .include_y(0.0)
         .show(ui, |p| {
             p.line(line("plain ring", &r.plain_profile).color(PLAIN_COLOR));
-            p.line(line(r.method, &r.profile).color(STRATEGY_COLOR));
-            p.hline(HLine::new("target a*", r.target_deg).color(Color32::from_rgb(200, 40, 40)));
-            p.hline(HLine::new("straight a_str", r.straight_deg).color(Color32::GRAY));
+            p.line(line(r.summary.method, &r.profile).color(STRATEGY_COLOR));
+            p.hline(HLine::new("target a*", r.summary.target_deg).color(Color32::from_rgb(200, 40, 40)));
+            p.hline(HLine::new("straight a_str", r.summary.straight_engagement_deg).color(Color32::GRAY));
         });
 }
 
@@ -515,12 +465,8 @@ mod tests {
         v.update(&i);
         i.angle_deg = 100.0;
         v.update(&i);
-        let t0 = std::time::Instant::now();
-        while v.pending() && t0.elapsed().as_secs() < 60 {
-            std::thread::sleep(std::time::Duration::from_millis(20));
-            v.update(&i);
-        }
+        v.corner.settle(&i, 60);
         assert!(!v.pending(), "answered within 60 s");
-        assert_eq!(v.last.as_ref().expect("a result").angle_deg, 100.0);
+        assert_eq!(v.last.as_ref().expect("a result").summary.corner_angle_deg, 100.0);
     }
 }

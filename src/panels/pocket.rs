@@ -12,13 +12,14 @@ use super::Command;
 use super::corner_nc::{self, CornerNcCache, NcExport};
 use super::label;
 use super::plane::{self, MAX_PATH_POINTS, STRATEGY_COLOR, line, plane_plot, segment_points};
-use crate::worker::{Keep, Task, Worker};
+use crate::worker::{Keep, Latest, Task, Worker};
 use eframe::egui::{self, Color32, DragValue};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 use trochoplan_core::corner::CornerMethod;
 use trochoplan_core::geom::Polygon;
 use trochoplan_core::pocket::{self, MoveKind, PocketPlan, PocketRequest, PocketStrategy};
+use trochoplan_core::report::{self, PocketReport};
 
 /// Inputs of the Pocket tab, persisted with the app state.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -82,151 +83,95 @@ impl PocketInputs {
     }
 }
 
-/// A planned pocket converted for drawing.
+/// A planned pocket converted for drawing; its numbers are those of the core's report (what
+/// `trochoplan pocket` prints).
 #[derive(Clone, Debug)]
 pub struct PocketResult {
     pub method: &'static str,
     pub boundary: Vec<[f64; 2]>,
     /// Rings in machining order: level, offset (mm), max engagement (degrees), points.
     pub rings: Vec<(usize, f64, f64, Vec<[f64; 2]>)>,
-    pub path_length_mm: f64,
-    pub time_s: f64,
-    pub max_deg: f64,
     /// What the strategy did: corners given trochoids, or circles along the medial axis.
     pub detail: String,
+    /// The core's report of the plan (length, time, engagement, rows).
+    pub report: PocketReport,
     /// The plan itself (for the NC program).
     pub plan: PocketPlan,
 }
 
-/// Plan the pocket as `trochoplan pocket` does (`pocket::plan`), converted for drawing.
+/// Plan the pocket as `trochoplan pocket` does (`pocket::plan`, `report::pocket`), converted
+/// for drawing.
 pub fn compute(i: &PocketInputs) -> Result<PocketResult, String> {
-    let plan = pocket::plan(&i.request()?).map_err(|e| e.to_string())?;
+    let req = i.request()?;
+    let plan = pocket::plan(&req).map_err(|e| e.to_string())?;
+    let report = report::pocket(&req, &plan).map_err(|e| e.to_string())?;
     let mut boundary: Vec<[f64; 2]> = plan.polygon().vertices().iter().map(|v| [v.x, v.y]).collect();
     if let Some(&first) = boundary.first() {
         boundary.push(first);
     }
-    let (rings, detail) = match &plan {
+    let whole_path = |max_deg: f64| vec![(0, 0.0, max_deg, segment_points(&plan.path().segments(), MAX_PATH_POINTS))];
+    let (rings, detail) = match &report {
         // No rings: one pass along the medial axis (shown as one entry of the ring list).
-        PocketPlan::MedialAxis(p) => (
-            vec![(0, 0.0, p.body_max_rad.to_degrees(), segment_points(&p.path.segments(), MAX_PATH_POINTS))],
+        PocketReport::MedialAxis(r) => (
+            whole_path(r.body_max_engagement_deg),
             format!(
                 "{} circles along the medial axis, {} part(s); corner points up to {:.1}°{}",
-                p.circles.len(),
-                p.parts,
-                p.max_of(MoveKind::CornerPoint).to_degrees(),
-                match p.max_of(MoveKind::Tip).to_degrees() {
+                r.circle_count,
+                r.parts,
+                report.max_of(MoveKind::CornerPoint),
+                match report.max_of(MoveKind::Tip) {
                     tip if tip > 0.0 => format!(", straight tips {tip:.1}°"),
                     _ => String::new(),
                 }
             ),
         ),
         // One pass: the whole path at depth (shown as one entry of the ring list).
-        PocketPlan::Adaptive(p) => (
-            vec![(0, 0.0, plan.max_engagement_rad().to_degrees(), segment_points(&p.path.segments(), MAX_PATH_POINTS))],
+        PocketReport::Adaptive(r) => (
+            whole_path(r.max_engagement_deg),
             format!(
                 "{} entry, {} rings, {} corners thinned; p95 {:.1}°, {:.0} mm at depth",
-                match p.parts.first().map(|q| q.entry) {
-                    Some(pocket::Entry::Outside { .. }) => "outside",
-                    Some(pocket::Entry::Ramp(_)) => "ramp",
-                    _ => "helix",
-                },
-                p.parts.iter().map(|q| q.rings).sum::<usize>(),
-                p.parts.iter().map(|q| q.corners.len()).sum::<usize>(),
-                p.path.measurement.p95_engagement_rad.to_degrees(),
-                p.path.measurement.length_at_depth_mm
+                r.entries.first().map_or("helix", |e| e.kind),
+                r.rings.iter().sum::<usize>(),
+                r.corners.len(),
+                r.p95_engagement_deg,
+                r.length_at_depth_mm
             ),
         ),
-        PocketPlan::Rings(p) => (
-            p.rings
+        PocketReport::Rings(r) => (
+            r.rings
                 .iter()
                 .map(|g| {
                     let pts = segment_points(&g.segments, MAX_PATH_POINTS / 4);
-                    (g.level, g.offset_mm, g.max_engagement_rad.to_degrees(), pts)
+                    (g.level, g.offset_mm, g.max_engagement_deg, pts)
                 })
                 .collect(),
-            format!("corners with trochoids {}, plain {}", p.trochoid_corners, p.plain_corners),
+            format!("corners with trochoids {}, plain {}", r.trochoid_corners, r.plain_corners),
         ),
     };
-    Ok(PocketResult {
-        method: plan.strategy().name(),
-        boundary,
-        rings,
-        path_length_mm: plan.path_length_mm(),
-        time_s: plan.time_s(),
-        max_deg: plan.max_engagement_rad().to_degrees(),
-        detail,
-        plan,
-    })
+    Ok(PocketResult { method: report.method(), boundary, rings, detail, report, plan })
 }
-
-/// The Pocket tab's worker: inputs in, their plan (or why they are invalid) out.
-type PocketWorker = Worker<PocketInputs, Result<Arc<PocketResult>, String>>;
 
 /// Plan `inputs`.
 fn plan_job(inputs: PocketInputs, task: &Task<Result<Arc<PocketResult>, String>>) {
     task.send(compute(&inputs).map(Arc::new));
 }
 
-/// The last pocket, its error, and the worker computing it.
-pub struct PocketView {
-    /// The newest valid pocket (kept while the inputs are invalid).
-    pub last: Option<Arc<PocketResult>>,
-    /// The error for the newest inputs, if they are invalid.
-    pub error: Option<String>,
-    /// Inputs of the newest request.
-    requested: Option<PocketInputs>,
-    /// Completed plans (for the tests and the status line).
-    pub replans: usize,
-    /// Plans inline or on its own thread; an answer overtaken by a newer request is still shown
-    /// if it is newer than the one on screen ([`Keep::Newer`]).
-    worker: PocketWorker,
-}
+/// The last pocket, its error, and the worker computing it: plans inline or on its own
+/// thread; an answer overtaken by a newer request is still shown if it is newer than the one
+/// on screen ([`Keep::Newer`]).
+pub type PocketView = Latest<PocketInputs, PocketResult>;
 
 impl Default for PocketView {
     /// A view planning inline (the tests).
     fn default() -> Self {
-        PocketView::with_worker(Worker::inline(Keep::Newer, plan_job))
+        Latest::new(Worker::inline(Keep::Newer, plan_job))
     }
 }
 
 impl PocketView {
     /// A view planning on its own thread; `repaint` is called when an answer is ready.
     pub fn threaded(repaint: impl Fn() + Send + Sync + 'static) -> PocketView {
-        PocketView::with_worker(Worker::threaded("pocket", Keep::Newer, plan_job, repaint))
-    }
-
-    fn with_worker(worker: PocketWorker) -> PocketView {
-        PocketView { last: None, error: None, requested: None, replans: 0, worker }
-    }
-
-    /// True while a request is being planned.
-    pub fn pending(&self) -> bool {
-        self.worker.running()
-    }
-
-    /// Show the answers that arrived.
-    fn poll(&mut self) {
-        for answer in self.worker.poll() {
-            self.replans += 1;
-            self.error = match answer {
-                Ok(r) => {
-                    self.last = Some(r);
-                    None
-                }
-                Err(e) => Some(e),
-            };
-        }
-    }
-
-    /// Collect answers and ask for a plan of `inputs` if they changed.
-    pub fn update(&mut self, inputs: &PocketInputs) {
-        self.poll();
-        if self.requested.as_ref() == Some(inputs) {
-            return;
-        }
-        self.requested = Some(inputs.clone());
-        self.worker.request(inputs.clone());
-        self.poll();
+        Latest::new(Worker::threaded("pocket", Keep::Newer, plan_job, repaint))
     }
 }
 
@@ -307,11 +252,11 @@ fn polygon_editor(ui: &mut egui::Ui, inputs: &mut PocketInputs) {
 /// The pocket's method, length, time and engagement, and its rings' offsets and engagement.
 fn pocket_numbers(ui: &mut egui::Ui, r: &PocketResult) {
     ui.label(format!("method {}", r.method));
-    if matches!(r.plan, PocketPlan::Rings(_)) {
+    if matches!(r.report, PocketReport::Rings(_)) {
         ui.label(format!("{} rings", r.rings.len()));
     }
-    ui.label(format!("path {:.1} mm, {:.1} s", r.path_length_mm, r.time_s));
-    ui.label(format!("max engagement {:.1}°", r.max_deg));
+    ui.label(format!("path {:.1} mm, {:.1} s", r.report.length_at_depth_mm(), r.report.time_s()));
+    ui.label(format!("max engagement {:.1}°", r.report.max_engagement_deg()));
     ui.label(&r.detail);
     egui::ScrollArea::vertical().id_salt("pocket_rings_scroll").show(ui, |ui| {
         egui::Grid::new("pocket_rings").striped(true).show(ui, |ui| {
@@ -358,15 +303,12 @@ mod tests {
         v.update(&i);
         i.step_over_mm = 3.0;
         v.update(&i);
-        let t0 = std::time::Instant::now();
-        while v.pending() && t0.elapsed().as_secs() < 60 {
-            std::thread::sleep(std::time::Duration::from_millis(20));
-            v.update(&i);
-        }
+        v.settle(&i, 60);
         assert!(!v.pending(), "answered within 60 s");
         let want = compute(&i).expect("the core plans the same inputs");
         let got = v.last.as_ref().expect("a result");
-        assert_eq!((got.path_length_mm, got.rings.len()), (want.path_length_mm, want.rings.len()));
+        assert_eq!(got.report, want.report);
+        assert_eq!(got.rings.len(), want.rings.len());
     }
 
     /// The method buttons show no method while adaptive clearing overrides it.

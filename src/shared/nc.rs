@@ -59,11 +59,6 @@ impl NcChoices {
     }
 }
 
-/// The core's options of the choices every export offers (the others as [`NcChoices::new`]).
-pub fn nc_options(dialect: Dialect, tolerance_mm: f64, linear_segments: bool, coolant: bool) -> NcOptions {
-    NcChoices::new(dialect, tolerance_mm, linear_segments, coolant).options()
-}
-
 /// What a corner or pocket program needs beyond its plan: depth below Z0 (mm) and spindle
 /// speed (rpm), validated by the core when the program is written.
 pub fn cut_setup(depth_mm: f64, spindle_rpm: f64) -> CutSetup {
@@ -84,8 +79,8 @@ mod tests {
         assert_eq!((o.dialect, o.tolerance_mm, o.linear_segments, o.coolant), (Dialect::Fanuc, 0.02, true, true));
         assert_eq!((o.title.as_str(), o.return_feed_mm_per_min), ("t", Some(900.0)));
         assert_eq!((o.safe_z_mm, o.tool_number, o.compact), (d.safe_z_mm, d.tool_number, d.compact));
-        // the short form is the same options
-        let short = nc_options(Dialect::Fanuc, 0.02, true, true);
+        // the choices every export offers alone: the core's defaults for the rest
+        let short = NcChoices::new(Dialect::Fanuc, 0.02, true, true).options();
         assert_eq!(short, NcOptions { title: String::new(), return_feed_mm_per_min: None, ..o });
     }
 }

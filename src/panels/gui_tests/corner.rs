@@ -19,12 +19,22 @@ fn corner_tab_opens_and_shows_the_measured_engagement() {
     assert_eq!(h.state().view.tab, Tab::Corner);
     assert!(h.state().corner.error.is_none(), "{:?}", h.state().corner.error);
     let r = corner_result(&h);
-    assert_eq!(r.method, "variable");
-    assert!(r.circles > 0, "variable circles planned");
-    assert!(r.plain_max_deg > r.max_deg, "plain {} vs variable {}", r.plain_max_deg, r.max_deg);
-    assert!(shows(&h, &format!("{:.1}°", r.max_deg)), "strategy max shown");
-    assert!(shows(&h, &format!("{:.1}°", r.plain_max_deg)), "plain max shown");
-    assert!(r.body_max_deg <= r.target_deg + 1.0, "body {} within target {} + 1°", r.body_max_deg, r.target_deg);
+    assert_eq!(r.summary.method, "variable");
+    assert!(!r.summary.circles.is_empty(), "variable circles planned");
+    assert!(
+        r.summary.plain_max_engagement_deg > r.summary.max_engagement_deg,
+        "plain {} vs variable {}",
+        r.summary.plain_max_engagement_deg,
+        r.summary.max_engagement_deg
+    );
+    assert!(shows(&h, &format!("{:.1}°", r.summary.max_engagement_deg)), "strategy max shown");
+    assert!(shows(&h, &format!("{:.1}°", r.summary.plain_max_engagement_deg)), "plain max shown");
+    assert!(
+        r.body_max_deg <= r.summary.target_deg + 1.0,
+        "body {} within target {} + 1°",
+        r.body_max_deg,
+        r.summary.target_deg
+    );
     assert!(shows(&h, &format!("{:.1}° / {:.1}° ({:.1}°)", r.body_max_deg, r.tip_deg, r.tip_limit_deg)));
 }
 
@@ -38,17 +48,17 @@ fn corner_angle_and_method_replan_and_change_the_shown_numbers() {
     h.run();
     let after = corner_result(&h);
     assert!(h.state().corner.replans > replans, "replanned");
-    assert_eq!(after.angle_deg, 60.0);
-    assert_ne!(after.plain_max_deg, before.plain_max_deg);
-    assert!(shows(&h, &format!("{:.1}°", after.plain_max_deg)));
+    assert_eq!(after.summary.corner_angle_deg, 60.0);
+    assert_ne!(after.summary.plain_max_engagement_deg, before.summary.plain_max_engagement_deg);
+    assert!(shows(&h, &format!("{:.1}°", after.summary.plain_max_engagement_deg)));
 
     h.get_by_label(CornerMethod::Isometric.label()).click();
     h.run();
     let iso = corner_result(&h);
-    assert_eq!(iso.method, "isometric");
+    assert_eq!(iso.summary.method, "isometric");
     assert_eq!(h.state().state.corner.method, CornerMethod::Isometric);
-    assert_ne!(iso.path_length_mm, after.path_length_mm);
-    assert!(shows(&h, &format!("{:.1} mm", iso.path_length_mm)), "isometric length shown");
+    assert_ne!(iso.summary.path_length_mm, after.summary.path_length_mm);
+    assert!(shows(&h, &format!("{:.1} mm", iso.summary.path_length_mm)), "isometric length shown");
 }
 
 #[test]
@@ -63,7 +73,7 @@ fn invalid_corner_input_shows_the_core_error_and_keeps_the_last_result() {
     assert!(err.contains("step-over"), "{err}");
     assert!(shows(&h, &format!("invalid: {err}")), "error shown at the panel");
     let kept = corner_result(&h);
-    assert_eq!(kept.angle_deg, before.angle_deg, "last result kept");
+    assert_eq!(kept.summary.corner_angle_deg, before.summary.corner_angle_deg, "last result kept");
     h.get_by_role_and_label(Role::Slider, label::CORNER_ANGLE).set_value_accesskit(200.0);
     h.run();
     assert!(h.state().corner.error.is_some());

@@ -1,0 +1,114 @@
+//! What the `corner`, `pocket` and `engagement` commands share: the NC export flags of a
+//! corner or pocket program (options built by [`crate::shared::nc`]), what an export wrote,
+//! the JSON text of a core report, and error messages in these commands' flag names.
+
+use crate::shared::files::write_atomic;
+use crate::shared::nc::{NcChoices, cut_setup};
+use clap::Args;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use trochoplan_core::nc::{CutSetup, DEFAULT_TOLERANCE_MM, Dialect, NcOptions, NcProgram};
+use trochoplan_core::{Error, Param};
+
+use super::core_names;
+
+/// NC export of `trochoplan corner` and `trochoplan pocket` (same program frame as
+/// `trochoplan export`; the corner's own frame: apex at X0 Y0, bisector along +X; the pocket's:
+/// the polygon file's coordinates; stock top Z0).
+#[derive(Args)]
+pub struct CornerExportArgs {
+    /// Write the tool path as an NC program to FILE (atomically; `-`: the standard output, the
+    /// JSON report then goes to stderr).
+    #[arg(long, value_name = "FILE")]
+    pub(super) export: Option<PathBuf>,
+    /// Controller dialect of --export.
+    #[arg(
+        long,
+        value_parser = core_names(&Dialect::ALL, Dialect::name, None),
+        default_value = "linuxcnc",
+        requires = "export"
+    )]
+    dialect: Dialect,
+    /// Largest distance of the written path from the planned one, before rounding (mm), for
+    /// --export (--tolerance is the bisection band).
+    #[arg(long, value_name = "MM", default_value_t = DEFAULT_TOLERANCE_MM, allow_hyphen_values = true, requires = "export")]
+    nc_tolerance: f64,
+    /// Write arcs as G1 chords instead of G2/G3 (--export).
+    #[arg(long, requires = "export")]
+    linear_segments: bool,
+    /// Coolant on (M8) during the cut (--export).
+    #[arg(long, requires = "export")]
+    coolant: bool,
+    /// Cutting depth below the stock top Z0 (mm), for --export.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = CutSetup::default().depth_mm, requires = "export")]
+    pub(super) depth: f64,
+    /// Spindle speed (rpm), for --export.
+    #[arg(long, value_name = "RPM", allow_hyphen_values = true, default_value_t = CutSetup::default().spindle_rpm, requires = "export")]
+    rpm: f64,
+    /// Text for the header comment (--export).
+    #[arg(long, value_name = "TEXT", requires = "export")]
+    title: Option<String>,
+}
+
+impl CornerExportArgs {
+    /// The NC options of these flags (the header comment from `--title`).
+    pub fn options(&self) -> NcOptions {
+        NcChoices {
+            title: self.title.clone().unwrap_or_default(),
+            ..NcChoices::new(self.dialect, self.nc_tolerance, self.linear_segments, self.coolant)
+        }
+        .options()
+    }
+
+    /// The depth and spindle speed of these flags.
+    pub fn cut_setup(&self) -> CutSetup {
+        cut_setup(self.depth, self.rpm)
+    }
+}
+
+/// What `--export` wrote.
+#[derive(Serialize)]
+pub struct NcExportOut {
+    file: String,
+    dialect: &'static str,
+    blocks: usize,
+    bytes: usize,
+}
+
+/// Write `prog` to `file` (atomically) and say what was written.
+pub fn write_program(file: &Path, prog: &NcProgram, opts: &NcOptions) -> Result<NcExportOut, String> {
+    write_atomic(file, prog.text.as_bytes())?;
+    Ok(NcExportOut {
+        file: file.display().to_string(),
+        dialect: opts.dialect.name(),
+        blocks: prog.blocks,
+        bytes: prog.text.len(),
+    })
+}
+
+/// A core report and, after its keys, what `--export` wrote.
+#[derive(Serialize)]
+struct WithExport<'a, T: Serialize> {
+    #[serde(flatten)]
+    report: &'a T,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    nc_export: Option<NcExportOut>,
+}
+
+/// The JSON text of `report` with the export's block.
+pub fn report_json<T: Serialize>(report: &T, nc_export: Option<NcExportOut>) -> Result<String, String> {
+    json_text(&WithExport { report, nc_export })
+}
+
+/// Pretty JSON with a final newline.
+pub fn json_text(out: &impl Serialize) -> Result<String, String> {
+    let mut text = serde_json::to_string_pretty(out).map_err(|e| e.to_string())?;
+    text.push('\n');
+    Ok(text)
+}
+
+/// The message of a core error with each parameter spelled as these commands' flags spell it:
+/// the NC tolerance is `--nc-tolerance` here (`--tolerance` is the bisection band).
+pub fn err(e: Error) -> String {
+    e.message(|p| if p == Param::Tolerance { "nc-tolerance" } else { p.cli_name() })
+}

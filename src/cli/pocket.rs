@@ -1,0 +1,272 @@
+//! `trochoplan pocket`: a polygonal pocket planned by the core (`pocket::plan`) and printed as
+//! the core's [`report::pocket`] (JSON), with the NC export and the real time on a machine.
+
+use super::common::{CornerExportArgs, NcExportOut, err, json_text, report_json, write_program};
+use super::core_names;
+use crate::shared::outline::read_single;
+use clap::Args;
+use std::path::PathBuf;
+use trochoplan_core::geom::Polygon;
+use trochoplan_core::job::Direction;
+use trochoplan_core::nc::pocket_program;
+use trochoplan_core::pocket::{self, AdaptiveOptions, PocketPlan, PocketRequest, PocketStrategy};
+use trochoplan_core::report;
+
+/// Flags of `trochoplan pocket` (defaults: [`PocketRequest::default`]).
+#[derive(Args)]
+pub struct PocketArgs {
+    /// Pocket boundary: one vertex "x,y" per line (mm), '#' comments allowed, loops separated
+    /// by an empty line; or a drawing, `.dxf` (closed polylines, circles, ellipses and LINE/ARC
+    /// chains; $INSUNITS, extrusion ±z and block inserts applied, hidden layers skipped) or
+    /// `.svg` (every rendered shape and subpath; transforms, nested viewports, <use> and the
+    /// root's size in mm applied, y up), arcs and curves as chords within 0.01 mm. It must hold
+    /// exactly one closed loop, a simple polygon (islands and several pockets are refused);
+    /// at most 20000 vertices. Full rules: docs/outlines.md.
+    #[arg(long, value_name = "FILE")]
+    polygon: PathBuf,
+    /// Machine preset for the real time at depth (docs/process-model.md): adds `time_real_s` and
+    /// `feed_held_share` to the JSON.
+    #[arg(long, value_name = "NAME")]
+    machine: Option<String>,
+    /// Tool diameter D (mm).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = PocketRequest::default().tool_diameter_mm)]
+    tool_diameter: f64,
+    /// Ring step-over a_e (mm), 0 < a_e < D (default 2.5: a_e/D = 0.25 for D = 10, 60° straight engagement).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = PocketRequest::default().step_over_mm)]
+    step_over: f64,
+    /// Feed rate for the machining time (mm/min).
+    #[arg(long, value_name = "MM_PER_MIN", allow_hyphen_values = true, default_value_t = PocketRequest::default().feed_mm_per_min)]
+    feed: f64,
+    /// Corner strategy at the ring corners.
+    #[arg(
+        long,
+        value_parser = core_names(&PocketStrategy::ALL, PocketStrategy::name, Some(PocketStrategy::help)),
+        default_value = PocketRequest::default().strategy.name()
+    )]
+    method: PocketStrategy,
+    /// Spacing of the tool positions measured by the evaluator (mm).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = PocketRequest::default().spacing_mm)]
+    spacing: f64,
+    /// Milling direction with M3 (every method): climb runs every loop counter-clockwise,
+    /// conventional plans the mirrored pocket and mirrors the path back (clockwise loops).
+    #[arg(
+        long,
+        value_parser = core_names(&Direction::ALL, Direction::name, Some(Direction::help)),
+        default_value = Direction::Climb.name()
+    )]
+    direction: Direction,
+    /// Helix radius of the tool centre (mm, every method); default 0.375 × D, reduced to
+    /// 0.25 × D where the pocket is narrower, and a zig-zag ramp where not even that fits.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    helix_radius: Option<f64>,
+    /// Ramp angle of the helix or zig-zag ramp (degrees, every method), 0 < angle ≤ 15.
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true, default_value_t = AdaptiveOptions::default().ramp_deg)]
+    ramp_angle: f64,
+    /// Radial stock of the finishing contour (mm, `--method adaptive`); 0: no finishing pass.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = AdaptiveOptions::default().finish_stock_mm)]
+    finish_stock: f64,
+    /// Engagement the adaptive passes are planned to (degrees, `--method adaptive`), from the
+    /// step-over's straight engagement φ* = arccos(1 − a_e/r) to 90. Default: the step-over
+    /// read as FreeCAD reads it, an area rate (a_e mm² per mm), on a 90° corner pass, capped
+    /// at 50° and never below φ*: 50° for D = 10, a_e = 1.527 (φ* = 46.0°); the JSON's
+    /// `target_deg` reports it. With `--method medial-axis` it replaces the corner strategies'
+    /// a* = a_str·(1 + t1) (52.9° there), which is its default.
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
+    target_engagement: Option<f64>,
+    /// How near the corner-point arcs reach each convex corner point (mm): those of the
+    /// finishing pass (`--method adaptive`) and of the medial axis's tips; the pocket corners
+    /// are cut to radius r + this, 0.001 to 1.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = AdaptiveOptions::default().corner_tolerance_mm)]
+    corner_tolerance: f64,
+    /// Edges of the pocket that have no wall (`--method adaptive`): the stock ends there, e.g.
+    /// a step, a slot end or a notch at the part edge. Edge i runs from vertex i to vertex i + 1
+    /// of the polygon file (0-based; the last edge closes the polygon). The tool goes down
+    /// outside the stock beyond an open edge and clears inward from there.
+    #[arg(long, value_name = "I[,J…]", value_delimiter = ',', value_parser = super::edge_index, allow_hyphen_values = true)]
+    open_edges: Vec<usize>,
+    #[command(flatten)]
+    nc: CornerExportArgs,
+}
+
+impl PocketArgs {
+    /// The input and output files, for [`crate::shared::files::check_distinct`].
+    pub fn files(&self) -> [(&'static str, Option<&std::path::Path>, crate::shared::files::Role); 2] {
+        use crate::shared::files::Role;
+        [("--polygon", Some(&self.polygon), Role::Input), ("--export", self.nc.export.as_deref(), Role::Output)]
+    }
+}
+
+/// `trochoplan pocket`: contour-parallel rings of a polygonal pocket, measured ring by ring, or
+/// perforative trochoids along its medial axis (`--method medial-axis`), or adaptive clearing.
+pub fn pocket(args: &PocketArgs) -> Result<String, String> {
+    let what = args.polygon.display().to_string();
+    let points = read_single(&args.polygon, "polygon file")?;
+    let polygon = Polygon::new(points.clone()).map_err(|e| format!("{what}: {e}"))?;
+    let open_edges = pocket::stored_open_edges(&polygon, &points, &args.open_edges).map_err(err)?;
+    let req = PocketRequest {
+        polygon,
+        tool_diameter_mm: args.tool_diameter,
+        step_over_mm: args.step_over,
+        feed_mm_per_min: args.feed,
+        strategy: args.method,
+        spacing_mm: args.spacing,
+        adaptive: AdaptiveOptions {
+            helix_radius_mm: args.helix_radius,
+            ramp_deg: args.ramp_angle,
+            finish_stock_mm: args.finish_stock,
+            direction: args.direction,
+            depth_mm: args.nc.depth,
+            target_deg: args.target_engagement,
+            corner_tolerance_mm: args.corner_tolerance,
+        },
+        open_edges,
+    };
+    let plan = pocket::plan(&req).map_err(err)?;
+    let nc_export = match &args.nc.export {
+        Some(file) => Some(export_pocket(&args.nc, file, &plan)?),
+        None => None,
+    };
+    let text = report_json(&report::pocket(&req, &plan).map_err(err)?, nc_export)?;
+    match &args.machine {
+        Some(name) => with_real_time(&text, &plan, name, args.feed),
+        None => Ok(text),
+    }
+}
+
+/// Write the whole pocket ([`PocketPlan::tool_path`]) to `file`.
+fn export_pocket(nc: &CornerExportArgs, file: &std::path::Path, plan: &PocketPlan) -> Result<NcExportOut, String> {
+    let opts = nc.options();
+    let prog = pocket_program(plan, nc.cut_setup(), &opts).map_err(err)?;
+    write_program(file, &prog, &opts)
+}
+
+/// The pocket JSON `text` with the real time at depth on machine `name`.
+fn with_real_time(text: &str, plan: &PocketPlan, name: &str, feed: f64) -> Result<String, String> {
+    use trochoplan_core::machine::{Machine, path_real_time, planner::Dynamics};
+    let m = Machine::preset(name).map_err(err)?;
+    let (segments, retracts) = plan.tool_path();
+    let (t, held) = path_real_time(&segments, &retracts, feed, &Dynamics::of(&m));
+    let mut v: serde_json::Value = serde_json::from_str(text).map_err(|e| e.to_string())?;
+    if let Some(obj) = v.as_object_mut() {
+        obj.insert("machine".into(), name.into());
+        obj.insert("time_real_s".into(), t.into());
+        obj.insert("feed_held_share".into(), held.into());
+    }
+    json_text(&v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::engagement::{EngagementArgs, engagement};
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Parser)]
+    struct P {
+        #[command(flatten)]
+        p: PocketArgs,
+    }
+
+    #[derive(Parser)]
+    struct E {
+        #[command(flatten)]
+        e: EngagementArgs,
+    }
+
+    /// Polygon and path files are read as input files (regular, bounded) and
+    /// every line parses or the error names the file and the line; a BOM is accepted.
+    #[test]
+    fn input_files_name_the_file_and_line() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let file = |name: &str, text: &str| {
+            let f = dir.path().join(name);
+            std::fs::write(&f, text).expect("write");
+            f.to_str().expect("utf-8").to_string()
+        };
+        let pocket_of =
+            |f: &str| pocket(&P::try_parse_from(["t", "--polygon", f, "--step-over", "5"]).expect("parse").p);
+        let bom = file("bom.txt", "\u{feff}0,0\n60,0\n60,40\n0,40\n");
+        let v: serde_json::Value = serde_json::from_str(&pocket_of(&bom).expect("BOM accepted")).expect("json");
+        assert_eq!(v["polygon"].as_array().map(Vec::len), Some(4));
+        for (name, text) in [("note.txt", "0,0 # note\n60,0\n60,40\n0,40\n"), ("oh.txt", "O,0\n60,0\n60,40\n0,40\n")] {
+            let f = file(name, text);
+            let err = pocket_of(&f).expect_err("a bad first line is an error, not a header");
+            assert!(err.contains(&format!("{f} line 1")), "{err}");
+        }
+        let missing = dir.path().join("missing.txt");
+        let err = pocket_of(missing.to_str().expect("utf-8")).expect_err("missing");
+        assert!(err.contains("polygon file") && err.contains("missing.txt"), "{err}");
+        let err = pocket_of(dir.path().to_str().expect("utf-8")).expect_err("a folder");
+        assert!(err.contains("not a regular file"), "{err}");
+        let (path, stock) = (file("p.csv", "x,y\n0,5;25\n10,0\n"), file("s.txt", "-50,-50\n50,-50\n50,50\n-50,50\n"));
+        let args = E::try_parse_from(["t", "--path-csv", &path, "--stock-polygon", &stock]).expect("parse").e;
+        let err = engagement(&args).expect_err("three fields");
+        assert!(err.contains(&format!("{path} line 2")), "{err}");
+    }
+
+    #[derive(Parser)]
+    struct PT {
+        #[command(flatten)]
+        p: PocketArgs,
+    }
+
+    #[test]
+    fn pocket_json_and_errors() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let f = dir.path().join("rect.txt");
+        // 60 × 40 rectangle, D = 10, a_e = 4: rings at d = 5 + 4k (d < 20), perimeters
+        // 200 − 8d; the outer ones around an adaptive core cut out of a helix bore.
+        std::fs::write(&f, "# rectangle\n0,0\n60,0\n60,40\n0,40\n").expect("write");
+        let p = f.display().to_string();
+        let args = |extra: &[&str]| {
+            let mut v = vec!["t", "--polygon", p.as_str(), "--spacing", "0.5", "--method", "plain"];
+            v.extend_from_slice(extra);
+            PT::try_parse_from(v).expect("parse").p
+        };
+        let v: serde_json::Value =
+            serde_json::from_str(&pocket(&args(&["--step-over", "4"])).expect("plan")).expect("json");
+        let rings = v["rings"].as_array().expect("rings");
+        assert!(!rings.is_empty() && rings.len() < 4, "{}", v["ring_count"]);
+        let offsets: Vec<f64> = rings.iter().map(|g| g["offset_mm"].as_f64().expect("offset")).collect();
+        assert_eq!(offsets.last(), Some(&5.0), "{offsets:?}");
+        let want: f64 = offsets.iter().map(|d| 200.0 - 8.0 * d).sum();
+        assert!(v["path_length_mm"].as_f64().is_some_and(|l| (l - want).abs() < 1e-8), "{}", v["path_length_mm"]);
+        let at_depth =
+            v["length_at_depth_mm"].as_f64().expect("at depth") + v["entry_length_mm"].as_f64().expect("entry");
+        assert!(v["time_s"].as_f64().is_some_and(|t| (t - at_depth / 10.0).abs() < 1e-9));
+        assert!(v["rings"][0]["segments"].as_array().is_some_and(|s| s.len() == 5)); // 4 edges, the longest split at the entry
+        assert_eq!(v["helices"].as_array().map(Vec::len), Some(1));
+        // no full slot (180°) anywhere: the plain corners read less
+        assert!(v["max_engagement_deg"].as_f64().is_some_and(|m| m < 179.0), "{}", v["max_engagement_deg"]);
+        for (flags, name) in [
+            (vec!["--step-over", "10"], "step-over"),
+            (vec!["--tool-diameter", "NaN"], "tool-diameter"),
+            (vec!["--tool-diameter", "50"], "tool-diameter"),
+        ] {
+            let e = pocket(&args(&flags)).expect_err("must fail");
+            assert!(e.contains(name), "{flags:?}: {e}");
+        }
+        // --export: one feed link between consecutive rings and the program written whole
+        let nc = dir.path().join("rect.ngc");
+        let n = nc.display().to_string();
+        let v: serde_json::Value =
+            serde_json::from_str(&pocket(&args(&["--step-over", "4", "--export", n.as_str()])).expect("export"))
+                .expect("json");
+        assert_eq!(v["links"].as_array().map(Vec::len), Some(rings.len() - 1));
+        assert!(v["links"].as_array().expect("links").iter().all(|l| l["kind"] == "feed"), "{}", v["links"]);
+        let text = std::fs::read_to_string(&nc).expect("written");
+        assert_eq!(v["nc_export"]["bytes"].as_u64(), Some(text.len() as u64));
+        assert!(text.starts_with("(TrochoPlan pocket)\n") && text.ends_with("M5\nM30\n"), "{text}");
+        for flags in [["--dialect", "fanuc"], ["--depth", "3"]] {
+            let mut a = vec!["t", "--polygon", p.as_str()];
+            a.extend_from_slice(&flags);
+            let e = PT::try_parse_from(a).err().map(|e| e.to_string()).unwrap_or_default();
+            assert!(e.contains("--export"), "{flags:?}: {e}");
+        }
+        let e = pocket(&args(&["--export", n.as_str(), "--depth", "-1"])).expect_err("depth");
+        assert!(e.contains("depth") && e.contains("-1"), "{e}");
+        std::fs::write(&f, "0,0\n10,10\n10,0\n0,10\n").expect("write");
+        let e = pocket(&args(&["--step-over", "4"])).expect_err("bow tie");
+        assert!(e.contains("polygon"), "{e}");
+    }
+}
