@@ -8,6 +8,7 @@ use clap::Args;
 use serde::Serialize;
 use std::path::PathBuf;
 use trochoplan_core::corner::acceptance::{acceptance_table, markdown};
+use trochoplan_core::corner::point::corner_point_bound_rad;
 use trochoplan_core::corner::{
     CornerMethod, CornerReport, CornerRequest, EngagementSample, EvaluatorOptions, engagement_profile, evaluate,
     finite, parse_points, polyline,
@@ -17,11 +18,11 @@ use trochoplan_core::job::Direction;
 use trochoplan_core::nc::{
     CutSetup, DEFAULT_TOLERANCE_MM, Dialect, NcOptions, NcProgram, corner_program, pocket_program,
 };
-use trochoplan_core::pocket::adaptive::corner_point_bound_rad;
 use trochoplan_core::pocket::{
     self, AdaptiveOptions, AdaptivePlan, Entry, Helix, LinkKind, MoveKind, PerforativePlan, PocketPlan, PocketRequest,
     PocketStrategy, RingPlan,
 };
+use trochoplan_core::toolpath::HELIX_START_Z_MM;
 use trochoplan_core::{Error, Param};
 
 /// Flags of `trochoplan corner` (defaults: [`CornerRequest::DEFAULT`]).
@@ -396,7 +397,7 @@ fn helix_out(h: &Helix, depth_mm: f64) -> HelixOut {
         center: [h.center.x, h.center.y],
         radius_mm: h.radius,
         ramp_deg: h.ramp_rad.to_degrees(),
-        turns: h.turns(pocket::adaptive::HELIX_START_Z_MM + depth_mm),
+        turns: h.turns(HELIX_START_Z_MM + depth_mm),
     }
 }
 
@@ -430,7 +431,7 @@ fn entry_out(e: &Entry) -> EntryOut {
 
 /// The helices and the ramps of a plan's entries.
 fn entries_out(entries: &[Entry], depth_mm: f64) -> (Vec<HelixOut>, Vec<RampOut>) {
-    let drop = pocket::adaptive::HELIX_START_Z_MM + depth_mm;
+    let drop = HELIX_START_Z_MM + depth_mm;
     let helices = entries
         .iter()
         .filter_map(|e| match e {

@@ -442,7 +442,7 @@ fn corner_ring(
         // straight or reflex (concave-of-pocket) vertex, or one that deepens the cut by no more
         // than the corner tolerance δ: a_e·(1/sin(α/2) − 1) on the bisector, α = π − the turn
         let turn = crate::geom::cross(u, v).atan2(u.dot(&v));
-        let delta = corner_tolerance.unwrap_or(super::adaptive::DEFAULT_CORNER_TOLERANCE_MM);
+        let delta = corner_tolerance.unwrap_or(crate::corner::point::DEFAULT_CORNER_TOLERANCE_MM);
         if crate::geom::cross(u, v) <= 1e-9 * u.norm() * v.norm() || ae * (1.0 / (0.5 * turn).cos() - 1.0) <= delta {
             pieces.push(None);
             continue;
