@@ -9,9 +9,9 @@ use serde::Serialize;
 use std::path::PathBuf;
 use trochoplan_core::corner::acceptance::{acceptance_table, markdown};
 use trochoplan_core::corner::point::corner_point_bound_rad;
-use trochoplan_core::corner::{
-    CornerMethod, CornerReport, CornerRequest, EngagementSample, EvaluatorOptions, engagement_profile, evaluate,
-    finite, parse_points, polyline,
+use trochoplan_core::corner::{CornerMethod, CornerReport, CornerRequest, evaluate, finite};
+use trochoplan_core::engagement::{
+    EngagementSample, EvaluatorOptions, KindMax, engagement_profile, parse_points, polyline,
 };
 use trochoplan_core::geom::{P2, Polygon, Segment};
 use trochoplan_core::job::Direction;
@@ -19,10 +19,10 @@ use trochoplan_core::nc::{
     CutSetup, DEFAULT_TOLERANCE_MM, Dialect, NcOptions, NcProgram, corner_program, pocket_program,
 };
 use trochoplan_core::pocket::{
-    self, AdaptiveOptions, AdaptivePlan, Entry, Helix, LinkKind, MoveKind, PerforativePlan, PocketPlan, PocketRequest,
-    PocketStrategy, RingPlan,
+    self, AdaptiveOptions, AdaptivePlan, LinkKind, PerforativePlan, PocketPlan, PocketRequest, PocketStrategy, RingPlan,
 };
 use trochoplan_core::toolpath::HELIX_START_Z_MM;
+use trochoplan_core::toolpath::{Entry, Helix, MoveKind};
 use trochoplan_core::{Error, Param};
 
 /// Flags of `trochoplan corner` (defaults: [`CornerRequest::DEFAULT`]).
@@ -555,7 +555,7 @@ fn corner_point_out(c: &pocket::adaptive::CornerPoint) -> CornerPointOut {
     }
 }
 
-fn kind_out(m: &pocket::KindMax) -> KindOut {
+fn kind_out(m: &KindMax) -> KindOut {
     KindOut { kind: m.kind, max_engagement_deg: m.max_rad.to_degrees(), at: [m.at.x, m.at.y], length_mm: m.length_mm }
 }
 

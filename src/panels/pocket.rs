@@ -18,7 +18,8 @@ use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 use trochoplan_core::corner::CornerMethod;
 use trochoplan_core::geom::Polygon;
-use trochoplan_core::pocket::{self, MoveKind, PocketPlan, PocketRequest, PocketStrategy};
+use trochoplan_core::pocket::{self, PocketPlan, PocketRequest, PocketStrategy};
+use trochoplan_core::toolpath::{Entry, MoveKind};
 
 /// Inputs of the Pocket tab, persisted with the app state.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -126,8 +127,8 @@ pub fn compute(i: &PocketInputs) -> Result<PocketResult, String> {
             format!(
                 "{} entry, {} rings, {} corners thinned; p95 {:.1}°, {:.0} mm at depth",
                 match p.parts.first().map(|q| q.entry) {
-                    Some(pocket::Entry::Outside { .. }) => "outside",
-                    Some(pocket::Entry::Ramp(_)) => "ramp",
+                    Some(Entry::Outside { .. }) => "outside",
+                    Some(Entry::Ramp(_)) => "ramp",
                     _ => "helix",
                 },
                 p.parts.iter().map(|q| q.rings).sum::<usize>(),

@@ -75,7 +75,7 @@ fn isometric_spacing_worked_example() {
 #[test]
 fn paths_are_connected_and_circles_shrink_towards_the_apex() {
     let settings =
-        CornerSettings::new(5.0, crate::corner::radial_depth_for_engagement(46f64.to_radians(), 5.0)).unwrap();
+        CornerSettings::new(5.0, crate::engagement::radial_depth_for_engagement(46f64.to_radians(), 5.0)).unwrap();
     for angle in [30.0f64, 90.0, 150.0] {
         let sc = CornerScenario::new(Corner::symmetric(angle.to_radians()).unwrap(), settings).unwrap();
         for m in [CornerMethod::Plain, CornerMethod::Variable, CornerMethod::Isometric] {
@@ -98,7 +98,8 @@ fn paths_are_connected_and_circles_shrink_towards_the_apex() {
 #[test]
 fn corner_point_arcs_touch_both_walls_and_shrink_to_the_tolerance() {
     let delta = 0.005;
-    let base = CornerSettings::new(5.0, crate::corner::radial_depth_for_engagement(46f64.to_radians(), 5.0)).unwrap();
+    let base =
+        CornerSettings::new(5.0, crate::engagement::radial_depth_for_engagement(46f64.to_radians(), 5.0)).unwrap();
     let settings = CornerSettings { corner_tolerance: Some(delta), ..base };
     for angle in [30.0f64, 60.0, 90.0, 120.0, 150.0] {
         let sc = CornerScenario::new(Corner::symmetric(angle.to_radians()).unwrap(), settings).unwrap();

@@ -123,8 +123,8 @@ pub(crate) use part::clear_regions;
 pub use plan::{AdaptivePart, AdaptivePlan, CornerPasses, CornerPoint};
 
 use super::PocketSettings;
-use super::mirror::{mirror_segment, mirrored_polygon};
 use crate::error::{Error, Param, num};
+use crate::geom::mirror::{mirror_segment, mirrored_polygon};
 use crate::geom::offset::Region;
 use crate::geom::{Polygon, Segment};
 use crate::job::Direction;

@@ -90,7 +90,7 @@ impl AdaptiveOptions {
         validate_corner_tolerance(self.corner_tolerance_mm)?;
         crate::pocket::entry::validate_descent(self, r)?;
         if let Some(t) = self.target_deg {
-            let phi = crate::corner::straight_engagement(settings.step_over, r)?.to_degrees();
+            let phi = crate::engagement::straight_engagement(settings.step_over, r)?.to_degrees();
             if !(t.is_finite() && t >= phi - 1e-9 && t <= 90.0) {
                 return Err(Error::param(
                     Param::TargetEngagement,
@@ -143,7 +143,7 @@ pub fn corner_pass_mean_depth_ratio(alpha: f64) -> f64 {
 /// (φ* = 46.0°) the area rate asks 57.5°, so the cap, 50°, is the target; for a_e = 0.5 mm
 /// it is 32.0° (φ* 25.8°); from a_e ≈ 1.79 mm (φ* ≥ 50°) it is φ*.
 pub fn default_target_rad(a_e: f64, r: f64) -> Result<f64, Error> {
-    let phi_star = crate::corner::straight_engagement(a_e, r)?;
+    let phi_star = crate::engagement::straight_engagement(a_e, r)?;
     let deepest = a_e / corner_pass_mean_depth_ratio(0.5 * PI);
     let by_area = (1.0 - deepest / r).max(0.0).acos();
     Ok(by_area.min(DEFAULT_TARGET_CAP_DEG.to_radians()).max(phi_star))
