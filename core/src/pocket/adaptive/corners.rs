@@ -3,10 +3,14 @@
 //! after the finishing arc ([`crate::corner::point`]).
 
 use super::MAX_PASSES;
-use super::loops::Builder;
+use super::loops::{Builder, link};
+use super::options::concave_step;
+use super::part::PartContext;
+use super::plan::CornerPasses;
 use super::plan::CornerPoint;
 use crate::corner::point::corner_point_radii;
 use crate::geom::{P2, Segment, cross, p2};
+use crate::pocket::cusp::Cusp;
 use crate::toolpath::MoveKind;
 use std::f64::consts::PI;
 
@@ -163,4 +167,113 @@ pub(super) fn corner_point_arcs(b: &mut Builder, c: &Corner, rho0: f64, r: f64, 
         max_engagement_rad: 0.0,
         at: c.vertex,
     }
+}
+
+/// Step 4: the thinning passes into every convex corner `corners_all` of the part's region, from
+/// radius T (Δ/k more at the end whose half-circle ring 0 left, `trimmed`) down to ρ_fin, each
+/// removing at most the concave-cut step on the bisector; from the corner nearest the tool, in
+/// the loop's order.
+pub(super) fn corner_passes(
+    b: &mut Builder,
+    p: &PartContext<'_>,
+    corners_all: &[Corner],
+    t: f64,
+    trimmed: Option<(P2, P2, f64)>,
+) -> Vec<CornerPasses> {
+    let (polygon, options, r, phi, rho_fin) = (p.polygon, p.options, p.r, p.phi, p.rho_fin);
+    // Corners: the caps between the opening (radius T) and ρ_fin.
+    // The first corner pass's radius: T, or Δ/k more at the end whose half-circle ring 0 left.
+    let first_radius = |c: &Corner| {
+        let k = 1.0 / (0.5 * c.alpha).sin() - 1.0;
+        let extra = match trimmed {
+            Some((end, other, delta)) if (c.vertex - end).norm() < (c.vertex - other).norm() => delta / k,
+            _ => 0.0,
+        };
+        (t + extra).min(c.len_in.min(c.len_out) * (0.5 * c.alpha).tan())
+    };
+    // From the corner whose first pass starts nearest the tool, in the loop's order.
+    let here = b.at();
+    let first = (0..corners_all.len())
+        .min_by(|&i, &j| {
+            let d = |c: &Corner| (c.arc(first_radius(c)).0 - here).norm();
+            d(&corners_all[i]).total_cmp(&d(&corners_all[j]))
+        })
+        .unwrap_or(0);
+    let mut corners = Vec::new();
+    for c in corners_all[first..].iter().chain(&corners_all[..first]) {
+        let k = 1.0 / (0.5 * c.alpha).sin() - 1.0;
+        let mut rho = first_radius(c);
+        // (a corner that leaves no more than the corner tolerance on its bisector has no passes)
+        if rho <= rho_fin + 1e-6 || (rho - rho_fin) * k <= options.corner_tolerance_mm {
+            continue;
+        }
+        let (a0, _, _) = c.arc(rho);
+        link(b, polygon, r, a0);
+        let mut passes = 0;
+        let mut deepest: f64 = 0.0;
+        while rho > rho_fin + 1e-6 && passes < MAX_PASSES {
+            // Fixed point: the step allowed at the new radius.
+            let mut next = rho - concave_step(rho, r, phi) / k;
+            next = (rho - concave_step(next.max(rho_fin), r, phi) / k).max(rho_fin);
+            // After the first: from the previous arc's end on wall B straight to wall A, short
+            // of this arc's start by a tenth of the gap between the two arcs' tangent points,
+            // then along wall A into the arc (entered tangentially, as the step rule assumes).
+            let (a, _, arc) = c.arc(next);
+            if passes > 0 {
+                let (a_prev, _, _) = c.arc(rho);
+                b.line(a_prev + (a - a_prev) * CORNER_CHORD_REACH, MoveKind::Link);
+            }
+            b.line(a, MoveKind::Corner);
+            b.push(arc, MoveKind::Corner);
+            deepest = deepest.max((rho - next) * k);
+            rho = next;
+            passes += 1;
+        }
+        corners.push(CornerPasses {
+            vertex: c.vertex,
+            angle_rad: c.alpha,
+            passes,
+            last_radius_mm: rho,
+            max_radial_depth_mm: deepest,
+            max_engagement_rad: 0.0,
+            at: c.vertex,
+        });
+    }
+    corners
+}
+
+/// Step 4 at the cusps (a neck's mouth): arcs tangent to both walls from T down to ρ_fin
+/// ([`crate::pocket::cusp`]), each back on its chord and along the incoming wall into the next.
+pub(super) fn cusp_passes(b: &mut Builder, p: &PartContext<'_>, cusps_all: &[Cusp], t: f64) -> Vec<CornerPasses> {
+    let (polygon, r, phi, rho_fin) = (p.polygon, p.r, p.phi, p.rho_fin);
+    let mut corners = Vec::new();
+    // Cusps (a neck's mouth): arcs tangent to both walls from T down to ρ_fin, each back on
+    // its chord (inside its own disc: cleared) and along the incoming wall into the next.
+    for c in cusps_all {
+        let rho0 = t.min(c.rho_max);
+        let radii = c.radii(rho0, rho_fin, r, phi);
+        let (Some((a0, _, _)), false) = (c.arc(rho0), radii.is_empty()) else { continue };
+        link(b, polygon, r, a0);
+        let (mut rho_prev, mut a_prev, mut deepest) = (rho0, a0, 0.0_f64);
+        for &rho in &radii {
+            let Some((a, _, arc)) = c.arc(rho) else { break };
+            b.line(a_prev, MoveKind::Link);
+            for sg in c.along_wall(a_prev, a) {
+                b.push(sg, MoveKind::Corner);
+            }
+            b.push(arc, MoveKind::Corner);
+            deepest = deepest.max(c.depth(rho_prev, rho));
+            (rho_prev, a_prev) = (rho, a);
+        }
+        corners.push(CornerPasses {
+            vertex: c.vertex,
+            angle_rad: c.alpha,
+            passes: radii.len(),
+            last_radius_mm: rho_prev,
+            max_radial_depth_mm: deepest,
+            max_engagement_rad: 0.0,
+            at: c.vertex,
+        });
+    }
+    corners
 }

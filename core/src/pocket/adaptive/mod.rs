@@ -106,6 +106,7 @@
 //! loop then runs clockwise, with the same engagement by symmetry.
 
 mod corners;
+mod finish;
 mod loops;
 mod open;
 mod options;

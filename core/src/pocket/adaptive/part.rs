@@ -2,19 +2,18 @@
 //! then entry and spiral or growth from outside, corner and cusp passes and the finishing
 //! contour; the shortest plan over the core fractions wins (docs/adaptive-clearing.md).
 
-use super::MAX_PASSES;
 use super::PocketSettings;
-use super::corners::{CORNER_CHORD_REACH, Corner, convex_corners, corner_point_arcs};
-use super::loops::{Builder, inscribed, link, start_near};
+use super::corners::{Corner, convex_corners, corner_passes, cusp_passes};
+use super::finish::finishing_pass;
+use super::loops::{Builder, inscribed};
 use super::open::{MIN_CORE_SHARE, OpenPocket, Seed, grown_rings};
-use super::options::{AdaptiveOptions, concave_step};
-use super::plan::{AdaptivePart, CornerPasses};
+use super::options::AdaptiveOptions;
+use super::plan::AdaptivePart;
 use super::spiral::spiral_and_rings;
 use crate::error::{Error, Param};
 use crate::geom::offset::{Region, largest};
-use crate::geom::{P2, Polygon, Segment, p2};
-use crate::toolpath::{Entry, MoveKind};
-use std::f64::consts::PI;
+use crate::geom::{P2, Polygon, Segment};
+use crate::toolpath::Entry;
 
 /// Fractions of the inscribed radius the core radius T starts from (the shortest plan wins).
 pub(super) const CORE_FRACTIONS: [f64; 5] = [1.0, 0.85, 0.7, 0.55, 0.4];
@@ -53,18 +52,18 @@ pub(crate) fn clear_regions(
             let (taken, routes) = (std::mem::take(&mut radii), std::mem::take(&mut router));
             let mut bb =
                 Builder { segments: Vec::new(), kinds: Vec::new(), radii: taken, router: routes, retracts: Vec::new() };
-            let planned = plan_part(
+            let part = PartContext {
                 region,
-                (inscribed_radius, k0),
-                work,
-                settings,
+                inscribed: inscribed_radius,
+                k0,
+                polygon: work,
                 options,
+                r: settings.tool_radius,
                 phi,
                 rho_fin,
-                fraction,
-                &mut bb,
-                &seed,
-            );
+                seed: &seed,
+            };
+            let planned = plan_part(&part, fraction, &mut bb);
             (radii, router) = (std::mem::take(&mut bb.radii), std::mem::take(&mut bb.router));
             match planned {
                 Ok(part) => {
@@ -89,21 +88,26 @@ pub(crate) fn clear_regions(
     Ok((parts, b))
 }
 
-/// Entry, spiral, rings and corners of one region of tool centres; the finishing pass.
-#[allow(clippy::too_many_arguments)]
-pub(super) fn plan_part(
-    region: &Region,
-    (inscribed, k0): (f64, P2),
-    polygon: &Polygon,
-    settings: &PocketSettings,
-    options: &AdaptiveOptions,
-    phi: f64,
-    rho_fin: f64,
-    fraction: f64,
-    b: &mut Builder,
-    seed: &Seed<'_>,
-) -> Result<AdaptivePart, Error> {
-    let r = settings.tool_radius;
+/// What planning one part needs: its region of tool centres with the radius and centre k0 of
+/// its largest circle, the pocket (for links and wall checks), the options, the tool radius r,
+/// the target engagement φ, the finishing corner radius ρ_fin, and where the part grows from.
+pub(super) struct PartContext<'a> {
+    pub(super) region: &'a Region,
+    pub(super) inscribed: f64,
+    pub(super) k0: P2,
+    pub(super) polygon: &'a Polygon,
+    pub(super) options: &'a AdaptiveOptions,
+    pub(super) r: f64,
+    pub(super) phi: f64,
+    pub(super) rho_fin: f64,
+    pub(super) seed: &'a Seed<'a>,
+}
+
+/// Entry, spiral, rings and corners of one region of tool centres with the core radius starting
+/// at `fraction` of its inscribed radius; the finishing pass.
+pub(super) fn plan_part(p: &PartContext<'_>, fraction: f64, b: &mut Builder) -> Result<AdaptivePart, Error> {
+    let (region, polygon, options, seed) = (p.region, p.polygon, p.options, p.seed);
+    let (r, inscribed, k0, phi) = (p.r, p.inscribed, p.k0, p.phi);
     // The least core radius: the helix radius; from outside a share of the inscribed radius.
     let r_h = match seed {
         Seed::Helix => crate::pocket::entry::helix_radius(options, r, inscribed)?,
@@ -114,7 +118,6 @@ pub(super) fn plan_part(
         Seed::Outside { closed, .. } => closed,
         _ => region,
     };
-    let area = t_region.area();
     let corners_all = convex_corners(&region.segments());
     let t_corners = match seed {
         Seed::Outside { .. } => convex_corners(&t_region.segments()),
@@ -131,8 +134,38 @@ pub(super) fn plan_part(
         }
         _ => &cusps_all,
     };
-    // Core radius T: the largest (from 0.995 × the inscribed radius, −10 % a step) whose
-    // opening of the region leaves only the corner caps.
+    let (t, core) = core_radius(t_region, (t_corners, t_cusps), fraction, inscribed, r_h)?;
+    let (entry, trimmed, rings) = match seed {
+        Seed::Helix => {
+            let (helix, trimmed, rings) =
+                spiral_and_rings(b, region, &core, (inscribed, k0), polygon, (r, t, r_h, phi), options);
+            (Entry::Helix(helix), trimmed, rings)
+        }
+        Seed::Outside { stock, grow, .. } => {
+            let grow_core = largest(grow.offset(t)).ok_or_else(|| {
+                Error::param(Param::OpenEdges, "no core beyond the open edges", "open edges at least D long")
+            })?;
+            let (rings, at) = grown_rings(b, polygon, r, &grow_core, t, phi, k0, stock)?;
+            (Entry::Outside { at }, None, rings)
+        }
+    };
+    let mut corners = corner_passes(b, p, &corners_all, t, trimmed);
+    corners.extend(cusp_passes(b, p, &cusps_all, t));
+    let corner_points = if p.options.finish_stock_mm > 0.0 { finishing_pass(b, p)? } else { Vec::new() };
+    Ok(AdaptivePart { entry, first_segment: 0, end_segment: 0, core_radius_mm: t, rings, corners, corner_points })
+}
+
+/// Core radius T: the largest (from 0.995 × `fraction` × the inscribed radius, −10 % a step,
+/// not below the least radius `r_h`) whose opening of `t_region` leaves only the caps of its
+/// convex corners and cusps; the core C ⊖ T with it.
+pub(super) fn core_radius(
+    t_region: &Region,
+    (t_corners, t_cusps): (&[Corner], &[crate::pocket::cusp::Cusp]),
+    fraction: f64,
+    inscribed: f64,
+    r_h: f64,
+) -> Result<(f64, Region), Error> {
+    let area = t_region.area();
     let mut t = 0.995 * fraction * inscribed;
     let core = loop {
         if t < r_h {
@@ -163,182 +196,5 @@ pub(super) fn plan_part(
             "a pocket whose tool-centre region is one piece at least the helix radius wide",
         ));
     };
-    let (entry, trimmed, rings) = match seed {
-        Seed::Helix => {
-            let (helix, trimmed, rings) =
-                spiral_and_rings(b, region, &core, (inscribed, k0), polygon, (r, t, r_h, phi), options);
-            (Entry::Helix(helix), trimmed, rings)
-        }
-        Seed::Outside { stock, grow, .. } => {
-            let grow_core = largest(grow.offset(t)).ok_or_else(|| {
-                Error::param(Param::OpenEdges, "no core beyond the open edges", "open edges at least D long")
-            })?;
-            let (rings, at) = grown_rings(b, polygon, r, &grow_core, t, phi, k0, stock)?;
-            (Entry::Outside { at }, None, rings)
-        }
-    };
-    // Corners: the caps between the opening (radius T) and ρ_fin.
-    // The first corner pass's radius: T, or Δ/k more at the end whose half-circle ring 0 left.
-    let first_radius = |c: &Corner| {
-        let k = 1.0 / (0.5 * c.alpha).sin() - 1.0;
-        let extra = match trimmed {
-            Some((end, other, delta)) if (c.vertex - end).norm() < (c.vertex - other).norm() => delta / k,
-            _ => 0.0,
-        };
-        (t + extra).min(c.len_in.min(c.len_out) * (0.5 * c.alpha).tan())
-    };
-    // From the corner whose first pass starts nearest the tool, in the loop's order.
-    let here = b.at();
-    let first = (0..corners_all.len())
-        .min_by(|&i, &j| {
-            let d = |c: &Corner| (c.arc(first_radius(c)).0 - here).norm();
-            d(&corners_all[i]).total_cmp(&d(&corners_all[j]))
-        })
-        .unwrap_or(0);
-    let mut corners = Vec::new();
-    for c in corners_all[first..].iter().chain(&corners_all[..first]) {
-        let k = 1.0 / (0.5 * c.alpha).sin() - 1.0;
-        let mut rho = first_radius(c);
-        // (a corner that leaves no more than the corner tolerance on its bisector has no passes)
-        if rho <= rho_fin + 1e-6 || (rho - rho_fin) * k <= options.corner_tolerance_mm {
-            continue;
-        }
-        let (a0, _, _) = c.arc(rho);
-        link(b, polygon, r, a0);
-        let mut passes = 0;
-        let mut deepest: f64 = 0.0;
-        while rho > rho_fin + 1e-6 && passes < MAX_PASSES {
-            // Fixed point: the step allowed at the new radius.
-            let mut next = rho - concave_step(rho, r, phi) / k;
-            next = (rho - concave_step(next.max(rho_fin), r, phi) / k).max(rho_fin);
-            // After the first: from the previous arc's end on wall B straight to wall A, short
-            // of this arc's start by a tenth of the gap between the two arcs' tangent points,
-            // then along wall A into the arc (entered tangentially, as the step rule assumes).
-            let (a, _, arc) = c.arc(next);
-            if passes > 0 {
-                let (a_prev, _, _) = c.arc(rho);
-                b.line(a_prev + (a - a_prev) * CORNER_CHORD_REACH, MoveKind::Link);
-            }
-            b.line(a, MoveKind::Corner);
-            b.push(arc, MoveKind::Corner);
-            deepest = deepest.max((rho - next) * k);
-            rho = next;
-            passes += 1;
-        }
-        corners.push(CornerPasses {
-            vertex: c.vertex,
-            angle_rad: c.alpha,
-            passes,
-            last_radius_mm: rho,
-            max_radial_depth_mm: deepest,
-            max_engagement_rad: 0.0,
-            at: c.vertex,
-        });
-    }
-    // Cusps (a neck's mouth): arcs tangent to both walls from T down to ρ_fin, each back on
-    // its chord (inside its own disc: cleared) and along the incoming wall into the next.
-    for c in &cusps_all {
-        let rho0 = t.min(c.rho_max);
-        let radii = c.radii(rho0, rho_fin, r, phi);
-        let (Some((a0, _, _)), false) = (c.arc(rho0), radii.is_empty()) else { continue };
-        link(b, polygon, r, a0);
-        let (mut rho_prev, mut a_prev, mut deepest) = (rho0, a0, 0.0_f64);
-        for &rho in &radii {
-            let Some((a, _, arc)) = c.arc(rho) else { break };
-            b.line(a_prev, MoveKind::Link);
-            for sg in c.along_wall(a_prev, a) {
-                b.push(sg, MoveKind::Corner);
-            }
-            b.push(arc, MoveKind::Corner);
-            deepest = deepest.max(c.depth(rho_prev, rho));
-            (rho_prev, a_prev) = (rho, a);
-        }
-        corners.push(CornerPasses {
-            vertex: c.vertex,
-            angle_rad: c.alpha,
-            passes: radii.len(),
-            last_radius_mm: rho_prev,
-            max_radial_depth_mm: deepest,
-            max_engagement_rad: 0.0,
-            at: c.vertex,
-        });
-    }
-    // Finishing contour: the opening of the final wall offset with radius ρ_fin + s_f, and at
-    // every convex corner arc of it the arcs into the corner point.
-    let mut corner_points = Vec::new();
-    if sf > 0.0 {
-        let inner = largest(region.offset(rho_fin)).ok_or_else(|| {
-            Error::param(Param::Polygon, "no finishing contour", "a pocket wider than the tool plus the stock")
-        })?;
-        let fin = largest(inner.offset(-(rho_fin + sf)))
-            .ok_or_else(|| Error::param(Param::Polygon, "no finishing contour", "a pocket wider than the tool"))?;
-        // Start on the straight wall nearest the tool (at its point nearest the tool, at least
-        // ρ_l from the wall's start; the longest wall's middle where no wall is 2ρ_l long),
-        // entered on a quarter circle of radius ρ_l = max(s_f, r/2) tangent to it (the stock
-        // grows from 0 to s_f under a convex arc); the lead-in starts ρ_l from the wall, in
-        // cleared material.
-        let loop_segs = fin.segments();
-        let lead = sf.max(0.5 * r);
-        let here = b.at();
-        let lines: Vec<(P2, P2)> = loop_segs
-            .iter()
-            .filter_map(|sg| match *sg {
-                Segment::Line { start, end } => Some((start, end)),
-                _ => None,
-            })
-            .collect();
-        // (a lead-in whose quarter circle would come within r of another wall is not taken;
-        // where none is clear, the link goes straight to the wall point)
-        let lead_in = |(mid, dir): (P2, P2)| {
-            let (center, start_angle) = (mid + crate::geom::rot90(dir) * lead, (-dir.y).atan2(-dir.x));
-            (mid, Segment::Arc { center, radius: lead, start_angle, sweep: 0.5 * PI })
-        };
-        let clear = |(_, arc): &(P2, Segment)| crate::pocket::guard::keeps_off_walls(polygon, arc, r);
-        let nearest = lines
-            .iter()
-            .filter(|(a, c)| (c - a).norm() >= 2.0 * lead)
-            .map(|&(a, c)| {
-                let (len, dir) = ((c - a).norm(), (c - a).normalize());
-                lead_in((a + dir * (here - a).dot(&dir).clamp(lead, len - 1e-3), dir))
-            })
-            .filter(clear)
-            .min_by(|x, y| (x.0 - here).norm().total_cmp(&(y.0 - here).norm()));
-        let longest = lead_in(
-            lines
-                .iter()
-                .max_by(|a, c| (a.1 - a.0).norm().total_cmp(&(c.1 - c.0).norm()))
-                .map_or((loop_segs[0].start(), p2(1.0, 0.0)), |(a, c)| ((a + c) * 0.5, (c - a).normalize())),
-        );
-        let (mid, arc) = nearest.unwrap_or(longest);
-        let arc = Some(arc).filter(|a| clear(&(mid, *a)));
-        link(b, polygon, r, arc.map_or(mid, |a| a.start()));
-        arc.into_iter().for_each(|a| b.push(a, MoveKind::Finish));
-        let fin_loop = start_near(&loop_segs, mid);
-        let n = fin_loop.len();
-        for (i, seg) in fin_loop.iter().enumerate() {
-            b.push(*seg, MoveKind::Finish);
-            let is_line = |sg: &Segment| matches!(sg, Segment::Line { .. });
-            if let Segment::Arc { center, radius, start_angle, sweep } = *seg
-                && sweep > 1e-9
-                && (radius - (rho_fin + sf)).abs() < 1e-6
-                && (radius - options.corner_tolerance_mm) * (1.0 / (0.5 * sweep).cos() - 1.0)
-                    > options.corner_tolerance_mm
-                && is_line(&fin_loop[(i + n - 1) % n])
-                && is_line(&fin_loop[(i + 1) % n])
-            {
-                let corner = Corner::of_arc(center, radius, start_angle, sweep);
-                let (before, point) =
-                    (b.segments.len(), corner_point_arcs(b, &corner, radius, r, phi, options.corner_tolerance_mm));
-                // not where they would come within r of a wall whose offset the loop has lost
-                // (a short edge between the corner's walls, farther than r + s_f from the region)
-                if b.segments[before..].iter().all(|sg| crate::pocket::guard::keeps_off_walls(polygon, sg, r)) {
-                    corner_points.push(point);
-                } else {
-                    b.segments.truncate(before);
-                    b.kinds.truncate(before);
-                }
-            }
-        }
-    }
-    Ok(AdaptivePart { entry, first_segment: 0, end_segment: 0, core_radius_mm: t, rings, corners, corner_points })
+    Ok((t, core))
 }
