@@ -60,6 +60,8 @@ mod axis;
 mod chain;
 mod circles;
 mod start;
+#[cfg(test)]
+mod tests;
 mod tips;
 
 use crate::corner::CornerSettings;
