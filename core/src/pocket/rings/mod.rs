@@ -63,6 +63,7 @@
 mod corners;
 mod links;
 mod pocket;
+mod report;
 mod simple;
 
 pub use corners::ring_with_corner_trochoids;

@@ -1,20 +1,20 @@
 //! The ring pocket (docs/pockets.md): an adaptive-clearing core out to ring k_c, then the rings
 //! with their corner strategies from there out to the wall, measured in one profile.
 
+use super::Level;
 use super::corners::corner_ring;
 use super::links::{Assembled, assemble, nearest_on, start_on_longest_line};
-use super::{CorneredRing, Link, LinkKind, RING_SLACK_MM, Ring, RingCorner, RingPlan, ring_levels};
+use super::report::ring_reports;
+use super::{CorneredRing, RING_SLACK_MM, RingCorner, RingPlan, ring_levels};
 use crate::corner::CornerMethod;
-use crate::engagement::sample_owners;
 use crate::error::{Error, Param};
 use crate::geom::offset::Region;
-use crate::geom::{P2, Polygon, Segment, p2};
+use crate::geom::{P2, Polygon, Segment};
 use crate::pocket::PocketSettings;
-use crate::pocket::adaptive::{
-    AdaptiveOptions, AdaptivePart, Builder, CornerPoint, clear_regions, fin_radius, inscribed,
-};
+use crate::pocket::adaptive::{AdaptiveOptions, AdaptivePart, Builder, clear_regions, fin_radius, inscribed};
 use crate::pocket::entry::{entry_at, helix_radius};
 use crate::pocket::path::PocketPath;
+use crate::toolpath::Entry;
 use crate::toolpath::{MoveKind, Toolpath};
 
 /// The core of [`plan_ring_pocket`]: adaptive clearing of the regions (inward offsets of the
@@ -99,20 +99,7 @@ pub fn plan_ring_pocket(
     let outline = Region::polygon(polygon.vertices());
     // Every ring with its corners; k_c from the helix and the corners.
     let delta = Some(core_options.corner_tolerance_mm);
-    let mut rings: Vec<Vec<CorneredRing>> = Vec::with_capacity(levels.len());
-    for (_, d, loops) in &levels {
-        let mut level = Vec::with_capacity(loops.len());
-        for plain in loops {
-            level.push(if method == CornerMethod::Plain {
-                (plain.iter().map(|s| (*s, MoveKind::Ring)).collect(), (0, 0), Vec::new())
-            } else {
-                let (segs, done, skipped, points) =
-                    corner_ring(polygon, plain, settings, method, delta, *d - RING_SLACK_MM)?;
-                (segs, (done, skipped), points)
-            });
-        }
-        rings.push(level);
-    }
+    let rings = cornered_rings(polygon, settings, method, delta, &levels)?;
     let sf = core_options.finish_stock_mm;
     let holds_helix = |k: usize| {
         let regions = outline.offset(levels[k].1 + sf);
@@ -135,6 +122,75 @@ pub fn plan_ring_pocket(
     } else {
         rings.iter().position(|l| l.iter().any(|(_, (_, skipped), _)| *skipped > 0))
     };
+    let ctx =
+        RingContext { polygon, settings, method, options: &core_options, phi, outline: &outline, levels: &levels };
+    let (core, entries, kc, inner_loops, hubs) = ring_core(&ctx, deepest, first_plain)?;
+    let candidates = ring_candidates(&levels, &rings, kc, inner_loops, &hubs, r);
+    let a = assemble(polygon, r, ae, core, &candidates);
+    let toolpath = Toolpath::at_depth(&a.segments, &a.kinds, -options.depth_mm, entries, a.retract_before.clone());
+    let path = PocketPath::measured(polygon, settings, toolpath, options.depth_mm, &[MoveKind::Link])?;
+    let (out_rings, links, corner_points) = ring_reports(&a, &candidates, &path);
+    let path_length_mm: f64 = out_rings.iter().map(|g| g.length_mm).sum();
+    Ok(RingPlan {
+        max_engagement_rad: path.measurement.max_engagement_rad,
+        path,
+        method,
+        rings: out_rings,
+        path_length_mm,
+        trochoid_corners: candidates.iter().map(|c| c.corners.0).sum(),
+        plain_corners: candidates.iter().map(|c| c.corners.1).sum(),
+        links,
+        corner_points,
+    })
+}
+
+/// Every ring of every level with its corner strategy (plain rings keep their corners): its
+/// tagged segments, the corners done and left plain, and the corners with corner-point arcs.
+fn cornered_rings(
+    polygon: &Polygon,
+    settings: PocketSettings,
+    method: CornerMethod,
+    delta: Option<f64>,
+    levels: &[Level],
+) -> Result<Vec<Vec<CorneredRing>>, Error> {
+    let mut rings: Vec<Vec<CorneredRing>> = Vec::with_capacity(levels.len());
+    for (_, d, loops) in levels {
+        let mut level = Vec::with_capacity(loops.len());
+        for plain in loops {
+            level.push(if method == CornerMethod::Plain {
+                (plain.iter().map(|s| (*s, MoveKind::Ring)).collect(), (0, 0), Vec::new())
+            } else {
+                let (segs, done, skipped, points) =
+                    corner_ring(polygon, plain, settings, method, delta, *d - RING_SLACK_MM)?;
+                (segs, (done, skipped), points)
+            });
+        }
+        rings.push(level);
+    }
+    Ok(rings)
+}
+
+/// What choosing the core of a ring pocket needs.
+struct RingContext<'a> {
+    polygon: &'a Polygon,
+    settings: PocketSettings,
+    method: CornerMethod,
+    options: &'a AdaptiveOptions,
+    phi: f64,
+    outline: &'a Region,
+    levels: &'a [Level],
+}
+
+/// The core's moves and entries, k_c, the loops of the regions it cleared and their hubs.
+type RingCore = (Assembled, Vec<Entry>, usize, Vec<Vec<Segment>>, Vec<P2>);
+
+/// The core of the ring pocket (step 1 of [`plan_ring_pocket`]): adaptive clearing of the
+/// region inside ring k_c, tried from the wanted level `min(deepest, first_plain)` out to the
+/// wall, then inward; without a helix anywhere the medial-axis plan (variable, isometric) or
+/// a ramp in each region with every level a ring (plain).
+fn ring_core(ctx: &RingContext<'_>, deepest: Option<usize>, first_plain: Option<usize>) -> Result<RingCore, Error> {
+    let RingContext { polygon, settings, method, options, phi, outline, levels } = *ctx;
+    let (core_options, r) = (*options, settings.tool_radius);
     let mut core = Assembled {
         segments: Vec::new(),
         kinds: Vec::new(),
@@ -153,7 +209,7 @@ pub fn plan_ring_pocket(
             let mut tries = (0..=wanted).rev().chain(wanted + 1..=deepest);
             loop {
                 let Some(kc) = tries.next() else { break Err(()) };
-                match adaptive_core(polygon, &settings, &core_options, phi, &outline, levels[kc].1) {
+                match adaptive_core(polygon, &settings, &core_options, phi, outline, levels[kc].1) {
                     Ok((parts, b, loops)) => {
                         for (i, part) in parts.iter().enumerate() {
                             if i > 0 {
@@ -205,8 +261,19 @@ pub fn plan_ring_pocket(
             (levels.len(), Vec::new(), hubs)
         }
     };
-    // The rings from level k_c − 1 out, each after the loop inside it (the nearest loop of the
-    // level below, or of the core's regions).
+    Ok((core, entries, kc, inner_loops, hubs))
+}
+
+/// The rings from level k_c − 1 out (step 2 of [`plan_ring_pocket`]), each after the loop
+/// inside it: the nearest loop of the level below, or of the core's regions.
+fn ring_candidates(
+    levels: &[Level],
+    rings: &[Vec<CorneredRing>],
+    kc: usize,
+    inner_loops: Vec<Vec<Segment>>,
+    hubs: &[P2],
+    r: f64,
+) -> Vec<Candidate> {
     let mut candidates: Vec<Candidate> = Vec::new();
     let mut inside: Vec<Vec<Segment>> = inner_loops;
     for k in (0..kc).rev() {
@@ -233,86 +300,5 @@ pub fn plan_ring_pocket(
         }
         inside = next;
     }
-    let a = assemble(polygon, r, ae, core, &candidates);
-    let toolpath = Toolpath::at_depth(&a.segments, &a.kinds, -options.depth_mm, entries, a.retract_before.clone());
-    let path = PocketPath::measured(polygon, settings, toolpath, options.depth_mm, &[MoveKind::Link])?;
-    let profile = &path.measurement.profile;
-    let owner = sample_owners(profile, &a.segments);
-    let in_range = |lo: usize, hi: usize| {
-        profile.samples.iter().zip(&owner).filter(move |(_, o)| (lo..hi).contains(*o)).map(|(s, _)| s)
-    };
-    let mut out_rings = Vec::with_capacity(candidates.len());
-    let mut links = Vec::with_capacity(candidates.len());
-    let mut corner_points = Vec::new();
-    for (i, c) in candidates.iter().enumerate() {
-        let (lo, hi) = a.rings[i];
-        // each run of corner-point moves belongs to the corner whose vertex its last arc ends
-        // next to (δ·cot α from it; the corners of a ring are at least a wall length apart)
-        let mut j = lo;
-        while j < hi {
-            if a.kinds[j] != MoveKind::CornerPoint {
-                j += 1;
-                continue;
-            }
-            let run = j;
-            while j < hi && a.kinds[j] == MoveKind::CornerPoint {
-                j += 1;
-            }
-            let end = a.segments[j - 1].end();
-            let Some((vertex, angle, arcs)) =
-                c.points.iter().min_by(|p, q| (p.0 - end).norm().total_cmp(&(q.0 - end).norm()))
-            else {
-                continue;
-            };
-            let (max, at) = in_range(run, j)
-                .fold((0.0, end), |b, s| if s.angle_rad > b.0 { (s.angle_rad, p2(s.x_mm, s.y_mm)) } else { b });
-            corner_points.push(CornerPoint {
-                vertex: *vertex,
-                angle_rad: *angle,
-                arcs: arcs.radii_mm.len(),
-                last_radius_mm: arcs.radii_mm.last().copied().unwrap_or(0.0),
-                residual_mm: arcs.residual_mm,
-                max_radial_depth_mm: arcs.max_radial_depth_mm,
-                max_engagement_rad: max,
-                at,
-            });
-        }
-        let segments: Vec<Segment> = a.segments[lo..hi].to_vec();
-        let best = in_range(lo, hi).fold(None, |b: Option<(f64, P2)>, s| match b {
-            Some((m, _)) if m >= s.angle_rad => b,
-            _ => Some((s.angle_rad, p2(s.x_mm, s.y_mm))),
-        });
-        let (max, at) = best.unwrap_or((0.0, segments[0].start()));
-        out_rings.push(Ring {
-            level: c.level,
-            offset_mm: c.offset,
-            length_mm: segments.iter().map(Segment::length).sum(),
-            segments,
-            max_engagement_rad: max,
-            max_engagement_at: at,
-            entry_engagement_rad: in_range(lo, hi).next().map_or(0.0, |s| s.angle_rad),
-        });
-        let (l0, l1, from, to) = a.links[i];
-        let kind = if l0 == l1 && a.retract_before.contains(&l1) { LinkKind::Retract } else { LinkKind::Feed };
-        let length_mm = a.segments[l0..l1].iter().map(Segment::length).sum();
-        let max_engagement_rad = in_range(l0, l1).map(|s| s.angle_rad).fold(0.0, f64::max);
-        links.push(Link { kind, from, to, length_mm, max_engagement_rad });
-    }
-    // `links[i]` joins ring i to ring i + 1; the link from the core into the first ring is
-    // part of the path, not of that list.
-    if !links.is_empty() {
-        links.remove(0);
-    }
-    let path_length_mm: f64 = out_rings.iter().map(|g| g.length_mm).sum();
-    Ok(RingPlan {
-        max_engagement_rad: path.measurement.max_engagement_rad,
-        path,
-        method,
-        rings: out_rings,
-        path_length_mm,
-        trochoid_corners: candidates.iter().map(|c| c.corners.0).sum(),
-        plain_corners: candidates.iter().map(|c| c.corners.1).sum(),
-        links,
-        corner_points,
-    })
+    candidates
 }
