@@ -114,7 +114,7 @@ mod part;
 mod plan;
 mod spiral;
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;
 
 pub(crate) use loops::{Builder, closest_on, inscribed, link, split};
 pub use open::{OPEN_REACH_FACTOR, validate_open_edges};

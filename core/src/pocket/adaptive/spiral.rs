@@ -131,28 +131,7 @@ pub(super) fn spiral_and_rings(
         (a_plus + m * spiral_end, 0.0),
         (a_minus + m * spiral_end, 1.0),
     ]);
-    // Rings: (K ∩ D(k0, s)) ⊕ T a step apart, joined at the wall point q0 where the spiral
-    // ended; a ring that adds to the stadium less area than a strip of 2 % of the step along
-    // its whole length (it lies inside the stadium but for slivers) is not cut.
-    let step = concave_step(t, r, phi);
-    let reach = core.vertices().iter().map(|&v| (v - k0).norm()).fold(0.0, f64::max);
-    let mut s = (s0 + step).min(reach);
-    let (mut rings_cut, mut prev): (Vec<Vec<Segment>>, Option<Region>) = (Vec::new(), None);
-    while s > s0 + 1e-9 && rings_cut.len() < MAX_PASSES {
-        let grown = crate::pocket::growth::grown(core, k0, s, reach, prev.as_ref(), step);
-        let filled = grown.as_ref().is_none_or(|g| crate::pocket::growth::fills(g, core));
-        if let Some(o) = grown.as_ref().and_then(|g| largest(g.offset(-t))) {
-            let outside: f64 = o.boolean(&cut, BoolOp::Not).iter().map(|p| p.area().abs()).sum();
-            if outside >= 0.02 * step * o.path_length() {
-                rings_cut.push(start_near(&o.segments(), q0));
-            }
-        }
-        let stalled = prev.as_ref().zip(grown.as_ref()).is_some_and(|(p, g)| g.area() <= p.area() * (1.0 + 1e-9));
-        if s >= reach && (filled || stalled) {
-            break;
-        }
-        (s, prev) = ((s + step).min(reach), grown.or(prev));
-    }
+    let rings_cut = core_rings(core, k0, (s0, t), (r, phi), &cut, q0);
     // Where no ring follows the stadium, ring 0 stops before the end half-circle the spiral
     // ended on: that half-turn left a crescent from Δ = q_f − q_{n−1} at its start to 0 at its
     // end, which the corner passes at that end take with their first arc (started Δ/k further
@@ -178,6 +157,40 @@ pub(super) fn spiral_and_rings(
     let rings = 1 + rings_cut.len();
     crate::pocket::runs::cut_rings(b, polygon, r, &stadium, rings_cut);
     (helix, trimmed, rings)
+}
+
+/// Step 3: the rings (K ∩ D(k0, s)) ⊕ T of the core K = `core`, s growing from s0 by the
+/// concave-cut step of radius T, each restarted at the wall point q0 where the spiral ended; a
+/// ring that adds to the stadium `cut` less area than a strip of 2 % of the step along its whole
+/// length (it lies inside the stadium but for slivers) is not cut.
+fn core_rings(
+    core: &Region,
+    k0: P2,
+    (s0, t): (f64, f64),
+    (r, phi): (f64, f64),
+    cut: &Region,
+    q0: P2,
+) -> Vec<Vec<Segment>> {
+    let step = concave_step(t, r, phi);
+    let reach = core.vertices().iter().map(|&v| (v - k0).norm()).fold(0.0, f64::max);
+    let mut s = (s0 + step).min(reach);
+    let (mut rings_cut, mut prev): (Vec<Vec<Segment>>, Option<Region>) = (Vec::new(), None);
+    while s > s0 + 1e-9 && rings_cut.len() < MAX_PASSES {
+        let grown = crate::pocket::growth::grown(core, k0, s, reach, prev.as_ref(), step);
+        let filled = grown.as_ref().is_none_or(|g| crate::pocket::growth::fills(g, core));
+        if let Some(o) = grown.as_ref().and_then(|g| largest(g.offset(-t))) {
+            let outside: f64 = o.boolean(cut, BoolOp::Not).iter().map(|p| p.area().abs()).sum();
+            if outside >= 0.02 * step * o.path_length() {
+                rings_cut.push(start_near(&o.segments(), q0));
+            }
+        }
+        let stalled = prev.as_ref().zip(grown.as_ref()).is_some_and(|(p, g)| g.area() <= p.area() * (1.0 + 1e-9));
+        if s >= reach && (filled || stalled) {
+            break;
+        }
+        (s, prev) = ((s + step).min(reach), grown.or(prev));
+    }
+    rings_cut
 }
 
 /// The axis of a thin core: the core C ⊖ q (one loop) whose vertices lie within `width` of a

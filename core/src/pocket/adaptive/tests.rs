@@ -16,15 +16,18 @@ use crate::toolpath::{Entry, HELIX_START_Z_MM, MoveKind};
 use std::f64::consts::{FRAC_PI_2, PI, SQRT_2};
 use std::sync::OnceLock;
 
-const R: f64 = 5.0;
+/// The tool radius (D = 10) of the pocket tests.
+pub(crate) const R: f64 = 5.0;
 /// The acceptance step-over: 46.0° straight, D = 10.
-const AE: f64 = 1.527;
+pub(crate) const AE: f64 = 1.527;
 
-fn settings() -> PocketSettings {
+/// D = 10, a_e = 1.527 mm, 600 mm/min, evaluator every 0.25 mm.
+pub(crate) fn settings() -> PocketSettings {
     PocketSettings { tool_radius: R, step_over: AE, feed_mm_per_min: 600.0, spacing: 0.25 }
 }
 
-fn rectangle() -> Polygon {
+/// The 60 × 40 mm rectangle.
+pub(crate) fn rectangle() -> Polygon {
     Polygon::new(vec![p2(0.0, 0.0), p2(60.0, 0.0), p2(60.0, 40.0), p2(0.0, 40.0)]).unwrap()
 }
 

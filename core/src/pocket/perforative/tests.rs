@@ -8,21 +8,11 @@ use super::{PerforativePlan, VORONOI_RESOLUTION_MM, plan_perforative};
 use crate::engagement::straight_engagement;
 use crate::geom::medial::{Walls, clearance, medial_axis};
 use crate::geom::{P2, Polygon, p2};
-use crate::pocket::{AdaptiveOptions, PocketSettings};
+use crate::pocket::AdaptiveOptions;
+use crate::pocket::adaptive::tests::{AE, R, rectangle, settings};
 use crate::toolpath::{Entry, HELIX_START_Z_MM, MoveKind};
 use std::f64::consts::{PI, SQRT_2};
 use std::sync::OnceLock;
-
-const R: f64 = 5.0;
-const AE: f64 = 1.527;
-
-fn settings() -> PocketSettings {
-    PocketSettings { tool_radius: R, step_over: AE, feed_mm_per_min: 600.0, spacing: 0.25 }
-}
-
-fn rectangle() -> Polygon {
-    Polygon::new(vec![p2(0.0, 0.0), p2(60.0, 0.0), p2(60.0, 40.0), p2(0.0, 40.0)]).unwrap()
-}
 
 /// The 60 × 40 rectangle's medial-axis plan (measured), planned once for all tests.
 fn rectangle_plan() -> &'static PerforativePlan {
