@@ -70,7 +70,7 @@ pub struct CornerSettings {
     pub isometric_radius: Option<f64>,
     /// How the strategies reach the corner point (docs/corners.md): `Some(δ)` by arcs tangent
     /// to both walls that shrink to the tool-centre radius δ (mm), each within the target
-    /// ([`corner_point_radii`]); `None`: Wu et al.'s straight move into the tool corner point
+    /// ([`corner_point_radii`](crate::corner::point::corner_point_radii)); `None`: Wu et al.'s straight move into the tool corner point
     /// U0 after the last circle (reads up to π − 2α there, [`super::acceptance`]).
     #[serde(default)]
     pub corner_tolerance: Option<f64>,

@@ -70,17 +70,17 @@
 //!    concentric with the last corner arcs, once around (climb), entered on a quarter circle
 //!    beside the straight wall nearest the tool.
 //! 6. **Corner points.** At each convex corner the finishing pass, after its arc, cuts arcs
-//!    tangent to both final walls with radii from [`next_corner_point_radius`] down to the
+//!    tangent to both final walls with radii from [`next_corner_point_radius`](crate::corner::point::next_corner_point_radius) down to the
 //!    corner tolerance δ (each arc within the target, derived there); the pocket corner is left
 //!    with radius r + δ, δ(1/sin(α/2) − 1) on the bisector. Reaching V itself would read π − α
-//!    ([`corner_point_bound_rad`]).
+//!    ([`corner_point_bound_rad`](crate::corner::point::corner_point_bound_rad)).
 //!
 //! **Open sides** ([`plan_adaptive_open`], `--open-edges`). Where an edge of the pocket has no
 //! wall, the tool-centre region reaches past it (the pocket extended across it, far corners
 //! rounded: no corner passes there) while the stock stays the pocket. The part starts outside
 //! the stock instead of steps 1–2: the tool goes straight down where its disc is off the
-//! material ([`Entry::Outside`]), and the rings of step 3 grow from the air by geodesic
-//! dilation instead of about k0 ([`grown_rings`]); steps 4–6 follow at the closed corners.
+//! material ([`Entry::Outside`](crate::toolpath::Entry::Outside)), and the rings of step 3 grow from the air by geodesic
+//! dilation instead of about k0 ([`grown_rings`](open::grown_rings)); steps 4–6 follow at the closed corners.
 //!
 //! **Sampling error bound (DERIVED).** The evaluator measures at every segment end (kinks are
 //! exact) and every h mm (`spacing`). Take two tool positions c, c' a distance δ apart along
@@ -152,7 +152,7 @@ pub fn plan_adaptive(
 /// pocket). The walls of an open edge do not constrain the tool: the tool-centre region
 /// reaches beyond it ([`OPEN_REACH_FACTOR`]); the stock stays the polygon, so outside it is
 /// air. The part that reaches an open edge starts there: straight down outside the stock
-/// ([`Entry::Outside`]), then rings grown inward from what lies outside ([`grown_rings`]).
+/// ([`Entry::Outside`](crate::toolpath::Entry::Outside)), then rings grown inward from what lies outside ([`grown_rings`](open::grown_rings)).
 pub fn plan_adaptive_open(
     polygon: &Polygon,
     open_edges: &[usize],

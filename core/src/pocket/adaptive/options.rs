@@ -30,7 +30,7 @@ pub struct AdaptiveOptions {
     pub target_deg: Option<f64>,
     /// How near the finishing corner arcs reach each convex corner point (mm)
     /// [`--corner-tolerance`]: the last arc's tool-centre radius δ, the pocket corner then has
-    /// radius r + δ ([`next_corner_point_radius`]).
+    /// radius r + δ ([`next_corner_point_radius`](crate::corner::point::next_corner_point_radius)).
     #[serde(default = "default_corner_tolerance")]
     pub corner_tolerance_mm: f64,
 }

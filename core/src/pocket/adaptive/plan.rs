@@ -75,7 +75,7 @@ pub struct AdaptivePlan {
     /// cut; links are the [`MoveKind::Link`] moves.
     pub path: PocketPath,
     /// The open edges of the polygon (edge i from vertex i to vertex i + 1): no wall there, the
-    /// stock ends ([`plan_adaptive_open`]).
+    /// stock ends ([`plan_adaptive_open`](super::plan_adaptive_open)).
     #[serde(default)]
     pub open_edges: Vec<usize>,
     pub options: AdaptiveOptions,
@@ -83,7 +83,7 @@ pub struct AdaptivePlan {
     pub target_rad: f64,
     pub parts: Vec<AdaptivePart>,
     /// Radius of the pocket's convex corners as cut (mm): r + δ after the finishing pass's
-    /// corner arcs, r + ρ_fin without a finishing pass ([`corner_point_bound_rad`]).
+    /// corner arcs, r + ρ_fin without a finishing pass ([`corner_point_bound_rad`](crate::corner::point::corner_point_bound_rad)).
     pub corner_radius_left_mm: f64,
 }
 

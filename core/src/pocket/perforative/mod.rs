@@ -25,7 +25,7 @@
 //!    instead, the two-circle model gives δ = arccos(ρ/2r), β = π for a tool centre at distance ρ from the
 //!    hole's centre: π/2 + arcsin(ρ/2r) ≥ 90° for any ρ, DERIVED; that is why the helix.)
 //!    Where not even a helix of 0.25·D fits, the tool ramps down along the longest line
-//!    through that point (a zig-zag [`super::entry::Ramp`]) and the chain starts from there.
+//!    through that point (a zig-zag [`Ramp`](crate::toolpath::Ramp)) and the chain starts from there.
 //! 3. **Circles along the axis.** The axis is a tree; it is walked depth first from the start,
 //!    one root-to-leaf guide at a time (children in counter-clockwise order). On a guide, the
 //!    next circle is centred on the axis at arc length s with offset radius Rc(s) (allowance 0:
@@ -40,7 +40,7 @@
 //!    `δ ∈ [−30°, 330°)`; a few degrees short of the full turn are left where the next link runs
 //!    outside the circle anyway). Where one circle contains the other, or the tangent would come
 //!    closer than r to a wall (near a reflex corner), the circles are joined instead by the G1
-//!    half-circle of step 2 (generalised to offset centres, [`transition`]), whose engagement is
+//!    half-circle of step 2 (generalised to offset centres, [`transition`](circles::transition)), whose engagement is
 //!    then part of the bisection's metric; for circles that overlap without containment it
 //!    lies inside both discs, i.e. in cut material. Disjoint circles whose tangent would touch
 //!    a wall are joined along the axis (centre to centre).

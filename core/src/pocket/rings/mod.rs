@@ -14,7 +14,7 @@
 //! definition). Note: an *inward* offset of a convex pocket corner stays sharp; arcs appear at
 //! reflex (concave-of-pocket) vertices, with radius `d_k`.
 //!
-//! Measurement: each ring is measured by the independent evaluator ([`engagement_profile`])
+//! Measurement: each ring is measured by the independent evaluator ([`engagement_profile`](crate::engagement::engagement_profile))
 //! over the pocket polygon as stock, after every ring machined before it. Rings are machined
 //! from the innermost outward (the usual contour-parallel order starting in the middle), so
 //! the innermost ring is a full slot (180°) and each further ring cuts a band of `a_e`.

@@ -74,7 +74,7 @@ pub(super) struct Candidate {
 ///    target on purpose). Where even level 0 does not hold the helix, the tool ramps down
 ///    along the longest line through the point of largest clearance ([`crate::pocket::entry`]) and
 ///    every level is a ring.
-/// 2. **Links.** Into each ring on a [`diagonal_link`]: a chord through the cleared inside,
+/// 2. **Links.** Into each ring on a [`diagonal_link`](super::links::diagonal_link): a chord through the cleared inside,
 ///    then a diagonal of angle atan(a_e/L) into the ring's band along its longest line (φ* + θ
 ///    at most); otherwise the shortest path on which the tool keeps r from the walls
 ///    ([`crate::pocket::route`]), or a retract.
