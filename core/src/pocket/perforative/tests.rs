@@ -41,16 +41,21 @@ fn dumbbell() -> Polygon {
 
 // ---- step 1: the axis graph (axis.rs) ----
 
+/// The walls of `poly` and its tool-feasible axis for r = 5.
+fn axis_graph(poly: &Polygon) -> (Walls, AxisGraph) {
+    let walls = Walls::new(poly);
+    let axis = medial_axis(poly, VORONOI_RESOLUTION_MM).unwrap();
+    let g = AxisGraph::new(&walls, &axis, R);
+    (walls, g)
+}
+
 /// The tool-feasible axis of the 60 × 40 rectangle: the spine (length w − h = 20, clearance 20)
 /// and four 45° branches; on a branch the clearance s mm from the corner is s/√2, so the tool
 /// (r = 5) fits from s = r√2 to the spine's end at s = (h/2)√2: each branch keeps (h/2 − r)√2.
 /// Total 20 + 4·15·√2 = 104.85 mm, one part.
 #[test]
 fn rectangle_axis_is_clipped_where_the_tool_fits() {
-    let poly = rectangle();
-    let walls = Walls::new(&poly);
-    let axis = medial_axis(&poly, VORONOI_RESOLUTION_MM).unwrap();
-    let g = AxisGraph::new(&walls, &axis, R);
+    let (walls, g) = axis_graph(&rectangle());
     let length: f64 = g.edges.iter().map(|(_, _, pts)| pts.windows(2).map(|w| (w[1] - w[0]).norm()).sum::<f64>()).sum();
     let derived = 20.0 + 4.0 * 15.0 * SQRT_2;
     assert!((length - derived).abs() < 1e-3, "{length} vs {derived}");
@@ -65,10 +70,7 @@ fn rectangle_axis_is_clipped_where_the_tool_fits() {
 /// falls into two parts, one per room.
 #[test]
 fn a_neck_narrower_than_the_tool_splits_the_axis() {
-    let poly = dumbbell();
-    let walls = Walls::new(&poly);
-    let axis = medial_axis(&poly, VORONOI_RESOLUTION_MM).unwrap();
-    let g = AxisGraph::new(&walls, &axis, R);
+    let (walls, g) = axis_graph(&dumbbell());
     assert_eq!(g.parts(&walls).len(), 2);
     // at least the neck's own 10 mm of spine (clearance 4 < r) is unreachable
     assert!(g.unreachable_mm >= 10.0, "{}", g.unreachable_mm);
