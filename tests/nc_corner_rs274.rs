@@ -162,7 +162,8 @@ fn freecad_peak_deg(angle: f64) -> Option<f64> {
 #[test]
 fn corner_programs_read_back_stay_within_the_target_without_a_plunge() {
     use nc_common::segments_of;
-    use trochoplan_core::corner::{CornerMethod, CornerRequest, EvaluatorOptions, engagement_profile, evaluate};
+    use trochoplan_core::corner::{CornerMethod, CornerRequest, evaluate};
+    use trochoplan_core::engagement::{EvaluatorOptions, engagement_profile};
     use trochoplan_core::geom::{distance_to_piece, p2};
     let dir = tempfile::tempdir().expect("tempdir");
     for angle in [30.0, 45.0, 60.0, 90.0, 120.0, 150.0] {

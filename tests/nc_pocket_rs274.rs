@@ -178,7 +178,7 @@ fn random_medial_axis_pockets_retrace_their_plan_and_never_gouge() {
 /// reports; no straight feed move goes down below Z0. Both directions.
 #[test]
 fn adaptive_pockets_read_back_through_rs274_stay_within_the_acceptance_limits() {
-    use trochoplan_core::corner::{EvaluatorOptions, engagement_profile};
+    use trochoplan_core::engagement::{EvaluatorOptions, engagement_profile};
     use trochoplan_core::geom::{Polygon, Segment, p2};
     let dir = tempfile::tempdir().expect("tempdir");
     for (shape, polygon) in [("rect", RECT), ("l", L_60X60)] {
@@ -242,7 +242,7 @@ fn adaptive_pockets_read_back_through_rs274_stay_within_the_acceptance_limits() 
 /// read-back cut (the helix bore counted as cut), is printed for the README's table.
 #[test]
 fn every_method_in_both_directions_passes_rs274_and_mirrors_its_peak() {
-    use trochoplan_core::corner::{EvaluatorOptions, engagement_profile};
+    use trochoplan_core::engagement::{EvaluatorOptions, engagement_profile};
     use trochoplan_core::geom::{Polygon, Segment, p2};
     let dir = tempfile::tempdir().expect("tempdir");
     let stock = Polygon::new(RECT.iter().map(|&(x, y)| p2(x, y)).collect()).expect("polygon");
@@ -322,9 +322,9 @@ fn every_method_in_both_directions_passes_rs274_and_mirrors_its_peak() {
 /// README.
 #[test]
 fn medial_axis_pockets_read_back_through_rs274_stay_within_the_target() {
-    use trochoplan_core::corner::{EvaluatorOptions, engagement_profile};
+    use trochoplan_core::engagement::{EvaluatorOptions, engagement_profile};
     use trochoplan_core::geom::{P2, Polygon, Segment, p2};
-    use trochoplan_core::pocket::{Entry, Ramp};
+    use trochoplan_core::toolpath::{Entry, Ramp};
     const NARROW: &[(f64, f64)] = &[(0.0, 0.0), (60.0, 0.0), (60.0, 14.0), (0.0, 14.0)];
     let dir = tempfile::tempdir().expect("tempdir");
     for (shape, polygon) in [("rect", RECT), ("l", L_60X60), ("dumbbell 8", DUMBBELL_8), ("narrow", NARROW)] {
@@ -462,7 +462,7 @@ fn inside_polygon(p: trochoplan_core::geom::P2, v: &[trochoplan_core::geom::P2])
 /// rectangle alone (nothing cut before it) peaks within 60° with p95 ≤ 50°, and the JSON agrees.
 #[test]
 fn open_pockets_enter_from_outside_and_read_back_within_the_acceptance_limits() {
-    use trochoplan_core::corner::{EvaluatorOptions, engagement_profile};
+    use trochoplan_core::engagement::{EvaluatorOptions, engagement_profile};
     use trochoplan_core::geom::{Polygon, p2};
     let dir = tempfile::tempdir().expect("tempdir");
     let stock = Polygon::new(RECT.iter().map(|&(x, y)| p2(x, y)).collect()).expect("polygon");

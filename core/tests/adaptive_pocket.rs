@@ -6,15 +6,17 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use std::f64::consts::{PI, TAU};
-use trochoplan_core::corner::{EvaluatorOptions, engagement_profile};
+use trochoplan_core::corner::point::corner_point_bound_rad;
+use trochoplan_core::engagement::{EvaluatorOptions, engagement_profile};
 use trochoplan_core::geom::{P2, Polygon, Segment, loop_distance, p2};
 use trochoplan_core::job::Direction;
 use trochoplan_core::pocket::adaptive::{
-    DEFAULT_TARGET_CAP_DEG, concave_step, corner_pass_mean_depth_ratio, corner_point_bound_rad, default_target_rad,
+    DEFAULT_TARGET_CAP_DEG, concave_step, corner_pass_mean_depth_ratio, default_target_rad,
 };
 use trochoplan_core::pocket::{
-    self, AdaptiveOptions, AdaptivePlan, Entry, MoveKind, PocketPlan, PocketRequest, PocketStrategy, plan_adaptive,
+    self, AdaptiveOptions, AdaptivePlan, PocketPlan, PocketRequest, PocketStrategy, plan_adaptive,
 };
+use trochoplan_core::toolpath::{Entry, MoveKind};
 
 const R: f64 = 5.0;
 /// The acceptance step-over: 46.0° on a straight wall with D = 10.

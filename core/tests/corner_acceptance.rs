@@ -10,6 +10,7 @@
 
 use trochoplan_core::corner::acceptance::{acceptance_table, markdown};
 use trochoplan_core::corner::*;
+use trochoplan_core::engagement::radial_depth_for_engagement;
 
 fn settings() -> CornerSettings {
     let r = 5.0;

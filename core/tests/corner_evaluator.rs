@@ -5,7 +5,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use std::f64::consts::PI;
-use trochoplan_core::corner::*;
+use trochoplan_core::engagement::{EngagementProfile, EvaluatorOptions, Turn, TwoCircle, engagement_profile};
 use trochoplan_core::geom::{Circle, P2, Polygon, Segment, p2};
 
 /// The two-circle situation as a real cut: the previous circle's tool centre ran once round

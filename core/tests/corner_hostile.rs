@@ -9,7 +9,7 @@
 
 use proptest::prelude::*;
 use std::f64::consts::{PI, TAU};
-use trochoplan_core::corner::{EvaluatorOptions, engagement_profile, parse_points};
+use trochoplan_core::engagement::{EvaluatorOptions, engagement_profile, parse_points};
 use trochoplan_core::geom::medial::{Walls, clearance};
 use trochoplan_core::geom::{P2, Polygon, Segment, p2};
 use trochoplan_core::pocket::{self, PocketPlan, PocketRequest, PocketStrategy};

@@ -10,9 +10,10 @@ mod nc_common;
 use nc_common::{DUMBBELL, DUMBBELL_8};
 
 use std::f64::consts::PI;
-use trochoplan_core::corner::straight_engagement;
+use trochoplan_core::engagement::straight_engagement;
 use trochoplan_core::geom::{P2, Polygon, Segment, distance_to_piece, p2};
-use trochoplan_core::pocket::{AdaptiveOptions, Entry, MoveKind, PerforativePlan, PocketSettings, plan_perforative};
+use trochoplan_core::pocket::{AdaptiveOptions, PerforativePlan, PocketSettings, plan_perforative};
+use trochoplan_core::toolpath::{Entry, MoveKind};
 
 const R: f64 = 5.0;
 

@@ -9,6 +9,7 @@ mod nc_common;
 use nc_common::DUMBBELL;
 use std::f64::consts::PI;
 use trochoplan_core::corner::*;
+use trochoplan_core::engagement::{EvaluatorOptions, engagement_profile};
 use trochoplan_core::geom::{P2, Polygon, Segment, p2};
 use trochoplan_core::pocket::*;
 

@@ -5,6 +5,7 @@
 
 use proptest::prelude::*;
 use trochoplan_core::corner::*;
+use trochoplan_core::engagement::{EvaluatorOptions, engagement_profile, radial_depth_for_engagement};
 use trochoplan_core::geom::{P2, p2};
 
 fn rotate(v: P2, a: f64) -> P2 {

@@ -13,7 +13,8 @@ use trochoplan_core::geom::{P2, Polygon, Segment, p2};
 use trochoplan_core::job::Direction;
 use trochoplan_core::pocket::guard::check_clearance;
 use trochoplan_core::pocket::route::Router;
-use trochoplan_core::pocket::{AdaptiveOptions, Entry, PocketRequest, PocketStrategy, plan};
+use trochoplan_core::pocket::{AdaptiveOptions, PocketRequest, PocketStrategy, plan};
+use trochoplan_core::toolpath::Entry;
 
 const R: f64 = 5.0;
 

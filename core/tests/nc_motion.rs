@@ -290,8 +290,8 @@ fn sinumerik_loops_move_like_the_expanded_programs() {
 /// tolerance plus rounding and has its length (`nc_common::check_path_cut`).
 #[test]
 fn corner_programs_in_every_dialect_retrace_the_corner_path() {
-    use trochoplan_core::corner::radial_depth_for_engagement;
     use trochoplan_core::corner::{Corner, CornerMethod, CornerScenario, CornerSettings, plan_corner};
+    use trochoplan_core::engagement::radial_depth_for_engagement;
     use trochoplan_core::nc::{PathJob, program_for_path};
     let r = 5.0;
     let settings = CornerSettings::new(r, radial_depth_for_engagement(46f64.to_radians(), r)).expect("settings");

@@ -8,12 +8,13 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use std::f64::consts::FRAC_PI_2;
-use trochoplan_core::corner::{CornerMethod, CornerSettings, straight_engagement};
+use trochoplan_core::corner::point::{DEFAULT_CORNER_TOLERANCE_MM, corner_point_bound_rad};
+use trochoplan_core::corner::{CornerMethod, CornerSettings};
+use trochoplan_core::engagement::straight_engagement;
 use trochoplan_core::geom::{P2, Polygon, Segment, p2};
-use trochoplan_core::pocket::adaptive::{corner_point_bound_rad, default_target_rad};
-use trochoplan_core::pocket::{
-    Entry, MoveKind, PocketPlan, PocketRequest, PocketStrategy, RingPlan, inward_offset, plan,
-};
+use trochoplan_core::pocket::adaptive::default_target_rad;
+use trochoplan_core::pocket::{PocketPlan, PocketRequest, PocketStrategy, RingPlan, inward_offset, plan};
+use trochoplan_core::toolpath::{Entry, MoveKind};
 
 const R: f64 = 5.0;
 /// The acceptance step-over: 46.0° on a straight cut.
@@ -55,7 +56,7 @@ fn samples(p: &RingPlan, profile_of: &[(f64, P2, f64)]) -> Vec<(P2, f64, MoveKin
 
 /// The plan measured again by the evaluator over the pocket, the entries' bores as cut.
 fn measured(p: &RingPlan) -> Vec<(f64, P2, f64)> {
-    use trochoplan_core::corner::{EvaluatorOptions, engagement_profile};
+    use trochoplan_core::engagement::{EvaluatorOptions, engagement_profile};
     let bores: Vec<Segment> = p.path.toolpath.entries.iter().map(Entry::bore).collect();
     let prof =
         engagement_profile(&p.path.polygon, &bores, &p.path.segments(), &EvaluatorOptions::new(R, 0.25)).unwrap();
@@ -135,7 +136,7 @@ fn variable_and_isometric_rings_get_their_strategy_at_every_corner_and_no_slot()
         // over the arcs within a*, below the π − α = 90° of any path into the corner point
         let corners = ring_corners(&p);
         assert_eq!(p.corner_points.len(), corners.len(), "{method:?}");
-        let delta = trochoplan_core::pocket::adaptive::DEFAULT_CORNER_TOLERANCE_MM;
+        let delta = DEFAULT_CORNER_TOLERANCE_MM;
         for c in &p.corner_points {
             assert!(corners.iter().any(|v| (v - c.vertex).norm() < 1e-6), "{c:?}");
             assert!((c.angle_rad - FRAC_PI_2).abs() < 1e-9 && (c.last_radius_mm - delta).abs() < 1e-12, "{c:?}");

@@ -21,7 +21,8 @@ use eframe::egui::{self, Color32, DragValue, RichText, Slider, SliderClamping};
 use egui_plot::{HLine, Legend, Plot};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
-use trochoplan_core::corner::{self, CornerMethod, CornerReport, CornerRequest, EngagementProfile};
+use trochoplan_core::corner::{self, CornerMethod, CornerReport, CornerRequest};
+use trochoplan_core::engagement::EngagementProfile;
 use trochoplan_core::geom::Segment;
 use trochoplan_core::report::CornerSummary;
 

@@ -18,8 +18,9 @@ use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 use trochoplan_core::corner::CornerMethod;
 use trochoplan_core::geom::Polygon;
-use trochoplan_core::pocket::{self, MoveKind, PocketPlan, PocketRequest, PocketStrategy};
+use trochoplan_core::pocket::{self, PocketPlan, PocketRequest, PocketStrategy};
 use trochoplan_core::report::{self, PocketReport};
+use trochoplan_core::toolpath::MoveKind;
 
 /// Inputs of the Pocket tab, persisted with the app state.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

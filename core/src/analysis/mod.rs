@@ -1,6 +1,6 @@
 //! Analysis of a slot path in the steady state: chip thickness and engagement per tooth,
 //! cycle metrics, wall waviness and the two-circle step limits (the engagement-limited step of
-//! a job's own path plans the job again, so it lives in [`crate::plan`]).
+//! a job's own path plans the job again, so it lives in the `plan` module).
 
 pub mod chip;
 pub mod edge;

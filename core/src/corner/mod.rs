@@ -9,7 +9,8 @@
 //!
 //! Entry point: [`evaluate`] — a [`CornerRequest`] in, a [`CornerReport`] out (the strategy's
 //! plan and the plain ring, both measured, and their acceptance row); used by the GUI and the
-//! CLI. Whole pockets are planned by [`crate::pocket`].
+//! CLI. Whole pockets are planned by the pocket module, which comes after this one
+//! (docs/architecture.md, module order).
 //!
 //! Modules:
 //! - [`method`]: the corner strategies and their names.
@@ -33,10 +34,6 @@ pub mod point;
 pub mod request;
 pub mod strategy;
 
-pub use crate::engagement::{
-    EngagementProfile, EngagementSample, EvaluatorOptions, MaxEngagement, Turn, TwoCircle, engagement_profile,
-    parse_points, polyline, radial_depth_for_engagement, straight_engagement,
-};
 pub use acceptance::{AcceptanceRow, acceptance_row, acceptance_table};
 pub use geometry::{Corner, LineEq, bisector_point};
 pub use method::CornerMethod;

@@ -4,9 +4,10 @@
 
 use super::acceptance::{self, AcceptanceRow};
 use super::geometry::Corner;
+use super::limits::tool_diameter;
 use super::method::CornerMethod;
 use super::point::{DEFAULT_CORNER_TOLERANCE_MM, validate_corner_tolerance};
-use super::strategy::{CornerPlan, CornerScenario, CornerSettings, DEFAULT_T1, plan_corner, tool_diameter};
+use super::strategy::{CornerPlan, CornerScenario, CornerSettings, DEFAULT_T1, plan_corner};
 use crate::engagement::AIR_ENGAGEMENT_RAD;
 use crate::engagement::KindMax;
 use crate::engagement::{EngagementProfile, EvaluatorOptions, engagement_profile};

@@ -354,4 +354,50 @@ mod tests {
             }
         }
     }
+    /// The medial axis of a w × h rectangle (w > h): the spine on the centre line, length
+    /// w − h, and four 45° branches from the corners to its ends, each (h/2)·√2 long (a branch
+    /// point s from the corner is s/√2 from both walls). 60 × 40: 20 + 4·20·√2 = 133.14 mm.
+    /// Each edge's clearance at its ends is the distance to the walls there (h/2 on the spine,
+    /// 0 at the corners).
+    #[test]
+    fn rectangle_axis_length_and_clearances() {
+        let (w, h) = (60.0, 40.0);
+        let poly = Polygon::new(vec![p2(0.0, 0.0), p2(w, 0.0), p2(w, h), p2(0.0, h)]).unwrap();
+        let ax = medial_axis(&poly, 1e-4).unwrap();
+        let length: f64 = ax.edges.iter().map(|e| (e.b - e.a).norm()).sum();
+        let derived = (w - h) + 4.0 * (h / 2.0) * std::f64::consts::SQRT_2;
+        assert!((length - derived).abs() < 1e-3, "{length} vs {derived}");
+        for e in &ax.edges {
+            assert!((e.clearance_a - clearance(&poly, e.a)).abs() < 1e-6, "{e:?}");
+            assert!((e.clearance_b - clearance(&poly, e.b)).abs() < 1e-6, "{e:?}");
+        }
+        let spine = ax.edges.iter().find(|e| (e.a.y - h / 2.0).abs() < 1e-6 && (e.b.y - h / 2.0).abs() < 1e-6).unwrap();
+        assert!(((spine.b - spine.a).norm() - (w - h)).abs() < 1e-3);
+        assert!((spine.clearance_a - h / 2.0).abs() < 1e-6 && (spine.clearance_b - h / 2.0).abs() < 1e-6);
+    }
+
+    /// The binned walls give the same clearance as the brute force over every edge (200 points
+    /// of an L, fixed linear congruential sequence).
+    #[test]
+    fn binned_clearance_is_the_brute_force_one() {
+        let poly = Polygon::new(vec![
+            p2(0.0, 0.0),
+            p2(60.0, 0.0),
+            p2(60.0, 25.0),
+            p2(25.0, 25.0),
+            p2(25.0, 60.0),
+            p2(0.0, 60.0),
+        ])
+        .unwrap();
+        let walls = Walls::new(&poly);
+        let mut seed: u64 = 12345;
+        let mut next = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..200 {
+            let p = p2(-5.0 + 70.0 * next(), -5.0 + 70.0 * next());
+            assert!((walls.clearance(p) - clearance(&poly, p)).abs() < 1e-9, "{p:?}");
+        }
+    }
 }

@@ -23,7 +23,7 @@ pub fn mirror_segment(s: &Segment) -> Segment {
     s.mirrored_x()
 }
 
-/// `p` reflected in the x axis (y → −y): a symmetric corner's bisector ([`crate::corner`]).
+/// `p` reflected in the x axis (y → −y): a symmetric corner's bisector (docs/corners.md).
 pub fn flip_y(p: P2) -> P2 {
     p2(p.x, -p.y)
 }

@@ -33,7 +33,7 @@ pub struct Machine {
     pub path_tolerance: f64,
     /// Shortest time one NC block may take (s) without starving the controller's look-ahead
     /// (its block processing rate, or the serial line that feeds it); the variable feed's
-    /// blocks last at least this long ([`crate::feed`]). Job files without it take
+    /// blocks last at least this long (the `feed` module). Job files without it take
     /// [`DEFAULT_BLOCK_TIME_S`].
     #[serde(default = "default_block_time")]
     pub block_time: f64,

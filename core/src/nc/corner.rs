@@ -10,7 +10,8 @@
 use super::{NcOptions, NcProgram, PathJob, program_for_path};
 use crate::corner::{CornerPlan, CornerSettings};
 use crate::error::{Error, Param};
-use crate::pocket::{AdaptivePlan, Entry, LinkKind, PerforativePlan, PocketPath, PocketPlan, RingPlan};
+use crate::pocket::{AdaptivePlan, LinkKind, PerforativePlan, PocketPath, PocketPlan, RingPlan};
+use crate::toolpath::Entry;
 
 /// What a corner or pocket plan does not carry: the cutting depth and the spindle speed.
 /// Checked by [`PathJob::validate`] (errors name `depth` and `rpm`).
@@ -193,7 +194,8 @@ fn pocket_path_program(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::corner::{Corner, CornerMethod, CornerScenario, parse_points, plan_corner};
+    use crate::corner::{Corner, CornerMethod, CornerScenario, plan_corner};
+    use crate::engagement::parse_points;
     use crate::geom::{P2, Polygon};
     use crate::nc::{Dialect, backplot};
     use crate::pocket::{PocketRequest, plan_rings};

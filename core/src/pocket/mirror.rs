@@ -5,9 +5,7 @@
 //! (the evaluator's engaged angle does not change under a reflection of tool, path and stock).
 
 use super::{PerforativePlan, RingPlan};
-pub use crate::geom::mirror::{
-    flip_y, flip_y_segment, flipped_y_polygon, mirror_point, mirror_segment, mirrored_polygon,
-};
+use crate::geom::mirror::{mirror_point, mirror_segment};
 use crate::geom::{Polygon, Segment};
 
 fn mirror_all(segments: &mut [Segment]) {
@@ -54,7 +52,9 @@ impl PerforativePlan {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::corner::{CornerMethod, EvaluatorOptions, engagement_profile};
+    use crate::corner::CornerMethod;
+    use crate::engagement::{EvaluatorOptions, engagement_profile};
+    use crate::geom::mirror::flip_y;
     use crate::geom::p2;
     use crate::job::Direction;
     use crate::pocket::{AdaptiveOptions, PocketPlan, PocketRequest, PocketStrategy, plan};

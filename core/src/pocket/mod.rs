@@ -23,8 +23,6 @@ pub mod rings;
 pub mod route;
 mod runs;
 
-pub use crate::engagement::KindMax;
-pub use crate::toolpath::{Entry, Helix, MoveKind, Ramp, Toolpath};
 pub use adaptive::{AdaptiveOptions, AdaptivePart, AdaptivePlan, CornerPasses, plan_adaptive, plan_adaptive_open};
 pub use path::PocketPath;
 pub use perforative::{AxisCircle, PerforativePlan, plan_perforative};
@@ -34,10 +32,12 @@ pub use rings::{
 };
 
 use crate::corner::CornerMethod;
+use crate::corner::limits::MEDIAL_AXIS_MIN_STEP_OVER_RATIO;
 use crate::corner::limits::{tool_diameter, validate_tool_and_step_over};
 use crate::error::{Error, Param, num};
 use crate::geom::{P2, Polygon, Segment, p2};
 use crate::job::Direction;
+use crate::toolpath::{Entry, MoveKind, Toolpath};
 use serde::{Deserialize, Serialize};
 
 /// How a pocket is cleared.
@@ -156,7 +156,7 @@ impl PocketSettings {
 
     /// Straight-cut engagement of the step-over, a_str = arccos(1 − a_e/r) (docs/corners.md).
     pub fn straight_engagement(&self) -> Result<f64, Error> {
-        crate::corner::straight_engagement(self.step_over, self.tool_radius)
+        crate::engagement::straight_engagement(self.step_over, self.tool_radius)
     }
 }
 
@@ -451,8 +451,6 @@ fn check_work(polygon: &Polygon, strategy: PocketStrategy, settings: &PocketSett
     ))
 }
 
-pub use crate::corner::limits::MEDIAL_AXIS_MIN_STEP_OVER_RATIO;
-
 /// Plan the requested pocket with its strategy. Errors name the input at fault. Checked before
 /// planning, so that no plan runs for minutes: a medial-axis step-over below
 /// [`MEDIAL_AXIS_MIN_STEP_OVER_RATIO`] × D, and a step-over (or spacing) so small that the plan
@@ -483,7 +481,7 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
     // Conventional milling: the ring and medial-axis planners cut climb; they plan the mirrored
     // pocket and mirror the plan back ([`mirror`]); adaptive clearing mirrors inside.
     let conventional = req.adaptive.direction == Direction::Conventional;
-    let polygon = if conventional { mirror::mirrored_polygon(&req.polygon)? } else { req.polygon.clone() };
+    let polygon = if conventional { crate::geom::mirror::mirrored_polygon(&req.polygon)? } else { req.polygon.clone() };
     let back = |p: PocketPlan| match p {
         PocketPlan::Rings(r) if conventional => PocketPlan::Rings(r.mirrored(&req.polygon)),
         PocketPlan::MedialAxis(m) if conventional => PocketPlan::MedialAxis(m.mirrored(&req.polygon)),

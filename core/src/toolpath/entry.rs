@@ -2,8 +2,8 @@
 //! straight down outside the stock beyond an open edge. Both the helix and the ramp start
 //! [`HELIX_START_Z_MM`] above the stock top and descend at most at the ramp angle; what an entry
 //! clears at depth (its *bore*) is the first move of the path at depth and part of the stock
-//! the path is measured over ([`crate::engagement::measure`]). Where an entry is placed is the
-//! planners' business ([`crate::pocket::entry`]).
+//! the path is measured over (the `engagement` module's `measure`). Where an entry is placed is the
+//! pocket planners' business (docs/pockets.md).
 
 use crate::geom::mirror::mirror_point;
 use crate::geom::{P2, Segment};

@@ -1,9 +1,9 @@
 //! A tool path as data: the ordered moves of the tool centre, each an exact segment in the
 //! plane with its height at both ends, its kind and its feed, together with the entries that
 //! take the tool down to depth and the moves reached by a retract. Every pocket strategy and
-//! the corner planner return one ([`Toolpath`]); the NC writer writes one
-//! ([`crate::nc::program_for_path`]), the back-plot reads a program into one
-//! ([`crate::nc::read_toolpath`]), and [`crate::engagement::measure`] measures one.
+//! the corner planner return one ([`Toolpath`]); the NC writer writes one (`nc`'s
+//! `program_for_path`), the back-plot reads a program into one (`nc`'s `read_toolpath`), and
+//! `engagement::measure` measures one (modules after this one: docs/architecture.md).
 //!
 //! Conventions: mm, mm/min; the plane seen from +Z; heights relative to the stock top (z = 0,
 //! depth negative).
@@ -36,15 +36,15 @@ pub enum MoveKind {
     Tip,
     /// Back along the axis through cleared material.
     Return,
-    /// A ring of adaptive clearing ([`crate::pocket::adaptive`]).
+    /// A ring of adaptive clearing (docs/adaptive-clearing.md).
     Ring,
-    /// A thinning pass into a convex corner ([`crate::pocket::adaptive`]).
+    /// A thinning pass into a convex corner (docs/adaptive-clearing.md).
     Corner,
-    /// The finishing contour ([`crate::pocket::adaptive`]).
+    /// The finishing contour (docs/adaptive-clearing.md).
     Finish,
     /// Arcs into a convex corner point, within the corner tolerance, with their approach
-    /// along the wall and their way out: after the finishing pass ([`crate::pocket::adaptive`]), or
-    /// after the last circle of a medial-axis tip (`crate::pocket::perforative`).
+    /// along the wall and their way out: after the finishing pass of adaptive clearing
+    /// (docs/adaptive-clearing.md), or after the last circle of a medial-axis tip (docs/pockets.md).
     CornerPoint,
     /// A feed move whose purpose the program does not say (read back from NC text).
     Cut,

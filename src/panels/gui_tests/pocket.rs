@@ -53,7 +53,8 @@ fn pocket_tab_shows_the_rings_and_reports_a_bad_polygon() {
 
 #[test]
 fn pocket_tab_plans_the_medial_axis_strategy_for_the_whole_pocket() {
-    use trochoplan_core::corner::{CornerMethod, parse_points};
+    use trochoplan_core::corner::CornerMethod;
+    use trochoplan_core::engagement::parse_points;
     use trochoplan_core::geom::Polygon;
     use trochoplan_core::pocket::{self, PocketRequest, PocketStrategy};
     let mut h = pocket_harness();
@@ -119,7 +120,7 @@ fn pocket_tab_plans_adaptive_clearing() {
 /// open on that edge (entered from outside the stock); a bad list is an error naming it.
 #[test]
 fn pocket_tab_takes_open_edges() {
-    use trochoplan_core::pocket::Entry;
+    use trochoplan_core::toolpath::Entry;
     let mut h = pocket_harness();
     wait_for_pocket(&mut h);
     h.get_by_label(label::POCKET_OPEN_EDGES).click();

@@ -1,0 +1,94 @@
+//! Steps 5 and 6 of adaptive clearing (docs/adaptive-clearing.md): the finishing contour — the
+//! opening of the final wall offset with radius ρ_fin + s_f, entered on a quarter-circle lead-in —
+//! and at each of its convex corner arcs the arcs into the corner point.
+
+use super::corners::{Corner, corner_point_arcs};
+use super::loops::{Builder, link, start_near};
+use super::part::PartContext;
+use super::plan::CornerPoint;
+use crate::error::{Error, Param};
+use crate::geom::offset::largest;
+use crate::geom::{P2, Segment, p2};
+use crate::toolpath::MoveKind;
+use std::f64::consts::PI;
+
+/// The finishing pass of a part (with a finishing stock s_f > 0) and its corner points.
+pub(super) fn finishing_pass(b: &mut Builder, p: &PartContext<'_>) -> Result<Vec<CornerPoint>, Error> {
+    let (region, polygon, options, r, phi, rho_fin) = (p.region, p.polygon, p.options, p.r, p.phi, p.rho_fin);
+    let sf = options.finish_stock_mm;
+    // Finishing contour: the opening of the final wall offset with radius ρ_fin + s_f, and at
+    // every convex corner arc of it the arcs into the corner point.
+    let mut corner_points = Vec::new();
+    let inner = largest(region.offset(rho_fin)).ok_or_else(|| {
+        Error::param(Param::Polygon, "no finishing contour", "a pocket wider than the tool plus the stock")
+    })?;
+    let fin = largest(inner.offset(-(rho_fin + sf)))
+        .ok_or_else(|| Error::param(Param::Polygon, "no finishing contour", "a pocket wider than the tool"))?;
+    // Start on the straight wall nearest the tool (at its point nearest the tool, at least
+    // ρ_l from the wall's start; the longest wall's middle where no wall is 2ρ_l long),
+    // entered on a quarter circle of radius ρ_l = max(s_f, r/2) tangent to it (the stock
+    // grows from 0 to s_f under a convex arc); the lead-in starts ρ_l from the wall, in
+    // cleared material.
+    let loop_segs = fin.segments();
+    let lead = sf.max(0.5 * r);
+    let here = b.at();
+    let lines: Vec<(P2, P2)> = loop_segs
+        .iter()
+        .filter_map(|sg| match *sg {
+            Segment::Line { start, end } => Some((start, end)),
+            _ => None,
+        })
+        .collect();
+    // (a lead-in whose quarter circle would come within r of another wall is not taken;
+    // where none is clear, the link goes straight to the wall point)
+    let lead_in = |(mid, dir): (P2, P2)| {
+        let (center, start_angle) = (mid + crate::geom::rot90(dir) * lead, (-dir.y).atan2(-dir.x));
+        (mid, Segment::Arc { center, radius: lead, start_angle, sweep: 0.5 * PI })
+    };
+    let clear = |(_, arc): &(P2, Segment)| crate::pocket::guard::keeps_off_walls(polygon, arc, r);
+    let nearest = lines
+        .iter()
+        .filter(|(a, c)| (c - a).norm() >= 2.0 * lead)
+        .map(|&(a, c)| {
+            let (len, dir) = ((c - a).norm(), (c - a).normalize());
+            lead_in((a + dir * (here - a).dot(&dir).clamp(lead, len - 1e-3), dir))
+        })
+        .filter(clear)
+        .min_by(|x, y| (x.0 - here).norm().total_cmp(&(y.0 - here).norm()));
+    let longest = lead_in(
+        lines
+            .iter()
+            .max_by(|a, c| (a.1 - a.0).norm().total_cmp(&(c.1 - c.0).norm()))
+            .map_or((loop_segs[0].start(), p2(1.0, 0.0)), |(a, c)| ((a + c) * 0.5, (c - a).normalize())),
+    );
+    let (mid, arc) = nearest.unwrap_or(longest);
+    let arc = Some(arc).filter(|a| clear(&(mid, *a)));
+    link(b, polygon, r, arc.map_or(mid, |a| a.start()));
+    arc.into_iter().for_each(|a| b.push(a, MoveKind::Finish));
+    let fin_loop = start_near(&loop_segs, mid);
+    let n = fin_loop.len();
+    for (i, seg) in fin_loop.iter().enumerate() {
+        b.push(*seg, MoveKind::Finish);
+        let is_line = |sg: &Segment| matches!(sg, Segment::Line { .. });
+        if let Segment::Arc { center, radius, start_angle, sweep } = *seg
+            && sweep > 1e-9
+            && (radius - (rho_fin + sf)).abs() < 1e-6
+            && (radius - options.corner_tolerance_mm) * (1.0 / (0.5 * sweep).cos() - 1.0) > options.corner_tolerance_mm
+            && is_line(&fin_loop[(i + n - 1) % n])
+            && is_line(&fin_loop[(i + 1) % n])
+        {
+            let corner = Corner::of_arc(center, radius, start_angle, sweep);
+            let (before, point) =
+                (b.segments.len(), corner_point_arcs(b, &corner, radius, r, phi, options.corner_tolerance_mm));
+            // not where they would come within r of a wall whose offset the loop has lost
+            // (a short edge between the corner's walls, farther than r + s_f from the region)
+            if b.segments[before..].iter().all(|sg| crate::pocket::guard::keeps_off_walls(polygon, sg, r)) {
+                corner_points.push(point);
+            } else {
+                b.segments.truncate(before);
+                b.kinds.truncate(before);
+            }
+        }
+    }
+    Ok(corner_points)
+}

@@ -1,0 +1,398 @@
+//! Unit tests of each step of adaptive clearing (docs/adaptive-clearing.md): each checks a
+//! property of the step or a number derived in the comment next to it. The evaluator's
+//! measurements of whole plans are in `core/tests/adaptive_pocket.rs`.
+
+use super::corners::convex_corners;
+use super::loops::{Builder, closest_on, inscribed, link, split, start_near};
+use super::open::extended;
+use super::options::{concave_step, corner_pass_mean_depth_ratio, default_target_rad, fin_radius};
+use super::{AdaptiveOptions, AdaptivePath, adaptive_path, validate_open_edges};
+use crate::error::Param;
+use crate::geom::medial::clearance;
+use crate::geom::offset::Region;
+use crate::geom::{P2, Polygon, Segment, p2};
+use crate::pocket::PocketSettings;
+use crate::toolpath::{Entry, HELIX_START_Z_MM, MoveKind};
+use std::f64::consts::{FRAC_PI_2, PI, SQRT_2};
+use std::sync::OnceLock;
+
+/// The tool radius (D = 10) of the pocket tests.
+pub(crate) const R: f64 = 5.0;
+/// The acceptance step-over: 46.0° straight, D = 10.
+pub(crate) const AE: f64 = 1.527;
+
+/// D = 10, a_e = 1.527 mm, 600 mm/min, evaluator every 0.25 mm.
+pub(crate) fn settings() -> PocketSettings {
+    PocketSettings { tool_radius: R, step_over: AE, feed_mm_per_min: 600.0, spacing: 0.25 }
+}
+
+/// The 60 × 40 mm rectangle.
+pub(crate) fn rectangle() -> Polygon {
+    Polygon::new(vec![p2(0.0, 0.0), p2(60.0, 0.0), p2(60.0, 40.0), p2(0.0, 40.0)]).unwrap()
+}
+
+/// The 60 × 40 rectangle's adaptive moves (unmeasured), planned once for all tests.
+fn rectangle_path() -> &'static AdaptivePath {
+    static PATH: OnceLock<AdaptivePath> = OnceLock::new();
+    PATH.get_or_init(|| adaptive_path(&rectangle(), settings(), AdaptiveOptions::default()).unwrap())
+}
+
+fn target() -> f64 {
+    default_target_rad(AE, R).unwrap()
+}
+
+// ---- the concave-cut step and the default target (options.rs) ----
+
+/// The step a = concave_step(ρ) read back through the geometry it comes from: the tool centre
+/// on a circle of radius ρ, the disc cleared to R = ρ + r − a; the periphery point at angle ψ
+/// from the outward normal is at distance √(ρ² + r² + 2ρr·cos ψ) from the centre, so the front
+/// half is engaged up to ψ = arccos((R² − ρ² − r²)/(2ρr)), which must be the target φ.
+#[test]
+fn concave_step_engages_exactly_the_target() {
+    for phi_deg in [30.0_f64, 46.0, 50.0, 70.0] {
+        let phi = phi_deg.to_radians();
+        for rho in [0.5, 1.0, 3.75, 10.0, 100.0] {
+            let a = concave_step(rho, R, phi);
+            let big_r = rho + R - a;
+            let psi = ((big_r * big_r - rho * rho - R * R) / (2.0 * rho * R)).acos();
+            assert!((psi - phi).abs() < 1e-9, "ρ = {rho}, φ = {phi_deg}°: {}°", psi.to_degrees());
+            // below the straight cut's step r(1 − cos φ) for every finite ρ
+            assert!(a < R * (1.0 - phi.cos()), "ρ = {rho}: {a}");
+        }
+        // and tends to it for ρ → ∞ (the straight cut: cos φ = 1 − a/r)
+        let far = concave_step(1e9, R, phi);
+        assert!((far - R * (1.0 - phi.cos())).abs() < 1e-6, "{far}");
+    }
+}
+
+/// Smaller circles take smaller steps: a(ρ) increases with ρ (the spiral's and the corner
+/// passes' step rules rely on it to bound a step by the step at its outer radius).
+#[test]
+fn concave_step_grows_with_the_radius() {
+    let phi = target();
+    let steps: Vec<f64> = (1..200).map(|i| concave_step(0.1 * i as f64, R, phi)).collect();
+    assert!(steps.windows(2).all(|w| w[1] > w[0]));
+}
+
+/// The corner pass's mean depth ratio at 90°: c = cot 45° − π/4 = 1 − π/4 and k = √2 − 1, so
+/// m = 2(1 − π/4)/((π/2)(√2 − 1)) = 0.6597 (docs/adaptive-clearing.md: 0.660).
+#[test]
+fn mean_depth_ratio_at_a_right_angle() {
+    let m = corner_pass_mean_depth_ratio(FRAC_PI_2);
+    let derived = 2.0 * (1.0 - PI / 4.0) / (FRAC_PI_2 * (SQRT_2 - 1.0));
+    assert!((m - derived).abs() < 1e-12, "{m} vs {derived}");
+    assert!((m - 0.6597).abs() < 5e-5, "{m}");
+}
+
+/// The default target: the straight-cut engagement of the deepest cut a_e/m, capped at 50°,
+/// never below φ* = arccos(1 − a_e/r). a_e = 1.527: arccos(1 − 1.527/(0.6597·5)) = 57.5°, so
+/// the cap 50°; a_e = 0.5: arccos(1 − 0.5/(0.6597·5)) = 31.97°; a_e = 2: φ* = arccos(0.6) =
+/// 53.13° is above the cap, so φ*.
+#[test]
+fn default_target_is_the_area_rate_capped_at_50_degrees() {
+    let m = corner_pass_mean_depth_ratio(FRAC_PI_2);
+    let by_area = |ae: f64| (1.0 - ae / (m * R)).acos().to_degrees();
+    assert!((by_area(AE) - 57.5).abs() < 0.05);
+    assert!((default_target_rad(AE, R).unwrap().to_degrees() - 50.0).abs() < 1e-12);
+    let small = default_target_rad(0.5, R).unwrap().to_degrees();
+    assert!((small - by_area(0.5)).abs() < 1e-9 && (small - 31.97).abs() < 0.01, "{small}");
+    let big = default_target_rad(2.0, R).unwrap().to_degrees();
+    assert!((big - 0.6_f64.acos().to_degrees()).abs() < 1e-9, "{big}");
+}
+
+/// ρ_fin is where the finishing arc of radius ρ_fin + s_f takes exactly the stock s_f as its
+/// concave-cut step (so the finishing pass stays within the target at the corners).
+#[test]
+fn finishing_corner_radius_takes_the_stock_as_its_step() {
+    let phi = target();
+    for sf in [0.1, 0.2, 0.5] {
+        let rho = fin_radius(sf, R, phi);
+        assert!(rho >= 0.1 * R);
+        if rho > 0.1 * R + 1e-6 {
+            assert!((concave_step(rho + sf, R, phi) - sf).abs() < 1e-5, "s_f = {sf}: ρ_fin = {rho}");
+        }
+    }
+}
+
+/// Out-of-range options are errors that name their flag.
+#[test]
+fn options_out_of_range_name_their_flag() {
+    let s = settings();
+    let bad = [
+        (AdaptiveOptions { ramp_deg: 0.0, ..AdaptiveOptions::default() }, Param::RampAngle),
+        (AdaptiveOptions { finish_stock_mm: 2.0, ..AdaptiveOptions::default() }, Param::FinishStock),
+        (AdaptiveOptions { target_deg: Some(40.0), ..AdaptiveOptions::default() }, Param::TargetEngagement),
+        (AdaptiveOptions { helix_radius_mm: Some(4.6), ..AdaptiveOptions::default() }, Param::HelixRadius),
+    ];
+    for (o, p) in bad {
+        assert_eq!(o.validate(&s).unwrap_err().parameter(), Some(p), "{o:?}");
+    }
+    assert!(AdaptiveOptions::default().validate(&s).is_ok());
+}
+
+// ---- loops and links (loops.rs) ----
+
+fn square_loop(side: f64) -> Vec<Segment> {
+    let v = [p2(0.0, 0.0), p2(side, 0.0), p2(side, side), p2(0.0, side)];
+    (0..4).map(|i| Segment::Line { start: v[i], end: v[(i + 1) % 4] }).collect()
+}
+
+/// A loop restarted at the point nearest q: (4, −3) is nearest (4, 0) on the bottom edge; the
+/// loop keeps its length (40) and stays closed.
+#[test]
+fn a_loop_restarts_at_its_point_nearest_q() {
+    let lp = start_near(&square_loop(10.0), p2(4.0, -3.0));
+    assert!((lp[0].start() - p2(4.0, 0.0)).norm() < 1e-12);
+    assert!((lp[lp.len() - 1].end() - p2(4.0, 0.0)).norm() < 1e-12);
+    assert!(lp.windows(2).all(|w| (w[0].end() - w[1].start()).norm() < 1e-12));
+    assert!((lp.iter().map(Segment::length).sum::<f64>() - 40.0).abs() < 1e-12);
+}
+
+/// An arc split at t: the pieces are t and 1 − t of its length and meet at `point(t)`; the
+/// closest point of the arc to a point outside it along a radius is on that radius.
+#[test]
+fn arcs_split_and_project_exactly() {
+    let arc = Segment::Arc { center: p2(1.0, 2.0), radius: 3.0, start_angle: 0.2, sweep: 2.0 };
+    let (a, b) = split(&arc, 0.3);
+    assert!((a.length() - 0.3 * arc.length()).abs() < 1e-12 && (b.length() - 0.7 * arc.length()).abs() < 1e-12);
+    assert!((a.end() - b.start()).norm() < 1e-12 && (a.end() - arc.point(0.3)).norm() < 1e-12);
+    let q = p2(1.0, 2.0) + p2(1.2_f64.cos(), 1.2_f64.sin()) * 7.0;
+    let (on, t) = closest_on(&arc, q);
+    assert!((t - 0.5).abs() < 1e-12 && ((on - p2(1.0, 2.0)).norm() - 3.0).abs() < 1e-12);
+}
+
+/// The largest circle in a 60 × 40 rectangle has radius 20 (half the width); its centre is on
+/// the spine y = 20, at the middle x = 30 (the middle of the last offset, a segment).
+#[test]
+fn inscribed_circle_of_a_rectangle() {
+    let (radius, centre) = inscribed(&Region::polygon(rectangle().vertices()));
+    // (the offsets vanish a few µm before the exact radius: the offset library's tolerance)
+    assert!((radius - 20.0).abs() < 1e-5, "{radius}");
+    assert!((centre - p2(30.0, 20.0)).norm() < 1e-3, "{centre:?}");
+}
+
+/// A link from one arm of an L to the other runs through the pocket keeping r from every wall
+/// (clearance ≥ r at 50 points of each of its lines) and ends where it was asked to.
+#[test]
+fn a_link_keeps_r_from_the_walls() {
+    let l =
+        Polygon::new(vec![p2(0.0, 0.0), p2(60.0, 0.0), p2(60.0, 25.0), p2(25.0, 25.0), p2(25.0, 60.0), p2(0.0, 60.0)])
+            .unwrap();
+    let mut b = Builder {
+        segments: Vec::new(),
+        kinds: Vec::new(),
+        radii: Vec::new(),
+        router: Default::default(),
+        retracts: Vec::new(),
+    };
+    b.push(Segment::Line { start: p2(12.5, 48.0), end: p2(12.5, 50.0) }, MoveKind::Ring);
+    let to = p2(50.0, 12.5);
+    link(&mut b, &l, R, to);
+    assert!(b.retracts.is_empty());
+    let links: Vec<&Segment> =
+        b.segments.iter().zip(&b.kinds).filter(|(_, k)| **k == MoveKind::Link).map(|(s, _)| s).collect();
+    assert!(links.len() >= 2, "a straight line would cross the reflex corner: {links:?}");
+    for s in &links {
+        for i in 0..=50 {
+            let p = s.point(i as f64 / 50.0);
+            assert!(clearance(&l, p) >= R - 1e-6, "{p:?}: {}", clearance(&l, p));
+        }
+    }
+    assert!((b.segments.last().unwrap().end() - to).norm() < 1e-9);
+}
+
+// ---- entry and spiral (spiral.rs) ----
+
+/// The helix: radius 0.375·D = 3.75 mm about the point of largest clearance of the tool-centre
+/// region (the rectangle's spine y = 20), descending 0.5 + 6 mm at 3°: 2π·3.75·tan 3° =
+/// 1.2349 mm a turn, so ⌈6.5/1.2349⌉ = ⌈5.26⌉ = 6 turns.
+#[test]
+fn helix_entry_radius_and_turns() {
+    let (parts, ..) = rectangle_path();
+    let Entry::Helix(h) = parts[0].entry else { panic!("{:?}", parts[0].entry) };
+    assert!((h.radius - 3.75).abs() < 1e-12 && (h.center.y - 20.0).abs() < 1e-3, "{h:?}");
+    let per_turn = 2.0 * PI * 3.75 * 3.0_f64.to_radians().tan();
+    assert!((per_turn - 1.2349).abs() < 1e-4);
+    assert_eq!(h.turns(HELIX_START_Z_MM + 6.0), 6);
+}
+
+/// The spiral's half-turns: each runs from radius q_i to q_i+1 about its end's centre a, its
+/// arc centred (q_i − q_i+1)/2 off a with radius (q_i + q_i+1)/2 (G1). A tool circle of radius
+/// q_i+1 cuts what the half-turn a full turn before (radius q_i−1) left: a radial step
+/// q_i+1 − q_i−1, which must not exceed the concave-cut step of radius q_i+1 (the two-circle
+/// formula at the target). The spiral starts on the helix (q_0 = 3.75).
+#[test]
+fn spiral_steps_stay_within_the_concave_cut_step() {
+    let (_, segs, kinds, _) = rectangle_path();
+    let halves: Vec<f64> = segs
+        .iter()
+        .zip(kinds)
+        .filter_map(|(s, k)| match (*s, *k) {
+            // the half-circle from a + e·q_i to a − e·q_i+1 spans q_i + q_i+1 = 2·radius
+            (Segment::Arc { radius, .. }, MoveKind::Spiral) => {
+                assert!(((s.start() - s.end()).norm() - 2.0 * radius).abs() < 1e-9);
+                Some(radius)
+            }
+            _ => None,
+        })
+        .collect();
+    assert!(halves.len() > 10, "{}", halves.len());
+    // q_i from the chain of half-turns: q_0 = helix radius, q_i+1 = 2·radius_i − q_i
+    let mut q = vec![3.75];
+    for radius in &halves {
+        let last = q[q.len() - 1];
+        q.push(2.0 * radius - last);
+    }
+    let phi = target();
+    for i in 1..q.len() - 1 {
+        let step = q[i + 1] - q[i - 1];
+        assert!(step <= concave_step(q[i + 1], R, phi) + 1e-9, "half-turn {i}: step {step} at ρ = {}", q[i + 1]);
+        assert!(q[i + 1] > q[i]);
+    }
+    // it ends within the tool-centre region: half its width is 20 − r − s_f = 14.8
+    assert!(*q.last().unwrap() <= 14.8 + 1e-9, "{q:?}");
+}
+
+// ---- corners and corner points (corners.rs) ----
+
+/// The rectangle's tool-centre loop has four convex corners of 90°; the corner arc of radius ρ
+/// is tangent to both walls: its centre is ρ from both wall lines, its ends on the walls
+/// ρ/tan(α/2) = ρ from the vertex.
+#[test]
+fn corner_arcs_are_tangent_to_both_walls() {
+    let lp = square_loop(10.0);
+    let corners = convex_corners(&lp);
+    assert_eq!(corners.len(), 4);
+    for c in &corners {
+        assert!((c.alpha - FRAC_PI_2).abs() < 1e-12);
+        let (a, e, arc) = c.arc(3.0);
+        let Segment::Arc { center, radius, sweep, .. } = arc else { panic!() };
+        assert!((radius - 3.0).abs() < 1e-12 && (sweep - FRAC_PI_2).abs() < 1e-12);
+        assert!(((a - c.vertex).norm() - 3.0).abs() < 1e-12 && ((e - c.vertex).norm() - 3.0).abs() < 1e-12);
+        assert!((arc.start() - a).norm() < 1e-9 && (arc.end() - e).norm() < 1e-9);
+        // centre ρ from both walls of a square (axis-parallel walls through the vertex)
+        let d = center - c.vertex;
+        assert!((d.x.abs() - 3.0).abs() < 1e-9 && (d.y.abs() - 3.0).abs() < 1e-9, "{d:?}");
+    }
+}
+
+/// The corner passes of the rectangle: at each corner of the tool-centre region (the pocket
+/// offset by r + s_f = 5.2), arcs of decreasing radius ρ_k centred (5.2 + ρ_k) from both walls;
+/// consecutive arcs are (ρ_k − ρ_k+1)(1/sin 45° − 1) apart on the bisector, at most the
+/// concave-cut step of ρ_k+1; the last has radius ρ_fin.
+#[test]
+fn corner_passes_follow_the_step_rule_down_to_the_finishing_radius() {
+    let (parts, segs, kinds, _) = rectangle_path();
+    let phi = target();
+    let rho_fin = fin_radius(0.2, R, phi);
+    let k = SQRT_2 - 1.0;
+    let corners = &parts[0].corners;
+    assert_eq!(corners.len(), 4);
+    // each arc belongs to the corner whose vertex is nearest its centre
+    let nearest =
+        |q: P2| corners.iter().map(|c| c.vertex).min_by(|a, b| (a - q).norm().total_cmp(&(b - q).norm())).unwrap();
+    for c in corners {
+        let radii: Vec<f64> = segs
+            .iter()
+            .zip(kinds)
+            .filter_map(|(s, kd)| match (*s, *kd) {
+                (Segment::Arc { center, radius, .. }, MoveKind::Corner) if nearest(center) == c.vertex => {
+                    // tangent to both walls of this corner
+                    let d = center - c.vertex;
+                    assert!((d.x.abs() - radius).abs() < 1e-6 && (d.y.abs() - radius).abs() < 1e-6, "{d:?} {radius}");
+                    Some(radius)
+                }
+                _ => None,
+            })
+            .filter(|r| *r >= rho_fin - 1e-9)
+            .collect();
+        assert_eq!(radii.len(), c.passes, "{c:?}");
+        assert!(radii.windows(2).all(|w| w[1] < w[0]));
+        for w in radii.windows(2) {
+            assert!((w[0] - w[1]) * k <= concave_step(w[1], R, phi) + 1e-9, "{w:?}");
+        }
+        assert!((radii[radii.len() - 1] - rho_fin).abs() < 1e-9 && (c.last_radius_mm - rho_fin).abs() < 1e-9);
+    }
+}
+
+/// The corner points: after the finishing arc, arcs down to the corner tolerance δ = 0.005 mm;
+/// what is left on a 90° corner's bisector is δ(1/sin 45° − 1) = δ(√2 − 1) = 0.00207 mm.
+#[test]
+fn corner_points_reach_the_tolerance() {
+    let (parts, segs, kinds, left) = rectangle_path();
+    let delta = AdaptiveOptions::default().corner_tolerance_mm;
+    assert_eq!(parts[0].corner_points.len(), 4);
+    for c in &parts[0].corner_points {
+        assert!((c.last_radius_mm - delta).abs() < 1e-12);
+        assert!((c.residual_mm - delta * (SQRT_2 - 1.0)).abs() < 1e-12 && (c.residual_mm - 0.00207).abs() < 1e-5);
+        assert!(c.arcs >= 1);
+    }
+    let smallest = segs
+        .iter()
+        .zip(kinds)
+        .filter_map(|(s, k)| match (*s, *k) {
+            (Segment::Arc { radius, .. }, MoveKind::CornerPoint) => Some(radius),
+            _ => None,
+        })
+        .fold(f64::INFINITY, f64::min);
+    assert!((smallest - delta).abs() < 1e-12);
+    assert!((left - (R + delta)).abs() < 1e-12);
+}
+
+// ---- finishing contour (finish.rs) ----
+
+/// The finishing contour is the pocket offset by r: its lines lie r from the nearest wall, its
+/// corner arcs (radius ρ_fin + s_f) are centred r + s_f + ρ_fin from both walls; the only other
+/// finishing move is the quarter-circle lead-in of radius max(s_f, r/2) = 2.5 mm.
+#[test]
+fn finishing_contour_is_the_pocket_offset_by_r() {
+    let (_, segs, kinds, _) = rectangle_path();
+    let poly = rectangle();
+    let rho_fin = fin_radius(0.2, R, target());
+    let (mut lines, mut arcs, mut leads) = (0, 0, 0);
+    for (s, _) in segs.iter().zip(kinds).filter(|(_, k)| **k == MoveKind::Finish) {
+        match *s {
+            Segment::Line { .. } => {
+                lines += 1;
+                for t in [0.0, 0.5, 1.0] {
+                    assert!((clearance(&poly, s.point(t)) - R).abs() < 1e-6, "{s:?}");
+                }
+            }
+            Segment::Arc { center, radius, sweep, .. } if (radius - (rho_fin + 0.2)).abs() < 1e-9 => {
+                arcs += 1;
+                assert!(
+                    (clearance(&poly, center) - (R + 0.2 + rho_fin)).abs() < 1e-6 && (sweep - FRAC_PI_2).abs() < 1e-9
+                );
+            }
+            Segment::Arc { radius, sweep, .. } => {
+                leads += 1;
+                assert!((radius - 2.5).abs() < 1e-12 && (sweep - FRAC_PI_2).abs() < 1e-12, "{s:?}");
+            }
+            Segment::Trochoid { .. } => panic!("{s:?}"),
+        }
+    }
+    assert_eq!((arcs, leads), (4, 1));
+    assert!(lines >= 4);
+}
+
+// ---- open sides (open.rs) ----
+
+/// The rectangle extended across its bottom edge (60 mm) by reach 10 with far corners rounded
+/// to 5: the swept strip adds 60·10, each rounded corner removes a square less a quarter disc,
+/// 5²(1 − π/4): 2400 + 600 − 2·25(1 − π/4) = 2989.27 mm².
+#[test]
+fn extension_across_an_open_edge_has_the_derived_area() {
+    let ext = extended(&rectangle(), &[0], 10.0, 5.0).unwrap();
+    let derived = 2400.0 + 600.0 - 2.0 * 25.0 * (1.0 - PI / 4.0);
+    assert!((ext.area() - derived).abs() < 1e-6, "{} vs {derived}", ext.area());
+}
+
+/// Open edges: numbers below the vertex count, none twice; the error names `--open-edges`.
+#[test]
+fn open_edges_are_checked() {
+    let poly = rectangle();
+    assert!(validate_open_edges(&poly, &[0, 3]).is_ok());
+    for bad in [&[4][..], &[1, 1][..]] {
+        assert_eq!(validate_open_edges(&poly, bad).unwrap_err().parameter(), Some(Param::OpenEdges), "{bad:?}");
+    }
+}
