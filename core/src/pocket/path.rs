@@ -20,7 +20,8 @@ pub struct PocketPath {
     pub toolpath: Toolpath,
     /// The evaluator over `polygon` with the entries' bores as cut ([`measure`]).
     pub measurement: Measurement,
-    /// Length of the link moves at depth (mm): the kinds each strategy counts as links.
+    /// Length of the link moves at depth (mm): the moves of kind [`MoveKind::Link`] (returns,
+    /// air and rapids have their own kinds).
     pub link_length_mm: f64,
     /// Length of the entries' descents from above the stock top (mm).
     pub entry_length_mm: f64,
@@ -29,17 +30,16 @@ pub struct PocketPath {
 }
 
 impl PocketPath {
-    /// Measure `toolpath` over `polygon` (positions `settings.spacing` apart), its links being
-    /// the moves of `link_kinds`, its entries descending to `depth_mm` below the stock top.
+    /// Measure `toolpath` over `polygon` (positions `settings.spacing` apart), its entries
+    /// descending to `depth_mm` below the stock top.
     pub fn measured(
         polygon: &Polygon,
         settings: PocketSettings,
         toolpath: Toolpath,
         depth_mm: f64,
-        link_kinds: &[MoveKind],
     ) -> Result<PocketPath, Error> {
         let measurement = measure(&toolpath, polygon, &EvaluatorOptions::new(settings.tool_radius, settings.spacing))?;
-        let link_length_mm = toolpath.length_of(link_kinds);
+        let link_length_mm = toolpath.length_of(&[MoveKind::Link]);
         let entry_length_mm = toolpath.entry_length_mm(depth_mm);
         let time_s = (measurement.length_at_depth_mm + entry_length_mm) / settings.feed_mm_per_min * 60.0;
         Ok(PocketPath {

@@ -502,7 +502,7 @@ impl MedialAxisReport {
             by_kind: kind_rows(&plan.path),
             by_move: kind_rows(&plan.path),
             length_at_depth_mm: m.length_at_depth_mm,
-            link_length_mm: plan.path.toolpath.length_of(&[MoveKind::Link]),
+            link_length_mm: plan.path.link_length_mm,
             air_length_mm: m.air_length_mm,
             corner_tolerance_mm: options.corner_tolerance_mm,
             corner_points: plan.corner_points.iter().map(CornerPointRow::of).collect(),

@@ -105,7 +105,7 @@ pub(super) fn measure(
     let entries = parts.iter().map(|p| p.entry).collect();
     let toolpath = Toolpath::at_depth(&b.segments, &b.kinds, -options.depth_mm, entries, retract_before);
     // the bores of helices and ramps are cut; outside the stock nothing was
-    let path = PocketPath::measured(&polygon, settings, toolpath, options.depth_mm, &[MoveKind::Link])?;
+    let path = PocketPath::measured(&polygon, settings, toolpath, options.depth_mm)?;
     let profile = &path.measurement.profile;
     // Corner maxima: the samples on each part's corner passes nearest each corner.
     for (smp, &i) in profile.samples.iter().zip(&sample_owners(profile, &b.segments)) {

@@ -198,8 +198,7 @@ pub fn plan_perforative(
     retract_before.retain(|&i| i > 0); // the first part is reached by the program's first entry
     let Planner { b, circles, corner_points, .. } = p;
     let toolpath = Toolpath::at_depth(&b.segments, &b.kinds, -options.depth_mm, entries, retract_before);
-    let path =
-        PocketPath::measured(polygon, settings, toolpath, options.depth_mm, &[MoveKind::Link, MoveKind::Return])?;
+    let path = PocketPath::measured(polygon, settings, toolpath, options.depth_mm)?;
     let body_max_rad = path.measurement.max_over(&[MoveKind::Spiral, MoveKind::Circle, MoveKind::Link]);
     let corner_points = measure_corner_points(&path.measurement.profile, &b.segments, corner_points);
     Ok(PerforativePlan {

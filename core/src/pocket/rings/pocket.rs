@@ -128,7 +128,7 @@ pub fn plan_ring_pocket(
     let candidates = ring_candidates(&levels, &rings, kc, inner_loops, &hubs, r);
     let a = assemble(polygon, r, ae, core, &candidates);
     let toolpath = Toolpath::at_depth(&a.segments, &a.kinds, -options.depth_mm, entries, a.retract_before.clone());
-    let path = PocketPath::measured(polygon, settings, toolpath, options.depth_mm, &[MoveKind::Link])?;
+    let path = PocketPath::measured(polygon, settings, toolpath, options.depth_mm)?;
     let (out_rings, links, corner_points) = ring_reports(&a, &candidates, &path);
     let path_length_mm: f64 = out_rings.iter().map(|g| g.length_mm).sum();
     Ok(RingPlan {

@@ -93,7 +93,7 @@ pub fn plan_rings(polygon: &Polygon, settings: PocketSettings, method: CornerMet
     let len: f64 = rings.iter().map(|g| g.length_mm).sum();
     let max = rings.iter().map(|g| g.max_engagement_rad).fold(0.0, f64::max);
     let toolpath = rings_and_links(&rings, &links);
-    let mut path = PocketPath::measured(polygon, settings, toolpath, 0.0, &[MoveKind::Link])?;
+    let mut path = PocketPath::measured(polygon, settings, toolpath, 0.0)?;
     path.time_s = len / settings.feed_mm_per_min * 60.0;
     Ok(RingPlan {
         path,
