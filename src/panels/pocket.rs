@@ -116,9 +116,9 @@ pub fn compute(i: &PocketInputs) -> Result<PocketResult, String> {
         PocketReport::MedialAxis(r) => (
             whole_path(r.body_max_engagement_deg),
             format!(
-                "{} circles along the medial axis, {} part(s); corner points up to {:.1}°{}",
-                r.circle_count,
-                r.parts,
+                "{} along the medial axis, {}; corner points up to {:.1}°{}",
+                count(r.circle_count, "circle", "circles"),
+                count(r.parts, "part", "parts"),
                 report.max_of(MoveKind::CornerPoint),
                 match report.max_of(MoveKind::Tip) {
                     tip if tip > 0.0 => format!(", straight tips {tip:.1}°"),
@@ -130,10 +130,10 @@ pub fn compute(i: &PocketInputs) -> Result<PocketResult, String> {
         PocketReport::Adaptive(r) => (
             whole_path(r.max_engagement_deg),
             format!(
-                "{} entry, {} rings, {} corners thinned; p95 {:.1}°, {:.0} mm at depth",
+                "{} entry, {}, {} thinned; p95 {:.1}°, {:.0} mm at depth",
                 r.entries.first().map_or("helix", |e| e.kind),
-                r.rings.iter().sum::<usize>(),
-                r.corners.len(),
+                count(r.rings.iter().sum::<usize>(), "ring", "rings"),
+                count(r.corners.len(), "corner", "corners"),
                 r.p95_engagement_deg,
                 r.length_at_depth_mm
             ),
@@ -155,6 +155,11 @@ pub fn compute(i: &PocketInputs) -> Result<PocketResult, String> {
 /// Plan `inputs`.
 fn plan_job(inputs: PocketInputs, task: &Task<Result<Arc<PocketResult>, String>>) {
     task.send(compute(&inputs).map(Arc::new));
+}
+
+/// "1 ring", "3 rings".
+fn count(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
 }
 
 /// The last pocket, its error, and the worker computing it: plans inline or on its own
@@ -253,23 +258,38 @@ fn polygon_editor(ui: &mut egui::Ui, inputs: &mut PocketInputs) {
 /// The pocket's method, length, time and engagement, and its rings' offsets and engagement.
 fn pocket_numbers(ui: &mut egui::Ui, r: &PocketResult) {
     ui.label(format!("method {}", r.method));
-    if matches!(r.report, PocketReport::Rings(_)) {
-        ui.label(format!("{} rings", r.rings.len()));
+    let rings = matches!(r.report, PocketReport::Rings(_));
+    if rings {
+        ui.label(count(r.rings.len(), "ring", "rings"));
     }
     ui.label(format!("path {:.1} mm, {:.1} s", r.report.length_at_depth_mm(), r.report.time_s()));
     ui.label(format!("max engagement {:.1}°", r.report.max_engagement_deg()));
     ui.label(&r.detail);
     egui::ScrollArea::vertical().id_salt("pocket_rings_scroll").show(ui, |ui| {
         egui::Grid::new("pocket_rings").striped(true).show(ui, |ui| {
-            ui.label("ring");
-            ui.label("offset");
-            ui.label("max eng.");
-            ui.end_row();
-            for (level, off, mx, _) in &r.rings {
-                ui.label(format!("{level}"));
-                ui.label(format!("{off:.2} mm"));
-                ui.label(format!("{mx:.1}°"));
+            if rings {
+                ui.label("ring");
+                ui.label("offset");
+                ui.label("max eng.");
                 ui.end_row();
+                for (level, off, mx, _) in &r.rings {
+                    ui.label(format!("{level}"));
+                    ui.label(format!("{off:.2} mm"));
+                    ui.label(format!("{mx:.1}°"));
+                    ui.end_row();
+                }
+            } else {
+                // one pass: its moves by kind, as the JSON's by_kind rows
+                ui.label("move");
+                ui.label("length");
+                ui.label("max eng.");
+                ui.end_row();
+                for row in r.report.by_kind() {
+                    ui.label(row.kind.name());
+                    ui.label(format!("{:.1} mm", row.length_mm));
+                    ui.label(format!("{:.1}°", row.max_engagement_deg));
+                    ui.end_row();
+                }
             }
         });
     });
@@ -281,8 +301,9 @@ fn pocket_view(ui: &mut egui::Ui, r: &PocketResult, nc_open: bool, nc_cache: &Co
     let plot_w = if nc_open { 0.5 * w } else { w };
     plane_plot("pocket_rings_plot", h).width(plot_w).show(ui, |p| {
         p.line(line("pocket", &r.boundary).color(Color32::GRAY).width(2.5));
+        let name = if matches!(r.report, PocketReport::Rings(_)) { "rings" } else { "tool path" };
         for (_, _, _, pts) in &r.rings {
-            p.line(line("rings", pts).color(STRATEGY_COLOR).width(1.0));
+            p.line(line(name, pts).color(STRATEGY_COLOR).width(1.0));
         }
     });
     if nc_open {

@@ -52,6 +52,27 @@ pub enum MoveKind {
     Rapid,
 }
 
+impl MoveKind {
+    /// The kind's name as the JSON writes it (kebab-case).
+    pub fn name(self) -> &'static str {
+        match self {
+            MoveKind::Entry => "entry",
+            MoveKind::Spiral => "spiral",
+            MoveKind::Circle => "circle",
+            MoveKind::Link => "link",
+            MoveKind::Straight => "straight",
+            MoveKind::Tip => "tip",
+            MoveKind::Return => "return",
+            MoveKind::Ring => "ring",
+            MoveKind::Corner => "corner",
+            MoveKind::Finish => "finish",
+            MoveKind::CornerPoint => "corner-point",
+            MoveKind::Cut => "cut",
+            MoveKind::Rapid => "rapid",
+        }
+    }
+}
+
 /// One move of the tool centre.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Move {
@@ -126,5 +147,19 @@ impl Toolpath {
     /// Length of the entries' descents from [`HELIX_START_Z_MM`] to `depth_mm` below the top (mm).
     pub fn entry_length_mm(&self, depth_mm: f64) -> f64 {
         self.entries.iter().map(|e| e.descent_length(depth_mm)).sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every kind's name is its JSON name (serde's kebab-case), so the window and the JSON agree.
+    #[test]
+    fn kind_names_are_the_json_names() {
+        use MoveKind::*;
+        for k in [Entry, Spiral, Circle, Link, Straight, Tip, Return, Ring, Corner, Finish, CornerPoint, Cut, Rapid] {
+            assert_eq!(serde_json::to_string(&k).unwrap(), format!("\"{}\"", k.name()));
+        }
     }
 }

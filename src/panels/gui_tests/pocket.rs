@@ -43,7 +43,9 @@ fn pocket_tab_shows_the_rings_and_reports_a_bad_polygon() {
     assert!(h.state().pocket.error.is_none(), "{:?}", h.state().pocket.error);
     let p = pocket_result(&h);
     assert!(!p.rings.is_empty());
-    assert!(shows(&h, &format!("{} rings", p.rings.len())));
+    let n = p.rings.len();
+    assert!(shows(&h, &if n == 1 { "1 ring".to_owned() } else { format!("{n} rings") }), "{n} rings");
+    assert!(shows(&h, "offset"), "the ring table");
     // a self-intersecting bow tie
     h.state_mut().state.pocket.polygon_text = "0,0\n60,40\n60,0\n0,40\n".to_owned();
     h.run();
@@ -114,6 +116,14 @@ fn pocket_tab_plans_adaptive_clearing() {
     assert_eq!(want.path.segments(), plan.path.segments());
     assert!(shows(&h, &p.detail), "{}", p.detail);
     assert!(p.detail.contains(&format!("{:.0} mm at depth", want.path.measurement.length_at_depth_mm)), "{}", p.detail);
+    // one pass, so no ring table: its moves by kind, each row as the core's report of the plan
+    let rows = trochoplan_core::report::pocket(&req, &PocketPlan::Adaptive(want)).unwrap().by_kind().to_vec();
+    assert!(rows.len() >= 4, "helix entry, rings, corners, finish at least: {rows:?}");
+    for row in &rows {
+        assert!(shows(&h, row.kind.name()), "{:?} row", row.kind);
+        assert!(shows(&h, &format!("{:.1} mm", row.length_mm)), "{:?} length", row.kind);
+    }
+    assert!(!shows(&h, "offset"), "no ring table for adaptive clearing");
 }
 
 /// The Pocket tab's open-edges field: typed into, the tab plans the pocket
