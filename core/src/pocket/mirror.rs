@@ -25,6 +25,9 @@ impl RingPlan {
         for link in &mut self.links {
             (link.from, link.to) = (mirror_point(link.from), mirror_point(link.to));
         }
+        for c in &mut self.corner_points {
+            (c.vertex, c.at) = (mirror_point(c.vertex), mirror_point(c.at));
+        }
         self
     }
 }
@@ -120,6 +123,36 @@ mod tests {
                     "measured again over the rectangle"
                 );
             }
+        }
+    }
+
+    /// Every point a conventional plan reports lies on the pocket it was asked for: the plan is
+    /// made on the pocket mirrored about x = 0 (x → −x) and mirrored back, so a point left in the
+    /// mirrored frame lies at negative x, outside the 60 × 40 rectangle. The variable-circle
+    /// ring method's corner points, the rings' peaks and the links' ends are inside it, each
+    /// corner point r = 5 mm from its walls (the corner of the pocket offset by r).
+    #[test]
+    fn conventional_ring_plan_reports_its_points_on_the_pocket() {
+        let rect = Polygon::new(vec![p2(0.0, 0.0), p2(60.0, 0.0), p2(60.0, 40.0), p2(0.0, 40.0)]).expect("rect");
+        let req = PocketRequest {
+            polygon: rect.clone(),
+            strategy: PocketStrategy::Rings(CornerMethod::Variable),
+            adaptive: AdaptiveOptions { direction: Direction::Conventional, ..AdaptiveOptions::default() },
+            ..PocketRequest::default()
+        };
+        let PocketPlan::Rings(p) = plan(&req).expect("plan") else { panic!("ring plan expected") };
+        assert_eq!(p.corner_points.len(), 4, "the variable method ends each corner in corner points");
+        let inside = |q: crate::geom::P2| crate::geom::loop_contains(rect.vertices(), q);
+        for c in &p.corner_points {
+            assert!(inside(c.vertex) && inside(c.at), "corner point {:?} at {:?}", c.vertex, c.at);
+            let wall = crate::geom::loop_distance(c.vertex, rect.vertices());
+            assert!((wall - 5.0).abs() < 1e-6, "corner point {:?} is {wall} mm from the walls", c.vertex);
+        }
+        for g in &p.rings {
+            assert!(inside(g.max_engagement_at), "ring peak at {:?}", g.max_engagement_at);
+        }
+        for k in &p.links {
+            assert!(inside(k.from) && inside(k.to), "link {:?} → {:?}", k.from, k.to);
         }
     }
 
