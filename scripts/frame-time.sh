@@ -41,7 +41,7 @@ xdotool windowfocus "$WID"
 if [[ $MODE == pocket ]]; then
     xdotool mousemove 480 12 click 1 # the Pocket tab
     sleep 3
-    X0=1100 Y=43 # the step-over box: dragging it sideways changes a_e
+    X0=1032 Y=43 # the step-over box: dragging it sideways changes a_e
 else
     X0=153 Y=402 # the Step s slider's handle
 fi

@@ -97,7 +97,7 @@ PIN_PAPER_SET="594 43"                   # Compare tab
 RUN_SWEEP="1084 43"                      # Sweep tab
 OPTIMISE="458 354"                       # Machine & optimise tab
 ACCEPTANCE_TABLE="154 43"                # Corner tab
-POCKET_ADAPTIVE="15 43" POCKET_MEDIAL_AXIS="594 43" POCKET_STEP_OVER="1100 43" # Pocket tab
+POCKET_MEDIAL_AXIS="526 43" POCKET_STEP_OVER="1032 43" # Pocket tab
 
 take() {
 	case $1 in
@@ -137,12 +137,11 @@ take() {
 		shot corner-table 40 ;;
 	pocket)
 		click $TAB_POCKET
-		click $POCKET_ADAPTIVE # untick: the method buttons apply
 		click $POCKET_MEDIAL_AXIS
 		type_into $POCKET_STEP_OVER 1.527
 		shot pocket 15 ;;
 	pocket-adaptive)
-		click $TAB_POCKET # Adaptive is ticked by default
+		click $TAB_POCKET # adaptive clearing is chosen by default
 		type_into $POCKET_STEP_OVER 1.527
 		shot pocket-adaptive 10 ;;
 	*)

@@ -9,6 +9,7 @@ use super::panels::pocket::PocketInputs;
 use super::{Inputs, Tab, View};
 use serde::{Deserialize, Deserializer};
 use trochoplan_core::corner::CornerMethod;
+use trochoplan_core::pocket::PocketStrategy;
 
 /// The record under `INPUTS_KEY` as far as the move needs it.
 #[derive(Deserialize, Default)]
@@ -43,7 +44,7 @@ impl Default for EarlierCorner {
             tool_diameter_mm: c.tool_diameter_mm,
             polygon_text: p.polygon_text,
             pocket_step_over_mm: p.step_over_mm,
-            pocket_adaptive: p.adaptive,
+            pocket_adaptive: p.strategy == PocketStrategy::Adaptive,
             pocket_open_edges: p.open_edges,
         }
     }
@@ -75,8 +76,7 @@ pub fn move_pocket(earlier: EarlierRecord, inputs: &mut Inputs, view: &mut View)
         polygon_text: c.polygon_text,
         tool_diameter_mm: c.tool_diameter_mm,
         step_over_mm: c.pocket_step_over_mm,
-        adaptive: c.pocket_adaptive,
-        method: c.method,
+        strategy: if c.pocket_adaptive { PocketStrategy::Adaptive } else { PocketStrategy::from_method(c.method) },
         open_edges: c.pocket_open_edges,
     };
     inputs.pocket_nc = inputs.corner_nc.clone();

@@ -316,7 +316,7 @@ fn corner_inputs(ui: &mut egui::Ui, inputs: &mut CornerInputs) {
                 "Interior angle between the two walls (30°–150°); the apex is at the origin, the bisector along +x.",
             );
         ui.separator();
-        plane::method_buttons(ui, &mut inputs.method, true);
+        plane::method_buttons(ui, &mut inputs.method);
     });
     tool_inputs(ui, inputs);
 }

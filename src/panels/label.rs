@@ -24,7 +24,6 @@ pub const ALLOWED_EXCESS_T1: &str = "Allowed excess t1";
 pub const POCKET_TOOL_DIAMETER: &str = "Pocket tool diameter D (mm)";
 pub const POCKET_VERTICES: &str = "Pocket vertices (x,y per line)";
 pub const POCKET_STEP_OVER: &str = "Pocket step-over a_e (mm)";
-pub const POCKET_ADAPTIVE: &str = "Adaptive (helix, climb, finish)";
 /// The pocket's open edges (adaptive clearing).
 pub const POCKET_OPEN_EDGES: &str = "Open edges";
 pub const POCKET_OPEN_OUTLINE: &str = "Open outline…";

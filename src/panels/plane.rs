@@ -46,17 +46,14 @@ pub fn plane_plot(id: impl egui::AsIdSalt, height: f32) -> Plot<'static> {
         .y_axis_label("y (mm)")
 }
 
-/// The method buttons; labels and tooltips are the core's. With `enabled` false (another
-/// choice overrides the method) they are greyed and none is shown as selected.
-pub fn method_buttons(ui: &mut egui::Ui, method: &mut CornerMethod, enabled: bool) {
+/// The corner method buttons; labels and tooltips are the core's.
+pub fn method_buttons(ui: &mut egui::Ui, method: &mut CornerMethod) {
     ui.label("Method");
-    ui.add_enabled_ui(enabled, |ui| {
-        for m in CornerMethod::ALL {
-            if ui.selectable_label(enabled && *method == m, m.label()).on_hover_text(m.tooltip()).clicked() {
-                *method = m;
-            }
+    for m in CornerMethod::ALL {
+        if ui.selectable_label(*method == m, m.label()).on_hover_text(m.tooltip()).clicked() {
+            *method = m;
         }
-    });
+    }
 }
 
 /// The core's message when the inputs are invalid (then `kept`, what is shown meanwhile), and

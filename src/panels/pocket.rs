@@ -16,11 +16,9 @@ use crate::worker::{Keep, Latest, Task, Worker};
 use eframe::egui::{self, Color32, DragValue};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
-use trochoplan_core::corner::CornerMethod;
 use trochoplan_core::geom::Polygon;
 use trochoplan_core::pocket::{self, PocketPlan, PocketRequest, PocketStrategy};
 use trochoplan_core::report::{self, PocketReport};
-use trochoplan_core::toolpath::MoveKind;
 
 /// Inputs of the Pocket tab, persisted with the app state.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -32,10 +30,8 @@ pub struct PocketInputs {
     pub tool_diameter_mm: f64,
     /// Ring step-over a_e (mm).
     pub step_over_mm: f64,
-    /// Clear the pocket adaptively (helix entry, climb, finishing pass) instead of by `method`.
-    pub adaptive: bool,
-    /// The whole-pocket method when not adaptive.
-    pub method: CornerMethod,
+    /// How the pocket is cleared (`--method`).
+    pub strategy: PocketStrategy,
     /// The pocket's open edges, "i, j, …" (`--open-edges`: edge i from vertex i to i + 1).
     pub open_edges: String,
 }
@@ -48,8 +44,7 @@ impl Default for PocketInputs {
             polygon_text: crate::shared::outline::points_text(pocket.polygon.vertices()),
             tool_diameter_mm: pocket.tool_diameter_mm,
             step_over_mm: pocket.step_over_mm,
-            adaptive: pocket.strategy == PocketStrategy::Adaptive,
-            method: CornerMethod::Variable,
+            strategy: pocket.strategy,
             open_edges: String::new(),
         }
     }
@@ -78,7 +73,7 @@ impl PocketInputs {
             polygon,
             tool_diameter_mm: self.tool_diameter_mm,
             step_over_mm: self.step_over_mm,
-            strategy: if self.adaptive { PocketStrategy::Adaptive } else { PocketStrategy::from_method(self.method) },
+            strategy: self.strategy,
             ..PocketRequest::default()
         })
     }
@@ -90,10 +85,8 @@ impl PocketInputs {
 pub struct PocketResult {
     pub method: &'static str,
     pub boundary: Vec<[f64; 2]>,
-    /// Rings in machining order: level, offset (mm), max engagement (degrees), points.
-    pub rings: Vec<(usize, f64, f64, Vec<[f64; 2]>)>,
-    /// What the strategy did: corners given trochoids, or circles along the medial axis.
-    pub detail: String,
+    /// The whole tool path at depth, as points for drawing.
+    pub path: Vec<[f64; 2]>,
     /// The core's report of the plan (length, time, engagement, rows).
     pub report: PocketReport,
     /// The plan itself (for the NC program).
@@ -110,56 +103,13 @@ pub fn compute(i: &PocketInputs) -> Result<PocketResult, String> {
     if let Some(&first) = boundary.first() {
         boundary.push(first);
     }
-    let whole_path = |max_deg: f64| vec![(0, 0.0, max_deg, segment_points(&plan.path().segments(), MAX_PATH_POINTS))];
-    let (rings, detail) = match &report {
-        // No rings: one pass along the medial axis (shown as one entry of the ring list).
-        PocketReport::MedialAxis(r) => (
-            whole_path(r.body_max_engagement_deg),
-            format!(
-                "{} along the medial axis, {}; corner points up to {:.1}°{}",
-                count(r.circle_count, "circle", "circles"),
-                count(r.parts, "part", "parts"),
-                report.max_of(MoveKind::CornerPoint),
-                match report.max_of(MoveKind::Tip) {
-                    tip if tip > 0.0 => format!(", straight tips {tip:.1}°"),
-                    _ => String::new(),
-                }
-            ),
-        ),
-        // One pass: the whole path at depth (shown as one entry of the ring list).
-        PocketReport::Adaptive(r) => (
-            whole_path(r.max_engagement_deg),
-            format!(
-                "{} entry, {}, {} thinned; p95 {:.1}°, {:.0} mm at depth",
-                r.entries.first().map_or("helix", |e| e.kind),
-                count(r.rings.iter().sum::<usize>(), "ring", "rings"),
-                count(r.corners.len(), "corner", "corners"),
-                r.p95_engagement_deg,
-                r.length_at_depth_mm
-            ),
-        ),
-        PocketReport::Rings(r) => (
-            r.rings
-                .iter()
-                .map(|g| {
-                    let pts = segment_points(&g.segments, MAX_PATH_POINTS / 4);
-                    (g.level, g.offset_mm, g.max_engagement_deg, pts)
-                })
-                .collect(),
-            format!("corners with trochoids {}, plain {}", r.trochoid_corners, r.plain_corners),
-        ),
-    };
-    Ok(PocketResult { method: report.method(), boundary, rings, detail, report, plan })
+    let path = segment_points(&plan.path().segments(), MAX_PATH_POINTS);
+    Ok(PocketResult { method: report.method(), boundary, path, report, plan })
 }
 
 /// Plan `inputs`.
 fn plan_job(inputs: PocketInputs, task: &Task<Result<Arc<PocketResult>, String>>) {
     task.send(compute(&inputs).map(Arc::new));
-}
-
-/// "1 ring", "3 rings".
-fn count(n: usize, one: &str, many: &str) -> String {
-    format!("{n} {}", if n == 1 { one } else { many })
 }
 
 /// The last pocket, its error, and the worker computing it: plans inline or on its own
@@ -219,12 +169,21 @@ pub fn show(ui: &mut egui::Ui, inputs: &mut PocketInputs, view: &PocketView, nc:
     if open { Some(Command::OpenOutline) } else { cmd }
 }
 
-/// Adaptive or a method, the tool diameter, the step-over, the open edges and the NC export's
+/// One button per strategy of the core ([`PocketStrategy::ALL`]), the chosen one selected.
+fn strategy_buttons(ui: &mut egui::Ui, strategy: &mut PocketStrategy) {
+    ui.label("Method");
+    for s in PocketStrategy::ALL {
+        if ui.selectable_label(*strategy == s, s.label()).on_hover_text(s.help()).clicked() {
+            *strategy = s;
+        }
+    }
+}
+
+/// The strategy, the tool diameter, the step-over, the open edges and the NC export's
 /// toggle.
 fn pocket_inputs(ui: &mut egui::Ui, inputs: &mut PocketInputs, nc: &mut NcExport) {
     ui.horizontal_wrapped(|ui| {
-        ui.checkbox(&mut inputs.adaptive, label::POCKET_ADAPTIVE).on_hover_text(PocketStrategy::Adaptive.help());
-        plane::method_buttons(ui, &mut inputs.method, !inputs.adaptive);
+        strategy_buttons(ui, &mut inputs.strategy);
         ui.separator();
         let l = ui.label(label::POCKET_TOOL_DIAMETER);
         ui.add(DragValue::new(&mut inputs.tool_diameter_mm).speed(0.1).suffix(" mm"))
@@ -235,12 +194,15 @@ fn pocket_inputs(ui: &mut egui::Ui, inputs: &mut PocketInputs, nc: &mut NcExport
             .labelled_by(l.id)
             .on_hover_text("Distance between successive contour-parallel rings, 0 < a_e < D.");
         let l = ui.label(label::POCKET_OPEN_EDGES);
-        ui.add_enabled(inputs.adaptive, egui::TextEdit::singleline(&mut inputs.open_edges).desired_width(60.0))
-            .labelled_by(l.id)
-            .on_hover_text(
-                "Edges without a wall (adaptive): \"0\" or \"0, 2\"; edge i runs from vertex i to vertex i + 1 \
+        ui.add_enabled(
+            inputs.strategy == PocketStrategy::Adaptive,
+            egui::TextEdit::singleline(&mut inputs.open_edges).desired_width(60.0),
+        )
+        .labelled_by(l.id)
+        .on_hover_text(
+            "Edges without a wall (adaptive): \"0\" or \"0, 2\"; edge i runs from vertex i to vertex i + 1 \
                  (0-based). The tool goes down outside the stock there and clears inward.",
-            );
+        );
         ui.separator();
         ui.toggle_value(&mut nc.settings.open, label::NC_EXPORT)
             .on_hover_text("Options, preview and save of the NC program of the pocket");
@@ -255,30 +217,20 @@ fn polygon_editor(ui: &mut egui::Ui, inputs: &mut PocketInputs) {
         .on_hover_text("A simple polygon, lines only, one vertex \"x,y\" (mm) per line; '#' comments allowed.");
 }
 
-/// The pocket's method, length, time and engagement, and its rings' offsets and engagement.
+/// The pocket's method, length, time and engagement (the core's report), and its rings'
+/// offsets and engagement, or for a strategy without rings of its own its moves by kind.
 fn pocket_numbers(ui: &mut egui::Ui, r: &PocketResult) {
     ui.label(format!("method {}", r.method));
-    let rings = matches!(r.report, PocketReport::Rings(_));
-    if rings {
-        ui.label(count(r.rings.len(), "ring", "rings"));
+    let rings = r.report.rings();
+    if !rings.is_empty() {
+        ui.label(if rings.len() == 1 { "1 ring".to_owned() } else { format!("{} rings", rings.len()) });
     }
     ui.label(format!("path {:.1} mm, {:.1} s", r.report.length_at_depth_mm(), r.report.time_s()));
     ui.label(format!("max engagement {:.1}°", r.report.max_engagement_deg()));
-    ui.label(&r.detail);
+    ui.label(r.report.detail());
     egui::ScrollArea::vertical().id_salt("pocket_rings_scroll").show(ui, |ui| {
         egui::Grid::new("pocket_rings").striped(true).show(ui, |ui| {
-            if rings {
-                ui.label("ring");
-                ui.label("offset");
-                ui.label("max eng.");
-                ui.end_row();
-                for (level, off, mx, _) in &r.rings {
-                    ui.label(format!("{level}"));
-                    ui.label(format!("{off:.2} mm"));
-                    ui.label(format!("{mx:.1}°"));
-                    ui.end_row();
-                }
-            } else {
+            if rings.is_empty() {
                 // one pass: its moves by kind, as the JSON's by_kind rows
                 ui.label("move");
                 ui.label("length");
@@ -290,21 +242,29 @@ fn pocket_numbers(ui: &mut egui::Ui, r: &PocketResult) {
                     ui.label(format!("{:.1}°", row.max_engagement_deg));
                     ui.end_row();
                 }
+            } else {
+                ui.label("ring");
+                ui.label("offset");
+                ui.label("max eng.");
+                ui.end_row();
+                for g in rings {
+                    ui.label(format!("{}", g.level));
+                    ui.label(format!("{:.2} mm", g.offset_mm));
+                    ui.label(format!("{:.1}°", g.max_engagement_deg));
+                    ui.end_row();
+                }
             }
         });
     });
 }
 
-/// The pocket and its rings, `h` high; half as wide, beside the program, when `nc_open`.
+/// The pocket and its tool path, `h` high; half as wide, beside the program, when `nc_open`.
 fn pocket_view(ui: &mut egui::Ui, r: &PocketResult, nc_open: bool, nc_cache: &CornerNcCache, h: f32) {
     let w = ui.available_width();
     let plot_w = if nc_open { 0.5 * w } else { w };
     plane_plot("pocket_rings_plot", h).width(plot_w).show(ui, |p| {
         p.line(line("pocket", &r.boundary).color(Color32::GRAY).width(2.5));
-        let name = if matches!(r.report, PocketReport::Rings(_)) { "rings" } else { "tool path" };
-        for (_, _, _, pts) in &r.rings {
-            p.line(line(name, pts).color(STRATEGY_COLOR).width(1.0));
-        }
+        p.line(line("tool path", &r.path).color(STRATEGY_COLOR).width(1.0));
     });
     if nc_open {
         ui.vertical(|ui| {
@@ -321,7 +281,10 @@ mod tests {
     #[test]
     fn threaded_view_delivers_the_newest_inputs() {
         let mut v = PocketView::threaded(|| {});
-        let mut i = PocketInputs { adaptive: false, ..PocketInputs::default() };
+        let mut i = PocketInputs {
+            strategy: PocketStrategy::Rings(trochoplan_core::corner::CornerMethod::Variable),
+            ..PocketInputs::default()
+        };
         v.update(&i);
         i.step_over_mm = 3.0;
         v.update(&i);
@@ -330,23 +293,21 @@ mod tests {
         let want = compute(&i).expect("the core plans the same inputs");
         let got = v.last.as_ref().expect("a result");
         assert_eq!(got.report, want.report);
-        assert_eq!(got.rings.len(), want.rings.len());
+        assert_eq!(got.path, want.path);
     }
 
-    /// The method buttons show no method while adaptive clearing overrides it.
+    /// The strategy row: one button per strategy of the core, only the chosen one selected.
     #[test]
-    fn the_method_is_not_shown_selected_while_adaptive_is_ticked() {
-        let highlighted = |adaptive: bool| {
-            let mut inputs = PocketInputs { adaptive, ..PocketInputs::default() };
-            let mut h = egui_kittest::Harness::new_ui(move |ui| {
-                plane::method_buttons(ui, &mut inputs.method, !inputs.adaptive);
-            });
+    fn only_the_chosen_strategy_is_shown_selected() {
+        for chosen in PocketStrategy::ALL {
+            let mut strategy = chosen;
+            let mut h = egui_kittest::Harness::new_ui(move |ui| strategy_buttons(ui, &mut strategy));
             h.run();
             use egui_kittest::kittest::{NodeT, Queryable};
-            let node = h.get_by_label(CornerMethod::Variable.label());
-            node.accesskit_node().toggled() == Some(egui::accesskit::Toggled::True)
-        };
-        assert!(highlighted(false), "the chosen method is shown");
-        assert!(!highlighted(true), "no method shown while adaptive is ticked");
+            for s in PocketStrategy::ALL {
+                let on = h.get_by_label(s.label()).accesskit_node().toggled() == Some(egui::accesskit::Toggled::True);
+                assert_eq!(on, s == chosen, "{} shown {on} while {} is chosen", s.label(), chosen.label());
+            }
+        }
     }
 }

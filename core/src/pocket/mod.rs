@@ -98,6 +98,11 @@ impl PocketStrategy {
         CornerMethod::from_name(name).map(PocketStrategy::from_method)
     }
 
+    /// Button label in the window.
+    pub fn label(self) -> &'static str {
+        self.method().map_or("adaptive clearing", CornerMethod::label)
+    }
+
     /// One line for `trochoplan pocket --help`.
     pub fn help(self) -> &'static str {
         let Some(method) = self.method() else {
@@ -161,7 +166,7 @@ impl PocketSettings {
 }
 
 /// One pocket to plan, in the user's units: the inputs of `trochoplan pocket` and of the
-/// Corner tab's pocket mode.
+/// window's Pocket tab.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PocketRequest {
     /// The validated pocket boundary.

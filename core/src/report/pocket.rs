@@ -127,6 +127,47 @@ impl PocketReport {
     pub fn max_of(&self, kind: MoveKind) -> f64 {
         self.by_kind().iter().filter(|r| r.kind == kind).map(|r| r.max_engagement_deg).fold(0.0, f64::max)
     }
+
+    /// The contour-parallel rings (empty for a strategy that cuts no ring of its own report).
+    pub fn rings(&self) -> &[RingRow] {
+        match self {
+            PocketReport::Rings(r) => &r.rings,
+            PocketReport::MedialAxis(_) | PocketReport::Adaptive(_) => &[],
+        }
+    }
+
+    /// One line on what the strategy did, for a summary: the corners given trochoids, the
+    /// circles along the medial axis, or adaptive clearing's entry, rings and thinned corners.
+    pub fn detail(&self) -> String {
+        match self {
+            PocketReport::Rings(r) => {
+                format!("corners with trochoids {}, plain {}", r.trochoid_corners, r.plain_corners)
+            }
+            PocketReport::MedialAxis(r) => format!(
+                "{} along the medial axis, {}; corner points up to {:.1}°{}",
+                count(r.circle_count, "circle", "circles"),
+                count(r.parts, "part", "parts"),
+                self.max_of(MoveKind::CornerPoint),
+                match self.max_of(MoveKind::Tip) {
+                    tip if tip > 0.0 => format!(", straight tips {tip:.1}°"),
+                    _ => String::new(),
+                }
+            ),
+            PocketReport::Adaptive(r) => format!(
+                "{} entry, {}, {} thinned; p95 {:.1}°, {:.0} mm at depth",
+                r.entries.first().map_or("helix", |e| e.kind),
+                count(r.rings.iter().sum::<usize>(), "ring", "rings"),
+                count(r.corners.len(), "corner", "corners"),
+                r.p95_engagement_deg,
+                r.length_at_depth_mm
+            ),
+        }
+    }
+}
+
+/// "1 ring", "3 rings".
+fn count(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
 }
 
 /// The per-kind rows of a measured path.

@@ -2,7 +2,8 @@
 //! pocket of states stored before the tab.
 
 use super::*;
-use trochoplan_core::pocket::PocketPlan;
+use trochoplan_core::corner::CornerMethod;
+use trochoplan_core::pocket::{PocketPlan, PocketStrategy};
 
 /// The window on the Pocket tab, its dialogs answering `open` and `save`.
 fn pocket_harness_with(open: Option<PathBuf>, save: Option<PathBuf>) -> Harness<'static, App> {
@@ -35,15 +36,15 @@ fn pocket_result(h: &Harness<'_, App>) -> std::sync::Arc<panels::pocket::PocketR
 #[test]
 fn pocket_tab_shows_the_rings_and_reports_a_bad_polygon() {
     let mut h = pocket_harness();
-    // adaptive clearing is the default; the rings are the corner method's
-    assert!(h.state().state.pocket.adaptive);
-    h.get_by_label(label::POCKET_ADAPTIVE).click();
+    // adaptive clearing is the default; the rings are a corner method's
+    assert_eq!(h.state().state.pocket.strategy, PocketStrategy::Adaptive);
+    h.get_by_label(PocketStrategy::Rings(CornerMethod::Variable).label()).click();
     h.run();
     wait_for_pocket(&mut h);
     assert!(h.state().pocket.error.is_none(), "{:?}", h.state().pocket.error);
     let p = pocket_result(&h);
-    assert!(!p.rings.is_empty());
-    let n = p.rings.len();
+    let n = p.report.rings().len();
+    assert!(n > 0);
     assert!(shows(&h, &if n == 1 { "1 ring".to_owned() } else { format!("{n} rings") }), "{n} rings");
     assert!(shows(&h, "offset"), "the ring table");
     // a self-intersecting bow tie
@@ -55,13 +56,11 @@ fn pocket_tab_shows_the_rings_and_reports_a_bad_polygon() {
 
 #[test]
 fn pocket_tab_plans_the_medial_axis_strategy_for_the_whole_pocket() {
-    use trochoplan_core::corner::CornerMethod;
     use trochoplan_core::engagement::parse_points;
     use trochoplan_core::geom::Polygon;
-    use trochoplan_core::pocket::{self, PocketRequest, PocketStrategy};
+    use trochoplan_core::pocket::{self, PocketRequest};
     let mut h = pocket_harness();
-    h.state_mut().state.pocket.adaptive = false;
-    h.state_mut().state.pocket.method = CornerMethod::MedialAxis;
+    h.state_mut().state.pocket.strategy = PocketStrategy::MedialAxis;
     h.run();
     wait_for_pocket(&mut h);
     assert!(h.state().pocket.error.is_none(), "{:?}", h.state().pocket.error);
@@ -79,8 +78,12 @@ fn pocket_tab_plans_the_medial_axis_strategy_for_the_whole_pocket() {
     };
     let PocketPlan::MedialAxis(want) = pocket::plan(&req).unwrap() else { panic!("medial-axis plan expected") };
     assert_eq!(want.path.segments(), plan.path.segments());
-    assert!(shows(&h, &p.detail), "{}", p.detail);
-    assert!(p.detail.contains(&format!("{} circles along the medial axis", want.circles.len())), "{}", p.detail);
+    assert!(shows(&h, &p.report.detail()), "{}", p.report.detail());
+    assert!(
+        p.report.detail().contains(&format!("{} circles along the medial axis", want.circles.len())),
+        "{}",
+        p.report.detail()
+    );
 }
 
 #[test]
@@ -106,7 +109,7 @@ fn pocket_tab_plans_adaptive_clearing() {
     let mut h = pocket_harness();
     wait_for_pocket(&mut h);
     // adaptive clearing is the default
-    assert!(h.state().state.pocket.adaptive);
+    assert_eq!(h.state().state.pocket.strategy, PocketStrategy::Adaptive);
     assert!(h.state().pocket.error.is_none(), "{:?}", h.state().pocket.error);
     let p = pocket_result(&h);
     let PocketPlan::Adaptive(plan) = &p.plan else { panic!("adaptive plan expected") };
@@ -114,8 +117,12 @@ fn pocket_tab_plans_adaptive_clearing() {
     let req = h.state().state.pocket.request().unwrap();
     let PocketPlan::Adaptive(want) = pocket::plan(&req).unwrap() else { panic!("adaptive plan expected") };
     assert_eq!(want.path.segments(), plan.path.segments());
-    assert!(shows(&h, &p.detail), "{}", p.detail);
-    assert!(p.detail.contains(&format!("{:.0} mm at depth", want.path.measurement.length_at_depth_mm)), "{}", p.detail);
+    assert!(shows(&h, &p.report.detail()), "{}", p.report.detail());
+    assert!(
+        p.report.detail().contains(&format!("{:.0} mm at depth", want.path.measurement.length_at_depth_mm)),
+        "{}",
+        p.report.detail()
+    );
     // one pass, so no ring table: its moves by kind, each row as the core's report of the plan
     let rows = trochoplan_core::report::pocket(&req, &PocketPlan::Adaptive(want)).unwrap().by_kind().to_vec();
     assert!(rows.len() >= 4, "helix entry, rings, corners, finish at least: {rows:?}");
@@ -144,7 +151,7 @@ fn pocket_tab_takes_open_edges() {
     let PocketPlan::Adaptive(plan) = &p.plan else { panic!("adaptive plan expected") };
     assert_eq!(plan.open_edges, vec![0]);
     assert!(matches!(plan.parts[0].entry, Entry::Outside { .. }), "{:?}", plan.parts[0].entry);
-    assert!(shows(&h, &p.detail) && p.detail.starts_with("outside entry"), "{}", p.detail);
+    assert!(shows(&h, &p.report.detail()) && p.report.detail().starts_with("outside entry"), "{}", p.report.detail());
     h.state_mut().state.pocket.open_edges = "0, x".to_owned();
     h.run();
     let e = h.state().pocket.error.clone().expect("a bad list is an error");
@@ -187,26 +194,24 @@ fn pocket_export_previews_the_core_program_and_saves_it() {
     assert!(!is_err && status.starts_with("exported"), "{status}");
 }
 
-/// While adaptive clearing is ticked the method buttons are disabled and none is shown chosen;
-/// unticked, the chosen method is shown again and a click plans with it.
+/// The strategy row: adaptive clearing is chosen at first and no other strategy is shown
+/// chosen; a click on another plans with it and moves the selection there.
 #[test]
-fn pocket_method_row_follows_the_adaptive_box() {
+fn pocket_strategy_row_shows_and_sets_the_strategy() {
     use egui_kittest::kittest::NodeT;
-    use trochoplan_core::corner::CornerMethod;
     let mut h = pocket_harness();
-    assert!(h.state().state.pocket.adaptive);
-    let selected = |h: &Harness<'_, App>, m: CornerMethod| {
-        h.get_by_label(m.label()).accesskit_node().toggled() == Some(egui::accesskit::Toggled::True)
+    let selected = |h: &Harness<'_, App>, s: PocketStrategy| {
+        h.get_by_label(s.label()).accesskit_node().toggled() == Some(egui::accesskit::Toggled::True)
     };
-    assert!(CornerMethod::ALL.iter().all(|&m| !selected(&h, m)), "no method shown while adaptive");
-    h.get_by_label(label::POCKET_ADAPTIVE).click();
-    h.run();
-    assert!(selected(&h, h.state().state.pocket.method), "the chosen method shown");
-    h.get_by_label(CornerMethod::Isometric.label()).click();
+    let only = |h: &Harness<'_, App>, chosen: PocketStrategy| {
+        PocketStrategy::ALL.iter().all(|&s| selected(h, s) == (s == chosen))
+    };
+    assert!(only(&h, PocketStrategy::Adaptive), "adaptive alone shown chosen");
+    let iso = PocketStrategy::Rings(CornerMethod::Isometric);
+    h.get_by_label(iso.label()).click();
     h.run();
     wait_for_pocket(&mut h);
-    assert_eq!(h.state().state.pocket.method, CornerMethod::Isometric);
-    assert!(selected(&h, CornerMethod::Isometric));
-    let want = trochoplan_core::pocket::PocketStrategy::from_method(CornerMethod::Isometric).name();
-    assert_eq!(pocket_result(&h).method, want);
+    assert_eq!(h.state().state.pocket.strategy, iso);
+    assert!(only(&h, iso), "isometric alone shown chosen");
+    assert_eq!(pocket_result(&h).method, iso.name());
 }

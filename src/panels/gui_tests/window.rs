@@ -114,8 +114,11 @@ fn a_state_stored_with_the_corner_tabs_pocket_mode_opens_on_the_pocket_tab() {
     assert_eq!(loaded.view.tab, Tab::Pocket, "the pocket was shown: the Pocket tab is");
     let p = &loaded.inputs.pocket;
     assert_eq!(p.polygon_text, "0,0\n50,0\n50,30\n0,30\n");
-    assert_eq!((p.method, p.tool_diameter_mm, p.step_over_mm), (CornerMethod::MedialAxis, 8.0, 2.0));
-    assert_eq!((p.adaptive, p.open_edges.as_str()), (false, "1"));
+    assert_eq!(
+        (p.strategy, p.tool_diameter_mm, p.step_over_mm),
+        (trochoplan_core::pocket::PocketStrategy::MedialAxis, 8.0, 2.0)
+    );
+    assert_eq!(p.open_edges, "1");
     assert_eq!(loaded.inputs.pocket_nc, corner_nc, "exported with the Corner tab's settings");
     let c = &loaded.inputs.corner;
     assert_eq!((c.mode, c.angle_deg, c.tool_diameter_mm), (panels::corner::CornerMode::Corner, 75.0, 8.0));
