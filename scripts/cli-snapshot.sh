@@ -218,7 +218,7 @@ invocations() {
     run corner-invalid-angle180 --expect 2 corner --angle 180
     run corner-table-with-export --expect 2 corner --table --export @P.ngc
 
-    # --- pocket: rectangle and L, plain / variable / isometric / medial axis, exports
+    # --- pocket: rectangle and L, adaptive / plain / variable / isometric / medial axis, exports
     for j in rect l-shape; do
         for d in adaptive plain variable isometric medial-axis; do
             run "pocket-$j-$d" pocket --polygon "inputs/$j.txt" --method "$d"

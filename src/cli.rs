@@ -89,8 +89,9 @@ enum Command {
         #[command(flatten)]
         args: engagement::EngagementArgs,
     },
-    /// Clear a polygonal pocket by contour-parallel rings; print JSON (rings, path length,
-    /// time, engagement per ring measured by the evaluator).
+    /// Clear a polygonal pocket (adaptive clearing by default, or rings with a corner method, or
+    /// the medial axis); print JSON (path, time, engagement of every move measured by the
+    /// evaluator, per kind of move).
     Pocket {
         #[command(flatten)]
         args: pocket::PocketArgs,
