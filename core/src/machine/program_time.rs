@@ -133,9 +133,10 @@ pub fn program_time(moves: &[Move], m: &Machine, default_feed_mm_per_min: f64) -
         match class(mv) {
             Class::Feed => {
                 let f = feed_of(k, mv)?;
-                // a joint that is not connected (never in a program read back) starts a new run
+                // a gap wider than the path tolerance (never in a program, whose arcs read back
+                // end within rounding of the next block's start) starts a new run
                 if let Some(last) = segs.last()
-                    && (last.end() - mv.segment.start()).norm() > 1e-6
+                    && (last.end() - mv.segment.start()).norm() > m.path_tolerance
                 {
                     flush(&mut segs, &mut feeds, &mut out, &mut held_s);
                 }
