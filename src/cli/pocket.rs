@@ -25,7 +25,7 @@ pub struct PocketArgs {
     #[arg(long, value_name = "FILE")]
     polygon: PathBuf,
     /// Machine preset (hobby-router, vmc, hsc) for the real time of the pocket's program
-    /// (docs/process-model.md): every move its --export program makes at --depth — helix or
+    /// (docs/process-model.md): every move its --export program makes at --depth (6 mm without --export) — helix or
     /// ramp, moves at depth, retracts and rapids — timed with the machine's acceleration, jerk
     /// and rapid rate. Adds `machine`, `time_real_s`, `feed_held_share` and `real_time` (by kind
     /// of move) to the JSON.
