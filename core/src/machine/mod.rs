@@ -12,7 +12,7 @@ pub mod program_time;
 use crate::error::{Error, Param, num};
 use serde::{Deserialize, Serialize};
 
-pub use planner::{FeedPoint, FeedProfile, RealTime, path_real_time, real_time};
+pub use planner::{FeedPoint, FeedProfile, RealTime, real_time};
 pub use program_time::{CutHeights, ProgramTime, program_moves, program_time, toolpath_time};
 
 /// The limits of one machine. Keys (TOML, kebab-case) are the job file's `[machine]` keys.
