@@ -70,6 +70,8 @@ pub enum Param {
     BlockTime,
     /// Machine: smallest feed the controller runs and the program writes (mm/min).
     MinFeed,
+    /// Machine: rate of rapid moves (G0) (mm/min).
+    RapidFeed,
     MaxHmax,
     MaxEngagement,
     MaxWaviness,
@@ -116,7 +118,7 @@ pub enum Param {
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 74] = [
+    pub const ALL: [Param; 75] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
@@ -164,6 +166,7 @@ impl Param {
         Param::PathTolerance,
         Param::BlockTime,
         Param::MinFeed,
+        Param::RapidFeed,
         Param::MaxHmax,
         Param::MaxEngagement,
         Param::MaxWaviness,
@@ -244,6 +247,7 @@ impl Param {
             Param::PathTolerance => "path-tolerance",
             Param::BlockTime => "block-time",
             Param::MinFeed => "min-feed",
+            Param::RapidFeed => "rapid-feed",
             Param::MaxHmax => "max-hmax",
             Param::MaxEngagement => "max-engagement",
             Param::MaxWaviness => "max-waviness",
@@ -324,6 +328,7 @@ impl Param {
             Param::PathTolerance => "Machine path tolerance",
             Param::BlockTime => "Machine block time",
             Param::MinFeed => "Machine minimum feed",
+            Param::RapidFeed => "Machine rapid rate",
             Param::MaxHmax => "Limit h_max",
             Param::MaxEngagement => "Limit engagement",
             Param::MaxWaviness => "Limit waviness W_max",

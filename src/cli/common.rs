@@ -7,7 +7,9 @@ use crate::shared::nc::{NcChoices, cut_setup};
 use clap::Args;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
+use trochoplan_core::machine::{CutHeights, Machine, toolpath_time};
 use trochoplan_core::nc::{CutSetup, DEFAULT_TOLERANCE_MM, Dialect, NcOptions, NcProgram};
+use trochoplan_core::toolpath::Toolpath;
 use trochoplan_core::{Error, Param};
 
 use super::core_names;
@@ -98,6 +100,31 @@ struct WithExport<'a, T: Serialize> {
 /// The JSON text of `report` with the export's block.
 pub fn report_json<T: Serialize>(report: &T, nc_export: Option<NcExportOut>) -> Result<String, String> {
     json_text(&WithExport { report, nc_export })
+}
+
+/// The JSON `text` of a corner or pocket report with the real time of its program on machine
+/// preset `name` (`--machine`): the moves its `--export` program makes (at `--depth`, the safe
+/// height of the NC options; entries, retracts and rapids included) timed by the core's
+/// `machine::toolpath_time`. Adds `machine`, `time_real_s` (the whole program),
+/// `feed_held_share` (of the time at feed) and `real_time` (the time and length by kind of move).
+pub fn with_real_time(
+    text: &str,
+    path: &Toolpath,
+    nc: &CornerExportArgs,
+    feed_mm_per_min: f64,
+    name: &str,
+) -> Result<String, String> {
+    let m = Machine::preset(name).map_err(err)?;
+    let heights = CutHeights { depth_mm: nc.depth, safe_z_mm: nc.options().safe_z_mm };
+    let t = toolpath_time(path, heights, feed_mm_per_min, &m).map_err(err)?;
+    let mut v: serde_json::Value = serde_json::from_str(text).map_err(|e| e.to_string())?;
+    if let Some(obj) = v.as_object_mut() {
+        obj.insert("machine".into(), name.into());
+        obj.insert("time_real_s".into(), t.total_s.into());
+        obj.insert("feed_held_share".into(), t.feed_held_share.into());
+        obj.insert("real_time".into(), serde_json::to_value(t).map_err(|e| e.to_string())?);
+    }
+    json_text(&v)
 }
 
 /// Pretty JSON with a final newline.

@@ -2,7 +2,7 @@
 //! evaluator (JSON: the core's [`report::corner`]), or the acceptance table (Markdown with
 //! `--table`). Degrees at this edge, radians in the core.
 
-use super::common::{CornerExportArgs, NcExportOut, err, report_json, write_program};
+use super::common::{CornerExportArgs, NcExportOut, err, report_json, with_real_time, write_program};
 use super::core_names;
 use clap::Args;
 use trochoplan_core::corner::acceptance::{acceptance_table, markdown};
@@ -70,6 +70,13 @@ pub struct CornerArgs {
     /// corner point (reads π − angle there). 0, or 0.001 to 1.
     #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = CornerRequest::DEFAULT.corner_tolerance_mm)]
     corner_tolerance: f64,
+    /// Machine preset (hobby-router, vmc, hsc) for the real time of the corner's program
+    /// (docs/process-model.md): the moves its --export program makes at --depth (6 mm without --export; straight down
+    /// at the start, the ring piece, the retract) timed with the machine's acceleration, jerk
+    /// and rapid rate. Adds `machine`, `time_real_s`, `feed_held_share` and `real_time` (by kind
+    /// of move) to the JSON.
+    #[arg(long, value_name = "NAME")]
+    machine: Option<String>,
     #[command(flatten)]
     nc: CornerExportArgs,
 }
@@ -111,6 +118,10 @@ pub fn corner(args: &CornerArgs) -> Result<String, String> {
             req.settings().map_err(err)?; // an invalid input is named first
             return Err("--export writes one corner's program; it cannot be combined with --table".into());
         }
+        if args.machine.is_some() {
+            req.settings().map_err(err)?;
+            return Err("--machine times one corner's program; it cannot be combined with --table".into());
+        }
         return Ok(markdown(&acceptance_table(&req).map_err(err)?));
     }
     let evaluated = evaluate(&req).map_err(err)?;
@@ -118,7 +129,11 @@ pub fn corner(args: &CornerArgs) -> Result<String, String> {
         Some(file) => Some(export_corner(&args.nc, file, &evaluated)?),
         None => None,
     };
-    report_json(&report::corner(&evaluated).map_err(err)?, nc_export)
+    let text = report_json(&report::corner(&evaluated).map_err(err)?, nc_export)?;
+    match &args.machine {
+        Some(name) => with_real_time(&text, &evaluated.plan.toolpath, &args.nc, args.feed, name),
+        None => Ok(text),
+    }
 }
 
 #[cfg(test)]
@@ -163,6 +178,25 @@ mod tests {
         let (m, p) =
             (v["max_engagement_deg"].as_f64().expect("max"), v["plain_max_engagement_deg"].as_f64().expect("plain"));
         assert!(m < p, "{m} vs plain {p}");
+    }
+
+    /// `--machine`: the program's moves timed on the preset; the part at feed takes at least
+    /// the ring piece's time at the programmed feed (`time_s`), the Z moves are the way down from the safe height
+    /// 5 to the depth 6 and back up (2 × 11 mm).
+    #[test]
+    fn machine_times_the_corner_program() {
+        let text = corner(&corner_args(&["--spacing", "1", "--machine", "vmc"])).expect("plan");
+        let v: serde_json::Value = serde_json::from_str(&text).expect("json");
+        // the corner's time at the programmed feed: its path length / feed
+        let at_feed = v["time_s"].as_f64().expect("time");
+        let feed_s = v["real_time"]["feed_s"].as_f64().expect("feed_s");
+        assert!(feed_s >= at_feed * (1.0 - 1e-9) && feed_s < 1.1 * at_feed, "{feed_s} vs {at_feed}");
+        assert!((v["real_time"]["vertical_length_mm"].as_f64().expect("vertical") - 22.0).abs() < 1e-9);
+        assert!(v["time_real_s"].as_f64().expect("total") > feed_s);
+        let e = corner(&corner_args(&["--machine", "lathe"])).expect_err("unknown preset");
+        assert!(e.contains("machine") && e.contains("vmc"), "{e}");
+        let e = corner(&corner_args(&["--machine", "vmc", "--table"])).expect_err("one corner");
+        assert!(e.contains("--machine"), "{e}");
     }
 
     #[test]

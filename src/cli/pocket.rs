@@ -1,7 +1,7 @@
 //! `trochoplan pocket`: a polygonal pocket planned by the core (`pocket::plan`) and printed as
 //! the core's [`report::pocket`] (JSON), with the NC export and the real time on a machine.
 
-use super::common::{CornerExportArgs, NcExportOut, err, json_text, report_json, write_program};
+use super::common::{CornerExportArgs, NcExportOut, err, report_json, with_real_time, write_program};
 use super::core_names;
 use crate::shared::outline::read_single;
 use clap::Args;
@@ -24,8 +24,11 @@ pub struct PocketArgs {
     /// at most 20000 vertices. Full rules: docs/outlines.md.
     #[arg(long, value_name = "FILE")]
     polygon: PathBuf,
-    /// Machine preset for the real time at depth (docs/process-model.md): adds `time_real_s` and
-    /// `feed_held_share` to the JSON.
+    /// Machine preset (hobby-router, vmc, hsc) for the real time of the pocket's program
+    /// (docs/process-model.md): every move its --export program makes at --depth (6 mm without --export) — helix or
+    /// ramp, moves at depth, retracts and rapids — timed with the machine's acceleration, jerk
+    /// and rapid rate. Adds `machine`, `time_real_s`, `feed_held_share` and `real_time` (by kind
+    /// of move) to the JSON.
     #[arg(long, value_name = "NAME")]
     machine: Option<String>,
     /// Tool diameter D (mm).
@@ -128,7 +131,7 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
     };
     let text = report_json(&report::pocket(&req, &plan).map_err(err)?, nc_export)?;
     match &args.machine {
-        Some(name) => with_real_time(&text, &plan, name, args.feed),
+        Some(name) => with_real_time(&text, plan.toolpath(), &args.nc, args.feed, name),
         None => Ok(text),
     }
 }
@@ -138,21 +141,6 @@ fn export_pocket(nc: &CornerExportArgs, file: &std::path::Path, plan: &PocketPla
     let opts = nc.options();
     let prog = pocket_program(plan, nc.cut_setup(), &opts).map_err(err)?;
     write_program(file, &prog, &opts)
-}
-
-/// The pocket JSON `text` with the real time at depth on machine `name`.
-fn with_real_time(text: &str, plan: &PocketPlan, name: &str, feed: f64) -> Result<String, String> {
-    use trochoplan_core::machine::{Machine, path_real_time, planner::Dynamics};
-    let m = Machine::preset(name).map_err(err)?;
-    let (segments, retracts) = plan.tool_path();
-    let (t, held) = path_real_time(&segments, &retracts, feed, &Dynamics::of(&m));
-    let mut v: serde_json::Value = serde_json::from_str(text).map_err(|e| e.to_string())?;
-    if let Some(obj) = v.as_object_mut() {
-        obj.insert("machine".into(), name.into());
-        obj.insert("time_real_s".into(), t.into());
-        obj.insert("feed_held_share".into(), held.into());
-    }
-    json_text(&v)
 }
 
 #[cfg(test)]

@@ -7,11 +7,13 @@
 //! programmed feed everywhere): real and programmed times are then equal.
 
 pub mod planner;
+pub mod program_time;
 
 use crate::error::{Error, Param, num};
 use serde::{Deserialize, Serialize};
 
-pub use planner::{FeedPoint, FeedProfile, RealTime, path_real_time, real_time};
+pub use planner::{FeedPoint, FeedProfile, RealTime, real_time};
+pub use program_time::{CutHeights, ProgramTime, program_moves, program_time, toolpath_time};
 
 /// The limits of one machine. Keys (TOML, kebab-case) are the job file's `[machine]` keys.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -43,6 +45,11 @@ pub struct Machine {
     /// take [`DEFAULT_MIN_FEED_MM_PER_MIN`].
     #[serde(default = "default_min_feed")]
     pub min_feed: f64,
+    /// Rate of rapid moves (G0) of every axis (mm/min), with the axes' acceleration and jerk
+    /// ([`program_time`]). Job files without it take the slower axis's maximum feed
+    /// (GRBL runs G0 at the axes' maximum rates).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rapid_feed: Option<f64>,
 }
 
 /// Block time of a machine that does not state one, and of the ideal machine (s): the `vmc`
@@ -88,7 +95,7 @@ impl Machine {
     }
 
     /// The parameters of a machine: its name and every limit (job keys, GUI error lines).
-    pub const PARAMS: [Param; 10] = [
+    pub const PARAMS: [Param; 11] = [
         Param::Machine,
         Param::MaxFeedX,
         Param::MaxFeedY,
@@ -99,6 +106,7 @@ impl Machine {
         Param::PathTolerance,
         Param::BlockTime,
         Param::MinFeed,
+        Param::RapidFeed,
     ];
 
     /// Check every limit: finite and > 0, and each axis's maximum feed at least the minimum
@@ -114,13 +122,18 @@ impl Machine {
             (Param::JerkY, self.jerk_y, 1.0e9, "mm/s³"),
             (Param::PathTolerance, self.path_tolerance, 10.0, "mm"),
             (Param::BlockTime, self.block_time, 1.0, "s"),
+            (Param::RapidFeed, self.rapid_mm_per_min(), MAX_FEED_LIMIT_MM_PER_MIN, "mm/min"),
         ];
         for (param, v, max, unit) in checks {
             if !(v.is_finite() && v > 0.0 && v <= max) {
                 return Err(Error::param(param, v, format!("a finite number > 0 and ≤ {} {unit}", num(max))));
             }
         }
-        for (param, v) in [(Param::MaxFeedX, self.max_feed_x), (Param::MaxFeedY, self.max_feed_y)] {
+        for (param, v) in [
+            (Param::MaxFeedX, self.max_feed_x),
+            (Param::MaxFeedY, self.max_feed_y),
+            (Param::RapidFeed, self.rapid_mm_per_min()),
+        ] {
             if v < self.min_feed {
                 return Err(Error::param(
                     param,
@@ -134,6 +147,11 @@ impl Machine {
             }
         }
         Ok(())
+    }
+
+    /// Rate of rapid moves (mm/min): `rapid-feed`, else the slower axis's maximum feed.
+    pub fn rapid_mm_per_min(&self) -> f64 {
+        self.rapid_feed.unwrap_or(self.max_feed_x.min(self.max_feed_y))
     }
 
     /// Path feed limit (mm/s): the slower axis, as LinuxCNC bounds a move in the XY plane.
@@ -204,7 +222,7 @@ mod tests {
     fn bad_limits_are_rejected_by_name() {
         let good = Machine::preset("vmc").expect("vmc");
         type Setter = fn(&mut Machine, f64);
-        let cases: [(Setter, Param); 9] = [
+        let cases: [(Setter, Param); 10] = [
             (|m, v| m.max_feed_x = v, Param::MaxFeedX),
             (|m, v| m.max_feed_y = v, Param::MaxFeedY),
             (|m, v| m.acceleration_x = v, Param::AccelerationX),
@@ -214,6 +232,7 @@ mod tests {
             (|m, v| m.path_tolerance = v, Param::PathTolerance),
             (|m, v| m.block_time = v, Param::BlockTime),
             (|m, v| m.min_feed = v, Param::MinFeed),
+            (|m, v| m.rapid_feed = Some(v), Param::RapidFeed),
         ];
         for (set, param) in cases {
             for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
@@ -251,5 +270,7 @@ mod tests {
                     acceleration-y = 1.0\njerk-x = 1.0\njerk-y = 1.0\npath-tolerance = 0.01\n";
         let m: Machine = toml::from_str(text).expect("parse");
         assert_eq!(m.min_feed, DEFAULT_MIN_FEED_MM_PER_MIN);
+        // and rapids at the slower axis's feed
+        assert_eq!((m.rapid_feed, m.rapid_mm_per_min()), (None, 100.0));
     }
 }

@@ -452,31 +452,6 @@ pub fn real_time(
     }
 }
 
-/// Real time of a non-periodic tool path (a pocket) at one feed: each run of segments between
-/// two retracts (`retract_before`: indices of the segments reached by retract, rapid and
-/// plunge) is planned from rest to rest; the rapids and plunges are not counted. Returns
-/// (time at depth in s, share of that time at the programmed feed).
-pub fn path_real_time(
-    segments: &[Segment],
-    retract_before: &[usize],
-    feed_mm_per_min: f64,
-    d: &Dynamics,
-) -> (f64, f64) {
-    let mut cuts: Vec<usize> = retract_before.iter().copied().filter(|&i| i > 0 && i < segments.len()).collect();
-    cuts.sort_unstable();
-    cuts.dedup();
-    let (mut time, mut held) = (0.0, 0.0);
-    let mut start = 0;
-    for end in cuts.into_iter().chain(std::iter::once(segments.len())) {
-        let run = &segments[start..end];
-        let profile = plan_feed(run, &vec![feed_mm_per_min; run.len()], d);
-        time += profile.time_s();
-        held += profile.held_share() * profile.time_s();
-        start = end;
-    }
-    (time, if time > 0.0 { held / time } else { 1.0 })
-}
-
 #[cfg(test)]
 #[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 mod tests {
@@ -495,20 +470,6 @@ mod tests {
         let p = plan_feed(&line, &[6000.0], &d);
         assert!((p.points[p.points.len() / 2].feed_mm_per_min - 3000.0).abs() < 1e-6);
         assert_eq!(p.held_share(), 0.0);
-    }
-
-    #[test]
-    fn a_path_in_two_runs_stops_between_them() {
-        // Two 100 mm lines separated by a retract: each takes 1.1 s without jerk (see below).
-        let segs = [
-            Segment::Line { start: p2(0.0, 0.0), end: p2(100.0, 0.0) },
-            Segment::Line { start: p2(0.0, 10.0), end: p2(100.0, 10.0) },
-        ];
-        let d = Dynamics { j_tangential: None, ..dynamics(1000.0, 1e4) };
-        let (t, held) = path_real_time(&segs, &[1], 6000.0, &d);
-        assert!((t - 2.2).abs() < 4e-3, "{t}");
-        // Cruise 90 of 110 ms-weighted: 0.9 s of 1.1 s at feed.
-        assert!((held - 0.9 / 1.1).abs() < 0.01, "{held}");
     }
 
     #[test]
