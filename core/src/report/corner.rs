@@ -1,6 +1,6 @@
-//! The report of one planned corner ([`corner()`]): the strategy's circles, length, time,
-//! the evaluator's peak and where, per kind of move, the way into the corner point, and the
-//! plain ring it is compared with.
+//! The report of one planned corner ([`corner()`]): the strategy's circles, length, time; from
+//! its measurement the peak and where, each kind of move's maximum and the air; the way into
+//! the corner point, and the plain ring it is compared with.
 
 use super::{KindRow, hmax_per_fz, xy};
 use crate::corner::CornerReport;
