@@ -151,8 +151,8 @@ pub fn compute(i: &CornerInputs) -> Result<CornerResult, String> {
             })
             .collect(),
         path: segment_points(&report.plan.toolpath.segments(), MAX_PATH_POINTS),
-        profile: profile_points(&report.profile),
-        plain_profile: profile_points(&report.plain_profile),
+        profile: profile_points(&report.measurement.profile),
+        plain_profile: profile_points(&report.plain_measurement.profile),
         report,
     })
 }

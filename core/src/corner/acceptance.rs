@@ -117,12 +117,12 @@ pub fn acceptance_rows_at(
 ) -> Result<Vec<AcceptanceRow>, Error> {
     let sc = symmetric_scenario(angle_deg, settings)?;
     let opts = EvaluatorOptions::new(settings.tool_radius, spacing);
-    let (plain, plain_prof) = measured(&sc, CornerMethod::Plain, &opts)?;
+    let (plain, plain_measurement) = measured(&sc, CornerMethod::Plain, &opts)?;
     methods
         .iter()
         .map(|&method| {
-            let (plan, prof) = measured(&sc, method, &opts)?;
-            Ok(row(angle_deg, method, &sc.corner, settings, (&plan, &prof), (&plain, &plain_prof)))
+            let (plan, m) = measured(&sc, method, &opts)?;
+            Ok(row(angle_deg, method, &sc.corner, settings, (&plan, &m.profile), (&plain, &plain_measurement.profile)))
         })
         .collect()
 }

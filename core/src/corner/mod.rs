@@ -8,9 +8,9 @@
 //! the pocket on the left, circles are counter-clockwise (G3): climb milling with an M3 spindle.
 //!
 //! Entry point: [`evaluate`] — a [`CornerRequest`] in, a [`CornerReport`] out (the strategy's
-//! plan and the plain ring, both measured, and their acceptance row); used by the GUI and the
-//! CLI. Whole pockets are planned by the pocket module, which comes after this one
-//! (docs/architecture.md, module order).
+//! plan and the plain ring, each with its [`crate::engagement::Measurement`], and their
+//! acceptance row); used by the GUI and the CLI. Whole pockets are planned by the pocket
+//! module, which comes after this one (docs/architecture.md, module order).
 //!
 //! Modules:
 //! - [`method`]: the corner strategies and their names.

@@ -8,9 +8,7 @@ use super::limits::tool_diameter;
 use super::method::CornerMethod;
 use super::point::{DEFAULT_CORNER_TOLERANCE_MM, validate_corner_tolerance};
 use super::strategy::{CornerPlan, CornerScenario, CornerSettings, DEFAULT_T1, plan_corner};
-use crate::engagement::AIR_ENGAGEMENT_RAD;
-use crate::engagement::KindMax;
-use crate::engagement::{EngagementProfile, EvaluatorOptions, engagement_profile};
+use crate::engagement::{EvaluatorOptions, KindMax, Measurement, Stock, measure};
 use crate::engagement::{radial_depth_for_engagement, straight_engagement};
 use crate::error::{Error, Param, num};
 use crate::geom::mirror::{flip_y, flip_y_segment, flipped_y_polygon};
@@ -147,12 +145,12 @@ pub struct CornerReport {
     pub angle_deg: f64,
     /// The corner, its validated settings and the material the previous ring left.
     pub scenario: CornerScenario,
-    /// The requested strategy's plan and its engagement, measured by the evaluator.
+    /// The requested strategy's plan and its [`measure`]ment over the plan's material model.
     pub plan: CornerPlan,
-    pub profile: EngagementProfile,
-    /// The plain ring of the same corner and its engagement.
+    pub measurement: Measurement,
+    /// The plain ring of the same corner and its measurement.
     pub plain: CornerPlan,
-    pub plain_profile: EngagementProfile,
+    pub plain_measurement: Measurement,
     /// Body / tip split and pass flags of the plan ([`acceptance::row`]).
     pub row: AcceptanceRow,
 }
@@ -165,8 +163,8 @@ impl CornerReport {
 
     /// Per kind of move (U and V legs, circles, links, corner-point arcs or the tip): the
     /// largest engagement measured and where, and the length.
-    pub fn by_kind(&self) -> Vec<KindMax> {
-        crate::engagement::maxima(&self.profile, &self.plan.toolpath.segments(), &self.plan.toolpath.kinds())
+    pub fn by_kind(&self) -> &[KindMax] {
+        &self.measurement.maxima
     }
 
     /// Length of the moves along U between circles and of the isometric return (mm).
@@ -177,7 +175,7 @@ impl CornerReport {
 
     /// Length of the moves that engage less than 1° (mm).
     pub fn air_length_mm(&self) -> f64 {
-        self.profile.air_length_mm(AIR_ENGAGEMENT_RAD)
+        self.measurement.air_length_mm
     }
 }
 
@@ -203,11 +201,17 @@ pub fn evaluate(req: &CornerRequest) -> Result<CornerReport, Error> {
     let angle_deg = finite(Param::Angle, req.angle_deg)?;
     let scenario = symmetric_scenario(angle_deg, settings)?;
     let opts = EvaluatorOptions::new(settings.tool_radius, req.spacing_mm);
-    let (plan, profile) = measured(&scenario, req.method, &opts)?;
-    let (plain, plain_profile) = measured(&scenario, CornerMethod::Plain, &opts)?;
-    let row =
-        acceptance::row(angle_deg, req.method, &scenario.corner, settings, (&plan, &profile), (&plain, &plain_profile));
-    let report = CornerReport { angle_deg, scenario, plan, profile, plain, plain_profile, row };
+    let (plan, measurement) = measured(&scenario, req.method, &opts)?;
+    let (plain, plain_measurement) = measured(&scenario, CornerMethod::Plain, &opts)?;
+    let row = acceptance::row(
+        angle_deg,
+        req.method,
+        &scenario.corner,
+        settings,
+        (&plan, &measurement.profile),
+        (&plain, &plain_measurement.profile),
+    );
+    let report = CornerReport { angle_deg, scenario, plan, measurement, plain, plain_measurement, row };
     match req.direction {
         Direction::Climb => Ok(report),
         Direction::Conventional => report.mirrored(),
@@ -218,7 +222,8 @@ impl CornerReport {
     /// Conventional milling: the report reflected in the corner's bisector
     /// (the x axis, y → −y: the same corner, walls swapped): every circle and the ring turn
     /// clockwise, the engagement is the climb plan's (a reflection of tool, path and stock
-    /// leaves every engaged angle unchanged), the acceptance row the same.
+    /// leaves every engaged angle unchanged) at the reflected places, the acceptance row the
+    /// same.
     fn mirrored(mut self) -> Result<CornerReport, Error> {
         let sc = &mut self.scenario;
         let c = sc.corner;
@@ -234,7 +239,9 @@ impl CornerReport {
         for p in [&mut sc.ring_start, &mut sc.corner_point, &mut sc.ring_end] {
             *p = flip_y(*p);
         }
-        for (plan, profile) in [(&mut self.plan, &mut self.profile), (&mut self.plain, &mut self.plain_profile)] {
+        for (plan, measurement) in
+            [(&mut self.plan, &mut self.measurement), (&mut self.plain, &mut self.plain_measurement)]
+        {
             for circle in &mut plan.circles {
                 circle.tool_circle.center = flip_y(circle.tool_circle.center);
             }
@@ -243,8 +250,11 @@ impl CornerReport {
             }
             plan.stock = flipped_y_polygon(&plan.stock)?;
             plan.precut = plan.precut.iter().map(flip_y_segment).collect();
-            for s in &mut profile.samples {
+            for s in &mut measurement.profile.samples {
                 s.y_mm = -s.y_mm;
+            }
+            for m in &mut measurement.maxima {
+                m.at = flip_y(m.at);
             }
         }
         Ok(self)
@@ -257,15 +267,16 @@ pub(super) fn symmetric_scenario(angle_deg: f64, settings: CornerSettings) -> Re
     CornerScenario::new(Corner::symmetric(angle_deg.to_radians())?, settings)
 }
 
-/// The plan of `method` in the scenario and its engagement over the plan's material model.
+/// The plan of `method` in the scenario and its measurement over the plan's material model
+/// (its stock polygon with the previous ring cut).
 pub(super) fn measured(
     sc: &CornerScenario,
     method: CornerMethod,
     opts: &EvaluatorOptions,
-) -> Result<(CornerPlan, EngagementProfile), Error> {
+) -> Result<(CornerPlan, Measurement), Error> {
     let plan = plan_corner(sc, method)?;
-    let profile = engagement_profile(&plan.stock, &plan.precut, &plan.toolpath.segments(), opts)?;
-    Ok((plan, profile))
+    let measurement = measure(&plan.toolpath, Stock { polygon: &plan.stock, precut: &plan.precut }, opts)?;
+    Ok((plan, measurement))
 }
 
 /// `v` if it is finite, else an error naming `param`.

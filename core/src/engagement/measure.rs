@@ -1,5 +1,5 @@
-//! One measurement of a tool path: the evaluator's profile over the stock with the entries'
-//! bores cut, the largest engagement per kind of move, over everything and its 95th percentile,
+//! One measurement of a tool path: the evaluator's profile over the stock ([`Stock`]: the
+//! polygon, what was cut before, and the entries' bores), the largest engagement per kind of move, over everything and its 95th percentile,
 //! the length at depth and the air (moves below [`AIR_ENGAGEMENT_RAD`]).
 
 use super::evaluator::{EngagementProfile, EvaluatorOptions, engagement_profile};
@@ -93,12 +93,32 @@ impl Measurement {
     }
 }
 
-/// Measure `path` over `stock`: the evaluator's engagement along its moves with the bores of
-/// its entries as cut ([`Toolpath::bores`]), gathered per kind of move.
-pub fn measure(path: &Toolpath, stock: &Polygon, opts: &EvaluatorOptions) -> Result<Measurement, Error> {
+/// The material a tool path is measured over.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Stock<'a> {
+    /// The stock polygon.
+    pub polygon: &'a Polygon,
+    /// Tool-centre paths cut before the tool path (a corner's previous ring and legs); empty for
+    /// a pocket, whose only earlier cuts are its entries' bores.
+    pub precut: &'a [Segment],
+}
+
+impl<'a> Stock<'a> {
+    /// The whole polygon, nothing cut before.
+    pub fn solid(polygon: &'a Polygon) -> Stock<'a> {
+        Stock { polygon, precut: &[] }
+    }
+}
+
+/// Measure `path` over `stock`: the evaluator's engagement along its moves with the stock's
+/// precut and the bores of the path's entries as cut ([`Toolpath::bores`]), gathered per kind
+/// of move.
+pub fn measure(path: &Toolpath, stock: Stock<'_>, opts: &EvaluatorOptions) -> Result<Measurement, Error> {
     let segments = path.segments();
     let kinds = path.kinds();
-    let profile = engagement_profile(stock, &path.bores(), &segments, opts)?;
+    let mut cut = stock.precut.to_vec();
+    cut.extend(path.bores());
+    let profile = engagement_profile(stock.polygon, &cut, &segments, opts)?;
     Ok(measured(profile, &segments, &kinds))
 }
 

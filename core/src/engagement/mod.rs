@@ -4,8 +4,9 @@
 //! - [`evaluator`]: the independent numeric evaluator of any path over any stock polygon;
 //!   CSV tool paths.
 //! - [`nearby`]: the evaluator's spatial index of the swept path and the local stock.
-//! - [`measure`](mod@measure): one [`Measurement`] of a [`crate::toolpath::Toolpath`] — profile, per-kind
-//!   maxima, peak, 95th percentile, length and air.
+//! - [`measure`](mod@measure): one [`Measurement`] of a [`crate::toolpath::Toolpath`] over a
+//!   [`Stock`] — profile, per-kind maxima, peak, 95th percentile, length and air — for pockets
+//!   and corners alike.
 
 pub mod evaluator;
 pub mod measure;
@@ -15,5 +16,7 @@ pub mod nearby;
 pub use evaluator::{
     EngagementProfile, EngagementSample, EvaluatorOptions, engagement_profile, parse_points, polyline,
 };
-pub use measure::{AIR_ENGAGEMENT_RAD, KindMax, Measurement, maxima, measure, measured, peak_and_p95, sample_owners};
+pub use measure::{
+    AIR_ENGAGEMENT_RAD, KindMax, Measurement, Stock, maxima, measure, measured, peak_and_p95, sample_owners,
+};
 pub use model::{MaxEngagement, Turn, TwoCircle, radial_depth_for_engagement, straight_engagement};

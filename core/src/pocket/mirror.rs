@@ -56,7 +56,7 @@ impl PerforativePlan {
 mod tests {
     use super::*;
     use crate::corner::CornerMethod;
-    use crate::engagement::{EvaluatorOptions, engagement_profile};
+    use crate::engagement::{EvaluatorOptions, Stock, engagement_profile, measure};
     use crate::geom::mirror::flip_y;
     use crate::geom::p2;
     use crate::job::Direction;
@@ -159,7 +159,8 @@ mod tests {
     /// `corner --direction conventional`: the report reflected in the bisector; every method's
     /// acceptance row equals climb's, the path is climb's reflected (y → −y) with every arc
     /// turning the other way, and the evaluator measuring the conventional plan again over its
-    /// own stock and precut gives the profile it reports.
+    /// own stock and precut gives the measurement it reports: peak, air and each kind's maximum
+    /// at its reflected place.
     #[test]
     fn conventional_corner_is_the_reflection_of_climb() {
         use crate::corner::{CornerRequest, evaluate};
@@ -177,14 +178,35 @@ mod tests {
                     assert!((sa + sb).abs() < 1e-12);
                 }
             }
-            let own = engagement_profile(
-                &conv.plan.stock,
-                &conv.plan.precut,
-                &conv.plan.toolpath.segments(),
-                &EvaluatorOptions::new(5.0, 0.25),
-            )
-            .expect("profile");
-            assert!((own.max_angle() - conv.profile.max_angle()).abs() < 1e-6, "{method:?}");
+            let stock = Stock { polygon: &conv.plan.stock, precut: &conv.plan.precut };
+            let own = measure(&conv.plan.toolpath, stock, &EvaluatorOptions::new(5.0, 0.25)).expect("measure");
+            let reported = &conv.measurement;
+            assert!((own.max_engagement_rad - reported.max_engagement_rad).abs() < 1e-6, "{method:?}");
+            assert!((own.air_length_mm - reported.air_length_mm).abs() < 1e-6, "{method:?}");
+            // each kind's maximum is where the conventional path has it: a sample of the fresh
+            // profile at that place engages as much. The reflected path is not bit-identical, and
+            // the evaluator finds each edge of the engaged arc to √(2·1e-11/r) ≈ 1.7e-6 rad at
+            // r = 5 (its tangency tolerance, engagement/evaluator.rs): two edges, 3.5e-6 rad.
+            const ANGLE_TOL: f64 = 1e-5;
+            assert_eq!(own.maxima.len(), reported.maxima.len(), "{method:?}");
+            for (o, r) in own.maxima.iter().zip(&reported.maxima) {
+                assert_eq!(o.kind, r.kind, "{method:?}");
+                assert!(
+                    (o.max_rad - r.max_rad).abs() < ANGLE_TOL,
+                    "{method:?} {:?}: {} vs {}",
+                    r.kind,
+                    o.max_rad,
+                    r.max_rad
+                );
+                assert!((o.length_mm - r.length_mm).abs() < 1e-9, "{method:?} {:?}", r.kind);
+                if r.max_rad > 0.0 {
+                    let there = own.profile.samples.iter().any(|smp| {
+                        (crate::geom::P2::new(smp.x_mm, smp.y_mm) - r.at).norm() < 1e-6
+                            && (smp.angle_rad - r.max_rad).abs() < ANGLE_TOL
+                    });
+                    assert!(there, "{method:?} {:?} at {:?}", r.kind, r.at);
+                }
+            }
         }
     }
 }

@@ -3,7 +3,7 @@
 //! and the time derived from them.
 
 use super::PocketSettings;
-use crate::engagement::{EvaluatorOptions, Measurement, measure};
+use crate::engagement::{EvaluatorOptions, Measurement, Stock, measure};
 use crate::error::Error;
 use crate::geom::mirror::mirror_point;
 use crate::geom::{Polygon, Segment};
@@ -38,7 +38,8 @@ impl PocketPath {
         toolpath: Toolpath,
         depth_mm: f64,
     ) -> Result<PocketPath, Error> {
-        let measurement = measure(&toolpath, polygon, &EvaluatorOptions::new(settings.tool_radius, settings.spacing))?;
+        let opts = EvaluatorOptions::new(settings.tool_radius, settings.spacing);
+        let measurement = measure(&toolpath, Stock::solid(polygon), &opts)?;
         let link_length_mm = toolpath.length_of(&[MoveKind::Link]);
         let entry_length_mm = toolpath.entry_length_mm(depth_mm);
         let time_s = (measurement.length_at_depth_mm + entry_length_mm) / settings.feed_mm_per_min * 60.0;

@@ -1,6 +1,6 @@
-//! The report of one planned corner ([`corner()`]): the strategy's circles, length, time,
-//! the evaluator's peak and where, per kind of move, the way into the corner point, and the
-//! plain ring it is compared with.
+//! The report of one planned corner ([`corner()`]): the strategy's circles, length, time; from
+//! its measurement the peak and where, each kind of move's maximum and the air; the way into
+//! the corner point, and the plain ring it is compared with.
 
 use super::{KindRow, hmax_per_fz, xy};
 use crate::corner::CornerReport;
@@ -72,7 +72,8 @@ pub struct CornerTipRow {
 /// The report of an evaluated corner.
 pub fn corner(report: &CornerReport) -> Result<CornerSummary, Error> {
     let s = report.settings();
-    let (plan, mx) = (&report.plan, report.profile.max());
+    let (plan, m) = (&report.plan, &report.measurement);
+    let mx = m.profile.max();
     let by_kind = report.by_kind();
     let tip = by_kind.iter().find(|k| matches!(k.kind, MoveKind::CornerPoint | MoveKind::Tip));
     let rows: Vec<KindRow> = by_kind.iter().map(KindRow::of).collect();
@@ -97,7 +98,7 @@ pub fn corner(report: &CornerReport) -> Result<CornerSummary, Error> {
             .collect(),
         path_length_mm: plan.path_length_mm,
         time_s: plan.time_s,
-        max_engagement_deg: report.profile.max_angle().to_degrees(),
+        max_engagement_deg: m.max_engagement_rad.to_degrees(),
         max_engagement_at: mx.map_or([f64::NAN; 2], |m| [m.x_mm, m.y_mm]),
         length_at_depth_mm: plan.path_length_mm,
         link_length_mm: report.link_length_mm(),
@@ -113,7 +114,7 @@ pub fn corner(report: &CornerReport) -> Result<CornerSummary, Error> {
             hmax_per_fz: tip.map_or(0.0, |t| hmax_per_fz(t.max_rad)),
             limit_deg: report.row.tip_limit_deg,
         },
-        plain_max_engagement_deg: report.plain_profile.max_angle().to_degrees(),
+        plain_max_engagement_deg: report.plain_measurement.max_engagement_rad.to_degrees(),
         plain_path_length_mm: report.plain.path_length_mm,
         notes: plan.notes.clone(),
         path: plan.toolpath.segments(),
