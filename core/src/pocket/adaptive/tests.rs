@@ -515,7 +515,8 @@ fn each_part_plan_is_continuous_and_the_shortest_core_radius_wins() {
     }
     let (least, t_least) = plans.iter().copied().min_by(|a, c| a.0.total_cmp(&c.0)).unwrap();
     let (parts, b) =
-        clear_regions(&[region.clone()], &polygon, &settings(), &options, part.phi, part.rho_fin, None).unwrap();
+        clear_regions(std::slice::from_ref(&region), &polygon, &settings(), &options, part.phi, part.rho_fin, None)
+            .unwrap();
     let length: f64 = b.segments.iter().map(Segment::length).sum();
     assert!((length - least).abs() < 1e-9, "{length} vs {plans:?}");
     assert!((parts[0].core_radius_mm - t_least).abs() < 1e-12);
