@@ -40,3 +40,83 @@ pub(crate) fn grown(core: &Region, k0: P2, s: f64, reach: f64, prev: Option<&Reg
 pub(crate) fn fills(g: &Region, core: &Region) -> bool {
     g.area().abs() >= core.area().abs() * (1.0 - 1e-6)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::p2;
+
+    /// The area of `a` outside `b` (mm²).
+    fn outside(a: &Region, b: &Region) -> f64 {
+        a.boolean(b, BoolOp::Not).iter().map(|p| p.area().abs()).sum()
+    }
+
+    /// The first set is the core cut by the disc: a strip |y − 5| ≤ 5 cut by the disc of
+    /// radius R = 8 about its centre line has area ∫₋₅⁵ 2√(R² − y²) dy = 2(5√(R² − 25) +
+    /// R²·asin(5/R)) = 2(5√39 + 64·asin 0.625) (the disc's ends lie inside the strip's length);
+    /// at the reach (s ≥ `reach`) the set is the whole core.
+    #[test]
+    fn the_first_set_is_the_core_cut_by_the_disc() {
+        let core = Region::polygon(&[p2(0.0, 0.0), p2(40.0, 0.0), p2(40.0, 10.0), p2(0.0, 10.0)]);
+        let g = grown(&core, p2(20.0, 5.0), 8.0, 25.0, None, 1.0).unwrap();
+        let expected = 2.0 * (5.0 * 39.0_f64.sqrt() + 64.0 * 0.625_f64.asin());
+        assert!((g.area().abs() - expected).abs() < 1e-6, "{} vs {expected}", g.area());
+        let all = grown(&core, p2(20.0, 5.0), 25.0, 25.0, None, 1.0).unwrap();
+        assert!((all.area().abs() - 400.0).abs() < 1e-9, "{}", all.area());
+    }
+
+    /// In a U-shaped core (a bar 60 × 10 with two arms 10 wide and 30 long) about the middle of
+    /// the bar, the disc's circle runs nearly along the arms: one step of radius moves the front
+    /// up an arm by far more than a step. Each set then lies within a step of the previous one
+    /// (nothing outside prev ⊕ a·1.001, the rounding the cut allows), contains it (prev is the
+    /// disc's set of a smaller radius, cut to prev ⊖ … ⊕ a: both contain it), and the cut is
+    /// active at least once (the disc's own set reaches farther than a step there).
+    #[test]
+    fn each_set_lies_within_a_step_of_the_previous_and_contains_it() {
+        let core = Region::polygon(&[
+            p2(0.0, 0.0),
+            p2(60.0, 0.0),
+            p2(60.0, 40.0),
+            p2(50.0, 40.0),
+            p2(50.0, 10.0),
+            p2(10.0, 10.0),
+            p2(10.0, 40.0),
+            p2(0.0, 40.0),
+        ]);
+        let (k0, step) = (p2(30.0, 5.0), 1.0);
+        let reach = core.vertices().iter().map(|&v| (v - k0).norm()).fold(0.0, f64::max);
+        let mut prev = grown(&core, k0, 3.0, reach, None, step).unwrap();
+        let (mut s, mut cut_active, mut filled) = (3.0 + step, false, false);
+        for _ in 0..200 {
+            let g = grown(&core, k0, s.min(reach), reach, Some(&prev), step).unwrap();
+            let loose = largest(prev.offset(-step * 1.001)).unwrap();
+            assert!(outside(&g, &loose) < 1e-6, "s = {s}: {} mm² beyond a step", outside(&g, &loose));
+            assert!(outside(&prev, &g) < 1e-6, "s = {s}: {} mm² of prev lost", outside(&prev, &g));
+            let by_disc = if s >= reach {
+                core.clone()
+            } else {
+                largest(core.boolean(&Region::disc(k0, s), BoolOp::And)).unwrap()
+            };
+            cut_active |= outside(&by_disc, &loose) > 1e-3;
+            if fills(&g, &core) {
+                filled = true;
+                break;
+            }
+            (prev, s) = (g, s + step);
+        }
+        assert!(cut_active, "the disc never ran ahead of the step");
+        assert!(filled, "the sets never filled the core");
+    }
+
+    /// `fills` is true exactly when the set covers the core within a millionth of its area: on
+    /// a 10 × 10 core (100 mm²) a set 10 × 9.99 (short by 0.1 mm² = 10⁻³ of the area) does not
+    /// fill it, one 10 × (10 − 10⁻⁶) (short by 10⁻⁵ mm² = 10⁻⁷) does, as does the core itself.
+    #[test]
+    fn fills_exactly_when_the_core_is_covered() {
+        let rect = |h: f64| Region::polygon(&[p2(0.0, 0.0), p2(10.0, 0.0), p2(10.0, h), p2(0.0, h)]);
+        let core = rect(10.0);
+        assert!(fills(&core, &core));
+        assert!(fills(&rect(10.0 - 1e-6), &core));
+        assert!(!fills(&rect(9.99), &core));
+    }
+}

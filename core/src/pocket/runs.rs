@@ -118,3 +118,170 @@ pub(crate) fn cut_runs(b: &mut Builder, polygon: &Polygon, r: f64, mut ring_runs
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::p2;
+
+    /// The closed loop through `pts` as lines.
+    fn lines(pts: &[(f64, f64)]) -> Vec<Segment> {
+        let n = pts.len();
+        (0..n)
+            .map(|i| Segment::Line { start: p2(pts[i].0, pts[i].1), end: p2(pts[(i + 1) % n].0, pts[(i + 1) % n].1) })
+            .collect()
+    }
+
+    fn length(run: &[Segment]) -> f64 {
+        run.iter().map(Segment::length).sum()
+    }
+
+    fn builder() -> Builder {
+        Builder {
+            segments: Vec::new(),
+            kinds: Vec::new(),
+            radii: Vec::new(),
+            router: Default::default(),
+            retracts: Vec::new(),
+        }
+    }
+
+    /// The ring [0, 20] × [0, 10] after the ring [0, 10]²: what it adds is the right half, from
+    /// where it leaves the previous ring's bottom edge round to where it rejoins the top edge.
+    /// "On the previous ring" means within 1 µm, so the run starts at (10.001, 0) and ends at
+    /// (10.001, 10): one run 10 + 10 + 10 − 2·0.001 long. Started in the middle of its right
+    /// side (the new part split by the loop's start), it is still one run of that length.
+    #[test]
+    fn a_ring_adds_its_part_off_the_previous_ring() {
+        let prev = lines(&[(0.0, 0.0), (10.0, 0.0), (10.0, 10.0), (0.0, 10.0)]);
+        let expected = 30.0 - 2e-3;
+        for ring in [
+            lines(&[(0.0, 0.0), (20.0, 0.0), (20.0, 10.0), (0.0, 10.0)]),
+            lines(&[(20.0, 5.0), (20.0, 10.0), (0.0, 10.0), (0.0, 0.0), (20.0, 0.0)]),
+        ] {
+            let runs = new_runs(&ring, &prev);
+            assert_eq!(runs.len(), 1, "{runs:?}");
+            let run = &runs[0];
+            assert!((length(run) - expected).abs() < 1e-6, "{}", length(run));
+            assert!((run[0].start() - p2(10.001, 0.0)).norm() < 1e-6, "{:?}", run[0].start());
+            assert!((run[run.len() - 1].end() - p2(10.001, 10.0)).norm() < 1e-6);
+            // consecutive segments of a run join
+            assert!(run.windows(2).all(|w| (w[0].end() - w[1].start()).norm() < 1e-12));
+        }
+        // a ring equal to the previous one adds nothing
+        assert!(new_runs(&prev, &prev).is_empty());
+    }
+
+    /// The ring [0, 30] × [0, 10] after [10, 20] × [0, 10] (its long edges split where the
+    /// previous ring's corners lie: a segment is on the previous ring only whole) adds at both
+    /// ends: two runs, each 10 + 10 + 10 − 2·0.001 long (left: from (9.999, 10) to (9.999, 0);
+    /// right: (20.001, 0) to (20.001, 10)). Unsplit, the bottom and top edges are not on the
+    /// previous ring and the whole ring is one run.
+    #[test]
+    fn a_ring_growing_at_both_ends_adds_two_runs() {
+        let prev = lines(&[(10.0, 0.0), (20.0, 0.0), (20.0, 10.0), (10.0, 10.0)]);
+        let ring = lines(&[
+            (0.0, 0.0),
+            (10.0, 0.0),
+            (20.0, 0.0),
+            (30.0, 0.0),
+            (30.0, 10.0),
+            (20.0, 10.0),
+            (10.0, 10.0),
+            (0.0, 10.0),
+        ]);
+        let whole = lines(&[(0.0, 0.0), (30.0, 0.0), (30.0, 10.0), (0.0, 10.0)]);
+        let one = new_runs(&whole, &prev);
+        assert!(one.len() == 1 && (length(&one[0]) - 80.0).abs() < 1e-9, "{one:?}");
+        let runs = new_runs(&ring, &prev);
+        assert_eq!(runs.len(), 2, "{runs:?}");
+        for run in &runs {
+            assert!((length(run) - (30.0 - 2e-3)).abs() < 1e-6, "{}", length(run));
+        }
+        let starts: Vec<P2> = runs.iter().map(|run| run[0].start()).collect();
+        assert!(starts.iter().any(|s| (s - p2(20.001, 0.0)).norm() < 1e-6), "{starts:?}");
+        assert!(starts.iter().any(|s| (s - p2(9.999, 10.0)).norm() < 1e-6), "{starts:?}");
+    }
+
+    /// A short vertical run at x (tool centres 20 to 22 mm up a 100 × 40 pocket, r = 5: all
+    /// 5 mm or more from the walls).
+    fn run_at(x: f64) -> Vec<Segment> {
+        vec![Segment::Line { start: p2(x, 20.0), end: p2(x, 22.0) }]
+    }
+
+    /// The x of each ring run's start, in the order cut.
+    fn order(b: &Builder) -> Vec<f64> {
+        let mut xs = Vec::new();
+        for (i, (sg, k)) in b.segments.iter().zip(&b.kinds).enumerate() {
+            if *k == MoveKind::Ring && (i == 0 || b.kinds[i - 1] != MoveKind::Ring) {
+                xs.push(sg.start().x);
+            }
+        }
+        xs
+    }
+
+    /// Three rings, each adding at the left end (x = 10, 12, 14) and the right end (x = 90,
+    /// 88, 86) of a 100 × 40 pocket: every later ring adds at the same two places, so each place
+    /// is cleared in turn (left 10, 12, 14, then right 90, 88, 86: each place takes the run
+    /// nearest its last one), not ring after ring. Where the last ring adds at one place only,
+    /// the runs are cut ring after ring. Either way every run is cut whole, each reached by a
+    /// link from where the tool was (the path is continuous) and the links cross the pocket
+    /// once for places (|90 − 14| = 76 mm the least) against five times ring after ring.
+    #[test]
+    fn runs_at_the_same_places_are_cut_one_place_at_a_time() {
+        let pocket = Polygon::new(vec![p2(0.0, 0.0), p2(100.0, 0.0), p2(100.0, 40.0), p2(0.0, 40.0)]).unwrap();
+        let rings = || {
+            vec![vec![run_at(10.0), run_at(90.0)], vec![run_at(88.0), run_at(12.0)], vec![run_at(14.0), run_at(86.0)]]
+        };
+        let link_length = |b: &Builder| -> f64 {
+            b.segments.iter().zip(&b.kinds).filter(|(_, k)| **k == MoveKind::Link).map(|(s, _)| s.length()).sum()
+        };
+        let mut b = builder();
+        b.push(Segment::Line { start: p2(10.0, 15.0), end: p2(10.0, 20.0) }, MoveKind::Spiral);
+        cut_runs(&mut b, &pocket, 5.0, rings());
+        assert_eq!(order(&b), vec![10.0, 12.0, 14.0, 90.0, 88.0, 86.0]);
+        let by_places = link_length(&b);
+        let mut one_place = rings();
+        one_place[2].pop();
+        let mut c = builder();
+        c.push(Segment::Line { start: p2(10.0, 15.0), end: p2(10.0, 20.0) }, MoveKind::Spiral);
+        cut_runs(&mut c, &pocket, 5.0, one_place);
+        assert_eq!(order(&c), vec![10.0, 90.0, 88.0, 12.0, 14.0]);
+        for bb in [&b, &c] {
+            assert!(bb.retracts.is_empty());
+            assert!(bb.segments.windows(2).all(|w| (w[0].end() - w[1].start()).norm() < 1e-9));
+            let ring: f64 =
+                bb.segments.iter().zip(&bb.kinds).filter(|(_, k)| **k == MoveKind::Ring).map(|(s, _)| s.length()).sum();
+            assert!((ring - 2.0 * order(bb).len() as f64).abs() < 1e-9, "{ring}");
+        }
+        assert!(by_places >= 76.0 && by_places < link_length(&c), "{by_places} vs {}", link_length(&c));
+    }
+
+    /// `cut_rings` cuts what each ring adds to the one before: ring 0 the rectangle
+    /// [40, 60] × [10, 30], ring 1 [35, 65] × [10, 30], ring 2 [30, 70] × [10, 30] (each with
+    /// vertices where the previous one's corners lie). Each later ring adds two runs of
+    /// 5 + 20 + 5 − 2·0.001 mm, so the ring moves total 4 × 29.998 mm. The loops run
+    /// counter-clockwise from their lower left corner, so a ring's right run comes first (it
+    /// starts where it leaves the previous ring's bottom edge, x = 60.001, then 65.001) and its
+    /// left run, joined across the loop's start, starts on the top edge (x = 39.999, 34.999);
+    /// both rings add at two places, so the right place is cleared in turn, then the left.
+    #[test]
+    fn rings_are_cut_where_they_add_to_the_previous_ring() {
+        let rect = |x0: f64, x1: f64, xa: f64, xb: f64| {
+            lines(&[(x0, 10.0), (xa, 10.0), (xb, 10.0), (x1, 10.0), (x1, 30.0), (xb, 30.0), (xa, 30.0), (x0, 30.0)])
+        };
+        let ring0 = lines(&[(40.0, 10.0), (60.0, 10.0), (60.0, 30.0), (40.0, 30.0)]);
+        let rings = vec![rect(35.0, 65.0, 40.0, 60.0), rect(30.0, 70.0, 35.0, 65.0)];
+        let pocket = Polygon::new(vec![p2(0.0, 0.0), p2(100.0, 0.0), p2(100.0, 40.0), p2(0.0, 40.0)]).unwrap();
+        let mut b = builder();
+        b.push(Segment::Line { start: p2(50.0, 20.0), end: p2(50.0, 10.0) }, MoveKind::Spiral);
+        cut_rings(&mut b, &pocket, 5.0, &ring0, rings);
+        let ring: f64 =
+            b.segments.iter().zip(&b.kinds).filter(|(_, k)| **k == MoveKind::Ring).map(|(s, _)| s.length()).sum();
+        assert!((ring - 4.0 * (30.0 - 2e-3)).abs() < 1e-6, "{ring}");
+        let xs = order(&b);
+        assert_eq!(xs.len(), 4, "{xs:?}");
+        let expected = [60.001, 65.001, 39.999, 34.999];
+        assert!(xs.iter().zip(expected).all(|(x, e)| (x - e).abs() < 1e-6), "{xs:?}");
+    }
+}

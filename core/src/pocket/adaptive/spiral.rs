@@ -163,7 +163,7 @@ pub(super) fn spiral_and_rings(
 /// concave-cut step of radius T, each restarted at the wall point q0 where the spiral ended; a
 /// ring that adds to the stadium `cut` less area than a strip of 2 % of the step along its whole
 /// length (it lies inside the stadium but for slivers) is not cut.
-fn core_rings(
+pub(super) fn core_rings(
     core: &Region,
     k0: P2,
     (s0, t): (f64, f64),

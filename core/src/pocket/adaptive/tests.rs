@@ -4,15 +4,20 @@
 
 use super::corners::convex_corners;
 use super::loops::{Builder, closest_on, inscribed, link, split, start_near};
-use super::open::extended;
+use super::open::{OUTSIDE_MARGIN_MM, OpenPocket, Seed, extended, grown_rings};
 use super::options::{concave_step, corner_pass_mean_depth_ratio, default_target_rad, fin_radius};
-use super::{AdaptiveOptions, AdaptivePath, adaptive_path, validate_open_edges};
+use super::part::{CORE_FRACTIONS, PartContext, core_radius, plan_part};
+use super::plan::measure;
+use super::spiral::core_rings;
+use super::{
+    AdaptiveOptions, AdaptivePart, AdaptivePath, CornerPasses, adaptive_path, clear_regions, validate_open_edges,
+};
 use crate::error::Param;
 use crate::geom::medial::clearance;
-use crate::geom::offset::Region;
+use crate::geom::offset::{Region, largest};
 use crate::geom::{P2, Polygon, Segment, p2};
 use crate::pocket::PocketSettings;
-use crate::toolpath::{Entry, HELIX_START_Z_MM, MoveKind};
+use crate::toolpath::{Entry, HELIX_START_Z_MM, Helix, MoveKind};
 use std::f64::consts::{FRAC_PI_2, PI, SQRT_2};
 use std::sync::OnceLock;
 
@@ -395,4 +400,322 @@ fn open_edges_are_checked() {
     for bad in [&[4][..], &[1, 1][..]] {
         assert_eq!(validate_open_edges(&poly, bad).unwrap_err().parameter(), Some(Param::OpenEdges), "{bad:?}");
     }
+}
+
+// ---- the core radius, each part and the regions (part.rs) ----
+
+fn empty_builder() -> Builder {
+    Builder {
+        segments: Vec::new(),
+        kinds: Vec::new(),
+        radii: Vec::new(),
+        router: Default::default(),
+        retracts: Vec::new(),
+    }
+}
+
+/// The rectangle's tool-centre region with the default finishing stock: [5.2, 54.8] ×
+/// [5.2, 34.8], 49.6 × 29.6 mm, inscribed radius 14.8.
+fn rectangle_region() -> Region {
+    largest(Region::polygon(rectangle().vertices()).offset(R + 0.2)).unwrap()
+}
+
+/// The distance from `p` to the nearest of `segs` (mm).
+fn distance_to(segs: &[Segment], p: P2) -> f64 {
+    segs.iter().map(|sg| (closest_on(sg, p).0 - p).norm()).fold(f64::INFINITY, f64::min)
+}
+
+/// The core radius of the 49.6 × 29.6 tool-centre rectangle: its opening by any T < 14.8
+/// loses exactly the four corner caps T²(1 − π/4) and the corner arcs fit its walls, so T is
+/// the first candidate, 0.995 × fraction × 14.8 (14.726 at 1, 5.8904 at 0.4), and the core
+/// C ⊖ T is the rectangle (49.6 − 2T) × (29.6 − 2T). A helix radius above the inscribed
+/// radius leaves no core: the error names the polygon.
+#[test]
+fn core_radius_of_a_rectangle_is_the_first_candidate() {
+    let region = rectangle_region();
+    let corners = convex_corners(&region.segments());
+    assert_eq!(corners.len(), 4);
+    for fraction in [1.0, 0.4] {
+        let (t, core) = core_radius(&region, (&corners, &[]), fraction, 14.8, 3.75).unwrap();
+        let expected = 0.995 * fraction * 14.8;
+        assert!((t - expected).abs() < 1e-12, "{t} vs {expected}");
+        let area = (49.6 - 2.0 * t) * (29.6 - 2.0 * t);
+        assert!((core.area() - area).abs() < 1e-6, "{} vs {area}", core.area());
+    }
+    let err = core_radius(&region, (&corners, &[]), 1.0, 14.8, 15.0).unwrap_err();
+    assert_eq!(err.parameter(), Some(Param::Polygon));
+}
+
+/// A 50 × 30 region with a tab 6 wide and 10 long on its top edge: an opening by T > 3 (half
+/// the tab's width) removes the whole tab (60 mm², far more than the corner caps and the
+/// 10⁻³ of the area allowed), by T ≤ 3 only the six convex corners' caps. So T is the first
+/// of 0.995 × 15 × 0.9ᵏ at or below 3 (k = 16: 2.7657), computed here from that rule.
+#[test]
+fn core_radius_shrinks_until_the_opening_keeps_a_narrow_tab() {
+    let region = Region::polygon(&[
+        p2(0.0, 0.0),
+        p2(50.0, 0.0),
+        p2(50.0, 30.0),
+        p2(28.0, 30.0),
+        p2(28.0, 40.0),
+        p2(22.0, 40.0),
+        p2(22.0, 30.0),
+        p2(0.0, 30.0),
+    ]);
+    let corners = convex_corners(&region.segments());
+    assert_eq!(corners.len(), 6);
+    let mut expected = 0.995 * 15.0;
+    while expected > 3.0 {
+        expected *= 0.9;
+    }
+    let (t, core) = core_radius(&region, (&corners, &[]), 1.0, 15.0, 1.0).unwrap();
+    assert!((t - expected).abs() < 1e-12 && (expected - 2.7657).abs() < 1e-4, "{t} vs {expected}");
+    // the core reaches into the tab (6 − 2T wide)
+    assert!(core.contains(p2(25.0, 35.0)));
+}
+
+/// The part context of the rectangle's tool-centre region, closed, grown from a helix.
+fn rectangle_part<'a>(region: &'a Region, polygon: &'a Polygon, options: &'a AdaptiveOptions) -> PartContext<'a> {
+    static HELIX: Seed<'static> = Seed::Helix;
+    let (inscribed_radius, k0) = inscribed(region);
+    let phi = target();
+    PartContext {
+        region,
+        inscribed: inscribed_radius,
+        k0,
+        polygon,
+        options,
+        r: R,
+        phi,
+        rho_fin: fin_radius(options.finish_stock_mm, R, phi),
+        seed: &HELIX,
+    }
+}
+
+/// `plan_part` of the rectangle at each core fraction: its core radius is `core_radius`'s
+/// (above); the moves start with the helix and the spiral and run on without a gap (no
+/// retract in a closed rectangle); the four convex corners are thinned. `clear_regions` keeps
+/// the shortest of the five: its path is as long as the least of them and has that T.
+#[test]
+fn each_part_plan_is_continuous_and_the_shortest_core_radius_wins() {
+    let (region, polygon, options) = (rectangle_region(), rectangle(), AdaptiveOptions::default());
+    let part = rectangle_part(&region, &polygon, &options);
+    let corners = convex_corners(&region.segments());
+    let mut plans = Vec::new();
+    for fraction in CORE_FRACTIONS {
+        let mut b = empty_builder();
+        let planned = plan_part(&part, fraction, &mut b).unwrap();
+        let (t, _) = core_radius(&region, (&corners, &[]), fraction, part.inscribed, 3.75).unwrap();
+        assert!((planned.core_radius_mm - t).abs() < 1e-12, "{fraction}: {} vs {t}", planned.core_radius_mm);
+        assert_eq!((b.kinds[0], b.kinds[1]), (MoveKind::Entry, MoveKind::Spiral));
+        assert!(b.retracts.is_empty());
+        assert!(b.segments.windows(2).all(|w| (w[0].end() - w[1].start()).norm() < 1e-6), "fraction {fraction}");
+        assert_eq!(planned.corners.len(), 4);
+        plans.push((b.segments.iter().map(Segment::length).sum::<f64>(), t));
+    }
+    let (least, t_least) = plans.iter().copied().min_by(|a, c| a.0.total_cmp(&c.0)).unwrap();
+    let (parts, b) =
+        clear_regions(std::slice::from_ref(&region), &polygon, &settings(), &options, part.phi, part.rho_fin, None)
+            .unwrap();
+    let length: f64 = b.segments.iter().map(Segment::length).sum();
+    assert!((length - least).abs() < 1e-9, "{length} vs {plans:?}");
+    assert!((parts[0].core_radius_mm - t_least).abs() < 1e-12);
+}
+
+/// A dumbbell: two 30 × 30 squares joined by a neck 6 mm wide (narrower than D = 10). The
+/// tool-centre region (offset by r + s_f = 5.2) is two squares 19.6 wide, the neck gone:
+/// `clear_regions` plans two parts, one after the other (segments [0, e₀), [e₀, n)), each
+/// entered by a helix about its region's inscribed centre and staying in its own square. The
+/// dumbbell is symmetric about x = 35 and y = 15, so the two centres are mirror images on
+/// y = 15; each region is its square's less 5.2 with a bump toward the neck (tool centres
+/// reach x = 30 − √(5.2² − 3²) = 25.75 there), so the centre lies near, not at, x = 15.
+#[test]
+fn a_dumbbell_with_a_narrow_neck_is_cleared_as_two_parts() {
+    let polygon = Polygon::new(vec![
+        p2(0.0, 0.0),
+        p2(30.0, 0.0),
+        p2(30.0, 12.0),
+        p2(40.0, 12.0),
+        p2(40.0, 0.0),
+        p2(70.0, 0.0),
+        p2(70.0, 30.0),
+        p2(40.0, 30.0),
+        p2(40.0, 18.0),
+        p2(30.0, 18.0),
+        p2(30.0, 30.0),
+        p2(0.0, 30.0),
+    ])
+    .unwrap();
+    let options = AdaptiveOptions::default();
+    let regions = Region::polygon(polygon.vertices()).offset(R + options.finish_stock_mm);
+    assert_eq!(regions.len(), 2);
+    let phi = target();
+    let rho_fin = fin_radius(options.finish_stock_mm, R, phi);
+    let (parts, b) = clear_regions(&regions, &polygon, &settings(), &options, phi, rho_fin, None).unwrap();
+    assert_eq!(parts.len(), 2);
+    assert_eq!((parts[0].first_segment, parts[0].end_segment), (0, parts[1].first_segment));
+    assert_eq!(parts[1].end_segment, b.segments.len());
+    let mut centres: Vec<P2> = parts
+        .iter()
+        .map(|p| match p.entry {
+            Entry::Helix(h) => h.center,
+            other => panic!("{other:?}"),
+        })
+        .collect();
+    centres.sort_by(|a, c| a.x.total_cmp(&c.x));
+    // mirror images of each other across x = 35, on the axis y = 15, in their squares' middles
+    let mirrored = p2(70.0 - centres[1].x, centres[1].y);
+    assert!((centres[0] - mirrored).norm() < 1e-3 && (centres[0].y - 15.0).abs() < 1e-3, "{centres:?}");
+    assert!((centres[0].x - 15.0).abs() < 1.0, "{centres:?}");
+    for part in &parts {
+        let Entry::Helix(h) = part.entry else { unreachable!() };
+        let left = h.center.x < 35.0;
+        for sg in &b.segments[part.first_segment..part.end_segment] {
+            assert!(sg.sample(8).iter().all(|p| (p.x < 30.0) == left && (p.x > 40.0) != left), "{sg:?}");
+        }
+    }
+}
+
+// ---- the rings along the core (spiral.rs) and grown from outside (open.rs) ----
+
+/// Whether `p` lies inside the closed loop `lp` (its points every ~0.1 mm as a polygon).
+fn inside(lp: &[Segment], p: P2) -> bool {
+    let pts: Vec<P2> = lp.iter().flat_map(|sg| sg.sample(((sg.length() / 0.1).ceil() as usize).max(2))).collect();
+    Region::polygon(&pts).contains(p)
+}
+
+/// The rings of the L's core (60 × 60, arms 25; its tool-centre region C, T from
+/// `core_radius`, a stadium of 1 µm so every ring is kept). Ring j = (K ∩ D(k0, s_j)) ⊕ T with
+/// K = C ⊖ T: every tool centre lies in C (the tool keeps r + s_f from the walls); ring 1
+/// lies within the disc of radius s₀ + a + T about k0 (a = concave_step(T)), a step outside
+/// the circle the spiral ended on; each later ring is within a step of the ring before (its
+/// points inside it or at most a·1.001 from it, the rounding `grown` allows); the last is
+/// K ⊕ T whole (its length that loop's).
+#[test]
+fn core_rings_advance_by_at_most_the_concave_cut_step_and_stay_in_the_region() {
+    let l =
+        Polygon::new(vec![p2(0.0, 0.0), p2(60.0, 0.0), p2(60.0, 25.0), p2(25.0, 25.0), p2(25.0, 60.0), p2(0.0, 60.0)])
+            .unwrap();
+    let region = largest(Region::polygon(l.vertices()).offset(R + 0.2)).unwrap();
+    let (ins, k0) = inscribed(&region);
+    let corners = convex_corners(&region.segments());
+    let (t, core) = core_radius(&region, (&corners, &[]), 1.0, ins, 3.75).unwrap();
+    let phi = target();
+    let a = concave_step(t, R, phi);
+    let s0 = 0.995 * ins - t;
+    let rings = core_rings(&core, k0, (s0, t), (R, phi), &Region::disc(k0, 1e-3), k0);
+    assert!(rings.len() >= 5, "{}", rings.len());
+    let walls = region.segments();
+    for (j, ring) in rings.iter().enumerate() {
+        for p in ring.iter().flat_map(|sg| sg.sample(16)) {
+            assert!(region.contains(p) || distance_to(&walls, p) < 1e-6, "ring {j}: {p:?} outside C");
+            if j == 0 {
+                assert!((p - k0).norm() <= s0 + a + t + 1e-6, "ring 0: {p:?}");
+            } else {
+                let prev = &rings[j - 1];
+                assert!(inside(prev, p) || distance_to(prev, p) <= 1.001 * a + 1e-6, "ring {j}: {p:?}");
+            }
+        }
+    }
+    let whole = largest(core.offset(-t)).unwrap().path_length();
+    let last: f64 = rings[rings.len() - 1].iter().map(Segment::length).sum();
+    assert!((last - whole).abs() < 1e-6, "{last} vs {whole}");
+}
+
+/// The rectangle open on its bottom edge, T = 5: the rings grow upward from outside the stock.
+/// G₀ is the core below y = −(T + r + 0.05) (`OUTSIDE_MARGIN_MM`), so ring 0 (G₀ ⊕ T) tops at
+/// y = −5.05, off the stock by more than r; each G_j rises a step a = concave_step(T) (the
+/// core spans the width, so the growth is upward only) to the core's top 34.8 − T: the rings
+/// after ring 0 number ⌈(34.8 + 5.05)/a⌉ and each reaches the stock, so that many are cut.
+/// The tool goes down on ring 0 (at or below y = −5.05, its disc off the stock) and the first
+/// move is that entry.
+#[test]
+fn rings_grown_from_an_open_edge_rise_a_step_at_a_time() {
+    let work = rectangle();
+    let rs = R + 0.2;
+    let closed = Region::polygon(work.vertices()).offset(rs);
+    let open = OpenPocket::new(&work, &[0], &closed, rs).unwrap();
+    let region = largest(open.near.offset(rs)).unwrap();
+    let Some(Seed::Outside { stock, grow, .. }) = open.seed_of(&region) else { panic!("no seed outside") };
+    let t = 5.0;
+    let core = largest(grow.offset(t)).unwrap();
+    let phi = target();
+    let a = concave_step(t, R, phi);
+    let mut b = empty_builder();
+    let k0 = inscribed(&region).1;
+    let (count, at) = grown_rings(&mut b, &open.near_polygon, R, &core, t, phi, k0, stock).unwrap();
+    let top0 = -(R + OUTSIDE_MARGIN_MM);
+    let expected = ((34.8 - top0) / a).ceil() as usize;
+    assert_eq!(count, expected, "a = {a}");
+    assert!(at.y <= top0 + 1e-6, "{at:?}");
+    assert_eq!(b.kinds[0], MoveKind::Entry);
+    assert!((b.segments[0].start() - at).norm() < 1e-9);
+    // every ring move lies in the region the core was taken from (ring = G ⊕ T, G ⊆ grow ⊖ T)
+    let walls = grow.segments();
+    for (sg, _) in b.segments.iter().zip(&b.kinds).filter(|(_, k)| **k == MoveKind::Ring) {
+        assert!(sg.sample(8).iter().all(|&p| grow.contains(p) || distance_to(&walls, p) < 1e-6), "{sg:?}");
+    }
+}
+
+// ---- assembly and measurement (plan.rs) ----
+
+/// `measure` of five hand-made moves in a 40 × 40 pocket (two parts, the second from move 2;
+/// retracts asked before moves 4 and 2): the toolpath retracts before moves 2 and 4 (sorted,
+/// once each); the lengths by kind are the moves' own (ring 10 + 5π (a quarter circle of
+/// radius 10), link 10, corner 4√2, finish 24), the total their sum, `link_length_mm` the
+/// link's; the one corner takes the largest engagement of the corner moves.
+#[test]
+fn measure_sums_the_lengths_by_kind_and_gives_each_corner_its_peak() {
+    let polygon = Polygon::new(vec![p2(0.0, 0.0), p2(40.0, 0.0), p2(40.0, 40.0), p2(0.0, 40.0)]).unwrap();
+    let segments = vec![
+        Segment::Line { start: p2(10.0, 10.0), end: p2(20.0, 10.0) },
+        Segment::Arc { center: p2(20.0, 20.0), radius: 10.0, start_angle: -FRAC_PI_2, sweep: FRAC_PI_2 },
+        Segment::Line { start: p2(30.0, 20.0), end: p2(30.0, 30.0) },
+        Segment::Line { start: p2(30.0, 30.0), end: p2(34.0, 34.0) },
+        Segment::Line { start: p2(34.0, 34.0), end: p2(10.0, 34.0) },
+    ];
+    let kinds = vec![MoveKind::Ring, MoveKind::Ring, MoveKind::Link, MoveKind::Corner, MoveKind::Finish];
+    let helix = |c: P2| {
+        Entry::Helix(Helix { center: c, radius: 3.75, start_angle: 0.0, sense: 1.0, ramp_rad: 3.0_f64.to_radians() })
+    };
+    let corner = CornerPasses {
+        vertex: p2(35.0, 35.0),
+        angle_rad: FRAC_PI_2,
+        passes: 1,
+        last_radius_mm: 1.0,
+        max_radial_depth_mm: 0.5,
+        max_engagement_rad: 0.0,
+        at: p2(0.0, 0.0),
+    };
+    let part = |entry, first, end, corners| AdaptivePart {
+        entry,
+        first_segment: first,
+        end_segment: end,
+        core_radius_mm: 5.0,
+        rings: 1,
+        corners,
+        corner_points: Vec::new(),
+    };
+    let parts = vec![part(helix(p2(15.0, 15.0)), 0, 2, Vec::new()), part(helix(p2(30.0, 25.0)), 2, 5, vec![corner])];
+    let b = Builder { segments, kinds, radii: Vec::new(), router: Default::default(), retracts: vec![4, 2] };
+    let options = AdaptiveOptions::default();
+    let plan = measure(polygon, settings(), options, target(), parts, b, R + 0.005).unwrap();
+    assert_eq!(plan.path.toolpath.retract_before, vec![2, 4]);
+    let m = &plan.path.measurement;
+    let derived = [
+        (MoveKind::Ring, 10.0 + 5.0 * PI),
+        (MoveKind::Link, 10.0),
+        (MoveKind::Corner, 4.0 * SQRT_2),
+        (MoveKind::Finish, 24.0),
+    ];
+    for (kind, length) in derived {
+        let got = m.maxima.iter().find(|k| k.kind == kind).map_or(0.0, |k| k.length_mm);
+        assert!((got - length).abs() < 1e-9, "{kind:?}: {got} vs {length}");
+    }
+    let total: f64 = derived.iter().map(|(_, l)| l).sum();
+    assert!((m.length_at_depth_mm - total).abs() < 1e-9 && (plan.path.link_length_mm - 10.0).abs() < 1e-12);
+    let c = &plan.parts[1].corners[0];
+    assert!(c.max_engagement_rad > 0.0 && (c.max_engagement_rad - m.max_of(MoveKind::Corner)).abs() < 1e-12, "{c:?}");
+    // where it peaks lies on the corner move
+    assert!(distance_to(&plan.path.toolpath.segments()[3..4], c.at) < 1e-9, "{:?}", c.at);
 }
