@@ -137,13 +137,7 @@ mod tests {
     }
 
     fn builder() -> Builder {
-        Builder {
-            segments: Vec::new(),
-            kinds: Vec::new(),
-            radii: Vec::new(),
-            router: Default::default(),
-            retracts: Vec::new(),
-        }
+        Builder::default()
     }
 
     /// The ring [0, 20] × [0, 10] after the ring [0, 10]²: what it adds is the right half, from

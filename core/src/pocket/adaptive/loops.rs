@@ -73,7 +73,8 @@ pub(super) fn start_near(lp: &[Segment], q: P2) -> Vec<Segment> {
     out
 }
 
-/// The moves of one part being built.
+/// The moves of one part being built (`Builder::default()`: none yet).
+#[derive(Default)]
 pub(crate) struct Builder {
     pub(crate) segments: Vec<Segment>,
     pub(crate) kinds: Vec<MoveKind>,

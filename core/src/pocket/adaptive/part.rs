@@ -35,7 +35,7 @@ pub(crate) fn clear_regions(
     let router = open.map_or_else(Default::default, |o| {
         crate::pocket::route::RouterCache::pinned(&o.far_polygon, settings.tool_radius)
     });
-    let mut b = Builder { segments: Vec::new(), kinds: Vec::new(), radii: Vec::new(), router, retracts: Vec::new() };
+    let mut b = Builder { router, ..Builder::default() };
     let mut parts = Vec::new();
     for region in regions {
         // The core radius trades ring length against corner caps: plan with T starting at each
@@ -50,8 +50,7 @@ pub(crate) fn clear_regions(
         let (mut radii, mut router) = (Vec::new(), std::mem::take(&mut b.router));
         for fraction in CORE_FRACTIONS {
             let (taken, routes) = (std::mem::take(&mut radii), std::mem::take(&mut router));
-            let mut bb =
-                Builder { segments: Vec::new(), kinds: Vec::new(), radii: taken, router: routes, retracts: Vec::new() };
+            let mut bb = Builder { radii: taken, router: routes, ..Builder::default() };
             let part = PartContext {
                 region,
                 inscribed: inscribed_radius,

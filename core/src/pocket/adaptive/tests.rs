@@ -405,13 +405,7 @@ fn open_edges_are_checked() {
 // ---- the core radius, each part and the regions (part.rs) ----
 
 fn empty_builder() -> Builder {
-    Builder {
-        segments: Vec::new(),
-        kinds: Vec::new(),
-        radii: Vec::new(),
-        router: Default::default(),
-        retracts: Vec::new(),
-    }
+    Builder::default()
 }
 
 /// The rectangle's tool-centre region with the default finishing stock: [5.2, 54.8] ×
