@@ -12,6 +12,7 @@
 //! would gouge a wall is an error, never written.
 
 pub mod adaptive;
+mod corner_point;
 mod cusp;
 pub mod entry;
 mod growth;
@@ -24,6 +25,7 @@ pub mod route;
 mod runs;
 
 pub use adaptive::{AdaptiveOptions, AdaptivePart, AdaptivePlan, CornerPasses, plan_adaptive, plan_adaptive_open};
+pub use corner_point::CornerPoint;
 pub use path::PocketPath;
 pub use perforative::{AxisCircle, PerforativePlan, plan_perforative};
 pub use rings::{

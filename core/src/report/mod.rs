@@ -18,7 +18,7 @@ pub use pocket::{
 
 use crate::engagement::KindMax;
 use crate::geom::P2;
-use crate::pocket::adaptive::CornerPoint;
+use crate::pocket::CornerPoint;
 use crate::toolpath::{Entry, HELIX_START_Z_MM, Helix, MoveKind};
 use serde::Serialize;
 

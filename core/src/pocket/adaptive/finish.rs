@@ -5,10 +5,10 @@
 use super::corners::{Corner, corner_point_arcs};
 use super::loops::{Builder, link, start_near};
 use super::part::PartContext;
-use super::plan::CornerPoint;
 use crate::error::{Error, Param};
 use crate::geom::offset::largest;
 use crate::geom::{P2, Segment, p2};
+use crate::pocket::CornerPoint;
 use crate::toolpath::MoveKind;
 use std::f64::consts::PI;
 

@@ -123,7 +123,7 @@ pub use options::{
     AdaptiveOptions, DEFAULT_TARGET_CAP_DEG, concave_step, corner_pass_mean_depth_ratio, default_target_rad,
 };
 pub(crate) use part::clear_regions;
-pub use plan::{AdaptivePart, AdaptivePlan, CornerPasses, CornerPoint};
+pub use plan::{AdaptivePart, AdaptivePlan, CornerPasses};
 
 use super::PocketSettings;
 use crate::error::{Error, Param, num};

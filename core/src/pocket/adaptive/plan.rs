@@ -7,8 +7,8 @@ use super::options::AdaptiveOptions;
 use crate::engagement::sample_owners;
 use crate::error::Error;
 use crate::geom::{P2, Polygon, p2};
-use crate::pocket::PocketSettings;
 use crate::pocket::path::PocketPath;
+use crate::pocket::{CornerPoint, PocketSettings};
 use crate::toolpath::{Entry, MoveKind, Toolpath};
 use serde::{Deserialize, Serialize};
 
@@ -25,26 +25,6 @@ pub struct CornerPasses {
     /// Largest radial depth a pass removes, on the bisector (mm).
     pub max_radial_depth_mm: f64,
     /// Largest engagement measured over the corner's passes (rad) and where.
-    pub max_engagement_rad: f64,
-    pub at: P2,
-}
-
-/// One convex corner point reached by the finishing pass's corner arcs (within δ).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct CornerPoint {
-    /// The corner of the final tool-centre region (the pocket offset by r) (mm).
-    pub vertex: P2,
-    /// Interior angle α of the corner (rad).
-    pub angle_rad: f64,
-    /// Arcs cut after the finishing arc, and the radius of the last, δ (mm).
-    pub arcs: usize,
-    pub last_radius_mm: f64,
-    /// Material left on the corner's bisector, δ(1/sin(α/2) − 1) (mm).
-    pub residual_mm: f64,
-    /// Largest radial depth an arc removes, on the bisector (mm).
-    pub max_radial_depth_mm: f64,
-    /// Largest engagement over the arcs, their approach along the wall and their way out
-    /// (rad), and where; h_max/f_z = sin of it (at most 1): the chip thickness per tooth feed.
     pub max_engagement_rad: f64,
     pub at: P2,
 }

@@ -8,7 +8,7 @@ use crate::engagement::{EvaluatorOptions, Turn, TwoCircle};
 use crate::error::Error;
 use crate::geom::medial::Walls;
 use crate::geom::{Circle, P2, Polygon, Segment, golden_min};
-use crate::pocket::adaptive::CornerPoint;
+use crate::pocket::CornerPoint;
 use crate::toolpath::MoveKind;
 use std::f64::consts::PI;
 

@@ -8,7 +8,7 @@ use super::circles::{Current, Planner};
 use crate::corner::point::corner_point_radii;
 use crate::geom::medial::WallFeature;
 use crate::geom::{P2, Segment, bisect_edge};
-use crate::pocket::adaptive::CornerPoint;
+use crate::pocket::CornerPoint;
 use crate::toolpath::MoveKind;
 use std::f64::consts::{PI, TAU};
 

@@ -74,7 +74,7 @@ use crate::corner::{CornerMethod, strategy::CornerPointArcs};
 use crate::error::{Error, Param};
 use crate::geom::offset::Region;
 use crate::geom::{P2, Polygon, Segment};
-use crate::pocket::adaptive::CornerPoint;
+use crate::pocket::CornerPoint;
 use crate::pocket::path::PocketPath;
 use crate::toolpath::MoveKind;
 use serde::{Deserialize, Serialize};

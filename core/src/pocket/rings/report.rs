@@ -7,7 +7,7 @@ use super::pocket::Candidate;
 use super::{Link, LinkKind, Ring};
 use crate::engagement::sample_owners;
 use crate::geom::{P2, Segment, p2};
-use crate::pocket::adaptive::CornerPoint;
+use crate::pocket::CornerPoint;
 use crate::pocket::path::PocketPath;
 use crate::toolpath::MoveKind;
 
