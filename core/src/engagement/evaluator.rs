@@ -69,12 +69,18 @@ pub struct EvaluatorOptions {
     pub spacing: f64,
     /// Periphery samples before refinement (≥ 8; 720 = every 0.5°).
     pub samples: usize,
+    /// Radial margin of the periphery (mm, ≥ 0): the periphery tested is the circle of radius
+    /// r + margin about the tool centre, the material cut by the tool still the points nearer
+    /// than r to the swept path. 0 measures the tool; a margin > 0 asks whether uncut material
+    /// comes within the margin of the tool (a move through cleared stock reads 0 with a margin).
+    #[serde(default)]
+    pub margin_mm: f64,
 }
 
 impl EvaluatorOptions {
     /// Tool radius and position spacing with 720 periphery samples.
     pub fn new(tool_radius: f64, spacing: f64) -> EvaluatorOptions {
-        EvaluatorOptions { tool_radius, spacing, samples: 720 }
+        EvaluatorOptions { tool_radius, spacing, samples: 720, margin_mm: 0.0 }
     }
 
     fn validate(&self) -> Result<(), Error> {
@@ -83,6 +89,9 @@ impl EvaluatorOptions {
         }
         if !(self.spacing.is_finite() && self.spacing > 0.0) {
             return Err(Error::param(Param::Spacing, self.spacing, "a finite number > 0 mm"));
+        }
+        if !(self.margin_mm.is_finite() && self.margin_mm >= 0.0 && self.margin_mm <= self.tool_radius) {
+            return Err(Error::geometry("margin", self.margin_mm, "from 0 to the tool radius"));
         }
         if !(8..=100_000).contains(&self.samples) {
             return Err(Error::geometry("samples", self.samples, "from 8 to 100000"));
@@ -101,6 +110,13 @@ pub struct EngagementSample {
     pub y_mm: f64,
     /// Engaged angle of the periphery (rad).
     pub angle_rad: f64,
+    /// Chip factor κ = h_max / f_z: the largest cos(θ − θ_f) over the engaged periphery, θ_f the
+    /// direction of travel (1 where the point straight ahead is in material, sin φ for a side
+    /// cut of engagement φ ≤ 90°, 0 where nothing is engaged). A tooth at angle θ from the
+    /// direction of travel cuts a chip h = f_z·cos(θ − θ_f) (the circular-path approximation of
+    /// the chip, docs/pockets.md).
+    #[serde(default)]
+    pub chip: f64,
 }
 
 /// Engagement along a whole path.
@@ -306,15 +322,18 @@ pub fn engagement_profile(
                 }
                 Some(room - r)
             };
-            let stock = LocalStock::new(stock, c, r);
-            let mut angle = engaged_angle(&stock, c, r, room, &periphery);
+            let rp = r + opts.margin_mm;
+            let stock = LocalStock::new(stock, c, rp);
+            let d1 = seg.eval(local).d1;
+            let ahead = if d1.norm() > 0.0 { Some(d1.y.atan2(d1.x)) } else { None };
+            let (mut angle, chip) = engaged_angle(&stock, c, rp, room, &periphery, ahead);
             // Behind a tool that has moved, every point of the periphery is nearer than r to the
             // path just travelled: the engaged arc lies in the front half. Only the tolerance of
             // the material test at the two side points can make it read more than π.
             if s > 0.0 {
                 angle = angle.min(PI);
             }
-            EngagementSample { s_mm: s, x_mm: c.x, y_mm: c.y, angle_rad: angle }
+            EngagementSample { s_mm: s, x_mm: c.x, y_mm: c.y, angle_rad: angle, chip }
         })
         .collect();
     Ok(EngagementProfile { samples, path_length_mm: total })
@@ -339,13 +358,22 @@ impl Periphery {
     }
 }
 
-/// Measure (rad) of the periphery of the tool at `c` that lies in material: inside the stock
-/// and not cut. `room(p)` is `None` where p is cut (nearer than r − tol to the swept path),
-/// else a lower bound of its distance from the swept path minus r: the next samples closer
-/// to p than that (less a rounding margin) are not cut either, without asking again.
-fn engaged_angle(stock: &LocalStock, c: P2, r: f64, room: impl Fn(P2) -> Option<f64>, periphery: &Periphery) -> f64 {
+/// Measure (rad) of the periphery (radius `r`) about `c` that lies in material: inside the
+/// stock and not cut, and its chip factor ([`EngagementSample::chip`]) for travel in direction
+/// `ahead` (rad; `None`: 0). `room(p)` is `None` where p is cut (nearer than the tool radius −
+/// tol to the swept path), else a lower bound of its distance from the swept path minus the tool
+/// radius: the next samples closer to p than that (less a rounding margin) are not cut either,
+/// without asking again.
+fn engaged_angle(
+    stock: &LocalStock,
+    c: P2,
+    r: f64,
+    room: impl Fn(P2) -> Option<f64>,
+    periphery: &Periphery,
+    ahead: Option<f64>,
+) -> (f64, f64) {
     if matches!(stock, LocalStock::Outside) {
-        return 0.0;
+        return (0.0, 0.0);
     }
     let in_material = |p: P2| room(p).is_some() && stock.contains(p);
     let at = |th: f64| c + p2(th.cos(), th.sin()) * r;
@@ -367,12 +395,16 @@ fn engaged_angle(stock: &LocalStock, c: P2, r: f64, room: impl Fn(P2) -> Option<
     }
     let count = flags.iter().filter(|&&f| f).count();
     if count == 0 {
-        return 0.0;
+        return (0.0, 0.0);
     }
+    // The chip factor: 1 where the point ahead is in material, else the largest cosine at an
+    // end of an engaged arc (the cosine falls away from `ahead` on both sides).
+    let ahead_in = |th: f64| if in_material(at(th)) { 1.0 } else { 0.0 };
     if count == n {
-        return TAU;
+        return (TAU, ahead.map_or(0.0, |_| 1.0));
     }
     let mut total = if flags[0] { TAU } else { 0.0 };
+    let mut chip = ahead.map_or(0.0, ahead_in);
     for k in 0..n {
         let (a, b) = (flags[k], flags[(k + 1) % n]);
         if a == b {
@@ -390,8 +422,11 @@ fn engaged_angle(stock: &LocalStock, c: P2, r: f64, room: impl Fn(P2) -> Option<
         }
         let boundary = 0.5 * (lo + hi);
         total += if a { boundary } else { -boundary };
+        if let Some(f) = ahead {
+            chip = f64::max(chip, (boundary - f).cos());
+        }
     }
-    total
+    (total, chip.max(0.0))
 }
 
 #[cfg(test)]
@@ -419,6 +454,57 @@ mod tests {
                 assert!((got - want_deg).abs() < 1e-3, "ae/D {ae_d}: got {got}, want {want_deg}");
             }
         }
+    }
+
+    #[test]
+    fn chip_factor_of_a_side_cut_is_the_sine_of_the_engagement() {
+        // Tool moving +x, material y ≥ r − a_e: the engaged arc runs from θ₁ (sin θ₁ = 1 − a_e/r)
+        // up to the side at 90° (behind it is cut), so φ = 90° − θ₁ and the largest cos θ over it
+        // is cos θ₁ = sin φ: h_max = f_z·sin φ, the side-milling chip for φ ≤ 90°.
+        let r = 5.0;
+        for ae in [0.5, 1.527, 3.0, 5.0] {
+            let stock = square(-50.0, r - ae, 50.0, 100.0);
+            let path = [Segment::Line { start: p2(-20.0, 0.0), end: p2(20.0, 0.0) }];
+            let prof = engagement_profile(&stock, &[], &path, &EvaluatorOptions::new(r, 1.0)).unwrap();
+            for s in prof.samples.iter().filter(|s| s.s_mm > 10.0 && s.s_mm < 30.0) {
+                // the angle carries the side tangency's tolerance (module doc), ~1e-6 here
+                let want = s.angle_rad.sin();
+                assert!((s.chip - want).abs() < 1e-5, "a_e {ae}: chip {} want {want}", s.chip);
+                assert!((s.chip - (1.0 - (1.0 - ae / r).powi(2)).sqrt()).abs() < 1e-6);
+            }
+        }
+        // A full slot has the point ahead in material: κ = 1.
+        let stock = square(-50.0, -50.0, 50.0, 50.0);
+        let path = [Segment::Line { start: p2(-20.0, 0.0), end: p2(20.0, 0.0) }];
+        let prof = engagement_profile(&stock, &[], &path, &EvaluatorOptions::new(r, 1.0)).unwrap();
+        assert!(prof.samples.iter().filter(|s| s.s_mm > 5.0).all(|s| s.chip == 1.0));
+    }
+
+    #[test]
+    fn margin_finds_stock_near_a_move_through_cleared_space() {
+        // A channel cut along y = 0 (the `before` path) leaves material from |y| = r; a pass
+        // along it again engages nothing, and any margin reaches the material. Two more cuts at
+        // y = ±0.3 widen the channel to |y| < r + 0.3: a margin of 0.2 mm then finds nothing,
+        // 0.5 mm finds the walls.
+        let r = 5.0;
+        let line = |y: f64| Segment::Line { start: p2(-30.0, y), end: p2(30.0, y) };
+        let path = [Segment::Line { start: p2(-10.0, 0.0), end: p2(10.0, 0.0) }];
+        let stock = square(-50.0, -50.0, 50.0, 50.0);
+        // 0 within the tangency tolerance at the tool's sides (module doc): below 1e-4 rad
+        let read = |margin: f64, before: &[Segment]| {
+            let opts = EvaluatorOptions { margin_mm: margin, ..EvaluatorOptions::new(r, 0.5) };
+            let a = engagement_profile(&stock, before, &path, &opts).unwrap().max_angle();
+            if a < 1e-4 { 0.0 } else { a }
+        };
+        let channel = [line(0.0)];
+        assert_eq!(read(0.0, &channel), 0.0);
+        assert!(read(0.2, &channel) > 0.0);
+        let wide = [line(0.0), line(0.3), line(-0.3)];
+        assert_eq!(read(0.0, &wide), 0.0);
+        assert_eq!(read(0.2, &wide), 0.0);
+        assert!(read(0.5, &wide) > 0.0);
+        let bad = EvaluatorOptions { margin_mm: -0.1, ..EvaluatorOptions::new(r, 0.5) };
+        assert_eq!(engagement_profile(&stock, &channel, &path, &bad).unwrap_err().subject(), Some("margin"));
     }
 
     #[test]
