@@ -81,6 +81,7 @@ pub enum Param {
     /// Variable feed: the target chip thickness.
     TargetHmax,
     MaxFeed,
+    RapidMargin,
     FeedBand,
     MinBlock,
     /// `pocket --helix-radius` (adaptive clearing).
@@ -118,7 +119,7 @@ pub enum Param {
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 75] = [
+    pub const ALL: [Param; 76] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
@@ -174,6 +175,7 @@ impl Param {
         Param::MaxForce,
         Param::TargetHmax,
         Param::MaxFeed,
+        Param::RapidMargin,
         Param::FeedBand,
         Param::MinBlock,
         Param::HelixRadius,
@@ -255,6 +257,7 @@ impl Param {
             Param::MaxForce => "max-force",
             Param::TargetHmax => "target-hmax",
             Param::MaxFeed => "max-feed",
+            Param::RapidMargin => "rapid-margin",
             Param::FeedBand => "feed-band",
             Param::MinBlock => "min-block",
             Param::HelixRadius => "helix-radius",
@@ -336,6 +339,7 @@ impl Param {
             Param::MaxForce => "Limit F_R,max",
             Param::TargetHmax => "Target h",
             Param::MaxFeed => "Maximum feed",
+            Param::RapidMargin => "Rapid margin",
             Param::FeedBand => "Feed band ratio",
             Param::MinBlock => "Minimum block length",
             Param::HelixRadius => "Helix radius",

@@ -44,9 +44,9 @@ pub struct CornerExportArgs {
     /// Cutting depth below the stock top Z0 (mm), for --export.
     #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = CutSetup::default().depth_mm, requires = "export")]
     pub(super) depth: f64,
-    /// Spindle speed (rpm), for --export.
-    #[arg(long, value_name = "RPM", allow_hyphen_values = true, default_value_t = CutSetup::default().spindle_rpm, requires = "export")]
-    rpm: f64,
+    /// Spindle speed (rpm): written by --export; a pocket's f_z = feed/(rpm·teeth).
+    #[arg(long, value_name = "RPM", allow_hyphen_values = true, default_value_t = CutSetup::default().spindle_rpm)]
+    pub rpm: f64,
     /// Text for the header comment (--export).
     #[arg(long, value_name = "TEXT", requires = "export")]
     title: Option<String>,

@@ -9,7 +9,8 @@ use std::path::PathBuf;
 use trochoplan_core::geom::Polygon;
 use trochoplan_core::job::Direction;
 use trochoplan_core::nc::pocket_program;
-use trochoplan_core::pocket::{self, AdaptiveOptions, PocketPlan, PocketRequest, PocketStrategy};
+use trochoplan_core::machine::Machine;
+use trochoplan_core::pocket::{self, AdaptiveOptions, PaceOptions, PocketPlan, PocketRequest, PocketStrategy};
 use trochoplan_core::report;
 
 /// Flags of `trochoplan pocket` (defaults: [`PocketRequest::default`]).
@@ -88,7 +89,55 @@ pub struct PocketArgs {
     #[arg(long, value_name = "I[,J…]", value_delimiter = ',', value_parser = super::edge_index, allow_hyphen_values = true)]
     open_edges: Vec<usize>,
     #[command(flatten)]
+    pace: PaceArgs,
+    #[command(flatten)]
     nc: CornerExportArgs,
+}
+
+/// How the pocket's moves at depth are paced (docs/pockets.md, "Feed and rapids").
+#[derive(Args)]
+pub struct PaceArgs {
+    /// Teeth z of the tool: with --feed and --rpm it gives f_z = feed/(rpm·z), the chip the
+    /// feed is paced to.
+    #[arg(long, value_name = "N", default_value_t = PaceOptions::default().teeth)]
+    teeth: u32,
+    /// Target h_max of every tooth (mm): the feed of each move is raised where its chip is
+    /// thinner (low engagement) and lowered where thicker. Default: f_z.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    target_hmax: Option<f64>,
+    /// Largest feed a move is paced to (mm/min). Default: the machine's largest feed with
+    /// --machine, else 3 × --feed.
+    #[arg(long, value_name = "MM_PER_MIN", allow_hyphen_values = true)]
+    max_feed: Option<f64>,
+    /// Every move at depth at --feed (no feed that follows the chip).
+    #[arg(long)]
+    constant_feed: bool,
+    /// No rapids at depth: moves through cleared stock stay feed moves.
+    #[arg(long)]
+    no_rapids: bool,
+    /// Clearance from uncut material, beyond the tool radius, of a straight move that becomes
+    /// a rapid at depth (mm), 0 to 10.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = PaceOptions::default().rapid_margin_mm)]
+    rapid_margin: f64,
+}
+
+impl PaceArgs {
+    /// The pace options, with the machine's largest feed and block time when one is named.
+    fn options(&self, rpm: f64, machine: Option<&str>) -> Result<PaceOptions, String> {
+        let m = machine.map(Machine::preset).transpose().map_err(err)?;
+        let d = PaceOptions::default();
+        Ok(PaceOptions {
+            follow_chip: !self.constant_feed,
+            rapids: !self.no_rapids,
+            teeth: self.teeth,
+            rpm,
+            target_h_mm: self.target_hmax,
+            max_feed_mm_per_min: self.max_feed.or(m.as_ref().map(|m| m.max_speed_mm_per_s() * 60.0)),
+            block_time_s: m.as_ref().map_or(d.block_time_s, |m| m.block_time),
+            band_ratio: d.band_ratio,
+            rapid_margin_mm: self.rapid_margin,
+        })
+    }
 }
 
 impl PocketArgs {
@@ -123,6 +172,7 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
             corner_tolerance_mm: args.corner_tolerance,
         },
         open_edges,
+        pace: args.pace.options(args.nc.rpm, args.machine.as_deref())?,
     };
     let plan = pocket::plan(&req).map_err(err)?;
     let nc_export = match &args.nc.export {

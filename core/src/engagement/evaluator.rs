@@ -243,6 +243,19 @@ pub fn engagement_profile(
     path: &[Segment],
     opts: &EvaluatorOptions,
 ) -> Result<EngagementProfile, Error> {
+    engagement_profile_on(stock, before, path, opts, None)
+}
+
+/// [`engagement_profile`] at the positions of the segments `on` selects only (`on[i]` for
+/// `path[i]`; `None`: all): the material is still cut by every segment before each position,
+/// selected or not. The samples' arc lengths are along the whole path.
+pub fn engagement_profile_on(
+    stock: &Polygon,
+    before: &[Segment],
+    path: &[Segment],
+    opts: &EvaluatorOptions,
+    on: Option<&[bool]>,
+) -> Result<EngagementProfile, Error> {
     opts.validate()?;
     check_segments(before, "before path")?;
     check_segments(path, "path")?;
@@ -250,6 +263,12 @@ pub fn engagement_profile(
         return Err(Error::geometry("path", "empty", "at least one segment"));
     }
     let r = opts.tool_radius;
+    // the segment of `path` each flattened segment comes from
+    let origin: Vec<usize> = path
+        .iter()
+        .enumerate()
+        .flat_map(|(i, s)| std::iter::repeat_n(i, if matches!(s, Segment::Trochoid { .. }) { TROCHOID_LINES } else { 1 }))
+        .collect();
     let path = flatten(path);
     let lengths: Vec<f64> = path.iter().map(Segment::length).collect();
     let total: f64 = lengths.iter().sum();
@@ -294,6 +313,9 @@ pub fn engagement_profile(
         }
         let local = if lengths[i] > 0.0 { ((s - s0) / lengths[i]).clamp(0.0, 1.0) } else { 1.0 };
         at.push((s, i, local));
+    }
+    if let Some(on) = on {
+        at.retain(|&(_, i, _)| on.get(origin[i]).copied().unwrap_or(false));
     }
     let periphery = Periphery::new(opts.samples);
     let samples = at

@@ -14,7 +14,8 @@ pub mod model;
 pub mod nearby;
 
 pub use evaluator::{
-    EngagementProfile, EngagementSample, EvaluatorOptions, engagement_profile, parse_points, polyline,
+    EngagementProfile, EngagementSample, EvaluatorOptions, engagement_profile, engagement_profile_on, parse_points,
+    polyline,
 };
 pub use measure::{
     AIR_ENGAGEMENT_RAD, KindMax, Measurement, Stock, maxima, measure, measured, peak_and_p95, sample_owners,

@@ -87,6 +87,12 @@ pub struct DialectSpec {
     pub program_end: &'static [&'static str],
     /// The compact form, if the dialect has one.
     pub loop_style: Option<LoopStyle>,
+    /// Whether G0 moves the tool on a straight line (coordinated), so that a rapid at depth
+    /// through cleared stock follows the planned line. Where it may not (Fanuc's non-linear
+    /// positioning unless parameter 1401#1 LRP is set; Sinumerik's G0 outside linear
+    /// interpolation, machine data G0_LINEAR_MODE / RTLIOF), such moves are written as G1 at
+    /// their feed.
+    pub straight_rapid: bool,
 }
 
 const LINUXCNC: DialectSpec = DialectSpec {
@@ -105,6 +111,7 @@ const LINUXCNC: DialectSpec = DialectSpec {
     arc_radius_tolerance_mm: 0.01,
     program_end: &["M30"],
     loop_style: Some(LoopStyle::OWord),
+    straight_rapid: true,
 };
 
 const FANUC: DialectSpec = DialectSpec {
@@ -122,6 +129,7 @@ const FANUC: DialectSpec = DialectSpec {
     arc_radius_tolerance_mm: 0.005,
     program_end: &["M30", "%"],
     loop_style: None,
+    straight_rapid: false,
 };
 
 const GRBL: DialectSpec = DialectSpec {
@@ -139,6 +147,7 @@ const GRBL: DialectSpec = DialectSpec {
     arc_radius_tolerance_mm: 0.005,
     program_end: &["M30"],
     loop_style: None,
+    straight_rapid: true,
 };
 
 const SINUMERIK: DialectSpec = DialectSpec {
@@ -157,6 +166,7 @@ const SINUMERIK: DialectSpec = DialectSpec {
     arc_radius_tolerance_mm: 0.01,
     program_end: &["M30"],
     loop_style: Some(LoopStyle::RParameter),
+    straight_rapid: false,
 };
 
 impl Dialect {

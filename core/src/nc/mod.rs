@@ -35,7 +35,7 @@ use crate::feed::VariableFeed;
 use crate::geom::{FitPiece, P2, Segment, fit_biarcs, p2, polyline};
 use crate::job::{Direction, PathKind};
 use crate::plan::Plan;
-use crate::toolpath::{Entry, HELIX_START_Z_MM, Helix, Ramp, Toolpath};
+use crate::toolpath::{Entry, HELIX_START_Z_MM, Helix, MoveKind, Ramp, Toolpath};
 use std::f64::consts::TAU;
 
 /// Default chord/biarc tolerance (mm); docs/nc-export.md ("Biarcs") gives the arc counts it
@@ -371,6 +371,8 @@ impl PathJob<'_> {
 /// pieces as biarcs, or all as chords with [`NcOptions::linear_segments`]). Before each segment
 /// in the tool path's `retract_before`: retract to safe Z, rapid to its start, feed down (the
 /// approach again). A connected path (no retracts) has one approach and one final retract.
+/// A straight [`MoveKind::Rapid`] at depth (through cleared stock) is a G0 where the dialect's
+/// G0 is a straight line ([`DialectSpec::straight_rapid`]), else a G1 at the move's feed.
 ///
 /// The loop form and the return feed need the repeating cycles and the tooth series of a slot
 /// plan: asking for them here is an error naming the option.
@@ -403,6 +405,13 @@ pub fn program_for_path(job: &PathJob<'_>, opts: &NcOptions) -> Result<NcProgram
     for (i, m) in path.moves.iter().enumerate() {
         if let Some(k) = path.retract_before.iter().position(|&j| j == i) {
             descend(&mut w, k + 1, m.segment.start());
+        }
+        // a rapid at depth through cleared stock: G0 where G0 is a straight line
+        if let (MoveKind::Rapid, Segment::Line { end, .. }) = (m.kind, m.segment)
+            && opts.dialect.spec().straight_rapid
+        {
+            w.linear(Some(end.x), Some(end.y), None, None);
+            continue;
         }
         let feed = m.feed_mm_per_min.unwrap_or(job.feed_mm_per_min);
         for piece in fit(&m.segment, opts) {

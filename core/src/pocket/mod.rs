@@ -18,6 +18,7 @@ pub mod entry;
 mod growth;
 pub mod guard;
 pub mod mirror;
+pub mod pace;
 pub mod path;
 pub mod perforative;
 pub mod rings;
@@ -26,6 +27,7 @@ mod runs;
 
 pub use adaptive::{AdaptiveOptions, AdaptivePart, AdaptivePlan, CornerPasses, plan_adaptive, plan_adaptive_open};
 pub use corner_point::CornerPoint;
+pub use pace::{Pace, PaceOptions};
 pub use path::PocketPath;
 pub use perforative::{AxisCircle, PerforativePlan, plan_perforative};
 pub use rings::{
@@ -191,6 +193,9 @@ pub struct PocketRequest {
     /// tool enters from outside. Adaptive clearing only ([`plan_adaptive_open`]).
     #[serde(default)]
     pub open_edges: Vec<usize>,
+    /// Rapids through cleared stock and the feed that follows the chip ([`pace`]).
+    #[serde(default)]
+    pub pace: PaceOptions,
 }
 
 impl Default for PocketRequest {
@@ -208,6 +213,7 @@ impl Default for PocketRequest {
             spacing_mm: 0.25,
             adaptive: AdaptiveOptions::default(),
             open_edges: Vec::new(),
+            pace: PaceOptions::default(),
         }
     }
 }
@@ -251,6 +257,15 @@ impl PocketPlan {
             PocketPlan::Rings(p) => &p.path,
             PocketPlan::MedialAxis(p) => &p.path,
             PocketPlan::Adaptive(p) => &p.path,
+        }
+    }
+
+    /// What every plan has, to change it (pacing).
+    fn path_mut(&mut self) -> &mut PocketPath {
+        match self {
+            PocketPlan::Rings(p) => &mut p.path,
+            PocketPlan::MedialAxis(p) => &mut p.path,
+            PocketPlan::Adaptive(p) => &mut p.path,
         }
     }
 
@@ -512,6 +527,9 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
         format!("move #{} ({})", i + 1, kinds.get(i).map_or("move".into(), |k| format!("{k:?}").to_lowercase()))
     };
     guard::check_clearance(&req.polygon, &req.open_edges, settings.tool_radius, &segments, name, &plan.entries())?;
+    let mut plan = plan;
+    let path = plan.path_mut();
+    path.pace = Some(pace::pace(path, &req.pace)?);
     Ok(plan)
 }
 

@@ -25,8 +25,12 @@ pub struct PocketPath {
     pub link_length_mm: f64,
     /// Length of the entries' descents from above the stock top (mm).
     pub entry_length_mm: f64,
-    /// Time at the feed: the descents and every move at depth (s).
+    /// Time at the feed: the descents and every move at depth, each at its own feed (s).
     pub time_s: f64,
+    /// The rapids through cleared stock and the feed of every move ([`super::pace`]); `None`
+    /// before pacing (every move at the programmed feed).
+    #[serde(default)]
+    pub pace: Option<super::pace::Pace>,
 }
 
 impl PocketPath {
@@ -51,6 +55,7 @@ impl PocketPath {
             link_length_mm,
             entry_length_mm,
             time_s,
+            pace: None,
         })
     }
 

@@ -9,7 +9,7 @@ use crate::corner::point::corner_point_bound_rad;
 use crate::error::Error;
 use crate::geom::Segment;
 use crate::pocket::{
-    AdaptivePlan, LinkKind, PerforativePlan, PocketPath, PocketPlan, PocketRequest, PocketStrategy, RingPlan,
+    AdaptivePlan, LinkKind, Pace, PerforativePlan, PocketPath, PocketPlan, PocketRequest, PocketStrategy, RingPlan,
 };
 use crate::toolpath::MoveKind;
 use serde::Serialize;
@@ -229,6 +229,9 @@ pub struct RingsReport {
     pub link_length_mm: f64,
     /// Machining time at the feed: the descents and every move at depth.
     pub time_s: f64,
+    /// Rapids at depth through cleared stock and the feed of every move: f_z, the target h, the
+    /// largest feed, per move its feed and h_max (the moves of `segments`), the peak h_max.
+    pub pace: Option<Pace>,
     /// Largest engagement over every move at depth (entry, core, links, rings), measured by
     /// the evaluator with the entries' bores as cut; and the 95th percentile of its samples.
     pub max_engagement_deg: f64,
@@ -295,6 +298,7 @@ impl RingsReport {
             path_length_mm: plan.path_length_mm,
             link_length_mm: plan.path.link_length_mm,
             time_s: plan.path.time_s,
+            pace: plan.path.pace.clone(),
             max_engagement_deg: plan.max_engagement_rad.to_degrees(),
             p95_engagement_deg: plan.path.measurement.p95_engagement_rad.to_degrees(),
             by_kind: kind_rows(&plan.path),
@@ -369,6 +373,9 @@ pub struct AdaptiveReport {
     pub helix_length_mm: f64,
     /// Helices and moves at depth at the feed.
     pub time_s: f64,
+    /// Rapids at depth through cleared stock and the feed of every move: f_z, the target h, the
+    /// largest feed, per move its feed and h_max (the moves of `segments`), the peak h_max.
+    pub pace: Option<Pace>,
     pub segments: Vec<Segment>,
     pub kinds: Vec<MoveKind>,
     pub retract_before: Vec<usize>,
@@ -420,6 +427,7 @@ impl AdaptiveReport {
             air_length_mm: m.air_length_mm,
             helix_length_mm: plan.path.entry_length_mm,
             time_s: plan.path.time_s,
+            pace: plan.path.pace.clone(),
             segments: plan.path.segments(),
             kinds: plan.path.kinds(),
             retract_before: plan.path.toolpath.retract_before.clone(),
@@ -467,6 +475,9 @@ pub struct MedialAxisReport {
     /// Whole feed path (all moves), and its machining time with the descents.
     pub path_length_mm: f64,
     pub time_s: f64,
+    /// Rapids at depth through cleared stock and the feed of every move: f_z, the target h, the
+    /// largest feed, per move its feed and h_max (the moves of `segments`), the peak h_max.
+    pub pace: Option<Pace>,
     /// Largest engagement over every move at depth (tips into the corner points included),
     /// measured by the evaluator with the entries' bores as cut, and the 95th percentile.
     pub max_engagement_deg: f64,
@@ -534,6 +545,7 @@ impl MedialAxisReport {
                 .collect(),
             path_length_mm: m.length_at_depth_mm,
             time_s: plan.path.time_s,
+            pace: plan.path.pace.clone(),
             max_engagement_deg: m.max_engagement_rad.to_degrees(),
             p95_engagement_deg: m.p95_engagement_rad.to_degrees(),
             body_max_engagement_deg: plan.body_max_rad.to_degrees(),

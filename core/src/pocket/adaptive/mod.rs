@@ -20,7 +20,7 @@
 //! take; it is below a_e for every finite ρ.
 //!
 //! 1. **Entry.** A helix of radius r_h (default 0.375·D: a bore of 75 % of D, the helix of
-//!    FreeCAD's Adaptive for D = 10) and ramp angle ≤ 3° about the point `k0` of largest
+//!    FreeCAD's Adaptive for D = 10) and ramp angle ≤ 5° (the default, [`AdaptiveOptions`]) about the point `k0` of largest
 //!    clearance of `C` (bisection on inward offsets), from 0.5 mm above the stock top down to
 //!    depth, then one flat turn at depth. The evaluator treats the bore as cut (the helix
 //!    circle is its `before` path): the tool descends into it on the ramp, never plunges.

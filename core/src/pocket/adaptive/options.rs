@@ -40,12 +40,15 @@ pub(super) fn default_corner_tolerance() -> f64 {
 }
 
 impl Default for AdaptiveOptions {
-    /// Helix 0.375·D at 3° (a 3-flute carbide end mill's ramp), 0.2 mm finishing stock, climb,
-    /// the NC export's default depth of 6 mm.
+    /// Helix 0.375·D at 5°, 0.2 mm finishing stock, climb, the NC export's default depth of
+    /// 6 mm. 5° is the upper end of the 2–5° that standard solid end mills take in ramping,
+    /// set by their flutes and core (carbide-tooling.com, "Ramping Angle Calculator"), and
+    /// FreeCAD's Adaptive's default helix ramp angle; a ramp deeper per turn than the tool
+    /// takes is the user's `--ramp-angle` to lower.
     fn default() -> Self {
         AdaptiveOptions {
             helix_radius_mm: None,
-            ramp_deg: 3.0,
+            ramp_deg: 5.0,
             finish_stock_mm: 0.2,
             direction: Direction::Climb,
             depth_mm: 6.0,
