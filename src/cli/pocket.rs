@@ -262,7 +262,8 @@ mod tests {
             PT::try_parse_from(v).expect("parse").p
         };
         let v: serde_json::Value =
-            serde_json::from_str(&pocket(&args(&["--step-over", "4"])).expect("plan")).expect("json");
+            serde_json::from_str(&pocket(&args(&["--step-over", "4", "--constant-feed", "--no-rapids"])).expect("plan"))
+                .expect("json");
         let rings = v["rings"].as_array().expect("rings");
         assert!(!rings.is_empty() && rings.len() < 4, "{}", v["ring_count"]);
         let offsets: Vec<f64> = rings.iter().map(|g| g["offset_mm"].as_f64().expect("offset")).collect();

@@ -19,6 +19,8 @@ mod growth;
 pub mod guard;
 pub mod mirror;
 pub mod pace;
+#[cfg(test)]
+mod pace_tests;
 pub mod path;
 pub mod perforative;
 pub mod rings;
