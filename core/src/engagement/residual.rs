@@ -404,6 +404,24 @@ mod tests {
         assert_eq!((res.area_mm2, res.upper_mm2), (0.0, 0.0));
     }
 
+    /// An L (20 × 20, arms 8 wide, area 256, perimeter 80) with nothing cut: its reach is the L
+    /// less, at each of its 5 convex right-angle corners, the (1 − π/4)·r² the disc cannot enter;
+    /// its reflex corner is reached wholly (DERIVED): 256 − 5·(4 − π). With 0.5 on the walls the
+    /// L shrinks first (points ≥ s from its walls: 256 − 80·s + 5·s² − π·s²/4, the strips along
+    /// the sides, their overlaps at the five convex corners, and the quarter disc of radius s
+    /// at the reflex corner), then loses the same corners (DERIVED).
+    #[test]
+    fn the_reach_of_an_l() {
+        let l =
+            Polygon::new(vec![p2(0.0, 0.0), p2(20.0, 0.0), p2(20.0, 8.0), p2(8.0, 8.0), p2(8.0, 20.0), p2(0.0, 20.0)])
+                .unwrap();
+        let res = residual_area(&l, R, 0.0, &[], &ResidualOptions::default()).unwrap();
+        holds(&res, 256.0 - 5.0 * (4.0 - PI), 80.0);
+        let s: f64 = 0.5;
+        let res = residual_area(&l, R, s, &[], &ResidualOptions::default()).unwrap();
+        holds(&res, 256.0 - 80.0 * s + 5.0 * s * s - PI * s * s / 4.0 - 5.0 * (4.0 - PI), 80.0);
+    }
+
     /// Bad input names its parameter.
     #[test]
     fn bad_input_is_refused() {
