@@ -118,11 +118,13 @@ pub fn residual_area(
     }
     let reach = tool_radius + h * std::f64::consts::FRAC_1_SQRT_2;
     let walls: Vec<Segment> = inner.iter().flat_map(Region::segments).collect();
+    // the buckets cover the whole raster (its last cells may reach past the pocket's box)
+    let top = lo + p2(nx as f64 * h, ny as f64 * h);
     let raster = Raster {
         r: tool_radius,
         inner,
-        walls: Buckets::new(walls, lo, hi, reach),
-        cut: Buckets::new(cut.to_vec(), lo, hi, reach),
+        walls: Buckets::new(walls, lo, top, reach),
+        cut: Buckets::new(cut.to_vec(), lo, top, reach),
     };
     let unit = 1u64 << (2 * opts.levels);
     let (low, est, high) = (0..ny)
