@@ -65,10 +65,10 @@ const RAPID_MAX_DEG: f64 = 0.01;
 const PEAK_MAX_DEG: f64 = 60.0;
 /// Largest residual area our program may leave of the reach less its finish stock (mm²): an
 /// acceptance limit, not a derived value — a quarter of a square millimetre over the whole
-/// pocket. The finishing contour runs at r from the walls, the finish stock beyond this reach,
-/// so neither the stock nor the program's fit (0.005 mm) leaves any of it; what it catches is a
-/// part of the reach the passes never come near (the dumbbell's neck mouths leave some today:
-/// docs/freecad-comparison.md). Asserted on the raster's upper bound.
+/// pocket. Our finishing contour runs at r from the walls, the finish stock (0.2 mm) beyond the
+/// boundary of this reach, so neither the stock nor the program's fit (0.005 mm) leaves any of
+/// it; what it catches is a part of the reach the passes never come near (as at the dumbbell's
+/// neck mouths: docs/freecad-comparison.md). Asserted on the raster's upper bound.
 const RESIDUAL_MAX_MM2: f64 = 0.25;
 /// The target of our real time against FreeCAD's on every pocket.
 const TIME_RATIO_TARGET: f64 = 0.8;
