@@ -324,7 +324,8 @@ fn freecad_and_our_pockets_timed_and_measured() {
 /// back runs in the pass's own slot (0°, DERIVED: every point of its periphery is within r of
 /// the pass); the rapid up cuts a slot of its own once out of that one: 180° (DERIVED: the
 /// front half of the periphery is in solid stock) — the check of the rapids sees it; the pass
-/// out of the ramp is a slot, 180° too.
+/// out of the ramp is a slot, 180° too (were the ramp's path not counted as cut, the pass would
+/// start at 360°: the peak checks that rule).
 #[test]
 fn a_rapid_through_stock_is_seen() {
     let text =
