@@ -9,16 +9,32 @@
 //! the machine's rapid rate, the vertical moves' at least their length at the fastest rate they
 //! may run; the lengths FreeCAD's programs have at depth (cut and rapid) are the README's,
 //! measured there on LinuxCNC's `rs274` output; our program read back is timed like the plan's
-//! own tool path (`machine::toolpath_time`). Prints the table of docs/freecad-comparison.md:
+//! own tool path (`machine::toolpath_time`).
+//!
+//! The acceptance measurements, on both programs read back (the rules are [`measured`]'s):
+//! peak and 95th percentile of the evaluator's engagement over every move at depth, the
+//! largest engagement of a rapid at depth, and the residual area (`engagement::residual_area`)
+//! with respect to the full reach and to the reach less our finish stock. Asserted: every rapid
+//! at depth of ours reads at most [`RAPID_MAX_DEG`], our peak is at most 60° and at most
+//! FreeCAD's, our residual with respect to the reach less the finish stock is at most
+//! [`RESIDUAL_MAX_MM2`]. The time ratio is printed; [`ASSERT_TIME_RATIO`] turns on its
+//! bound [`TIME_RATIO_TARGET`].
+//!
+//! Prints the tables of docs/freecad-comparison.md:
 //! `cargo test --release --test freecad_time -- --nocapture`.
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use std::path::Path;
 use std::process::Command;
+use trochoplan_core::engagement::{
+    EngagementProfile, EvaluatorOptions, Residual, ResidualOptions, Stock, measure, parse_points, peak_and_p95,
+    residual_area,
+};
+use trochoplan_core::geom::{Polygon, Segment};
 use trochoplan_core::machine::{Machine, ProgramTime, program_time};
 use trochoplan_core::nc::{Dialect, read_toolpath};
-use trochoplan_core::toolpath::{Move, MoveKind};
+use trochoplan_core::toolpath::{Move, MoveKind, Toolpath};
 
 /// The pockets, with FreeCAD's lengths from the README of `tests/data/freecad/` (mm, one
 /// decimal): the feed moves in the plane below the stock top (Cutting + entry + helix, 3D) and
@@ -36,6 +52,29 @@ const POCKETS: [(&str, f64, f64); 6] = [
 const DEPTH: f64 = 6.0;
 /// Programmed feed of both (mm/min).
 const FEED: f64 = 600.0;
+/// Tool radius of both (mm).
+const R: f64 = 5.0;
+/// Spacing of the evaluator's positions along the moves at depth (mm); the end of every move
+/// is evaluated too.
+const SPACING: f64 = 0.25;
+/// Largest engagement a rapid at depth of ours may read (degrees): 0 up to the evaluator's
+/// tolerance (its material test is exact to 1e-11 mm, ≈ 1e-4° at r = 5; a rapid through
+/// cleared stock reads 0 to that).
+const RAPID_MAX_DEG: f64 = 0.01;
+/// Largest peak engagement of ours (degrees).
+const PEAK_MAX_DEG: f64 = 60.0;
+/// Largest residual area our program may leave of the reach less its finish stock (mm²): an
+/// acceptance limit, not a derived value — a quarter of a square millimetre over the whole
+/// pocket. Our finishing contour runs at r from the walls, the finish stock (0.2 mm) beyond the
+/// boundary of this reach, so neither the stock nor the program's fit (0.005 mm) leaves any of
+/// it; what it catches is a part of the reach the passes never come near (as at the dumbbell's
+/// neck mouths: docs/freecad-comparison.md). Asserted on the raster's upper bound.
+const RESIDUAL_MAX_MM2: f64 = 0.25;
+/// The target of our real time against FreeCAD's on every pocket.
+const TIME_RATIO_TARGET: f64 = 0.8;
+/// Whether the test asserts [`TIME_RATIO_TARGET`] (printed either way): to be turned on when
+/// our pockets meet it.
+const ASSERT_TIME_RATIO: bool = false;
 
 fn data() -> &'static Path {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/freecad"))
@@ -81,11 +120,89 @@ fn check(label: &str, moves: &[Move], t: &ProgramTime, m: &Machine) {
     assert!(t.feed_s < 1.5 * feed, "{label}: at feed {} s against {feed} s programmed", t.feed_s);
 }
 
+/// The acceptance measurements of one program read back.
+struct Acceptance {
+    /// Peak and 95th percentile of the engagement over every move at depth (degrees).
+    peak_deg: f64,
+    p95_deg: f64,
+    /// Rapids at depth: how many, their length (mm), their largest engagement (degrees).
+    rapids: usize,
+    rapid_length_mm: f64,
+    rapid_max_deg: f64,
+    /// Residual area with respect to the full reach, and to the reach less `stock` on the walls.
+    full: Residual,
+    less_stock: Residual,
+}
+
+/// The acceptance measurements of `moves` (a program read back) in `pocket`, `stock` (mm)
+/// being the finish stock the second residual leaves on the walls.
+///
+/// A program read back has no planned entries, so the rule is: a move is *at depth* when both
+/// its ends are at the final depth (within 1e-6 mm) and it moves in the plane; a *descent* is a
+/// move in the plane below the stock top that is not at depth (the helix or ramp down). Each run
+/// of consecutive moves at depth (a run ends at a move that is not at depth: a descent, a
+/// retract, a plunge) is measured by `engagement::measure` over the pocket polygon, with the
+/// tool-centre paths of every descent and every move at depth before it as precut — a descent
+/// counts as cut through the whole depth, what its bore leaves at depth. The peak and the 95th
+/// percentile are over the samples of every run together; rapids (G0) at depth are moves at
+/// depth like the others and are also reported on their own. The residual's cut is the
+/// tool-centre path of every move at depth (rapids included).
+fn measured(moves: &[Move], pocket: &Polygon, stock: f64) -> Acceptance {
+    let opts = EvaluatorOptions::new(R, SPACING);
+    let below = |m: &Move| m.z_start_mm.min(m.z_end_mm) < -1e-9 && m.segment.length() > 1e-9;
+    let mut before: Vec<Segment> = Vec::new();
+    let mut run: Vec<Move> = Vec::new();
+    let mut profile = EngagementProfile { samples: Vec::new(), path_length_mm: 0.0 };
+    let mut rapid_max: f64 = 0.0;
+    let mut flush = |run: &mut Vec<Move>, before: &mut Vec<Segment>| {
+        if run.is_empty() {
+            return;
+        }
+        let path = Toolpath { moves: std::mem::take(run), ..Toolpath::default() };
+        let m = measure(&path, Stock { polygon: pocket, precut: before }, &opts).unwrap();
+        rapid_max = rapid_max.max(m.max_of(MoveKind::Rapid));
+        profile.path_length_mm += m.profile.path_length_mm;
+        profile.samples.extend(m.profile.samples);
+        before.extend(path.segments());
+    };
+    for m in moves {
+        if at_depth(m) && m.segment.length() > 1e-9 {
+            run.push(*m);
+        } else {
+            flush(&mut run, &mut before);
+            if below(m) {
+                before.push(m.segment);
+            }
+        }
+    }
+    flush(&mut run, &mut before);
+    let (peak, p95) = peak_and_p95(&profile);
+    let depth: Vec<&Move> = moves.iter().filter(|m| at_depth(m) && m.segment.length() > 1e-9).collect();
+    let cut: Vec<Segment> = depth.iter().map(|m| m.segment).collect();
+    let rapids: Vec<&&Move> = depth.iter().filter(|m| m.kind == MoveKind::Rapid).collect();
+    let ro = ResidualOptions::default();
+    Acceptance {
+        peak_deg: peak.to_degrees(),
+        p95_deg: p95.to_degrees(),
+        rapids: rapids.len(),
+        rapid_length_mm: rapids.iter().fold(0.0, |sum, m| sum + m.segment.length()),
+        rapid_max_deg: rapid_max.to_degrees(),
+        full: residual_area(pocket, R, 0.0, &cut, &ro).unwrap(),
+        less_stock: residual_area(pocket, R, stock, &cut, &ro).unwrap(),
+    }
+}
+
+/// A residual for the table: the estimate and its error bound (mm²).
+fn shown(r: &Residual) -> String {
+    format!("{:.2} ± {:.2}", r.area_mm2, r.error_bound_mm2())
+}
+
 #[test]
-fn freecad_and_our_pockets_timed_by_one_model() {
+fn freecad_and_our_pockets_timed_and_measured() {
     let vmc = Machine::preset("vmc").unwrap();
     let dir = tempfile::tempdir().unwrap();
     let mut rows = Vec::new();
+    let mut accept = Vec::new();
     for (name, fc_cut, fc_links) in POCKETS {
         // FreeCAD's program as it posts it
         let text = std::fs::read_to_string(data().join(format!("{name}.ngc"))).unwrap();
@@ -127,6 +244,28 @@ fn freecad_and_our_pockets_timed_by_one_model() {
             "{name}: planned {planned} vs read back {}",
             to.total_s
         );
+        // the acceptance measurements of both
+        let pocket =
+            Polygon::new(parse_points(&std::fs::read_to_string(&polygon).unwrap(), "polygon").unwrap()).unwrap();
+        let finish = json["finish_stock_mm"].as_f64().unwrap();
+        let af = measured(&fc.moves, &pocket, finish);
+        let ao = measured(&ours.moves, &pocket, finish);
+        // every rapid at depth of ours runs through cleared stock (none is an honest pass)
+        assert!(ao.rapid_max_deg <= RAPID_MAX_DEG, "{name}: a rapid at depth of ours engages {:.4}°", ao.rapid_max_deg);
+        assert!(ao.peak_deg <= PEAK_MAX_DEG, "{name}: our peak {:.2}° > {PEAK_MAX_DEG}°", ao.peak_deg);
+        assert!(ao.peak_deg <= af.peak_deg, "{name}: our peak {:.2}° > FreeCAD's {:.2}°", ao.peak_deg, af.peak_deg);
+        assert!(
+            ao.less_stock.upper_mm2 <= RESIDUAL_MAX_MM2,
+            "{name}: our residual {} mm² of the reach less {finish} mm > {RESIDUAL_MAX_MM2} mm²",
+            shown(&ao.less_stock)
+        );
+        // FreeCAD's rapids at depth are measured alike; their largest engagement is printed
+        assert!(af.rapid_max_deg.is_finite() && af.rapids > 0, "{name}: FreeCAD's rapids at depth");
+        let ratio = to.total_s / tf.total_s;
+        if ASSERT_TIME_RATIO {
+            assert!(ratio <= TIME_RATIO_TARGET, "{name}: our time {ratio:.2} × FreeCAD's > {TIME_RATIO_TARGET}");
+        }
+        accept.push((name, tf, to, af, ao, ratio, finish));
         rows.push((name, tf, to));
     }
     println!(
@@ -151,4 +290,57 @@ fn freecad_and_our_pockets_timed_by_one_model() {
             o.total_s / f.total_s
         );
     }
+    println!();
+    // every pocket is exported with the default finish stock: one value for the column
+    let finish = accept[0].6;
+    assert!(accept.iter().all(|a| a.6 == finish));
+    println!(
+        "| pocket | program | real time (vmc) | length at feed | rapid length | peak | p95 | rapids at depth: count, length, max engagement | residual of the reach (mm²) | residual of the reach less {finish} mm (mm²) | time ours / FreeCAD |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    for (name, tf, to, af, ao, ratio, _) in accept {
+        for (who, t, a, r) in [("FreeCAD", tf, af, String::new()), ("ours", to, ao, format!("{ratio:.2}"))] {
+            println!(
+                "| {name} | {who} | {:.1} s | {:.0} mm | {:.0} mm | {:.2}° | {:.2}° | {}, {:.0} mm, {:.4}° | {} | {} | {r} |",
+                t.total_s,
+                t.feed_length_mm,
+                t.rapid_length_mm,
+                a.peak_deg,
+                a.p95_deg,
+                a.rapids,
+                a.rapid_length_mm,
+                a.rapid_max_deg,
+                shown(&a.full),
+                shown(&a.less_stock),
+            );
+        }
+    }
+    println!("time ratio target ≤ {TIME_RATIO_TARGET} (asserted: {ASSERT_TIME_RATIO})");
+}
+
+/// The rule of [`measured`] on a program written here, in the 60 × 40 rectangle: a ramp down
+/// from (10, 10) to (12, 10) (its path counts as cut), a feed pass on to (30, 10), a rapid back
+/// along it to (20, 10), then a rapid at depth to (20, 30) through stock nobody cut. The rapid
+/// back runs in the pass's own slot (0°, DERIVED: every point of its periphery is within r of
+/// the pass); the rapid up cuts a slot of its own once out of that one: 180° (DERIVED: the
+/// front half of the periphery is in solid stock) — the check of the rapids sees it; the pass
+/// out of the ramp is a slot, 180° too (were the ramp's path not counted as cut, the pass would
+/// start at 360°: the peak checks that rule).
+#[test]
+fn a_rapid_through_stock_is_seen() {
+    let text =
+        "G21 G90 G17\nG0 Z5\nG0 X10 Y10\nG0 Z0\nG1 X12 Z-6 F600\nG1 X30 Y10\nG0 X20 Y10\nG0 X20 Y30\nG0 Z5\nM2\n";
+    let path = read_toolpath(text, Dialect::LinuxCnc).unwrap();
+    let rect = Polygon::new(parse_points(&std::fs::read_to_string(data().join("rect.txt")).unwrap(), "rect").unwrap())
+        .unwrap();
+    let a = measured(&path.moves, &rect, 0.2);
+    assert_eq!(a.rapids, 2);
+    assert!((a.rapid_length_mm - 30.0).abs() < 1e-9, "{}", a.rapid_length_mm);
+    assert!((a.rapid_max_deg - 180.0).abs() < 0.01, "{}", a.rapid_max_deg);
+    assert!((a.peak_deg - 180.0).abs() < 0.01, "{}", a.peak_deg);
+    // without the rapid up, the rapid reads 0: it stays in the slot
+    let back = read_toolpath(&text.replace("G0 X20 Y30\n", ""), Dialect::LinuxCnc).unwrap();
+    let b = measured(&back.moves, &rect, 0.2);
+    assert_eq!(b.rapids, 1);
+    assert!(b.rapid_max_deg <= RAPID_MAX_DEG, "{}", b.rapid_max_deg);
 }

@@ -12,6 +12,7 @@ pub mod evaluator;
 pub mod measure;
 pub mod model;
 pub mod nearby;
+pub mod residual;
 
 pub use evaluator::{
     EngagementProfile, EngagementSample, EvaluatorOptions, engagement_profile, engagement_profile_on, parse_points,
@@ -21,3 +22,4 @@ pub use measure::{
     AIR_ENGAGEMENT_RAD, KindMax, Measurement, Stock, maxima, measure, measured, peak_and_p95, sample_owners,
 };
 pub use model::{MaxEngagement, Turn, TwoCircle, radial_depth_for_engagement, straight_engagement};
+pub use residual::{Residual, ResidualOptions, residual_area};
