@@ -1,7 +1,7 @@
 //! The report's top-level numbers agree with its own rows, for every pocket strategy on the
 //! 60 × 40 rectangle and the 60 × 60 L with 25 mm arms, and for every corner method: the links
 //! are the `link` rows, the length at depth is the sum of all rows, the peak is the largest
-//! row's, the time is the length at depth plus the descents at the feed. Read from the
+//! row's, the time is every move at its paced feed plus the descents at the feed. Read from the
 //! serialised JSON (what `trochoplan pocket` and `trochoplan corner` print), so the keys are
 //! checked, not only the fields.
 
@@ -24,6 +24,19 @@ fn num(v: &Value, key: &str) -> f64 {
 fn rows_length(v: &Value, kind: Option<&str>) -> f64 {
     let rows = v["by_kind"].as_array().expect("by_kind");
     rows.iter().filter(|r| kind.is_none_or(|k| r["kind"] == k)).map(|r| num(r, "length_mm")).sum()
+}
+
+/// Length of a JSON segment (line or arc; mm).
+fn segment_length(s: &Value) -> f64 {
+    let pt = |k: &str| (s[k][0].as_f64().expect("x"), s[k][1].as_f64().expect("y"));
+    match s["kind"].as_str() {
+        Some("line") => {
+            let ((x0, y0), (x1, y1)) = (pt("start"), pt("end"));
+            (x1 - x0).hypot(y1 - y0)
+        }
+        Some("arc") => (num(s, "radius") * num(s, "sweep")).abs(),
+        other => panic!("segment kind {other:?}"),
+    }
 }
 
 fn rows_peak(v: &Value) -> f64 {
@@ -60,8 +73,16 @@ fn pocket_keys_agree_with_their_rows() {
                 PocketStrategy::Adaptive => num(&v, "helix_length_mm"),
                 _ => num(&v, "entry_length_mm"),
             };
-            close(&label, "time_s", num(&v, "time_s"), (at_depth + entry) / num(&v, "feed_mm_per_min") * 60.0);
-            let segments = v["segments"].as_array().expect("segments").len();
+            // every move at its paced feed (the `pace` block, one feed per segment), the descents
+            // at the programmed feed
+            let feeds = v["pace"]["feeds_mm_per_min"].as_array().expect("pace feeds");
+            let moves = v["segments"].as_array().expect("segments");
+            assert_eq!(feeds.len(), moves.len(), "{label}");
+            let paced: f64 =
+                moves.iter().zip(feeds).map(|(s, f)| segment_length(s) / f.as_f64().expect("feed") * 60.0).sum();
+            let feed = num(&v, "feed_mm_per_min");
+            close(&label, "time_s", num(&v, "time_s"), paced + entry / feed * 60.0);
+            let segments = moves.len();
             assert_eq!(v["kinds"].as_array().map(Vec::len), Some(segments), "{label}");
             match strategy {
                 PocketStrategy::Rings(_) => {

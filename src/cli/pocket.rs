@@ -94,7 +94,7 @@ pub struct PocketArgs {
     nc: CornerExportArgs,
 }
 
-/// How the pocket's moves at depth are paced (docs/pockets.md, "Feed and rapids").
+/// How the pocket's moves at depth are paced (docs/feed-and-rapids.md).
 #[derive(Args)]
 pub struct PaceArgs {
     /// Teeth z of the tool: with --feed and --rpm it gives f_z = feed/(rpm·z), the chip the

@@ -199,10 +199,10 @@ mod tests {
         let len = (ramp.end - ramp.start).norm();
         assert!((ramp.start.y - 7.0).abs() < 1e-9 && (ramp.end.y - 7.0).abs() < 1e-9, "{ramp:?}");
         assert!((len - 50.0).abs() < 1e-6, "{ramp:?}");
-        // 6.5 mm at 3° on 50 mm legs: 6.5 / (50 tan 3°) = 2.48 → 3 legs, the first from `end`
-        assert_eq!(ramp.legs(6.5), 3);
-        assert_eq!(ramp.first_point(6.5), ramp.end);
-        let want = ((3.0 * len).powi(2) + 6.5f64.powi(2)).sqrt();
+        // 6.5 mm at 5° on 50 mm legs: 6.5 / (50 tan 5°) = 1.49 → 2 legs, the first from `start`
+        assert_eq!(ramp.legs(6.5), 2);
+        assert_eq!(ramp.first_point(6.5), ramp.start);
+        let want = ((2.0 * len).powi(2) + 6.5f64.powi(2)).sqrt();
         assert!((ramp.length(6.5) - want).abs() < 1e-6);
     }
 

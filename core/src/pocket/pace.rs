@@ -1,6 +1,5 @@
 //! The pace of a pocket's moves at depth: which run as rapids through cleared stock and at
-//! what feed each of the others runs so that the chip stays at the target (docs/pockets.md,
-//! "Feed and rapids").
+//! what feed each of the others runs so that the chip stays at the target (docs/feed-and-rapids.md).
 //!
 //! - **Rapids through cleared stock.** A straight move whose swept tool disc, grown by the
 //!   margin ([`PaceOptions::rapid_margin_mm`]), meets no uncut material — the evaluator's
@@ -149,8 +148,8 @@ impl PaceOptions {
 }
 
 /// Pace `path` in place: rapids through cleared stock, the feed of every other move (see the
-/// module doc), the measurement's per-kind maxima taken again over the new kinds; returns
-/// what was found.
+/// module doc), the measurement's per-kind maxima, the link length and the time at the feed
+/// taken again over the new moves; returns what was found.
 pub fn pace(path: &mut PocketPath, opts: &PaceOptions) -> Result<Pace, Error> {
     let feed = path.settings.feed_mm_per_min;
     let (f_z, target, max_feed) = opts.resolve(feed)?;
@@ -218,6 +217,7 @@ pub fn pace(path: &mut PocketPath, opts: &PaceOptions) -> Result<Pace, Error> {
             samples[a..b].iter().map(|s| f_z * s.chip * f / feed).fold(0.0, f64::max)
         })
         .collect();
+    path.link_length_mm = path.toolpath.length_of(&[MoveKind::Link]) + 0.0;
     path.time_s = path.toolpath.moves.iter().zip(&feeds).map(|(m, f)| m.segment.length() / f * 60.0).sum::<f64>()
         + path.entry_length_mm / feed * 60.0;
     Ok(Pace {
@@ -254,7 +254,8 @@ fn within(run: &[(f64, f64)], a: f64, b: f64) -> (usize, usize) {
 }
 
 /// The spans of straight moves (arc lengths from the move's start) along which the tool
-/// disc grown by `margin` meets no uncut material: the evaluator's periphery at r + margin
+/// disc grown by `margin` meets no uncut material: the evaluator's periphery at r, r + margin/2
+/// and r + margin
 /// along the candidate lines (at least [`MIN_RAPID_MM`] long, some position of which reads no
 /// engagement in the measurement), with the bores and every move before as cut. A span runs between measured positions that read nothing, at least
 /// [`MIN_RAPID_MM`] long; a link that ends where the next cut starts keeps its last part,
@@ -278,8 +279,22 @@ fn clear_spans(path: &PocketPath, r: f64, margin: f64) -> Result<Vec<Vec<(f64, f
     if !on.contains(&true) {
         return Ok(spans);
     }
-    let opts = EvaluatorOptions { margin_mm: margin, ..EvaluatorOptions::new(r, path.settings.spacing) };
-    let prof = engagement_profile_on(&path.polygon, &path.toolpath.bores(), &segments, &opts, Some(&on))?;
+    // the periphery at r (the measurement), r + margin/2 and r + margin: material thinner than
+    // margin/2 lying wholly between two of these circles is not seen (docs/feed-and-rapids.md)
+    let grown = |m: f64| {
+        let opts = EvaluatorOptions { margin_mm: m, ..EvaluatorOptions::new(r, path.settings.spacing) };
+        engagement_profile_on(&path.polygon, &path.toolpath.bores(), &segments, &opts, Some(&on))
+    };
+    let (half, full) = (grown(0.5 * margin)?, grown(margin)?);
+    // the same positions in all three profiles (spacing multiples and segment ends)
+    let reads = |p: &crate::engagement::EngagementSample| {
+        let at = |prof: &[crate::engagement::EngagementSample]| {
+            let i = prof.partition_point(|q| q.s_mm < p.s_mm - 1e-9);
+            prof.get(i).filter(|q| (q.s_mm - p.s_mm).abs() <= 1e-9).map_or(f64::INFINITY, |q| q.angle_rad)
+        };
+        p.angle_rad.max(at(&half.samples)).max(at(samples))
+    };
+    let prof = full;
     for (k, sp) in spans.iter_mut().enumerate().filter(|(k, _)| on[*k]) {
         let (a, len) = (starts[k], moves[k].segment.length());
         let lo = prof.samples.partition_point(|p| p.s_mm < a - 1e-9);
@@ -288,7 +303,7 @@ fn clear_spans(path: &PocketPath, r: f64, margin: f64) -> Result<Vec<Vec<(f64, f
         let mut open: Option<f64> = None;
         let mut last = a;
         for p in &prof.samples[lo..hi] {
-            if p.angle_rad < CLEAR_RAD {
+            if reads(p) < CLEAR_RAD {
                 open.get_or_insert(p.s_mm);
                 last = p.s_mm;
             } else if let Some(s0) = open.take()
@@ -307,20 +322,23 @@ fn clear_spans(path: &PocketPath, r: f64, margin: f64) -> Result<Vec<Vec<(f64, f
 }
 
 /// The moves with every clear span ([`clear_spans`]) made a rapid at `max_feed` (its feed where
-/// G0 is not straight), and for each old move the index of its first piece.
+/// G0 is not straight), and for each old move the index of its first piece. A span is never
+/// stretched: the pieces of the move before and after it, however short, stay feed moves.
 fn with_rapids(moves: &[Move], spans: &[Vec<(f64, f64)>], max_feed: f64) -> (Vec<Move>, Vec<usize>) {
     let mut out = Vec::with_capacity(moves.len());
     let mut first = Vec::with_capacity(moves.len());
     for (m, sp) in moves.iter().zip(spans) {
         first.push(out.len());
+        if sp.is_empty() {
+            out.push(*m);
+            continue;
+        }
         let len = m.segment.length();
         let mut at = 0.0;
         for &(a, b) in sp {
-            if a > at + MIN_PIECE_MM {
+            if a > at + 1e-9 {
                 out.push(Move { segment: piece(&m.segment, at / len, a / len), ..*m });
             }
-            let a = if a > at + MIN_PIECE_MM { a } else { at };
-            let b = if b < len - MIN_PIECE_MM { b } else { len };
             out.push(Move {
                 segment: piece(&m.segment, a / len, b / len),
                 kind: MoveKind::Rapid,
@@ -329,9 +347,7 @@ fn with_rapids(moves: &[Move], spans: &[Vec<(f64, f64)>], max_feed: f64) -> (Vec
             });
             at = b;
         }
-        if sp.is_empty() {
-            out.push(*m);
-        } else if at < len {
+        if at < len - 1e-9 {
             out.push(Move { segment: piece(&m.segment, at / len, 1.0), ..*m });
         }
     }

@@ -70,12 +70,13 @@ pub fn segments_of(cut: &[Motion]) -> Vec<Segment> {
         .collect()
 }
 
-/// The feed moves at cutting depth (z = −depth within `z_tol`), in program order: the cut.
+/// The moves at cutting depth (z = −depth within `z_tol`), in program order: the cut. Rapids
+/// at depth (a pocket's moves through cleared stock) are part of it: they follow the planned
+/// path like the feed moves; whether they may be there is each caller's check.
 pub fn cut(motions: &[Motion], depth: f64, z_tol: f64) -> Vec<Motion> {
     motions
         .iter()
         .copied()
-        .filter(|m| !matches!(m, Motion::Rapid { .. }))
         .filter(|m| (m.start()[2] + depth).abs() <= z_tol && (m.end()[2] + depth).abs() <= z_tol)
         .filter(|m| (xy(m.end()) - xy(m.start())).norm() > 0.0 || matches!(m, Motion::Arc { .. }))
         .collect()

@@ -209,16 +209,16 @@ fn a_link_keeps_r_from_the_walls() {
 // ---- entry and spiral (spiral.rs) ----
 
 /// The helix: radius 0.375·D = 3.75 mm about the point of largest clearance of the tool-centre
-/// region (the rectangle's spine y = 20), descending 0.5 + 6 mm at 3°: 2π·3.75·tan 3° =
-/// 1.2349 mm a turn, so ⌈6.5/1.2349⌉ = ⌈5.26⌉ = 6 turns.
+/// region (the rectangle's spine y = 20), descending 0.5 + 6 mm at 5°: 2π·3.75·tan 5° =
+/// 2.0614 mm a turn, so ⌈6.5/2.0614⌉ = ⌈3.15⌉ = 4 turns.
 #[test]
 fn helix_entry_radius_and_turns() {
     let (parts, ..) = rectangle_path();
     let Entry::Helix(h) = parts[0].entry else { panic!("{:?}", parts[0].entry) };
     assert!((h.radius - 3.75).abs() < 1e-12 && (h.center.y - 20.0).abs() < 1e-3, "{h:?}");
-    let per_turn = 2.0 * PI * 3.75 * 3.0_f64.to_radians().tan();
-    assert!((per_turn - 1.2349).abs() < 1e-4);
-    assert_eq!(h.turns(HELIX_START_Z_MM + 6.0), 6);
+    let per_turn = 2.0 * PI * 3.75 * 5.0_f64.to_radians().tan();
+    assert!((per_turn - 2.0614).abs() < 1e-4);
+    assert_eq!(h.turns(HELIX_START_Z_MM + 6.0), 4);
 }
 
 /// The spiral's half-turns: each runs from radius q_i to q_i+1 about its end's centre a, its

@@ -110,7 +110,7 @@ fn transition_is_tangent_to_both_circles() {
 // ---- step 2: entry and the circles out of the bore (start.rs) ----
 
 /// The helix sits on the spine (the axis points of largest clearance, y = 20), radius
-/// 0.375·D = 3.75; 2π·3.75·tan 3° = 1.2349 mm a turn, so ⌈6.5/1.2349⌉ = 6 turns to 6 mm. The
+/// 0.375·D = 3.75; 2π·3.75·tan 5° = 2.0614 mm a turn, so ⌈6.5/2.0614⌉ = 4 turns to 6 mm. The
 /// circles out of its bore are concentric about it, each within the target by the two-circle
 /// model (predicted ≤ a* + ε), growing.
 #[test]
@@ -118,7 +118,7 @@ fn helix_and_concentric_circles_out_of_its_bore() {
     let plan = rectangle_plan();
     let Entry::Helix(h) = plan.path.toolpath.entries[0] else { panic!("{:?}", plan.path.toolpath.entries) };
     assert!((h.radius - 3.75).abs() < 1e-12 && (h.center.y - 20.0).abs() < 1e-6, "{h:?}");
-    assert_eq!(h.turns(HELIX_START_Z_MM + 6.0), 6);
+    assert_eq!(h.turns(HELIX_START_Z_MM + 6.0), 4);
     let spiral: Vec<_> = plan.circles.iter().filter(|c| c.kind == MoveKind::Spiral).collect();
     assert!(spiral.len() >= 2);
     for w in spiral.windows(2) {
