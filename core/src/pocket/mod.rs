@@ -339,8 +339,13 @@ pub fn stored_open_edges(polygon: &Polygon, points: &[P2], open: &[usize]) -> Re
 }
 
 /// Most tool positions a pocket plan may measure, as estimated before planning by
-/// [`estimated_positions`]: at this bound a plan takes seconds, not minutes.
-pub const MAX_ESTIMATED_POSITIONS: f64 = 1.0e5;
+/// [`estimated_positions`]: the positions `spacing` apart along the whole path, of which the
+/// measurement evaluates those where the engagement changes
+/// ([`refined_profile`](crate::engagement::refined_profile)). A 480 × 320 mm rectangle at
+/// D = 10 mm, step-over 1.527 mm and the default spacing estimates 8·10⁵ and plans and
+/// measures in seconds (docs/benchmarks.md); the bound, five times that, keeps a plan (and the
+/// memory of its positions) to about half a minute.
+pub const MAX_ESTIMATED_POSITIONS: f64 = 4.0e6;
 
 /// Tool positions the evaluator will measure, estimated before planning: the path clears the
 /// pocket's area A in bands of the step-over a_e, so it is about k·A/a_e long, measured every
