@@ -153,3 +153,19 @@ fn refined_single_paths_match_the_uniform_profile() {
     let pass = [line((23.0, 0.0), (23.0, 1.5)), line((23.0, 1.5), (38.0, 1.5)), line((38.0, 1.5), (38.0, -15.0))];
     compare("pass beside a bore", &block, &circle, &pass, &kinds, &EvaluatorOptions::new(5.0, 0.25));
 }
+
+#[test]
+fn a_240_by_160_rectangle_plans_and_measures_with_the_default_options() {
+    // The positions a uniform profile would hold: 2·A/(a_e·spacing) = 2·38400/(1.527·0.25) =
+    // 201 179, above the 10⁵ the pocket planner once refused beyond.
+    let rect = Polygon::new(vec![p2(0.0, 0.0), p2(240.0, 0.0), p2(240.0, 160.0), p2(0.0, 160.0)]).unwrap();
+    let req = PocketRequest { polygon: rect, step_over_mm: 1.527, ..PocketRequest::default() };
+    let settings = req.settings().unwrap();
+    assert!(pocket::estimated_positions(&req.polygon, PocketStrategy::Adaptive, &settings) > 1e5);
+    let plan = pocket::plan(&req).unwrap();
+    // the default target for a_e = 1.527 is 50° (`--target-engagement`'s help); the planner
+    // keeps every move within it, the evaluator within sampling error (1°)
+    let m = &plan.path().measurement;
+    assert!(m.max_engagement_rad.to_degrees() <= 51.0, "{}", m.max_engagement_rad.to_degrees());
+    assert!(m.length_at_depth_mm > 2.0 * 38400.0 / 1.527 * 0.5, "{}", m.length_at_depth_mm);
+}

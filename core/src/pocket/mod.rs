@@ -541,6 +541,23 @@ mod tests {
     }
 
     #[test]
+    fn the_position_bound_admits_large_pockets_and_names_the_step_over_beyond() {
+        // 480 × 320 at a_e = 1.527, spacing 0.25, adaptive (k = 2): 2·153600/(1.527·0.25) =
+        // 804 715 positions, under the bound 4·10⁶
+        let big = Polygon::new(vec![p2(0.0, 0.0), p2(480.0, 0.0), p2(480.0, 320.0), p2(0.0, 320.0)]).expect("valid");
+        let req = PocketRequest { polygon: big.clone(), step_over_mm: 1.527, ..PocketRequest::default() };
+        let settings = req.settings().expect("valid");
+        assert!((estimated_positions(&big, PocketStrategy::Adaptive, &settings) - 804_715.1).abs() < 0.1);
+        check_work(&big, PocketStrategy::Adaptive, &settings).expect("fits");
+        // a_e = 0.3: 2·153600/(0.3·0.25) = 4 096 000 > 4·10⁶; the least step-over that fits is
+        // 0.3 · 4 096 000 / 4·10⁶ = 0.3072 mm
+        let fine = PocketSettings { step_over: 0.3, ..settings };
+        let e = check_work(&big, PocketStrategy::Adaptive, &fine).expect_err("refused");
+        assert_eq!(e.subject(), Some("step-over"), "{e}");
+        assert!(e.to_string().contains("at least 0.3072 mm"), "{e}");
+    }
+
+    #[test]
     fn strategies_are_named_by_their_corner_method() {
         for s in PocketStrategy::ALL {
             assert_eq!(PocketStrategy::from_name(s.name()), Some(s));
