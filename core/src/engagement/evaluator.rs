@@ -220,8 +220,10 @@ fn check_segments(path: &[Segment], name: &'static str) -> Result<(), Error> {
 
 /// Engagement along `path` (tool-centre segments) over `stock`, after the tool already swept
 /// the `before` paths (previous rings, earlier passes; no engagement reported for them).
-/// Positions are `spacing` apart in arc length, plus the end of every segment
-/// ([`Evaluation::positions`]), each one evaluated.
+/// Positions are `spacing` apart in arc length, plus the end of every segment (where the
+/// engagement peaks at kinks), each one evaluated; at most 2·10⁵ of them. Measurements of whole
+/// tool paths evaluate a subset of these positions chosen adaptively
+/// ([`refined_profile`](super::refine::refined_profile)).
 pub fn engagement_profile(
     stock: &Polygon,
     before: &[Segment],
