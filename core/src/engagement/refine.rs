@@ -193,6 +193,19 @@ mod tests {
     }
 
     #[test]
+    fn a_linear_drift_is_settled_unless_it_crosses_the_air_threshold() {
+        // 0.3° more every interval (six times the tolerance), exactly linear: no interval asks
+        let deg = f64::to_radians;
+        let ramp: Vec<(usize, EngagementSample)> =
+            (0..5).map(|k| (4 * k, sample(f64::from(k as u32), deg(10.0 + 0.3 * f64::from(k as u32))))).collect();
+        assert!((0..4).all(|j| !unsettled(&ramp, j)));
+        // the same drift from 0.45° to 1.65°: the interval from 0.75° to 1.05° crosses 1°
+        let air: Vec<(usize, EngagementSample)> =
+            (0..5).map(|k| (4 * k, sample(f64::from(k as u32), deg(0.45 + 0.3 * f64::from(k as u32))))).collect();
+        assert_eq!((0..4).map(|j| unsettled(&air, j)).collect::<Vec<_>>(), vec![false, true, false, false]);
+    }
+
+    #[test]
     fn weights_are_the_length_each_sample_stands_for() {
         let p = EngagementProfile {
             samples: vec![sample(0.0, 0.0), sample(1.0, 0.0), sample(1.5, 0.0), sample(3.5, 0.0)],
