@@ -93,13 +93,22 @@ fn plan_and_compare(what: &str, req: &PocketRequest) {
     compare_toolpath(what, plan.polygon(), &[], plan.toolpath(), s.spacing, s.tool_radius);
 }
 
-#[test]
-fn refined_pocket_measurements_match_the_uniform_profile() {
-    // the default pocket (adaptive clearing) at the reference step-over, on the six outlines
-    for name in ["rect", "L", "dumbbell", "u-channel", "pentagon-notch", "narrow"] {
+/// The default pocket (adaptive clearing) at the reference step-over on reference outlines.
+fn outlines_match(names: &[&str]) {
+    for &name in names {
         let req = PocketRequest { polygon: outline(name), step_over_mm: 1.527, ..PocketRequest::default() };
         plan_and_compare(name, &req);
     }
+}
+
+#[test]
+fn refined_pocket_measurements_match_the_uniform_profile() {
+    outlines_match(&["rect", "L", "dumbbell", "pentagon-notch"]);
+}
+
+#[test]
+fn refined_measurements_of_the_longest_reference_paths_match_the_uniform_profile() {
+    outlines_match(&["u-channel", "narrow"]);
 }
 
 #[test]
