@@ -303,10 +303,13 @@ fn every_method_in_both_directions_passes_rs274_and_mirrors_its_peak() {
         }
         assert!((peaks[0] - peaks[1]).abs() < 1.0, "{method}: climb {:.2}° vs conventional {:.2}°", peaks[0], peaks[1]);
         // (counter-clockwise, clockwise) arcs at depth: climb's mostly counter-clockwise, and
-        // conventional's the same counts the other way round; the area the cut turns round
-        // positive for climb and the opposite for conventional (plain rings have no arcs)
+        // conventional's the same counts the other way round (within 1 %: the feed's blocks split
+        // arcs where the chip changes, and the mirrored plan's chips differ in rounding); the
+        // area the cut turns round positive for climb and the opposite for conventional (plain
+        // rings have no arcs)
         let ((ccw, cw, area), (ccw_conv, cw_conv, area_conv)) = (senses[0], senses[1]);
-        assert!(ccw >= cw && ccw == cw_conv && cw == ccw_conv, "{method}: {senses:?}");
+        let near = |a: usize, b: usize| a.abs_diff(b) as f64 <= 0.01 * a.max(b) as f64;
+        assert!(ccw >= cw && near(ccw, cw_conv) && near(cw, ccw_conv), "{method}: {senses:?}");
         assert!(area > 0.0 && (area + area_conv).abs() < 0.05 * area, "{method}: {senses:?}");
     }
 }

@@ -236,7 +236,10 @@ fn check_segments(path: &[Segment], name: &'static str) -> Result<(), Error> {
 
 /// Engagement along `path` (tool-centre segments) over `stock`, after the tool already swept
 /// the `before` paths (previous rings, earlier passes; no engagement reported for them).
-/// Positions are `spacing` apart in arc length, plus the end of every segment.
+/// Positions are `spacing` apart in arc length, plus the end of every segment (where the
+/// engagement peaks at kinks), each one evaluated; at most 2·10⁵ of them. Measurements of whole
+/// tool paths evaluate a subset of these positions chosen adaptively
+/// ([`refined_profile`](super::refine::refined_profile)).
 pub fn engagement_profile(
     stock: &Polygon,
     before: &[Segment],
@@ -256,109 +259,185 @@ pub fn engagement_profile_on(
     opts: &EvaluatorOptions,
     on: Option<&[bool]>,
 ) -> Result<EngagementProfile, Error> {
-    opts.validate()?;
-    check_segments(before, "before path")?;
-    check_segments(path, "path")?;
-    if path.is_empty() {
-        return Err(Error::geometry("path", "empty", "at least one segment"));
-    }
-    let r = opts.tool_radius;
-    // the segment of `path` each flattened segment comes from
-    let origin: Vec<usize> = path
-        .iter()
-        .enumerate()
-        .flat_map(|(i, s)| std::iter::repeat_n(i, if matches!(s, Segment::Trochoid { .. }) { TROCHOID_LINES } else { 1 }))
-        .collect();
-    let path = flatten(path);
-    let lengths: Vec<f64> = path.iter().map(Segment::length).collect();
-    let total: f64 = lengths.iter().sum();
-    if total / opts.spacing > MAX_POSITIONS {
-        return Err(Error::param(
-            Param::Spacing,
-            opts.spacing,
-            format!("≥ path length / {} = {} mm", num(MAX_POSITIONS), num(total / MAX_POSITIONS)),
-        ));
-    }
-    let tol = DIST_TOL * r.min(1.0);
-    let before = flatten(before);
-    let nb = before.len();
-    let cutters: Vec<Cutter> = before.into_iter().chain(path.iter().copied()).map(Cutter::new).collect();
-    // Reach r·(1 + 1e-9): every segment within r of a periphery point (see `leaves`).
-    let reach = r * (1.0 + 1e-9);
-    let grid = CutGrid::new(cutters, reach);
-    // Arc lengths of the evaluated positions: 0, spacing, 2·spacing, …, and the end of every
-    // segment (the engagement peaks at kinks, e.g. where a move ends in a corner point, and
-    // can fall by tens of degrees within 0.1 mm before it).
-    let mut targets: Vec<f64> = Vec::new();
-    let mut k = 0.0;
-    while k * opts.spacing < total - 1e-9 {
-        targets.push(k * opts.spacing);
-        k += 1.0;
-    }
-    let mut end = 0.0;
-    for l in &lengths {
-        end += l;
-        targets.push(end.min(total));
-    }
-    targets.push(total);
-    targets.sort_by(f64::total_cmp);
-    targets.dedup_by(|a, b| (*a - *b).abs() <= 1e-9);
-    // (arc length, segment index, local parameter) of every position.
-    let mut at = Vec::with_capacity(targets.len());
-    let (mut i, mut s0) = (0usize, 0.0); // current segment and the arc length at its start
-    for s in targets {
-        while i + 1 < path.len() && s > s0 + lengths[i] {
-            s0 += lengths[i];
-            i += 1;
-        }
-        let local = if lengths[i] > 0.0 { ((s - s0) / lengths[i]).clamp(0.0, 1.0) } else { 1.0 };
-        at.push((s, i, local));
-    }
+    let eval = Evaluation::new(stock, before, path, opts, MAX_POSITIONS)?;
+    let mut positions = eval.positions();
     if let Some(on) = on {
-        at.retain(|&(_, i, _)| on.get(origin[i]).copied().unwrap_or(false));
+        positions.retain(|&s| on.get(eval.segment_of(s)).copied().unwrap_or(false));
     }
-    let periphery = Periphery::new(opts.samples);
-    let samples = at
-        .into_par_iter()
-        .map(|(s, i, local)| {
-            let seg = &path[i];
-            let c = seg.point(local);
-            // Cut so far: the `before` paths (grid indices below nb), the path before segment i,
-            // and segment i up to the position.
-            // The segment that cut the last point tried is tried first (neighbouring points of
-            // the periphery are mostly cut by the same segment).
-            let head = Cutter::new(head(seg, local));
-            let last = std::cell::Cell::new(head);
-            let room = |p: P2| {
-                if !leaves(p, &head, r, tol) || !leaves(p, &last.get(), r, tol) {
+    let samples = positions.into_par_iter().map(|s| eval.sample(s)).collect();
+    Ok(EngagementProfile { samples, path_length_mm: eval.total })
+}
+
+/// One path prepared for evaluation over one stock: the path flattened to lines and arcs, the
+/// swept segments binned ([`CutGrid`]) and the periphery's directions. [`Evaluation::sample`]
+/// evaluates any one position; which positions is the caller's choice (every one of
+/// [`Evaluation::positions`] in [`engagement_profile`], a subset in
+/// [`refined_profile`](super::refine::refined_profile)).
+pub(crate) struct Evaluation<'a> {
+    stock: &'a Polygon,
+    path: Vec<Segment>,
+    lengths: Vec<f64>,
+    /// Arc length at the end of every segment, summed in path order.
+    ends: Vec<f64>,
+    /// Path length (mm).
+    pub total: f64,
+    /// Spacing of the positions (mm).
+    pub spacing: f64,
+    grid: CutGrid,
+    /// Number of `before` segments (the first grid indices).
+    nb: usize,
+    r: f64,
+    tol: f64,
+    reach: f64,
+    periphery: Periphery,
+    /// Periphery margin ([`EvaluatorOptions::margin_mm`]).
+    margin: f64,
+    /// The segment of the path as given of each flattened segment.
+    origin: Vec<usize>,
+}
+
+impl<'a> Evaluation<'a> {
+    /// Validates the inputs and prepares the evaluation; refuses a path with more than
+    /// `max_positions` positions `spacing` apart (the error names the spacing and its least
+    /// value).
+    pub(crate) fn new(
+        stock: &'a Polygon,
+        before: &[Segment],
+        path: &[Segment],
+        opts: &EvaluatorOptions,
+        max_positions: f64,
+    ) -> Result<Evaluation<'a>, Error> {
+        opts.validate()?;
+        check_segments(before, "before path")?;
+        check_segments(path, "path")?;
+        if path.is_empty() {
+            return Err(Error::geometry("path", "empty", "at least one segment"));
+        }
+        let r = opts.tool_radius;
+        let origin: Vec<usize> = path
+            .iter()
+            .enumerate()
+            .flat_map(|(i, s)| {
+                std::iter::repeat_n(i, if matches!(s, Segment::Trochoid { .. }) { TROCHOID_LINES } else { 1 })
+            })
+            .collect();
+        let path = flatten(path);
+        let lengths: Vec<f64> = path.iter().map(Segment::length).collect();
+        let mut ends = Vec::with_capacity(lengths.len());
+        let mut end = 0.0;
+        for l in &lengths {
+            end += l;
+            ends.push(end);
+        }
+        let total: f64 = lengths.iter().sum();
+        if total / opts.spacing > max_positions {
+            return Err(Error::param(
+                Param::Spacing,
+                opts.spacing,
+                format!("≥ path length / {} = {} mm", num(max_positions), num(total / max_positions)),
+            ));
+        }
+        let tol = DIST_TOL * r.min(1.0);
+        let before = flatten(before);
+        let nb = before.len();
+        let cutters: Vec<Cutter> = before.into_iter().chain(path.iter().copied()).map(Cutter::new).collect();
+        // Reach r·(1 + 1e-9): every segment within r of a periphery point (see `leaves`).
+        let reach = r * (1.0 + 1e-9);
+        let grid = CutGrid::new(cutters, reach);
+        let periphery = Periphery::new(opts.samples);
+        Ok(Evaluation {
+            stock,
+            path,
+            lengths,
+            ends,
+            total,
+            spacing: opts.spacing,
+            grid,
+            nb,
+            r,
+            tol,
+            reach,
+            periphery,
+            margin: opts.margin_mm,
+            origin,
+        })
+    }
+
+    /// Arc lengths of the positions, ascending: 0, spacing, 2·spacing, …, and the end of every
+    /// segment (the engagement peaks at kinks, e.g. where a move ends in a corner point, and
+    /// can fall by tens of degrees within 0.1 mm before it); positions within 1e-9 mm are one.
+    pub(crate) fn positions(&self) -> Vec<f64> {
+        let (total, spacing) = (self.total, self.spacing);
+        let mut targets: Vec<f64> = Vec::new();
+        let mut k = 0.0;
+        while k * spacing < total - 1e-9 {
+            targets.push(k * spacing);
+            k += 1.0;
+        }
+        targets.extend(self.ends.iter().map(|e| e.min(total)));
+        targets.push(total);
+        targets.sort_by(f64::total_cmp);
+        targets.dedup_by(|a, b| (*a - *b).abs() <= 1e-9);
+        targets
+    }
+
+    /// The segment of the path as given (before trochoid pieces became lines) of the position at
+    /// arc length `s`.
+    pub(crate) fn segment_of(&self, s: f64) -> usize {
+        let i = self.ends.partition_point(|&e| e < s).min(self.path.len() - 1);
+        self.origin[i]
+    }
+
+    /// Arc lengths of the segments' ends (summed in path order, as [`Evaluation::positions`]
+    /// holds them).
+    pub(crate) fn segment_ends(&self) -> &[f64] {
+        &self.ends
+    }
+
+    /// Engagement at arc length `s` (0 ≤ s ≤ path length): the position on the first segment
+    /// whose end is at or beyond s.
+    pub(crate) fn sample(&self, s: f64) -> EngagementSample {
+        let (path, grid, stock, periphery) = (&self.path, &self.grid, self.stock, &self.periphery);
+        let (r, tol, reach, nb) = (self.r, self.tol, self.reach, self.nb);
+        let i = self.ends.partition_point(|&e| e < s).min(path.len() - 1);
+        let s0 = if i == 0 { 0.0 } else { self.ends[i - 1] };
+        let local = if self.lengths[i] > 0.0 { ((s - s0) / self.lengths[i]).clamp(0.0, 1.0) } else { 1.0 };
+        let seg = &path[i];
+        let c = seg.point(local);
+        // Cut so far: the `before` paths (grid indices below nb), the path before segment i,
+        // and segment i up to the position.
+        // The segment that cut the last point tried is tried first (neighbouring points of
+        // the periphery are mostly cut by the same segment).
+        let head = Cutter::new(head(seg, local));
+        let last = std::cell::Cell::new(head);
+        let room = |p: P2| {
+            if !leaves(p, &head, r, tol) || !leaves(p, &last.get(), r, tol) {
+                return None;
+            }
+            let (near, gap) = grid.near(p);
+            let mut room = lower_distance(p, &head, reach).min(r + gap);
+            for (_, k) in near.take_while(|(j, _)| *j < nb + i) {
+                if !leaves(p, k, r, tol) {
+                    last.set(*k);
                     return None;
                 }
-                let (near, gap) = grid.near(p);
-                let mut room = lower_distance(p, &head, reach).min(r + gap);
-                for (_, k) in near.filter(|(j, _)| *j < nb + i) {
-                    if !leaves(p, k, r, tol) {
-                        last.set(*k);
-                        return None;
-                    }
-                    room = room.min(lower_distance(p, k, reach));
-                }
-                Some(room - r)
-            };
-            let rp = r + opts.margin_mm;
-            let stock = LocalStock::new(stock, c, rp);
-            let d1 = seg.eval(local).d1;
-            let ahead = if d1.norm() > 0.0 { Some(d1.y.atan2(d1.x)) } else { None };
-            let (mut angle, chip) = engaged_angle(&stock, c, rp, room, &periphery, ahead);
-            // Behind a tool that has moved, every point of the periphery is nearer than r to the
-            // path just travelled: the engaged arc lies in the front half. Only the tolerance of
-            // the material test at the two side points can make it read more than π.
-            if s > 0.0 {
-                angle = angle.min(PI);
+                room = room.min(lower_distance(p, k, reach));
             }
-            EngagementSample { s_mm: s, x_mm: c.x, y_mm: c.y, angle_rad: angle, chip }
-        })
-        .collect();
-    Ok(EngagementProfile { samples, path_length_mm: total })
+            Some(room - r)
+        };
+        let rp = r + self.margin;
+        let stock = LocalStock::new(stock, c, rp);
+        let d1 = seg.eval(local).d1;
+        let ahead = if d1.norm() > 0.0 { Some(d1.y.atan2(d1.x)) } else { None };
+        let (mut angle, chip) = engaged_angle(&stock, c, rp, room, periphery, ahead);
+        // Behind a tool that has moved, every point of the periphery is nearer than r to the
+        // path just travelled: the engaged arc lies in the front half. Only the tolerance of
+        // the material test at the two side points can make it read more than π.
+        if s > 0.0 {
+            angle = angle.min(PI);
+        }
+        EngagementSample { s_mm: s, x_mm: c.x, y_mm: c.y, angle_rad: angle, chip }
+    }
 }
 
 /// The unit directions of the periphery samples, θ_k = k·2π/n.

@@ -1,8 +1,15 @@
 //! One measurement of a tool path: the evaluator's profile over the stock ([`Stock`]: the
 //! polygon, what was cut before, and the entries' bores), the largest engagement per kind of move, over everything and its 95th percentile,
 //! the length at depth and the air (moves below [`AIR_ENGAGEMENT_RAD`]).
+//!
+//! The profile is evaluated adaptively ([`refined_profile`]): at every segment end and
+//! wherever the engagement changes, every `spacing` mm; where it is steady, every 0.25·r. Its
+//! peak is within 0.1° of the uniform profile's at the same spacing, and the 95th percentile
+//! and the air are shares of path length (each sample weighted by the length it stands for,
+//! [`sample_weights`]), so they mean what they mean on a uniform profile.
 
-use super::evaluator::{EngagementProfile, EvaluatorOptions, engagement_profile};
+use super::evaluator::{EngagementProfile, EvaluatorOptions};
+use super::refine::{refined_profile, sample_weights};
 use crate::error::Error;
 use crate::geom::{P2, Polygon, Segment};
 use crate::toolpath::{MoveKind, Toolpath};
@@ -23,11 +30,23 @@ pub struct KindMax {
     pub length_mm: f64,
 }
 
-/// The largest engagement of a profile and the 95th percentile of its samples (rad).
+/// The largest engagement of a profile and its 95th percentile (rad): the least engagement
+/// that at least 95% of the profile's length, each sample weighted by the arc length it stands
+/// for ([`sample_weights`]), does not exceed. A profile of one sample: its engagement.
 pub fn peak_and_p95(profile: &EngagementProfile) -> (f64, f64) {
-    let mut angles: Vec<f64> = profile.samples.iter().map(|s| s.angle_rad).collect();
-    angles.sort_by(f64::total_cmp);
-    let p95 = angles.get(((0.95 * angles.len() as f64).ceil() as usize).saturating_sub(1)).copied().unwrap_or(0.0);
+    let weights = sample_weights(profile);
+    let mut by_angle: Vec<(f64, f64)> = profile.samples.iter().map(|s| s.angle_rad).zip(weights).collect();
+    by_angle.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let total: f64 = by_angle.iter().map(|a| a.1).sum();
+    let mut sum = 0.0;
+    let p95 = by_angle
+        .iter()
+        .find(|a| {
+            sum += a.1;
+            sum >= 0.95 * total
+        })
+        .or(by_angle.last())
+        .map_or(0.0, |a| a.0);
     (profile.max_angle(), p95)
 }
 
@@ -69,7 +88,8 @@ pub fn maxima(profile: &EngagementProfile, segments: &[Segment], kinds: &[MoveKi
 /// What [`measure`] finds on a tool path.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Measurement {
-    /// The evaluator's profile along the moves (positions `spacing` apart).
+    /// The evaluator's profile along the moves ([`refined_profile`]: positions `spacing` apart
+    /// where the engagement changes, up to 0.25·r apart where it is steady).
     pub profile: EngagementProfile,
     /// Per kind of move present: maximum measured engagement, where, and length.
     pub maxima: Vec<KindMax>,
@@ -110,7 +130,7 @@ impl<'a> Stock<'a> {
     }
 }
 
-/// Measure `path` over `stock`: the evaluator's engagement along its moves with the stock's
+/// Measure `path` over `stock`: the evaluator's engagement ([`refined_profile`]) along its moves with the stock's
 /// precut and the bores of the path's entries as cut ([`Toolpath::bores`]), gathered per kind
 /// of move.
 pub fn measure(path: &Toolpath, stock: Stock<'_>, opts: &EvaluatorOptions) -> Result<Measurement, Error> {
@@ -118,7 +138,7 @@ pub fn measure(path: &Toolpath, stock: Stock<'_>, opts: &EvaluatorOptions) -> Re
     let kinds = path.kinds();
     let mut cut = stock.precut.to_vec();
     cut.extend(path.bores());
-    let profile = engagement_profile(stock.polygon, &cut, &segments, opts)?;
+    let profile = refined_profile(stock.polygon, &cut, &segments, opts)?;
     Ok(measured(profile, &segments, &kinds))
 }
 

@@ -9,8 +9,8 @@ use crate::geom::{P2, Polygon, Segment, p2};
 
 /// Cells per side of a [`CutGrid`] at most.
 const MAX_CELLS_PER_SIDE: f64 = 512.0;
-/// A segment whose grown box covers more cells than this is kept in a list checked everywhere.
-const MAX_CELLS_PER_SEGMENT: usize = 4096;
+/// Length of the pieces a segment is binned by, in cells.
+const PIECE_CELLS: f64 = 2.0;
 
 /// A cut segment (line or arc) with its bounding box and end points.
 #[derive(Clone, Copy, Debug)]
@@ -58,9 +58,10 @@ impl Cutter {
     }
 }
 
-/// Cut segments binned on a uniform grid by their boxes grown by a reach: the segments whose
-/// grown box contains a point are among those of the point's cell (or of the list of segments
-/// too big to bin).
+/// Cut segments binned on a uniform grid: each segment is cut into pieces about two cells long
+/// and listed in every cell that a piece's box, grown by a reach, meets — so a long line or a
+/// large arc is listed only near itself, not over its whole bounding box. The segments within
+/// reach of a point are among those of the point's cell, listed in ascending index.
 pub struct CutGrid {
     cutters: Vec<Cutter>,
     lo: P2,
@@ -68,11 +69,11 @@ pub struct CutGrid {
     nx: usize,
     ny: usize,
     bins: Vec<Vec<u32>>,
-    big: Vec<u32>,
 }
 
 impl CutGrid {
-    /// Bins `cutters` by their boxes grown by `reach` (> 0), in cells of at least `reach / 4`.
+    /// Bins `cutters` by the boxes of their pieces grown by `reach` (> 0), in cells of at least
+    /// `reach / 4`.
     pub fn new(cutters: Vec<Cutter>, reach: f64) -> CutGrid {
         let inf = p2(f64::INFINITY, f64::INFINITY);
         let (lo, hi) = cutters.iter().fold((inf, -inf), |(lo, hi), k| {
@@ -83,18 +84,19 @@ impl CutGrid {
         let cell = (0.25 * reach).max(extent / MAX_CELLS_PER_SIDE);
         let cells = |d: f64| if d.is_finite() { (d / cell).floor() as usize + 1 } else { 1 };
         let (nx, ny) = (cells(hi.x + reach - lo.x), cells(hi.y + reach - lo.y));
-        let mut grid =
-            CutGrid { cutters: Vec::new(), lo, cell, nx, ny, bins: vec![Vec::new(); nx * ny], big: Vec::new() };
+        let mut grid = CutGrid { cutters: Vec::new(), lo, cell, nx, ny, bins: vec![Vec::new(); nx * ny] };
         for (i, k) in cutters.iter().enumerate() {
-            let (x0, y0) = grid.cell_of(k.lo - p2(reach, reach));
-            let (x1, y1) = grid.cell_of(k.hi + p2(reach, reach));
-            if (x1 - x0 + 1) * (y1 - y0 + 1) > MAX_CELLS_PER_SEGMENT {
-                grid.big.push(i as u32);
-                continue;
-            }
-            for y in y0..=y1 {
-                for x in x0..=x1 {
-                    grid.bins[y * nx + x].push(i as u32);
+            for (plo, phi) in pieces(k, PIECE_CELLS * cell) {
+                let (x0, y0) = grid.cell_of(plo - p2(reach, reach));
+                let (x1, y1) = grid.cell_of(phi + p2(reach, reach));
+                for y in y0..=y1 {
+                    for x in x0..=x1 {
+                        let bin = &mut grid.bins[y * nx + x];
+                        // the pieces of one segment meet in cells: list it once
+                        if bin.last() != Some(&(i as u32)) {
+                            bin.push(i as u32);
+                        }
+                    }
                 }
             }
         }
@@ -107,16 +109,50 @@ impl CutGrid {
         (at(p.x - self.lo.x, self.nx), at(p.y - self.lo.y, self.ny))
     }
 
-    /// The cutters (with their index) that may have a box grown by the grid's reach containing
-    /// `c`, and `gap`: every other cutter's box is more than reach + gap from `c` (gap is the
-    /// distance from c to the edge of its cell, 0 outside the grid).
+    /// The cutters (with their index, ascending) that may lie within the grid's reach of `c`,
+    /// and `gap`: every other cutter is more than reach + gap from `c` (gap is the distance
+    /// from c to the edge of its cell, 0 outside the grid).
     pub fn near(&self, c: P2) -> (impl Iterator<Item = (usize, &Cutter)>, f64) {
         let (x, y) = self.cell_of(c);
         let bin: &[u32] = if self.cutters.is_empty() { &[] } else { &self.bins[y * self.nx + x] };
         let (x0, y0) = (self.lo.x + x as f64 * self.cell, self.lo.y + y as f64 * self.cell);
         let gap = (c.x - x0).min(x0 + self.cell - c.x).min(c.y - y0).min(y0 + self.cell - c.y).max(0.0);
-        (bin.iter().chain(&self.big).map(|&i| (i as usize, &self.cutters[i as usize])), gap)
+        (bin.iter().map(|&i| (i as usize, &self.cutters[i as usize])), gap)
     }
+}
+
+/// Boxes (low and high corner) covering the segment of `k` in pieces at most `len` long (its
+/// own box when it is that short); each box holds its piece with a margin for the rounding of
+/// the piece's end points.
+fn pieces(k: &Cutter, len: f64) -> Vec<(P2, P2)> {
+    let length = k.seg.length();
+    let n = if length.is_finite() && len > 0.0 { (length / len).ceil().clamp(1.0, 1e6) as usize } else { 1 };
+    if n == 1 {
+        return vec![(k.lo, k.hi)];
+    }
+    (0..n)
+        .map(|j| {
+            let (t0, t1) = (j as f64 / n as f64, (j + 1) as f64 / n as f64);
+            let piece = match k.seg {
+                Segment::Arc { center, radius, start_angle, sweep } => {
+                    let c = Cutter::new(Segment::Arc {
+                        center,
+                        radius,
+                        start_angle: start_angle + sweep * t0,
+                        sweep: sweep * (t1 - t0),
+                    });
+                    (c.lo, c.hi)
+                }
+                _ => {
+                    let (a, b) = (k.seg.point(t0), k.seg.point(t1));
+                    (p2(a.x.min(b.x), a.y.min(b.y)), p2(a.x.max(b.x), a.y.max(b.y)))
+                }
+            };
+            let scale = piece.0.x.abs().max(piece.0.y.abs()).max(piece.1.x.abs()).max(piece.1.y.abs());
+            let m = p2(1e-9, 1e-9) * (1.0 + scale);
+            (piece.0 - m, piece.1 + m)
+        })
+        .collect()
 }
 
 /// The stock near a tool position c of radius r, for points p with |p − c| ≤ r: wholly inside

@@ -356,8 +356,13 @@ pub fn stored_open_edges(polygon: &Polygon, points: &[P2], open: &[usize]) -> Re
 }
 
 /// Most tool positions a pocket plan may measure, as estimated before planning by
-/// [`estimated_positions`]: at this bound a plan takes seconds, not minutes.
-pub const MAX_ESTIMATED_POSITIONS: f64 = 1.0e5;
+/// [`estimated_positions`]: the positions `spacing` apart along the whole path, of which the
+/// measurement evaluates those where the engagement changes
+/// ([`refined_profile`](crate::engagement::refined_profile)). A 480 × 320 mm rectangle at
+/// D = 10 mm, step-over 1.527 mm and the default spacing estimates 8·10⁵ and plans and
+/// measures in seconds (docs/benchmarks.md); the bound, five times that, keeps a plan (and the
+/// memory of its positions) to about half a minute.
+pub const MAX_ESTIMATED_POSITIONS: f64 = 4.0e6;
 
 /// Tool positions the evaluator will measure, estimated before planning: the path clears the
 /// pocket's area A in bands of the step-over a_e, so it is about k·A/a_e long, measured every
@@ -553,6 +558,23 @@ mod tests {
         }
         // adaptive clearing is bounded by its positions only: the same step-over passes there
         check_work(&req.polygon, PocketStrategy::Adaptive, &settings(0.48)).expect("fits");
+    }
+
+    #[test]
+    fn the_position_bound_admits_large_pockets_and_names_the_step_over_beyond() {
+        // 480 × 320 at a_e = 1.527, spacing 0.25, adaptive (k = 2): 2·153600/(1.527·0.25) =
+        // 804 715 positions, under the bound 4·10⁶
+        let big = Polygon::new(vec![p2(0.0, 0.0), p2(480.0, 0.0), p2(480.0, 320.0), p2(0.0, 320.0)]).expect("valid");
+        let req = PocketRequest { polygon: big.clone(), step_over_mm: 1.527, ..PocketRequest::default() };
+        let settings = req.settings().expect("valid");
+        assert!((estimated_positions(&big, PocketStrategy::Adaptive, &settings) - 804_715.1).abs() < 0.1);
+        check_work(&big, PocketStrategy::Adaptive, &settings).expect("fits");
+        // a_e = 0.3: 2·153600/(0.3·0.25) = 4 096 000 > 4·10⁶; the least step-over that fits is
+        // 0.3 · 4 096 000 / 4·10⁶ = 0.3072 mm
+        let fine = PocketSettings { step_over: 0.3, ..settings };
+        let e = check_work(&big, PocketStrategy::Adaptive, &fine).expect_err("refused");
+        assert_eq!(e.subject(), Some("step-over"), "{e}");
+        assert!(e.to_string().contains("at least 0.3072 mm"), "{e}");
     }
 
     #[test]

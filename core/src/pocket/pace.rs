@@ -285,14 +285,15 @@ fn clear_spans(path: &PocketPath, r: f64, margin: f64) -> Result<Vec<Vec<(f64, f
         let opts = EvaluatorOptions { margin_mm: m, ..EvaluatorOptions::new(r, path.settings.spacing) };
         engagement_profile_on(&path.polygon, &path.toolpath.bores(), &segments, &opts, Some(&on))
     };
-    let (half, full) = (grown(0.5 * margin)?, grown(margin)?);
-    // the same positions in all three profiles (spacing multiples and segment ends)
+    let (tool, half, full) = (grown(0.0)?, grown(0.5 * margin)?, grown(margin)?);
+    // the same positions in all three profiles (spacing multiples and segment ends; the
+    // measurement's own are a subset, refined where the engagement changes)
     let reads = |p: &crate::engagement::EngagementSample| {
         let at = |prof: &[crate::engagement::EngagementSample]| {
             let i = prof.partition_point(|q| q.s_mm < p.s_mm - 1e-9);
             prof.get(i).filter(|q| (q.s_mm - p.s_mm).abs() <= 1e-9).map_or(f64::INFINITY, |q| q.angle_rad)
         };
-        p.angle_rad.max(at(&half.samples)).max(at(samples))
+        p.angle_rad.max(at(&half.samples)).max(at(&tool.samples))
     };
     let prof = full;
     for (k, sp) in spans.iter_mut().enumerate().filter(|(k, _)| on[*k]) {
