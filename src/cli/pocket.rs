@@ -8,8 +8,8 @@ use clap::Args;
 use std::path::PathBuf;
 use trochoplan_core::geom::Polygon;
 use trochoplan_core::job::Direction;
-use trochoplan_core::nc::pocket_program;
 use trochoplan_core::machine::Machine;
+use trochoplan_core::nc::pocket_program;
 use trochoplan_core::pocket::{self, AdaptiveOptions, PaceOptions, PocketPlan, PocketRequest, PocketStrategy};
 use trochoplan_core::report;
 
@@ -261,9 +261,10 @@ mod tests {
             v.extend_from_slice(extra);
             PT::try_parse_from(v).expect("parse").p
         };
-        let v: serde_json::Value =
-            serde_json::from_str(&pocket(&args(&["--step-over", "4", "--constant-feed", "--no-rapids"])).expect("plan"))
-                .expect("json");
+        let v: serde_json::Value = serde_json::from_str(
+            &pocket(&args(&["--step-over", "4", "--constant-feed", "--no-rapids"])).expect("plan"),
+        )
+        .expect("json");
         let rings = v["rings"].as_array().expect("rings");
         assert!(!rings.is_empty() && rings.len() < 4, "{}", v["ring_count"]);
         let offsets: Vec<f64> = rings.iter().map(|g| g["offset_mm"].as_f64().expect("offset")).collect();

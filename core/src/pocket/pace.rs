@@ -26,7 +26,7 @@
 //! that of the neighbouring positions: the same resolution as the measured engagement.
 
 use super::PocketPath;
-use crate::engagement::{EvaluatorOptions, engagement_profile_on, maxima};
+use crate::engagement::{EngagementSample, EvaluatorOptions, engagement_profile_on, maxima};
 use crate::error::{Error, Param, num};
 use crate::geom::Segment;
 use crate::machine::DEFAULT_BLOCK_TIME_S;
@@ -264,62 +264,75 @@ fn clear_spans(path: &PocketPath, r: f64, margin: f64) -> Result<Vec<Vec<(f64, f
     let moves = &path.toolpath.moves;
     let segments = path.toolpath.segments();
     let starts = starts_of(&segments);
-    let samples = &path.measurement.profile.samples;
-    let candidate = |k: usize| {
-        let m = &moves[k];
-        let (a, b) = (starts[k], starts[k] + m.segment.length());
-        let lo = samples.partition_point(|p| p.s_mm < a - 1e-9);
-        let hi = samples.partition_point(|p| p.s_mm <= b + 1e-9);
-        matches!(m.segment, Segment::Line { .. })
-            && m.segment.length() >= MIN_RAPID_MM
-            && samples[lo..hi].iter().any(|p| p.angle_rad < CLEAR_RAD)
+    let lines =
+        |k: usize| matches!(moves[k].segment, Segment::Line { .. }) && moves[k].segment.length() >= MIN_RAPID_MM;
+    // stage by stage, each on the moves the one before left with a stretch that reads nothing:
+    // the measurement, then the periphery at r + margin, then at r + margin/2 and at r
+    // (material thinner than margin/2 lying wholly between two of these circles is not seen;
+    // docs/feed-and-rapids.md)
+    let measured = &path.measurement.profile.samples;
+    let mut on: Vec<bool> = (0..moves.len())
+        .map(|k| lines(k) && !stretches(measured, starts[k], moves[k].segment.length(), |p| p.angle_rad).is_empty())
+        .collect();
+    let grown = |m: f64, on: &[bool]| {
+        let opts = EvaluatorOptions { margin_mm: m, ..EvaluatorOptions::new(r, path.settings.spacing) };
+        engagement_profile_on(&path.polygon, &path.toolpath.bores(), &segments, &opts, Some(on))
     };
-    let on: Vec<bool> = (0..moves.len()).map(candidate).collect();
     let mut spans = vec![Vec::new(); moves.len()];
     if !on.contains(&true) {
         return Ok(spans);
     }
-    // the periphery at r (the measurement), r + margin/2 and r + margin: material thinner than
-    // margin/2 lying wholly between two of these circles is not seen (docs/feed-and-rapids.md)
-    let grown = |m: f64| {
-        let opts = EvaluatorOptions { margin_mm: m, ..EvaluatorOptions::new(r, path.settings.spacing) };
-        engagement_profile_on(&path.polygon, &path.toolpath.bores(), &segments, &opts, Some(&on))
+    let full = grown(margin, &on)?;
+    for k in 0..moves.len() {
+        on[k] = on[k] && !stretches(&full.samples, starts[k], moves[k].segment.length(), |p| p.angle_rad).is_empty();
+    }
+    if !on.contains(&true) {
+        return Ok(spans);
+    }
+    let (half, tool) = (grown(0.5 * margin, &on)?, grown(0.0, &on)?);
+    // the same positions in all three (spacing multiples and segment ends; the measurement's
+    // own are a subset, refined where the engagement changes)
+    let at = |prof: &[EngagementSample], s: f64| {
+        let i = prof.partition_point(|q| q.s_mm < s - 1e-9);
+        prof.get(i).filter(|q| (q.s_mm - s).abs() <= 1e-9).map_or(f64::INFINITY, |q| q.angle_rad)
     };
-    let (tool, half, full) = (grown(0.0)?, grown(0.5 * margin)?, grown(margin)?);
-    // the same positions in all three profiles (spacing multiples and segment ends; the
-    // measurement's own are a subset, refined where the engagement changes)
-    let reads = |p: &crate::engagement::EngagementSample| {
-        let at = |prof: &[crate::engagement::EngagementSample]| {
-            let i = prof.partition_point(|q| q.s_mm < p.s_mm - 1e-9);
-            prof.get(i).filter(|q| (q.s_mm - p.s_mm).abs() <= 1e-9).map_or(f64::INFINITY, |q| q.angle_rad)
-        };
-        p.angle_rad.max(at(&half.samples)).max(at(&tool.samples))
-    };
-    let prof = full;
+    let reads = |p: &EngagementSample| p.angle_rad.max(at(&half.samples, p.s_mm)).max(at(&tool.samples, p.s_mm));
     for (k, sp) in spans.iter_mut().enumerate().filter(|(k, _)| on[*k]) {
-        let (a, len) = (starts[k], moves[k].segment.length());
-        let lo = prof.samples.partition_point(|p| p.s_mm < a - 1e-9);
-        let hi = prof.samples.partition_point(|p| p.s_mm <= a + len + 1e-9);
-        // maximal stretches of consecutive positions that read nothing
-        let mut open: Option<f64> = None;
-        let mut last = a;
-        for p in &prof.samples[lo..hi] {
-            if reads(p) < CLEAR_RAD {
-                open.get_or_insert(p.s_mm);
-                last = p.s_mm;
-            } else if let Some(s0) = open.take()
-                && last - s0 >= MIN_RAPID_MM
-            {
-                sp.push((s0 - a, last - a));
-            }
-        }
-        if let Some(s0) = open
-            && last - s0 >= MIN_RAPID_MM
-        {
-            sp.push((s0 - a, last - a));
-        }
+        *sp = stretches(&full.samples, starts[k], moves[k].segment.length(), reads);
     }
     Ok(spans)
+}
+
+/// The stretches (from, to; arc lengths from the move's start) of the move at arc length `a`,
+/// `len` long, between consecutive positions of `samples` that read nothing (below
+/// [`CLEAR_RAD`] by `reads`), at least [`MIN_RAPID_MM`] long.
+fn stretches(
+    samples: &[EngagementSample],
+    a: f64,
+    len: f64,
+    reads: impl Fn(&EngagementSample) -> f64,
+) -> Vec<(f64, f64)> {
+    let lo = samples.partition_point(|p| p.s_mm < a - 1e-9);
+    let hi = samples.partition_point(|p| p.s_mm <= a + len + 1e-9);
+    let mut out = Vec::new();
+    let mut open: Option<f64> = None;
+    let mut last = a;
+    for p in &samples[lo..hi] {
+        if reads(p) < CLEAR_RAD {
+            open.get_or_insert(p.s_mm);
+            last = p.s_mm;
+        } else if let Some(s0) = open.take()
+            && last - s0 >= MIN_RAPID_MM
+        {
+            out.push((s0 - a, last - a));
+        }
+    }
+    if let Some(s0) = open
+        && last - s0 >= MIN_RAPID_MM
+    {
+        out.push((s0 - a, last - a));
+    }
+    out
 }
 
 /// The moves with every clear span ([`clear_spans`]) made a rapid at `max_feed` (its feed where

@@ -133,7 +133,8 @@ fn bad_options_are_named() {
 #[test]
 fn a_small_pocket_paces_without_rapids() {
     let square = Polygon::new(vec![p2(0.0, 0.0), p2(16.0, 0.0), p2(16.0, 16.0), p2(0.0, 16.0)]).expect("square");
-    let plan = plan(&PocketRequest { polygon: square, step_over_mm: 1.527, ..PocketRequest::default() }).expect("plans");
+    let plan =
+        plan(&PocketRequest { polygon: square, step_over_mm: 1.527, ..PocketRequest::default() }).expect("plans");
     let pace = plan.path().pace.as_ref().expect("paced");
     assert!(pace.feeds_mm_per_min.iter().all(|&f| (600.0 - 1e-9..=1800.0 + 1e-9).contains(&f)));
     assert!(pace.h_max_mm.iter().all(|&h| h <= 0.075 * (1.0 + 1e-9)));
