@@ -166,7 +166,7 @@ mod tests {
     use crate::geom::p2;
 
     fn sample(s: f64, angle: f64) -> EngagementSample {
-        EngagementSample { s_mm: s, x_mm: 0.0, y_mm: 0.0, angle_rad: angle }
+        EngagementSample { s_mm: s, x_mm: 0.0, y_mm: 0.0, angle_rad: angle, chip: 0.0 }
     }
 
     #[test]
