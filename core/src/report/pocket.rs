@@ -165,6 +165,30 @@ impl PocketReport {
     }
 }
 
+impl PocketReport {
+    /// The rapids through cleared stock and the feed of every move (None before pacing).
+    pub fn pace(&self) -> Option<&Pace> {
+        match self {
+            PocketReport::Rings(r) => r.pace.as_ref(),
+            PocketReport::MedialAxis(r) => r.pace.as_ref(),
+            PocketReport::Adaptive(r) => r.pace.as_ref(),
+        }
+    }
+
+    /// One line on the pace: the range of the feeds, the h_max they hold, the rapids at depth.
+    pub fn pace_line(&self) -> String {
+        let Some(p) = self.pace() else { return "every move at the feed".to_owned() };
+        let (lo, hi) = p.feeds_mm_per_min.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), &f| (lo.min(f), hi.max(f)));
+        format!(
+            "feed {lo:.0}–{hi:.0} mm/min{}, h_max ≤ {:.4} mm (target {:.4}); rapids at depth {:.0} mm",
+            if p.follow_chip { "" } else { " (constant)" },
+            p.h_max_peak_mm,
+            p.target_h_mm,
+            p.rapid_length_mm
+        )
+    }
+}
+
 /// "1 ring", "3 rings".
 fn count(n: usize, one: &str, many: &str) -> String {
     format!("{n} {}", if n == 1 { one } else { many })
