@@ -105,6 +105,7 @@
 //! Conventional milling mirrors the pocket in x, plans it, and mirrors the path back: every
 //! loop then runs clockwise, with the same engagement by symmetry.
 
+mod arms;
 mod corners;
 mod finish;
 mod loops;
