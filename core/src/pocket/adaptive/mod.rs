@@ -48,7 +48,11 @@
 //!    2 % of a step wide along its length) is not cut. The last ring is the opening of C with
 //!    radius T. T starts at 0.995 × the inscribed radius and shrinks by 10 % until that opening
 //!    leaves only the corner caps uncut (area check: a cap of a convex corner α is
-//!    T²(cot(α/2) − (π − α)/2)). A ring is cut only where it adds to the previous one (its
+//!    T²(cot(α/2) − (π − α)/2)). T stays at least the helix radius r_h (the spiral's core);
+//!    where the opening with r_h still leaves more (an arm, a notch, a lobe behind a neck), the
+//!    rings go on growing into it geodesically with a finer core radius T' ([`arms`]), and a
+//!    pocket that needs T' below [`arms::MIN_FINE_CORE_SHARE`]·r is refused, its narrowest
+//!    part named. A ring is cut only where it adds to the previous one (its
 //!    runs off the previous ring: the ends where the core grew); where every later ring adds
 //!    at the same n ≥ 2 places (the ends of an L's arms), each place is cleared in turn, ring
 //!    after ring, the tool crossing back through what the last run cleared ([`super::runs::cut_rings`]).
