@@ -3,7 +3,7 @@
 //! link ([`super::route`]), and where every later ring adds at the same places (the ends of a
 //! pocket's arms) each place cleared in turn.
 
-use super::adaptive::{Builder, closest_on, link, split};
+use super::adaptive::{Builder, closest_on, link_within, split, start_near};
 use crate::geom::{P2, Polygon, Segment};
 use crate::toolpath::MoveKind;
 
@@ -29,6 +29,21 @@ pub(crate) fn new_runs(ring: &[Segment], prev: &[Segment]) -> Vec<Vec<Segment>> 
     if runs.len() > 1 && needed.first() == Some(&true) && needed.last() == Some(&true) {
         let head = runs.remove(0);
         runs.last_mut().into_iter().for_each(|run| run.extend(head.iter().copied()));
+    }
+    // a ring that grew all round (one run, the whole ring): started where it comes nearest
+    // `prev`, where the tool enters it from `prev` ([`link_within`])
+    if let [run] = runs.as_mut_slice()
+        && run.len() == ring.len()
+        && !on_prev(run[0].start())
+    {
+        let nearest = ring
+            .iter()
+            .flat_map(|sg| (0..8).map(move |k| sg.point(k as f64 / 8.0)))
+            .map(|p| (p, prev.iter().map(|sg| (closest_on(sg, p).0 - p).norm()).fold(f64::INFINITY, f64::min)))
+            .min_by(|a, c| a.1.total_cmp(&c.1));
+        if let Some((p, _)) = nearest {
+            *run = start_near(ring, p);
+        }
     }
     // a run's first segment may start along `prev` and its last end along it (the walls):
     // cut from where it leaves `prev` to where it rejoins it (bisection)
@@ -69,15 +84,24 @@ pub(crate) fn new_runs(ring: &[Segment], prev: &[Segment]) -> Vec<Vec<Segment>> 
 pub(crate) fn cut_rings(b: &mut Builder, polygon: &Polygon, r: f64, ring0: &[Segment], rings: Vec<Vec<Segment>>) {
     let mut prev = ring0.to_vec();
     let mut ring_runs = Vec::with_capacity(rings.len());
+    let mut safe = Vec::with_capacity(rings.len());
     for ring in rings {
         ring_runs.push(new_runs(&ring, &prev));
-        prev = ring;
+        safe.push(std::mem::replace(&mut prev, ring));
     }
-    cut_runs(b, polygon, r, ring_runs);
+    cut_runs(b, polygon, r, ring_runs, &safe);
 }
 
-/// Cut the runs of each ring in turn ([`cut_rings`]), each reached by a [`link`].
-pub(crate) fn cut_runs(b: &mut Builder, polygon: &Polygon, r: f64, mut ring_runs: Vec<Vec<Vec<Segment>>>) {
+/// Cut the runs of each ring in turn ([`cut_rings`]), each reached by a link that stays inside
+/// the ring before it, `safe[i]` for the runs `ring_runs[i]` ([`link_within`]; none given: the
+/// router's link).
+pub(crate) fn cut_runs(
+    b: &mut Builder,
+    polygon: &Polygon,
+    r: f64,
+    ring_runs: Vec<Vec<Vec<Segment>>>,
+    safe: &[Vec<Segment>],
+) {
     let n = ring_runs.last().map_or(0, Vec::len);
     let mut split = ring_runs.len();
     if n >= 2 {
@@ -85,36 +109,38 @@ pub(crate) fn cut_runs(b: &mut Builder, polygon: &Polygon, r: f64, mut ring_runs
             split -= 1;
         }
     }
-    let emit = |b: &mut Builder, run: &[Segment]| {
-        link(b, polygon, r, run[0].start());
+    let emit = |b: &mut Builder, ring: usize, run: &[Segment]| {
+        let dir = run[0].eval(0.0).d1;
+        link_within(b, polygon, r, safe.get(ring).map_or(&[][..], Vec::as_slice), run[0].start(), dir);
         for seg in run {
             b.push(*seg, MoveKind::Ring);
         }
     };
+    let mut ring_runs: Vec<(usize, Vec<Vec<Segment>>)> = ring_runs.into_iter().enumerate().collect();
     let tail = ring_runs.split_off(split);
-    for runs in &ring_runs {
+    for (ring, runs) in &ring_runs {
         for run in runs {
-            emit(b, run);
+            emit(b, *ring, run);
         }
     }
     // places: each place takes the run that starts nearest its last run's start
-    let mut places: Vec<Vec<Vec<Segment>>> = vec![Vec::new(); n];
-    for runs in tail {
+    let mut places: Vec<Vec<(usize, Vec<Segment>)>> = vec![Vec::new(); n];
+    for (ring, runs) in tail {
         let mut left = runs;
         for place in places.iter_mut() {
-            let Some(end) = place.last().and_then(|run| run.first()).map(Segment::start) else {
-                place.push(left.remove(0));
+            let Some(end) = place.last().and_then(|(_, run)| run.first()).map(Segment::start) else {
+                place.push((ring, left.remove(0)));
                 continue;
             };
             let i = (0..left.len())
                 .min_by(|&i, &j| (left[i][0].start() - end).norm().total_cmp(&(left[j][0].start() - end).norm()))
                 .unwrap_or(0);
-            place.push(left.remove(i));
+            place.push((ring, left.remove(i)));
         }
     }
     for place in places {
-        for run in place {
-            emit(b, &run);
+        for (ring, run) in place {
+            emit(b, ring, &run);
         }
     }
 }
@@ -232,14 +258,14 @@ mod tests {
         };
         let mut b = builder();
         b.push(Segment::Line { start: p2(10.0, 15.0), end: p2(10.0, 20.0) }, MoveKind::Spiral);
-        cut_runs(&mut b, &pocket, 5.0, rings());
+        cut_runs(&mut b, &pocket, 5.0, rings(), &[]);
         assert_eq!(order(&b), vec![10.0, 12.0, 14.0, 90.0, 88.0, 86.0]);
         let by_places = link_length(&b);
         let mut one_place = rings();
         one_place[2].pop();
         let mut c = builder();
         c.push(Segment::Line { start: p2(10.0, 15.0), end: p2(10.0, 20.0) }, MoveKind::Spiral);
-        cut_runs(&mut c, &pocket, 5.0, one_place);
+        cut_runs(&mut c, &pocket, 5.0, one_place, &[]);
         assert_eq!(order(&c), vec![10.0, 90.0, 88.0, 12.0, 14.0]);
         for bb in [&b, &c] {
             assert!(bb.retracts.is_empty());

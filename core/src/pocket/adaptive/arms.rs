@@ -49,7 +49,7 @@ pub(super) fn arm_rings(
     let mut prev = loops_of(&grown);
     let mut area: f64 = grown.iter().map(Region::area).sum();
     let least_growth = 1e-6 * fine.area().max(1.0);
-    let mut ring_runs: Vec<Vec<Vec<Segment>>> = Vec::new();
+    let (mut ring_runs, mut safe): (Vec<Vec<Vec<Segment>>>, Vec<Vec<Segment>>) = (Vec::new(), Vec::new());
     for _ in 0..MAX_PASSES {
         let mut next: Vec<Region> = Vec::new();
         for g in &grown {
@@ -69,12 +69,13 @@ pub(super) fn arm_rings(
             .filter_map(|p| largest(p.offset(-t_fine)))
             .flat_map(|o| crate::pocket::runs::new_runs(&o.segments(), &prev))
             .collect();
+        let before = std::mem::replace(&mut prev, ring);
         if !runs.is_empty() {
             ring_runs.push(runs);
+            safe.push(before);
         }
-        prev = ring;
     }
     let count = ring_runs.len();
-    crate::pocket::runs::cut_runs(b, polygon, r, ring_runs);
+    crate::pocket::runs::cut_runs(b, polygon, r, ring_runs, &safe);
     count
 }

@@ -120,8 +120,9 @@ mod plan;
 mod spiral;
 #[cfg(test)]
 pub(crate) mod tests;
+mod walk;
 
-pub(crate) use loops::{Builder, closest_on, inscribed, link, split};
+pub(crate) use loops::{Builder, closest_on, inscribed, split, start_near};
 pub use open::{OPEN_REACH_FACTOR, validate_open_edges};
 pub(crate) use options::fin_radius;
 pub use options::{
@@ -129,6 +130,7 @@ pub use options::{
 };
 pub(crate) use part::clear_regions;
 pub use plan::{AdaptivePart, AdaptivePlan, CornerPasses};
+pub(crate) use walk::link_within;
 
 use super::PocketSettings;
 use crate::error::{Error, Param, num};

@@ -169,6 +169,9 @@ pub(super) fn plan_part(p: &PartContext<'_>, fraction: f64, b: &mut Builder) -> 
     Ok(AdaptivePart { entry, first_segment: 0, end_segment: 0, core_radius_mm: t, rings, corners, corner_points })
 }
 
+/// The core radius T and its core, and the finer radius T' and its core where arms need one.
+pub(super) type Cores = (f64, Region, Option<(f64, Region)>);
+
 /// Core radius T, its core and the finer core the arms need: T the largest radius (from 0.995 ×
 /// `fraction` × the inscribed radius, −10 % a step, not below the least radius `r_h`) whose
 /// opening of `t_region` leaves only the caps of its convex corners and cusps, with the core
@@ -185,7 +188,7 @@ pub(super) fn core_radius(
     inscribed: f64,
     r_h: f64,
     helix: Option<(P2, f64)>,
-) -> Result<(f64, Region, Option<(f64, Region)>), Error> {
+) -> Result<Cores, Error> {
     let area = t_region.area();
     // the opening of the one-piece core `k` with radius t leaves only the caps
     let opens_to_caps = |k: &Region, t: f64| {
