@@ -27,13 +27,13 @@ use crate::geom::{Polygon, Segment};
 pub(super) const MIN_FINE_CORE_SHARE: f64 = 0.05;
 
 /// The rings grown from the opening of `core` (radius `t`, cleared) through `fine` = C ⊖ `t_fine`
-/// (module docs); the number of rings cut.
+/// (module docs), for tool radius r, target φ and finishing stock `finish`; the number of
+/// rings cut.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn arm_rings(
     b: &mut Builder,
     polygon: &Polygon,
-    r: f64,
-    phi: f64,
+    (r, phi, finish): (f64, f64, f64),
     (core, t): (&Region, f64),
     (fine, t_fine): (&Region, f64),
 ) -> usize {
@@ -67,7 +67,9 @@ pub(super) fn arm_rings(
         let runs: Vec<Vec<Segment>> = grown
             .iter()
             .filter_map(|p| largest(p.offset(-t_fine)))
-            .flat_map(|o| crate::pocket::runs::new_runs(&o.segments(), &prev))
+            .flat_map(|o| {
+                crate::pocket::runs::entered_runs(&o.segments(), &prev, crate::pocket::runs::entry_gap(r, phi))
+            })
             .collect();
         let before = std::mem::replace(&mut prev, ring);
         if !runs.is_empty() {
@@ -76,6 +78,12 @@ pub(super) fn arm_rings(
         }
     }
     let count = ring_runs.len();
-    crate::pocket::runs::cut_runs(b, polygon, r, ring_runs, &safe);
+    crate::pocket::runs::cut_runs(
+        b,
+        polygon,
+        r,
+        ring_runs,
+        (&safe, step, crate::pocket::runs::entry_gap(r, phi), finish),
+    );
     count
 }

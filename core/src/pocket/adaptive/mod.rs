@@ -130,7 +130,7 @@ pub use options::{
 };
 pub(crate) use part::clear_regions;
 pub use plan::{AdaptivePart, AdaptivePlan, CornerPasses};
-pub(crate) use walk::link_within;
+pub(crate) use walk::{Cleared, link_within};
 
 use super::PocketSettings;
 use crate::error::{Error, Param, num};

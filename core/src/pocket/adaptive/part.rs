@@ -151,7 +151,7 @@ pub(super) fn plan_part(p: &PartContext<'_>, fraction: f64, b: &mut Builder) -> 
                 (options, fine.is_none()),
             );
             if let Some((t_fine, fine_core)) = &fine {
-                rings += arm_rings(b, polygon, r, phi, (&core, t_core), (fine_core, *t_fine));
+                rings += arm_rings(b, polygon, (r, phi, sf), (&core, t_core), (fine_core, *t_fine));
             }
             (Entry::Helix(helix), trimmed, rings)
         }

@@ -156,7 +156,13 @@ pub(super) fn spiral_and_rings(
         b.push(seg, MoveKind::Ring);
     }
     let rings = 1 + rings_cut.len();
-    crate::pocket::runs::cut_rings(b, polygon, r, &stadium, rings_cut);
+    crate::pocket::runs::cut_rings(
+        b,
+        polygon,
+        (r, concave_step(t, r, phi), phi, options.finish_stock_mm),
+        &stadium,
+        rings_cut,
+    );
     (helix, trimmed, rings)
 }
 

@@ -7,8 +7,10 @@
 //! **Rule (DERIVED).** A run of ring j starts where ring j leaves ring j − 1, on ring j − 1
 //! (`safe`), and everything inside ring j − 1 is cleared: its tool centres cut every ring up to
 //! it, a concave-cut step apart, so a tool centre inside the loop has its whole disc in cut
-//! material but for the cusps between passes. The router's path is kept where every point of
-//! it lies inside `safe` (or within [`ON_LOOP_MM`] of it). Otherwise the tool goes by the
+//! material but for the cusps between passes; so is one within half a step of a run cut
+//! outside ring j − 1 (a place cleared past it, a run of ring j cut before: their bands are
+//! swept by runs a step apart, [`Cleared`]). The router's path is kept where every point of it
+//! is cleared so. Otherwise the tool goes by the
 //! router to the point of `safe` nearest it (through what the last runs cleared: it ends a run
 //! on the ring before, or at another place's run, whose band is cut), then along `safe`, the
 //! shorter way, to the run's start: on a path already cut, where the tool's disc only touches
@@ -19,6 +21,7 @@ use super::loops::{Builder, closest_on, link, split};
 use crate::geom::loop_contains;
 use crate::geom::{P2, Polygon, Segment};
 use crate::toolpath::MoveKind;
+use std::collections::HashMap;
 
 /// How near `safe` a point of a link counts as on it (mm): the run starts lie within 1 µm of
 /// the previous ring ([`crate::pocket::runs::new_runs`]), the chords of its arcs within 0.1 µm.
@@ -33,6 +36,75 @@ const CHECK_MM: f64 = 0.25;
 /// goes straight to the start, so the cut deepens from nothing to g at a slant of 1/8 (7°) to
 /// the ring's own direction instead of across it.
 const LEAD_IN_RUN: f64 = 8.0;
+
+/// The runs cut so far, as points every quarter step in cells of half a step: a tool centre
+/// within half a step of a run that lies outside the ring before (a place cleared past that
+/// ring, or a run of the same ring cut earlier) lies in the band those runs cleared, the rings
+/// a step apart.
+#[derive(Default)]
+pub(crate) struct Cleared {
+    /// A tool centre this near the ring before (mm) grazes the stock outside it by at most
+    /// this depth: cut 2·arccos(1 − g/r) wide at most, a quarter of the target
+    /// ([`crate::pocket::runs::entry_gap`]); the router keeps r from the walls where the rings
+    /// keep r + s_f, so its links graze the finishing stock by up to s_f at reflex corners.
+    graze: f64,
+    /// The finishing stock s_f (mm): a tool centre nearer the walls than r + s_f and within s_f
+    /// of the ring before (which runs along the wall there, r + s_f off it) cuts into the
+    /// finishing stock only, a layer s_f ≤ a_e deep: within the step-over's straight engagement.
+    finish: f64,
+    /// The pocket and the tool radius, for that wall distance.
+    walls: Option<(Polygon, f64)>,
+    half_step: f64,
+    cells: HashMap<(i64, i64), Vec<P2>>,
+}
+
+impl Cleared {
+    /// Nothing cut yet, for rings `step` apart, grazing the ring before by `graze` at most and
+    /// the finishing stock `finish` of `polygon` for a tool of radius `r`.
+    pub(crate) fn new(step: f64, graze: f64, (polygon, r, finish): (&Polygon, f64, f64)) -> Cleared {
+        Cleared { graze, finish, walls: Some((polygon.clone(), r)), half_step: 0.5 * step, cells: HashMap::new() }
+    }
+
+    /// Whether `p` cuts only into the finishing stock along a wall beside `ring` (see `finish`).
+    fn in_finish_stock(&self, p: P2, ring: &[Segment]) -> bool {
+        let Some((polygon, r)) = &self.walls else { return false };
+        self.finish > 0.0
+            && polygon.boundary_distance(p) < r + self.finish
+            && ring.iter().any(|sg| (closest_on(sg, p).0 - p).norm() <= self.finish + ON_LOOP_MM)
+    }
+
+    fn cell(&self, p: P2) -> (i64, i64) {
+        ((p.x / self.half_step).floor() as i64, (p.y / self.half_step).floor() as i64)
+    }
+
+    /// Record the run segment `sg` as cut.
+    pub(crate) fn add(&mut self, sg: &Segment) {
+        if !(self.half_step > 0.0) {
+            return;
+        }
+        let n = (sg.length() / (0.5 * self.half_step)).ceil().max(1.0) as usize;
+        for k in 0..=n {
+            let p = sg.point(k as f64 / n as f64);
+            let c = self.cell(p);
+            self.cells.entry(c).or_default().push(p);
+        }
+    }
+
+    /// Whether a recorded point within half a step of `p` passes `keep`.
+    fn near(&self, p: P2, keep: impl Fn(P2) -> bool) -> bool {
+        if !(self.half_step > 0.0) {
+            return false;
+        }
+        let (i, j) = self.cell(p);
+        (-1..=1).any(|di| {
+            (-1..=1).any(|dj| {
+                self.cells
+                    .get(&(i + di, j + dj))
+                    .is_some_and(|v| v.iter().any(|&q| (q - p).norm() <= self.half_step && keep(q)))
+            })
+        })
+    }
+}
 
 /// The closed loops of a ring given as consecutive segments (several pieces one after the
 /// other: a new loop where a segment does not start at the previous one's end).
@@ -65,9 +137,17 @@ fn chords(lp: &[Segment]) -> Vec<P2> {
     pts
 }
 
-/// Whether `p` lies inside one of `polys` (the loops' chords) or within [`ON_LOOP_MM`] of `ring`.
-fn within(p: P2, polys: &[Vec<P2>], ring: &[Segment]) -> bool {
-    polys.iter().any(|v| loop_contains(v, p)) || ring.iter().any(|sg| (closest_on(sg, p).0 - p).norm() <= ON_LOOP_MM)
+/// Whether `p` lies inside one of `polys` (the loops' chords) or within `near` of `ring`.
+fn in_ring(p: P2, polys: &[Vec<P2>], ring: &[Segment], near: f64) -> bool {
+    polys.iter().any(|v| loop_contains(v, p)) || ring.iter().any(|sg| (closest_on(sg, p).0 - p).norm() <= near)
+}
+
+/// Whether the tool centre `p` lies in cleared material: inside the ring before (`polys`,
+/// `ring`), or in the band of runs cut outside it ([`Cleared`]).
+fn within(p: P2, polys: &[Vec<P2>], ring: &[Segment], cleared: &Cleared) -> bool {
+    in_ring(p, polys, ring, cleared.graze.max(ON_LOOP_MM))
+        || cleared.in_finish_stock(p, ring)
+        || cleared.near(p, |q| !in_ring(q, polys, ring, ON_LOOP_MM))
 }
 
 /// `sg` run backwards.
@@ -127,24 +207,31 @@ fn along(lp: &[Segment], (i, s): (usize, f64), (j, t): (usize, f64)) -> Vec<Segm
 }
 
 /// Whether every point of the polyline `pts` (every [`CHECK_MM`]) lies within `safe`.
-fn inside_all(pts: &[P2], polys: &[Vec<P2>], safe: &[Segment]) -> bool {
+fn inside_all(pts: &[P2], polys: &[Vec<P2>], safe: &[Segment], cleared: &Cleared) -> bool {
     pts.windows(2).all(|w| {
         let n = ((w[1] - w[0]).norm() / CHECK_MM).ceil().max(1.0) as usize;
-        (0..=n).all(|k| within(w[0] + (w[1] - w[0]) * (k as f64 / n as f64), polys, safe))
+        (0..=n).all(|k| within(w[0] + (w[1] - w[0]) * (k as f64 / n as f64), polys, safe, cleared))
     })
 }
 
 /// A link from the tool's position to `to`, a run's start on the ring before it, `safe`, the
 /// run leaving it in the direction `dir` (module docs); with no `safe` ring, the router's path.
-pub(crate) fn link_within(b: &mut Builder, polygon: &Polygon, r: f64, safe: &[Segment], to: P2, dir: P2) {
+pub(crate) fn link_within(
+    b: &mut Builder,
+    polygon: &Polygon,
+    r: f64,
+    (safe, cleared): (&[Segment], &Cleared),
+    to: P2,
+    dir: P2,
+) {
     if safe.is_empty() {
         return link(b, polygon, r, to);
     }
     let rings = loops(safe);
     let polys: Vec<Vec<P2>> = rings.iter().map(|lp| chords(lp)).collect();
     let gap = rings.iter().map(|lp| nearest(lp, to).2).fold(f64::INFINITY, f64::min);
-    if gap <= ON_LOOP_MM {
-        return reach(b, polygon, r, (&rings, &polys, safe), to);
+    if gap <= cleared.graze.max(ON_LOOP_MM) {
+        return reach(b, polygon, r, (&rings, &polys, safe, cleared), to);
     }
     // off the ring (a ring that grew all round, started where it comes nearest the ring
     // before): along that ring to LEAD_IN_RUN·g before its point nearest the start, then
@@ -155,7 +242,7 @@ pub(crate) fn link_within(b: &mut Builder, polygon: &Polygon, r: f64, safe: &[Se
     };
     let (j, t, _) = nearest(lp, to);
     let (jb, tb) = before(lp, (j, t), LEAD_IN_RUN * gap);
-    reach(b, polygon, r, (&rings, &polys, safe), lp[jb].point(tb));
+    reach(b, polygon, r, (&rings, &polys, safe, cleared), lp[jb].point(tb));
     b.line(to, MoveKind::Link);
 }
 
@@ -181,12 +268,12 @@ fn reach(
     b: &mut Builder,
     polygon: &Polygon,
     r: f64,
-    (rings, polys, safe): (&[&[Segment]], &[Vec<P2>], &[Segment]),
+    (rings, polys, safe, cleared): (&[&[Segment]], &[Vec<P2>], &[Segment], &Cleared),
     to: P2,
 ) {
     let from = b.at();
     if let Some(pts) = b.router.get(polygon, r).route(from, to)
-        && inside_all(&pts, polys, safe)
+        && inside_all(&pts, polys, safe, cleared)
     {
         pts.iter().skip(1).for_each(|&p| b.line(p, MoveKind::Link));
         return;
