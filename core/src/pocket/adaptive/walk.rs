@@ -7,9 +7,9 @@
 //! **Rule (DERIVED).** A run of ring j starts where ring j leaves ring j − 1, on ring j − 1
 //! (`safe`), and everything inside ring j − 1 is cleared: its tool centres cut every ring up to
 //! it, a concave-cut step apart, so a tool centre inside the loop has its whole disc in cut
-//! material but for the cusps between passes; so is one within half a step of a run cut
-//! outside ring j − 1 (a place cleared past it, a run of ring j cut before: their bands are
-//! swept by runs a step apart, [`Cleared`]). The router's path is kept where every point of it
+//! material but for the cusps between passes; so is one within a step of a run cut outside
+//! ring j − 1 (a place cleared past it, a run of ring j cut before: their bands are swept by
+//! runs a step apart, [`Cleared`]). The router's path is kept where every point of it
 //! is cleared so. Otherwise the tool goes by the
 //! router to the point of `safe` nearest it (through what the last runs cleared: it ends a run
 //! on the ring before, or at another place's run, whose band is cut), then along `safe`, the
@@ -37,10 +37,11 @@ const CHECK_MM: f64 = 0.25;
 /// the ring's own direction instead of across it.
 const LEAD_IN_RUN: f64 = 8.0;
 
-/// The runs cut so far, as points every quarter step in cells of half a step: a tool centre
-/// within half a step of a run that lies outside the ring before (a place cleared past that
-/// ring, or a run of the same ring cut earlier) lies in the band those runs cleared, the rings
-/// a step apart.
+/// The runs cut so far, as points every half step in cells of a step: a tool centre within a
+/// step of a run that lies outside the ring before (a place cleared past that ring, or a run
+/// of the same ring cut earlier) lies in the band those runs cleared, the rings a step apart
+/// (between that ring and the run, or between two runs); the band the next run cuts has no
+/// run outside the ring before within a step.
 #[derive(Default)]
 pub(crate) struct Cleared {
     /// A tool centre this near the ring before (mm) grazes the stock outside it by at most
@@ -54,7 +55,7 @@ pub(crate) struct Cleared {
     finish: f64,
     /// The pocket and the tool radius, for that wall distance.
     walls: Option<(Polygon, f64)>,
-    half_step: f64,
+    radius: f64,
     cells: HashMap<(i64, i64), Vec<P2>>,
 }
 
@@ -62,7 +63,7 @@ impl Cleared {
     /// Nothing cut yet, for rings `step` apart, grazing the ring before by `graze` at most and
     /// the finishing stock `finish` of `polygon` for a tool of radius `r`.
     pub(crate) fn new(step: f64, graze: f64, (polygon, r, finish): (&Polygon, f64, f64)) -> Cleared {
-        Cleared { graze, finish, walls: Some((polygon.clone(), r)), half_step: 0.5 * step, cells: HashMap::new() }
+        Cleared { graze, finish, walls: Some((polygon.clone(), r)), radius: step, cells: HashMap::new() }
     }
 
     /// Whether `p` cuts only into the finishing stock along a wall beside `ring` (see `finish`).
@@ -74,15 +75,15 @@ impl Cleared {
     }
 
     fn cell(&self, p: P2) -> (i64, i64) {
-        ((p.x / self.half_step).floor() as i64, (p.y / self.half_step).floor() as i64)
+        ((p.x / self.radius).floor() as i64, (p.y / self.radius).floor() as i64)
     }
 
     /// Record the run segment `sg` as cut.
     pub(crate) fn add(&mut self, sg: &Segment) {
-        if !(self.half_step > 0.0) {
+        if !(self.radius > 0.0) {
             return;
         }
-        let n = (sg.length() / (0.5 * self.half_step)).ceil().max(1.0) as usize;
+        let n = (sg.length() / (0.5 * self.radius)).ceil().max(1.0) as usize;
         for k in 0..=n {
             let p = sg.point(k as f64 / n as f64);
             let c = self.cell(p);
@@ -90,9 +91,9 @@ impl Cleared {
         }
     }
 
-    /// Whether a recorded point within half a step of `p` passes `keep`.
+    /// Whether a recorded point within a step of `p` passes `keep`.
     fn near(&self, p: P2, keep: impl Fn(P2) -> bool) -> bool {
-        if !(self.half_step > 0.0) {
+        if !(self.radius > 0.0) {
             return false;
         }
         let (i, j) = self.cell(p);
@@ -100,7 +101,7 @@ impl Cleared {
             (-1..=1).any(|dj| {
                 self.cells
                     .get(&(i + di, j + dj))
-                    .is_some_and(|v| v.iter().any(|&q| (q - p).norm() <= self.half_step && keep(q)))
+                    .is_some_and(|v| v.iter().any(|&q| (q - p).norm() <= self.radius && keep(q)))
             })
         })
     }
