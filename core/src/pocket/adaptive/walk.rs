@@ -80,7 +80,7 @@ impl Cleared {
 
     /// Record the run segment `sg` as cut.
     pub(crate) fn add(&mut self, sg: &Segment) {
-        if !(self.radius > 0.0) {
+        if self.radius.is_nan() || self.radius <= 0.0 {
             return;
         }
         let n = (sg.length() / (0.5 * self.radius)).ceil().max(1.0) as usize;
@@ -93,7 +93,7 @@ impl Cleared {
 
     /// Whether a recorded point within a step of `p` passes `keep`.
     fn near(&self, p: P2, keep: impl Fn(P2) -> bool) -> bool {
-        if !(self.radius > 0.0) {
+        if self.radius.is_nan() || self.radius <= 0.0 {
             return false;
         }
         let (i, j) = self.cell(p);
@@ -106,6 +106,9 @@ impl Cleared {
         })
     }
 }
+
+/// A ring to stay within: its loops, their chords, its segments, and what else is cleared.
+type Within<'a> = (&'a [&'a [Segment]], &'a [Vec<P2>], &'a [Segment], &'a Cleared);
 
 /// The closed loops of a ring given as consecutive segments (several pieces one after the
 /// other: a new loop where a segment does not start at the previous one's end).
@@ -265,13 +268,7 @@ fn before(lp: &[Segment], (mut j, mut t): (usize, f64), back: f64) -> (usize, f6
 
 /// The tool's way to `to` within the rings `safe` (its loops and their chords): the router's
 /// path where it stays within, else onto the loop nearest `to` and along it (module docs).
-fn reach(
-    b: &mut Builder,
-    polygon: &Polygon,
-    r: f64,
-    (rings, polys, safe, cleared): (&[&[Segment]], &[Vec<P2>], &[Segment], &Cleared),
-    to: P2,
-) {
+fn reach(b: &mut Builder, polygon: &Polygon, r: f64, (rings, polys, safe, cleared): Within<'_>, to: P2) {
     let from = b.at();
     if let Some(pts) = b.router.get(polygon, r).route(from, to)
         && inside_all(&pts, polys, safe, cleared)
