@@ -217,11 +217,11 @@ fn plan_path(
     // concentrically, within φ* (concave-cut step); at least r/10.
     let rho_fin = if sf > 0.0 { fin_radius(sf, r, phi) } else { 0.1 * r };
     let (mut parts, mut b) = if work_open.is_empty() {
-        clear_regions(&closed_regions, &work, &settings, &options, phi, rho_fin, None)?
+        clear_regions(&closed_regions, &work, &settings, &options, phi, rho_fin, (None, true))?
     } else {
         let open = OpenPocket::new(&work, &work_open, &closed_regions, r + sf)?;
         let regions = open.near.offset(r + sf);
-        clear_regions(&regions, &open.near_polygon, &settings, &options, phi, rho_fin, Some(&open))?
+        clear_regions(&regions, &open.near_polygon, &settings, &options, phi, rho_fin, (Some(&open), true))?
     };
     if mirror {
         for s in &mut b.segments {

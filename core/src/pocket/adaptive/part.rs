@@ -22,7 +22,8 @@ pub(super) const CORE_FRACTIONS: [f64; 5] = [1.0, 0.85, 0.7, 0.55, 0.4];
 /// Entry, spiral, rings, corner passes down to `rho_fin` and (with a finishing stock) the
 /// finishing pass of each region of tool centres of `work`, one part each: for each, the
 /// shortest plan over the core fractions. Each region grows from its seed: outside the stock
-/// where it reaches past an open edge of `open`, else a helix. Also the core of the ring
+/// where it reaches past an open edge of `open`, else a helix; with `arms`, into arms narrower
+/// than the helix's core ([`super::arms`]). Also the core of the ring
 /// methods ([`crate::pocket::rings::plan_ring_pocket`], closed: `open` = `None`).
 pub(crate) fn clear_regions(
     regions: &[Region],
@@ -31,7 +32,7 @@ pub(crate) fn clear_regions(
     options: &AdaptiveOptions,
     phi: f64,
     rho_fin: f64,
-    open: Option<&OpenPocket>,
+    (open, arms): (Option<&OpenPocket>, bool),
 ) -> Result<(Vec<AdaptivePart>, Builder), Error> {
     let router = open.map_or_else(Default::default, |o| {
         crate::pocket::route::RouterCache::pinned(&o.far_polygon, settings.tool_radius)
@@ -62,6 +63,7 @@ pub(crate) fn clear_regions(
                 phi,
                 rho_fin,
                 seed: &seed,
+                arms,
             };
             let planned = plan_part(&part, fraction, &mut bb);
             (radii, router) = (std::mem::take(&mut bb.radii), std::mem::take(&mut bb.router));
@@ -101,6 +103,10 @@ pub(super) struct PartContext<'a> {
     pub(super) phi: f64,
     pub(super) rho_fin: f64,
     pub(super) seed: &'a Seed<'a>,
+    /// Whether arms narrower than the helix's core are grown into with a finer core radius
+    /// ([`super::arms`]); without, such a region is refused (the ring methods then take the
+    /// lobes one by one).
+    pub(super) arms: bool,
 }
 
 /// Entry, spiral, rings and corners of one region of tool centres with the core radius starting
@@ -135,8 +141,14 @@ pub(super) fn plan_part(p: &PartContext<'_>, fraction: f64, b: &mut Builder) -> 
         _ => &cusps_all,
     };
     let helix_seed = matches!(seed, Seed::Helix);
-    let (t_core, core, fine) =
-        core_radius(t_region, (t_corners, t_cusps), fraction, inscribed, r_h, helix_seed.then_some((k0, r)))?;
+    let (t_core, core, fine) = core_radius(
+        t_region,
+        (t_corners, t_cusps),
+        fraction,
+        inscribed,
+        r_h,
+        (helix_seed && p.arms).then_some((k0, r)),
+    )?;
     // the corner passes start from the arcs of the last core radius: T' where arms follow
     let t = fine.as_ref().map_or(t_core, |f| f.0);
     let (entry, trimmed, rings) = match seed {

@@ -483,6 +483,7 @@ fn rectangle_part<'a>(region: &'a Region, polygon: &'a Polygon, options: &'a Ada
         phi,
         rho_fin: fin_radius(options.finish_stock_mm, R, phi),
         seed: &HELIX,
+        arms: true,
     }
 }
 
@@ -508,9 +509,16 @@ fn each_part_plan_is_continuous_and_the_shortest_core_radius_wins() {
         plans.push((b.segments.iter().map(Segment::length).sum::<f64>(), t));
     }
     let (least, t_least) = plans.iter().copied().min_by(|a, c| a.0.total_cmp(&c.0)).unwrap();
-    let (parts, b) =
-        clear_regions(std::slice::from_ref(&region), &polygon, &settings(), &options, part.phi, part.rho_fin, None)
-            .unwrap();
+    let (parts, b) = clear_regions(
+        std::slice::from_ref(&region),
+        &polygon,
+        &settings(),
+        &options,
+        part.phi,
+        part.rho_fin,
+        (None, true),
+    )
+    .unwrap();
     let length: f64 = b.segments.iter().map(Segment::length).sum();
     assert!((length - least).abs() < 1e-9, "{length} vs {plans:?}");
     assert!((parts[0].core_radius_mm - t_least).abs() < 1e-12);
@@ -545,7 +553,7 @@ fn a_dumbbell_with_a_narrow_neck_is_cleared_as_two_parts() {
     assert_eq!(regions.len(), 2);
     let phi = target();
     let rho_fin = fin_radius(options.finish_stock_mm, R, phi);
-    let (parts, b) = clear_regions(&regions, &polygon, &settings(), &options, phi, rho_fin, None).unwrap();
+    let (parts, b) = clear_regions(&regions, &polygon, &settings(), &options, phi, rho_fin, (None, true)).unwrap();
     assert_eq!(parts.len(), 2);
     assert_eq!((parts[0].first_segment, parts[0].end_segment), (0, parts[1].first_segment));
     assert_eq!(parts[1].end_segment, b.segments.len());
