@@ -3,7 +3,7 @@
 //! link ([`super::route`]), and where every later ring adds at the same places (the ends of a
 //! pocket's arms) each place cleared in turn.
 
-use super::adaptive::{Builder, closest_on, link, split};
+use super::adaptive::{Builder, Cleared, closest_on, link_within, split, start_near};
 use crate::geom::{P2, Polygon, Segment};
 use crate::toolpath::MoveKind;
 
@@ -62,22 +62,66 @@ pub(crate) fn new_runs(ring: &[Segment], prev: &[Segment]) -> Vec<Vec<Segment>> 
     runs
 }
 
+/// The runs of a ring after `prev` ([`new_runs`]), the ring first restarted where the tool can
+/// enter it where its start lies farther than `max_gap` from `prev` (a ring that grew all round
+/// the core, whose start at the wall point where the spiral ended is not beside `prev`): at its
+/// point nearest `prev` among its segments' ends and eighths. A straight move into a ring a gap
+/// g outside the cleared ring cuts 2·arccos(1 − g/r) wide; the callers keep that to a quarter
+/// of the target, g ≤ r(1 − cos(φ/4)) ([`entry_gap`]).
+pub(crate) fn entered_runs(ring: &[Segment], prev: &[Segment], max_gap: f64) -> Vec<Vec<Segment>> {
+    let gap = |p: P2| prev.iter().map(|sg| (closest_on(sg, p).0 - p).norm()).fold(f64::INFINITY, f64::min);
+    if ring.first().is_some_and(|sg| gap(sg.start()) > max_gap) {
+        let nearest = ring
+            .iter()
+            .flat_map(|sg| (0..8).map(move |k| sg.point(k as f64 / 8.0)))
+            .map(|p| (p, gap(p)))
+            .min_by(|a, c| a.1.total_cmp(&c.1));
+        if let Some((p, _)) = nearest {
+            return new_runs(&start_near(ring, p), prev);
+        }
+    }
+    new_runs(ring, prev)
+}
+
+/// The largest gap between a ring's start and the ring before it that the tool enters
+/// straight ([`entered_runs`]): r(1 − cos(φ/4)) for tool radius r and target φ.
+pub(crate) fn entry_gap(r: f64, phi: f64) -> f64 {
+    r * (1.0 - (0.25 * phi).cos())
+}
+
 /// Cut the rings after ring 0, each only where it adds to the previous one (its ends, where the
 /// core grew). Where every later ring adds at the same number n ≥ 2 of places (the ends of a
 /// pocket's arms), each place is cleared in turn, ring after ring: the tool crosses back
 /// through what the last run cleared instead of walking the cleared walls to the other ends.
-pub(crate) fn cut_rings(b: &mut Builder, polygon: &Polygon, r: f64, ring0: &[Segment], rings: Vec<Vec<Segment>>) {
+pub(crate) fn cut_rings(
+    b: &mut Builder,
+    polygon: &Polygon,
+    (r, step, phi, finish): (f64, f64, f64, f64),
+    ring0: &[Segment],
+    rings: Vec<Vec<Segment>>,
+) {
     let mut prev = ring0.to_vec();
     let mut ring_runs = Vec::with_capacity(rings.len());
+    let mut safe = Vec::with_capacity(rings.len());
     for ring in rings {
-        ring_runs.push(new_runs(&ring, &prev));
-        prev = ring;
+        ring_runs.push(entered_runs(&ring, &prev, entry_gap(r, phi)));
+        safe.push(std::mem::replace(&mut prev, ring));
     }
-    cut_runs(b, polygon, r, ring_runs);
+    cut_runs(b, polygon, r, ring_runs, (&safe, step, entry_gap(r, phi), finish));
 }
 
-/// Cut the runs of each ring in turn ([`cut_rings`]), each reached by a [`link`].
-pub(crate) fn cut_runs(b: &mut Builder, polygon: &Polygon, r: f64, mut ring_runs: Vec<Vec<Vec<Segment>>>) {
+/// Cut the runs of each ring in turn ([`cut_rings`]), each reached by a link that stays in
+/// cleared material: inside the ring before it, `safe[i]` for the runs `ring_runs[i]` (or
+/// within `graze` of it, or in the finishing stock `finish` beside it), or in the bands of runs
+/// cut outside it, the rings `step` apart ([`link_within`]; none given: the router's link).
+pub(crate) fn cut_runs(
+    b: &mut Builder,
+    polygon: &Polygon,
+    r: f64,
+    ring_runs: Vec<Vec<Vec<Segment>>>,
+    (safe, step, graze, finish): (&[Vec<Segment>], f64, f64, f64),
+) {
+    let mut cleared = Cleared::new(step, graze, (polygon, r, finish));
     let n = ring_runs.last().map_or(0, Vec::len);
     let mut split = ring_runs.len();
     if n >= 2 {
@@ -85,36 +129,40 @@ pub(crate) fn cut_runs(b: &mut Builder, polygon: &Polygon, r: f64, mut ring_runs
             split -= 1;
         }
     }
-    let emit = |b: &mut Builder, run: &[Segment]| {
-        link(b, polygon, r, run[0].start());
+    let mut emit = |b: &mut Builder, ring: usize, run: &[Segment]| {
+        let dir = run[0].eval(0.0).d1;
+        let before = safe.get(ring).map_or(&[][..], Vec::as_slice);
+        link_within(b, polygon, r, (before, &cleared), run[0].start(), dir);
         for seg in run {
             b.push(*seg, MoveKind::Ring);
+            cleared.add(seg);
         }
     };
+    let mut ring_runs: Vec<(usize, Vec<Vec<Segment>>)> = ring_runs.into_iter().enumerate().collect();
     let tail = ring_runs.split_off(split);
-    for runs in &ring_runs {
+    for (ring, runs) in &ring_runs {
         for run in runs {
-            emit(b, run);
+            emit(b, *ring, run);
         }
     }
     // places: each place takes the run that starts nearest its last run's start
-    let mut places: Vec<Vec<Vec<Segment>>> = vec![Vec::new(); n];
-    for runs in tail {
+    let mut places: Vec<Vec<(usize, Vec<Segment>)>> = vec![Vec::new(); n];
+    for (ring, runs) in tail {
         let mut left = runs;
         for place in places.iter_mut() {
-            let Some(end) = place.last().and_then(|run| run.first()).map(Segment::start) else {
-                place.push(left.remove(0));
+            let Some(end) = place.last().and_then(|(_, run)| run.first()).map(Segment::start) else {
+                place.push((ring, left.remove(0)));
                 continue;
             };
             let i = (0..left.len())
                 .min_by(|&i, &j| (left[i][0].start() - end).norm().total_cmp(&(left[j][0].start() - end).norm()))
                 .unwrap_or(0);
-            place.push(left.remove(i));
+            place.push((ring, left.remove(i)));
         }
     }
     for place in places {
-        for run in place {
-            emit(b, &run);
+        for (ring, run) in place {
+            emit(b, ring, &run);
         }
     }
 }
@@ -232,14 +280,14 @@ mod tests {
         };
         let mut b = builder();
         b.push(Segment::Line { start: p2(10.0, 15.0), end: p2(10.0, 20.0) }, MoveKind::Spiral);
-        cut_runs(&mut b, &pocket, 5.0, rings());
+        cut_runs(&mut b, &pocket, 5.0, rings(), (&[], 0.0, 0.0, 0.0));
         assert_eq!(order(&b), vec![10.0, 12.0, 14.0, 90.0, 88.0, 86.0]);
         let by_places = link_length(&b);
         let mut one_place = rings();
         one_place[2].pop();
         let mut c = builder();
         c.push(Segment::Line { start: p2(10.0, 15.0), end: p2(10.0, 20.0) }, MoveKind::Spiral);
-        cut_runs(&mut c, &pocket, 5.0, one_place);
+        cut_runs(&mut c, &pocket, 5.0, one_place, (&[], 0.0, 0.0, 0.0));
         assert_eq!(order(&c), vec![10.0, 90.0, 88.0, 12.0, 14.0]);
         for bb in [&b, &c] {
             assert!(bb.retracts.is_empty());
@@ -269,7 +317,7 @@ mod tests {
         let pocket = Polygon::new(vec![p2(0.0, 0.0), p2(100.0, 0.0), p2(100.0, 40.0), p2(0.0, 40.0)]).unwrap();
         let mut b = builder();
         b.push(Segment::Line { start: p2(50.0, 20.0), end: p2(50.0, 10.0) }, MoveKind::Spiral);
-        cut_rings(&mut b, &pocket, 5.0, &ring0, rings);
+        cut_rings(&mut b, &pocket, (5.0, 1.0, 1.0, 0.0), &ring0, rings);
         let ring: f64 =
             b.segments.iter().zip(&b.kinds).filter(|(_, k)| **k == MoveKind::Ring).map(|(s, _)| s.length()).sum();
         assert!((ring - 4.0 * (30.0 - 2e-3)).abs() < 1e-6, "{ring}");

@@ -52,7 +52,7 @@ pub(crate) fn split(seg: &Segment, t: f64) -> (Segment, Segment) {
 }
 
 /// The closed loop re-started at its point nearest `q`.
-pub(super) fn start_near(lp: &[Segment], q: P2) -> Vec<Segment> {
+pub(crate) fn start_near(lp: &[Segment], q: P2) -> Vec<Segment> {
     let (mut best, mut bt, mut bd) = (0, 0.0, f64::INFINITY);
     for (i, s) in lp.iter().enumerate() {
         let (p, t) = closest_on(s, q);

@@ -48,7 +48,11 @@
 //!    2 % of a step wide along its length) is not cut. The last ring is the opening of C with
 //!    radius T. T starts at 0.995 × the inscribed radius and shrinks by 10 % until that opening
 //!    leaves only the corner caps uncut (area check: a cap of a convex corner α is
-//!    T²(cot(α/2) − (π − α)/2)). A ring is cut only where it adds to the previous one (its
+//!    T²(cot(α/2) − (π − α)/2)). T stays at least the helix radius r_h (the spiral's core);
+//!    where the opening with r_h still leaves more (an arm, a notch, a lobe behind a neck), the
+//!    rings go on growing into it geodesically with a finer core radius T' ([`arms`]), and a
+//!    pocket that needs T' below [`arms::MIN_FINE_CORE_SHARE`]·r is refused, its narrowest
+//!    part named. A ring is cut only where it adds to the previous one (its
 //!    runs off the previous ring: the ends where the core grew); where every later ring adds
 //!    at the same n ≥ 2 places (the ends of an L's arms), each place is cleared in turn, ring
 //!    after ring, the tool crossing back through what the last run cleared ([`super::runs::cut_rings`]).
@@ -105,6 +109,7 @@
 //! Conventional milling mirrors the pocket in x, plans it, and mirrors the path back: every
 //! loop then runs clockwise, with the same engagement by symmetry.
 
+mod arms;
 mod corners;
 mod finish;
 mod loops;
@@ -115,8 +120,9 @@ mod plan;
 mod spiral;
 #[cfg(test)]
 pub(crate) mod tests;
+mod walk;
 
-pub(crate) use loops::{Builder, closest_on, inscribed, link, split};
+pub(crate) use loops::{Builder, closest_on, inscribed, split, start_near};
 pub use open::{OPEN_REACH_FACTOR, validate_open_edges};
 pub(crate) use options::fin_radius;
 pub use options::{
@@ -124,6 +130,7 @@ pub use options::{
 };
 pub(crate) use part::clear_regions;
 pub use plan::{AdaptivePart, AdaptivePlan, CornerPasses};
+pub(crate) use walk::{Cleared, link_within};
 
 use super::PocketSettings;
 use crate::error::{Error, Param, num};
@@ -210,11 +217,11 @@ fn plan_path(
     // concentrically, within φ* (concave-cut step); at least r/10.
     let rho_fin = if sf > 0.0 { fin_radius(sf, r, phi) } else { 0.1 * r };
     let (mut parts, mut b) = if work_open.is_empty() {
-        clear_regions(&closed_regions, &work, &settings, &options, phi, rho_fin, None)?
+        clear_regions(&closed_regions, &work, &settings, &options, phi, rho_fin, (None, true))?
     } else {
         let open = OpenPocket::new(&work, &work_open, &closed_regions, r + sf)?;
         let regions = open.near.offset(r + sf);
-        clear_regions(&regions, &open.near_polygon, &settings, &options, phi, rho_fin, Some(&open))?
+        clear_regions(&regions, &open.near_polygon, &settings, &options, phi, rho_fin, (Some(&open), true))?
     };
     if mirror {
         for s in &mut b.segments {

@@ -91,14 +91,17 @@ pub(super) fn grown_rings(
     // r off the stock (air)
     let flat = |loops: &[Vec<Segment>]| loops.iter().flatten().copied().collect::<Vec<Segment>>();
     let ring0 = flat(&rings[0]);
-    let mut ring_runs: Vec<Vec<Vec<Segment>>> = Vec::new();
+    let (mut ring_runs, mut safe): (Vec<Vec<Vec<Segment>>>, Vec<Vec<Segment>>) = (Vec::new(), Vec::new());
     for pair in rings.windows(2) {
         let prev = flat(&pair[0]);
-        let mut runs: Vec<Vec<Segment>> =
-            pair[1].iter().flat_map(|lp| crate::pocket::runs::new_runs(lp, &prev)).collect();
+        let mut runs: Vec<Vec<Segment>> = pair[1]
+            .iter()
+            .flat_map(|lp| crate::pocket::runs::entered_runs(lp, &prev, crate::pocket::runs::entry_gap(r, phi)))
+            .collect();
         runs.retain(|run| run.iter().any(|sg| reaches_stock(stock, sg, r)));
         if !runs.is_empty() {
             ring_runs.push(runs);
+            safe.push(prev);
         }
     }
     // straight down on ring 0 (off the stock) nearest the first run's start
@@ -110,7 +113,7 @@ pub(super) fn grown_rings(
         .unwrap_or(first);
     b.push(Segment::Line { start: at, end: first }, MoveKind::Entry);
     let count = ring_runs.len();
-    crate::pocket::runs::cut_runs(b, polygon, r, ring_runs);
+    crate::pocket::runs::cut_runs(b, polygon, r, ring_runs, (&safe, step, crate::pocket::runs::entry_gap(r, phi), 0.0));
     Ok((count, at))
 }
 

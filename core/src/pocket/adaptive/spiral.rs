@@ -16,7 +16,8 @@ pub(super) const SPIRAL_CANDIDATES: usize = 16;
 
 /// Helix about k0, the spiral out of its bore into the stadium (ring 0) and the rings along the
 /// core `core` = C ⊖ T (module docs, steps 1–3); the helix, the end ring 0 left to the corner
-/// passes (its centre, the other end's, the gap) and the number of rings.
+/// passes (its centre, the other end's, the gap; only where `may_trim`: no arm rings follow)
+/// and the number of rings.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn spiral_and_rings(
     b: &mut Builder,
@@ -25,7 +26,7 @@ pub(super) fn spiral_and_rings(
     (inscribed, k0): (f64, P2),
     polygon: &Polygon,
     (r, t, r_h, phi): (f64, f64, f64, f64),
-    options: &AdaptiveOptions,
+    (options, may_trim): (&AdaptiveOptions, bool),
 ) -> (Helix, Option<(P2, P2, f64)>, usize) {
     // Wall point nearest k0: every ring passes within (inscribed − T) of it.
     let walls = region.segments();
@@ -137,7 +138,7 @@ pub(super) fn spiral_and_rings(
     // end, which the corner passes at that end take with their first arc (started Δ/k further
     // out on the bisector, below), instead of a half-circle mostly in air and the link back.
     let mut trimmed = None;
-    if axis.is_some() && rings_cut.is_empty() && halves >= 2 {
+    if may_trim && axis.is_some() && rings_cut.is_empty() && halves >= 2 {
         // (the spiral's end may lie a short line before the stadium's half-circle ends)
         while ring0.last().is_some_and(|sg| matches!(sg, Segment::Line { .. }) && sg.length() < 0.1 * r) {
             ring0.pop();
@@ -155,7 +156,13 @@ pub(super) fn spiral_and_rings(
         b.push(seg, MoveKind::Ring);
     }
     let rings = 1 + rings_cut.len();
-    crate::pocket::runs::cut_rings(b, polygon, r, &stadium, rings_cut);
+    crate::pocket::runs::cut_rings(
+        b,
+        polygon,
+        (r, concave_step(t, r, phi), phi, options.finish_stock_mm),
+        &stadium,
+        rings_cut,
+    );
     (helix, trimmed, rings)
 }
 

@@ -430,13 +430,13 @@ fn core_radius_of_a_rectangle_is_the_first_candidate() {
     let corners = convex_corners(&region.segments());
     assert_eq!(corners.len(), 4);
     for fraction in [1.0, 0.4] {
-        let (t, core) = core_radius(&region, (&corners, &[]), fraction, 14.8, 3.75).unwrap();
+        let (t, core, _) = core_radius(&region, (&corners, &[]), fraction, 14.8, 3.75, None).unwrap();
         let expected = 0.995 * fraction * 14.8;
         assert!((t - expected).abs() < 1e-12, "{t} vs {expected}");
         let area = (49.6 - 2.0 * t) * (29.6 - 2.0 * t);
         assert!((core.area() - area).abs() < 1e-6, "{} vs {area}", core.area());
     }
-    let err = core_radius(&region, (&corners, &[]), 1.0, 14.8, 15.0).unwrap_err();
+    let err = core_radius(&region, (&corners, &[]), 1.0, 14.8, 15.0, None).unwrap_err();
     assert_eq!(err.parameter(), Some(Param::Polygon));
 }
 
@@ -462,7 +462,7 @@ fn core_radius_shrinks_until_the_opening_keeps_a_narrow_tab() {
     while expected > 3.0 {
         expected *= 0.9;
     }
-    let (t, core) = core_radius(&region, (&corners, &[]), 1.0, 15.0, 1.0).unwrap();
+    let (t, core, _) = core_radius(&region, (&corners, &[]), 1.0, 15.0, 1.0, None).unwrap();
     assert!((t - expected).abs() < 1e-12 && (expected - 2.7657).abs() < 1e-4, "{t} vs {expected}");
     // the core reaches into the tab (6 − 2T wide)
     assert!(core.contains(p2(25.0, 35.0)));
@@ -483,6 +483,7 @@ fn rectangle_part<'a>(region: &'a Region, polygon: &'a Polygon, options: &'a Ada
         phi,
         rho_fin: fin_radius(options.finish_stock_mm, R, phi),
         seed: &HELIX,
+        arms: true,
     }
 }
 
@@ -499,7 +500,7 @@ fn each_part_plan_is_continuous_and_the_shortest_core_radius_wins() {
     for fraction in CORE_FRACTIONS {
         let mut b = empty_builder();
         let planned = plan_part(&part, fraction, &mut b).unwrap();
-        let (t, _) = core_radius(&region, (&corners, &[]), fraction, part.inscribed, 3.75).unwrap();
+        let (t, _, _) = core_radius(&region, (&corners, &[]), fraction, part.inscribed, 3.75, None).unwrap();
         assert!((planned.core_radius_mm - t).abs() < 1e-12, "{fraction}: {} vs {t}", planned.core_radius_mm);
         assert_eq!((b.kinds[0], b.kinds[1]), (MoveKind::Entry, MoveKind::Spiral));
         assert!(b.retracts.is_empty());
@@ -508,9 +509,16 @@ fn each_part_plan_is_continuous_and_the_shortest_core_radius_wins() {
         plans.push((b.segments.iter().map(Segment::length).sum::<f64>(), t));
     }
     let (least, t_least) = plans.iter().copied().min_by(|a, c| a.0.total_cmp(&c.0)).unwrap();
-    let (parts, b) =
-        clear_regions(std::slice::from_ref(&region), &polygon, &settings(), &options, part.phi, part.rho_fin, None)
-            .unwrap();
+    let (parts, b) = clear_regions(
+        std::slice::from_ref(&region),
+        &polygon,
+        &settings(),
+        &options,
+        part.phi,
+        part.rho_fin,
+        (None, true),
+    )
+    .unwrap();
     let length: f64 = b.segments.iter().map(Segment::length).sum();
     assert!((length - least).abs() < 1e-9, "{length} vs {plans:?}");
     assert!((parts[0].core_radius_mm - t_least).abs() < 1e-12);
@@ -545,7 +553,7 @@ fn a_dumbbell_with_a_narrow_neck_is_cleared_as_two_parts() {
     assert_eq!(regions.len(), 2);
     let phi = target();
     let rho_fin = fin_radius(options.finish_stock_mm, R, phi);
-    let (parts, b) = clear_regions(&regions, &polygon, &settings(), &options, phi, rho_fin, None).unwrap();
+    let (parts, b) = clear_regions(&regions, &polygon, &settings(), &options, phi, rho_fin, (None, true)).unwrap();
     assert_eq!(parts.len(), 2);
     assert_eq!((parts[0].first_segment, parts[0].end_segment), (0, parts[1].first_segment));
     assert_eq!(parts[1].end_segment, b.segments.len());
@@ -593,7 +601,7 @@ fn core_rings_advance_by_at_most_the_concave_cut_step_and_stay_in_the_region() {
     let region = largest(Region::polygon(l.vertices()).offset(R + 0.2)).unwrap();
     let (ins, k0) = inscribed(&region);
     let corners = convex_corners(&region.segments());
-    let (t, core) = core_radius(&region, (&corners, &[]), 1.0, ins, 3.75).unwrap();
+    let (t, core, _) = core_radius(&region, (&corners, &[]), 1.0, ins, 3.75, None).unwrap();
     let phi = target();
     let a = concave_step(t, R, phi);
     let s0 = 0.995 * ins - t;

@@ -37,7 +37,7 @@ pub(super) fn adaptive_core(
         return Err(Error::param(Param::Polygon, "no region", "a pocket the tool fits"));
     }
     let rho_fin = if sf > 0.0 { fin_radius(sf, r, phi) } else { 0.1 * r };
-    let (parts, b) = clear_regions(&regions, polygon, settings, options, phi, rho_fin, None)?;
+    let (parts, b) = clear_regions(&regions, polygon, settings, options, phi, rho_fin, (None, false))?;
     Ok((parts, b, outline.offset(d).iter().map(Region::segments).collect()))
 }
 
