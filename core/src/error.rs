@@ -87,6 +87,8 @@ pub enum Param {
     HelixRadius,
     /// `pocket --ramp-angle`.
     RampAngle,
+    /// `pocket --ramp-pass-depth`: axial depth of each full-width pass of a narrow pocket's ramp.
+    RampPassDepth,
     /// `pocket --finish-stock`.
     FinishStock,
     /// Work material by name (`--material`, job key `material`).
@@ -118,7 +120,7 @@ pub enum Param {
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 75] = [
+    pub const ALL: [Param; 76] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
@@ -178,6 +180,7 @@ impl Param {
         Param::MinBlock,
         Param::HelixRadius,
         Param::RampAngle,
+        Param::RampPassDepth,
         Param::FinishStock,
         Param::Material,
         Param::Materials,
@@ -259,6 +262,7 @@ impl Param {
             Param::MinBlock => "min-block",
             Param::HelixRadius => "helix-radius",
             Param::RampAngle => "ramp-angle",
+            Param::RampPassDepth => "ramp-pass-depth",
             Param::FinishStock => "finish-stock",
             Param::Material => "material",
             Param::Materials => "materials",
@@ -340,6 +344,7 @@ impl Param {
             Param::MinBlock => "Minimum block length",
             Param::HelixRadius => "Helix radius",
             Param::RampAngle => "Ramp angle",
+            Param::RampPassDepth => "Ramp pass depth",
             Param::FinishStock => "Finishing stock",
             Param::Material => "Material",
             Param::Materials => "Material library",

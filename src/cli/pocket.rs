@@ -65,6 +65,12 @@ pub struct PocketArgs {
     /// Ramp angle of the helix or zig-zag ramp (degrees, every method), 0 < angle ≤ 15.
     #[arg(long, value_name = "DEG", allow_hyphen_values = true, default_value_t = AdaptiveOptions::default().ramp_deg)]
     ramp_angle: f64,
+    /// Axial depth of each full-width pass of the zig-zag ramp into a narrow pocket (mm,
+    /// `--method slot`, which adaptive clearing picks where its helix does not fit): the ramp's
+    /// legs are at most this / (2·tan ramp angle) long, so two passes over a point differ by at
+    /// most this much; 0 < depth ≤ 0.5 × D, default 0.1 × D.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    ramp_pass_depth: Option<f64>,
     /// Radial stock of the finishing contour (mm, `--method adaptive`); 0: no finishing pass.
     #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = AdaptiveOptions::default().finish_stock_mm)]
     finish_stock: f64,
@@ -123,6 +129,7 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
             corner_tolerance_mm: args.corner_tolerance,
         },
         open_edges,
+        ramp_pass_depth_mm: args.ramp_pass_depth,
     };
     let plan = pocket::plan(&req).map_err(err)?;
     let nc_export = match &args.nc.export {

@@ -23,6 +23,7 @@ pub mod perforative;
 pub mod rings;
 pub mod route;
 mod runs;
+pub mod slot;
 
 pub use adaptive::{AdaptiveOptions, AdaptivePart, AdaptivePlan, CornerPasses, plan_adaptive, plan_adaptive_open};
 pub use corner_point::CornerPoint;
@@ -32,6 +33,7 @@ pub use rings::{
     LINK_ENGAGEMENT_SLACK_RAD, Link, LinkKind, Ring, RingPlan, inward_offset, link_is_inside, plan_ring_pocket,
     plan_rings,
 };
+pub use slot::{SlotPlan, plan_slot};
 
 use crate::corner::CornerMethod;
 use crate::corner::limits::MEDIAL_AXIS_MIN_STEP_OVER_RATIO;
@@ -56,12 +58,17 @@ pub enum PocketStrategy {
     /// Helix entry, spiral, rings grown along the core, corner thinning and a finishing
     /// contour, every pass within the target engagement ([`adaptive`]).
     Adaptive,
+    /// A narrow pocket: a zig-zag ramp, then one trochoidal slot along the medial axis, its
+    /// loops as wide as the tool-centre region, and the finishing contour ([`slot`]). What
+    /// adaptive clearing plans where the default helix does not fit.
+    Slot,
 }
 
 impl PocketStrategy {
     /// Every strategy, in the order the front ends list them.
-    pub const ALL: [PocketStrategy; 5] = [
+    pub const ALL: [PocketStrategy; 6] = [
         PocketStrategy::Adaptive,
+        PocketStrategy::Slot,
         PocketStrategy::Rings(CornerMethod::Plain),
         PocketStrategy::Rings(CornerMethod::Variable),
         PocketStrategy::Rings(CornerMethod::Isometric),
@@ -78,37 +85,47 @@ impl PocketStrategy {
     }
 
     /// The corner method the strategy is named by (the inverse of [`Self::from_method`]);
-    /// `None` for adaptive clearing, which has its own corner passes.
+    /// `None` for adaptive clearing, which has its own corner passes, and for the slot.
     pub fn method(self) -> Option<CornerMethod> {
         match self {
             PocketStrategy::Rings(m) => Some(m),
             PocketStrategy::MedialAxis => Some(CornerMethod::MedialAxis),
-            PocketStrategy::Adaptive => None,
+            PocketStrategy::Adaptive | PocketStrategy::Slot => None,
         }
     }
 
-    /// CLI / JSON name: "adaptive" or the corner method's.
+    /// CLI / JSON name: "adaptive", "slot" or the corner method's.
     pub fn name(self) -> &'static str {
-        self.method().map_or(ADAPTIVE, CornerMethod::name)
+        match self {
+            PocketStrategy::Slot => SLOT,
+            other => other.method().map_or(ADAPTIVE, CornerMethod::name),
+        }
     }
 
     /// The strategy of a CLI / JSON name.
     pub fn from_name(name: &str) -> Option<PocketStrategy> {
-        if name == ADAPTIVE {
-            return Some(PocketStrategy::Adaptive);
+        match name {
+            ADAPTIVE => Some(PocketStrategy::Adaptive),
+            SLOT => Some(PocketStrategy::Slot),
+            _ => CornerMethod::from_name(name).map(PocketStrategy::from_method),
         }
-        CornerMethod::from_name(name).map(PocketStrategy::from_method)
     }
 
     /// Button label in the window.
     pub fn label(self) -> &'static str {
-        self.method().map_or("adaptive clearing", CornerMethod::label)
+        match self {
+            PocketStrategy::Slot => "trochoidal slot",
+            other => other.method().map_or("adaptive clearing", CornerMethod::label),
+        }
     }
 
     /// One line for `trochoplan pocket --help`.
     pub fn help(self) -> &'static str {
+        if self == PocketStrategy::Slot {
+            return "Narrow pockets: ramp, then one trochoidal slot along the medial axis as wide as the pocket, finishing pass (what adaptive picks where its helix does not fit)";
+        }
         let Some(method) = self.method() else {
-            return "Helix entry, spiral, rings along the core, corner thinning, finishing pass: every move within the target";
+            return "Helix entry, spiral, rings along the core, corner thinning, finishing pass: every move within the target (a narrow pocket: the slot)";
         };
         match method {
             CornerMethod::Plain => {
@@ -129,6 +146,8 @@ impl PocketStrategy {
 
 /// CLI / JSON name of [`PocketStrategy::Adaptive`].
 const ADAPTIVE: &str = "adaptive";
+/// CLI / JSON name of [`PocketStrategy::Slot`].
+const SLOT: &str = "slot";
 
 /// Numeric inputs of both pocket planners (mm, mm/min).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -191,6 +210,10 @@ pub struct PocketRequest {
     /// tool enters from outside. Adaptive clearing only ([`plan_adaptive_open`]).
     #[serde(default)]
     pub open_edges: Vec<usize>,
+    /// Axial depth of each full-width pass of the slot's ramp (mm, `--ramp-pass-depth`);
+    /// `None`: 0.1·D ([`slot::ramp_pass_limit`]).
+    #[serde(default)]
+    pub ramp_pass_depth_mm: Option<f64>,
 }
 
 impl Default for PocketRequest {
@@ -208,6 +231,7 @@ impl Default for PocketRequest {
             spacing_mm: 0.25,
             adaptive: AdaptiveOptions::default(),
             open_edges: Vec::new(),
+            ramp_pass_depth_mm: None,
         }
     }
 }
@@ -233,6 +257,7 @@ pub enum PocketPlan {
     Rings(RingPlan),
     MedialAxis(PerforativePlan),
     Adaptive(AdaptivePlan),
+    Slot(SlotPlan),
 }
 
 impl PocketPlan {
@@ -242,6 +267,7 @@ impl PocketPlan {
             PocketPlan::Rings(p) => PocketStrategy::Rings(p.method),
             PocketPlan::MedialAxis(_) => PocketStrategy::MedialAxis,
             PocketPlan::Adaptive(_) => PocketStrategy::Adaptive,
+            PocketPlan::Slot(_) => PocketStrategy::Slot,
         }
     }
 
@@ -251,6 +277,7 @@ impl PocketPlan {
             PocketPlan::Rings(p) => &p.path,
             PocketPlan::MedialAxis(p) => &p.path,
             PocketPlan::Adaptive(p) => &p.path,
+            PocketPlan::Slot(p) => &p.path,
         }
     }
 
@@ -350,7 +377,7 @@ pub const MAX_ESTIMATED_POSITIONS: f64 = 1.0e5;
 pub fn estimated_positions(polygon: &Polygon, strategy: PocketStrategy, settings: &PocketSettings) -> f64 {
     let k = match strategy {
         PocketStrategy::Rings(_) => 1.0,
-        PocketStrategy::MedialAxis => 3.0,
+        PocketStrategy::MedialAxis | PocketStrategy::Slot => 3.0,
         PocketStrategy::Adaptive => 2.0,
     };
     k * polygon.area().abs() / (settings.step_over * settings.spacing)
@@ -484,7 +511,16 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
             ),
         ));
     }
-    check_work(&req.polygon, req.strategy, &settings)?;
+    // A narrow pocket, where the default helix does not fit, is cleared as a slot ([`slot`]).
+    let strategy = match req.strategy {
+        PocketStrategy::Adaptive
+            if req.open_edges.is_empty() && slot::is_narrow(&req.polygon, &settings, &req.adaptive) =>
+        {
+            PocketStrategy::Slot
+        }
+        s => s,
+    };
+    check_work(&req.polygon, strategy, &settings)?;
     // Conventional milling: the ring and medial-axis planners cut climb; they plan the mirrored
     // pocket and mirror the plan back ([`mirror`]); adaptive clearing mirrors inside.
     let conventional = req.adaptive.direction == Direction::Conventional;
@@ -492,9 +528,10 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
     let back = |p: PocketPlan| match p {
         PocketPlan::Rings(r) if conventional => PocketPlan::Rings(r.mirrored(&req.polygon)),
         PocketPlan::MedialAxis(m) if conventional => PocketPlan::MedialAxis(m.mirrored(&req.polygon)),
+        PocketPlan::Slot(m) if conventional => PocketPlan::Slot(m.mirrored(&req.polygon)),
         other => other,
     };
-    let plan = match req.strategy {
+    let plan = match strategy {
         PocketStrategy::Rings(method) => {
             plan_ring_pocket(&polygon, settings, method, &req.adaptive).map(PocketPlan::Rings).map(back)
         }
@@ -503,6 +540,9 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
         }
         PocketStrategy::Adaptive => {
             plan_adaptive_open(&req.polygon, &req.open_edges, settings, req.adaptive).map(PocketPlan::Adaptive)
+        }
+        PocketStrategy::Slot => {
+            plan_slot(&polygon, settings, &req.adaptive, req.ramp_pass_depth_mm).map(PocketPlan::Slot).map(back)
         }
     }?;
     // No program that gouges a wall: every move at depth, checked exactly ([`guard`]).

@@ -1,0 +1,95 @@
+//! The trochoid's loops along one run of the centre line: each loop a half circle about a point
+//! of the axis, radius the local half-width of the tool-centre region (the wall clearance
+//! less r + s_f), cut counter-clockwise (climb with M3) from the right side over the front to
+//! the left side, then a straight link across the back to the next loop's right side. The
+//! back half of a circle would run in material the loop before has cut, so it is left out
+//! (the link is 2a long instead of πa). The step to the next loop is the largest whose
+//! two-circle engagement (Wu et al. 2016; [`TwoCircle`]) stays within the planned angle.
+
+use crate::engagement::{Turn, TwoCircle};
+use crate::geom::{Circle, P2, bisect_edge};
+
+/// The least step between two loops (mm), so that a run ends where the model would ask for an
+/// ever smaller step.
+pub(super) const MIN_STEP_MM: f64 = 0.01;
+/// Bisection steps of the loop step.
+const STEP_BISECTION: usize = 24;
+
+/// One loop: its centre on the axis, its radius, and the direction of the run there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Loop {
+    pub(super) center: P2,
+    pub(super) radius: f64,
+    pub(super) dir: P2,
+}
+
+impl Loop {
+    /// The right side of the loop (where its half circle starts).
+    pub(super) fn right(&self) -> P2 {
+        self.center + crate::geom::p2(self.dir.y, -self.dir.x) * self.radius
+    }
+}
+
+/// Point and unit direction at arc length `s` along the polyline `line`.
+fn at(line: &[P2], s: f64) -> (P2, P2) {
+    let mut left = s;
+    let mut dir = crate::geom::p2(1.0, 0.0);
+    for w in line.windows(2) {
+        let l = (w[1] - w[0]).norm();
+        if l <= 1e-12 {
+            continue;
+        }
+        dir = (w[1] - w[0]) / l;
+        if left <= l {
+            return (w[0] + dir * left, dir);
+        }
+        left -= l;
+    }
+    (line[line.len() - 1], dir)
+}
+
+/// Largest two-circle engagement (rad) of a loop of radius `a` about `c` after the circle
+/// `prev` (centre, radius of what it cut) was cut, tool radius `r`.
+fn engagement(prev: (P2, f64), c: P2, a: f64, r: f64) -> f64 {
+    let tc = TwoCircle {
+        previous: Circle { center: prev.0, radius: prev.1 },
+        current: Circle { center: c, radius: a + r },
+        tool_radius: r,
+        turn: Turn::Ccw,
+    };
+    tc.max_engagement().angle
+}
+
+/// The loops along `line` after the cut circle `prev` (its centre and the radius it cut,
+/// a + r): the first at the largest step within `phi`, and so on, the last at the end of the
+/// line. `radius` gives the loop radius at an axis point. Err(()) when more than `max_loops`.
+pub(super) fn loops_along(
+    line: &[P2],
+    mut prev: (P2, f64),
+    radius: &dyn Fn(P2) -> f64,
+    r: f64,
+    phi: f64,
+    max_loops: usize,
+) -> Result<Vec<Loop>, ()> {
+    let total: f64 = line.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
+    let mut out = Vec::new();
+    let mut s = 0.0;
+    while s < total - 1e-9 {
+        let fits = |step: f64| {
+            let (c, _) = at(line, s + step);
+            engagement(prev, c, radius(c), r) <= phi
+        };
+        let left = total - s;
+        let step =
+            if fits(left) { left } else { bisect_edge(0.0, left, STEP_BISECTION, fits).max(MIN_STEP_MM.min(left)) };
+        s += step;
+        let (center, dir) = at(line, s);
+        let a = radius(center);
+        out.push(Loop { center, radius: a, dir });
+        prev = (center, a + r);
+        if out.len() > max_loops {
+            return Err(());
+        }
+    }
+    Ok(out)
+}
