@@ -62,7 +62,8 @@ fn engagement(prev: (P2, f64), c: P2, a: f64, r: f64) -> f64 {
 
 /// The loops along `line` after the cut circle `prev` (its centre and the radius it cut,
 /// a + r): the first at the largest step within `phi`, and so on, the last at the end of the
-/// line. `radius` gives the loop radius at an axis point. Err(()) when more than `max_loops`.
+/// line. `radius` gives the loop radius at an axis point; where it is larger than the loop
+/// before by more than a concentric circle may grow within `phi`, the loop is that much smaller. Err(()) when more than `max_loops`.
 pub(super) fn loops_along(
     line: &[P2],
     mut prev: (P2, f64),
@@ -75,16 +76,22 @@ pub(super) fn loops_along(
     let mut out = Vec::new();
     let mut s = 0.0;
     while s < total - 1e-9 {
+        // a loop grows by at most what a concentric circle may within φ (ρ with
+        // (a + r)² = ρ² + r² + 2ρr·cos φ), less a tenth for the step
+        let rp = prev.1;
+        let grown = -r * phi.cos() + (r * r * phi.cos().powi(2) - r * r + rp * rp).max(0.0).sqrt();
+        let cap = (rp - r) + 0.9 * (grown - (rp - r)).max(0.0);
+        let size = |c: P2| radius(c).min(cap);
         let fits = |step: f64| {
             let (c, _) = at(line, s + step);
-            engagement(prev, c, radius(c), r) <= phi
+            engagement(prev, c, size(c), r) <= phi
         };
         let left = total - s;
         let step =
             if fits(left) { left } else { bisect_edge(0.0, left, STEP_BISECTION, fits).max(MIN_STEP_MM.min(left)) };
         s += step;
         let (center, dir) = at(line, s);
-        let a = radius(center);
+        let a = size(center);
         out.push(Loop { center, radius: a, dir });
         prev = (center, a + r);
         if out.len() > max_loops {

@@ -41,7 +41,7 @@ use crate::engagement::sample_owners;
 use crate::error::{Error, Param, num};
 use crate::geom::medial::{Walls, medial_axis};
 use crate::geom::offset::Region;
-use crate::geom::{P2, Polygon, Segment, p2};
+use crate::geom::{P2, Polygon, Segment, bisect_edge, p2};
 use crate::toolpath::entry::{HELIX_START_Z_MM, Ramp};
 use crate::toolpath::{Entry, MoveKind, Toolpath};
 use axis::{Run, Tree};
@@ -164,17 +164,23 @@ pub fn plan_slot(
     let least = rho_fin.min(0.9 * (widest - need).max(0.0));
     let tree = Tree::new(&axis, &walls, need + least).ok_or_else(|| not_a_slot("its centre line is not one tree"))?;
     let radius = |c: P2| (walls.clearance(c) - need).max(0.0);
-    let mut planned = phi;
+    // the angles the loops and the stadiums are planned to, each lowered where it is the peak
+    let (mut planned, mut widen) = (phi, phi);
     let mut best: Option<SlotPlan> = None;
     for _ in 0..=REPLANS {
-        let plan = build(polygon, &settings, options, &tree, &region, &radius, (phi, planned, rho_fin, t_max))?;
-        let peak = plan.path.measurement.max_engagement_rad;
-        let over = peak - phi;
+        let plan = build(polygon, &settings, options, &tree, &region, &radius, (phi, planned, widen, rho_fin, t_max))?;
+        let m = &plan.path.measurement;
+        let over = m.max_engagement_rad - phi;
+        let stadium = m.max_of(MoveKind::Spiral) >= m.max_engagement_rad;
         best = Some(plan);
         if over <= REPLAN_MARGIN_RAD {
             break;
         }
-        planned -= over + REPLAN_MARGIN_RAD;
+        if stadium {
+            widen -= over + REPLAN_MARGIN_RAD;
+        } else {
+            planned -= over + REPLAN_MARGIN_RAD;
+        }
     }
     best.ok_or_else(|| not_a_slot("no plan"))
 }
@@ -195,7 +201,7 @@ fn build(
     tree: &Tree,
     region: &Region,
     radius: &dyn Fn(P2) -> f64,
-    (phi, planned, rho_fin, t_max): (f64, f64, f64, f64),
+    (phi, planned, widen, rho_fin, t_max): (f64, f64, f64, f64, f64),
 ) -> Result<SlotPlan, Error> {
     let r = settings.tool_radius;
     let sf = options.finish_stock_mm;
@@ -204,7 +210,14 @@ fn build(
     let (edge, k, piece) = tree.longest_straight();
     let (q0, q1) = (tree.edges[edge].points[k], tree.edges[edge].points[k + 1]);
     let u = (q1 - q0) / piece;
-    let len = piece.min(t_max / (2.0 * ramp_rad.tan()));
+    // Stadium ends e = shrink(g) in from the bore's, so that no tool disc on an end arc reaches
+    // past the bore's end disc (the tool centre at (−e, g) from the end: e² ≥ 2rg − g²).
+    let shrink = |g: f64| g.max((2.0 * r * g - g * g).max(0.0).sqrt());
+    let a_piece = (0..=16).map(|i| radius(q0 + (q1 - q0) * (i as f64 / 16.0))).fold(f64::INFINITY, f64::min);
+    // The bore long enough for stadiums to the loop width (sides at least half of it), at a
+    // ramp angle below the option where that is needed to keep the pass depth.
+    let len = piece.min((t_max / (2.0 * ramp_rad.tan())).max(4.2 * shrink(a_piece)));
+    let ramp_rad = ramp_rad.min((t_max / (2.0 * len)).atan());
     let (p0, p1) = (q0, q0 + u * len);
     let ramp = Ramp { start: p0, end: p1, ramp_rad };
     let drop = HELIX_START_Z_MM + options.depth_mm;
@@ -225,44 +238,56 @@ fn build(
     let ramp_pass_depth_mm = (2.0 * drop / legs as f64).min(options.depth_mm);
     let mut b = Builder::default();
     b.push(Segment::Line { start: p0, end: p1 }, MoveKind::Entry);
-    // Stadiums widening the bore to the loop radius a_st (the least along the bore), their
-    // ends e = shrink(g) in from the bore's so that no tool disc on an end arc reaches past
-    // the bore's end disc (the tool centre at (−e, g) from the end: e² ≥ 2rg − g²).
-    let shrink = |g: f64| g.max((2.0 * r * g - g * g).max(0.0).sqrt());
+    // Stadiums widening the bore to the loop radius a_st (the least along the bore), each
+    // wider by at most r(1 − cos φ/2) (each side is entered where the end arc turns into it,
+    // the engagement there about twice the straight cut's), the right side on a slant; the last closed by its side cut again. Their sides are at least half the
+    // bore (shortened where the bore is short).
     let a_bore = (0..=8).map(|i| radius(p0 + (p1 - p0) * (i as f64 / 8.0))).fold(f64::INFINITY, f64::min);
-    let a_st = if 2.0 * shrink(a_bore) < len {
-        a_bore
-    } else {
-        crate::geom::bisect_edge(0.0, a_bore, 40, |g| 2.0 * shrink(g) < len)
-    };
-    let grow = r * (1.0 - planned.cos());
+    let a_st =
+        if 4.0 * shrink(a_bore) <= len { a_bore } else { bisect_edge(0.0, a_bore, 40, |g| 4.0 * shrink(g) <= len) };
+    let grow = r * (1.0 - (0.5 * widen).cos());
     let rings = (a_st / grow).ceil().max(1.0) as usize;
     let n_r = p2(u.y, -u.x);
+    let start = n_r.y.atan2(n_r.x);
+    let mut g_prev = 0.0;
+    let (mut e0, mut e1) = (p0, p1);
     for i in 1..=rings {
         let g = a_st * i as f64 / rings as f64;
-        let (e0, e1) = (p0 + u * shrink(g), p1 - u * shrink(g));
-        b.line(e0 + n_r * g, MoveKind::Spiral);
-        b.push(Segment::Line { start: e0 + n_r * g, end: e1 + n_r * g }, MoveKind::Spiral);
-        let start = n_r.y.atan2(n_r.x);
+        (e0, e1) = (p0 + u * shrink(g), p1 - u * shrink(g));
+        b.line(e0 + n_r * g_prev, if i == 1 { MoveKind::Return } else { MoveKind::Spiral });
+        b.push(Segment::Line { start: e0 + n_r * g_prev, end: e1 + n_r * g }, MoveKind::Spiral);
         b.push(Segment::Arc { center: e1, radius: g, start_angle: start, sweep: PI }, MoveKind::Spiral);
         b.push(Segment::Line { start: e1 - n_r * g, end: e0 - n_r * g }, MoveKind::Spiral);
         b.push(Segment::Arc { center: e0, radius: g, start_angle: start + PI, sweep: PI }, MoveKind::Spiral);
+        g_prev = g;
     }
-    let (c0, c1) = (p0 + u * shrink(a_st), p1 - u * shrink(a_st));
+    b.push(Segment::Line { start: e0 + n_r * a_st, end: e1 + n_r * a_st }, MoveKind::Spiral);
+    let (c0, c1) = (e0, e1);
     let mut count = 0;
     let mut loop_radius = a_st;
-    let mut prev = (c0, a_st + r);
-    for run in tree.runs_around(edge, k, c0, c1) {
+    // what is cut about a point of the axis before the loops: the stadium's ends, the nodes
+    let cut_about = |q: P2| if (q - c0).norm() < 1e-9 || (q - c1).norm() < 1e-9 { a_st + r } else { radius(q) + r };
+    let runs = tree.runs_around(edge, k, c0, c1);
+    let first = match runs.first() {
+        Some(Run::Cut(line) | Run::Back(line)) => line[0],
+        None => c0,
+    };
+    let mut prev = (first, cut_about(first));
+    for run in runs {
         match run {
             Run::Cut(line) => {
                 let loops = loops::loops_along(&line, prev, radius, r, planned, MAX_LOOPS - count)
                     .map_err(|()| too_many_loops(settings))?;
                 count += loops.len();
+                let mut before = prev.1 - r;
                 for lp in &loops {
                     b.line(lp.right(), MoveKind::Link);
                     let n = lp.right() - lp.center;
-                    let seg =
-                        Segment::Arc { center: lp.center, radius: lp.radius, start_angle: n.y.atan2(n.x), sweep: PI };
+                    // a loop larger than the one before cuts its whole circle: the back half of
+                    // its disc was not cut by the smaller loops
+                    let sweep = if lp.radius > before + 1e-9 { 2.0 * PI } else { PI };
+                    before = lp.radius;
+                    let seg = Segment::Arc { center: lp.center, radius: lp.radius, start_angle: n.y.atan2(n.x), sweep };
                     if lp.radius > 1e-9 {
                         b.push(seg, MoveKind::Circle);
                     }
@@ -277,7 +302,7 @@ fn build(
                     b.line(q, MoveKind::Return);
                 }
                 if let Some(&end) = line.last() {
-                    prev = (end, radius(end) + r);
+                    prev = (end, cut_about(end));
                 }
             }
         }
