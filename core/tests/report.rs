@@ -80,6 +80,10 @@ fn pocket_keys_agree_with_their_rows() {
                     let parts = num(&v, "parts") as usize;
                     assert_eq!(v["entries"].as_array().map(Vec::len), Some(parts), "{label}");
                 }
+                PocketStrategy::Slot => {
+                    assert_eq!(v["ramps"].as_array().map(Vec::len), Some(1), "{label}");
+                    assert!(num(&v, "ramp_full_width_depth_mm") <= num(&v, "ramp_pass_limit_mm") + 1e-9, "{label}");
+                }
             }
             // the accessors the window reads are the same numbers
             assert_eq!(rep.length_at_depth_mm(), at_depth, "{label}");

@@ -59,7 +59,8 @@ pub struct PocketArgs {
     )]
     direction: Direction,
     /// Helix radius of the tool centre (mm, every method); default 0.375 × D, reduced to
-    /// 0.25 × D where the pocket is narrower, and a zig-zag ramp where not even that fits.
+    /// 0.25 × D where the pocket is narrower; where not even that fits, the slot's ramp (the
+    /// default method picks the slot for a pocket the default helix does not fit) or a zig-zag ramp.
     #[arg(long, value_name = "MM", allow_hyphen_values = true)]
     helix_radius: Option<f64>,
     /// Ramp angle of the helix or zig-zag ramp (degrees, every method), 0 < angle ≤ 15.

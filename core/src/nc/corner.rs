@@ -85,12 +85,16 @@ pub fn pocket_program(plan: &PocketPlan, cut: CutSetup, opts: &NcOptions) -> Res
         PocketPlan::MedialAxis(p) => perforative_program(p, cut, opts),
         PocketPlan::Adaptive(p) => adaptive_program(p, cut, opts),
         PocketPlan::Slot(p) => {
+            let ramp_deg = match p.path.toolpath.entries.first() {
+                Some(Entry::Ramp(r)) => r.ramp_rad.to_degrees(),
+                _ => p.options.ramp_deg,
+            };
             let summary = [
                 format!(
-                    "pocket of {} vertices, trochoidal slot {}, zig-zag ramp {:.1} deg, full-width passes {:.2} mm",
+                    "pocket of {} vertices, slot {}, ramp {:.2} deg, passes {:.2} mm",
                     p.path.polygon.vertices().len(),
                     p.options.direction.name(),
-                    p.options.ramp_deg,
+                    ramp_deg,
                     p.ramp_pass_depth_mm
                 ),
                 format!(

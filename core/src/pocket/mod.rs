@@ -489,7 +489,9 @@ fn check_work(polygon: &Polygon, strategy: PocketStrategy, settings: &PocketSett
 /// planning, so that no plan runs for minutes: a medial-axis step-over below
 /// [`MEDIAL_AXIS_MIN_STEP_OVER_RATIO`] × D, and a step-over (or spacing) so small that the plan
 /// would measure more than [`MAX_ESTIMATED_POSITIONS`] tool positions; the error names the
-/// smallest step-over allowed.
+/// smallest step-over allowed. Adaptive clearing (without open edges) of a narrow pocket
+/// ([`slot::is_narrow`]) is the slot ([`PocketPlan::Slot`]) where that plans within the target
+/// + 1°.
 pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
     let settings = req.settings()?;
     if !req.open_edges.is_empty() && req.strategy != PocketStrategy::Adaptive {
@@ -511,16 +513,30 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
             ),
         ));
     }
-    // A narrow pocket, where the default helix does not fit, is cleared as a slot ([`slot`]).
-    let strategy = match req.strategy {
-        PocketStrategy::Adaptive
-            if req.open_edges.is_empty() && slot::is_narrow(&req.polygon, &settings, &req.adaptive) =>
+    // A narrow pocket, where the default helix does not fit, is cleared as a slot ([`slot`]);
+    // where the slot does not plan within the target + 1° (a shape its centre line does not
+    // suit), adaptive clearing plans it as before.
+    let auto_slot = req.strategy == PocketStrategy::Adaptive
+        && req.open_edges.is_empty()
+        && slot::is_narrow(&req.polygon, &settings, &req.adaptive);
+    if auto_slot && check_work(&req.polygon, PocketStrategy::Slot, &settings).is_ok() {
+        let target = req.adaptive.target_rad(&settings)?;
+        if let Ok(plan) = plan_with(req, PocketStrategy::Slot, settings)
+            && plan.max_engagement_rad() <= target + SLOT_SLACK_RAD
         {
-            PocketStrategy::Slot
+            return Ok(plan);
         }
-        s => s,
-    };
-    check_work(&req.polygon, strategy, &settings)?;
+    }
+    check_work(&req.polygon, req.strategy, &settings)?;
+    plan_with(req, req.strategy, settings)
+}
+
+/// How far above the target the slot's measured peak may be where adaptive clearing picks it
+/// (rad, 1°).
+const SLOT_SLACK_RAD: f64 = std::f64::consts::PI / 180.0;
+
+/// Plan `req` with `strategy`, then check every move at depth against the walls.
+fn plan_with(req: &PocketRequest, strategy: PocketStrategy, settings: PocketSettings) -> Result<PocketPlan, Error> {
     // Conventional milling: the ring and medial-axis planners cut climb; they plan the mirrored
     // pocket and mirror the plan back ([`mirror`]); adaptive clearing mirrors inside.
     let conventional = req.adaptive.direction == Direction::Conventional;
