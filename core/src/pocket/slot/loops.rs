@@ -24,9 +24,19 @@ pub(super) struct Loop {
 }
 
 impl Loop {
-    /// The right side of the loop (where its half circle starts).
+    /// The right side of the loop (where its arc starts).
     pub(super) fn right(&self) -> P2 {
         self.center + crate::geom::p2(self.dir.y, -self.dir.x) * self.radius
+    }
+
+    /// The loop's front arc, counter-clockwise from the right side over the front to the left
+    /// side: radius `flat` × a about the point `√(flat² − 1)·a` behind the centre (a half
+    /// circle for `flat` = 1): its centre, radius, start angle and sweep.
+    pub(super) fn arc(&self, flat: f64) -> (P2, f64, f64, f64) {
+        let back = self.radius * (flat * flat - 1.0).max(0.0).sqrt();
+        let c = self.center - self.dir * back;
+        let n = self.right() - c;
+        (c, flat * self.radius, n.y.atan2(n.x), 2.0 * self.radius.atan2(back))
     }
 }
 
@@ -60,31 +70,37 @@ fn engagement(prev: (P2, f64), c: P2, a: f64, r: f64) -> f64 {
     tc.max_engagement().angle
 }
 
-/// The loops along `line` after the cut circle `prev` (its centre and the radius it cut,
-/// a + r): the first at the largest step within `phi`, and so on, the last at the end of the
+/// The loops along `line` after the cut circle `start` (its centre, the radius it cut, and the
+/// radius a of the loop that cut it), and the same of the last loop: the first at the largest step within `phi`, and so on, the last at the end of the
 /// line. `radius` gives the loop radius at an axis point; where it is larger than the loop
 /// before by more than a concentric circle may grow within `phi`, the loop is that much smaller. Err(()) when more than `max_loops`.
 pub(super) fn loops_along(
     line: &[P2],
-    mut prev: (P2, f64),
+    start: (P2, f64, f64),
     radius: &dyn Fn(P2) -> f64,
-    r: f64,
-    phi: f64,
+    (r, phi, flat): (f64, f64, f64),
     max_loops: usize,
-) -> Result<Vec<Loop>, ()> {
+) -> Result<(Vec<Loop>, (P2, f64, f64)), ()> {
+    let mut prev = (start.0, start.1);
     let total: f64 = line.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
     let mut out = Vec::new();
     let mut s = 0.0;
+    // the radius the last loop cut about its own centre (for the growth cap), and its arc's
+    let (mut prev_r, mut prev_a) = (start.2 + r, start.2);
     while s < total - 1e-9 {
         // a loop grows by at most what a concentric circle may within φ (ρ with
         // (a + r)² = ρ² + r² + 2ρr·cos φ), less a tenth for the step
-        let rp = prev.1;
+        let rp = prev_r;
         let grown = -r * phi.cos() + (r * r * phi.cos().powi(2) - r * r + rp * rp).max(0.0).sqrt();
         let cap = (rp - r) + 0.9 * (grown - (rp - r)).max(0.0);
         let size = |c: P2| radius(c).min(cap);
+        // the model's circles: the front arcs' (their centres behind the loops' by √(k² − 1)·a)
         let fits = |step: f64| {
-            let (c, _) = at(line, s + step);
-            engagement(prev, c, size(c), r) <= phi
+            let (c, dir) = at(line, s + step);
+            let a = size(c);
+            let lp = Loop { center: c, radius: a, dir };
+            let (fc, fr, _, _) = lp.arc(if a > prev_a + 1e-9 { 1.0 } else { flat });
+            engagement(prev, fc, fr, r) <= phi
         };
         let left = total - s;
         let step =
@@ -92,11 +108,14 @@ pub(super) fn loops_along(
         s += step;
         let (center, dir) = at(line, s);
         let a = size(center);
-        out.push(Loop { center, radius: a, dir });
-        prev = (center, a + r);
+        let lp = Loop { center, radius: a, dir };
+        let (fc, fr, _, _) = lp.arc(if a > prev_a + 1e-9 { 1.0 } else { flat });
+        out.push(lp);
+        prev = (fc, fr + r);
+        (prev_r, prev_a) = (a + r, a);
         if out.len() > max_loops {
             return Err(());
         }
     }
-    Ok(out)
+    Ok((out, (prev.0, prev.1, prev_a)))
 }

@@ -58,6 +58,10 @@ const VORONOI_RESOLUTION_MM: f64 = 1e-4;
 const MAX_LOOPS: usize = 20_000;
 /// Plans after the first one when the measured peak exceeds the target.
 pub const REPLANS: usize = 4;
+/// The loops' front arcs have this times the loop radius (their centres behind the loops'):
+/// 1, half circles. Flatter fronts (1.5) take 15 % fewer loops, but meet the side walls at an
+/// angle: the link into the next loop then cuts the corner of stock left there at 100°.
+const FRONT_RATIO: f64 = 1.0;
 /// How far below the target the loops are replanned when the peak exceeds it (rad, 0.25°).
 const REPLAN_MARGIN_RAD: f64 = 0.25 * PI / 180.0;
 
@@ -272,37 +276,45 @@ fn build(
         Some(Run::Cut(line) | Run::Back(line)) => line[0],
         None => c0,
     };
-    let mut prev = (first, cut_about(first));
+    let mut prev = (first, cut_about(first), cut_about(first) - r);
     for run in runs {
         match run {
             Run::Cut(line) => {
-                let loops = loops::loops_along(&line, prev, radius, r, planned, MAX_LOOPS - count)
-                    .map_err(|()| too_many_loops(settings))?;
+                let (loops, last) =
+                    loops::loops_along(&line, prev, radius, (r, planned, FRONT_RATIO), MAX_LOOPS - count)
+                        .map_err(|()| too_many_loops(settings))?;
                 count += loops.len();
-                let mut before = prev.1 - r;
+                let mut before = prev.2;
                 for lp in &loops {
                     b.line(lp.right(), MoveKind::Link);
-                    let n = lp.right() - lp.center;
                     // a loop larger than the one before cuts its whole circle: the back half of
                     // its disc was not cut by the smaller loops
-                    let sweep = if lp.radius > before + 1e-9 { 2.0 * PI } else { PI };
+                    let seg = if lp.radius > before + 1e-9 {
+                        let n = lp.right() - lp.center;
+                        Segment::Arc {
+                            center: lp.center,
+                            radius: lp.radius,
+                            start_angle: n.y.atan2(n.x),
+                            sweep: 2.0 * PI,
+                        }
+                    } else {
+                        let (center, radius, start_angle, sweep) = lp.arc(FRONT_RATIO);
+                        Segment::Arc { center, radius, start_angle, sweep }
+                    };
                     before = lp.radius;
-                    let seg = Segment::Arc { center: lp.center, radius: lp.radius, start_angle: n.y.atan2(n.x), sweep };
                     if lp.radius > 1e-9 {
                         b.push(seg, MoveKind::Circle);
                     }
                     loop_radius = loop_radius.max(lp.radius);
                 }
-                if let Some(last) = loops.last() {
-                    prev = (last.center, last.radius + r);
-                }
+                prev = last;
             }
             Run::Back(line) => {
                 for &q in &line {
                     b.line(q, MoveKind::Return);
                 }
                 if let Some(&end) = line.last() {
-                    prev = (end, cut_about(end));
+                    prev = (end, cut_about(end), cut_about(end) - r);
                 }
             }
         }
