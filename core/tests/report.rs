@@ -41,11 +41,11 @@ fn pocket_keys_agree_with_their_rows() {
     for (name, pts) in [("rectangle", rect), ("L", l_shape)] {
         for strategy in PocketStrategy::ALL {
             let label = format!("{name} {}", strategy.name());
-            let req = PocketRequest {
-                polygon: Polygon::new(pts.clone()).expect("polygon"),
-                strategy,
-                ..PocketRequest::default()
-            };
+            // the slot takes narrow pockets only: the 120 × 16 one for it
+            let narrow = vec![p2(0.0, 0.0), p2(120.0, 0.0), p2(120.0, 16.0), p2(0.0, 16.0)];
+            let pts = if strategy == PocketStrategy::Slot { narrow } else { pts.clone() };
+            let req =
+                PocketRequest { polygon: Polygon::new(pts).expect("polygon"), strategy, ..PocketRequest::default() };
             let plan = pocket::plan(&req).expect("plan");
             let rep = report::pocket(&req, &plan).expect("report");
             let v = serde_json::to_value(&rep).expect("json");

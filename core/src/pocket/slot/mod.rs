@@ -128,8 +128,9 @@ pub fn is_narrow(polygon: &Polygon, settings: &PocketSettings, options: &Adaptiv
 }
 
 /// Plan `polygon` as a trochoidal slot along its centre line (module docs). Errors: a pocket
-/// the tool does not fit (naming `--tool-diameter`), a centre line that is not one tree (a
-/// pocket that is not narrow: naming `--method`), a ramp that does not fit.
+/// the tool does not fit (naming `--tool-diameter`), a pocket that is not narrow
+/// ([`is_narrow`]) or whose centre line is not one tree (naming `--method`), a ramp that does
+/// not fit.
 pub fn plan_slot(
     polygon: &Polygon,
     settings: PocketSettings,
@@ -144,7 +145,7 @@ pub fn plan_slot(
     let walls = Walls::new(polygon);
     let axis = medial_axis(polygon, VORONOI_RESOLUTION_MM)?;
     let widest = axis.edges.iter().map(|e| e.clearance_a.max(e.clearance_b)).fold(0.0, f64::max);
-    let Some((region, _)) = region(polygon, r, sf) else {
+    let Some((region, inscribed)) = region(polygon, r, sf) else {
         if Region::polygon(polygon.vertices()).offset(r + sf).is_empty() {
             return Err(Error::param(
                 Param::ToolDiameter,
@@ -160,6 +161,10 @@ pub fn plan_slot(
         }
         return Err(not_a_slot("its tool-centre region is in several pieces"));
     };
+    let helix = options.helix_radius_mm.unwrap_or(0.75 * r);
+    if 0.98 * inscribed >= helix {
+        return Err(not_a_slot(&format!("the helix of {} mm fits this one", num(helix))));
+    }
     let need = r + sf;
     let phi = options.target_rad(&settings)?;
     let rho_fin = if sf > 0.0 { fin_radius(sf, r, phi) } else { 0.1 * r };
@@ -184,6 +189,10 @@ pub fn plan_slot(
             widen -= over + REPLAN_MARGIN_RAD;
         } else {
             planned -= over + REPLAN_MARGIN_RAD;
+        }
+        // not below half the target: a peak that far above it is not the model's error
+        if planned < 0.5 * phi || widen < 0.5 * phi {
+            break;
         }
     }
     best.ok_or_else(|| not_a_slot("no plan"))

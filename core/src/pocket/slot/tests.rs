@@ -65,6 +65,10 @@ fn too_narrow_names_the_tool_and_no_contradicting_helix_limits() {
     let req = PocketRequest { strategy: PocketStrategy::Slot, ..request(thin) };
     let e = plan(&req).expect_err("narrower than the tool");
     assert_eq!(e.subject(), Some("tool-diameter"), "{e}");
+    // the slot refuses a pocket the default helix fits, naming the method
+    let rect = Polygon::new(vec![p2(0.0, 0.0), p2(60.0, 0.0), p2(60.0, 40.0), p2(0.0, 40.0)]).expect("rect");
+    let e = plan(&PocketRequest { strategy: PocketStrategy::Slot, ..request(rect) }).expect_err("wide");
+    assert_eq!(e.subject(), Some("method"), "{e}");
     let n14 = Polygon::new(vec![p2(0.0, 0.0), p2(120.0, 0.0), p2(120.0, 14.0), p2(0.0, 14.0)]).expect("rect");
     let req = request(n14);
     let PocketPlan::Slot(p) = plan(&req).expect("14 mm pocket planned as a slot") else { panic!("slot") };
