@@ -516,6 +516,8 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
     // A narrow pocket, where the default helix does not fit, is cleared as a slot ([`slot`]);
     // where the slot does not plan within the target + 1° (a shape its centre line does not
     // suit), adaptive clearing plans it as before.
+    // the slot's option is checked whatever the method, so that a bad value is never ignored
+    slot::ramp_pass_limit(req.ramp_pass_depth_mm, settings.tool_radius)?;
     let auto_slot = req.strategy == PocketStrategy::Adaptive
         && req.open_edges.is_empty()
         && slot::is_narrow(&req.polygon, &settings, &req.adaptive);
