@@ -40,6 +40,10 @@ impl Loop {
     }
 }
 
+/// What is cut about a point before a loop: the point, the radius cut about it, and the radius
+/// a of the loop that cut it.
+pub(super) type Cut = (P2, f64, f64);
+
 /// Point and unit direction at arc length `s` along the polyline `line`.
 fn at(line: &[P2], s: f64) -> (P2, P2) {
     let mut left = s;
@@ -76,11 +80,11 @@ fn engagement(prev: (P2, f64), c: P2, a: f64, r: f64) -> f64 {
 /// before by more than a concentric circle may grow within `phi`, the loop is that much smaller. Err(()) when more than `max_loops`.
 pub(super) fn loops_along(
     line: &[P2],
-    start: (P2, f64, f64),
+    start: Cut,
     radius: &dyn Fn(P2) -> f64,
     (r, phi, flat): (f64, f64, f64),
     max_loops: usize,
-) -> Result<(Vec<Loop>, (P2, f64, f64)), ()> {
+) -> Result<(Vec<Loop>, Cut), ()> {
     let mut prev = (start.0, start.1);
     let total: f64 = line.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
     let mut out = Vec::new();
