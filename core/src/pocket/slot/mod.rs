@@ -5,28 +5,33 @@
 //! region, clears it in one pass where rings or a spiral would mostly cut air.
 //!
 //! 1. **Centre line** ([`axis`]): the pocket's medial axis where the wall clearance is at least
-//!    r + s_f, a tree; its branches run into the corners of the region.
+//!    r + s_f + ρ_fin, a tree; its branches run into the corners of the region and end where
+//!    the loop radius is ρ_fin, the finishing corner radius (a loop into the region's corner
+//!    itself would meet both walls at once: π − α).
 //! 2. **Entry**: a straight zig-zag ramp on the longest straight piece of the line, its legs
-//!    L = t_max/(2·tan θ) long at most (θ the ramp angle, t_max the ramp pass depth). At a
-//!    point of the line two consecutive legs pass at heights that differ by at most twice a
-//!    leg's descent, so every full-width pass of the ramp cuts at most t_max deep
+//!    L ≤ t_max/(2·tan θ) long (θ the ramp angle, t_max the ramp pass depth). At a point of the
+//!    line two consecutive legs pass at heights that differ by at most twice a leg's descent,
+//!    so every full-width pass of the ramp cuts at most t_max deep
 //!    ([`SlotPlan::ramp_pass_depth_mm`] reports the deepest). A ramp rather than a ramping
 //!    trochoid: its full-width depth is bounded by the leg length alone, and the loops that
-//!    follow then all cut at the full depth, where the evaluator measures them. The ramp's flat
-//!    pass at depth opens a slot of width D; concentric stadiums around it widen it to the
-//!    loop radius, each side at most the straight-cut depth of the target a_e = r(1 − cos φ)
-//!    deeper, their ends shortened by as much as they are widened so the ends cut nothing new.
-//! 3. **Loops** ([`loops`]): from both ends of the widened bore, along every branch of the
+//!    follow then all cut at the full depth, where the evaluator measures them. Where the bore
+//!    must be longer for the stadiums (below), θ is lowered to keep t_max.
+//! 3. **Stadiums** widen the ramp's slot (width D) to the loop radius, each side a step of
+//!    r(1 − cos φ/2) further out (a side is entered where the end arc turns into it, about twice
+//!    the straight cut's engagement there), the right side on a slant; their ends stay so far in
+//!    (e² ≥ 2rg − g² for sides g out) that no tool disc on an end arc reaches past the bore's
+//!    end disc.
+//! 4. **Loops** ([`loops`]): from both ends of the widened bore, along every branch of the
 //!    line away from the entry, half circles of radius a = clearance − r − s_f (the local
 //!    half-width of the tool-centre region) joined across the back; the step of each from the
-//!    two-circle model within the planned angle. After a branch the tool runs back along the
-//!    line (through cleared material) to the branch point.
-//! 4. **Finishing contour** ([`finish`]) with s_f > 0, and the arcs into each corner point.
+//!    two-circle model within the planned angle; a loop larger than the one before cuts its
+//!    whole circle. After a branch the tool runs back along the line (through cleared
+//!    material) to the branch point.
+//! 5. **Finishing contour** ([`finish`]) with s_f > 0, and the arcs into each corner point.
 //!
 //! The whole path is measured by the evaluator ([`PocketPath::measured`]); where its peak
-//! exceeds the target, the loops and stadiums are planned again to a smaller angle (the
-//! two-circle model and the evaluator differ at the joins of half circle and link), at most
-//! [`REPLANS`] times.
+//! exceeds the target, the loops (or the stadiums, where they hold the peak) are planned again
+//! to a smaller angle, at most [`REPLANS`] times.
 
 mod axis;
 mod finish;
