@@ -13,9 +13,10 @@ fn request(polygon: Polygon) -> PocketRequest {
 /// The narrow pocket is planned as a slot by default; the evaluator's peak is within the
 /// target + 1°; no tool position nearer the walls than r − 0.005 (checked here on points of
 /// every move, independently of the plan's guard); the ramp's full-width passes within 0.1·D;
-/// and the pocket is cleared: every cell of a 0.25 mm raster within r of a tool position
-/// reachable by the tool (within r of a point of the pocket offset by r) is within r (+ a
-/// cell's half-diagonal) of the path.
+/// and the pocket is cleared: every cell centre of a 0.25 mm raster that the tool can reach
+/// (within r − 0.02 mm of the rectangle [5, 115] × [5, 11] of tool centres, computed from the
+/// outline alone) is within r + 0.001 mm of a point of the path (points 0.1 mm apart, so at
+/// most 0.05 mm from any point of it: the sampling adds < 0.001 mm at distance r).
 #[test]
 fn narrow_pocket_is_a_slot_within_the_target_and_cleared() {
     let req = request(narrow());
@@ -37,19 +38,17 @@ fn narrow_pocket_is_a_slot_within_the_target_and_cleared() {
         let wall = q.x.min(120.0 - q.x).min(q.y).min(16.0 - q.y);
         assert!(wall >= 5.0 - 0.005, "{q:?} {wall}");
     }
-    // raster: a cell centre the tool can reach (within r of some centre in [5, 115] × [5, 11])
-    // must be within r + 0.2 of the path points (0.1 mm apart along the path)
     let (mut uncut, mut reach) = (0, 0);
     let h = 0.25;
     for i in 0..(120.0 / h) as usize {
         for j in 0..(16.0 / h) as usize {
             let c = p2((i as f64 + 0.5) * h, (j as f64 + 0.5) * h);
             let nearest = p2(c.x.clamp(5.0, 115.0), c.y.clamp(5.0, 11.0));
-            if (c - nearest).norm() > 5.0 - 0.2 {
-                continue; // the corners' last 0.2 mm: the corner tolerance and the raster
+            if (c - nearest).norm() > 5.0 - 0.02 {
+                continue;
             }
             reach += 1;
-            if !pts.iter().any(|q| (q - c).norm() <= 5.0 + 0.2) {
+            if !pts.iter().any(|q| (q - c).norm() <= 5.0 + 0.001) {
                 uncut += 1;
             }
         }
