@@ -88,6 +88,8 @@ pub enum Param {
     HelixRadius,
     /// `pocket --ramp-angle`.
     RampAngle,
+    /// `pocket --ramp-pass-depth`: axial depth of each full-width pass of a narrow pocket's ramp.
+    RampPassDepth,
     /// `pocket --finish-stock`.
     FinishStock,
     /// Work material by name (`--material`, job key `material`).
@@ -119,7 +121,7 @@ pub enum Param {
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 76] = [
+    pub const ALL: [Param; 77] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
@@ -180,6 +182,7 @@ impl Param {
         Param::MinBlock,
         Param::HelixRadius,
         Param::RampAngle,
+        Param::RampPassDepth,
         Param::FinishStock,
         Param::Material,
         Param::Materials,
@@ -262,6 +265,7 @@ impl Param {
             Param::MinBlock => "min-block",
             Param::HelixRadius => "helix-radius",
             Param::RampAngle => "ramp-angle",
+            Param::RampPassDepth => "ramp-pass-depth",
             Param::FinishStock => "finish-stock",
             Param::Material => "material",
             Param::Materials => "materials",
@@ -344,6 +348,7 @@ impl Param {
             Param::MinBlock => "Minimum block length",
             Param::HelixRadius => "Helix radius",
             Param::RampAngle => "Ramp angle",
+            Param::RampPassDepth => "Ramp pass depth",
             Param::FinishStock => "Finishing stock",
             Param::Material => "Material",
             Param::Materials => "Material library",

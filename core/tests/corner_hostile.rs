@@ -44,13 +44,14 @@ fn stars() -> impl Strategy<Value = Polygon> {
     })
 }
 
-/// (arc length, engagement) of every evaluator sample a plan keeps (the medial axis and
-/// adaptive clearing keep their profile; rings keep only their maxima).
+/// (arc length, engagement) of every evaluator sample a plan keeps (the medial axis, the slot
+/// and adaptive clearing keep their profile; rings keep only their maxima).
 fn profiles(plan: &PocketPlan) -> Vec<(f64, f64)> {
     match plan {
         PocketPlan::Rings(_) => Vec::new(),
         PocketPlan::MedialAxis(p) => p.path.measurement.profile.samples.iter().map(|s| (s.s_mm, s.angle_rad)).collect(),
         PocketPlan::Adaptive(p) => p.path.measurement.profile.samples.iter().map(|s| (s.s_mm, s.angle_rad)).collect(),
+        PocketPlan::Slot(p) => p.path.measurement.profile.samples.iter().map(|s| (s.s_mm, s.angle_rad)).collect(),
     }
 }
 

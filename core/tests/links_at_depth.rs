@@ -127,7 +127,8 @@ fn request(v: &[(f64, f64)], strategy: PocketStrategy, direction: Direction, ste
 #[test]
 fn comb_and_u_channel_keep_r_from_every_wall_in_every_method_and_direction() {
     for (name, v, ae) in [("comb", COMB, 2.5), ("u-channel", U_CHANNEL, 1.527)] {
-        for strategy in PocketStrategy::ALL {
+        // the slot takes narrow pockets only (below)
+        for strategy in PocketStrategy::ALL.into_iter().filter(|s| *s != PocketStrategy::Slot) {
             for direction in [Direction::Climb, Direction::Conventional] {
                 let label = format!("{name} {} {}", strategy.name(), direction.name());
                 let moves = moves_of(&request(v, strategy, direction, ae));
@@ -135,6 +136,13 @@ fn comb_and_u_channel_keep_r_from_every_wall_in_every_method_and_direction() {
                 assert!(least.is_finite(), "{label}");
             }
         }
+    }
+    // the slot of a narrow pocket (120 × 16, D = 10), both directions
+    let narrow: &[(f64, f64)] = &[(0.0, 0.0), (120.0, 0.0), (120.0, 16.0), (0.0, 16.0)];
+    for direction in [Direction::Climb, Direction::Conventional] {
+        let label = format!("narrow slot {}", direction.name());
+        let moves = moves_of(&request(narrow, PocketStrategy::Slot, direction, 1.527));
+        assert!(clearance(&label, &pts(narrow), &[], &moves).is_finite(), "{label}");
     }
 }
 

@@ -54,11 +54,11 @@ fn pocket_keys_agree_with_their_rows() {
     for (name, pts) in [("rectangle", rect), ("L", l_shape)] {
         for strategy in PocketStrategy::ALL {
             let label = format!("{name} {}", strategy.name());
-            let req = PocketRequest {
-                polygon: Polygon::new(pts.clone()).expect("polygon"),
-                strategy,
-                ..PocketRequest::default()
-            };
+            // the slot takes narrow pockets only: the 120 × 16 one for it
+            let narrow = vec![p2(0.0, 0.0), p2(120.0, 0.0), p2(120.0, 16.0), p2(0.0, 16.0)];
+            let pts = if strategy == PocketStrategy::Slot { narrow } else { pts.clone() };
+            let req =
+                PocketRequest { polygon: Polygon::new(pts).expect("polygon"), strategy, ..PocketRequest::default() };
             let plan = pocket::plan(&req).expect("plan");
             let rep = report::pocket(&req, &plan).expect("report");
             let v = serde_json::to_value(&rep).expect("json");
@@ -100,6 +100,10 @@ fn pocket_keys_agree_with_their_rows() {
                 PocketStrategy::Adaptive => {
                     let parts = num(&v, "parts") as usize;
                     assert_eq!(v["entries"].as_array().map(Vec::len), Some(parts), "{label}");
+                }
+                PocketStrategy::Slot => {
+                    assert_eq!(v["ramps"].as_array().map(Vec::len), Some(1), "{label}");
+                    assert!(num(&v, "ramp_full_width_depth_mm") <= num(&v, "ramp_pass_limit_mm") + 1e-9, "{label}");
                 }
             }
             // the accessors the window reads are the same numbers

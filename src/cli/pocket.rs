@@ -60,12 +60,19 @@ pub struct PocketArgs {
     )]
     direction: Direction,
     /// Helix radius of the tool centre (mm, every method); default 0.375 × D, reduced to
-    /// 0.25 × D where the pocket is narrower, and a zig-zag ramp where not even that fits.
+    /// 0.25 × D where the pocket is narrower; where not even that fits, the slot's ramp (the
+    /// default method picks the slot for a pocket the default helix does not fit) or a zig-zag ramp.
     #[arg(long, value_name = "MM", allow_hyphen_values = true)]
     helix_radius: Option<f64>,
     /// Ramp angle of the helix or zig-zag ramp (degrees, every method), 0 < angle ≤ 15.
     #[arg(long, value_name = "DEG", allow_hyphen_values = true, default_value_t = AdaptiveOptions::default().ramp_deg)]
     ramp_angle: f64,
+    /// Axial depth of each full-width pass of the zig-zag ramp into a narrow pocket (mm,
+    /// `--method slot`, which adaptive clearing picks where its helix does not fit): the ramp's
+    /// legs are at most this / (2·tan ramp angle) long, so two passes over a point differ by at
+    /// most this much; 0 < depth ≤ 0.5 × D, default 0.1 × D.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    ramp_pass_depth: Option<f64>,
     /// Radial stock of the finishing contour (mm, `--method adaptive`); 0: no finishing pass.
     #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = AdaptiveOptions::default().finish_stock_mm)]
     finish_stock: f64,
@@ -173,6 +180,7 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
         },
         open_edges,
         pace: args.pace.options(args.nc.rpm, args.machine.as_deref())?,
+        ramp_pass_depth_mm: args.ramp_pass_depth,
     };
     let plan = pocket::plan(&req).map_err(err)?;
     let nc_export = match &args.nc.export {

@@ -84,6 +84,29 @@ pub fn pocket_program(plan: &PocketPlan, cut: CutSetup, opts: &NcOptions) -> Res
         PocketPlan::Rings(p) => ring_program(p, cut, opts),
         PocketPlan::MedialAxis(p) => perforative_program(p, cut, opts),
         PocketPlan::Adaptive(p) => adaptive_program(p, cut, opts),
+        PocketPlan::Slot(p) => {
+            let ramp_deg = match p.path.toolpath.entries.first() {
+                Some(Entry::Ramp(r)) => r.ramp_rad.to_degrees(),
+                _ => p.options.ramp_deg,
+            };
+            let summary = [
+                format!(
+                    "pocket of {} vertices, slot {}, ramp {:.2} deg, passes {:.2} mm",
+                    p.path.polygon.vertices().len(),
+                    p.options.direction.name(),
+                    ramp_deg,
+                    p.ramp_pass_depth_mm
+                ),
+                format!(
+                    "at depth {:.1} mm, {} loops, peak {:.2} deg, target {:.2} deg",
+                    p.path.measurement.length_at_depth_mm,
+                    p.loops,
+                    p.path.measurement.max_engagement_rad.to_degrees(),
+                    p.target_rad.to_degrees()
+                ),
+            ];
+            pocket_path_program(&p.path, summary, cut, opts)
+        }
     }
 }
 

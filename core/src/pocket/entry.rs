@@ -28,25 +28,36 @@ const RAMP_BISECTION: usize = 40;
 /// The helix radius r_h (mm) for a tool-centre region whose largest inscribed circle has
 /// radius `inscribed` (mm): the option, else 0.375·D reduced down to 0.25·D (a bore of 50 % of
 /// D) where the region is narrower; r_h ≤ 0.98 × `inscribed` keeps the bore inside. Error
-/// (naming `--helix-radius`) when that leaves less than the option, or less than 0.25·D.
+/// (naming `--helix-radius`, one limit only) when that leaves less than the option, or, without
+/// the option, less than 0.25·D: then no helix fits, and the error says so and names the slot
+/// ([`crate::pocket::slot`]), which ramps into such a pocket.
 pub(crate) fn helix_radius(options: &AdaptiveOptions, r: f64, inscribed: f64) -> Result<f64, Error> {
     let wanted = options.helix_radius_mm.unwrap_or(0.75 * r);
     let least = if options.helix_radius_mm.is_some() { wanted } else { 0.5 * r };
     // The helix circle must keep its bore inside the region: r_h ≤ inscribed radius.
-    let r_h = wanted.min(inscribed * 0.98);
-    if r_h < least {
-        return Err(Error::param(
-            Param::HelixRadius,
-            wanted,
-            format!(
-                "at most {} mm for this pocket (its tool-centre region has an inscribed radius of {} mm); \
-                 a helix below 0.25 × D does not clear its own core",
-                num(0.98 * inscribed),
-                num(inscribed)
-            ),
-        ));
+    let fits = 0.98 * inscribed;
+    let r_h = wanted.min(fits);
+    if r_h >= least {
+        return Ok(r_h);
     }
-    Ok(r_h)
+    let slot = "--method slot (what adaptive clearing, the default, picks for such a pocket) ramps into it instead";
+    let why = if options.helix_radius_mm.is_some() {
+        format!(
+            "at most {} mm for this pocket (0.98 × the inscribed radius {} mm of its tool-centre region){}",
+            num(fits),
+            num(inscribed),
+            if fits < 0.5 * r { format!("; {slot}") } else { String::new() }
+        )
+    } else {
+        format!(
+            "a pocket with room for a helix: none of at least 0.25 × D = {} mm fits this one (0.98 × the \
+             inscribed radius {} mm of its tool-centre region is {} mm); {slot}",
+            num(0.5 * r),
+            num(inscribed),
+            num(fits)
+        )
+    };
+    Err(Error::param(Param::HelixRadius, wanted, why))
 }
 
 /// The entry of a part whose tool centres may reach `inscribed` mm around `center`: a helix
@@ -218,6 +229,29 @@ mod tests {
         let asked = AdaptiveOptions { helix_radius_mm: Some(3.0), ..opts };
         let e = entry_at(&rect(60.0, 14.0), 5.0, &asked, p2(30.0, 7.0), 2.0, 0.0).expect_err("asked");
         assert_eq!(e.subject(), Some("helix-radius"), "{e}");
+    }
+
+    #[test]
+    fn helix_radius_errors_state_one_limit() {
+        // inscribed 1.8 mm (a 14 mm wide pocket, D = 10, s_f = 0.2): 0.98 × 1.8 = 1.764 mm, below
+        // 0.25·D = 2.5 mm, so no helix fits; the message gives that one limit and the slot,
+        // no lower bound above it.
+        let opts = AdaptiveOptions::default();
+        let e = helix_radius(&opts, 5.0, 1.8).expect_err("no helix fits");
+        let text = e.to_string();
+        assert_eq!(e.subject(), Some("helix-radius"), "{e}");
+        assert!(text.contains("none of at least 0.25 × D = 2.5 mm fits") && text.contains("1.764"), "{e}");
+        assert!(text.contains("--method slot") && !text.contains("at most"), "{e}");
+        let asked = AdaptiveOptions { helix_radius_mm: Some(3.75), ..opts };
+        let e = helix_radius(&asked, 5.0, 1.8).expect_err("too large");
+        let text = e.to_string();
+        assert!(text.contains("at most 1.764") && text.contains("--method slot"), "{e}");
+        assert!(!text.contains("below") && !text.contains("least"), "{e}");
+        // an asked radius that fits is taken, however small
+        assert_eq!(helix_radius(&AdaptiveOptions { helix_radius_mm: Some(1.5), ..opts }, 5.0, 1.8).ok(), Some(1.5));
+        // room for a smaller helix than asked: one upper limit, no slot
+        let e = helix_radius(&asked, 5.0, 3.0).expect_err("too large");
+        assert!(e.to_string().contains("at most 2.94") && !e.to_string().contains("slot"), "{e}");
     }
 
     #[test]

@@ -26,6 +26,7 @@ pub mod perforative;
 pub mod rings;
 pub mod route;
 mod runs;
+pub mod slot;
 
 pub use adaptive::{AdaptiveOptions, AdaptivePart, AdaptivePlan, CornerPasses, plan_adaptive, plan_adaptive_open};
 pub use corner_point::CornerPoint;
@@ -36,6 +37,7 @@ pub use rings::{
     LINK_ENGAGEMENT_SLACK_RAD, Link, LinkKind, Ring, RingPlan, inward_offset, link_is_inside, plan_ring_pocket,
     plan_rings,
 };
+pub use slot::{SlotPlan, plan_slot};
 
 use crate::corner::CornerMethod;
 use crate::corner::limits::MEDIAL_AXIS_MIN_STEP_OVER_RATIO;
@@ -60,12 +62,17 @@ pub enum PocketStrategy {
     /// Helix entry, spiral, rings grown along the core, corner thinning and a finishing
     /// contour, every pass within the target engagement ([`adaptive`]).
     Adaptive,
+    /// A narrow pocket: a zig-zag ramp, then one trochoidal slot along the medial axis, its
+    /// loops as wide as the tool-centre region, and the finishing contour ([`slot`]). What
+    /// adaptive clearing plans where the default helix does not fit.
+    Slot,
 }
 
 impl PocketStrategy {
     /// Every strategy, in the order the front ends list them.
-    pub const ALL: [PocketStrategy; 5] = [
+    pub const ALL: [PocketStrategy; 6] = [
         PocketStrategy::Adaptive,
+        PocketStrategy::Slot,
         PocketStrategy::Rings(CornerMethod::Plain),
         PocketStrategy::Rings(CornerMethod::Variable),
         PocketStrategy::Rings(CornerMethod::Isometric),
@@ -82,37 +89,47 @@ impl PocketStrategy {
     }
 
     /// The corner method the strategy is named by (the inverse of [`Self::from_method`]);
-    /// `None` for adaptive clearing, which has its own corner passes.
+    /// `None` for adaptive clearing, which has its own corner passes, and for the slot.
     pub fn method(self) -> Option<CornerMethod> {
         match self {
             PocketStrategy::Rings(m) => Some(m),
             PocketStrategy::MedialAxis => Some(CornerMethod::MedialAxis),
-            PocketStrategy::Adaptive => None,
+            PocketStrategy::Adaptive | PocketStrategy::Slot => None,
         }
     }
 
-    /// CLI / JSON name: "adaptive" or the corner method's.
+    /// CLI / JSON name: "adaptive", "slot" or the corner method's.
     pub fn name(self) -> &'static str {
-        self.method().map_or(ADAPTIVE, CornerMethod::name)
+        match self {
+            PocketStrategy::Slot => SLOT,
+            other => other.method().map_or(ADAPTIVE, CornerMethod::name),
+        }
     }
 
     /// The strategy of a CLI / JSON name.
     pub fn from_name(name: &str) -> Option<PocketStrategy> {
-        if name == ADAPTIVE {
-            return Some(PocketStrategy::Adaptive);
+        match name {
+            ADAPTIVE => Some(PocketStrategy::Adaptive),
+            SLOT => Some(PocketStrategy::Slot),
+            _ => CornerMethod::from_name(name).map(PocketStrategy::from_method),
         }
-        CornerMethod::from_name(name).map(PocketStrategy::from_method)
     }
 
     /// Button label in the window.
     pub fn label(self) -> &'static str {
-        self.method().map_or("adaptive clearing", CornerMethod::label)
+        match self {
+            PocketStrategy::Slot => "trochoidal slot",
+            other => other.method().map_or("adaptive clearing", CornerMethod::label),
+        }
     }
 
     /// One line for `trochoplan pocket --help`.
     pub fn help(self) -> &'static str {
+        if self == PocketStrategy::Slot {
+            return "Narrow pockets: ramp, then one trochoidal slot along the medial axis as wide as the pocket, finishing pass (what adaptive picks where its helix does not fit)";
+        }
         let Some(method) = self.method() else {
-            return "Helix entry, spiral, rings along the core, corner thinning, finishing pass: every move within the target";
+            return "Helix entry, spiral, rings along the core, corner thinning, finishing pass: every move within the target (a narrow pocket: the slot)";
         };
         match method {
             CornerMethod::Plain => {
@@ -133,6 +150,8 @@ impl PocketStrategy {
 
 /// CLI / JSON name of [`PocketStrategy::Adaptive`].
 const ADAPTIVE: &str = "adaptive";
+/// CLI / JSON name of [`PocketStrategy::Slot`].
+const SLOT: &str = "slot";
 
 /// Numeric inputs of both pocket planners (mm, mm/min).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -198,6 +217,10 @@ pub struct PocketRequest {
     /// Rapids through cleared stock and the feed that follows the chip ([`pace`]).
     #[serde(default)]
     pub pace: PaceOptions,
+    /// Axial depth of each full-width pass of the slot's ramp (mm, `--ramp-pass-depth`);
+    /// `None`: 0.1·D ([`slot::ramp_pass_limit`]).
+    #[serde(default)]
+    pub ramp_pass_depth_mm: Option<f64>,
 }
 
 impl Default for PocketRequest {
@@ -216,6 +239,7 @@ impl Default for PocketRequest {
             adaptive: AdaptiveOptions::default(),
             open_edges: Vec::new(),
             pace: PaceOptions::default(),
+            ramp_pass_depth_mm: None,
         }
     }
 }
@@ -241,6 +265,7 @@ pub enum PocketPlan {
     Rings(RingPlan),
     MedialAxis(PerforativePlan),
     Adaptive(AdaptivePlan),
+    Slot(SlotPlan),
 }
 
 impl PocketPlan {
@@ -250,6 +275,7 @@ impl PocketPlan {
             PocketPlan::Rings(p) => PocketStrategy::Rings(p.method),
             PocketPlan::MedialAxis(_) => PocketStrategy::MedialAxis,
             PocketPlan::Adaptive(_) => PocketStrategy::Adaptive,
+            PocketPlan::Slot(_) => PocketStrategy::Slot,
         }
     }
 
@@ -259,6 +285,7 @@ impl PocketPlan {
             PocketPlan::Rings(p) => &p.path,
             PocketPlan::MedialAxis(p) => &p.path,
             PocketPlan::Adaptive(p) => &p.path,
+            PocketPlan::Slot(p) => &p.path,
         }
     }
 
@@ -268,6 +295,7 @@ impl PocketPlan {
             PocketPlan::Rings(p) => &mut p.path,
             PocketPlan::MedialAxis(p) => &mut p.path,
             PocketPlan::Adaptive(p) => &mut p.path,
+            PocketPlan::Slot(p) => &mut p.path,
         }
     }
 
@@ -372,7 +400,7 @@ pub const MAX_ESTIMATED_POSITIONS: f64 = 4.0e6;
 pub fn estimated_positions(polygon: &Polygon, strategy: PocketStrategy, settings: &PocketSettings) -> f64 {
     let k = match strategy {
         PocketStrategy::Rings(_) => 1.0,
-        PocketStrategy::MedialAxis => 3.0,
+        PocketStrategy::MedialAxis | PocketStrategy::Slot => 3.0,
         PocketStrategy::Adaptive => 2.0,
     };
     k * polygon.area().abs() / (settings.step_over * settings.spacing)
@@ -484,7 +512,9 @@ fn check_work(polygon: &Polygon, strategy: PocketStrategy, settings: &PocketSett
 /// planning, so that no plan runs for minutes: a medial-axis step-over below
 /// [`MEDIAL_AXIS_MIN_STEP_OVER_RATIO`] × D, and a step-over (or spacing) so small that the plan
 /// would measure more than [`MAX_ESTIMATED_POSITIONS`] tool positions; the error names the
-/// smallest step-over allowed.
+/// smallest step-over allowed. Adaptive clearing (without open edges) of a narrow pocket
+/// ([`slot::is_narrow`]) is the slot ([`PocketPlan::Slot`]) where that plans within the target
+/// + 1°.
 pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
     let settings = req.settings()?;
     if !req.open_edges.is_empty() && req.strategy != PocketStrategy::Adaptive {
@@ -506,7 +536,32 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
             ),
         ));
     }
+    // A narrow pocket, where the default helix does not fit, is cleared as a slot ([`slot`]);
+    // where the slot does not plan within the target + 1° (a shape its centre line does not
+    // suit), adaptive clearing plans it as before.
+    // the slot's option is checked whatever the method, so that a bad value is never ignored
+    slot::ramp_pass_limit(req.ramp_pass_depth_mm, settings.tool_radius)?;
+    let auto_slot = req.strategy == PocketStrategy::Adaptive
+        && req.open_edges.is_empty()
+        && slot::is_narrow(&req.polygon, &settings, &req.adaptive);
+    if auto_slot && check_work(&req.polygon, PocketStrategy::Slot, &settings).is_ok() {
+        let target = req.adaptive.target_rad(&settings)?;
+        if let Ok(plan) = plan_with(req, PocketStrategy::Slot, settings)
+            && plan.max_engagement_rad() <= target + SLOT_SLACK_RAD
+        {
+            return Ok(plan);
+        }
+    }
     check_work(&req.polygon, req.strategy, &settings)?;
+    plan_with(req, req.strategy, settings)
+}
+
+/// How far above the target the slot's measured peak may be where adaptive clearing picks it
+/// (rad, 1°).
+const SLOT_SLACK_RAD: f64 = std::f64::consts::PI / 180.0;
+
+/// Plan `req` with `strategy`, then check every move at depth against the walls.
+fn plan_with(req: &PocketRequest, strategy: PocketStrategy, settings: PocketSettings) -> Result<PocketPlan, Error> {
     // Conventional milling: the ring and medial-axis planners cut climb; they plan the mirrored
     // pocket and mirror the plan back ([`mirror`]); adaptive clearing mirrors inside.
     let conventional = req.adaptive.direction == Direction::Conventional;
@@ -514,9 +569,10 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
     let back = |p: PocketPlan| match p {
         PocketPlan::Rings(r) if conventional => PocketPlan::Rings(r.mirrored(&req.polygon)),
         PocketPlan::MedialAxis(m) if conventional => PocketPlan::MedialAxis(m.mirrored(&req.polygon)),
+        PocketPlan::Slot(m) if conventional => PocketPlan::Slot(m.mirrored(&req.polygon)),
         other => other,
     };
-    let plan = match req.strategy {
+    let plan = match strategy {
         PocketStrategy::Rings(method) => {
             plan_ring_pocket(&polygon, settings, method, &req.adaptive).map(PocketPlan::Rings).map(back)
         }
@@ -525,6 +581,9 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
         }
         PocketStrategy::Adaptive => {
             plan_adaptive_open(&req.polygon, &req.open_edges, settings, req.adaptive).map(PocketPlan::Adaptive)
+        }
+        PocketStrategy::Slot => {
+            plan_slot(&polygon, settings, &req.adaptive, req.ramp_pass_depth_mm).map(PocketPlan::Slot).map(back)
         }
     }?;
     // No program that gouges a wall: every move at depth, checked exactly ([`guard`]).

@@ -8,6 +8,7 @@
 pub mod corner;
 pub mod engagement;
 pub mod pocket;
+pub mod slot;
 
 pub use corner::{CircleRow, CornerSummary, CornerTipRow, corner};
 pub use engagement::{EngagementReport, SampleRow, engagement};
@@ -15,6 +16,7 @@ pub use pocket::{
     AdaptiveReport, AxisCircleRow, CornerPassesRow, LinkRow, MedialAxisReport, PocketReport, RingRow, RingsReport,
     pocket,
 };
+pub use slot::SlotReport;
 
 use crate::engagement::KindMax;
 use crate::geom::P2;

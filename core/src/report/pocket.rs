@@ -4,6 +4,7 @@
 //! corner passes, medial-axis circles), the corner points and the entries, and the whole tool
 //! path.
 
+pub use super::slot::SlotReport;
 use super::{CornerPointRow, EntryRow, HelixRow, KindRow, RampRow, entry_rows, xy};
 use crate::corner::point::corner_point_bound_rad;
 use crate::error::Error;
@@ -21,6 +22,7 @@ pub enum PocketReport {
     Rings(RingsReport),
     MedialAxis(MedialAxisReport),
     Adaptive(AdaptiveReport),
+    Slot(SlotReport),
 }
 
 /// The report of `plan`, planned from `req`.
@@ -29,6 +31,7 @@ pub fn pocket(req: &PocketRequest, plan: &PocketPlan) -> Result<PocketReport, Er
         PocketPlan::Rings(rings) => PocketReport::Rings(RingsReport::of(req, rings)?),
         PocketPlan::MedialAxis(p) => PocketReport::MedialAxis(MedialAxisReport::of(req, p)?),
         PocketPlan::Adaptive(p) => PocketReport::Adaptive(AdaptiveReport::of(p)),
+        PocketPlan::Slot(p) => PocketReport::Slot(SlotReport::of(p)),
     })
 }
 
@@ -39,6 +42,7 @@ impl PocketReport {
             PocketReport::Rings(r) => r.method,
             PocketReport::MedialAxis(r) => r.method,
             PocketReport::Adaptive(r) => r.method,
+            PocketReport::Slot(r) => r.method,
         }
     }
 
@@ -48,6 +52,7 @@ impl PocketReport {
             PocketReport::Rings(r) => r.length_at_depth_mm,
             PocketReport::MedialAxis(r) => r.length_at_depth_mm,
             PocketReport::Adaptive(r) => r.length_at_depth_mm,
+            PocketReport::Slot(r) => r.length_at_depth_mm,
         }
     }
 
@@ -57,6 +62,7 @@ impl PocketReport {
             PocketReport::Rings(r) => r.link_length_mm,
             PocketReport::MedialAxis(r) => r.link_length_mm,
             PocketReport::Adaptive(r) => r.link_length_mm,
+            PocketReport::Slot(r) => r.link_length_mm,
         }
     }
 
@@ -66,6 +72,7 @@ impl PocketReport {
             PocketReport::Rings(r) => r.air_length_mm,
             PocketReport::MedialAxis(r) => r.air_length_mm,
             PocketReport::Adaptive(r) => r.air_length_mm,
+            PocketReport::Slot(r) => r.air_length_mm,
         }
     }
 
@@ -75,6 +82,7 @@ impl PocketReport {
             PocketReport::Rings(r) => r.entry_length_mm,
             PocketReport::MedialAxis(r) => r.entry_length_mm,
             PocketReport::Adaptive(r) => r.helix_length_mm,
+            PocketReport::Slot(r) => r.entry_length_mm,
         }
     }
 
@@ -84,6 +92,7 @@ impl PocketReport {
             PocketReport::Rings(r) => r.time_s,
             PocketReport::MedialAxis(r) => r.time_s,
             PocketReport::Adaptive(r) => r.time_s,
+            PocketReport::Slot(r) => r.time_s,
         }
     }
 
@@ -93,6 +102,7 @@ impl PocketReport {
             PocketReport::Rings(r) => r.max_engagement_deg,
             PocketReport::MedialAxis(r) => r.max_engagement_deg,
             PocketReport::Adaptive(r) => r.max_engagement_deg,
+            PocketReport::Slot(r) => r.max_engagement_deg,
         }
     }
 
@@ -102,6 +112,7 @@ impl PocketReport {
             PocketReport::Rings(r) => r.p95_engagement_deg,
             PocketReport::MedialAxis(r) => r.p95_engagement_deg,
             PocketReport::Adaptive(r) => r.p95_engagement_deg,
+            PocketReport::Slot(r) => r.p95_engagement_deg,
         }
     }
 
@@ -111,6 +122,7 @@ impl PocketReport {
             PocketReport::Rings(r) => &r.by_kind,
             PocketReport::MedialAxis(r) => &r.by_kind,
             PocketReport::Adaptive(r) => &r.by_kind,
+            PocketReport::Slot(r) => &r.by_kind,
         }
     }
 
@@ -120,6 +132,7 @@ impl PocketReport {
             PocketReport::Rings(r) => &r.corner_points,
             PocketReport::MedialAxis(r) => &r.corner_points,
             PocketReport::Adaptive(r) => &r.corner_points,
+            PocketReport::Slot(r) => &r.corner_points,
         }
     }
 
@@ -132,7 +145,7 @@ impl PocketReport {
     pub fn rings(&self) -> &[RingRow] {
         match self {
             PocketReport::Rings(r) => &r.rings,
-            PocketReport::MedialAxis(_) | PocketReport::Adaptive(_) => &[],
+            PocketReport::MedialAxis(_) | PocketReport::Adaptive(_) | PocketReport::Slot(_) => &[],
         }
     }
 
@@ -161,6 +174,13 @@ impl PocketReport {
                 r.p95_engagement_deg,
                 r.length_at_depth_mm
             ),
+            PocketReport::Slot(r) => format!(
+                "ramp entry (full-width passes {:.2} mm deep), {} along the centre line; p95 {:.1}°, {:.0} mm at depth",
+                r.ramp_full_width_depth_mm,
+                count(r.loops, "loop", "loops"),
+                r.p95_engagement_deg,
+                r.length_at_depth_mm
+            ),
         }
     }
 }
@@ -172,6 +192,7 @@ impl PocketReport {
             PocketReport::Rings(r) => r.pace.as_ref(),
             PocketReport::MedialAxis(r) => r.pace.as_ref(),
             PocketReport::Adaptive(r) => r.pace.as_ref(),
+            PocketReport::Slot(r) => r.pace.as_ref(),
         }
     }
 
@@ -195,12 +216,12 @@ fn count(n: usize, one: &str, many: &str) -> String {
 }
 
 /// The per-kind rows of a measured path.
-fn kind_rows(path: &PocketPath) -> Vec<KindRow> {
+pub(super) fn kind_rows(path: &PocketPath) -> Vec<KindRow> {
     path.measurement.maxima.iter().map(KindRow::of).collect()
 }
 
 /// The pocket's vertices.
-fn polygon_rows(path: &PocketPath) -> Vec<[f64; 2]> {
+pub(super) fn polygon_rows(path: &PocketPath) -> Vec<[f64; 2]> {
     path.polygon.vertices().iter().map(|&v| xy(v)).collect()
 }
 

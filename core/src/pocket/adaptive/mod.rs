@@ -122,7 +122,7 @@ mod spiral;
 pub(crate) mod tests;
 mod walk;
 
-pub(crate) use loops::{Builder, closest_on, inscribed, split, start_near};
+pub(crate) use loops::{Builder, closest_on, inscribed, link, split, start_near};
 pub use open::{OPEN_REACH_FACTOR, validate_open_edges};
 pub(crate) use options::fin_radius;
 pub use options::{
