@@ -17,8 +17,8 @@
 //! with respect to the full reach and to the reach less our finish stock. Asserted: every rapid
 //! at depth of ours reads at most [`RAPID_MAX_DEG`], our peak is at most 60° and at most
 //! FreeCAD's, our residual with respect to the reach less the finish stock is at most
-//! [`RESIDUAL_MAX_MM2`]. The time ratio is printed; [`ASSERT_TIME_RATIO`] turns on its
-//! bound [`TIME_RATIO_TARGET`].
+//! [`RESIDUAL_MAX_MM2`]; our real time at most [`TIME_RATIO_TARGET`] × FreeCAD's, but on the
+//! narrow pocket, which misses it (its bound [`NARROW_TIME_RATIO`] guards what it reaches).
 //!
 //! Prints the tables of docs/freecad-comparison.md:
 //! `cargo test --release --test freecad_time -- --nocapture`.
@@ -28,8 +28,8 @@
 use std::path::Path;
 use std::process::Command;
 use trochoplan_core::engagement::{
-    EngagementProfile, EvaluatorOptions, Residual, ResidualOptions, Stock, measure, parse_points, peak_and_p95,
-    residual_area,
+    EngagementProfile, EngagementSample, EvaluatorOptions, Residual, ResidualOptions, Stock, measure, parse_points,
+    peak_and_p95, residual_area,
 };
 use trochoplan_core::geom::{Polygon, Segment};
 use trochoplan_core::machine::{Machine, ProgramTime, program_time};
@@ -72,9 +72,11 @@ const PEAK_MAX_DEG: f64 = 60.0;
 const RESIDUAL_MAX_MM2: f64 = 0.25;
 /// The target of our real time against FreeCAD's on every pocket.
 const TIME_RATIO_TARGET: f64 = 0.8;
-/// Whether the test asserts [`TIME_RATIO_TARGET`] (printed either way): to be turned on when
-/// our pockets meet it.
-const ASSERT_TIME_RATIO: bool = false;
+/// The narrow pocket, cleared as a trochoidal slot, reaches 0.86 × FreeCAD's time, not 0.8:
+/// its ramp at 1.5° (the full-width passes held to 0.1·D over a bore long enough for the
+/// widening stadiums) takes 25 s of it (docs/freecad-comparison.md). Asserted so that it
+/// does not get worse.
+const NARROW_TIME_RATIO: f64 = 0.9;
 
 fn data() -> &'static Path {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/freecad"))
@@ -154,28 +156,48 @@ fn measured(moves: &[Move], pocket: &Polygon, stock: f64) -> Acceptance {
     let mut run: Vec<Move> = Vec::new();
     let mut profile = EngagementProfile { samples: Vec::new(), path_length_mm: 0.0 };
     let mut rapid_max: f64 = 0.0;
-    let mut flush = |run: &mut Vec<Move>, before: &mut Vec<Segment>| {
+    // A position exactly on an end of a straight descent (a ramp leg's turning point): the
+    // front half of the tool's periphery lies exactly r from the end of the bore the legs cut,
+    // which the evaluator counts as material (its tangency rule); the tool touches it along a
+    // line, no cut, and the position reads 180°. Such positions are left out, for both programs.
+    let mut ramp_ends: Vec<trochoplan_core::geom::P2> = Vec::new();
+    let mut flush = |run: &mut Vec<Move>, before: &mut Vec<Segment>, ramp_ends: &[trochoplan_core::geom::P2]| {
         if run.is_empty() {
             return;
         }
         let path = Toolpath { moves: std::mem::take(run), ..Toolpath::default() };
         let m = measure(&path, Stock { polygon: pocket, precut: before }, &opts).unwrap();
         rapid_max = rapid_max.max(m.max_of(MoveKind::Rapid));
+        // one profile along all runs: each run's arc lengths after the runs before it (the
+        // percentile weighs each position by the length it stands for)
+        let offset = profile.path_length_mm;
         profile.path_length_mm += m.profile.path_length_mm;
-        profile.samples.extend(m.profile.samples);
+        let on_ramp_end = |s: &EngagementSample| {
+            ramp_ends.iter().any(|&e| (e - trochoplan_core::geom::p2(s.x_mm, s.y_mm)).norm() < 1e-6)
+        };
+        profile.samples.extend(
+            m.profile
+                .samples
+                .into_iter()
+                .filter(|s| !on_ramp_end(s))
+                .map(|s| EngagementSample { s_mm: s.s_mm + offset, ..s }),
+        );
         before.extend(path.segments());
     };
     for m in moves {
         if at_depth(m) && m.segment.length() > 1e-9 {
             run.push(*m);
         } else {
-            flush(&mut run, &mut before);
+            flush(&mut run, &mut before, &ramp_ends);
             if below(m) {
                 before.push(m.segment);
+                if let Segment::Line { start, end } = m.segment {
+                    ramp_ends.extend([start, end]);
+                }
             }
         }
     }
-    flush(&mut run, &mut before);
+    flush(&mut run, &mut before, &ramp_ends);
     let (peak, p95) = peak_and_p95(&profile);
     let depth: Vec<&Move> = moves.iter().filter(|m| at_depth(m) && m.segment.length() > 1e-9).collect();
     let cut: Vec<Segment> = depth.iter().map(|m| m.segment).collect();
@@ -262,9 +284,8 @@ fn freecad_and_our_pockets_timed_and_measured() {
         // FreeCAD's rapids at depth are measured alike; their largest engagement is printed
         assert!(af.rapid_max_deg.is_finite() && af.rapids > 0, "{name}: FreeCAD's rapids at depth");
         let ratio = to.total_s / tf.total_s;
-        if ASSERT_TIME_RATIO {
-            assert!(ratio <= TIME_RATIO_TARGET, "{name}: our time {ratio:.2} × FreeCAD's > {TIME_RATIO_TARGET}");
-        }
+        let bound = if name == "narrow" { NARROW_TIME_RATIO } else { TIME_RATIO_TARGET };
+        assert!(ratio <= bound, "{name}: our time {ratio:.2} × FreeCAD's > {bound}");
         accept.push((name, tf, to, af, ao, ratio, finish));
         rows.push((name, tf, to));
     }
@@ -315,7 +336,7 @@ fn freecad_and_our_pockets_timed_and_measured() {
             );
         }
     }
-    println!("time ratio target ≤ {TIME_RATIO_TARGET} (asserted: {ASSERT_TIME_RATIO})");
+    println!("time ratio ≤ {TIME_RATIO_TARGET} asserted (narrow: ≤ {NARROW_TIME_RATIO})");
 }
 
 /// The rule of [`measured`] on a program written here, in the 60 × 40 rectangle: a ramp down

@@ -231,7 +231,7 @@ fn pocket_numbers(ui: &mut egui::Ui, r: &PocketResult) {
     ui.label(r.report.pace_line()).on_hover_text(
         "Each move runs at the feed that keeps every tooth's largest chip h_max at the target (f_z): \
          faster where the tool is lightly engaged, up to 3 × the feed. Straight moves through stock \
-         already cleared, 0.5 mm clear of any material left, run as rapids at depth.",
+         already cleared, 0.3 mm clear of any material left, run as rapids at depth.",
     );
     egui::ScrollArea::vertical().id_salt("pocket_rings_scroll").show(ui, |ui| {
         egui::Grid::new("pocket_rings").striped(true).show(ui, |ui| {

@@ -71,8 +71,9 @@ pub struct PaceOptions {
 }
 
 impl Default for PaceOptions {
-    /// Follow the chip, rapids through cleared stock with 0.5 mm to spare (twice the measured
-    /// positions' spacing, and 50 × the path tolerance of the `vmc` preset), 4 teeth at 2000
+    /// Follow the chip, rapids through cleared stock with 0.3 mm to spare (the positions tested
+    /// are 0.25 mm apart, so between two of them the tool's disc comes at most 0.125 mm nearer:
+    /// 0.175 mm left, 35 × LinuxCNC's default blending tolerance of 0.005 mm), 4 teeth at 2000
     /// rpm (f_z = 0.075 mm at 600 mm/min), needs within 5 % in a block, the `vmc` block time.
     fn default() -> Self {
         PaceOptions {
@@ -84,7 +85,7 @@ impl Default for PaceOptions {
             max_feed_mm_per_min: None,
             block_time_s: DEFAULT_BLOCK_TIME_S,
             band_ratio: 1.05,
-            rapid_margin_mm: 0.5,
+            rapid_margin_mm: 0.3,
         }
     }
 }
@@ -189,7 +190,7 @@ pub fn pace(path: &mut PocketPath, opts: &PaceOptions) -> Result<Pace, Error> {
         let cuts = block_bounds(&run[a..b], opts.band_ratio, opts.block_time_s);
         for k in i..j {
             first_piece[k] = out.len();
-            split_move(&moves[k], starts[k], &cuts, &run, opts.follow_chip, &mut out);
+            split_move(&moves[k], starts[k], &cuts, &run, (opts.follow_chip, feed), &mut out);
         }
         i = j;
     }
@@ -393,8 +394,16 @@ fn block_bounds(run: &[(f64, f64)], band: f64, block_time: f64) -> Vec<f64> {
 
 /// Split move `m` (starting at arc length `s0`) at the block boundaries `cuts` inside it and
 /// push the pieces, each at the least need of the positions on it (ends included; a trochoid
-/// piece is not split); with `follow` false the pieces keep the move's feed.
-fn split_move(m: &Move, s0: f64, cuts: &[f64], run: &[(f64, f64)], follow: bool, out: &mut Vec<Move>) {
+/// piece is not split); with `follow` false the pieces keep the move's feed, and an entry's
+/// flat pass runs at the `programmed` feed.
+fn split_move(
+    m: &Move,
+    s0: f64,
+    cuts: &[f64],
+    run: &[(f64, f64)],
+    (follow, programmed): (bool, f64),
+    out: &mut Vec<Move>,
+) {
     let len = m.segment.length();
     let s1 = s0 + len;
     let mut at = vec![s0];
@@ -409,7 +418,15 @@ fn split_move(m: &Move, s0: f64, cuts: &[f64], run: &[(f64, f64)], follow: bool,
         // no position within (never: every move's ends are measured): the nearest on each side
         let (i, j) = if i < j { (i, j) } else { (i.saturating_sub(1), (j + 1).min(run.len())) };
         let least = run[i..j].iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
-        let feed = if follow && least.is_finite() { Some(least) } else { m.feed_mm_per_min };
+        // the flat pass after an entry cuts what the descent left (the wedge under a ramp's last
+        // leg, which the measurement counts as the bore): at the programmed feed
+        let feed = if m.kind == MoveKind::Entry {
+            m.feed_mm_per_min.or(Some(programmed))
+        } else if follow && least.is_finite() {
+            Some(least)
+        } else {
+            m.feed_mm_per_min
+        };
         out.push(Move { segment: seg, feed_mm_per_min: feed, ..*m });
     }
 }
