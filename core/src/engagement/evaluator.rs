@@ -259,10 +259,20 @@ pub fn engagement_profile_on(
     opts: &EvaluatorOptions,
     on: Option<&[bool]>,
 ) -> Result<EngagementProfile, Error> {
-    let eval = Evaluation::new(stock, before, path, opts, MAX_POSITIONS)?;
+    // the bound counts the positions evaluated: those of the selected segments
+    let whole = if on.is_some() { f64::INFINITY } else { MAX_POSITIONS };
+    let eval = Evaluation::new(stock, before, path, opts, whole)?;
     let mut positions = eval.positions();
     if let Some(on) = on {
         positions.retain(|&s| on.get(eval.segment_of(s)).copied().unwrap_or(false));
+        let selected: f64 = path.iter().zip(on).filter(|(_, o)| **o).map(|(s, _)| s.length()).sum();
+        if positions.len() as f64 > MAX_POSITIONS {
+            return Err(Error::param(
+                Param::Spacing,
+                opts.spacing,
+                format!("≥ selected path length / {} = {} mm", num(MAX_POSITIONS), num(selected / MAX_POSITIONS)),
+            ));
+        }
     }
     let samples = positions.into_par_iter().map(|s| eval.sample(s)).collect();
     Ok(EngagementProfile { samples, path_length_mm: eval.total })
@@ -606,6 +616,26 @@ mod tests {
         assert!(read(0.5, &wide) > 0.0);
         let bad = EvaluatorOptions { margin_mm: -0.1, ..EvaluatorOptions::new(r, 0.5) };
         assert_eq!(engagement_profile(&stock, &channel, &path, &bad).unwrap_err().subject(), Some("margin"));
+    }
+
+    #[test]
+    fn a_selection_is_bounded_by_its_own_positions() {
+        // 60 000 mm at 0.25 mm is 240 000 positions, over the bound of 200 000: the whole path
+        // is refused, a selection of a 20 mm segment after it evaluates its 80 positions (0.25 to
+        // 20 mm along it every 0.25: the position on the joint belongs to the segment that ends
+        // there), the long segment alone is refused again.
+        let stock = square(-100.0, -100.0, 70_000.0, 100.0);
+        let path = [
+            Segment::Line { start: p2(0.0, 0.0), end: p2(60_000.0, 0.0) },
+            Segment::Line { start: p2(60_000.0, 0.0), end: p2(60_020.0, 0.0) },
+        ];
+        let opts = EvaluatorOptions::new(5.0, 0.25);
+        assert_eq!(engagement_profile(&stock, &[], &path, &opts).unwrap_err().subject(), Some("spacing"));
+        let short = engagement_profile_on(&stock, &[], &path, &opts, Some(&[false, true])).unwrap();
+        assert_eq!(short.samples.len(), 80);
+        assert!(short.samples.iter().all(|s| s.s_mm > 60_000.0));
+        let long = engagement_profile_on(&stock, &[], &path, &opts, Some(&[true, false])).unwrap_err();
+        assert_eq!(long.subject(), Some("spacing"));
     }
 
     #[test]
