@@ -9,7 +9,7 @@ use crate::error::{Error, Param};
 use crate::geom::offset::{Region, largest};
 use crate::geom::{P2, Polygon, Segment, p2, rot90};
 use crate::pocket::CornerPoint;
-use crate::pocket::adaptive::{Builder, closest_on, link, split};
+use crate::pocket::adaptive::{Builder, link, start_near};
 use crate::toolpath::MoveKind;
 use std::f64::consts::PI;
 
@@ -28,28 +28,6 @@ pub(super) struct Finish<'a> {
     pub(super) rho_fin: f64,
     pub(super) phi: f64,
     pub(super) delta: f64,
-}
-
-/// The closed loop re-started at its point nearest `q`.
-fn start_near(lp: &[Segment], q: P2) -> Vec<Segment> {
-    let (mut best, mut bt, mut bd) = (0, 0.0, f64::INFINITY);
-    for (i, s) in lp.iter().enumerate() {
-        let (p, t) = closest_on(s, q);
-        if (p - q).norm() < bd {
-            (best, bt, bd) = (i, t, (p - q).norm());
-        }
-    }
-    let (head, tail) = split(&lp[best], bt);
-    let mut out = Vec::with_capacity(lp.len() + 1);
-    if tail.length() > 1e-9 {
-        out.push(tail);
-    }
-    out.extend_from_slice(&lp[best + 1..]);
-    out.extend_from_slice(&lp[..best]);
-    if head.length() > 1e-9 {
-        out.push(head);
-    }
-    out
 }
 
 /// Append the finishing pass to `b`; the corner points it reaches.
