@@ -8,31 +8,14 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 mod outline_common;
+mod rng_common;
 
 use nalgebra::{Matrix3, Vector3};
 use outline_common::same_loop;
+use rng_common::Rng;
 use std::f64::consts::TAU;
 use trochoplan_core::geom::{P2, p2};
 use trochoplan_core::outline::{self, Pockets};
-
-/// SplitMix64: a small fixed-seed generator.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn f(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn n(&mut self, k: usize) -> usize {
-        (self.next() % k as u64) as usize
-    }
-}
 
 /// A star-shaped loop about `c` with `min` to `min` + 14 vertices at radii in [r0, r1] (simple
 /// by construction). Its angle gaps are below 1.8·2π/n, so for n ≥ 12 its edges keep at least

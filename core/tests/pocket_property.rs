@@ -16,30 +16,14 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
+mod rng_common;
+
+use rng_common::Rng;
 use std::collections::HashMap;
 use std::f64::consts::{PI, TAU};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use trochoplan_core::geom::{P2, Polygon, Segment, p2};
 use trochoplan_core::pocket::{self, PocketPlan, PocketRequest, PocketStrategy};
-
-/// SplitMix64: a small fixed-seed generator.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn f(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn n(&mut self, k: usize) -> usize {
-        (self.next() % k as u64) as usize
-    }
-}
 
 /// Rectangle [x0, x1] × [y0, y1], counter-clockwise from (x0, y0).
 fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<P2> {
