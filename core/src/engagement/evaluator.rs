@@ -213,17 +213,6 @@ fn flatten(path: &[Segment]) -> Vec<Segment> {
     out
 }
 
-/// The first part of a line or arc, up to local parameter `t`.
-fn head(seg: &Segment, t: f64) -> Segment {
-    match *seg {
-        Segment::Line { start, .. } => Segment::Line { start, end: seg.point(t) },
-        Segment::Arc { center, radius, start_angle, sweep } => {
-            Segment::Arc { center, radius, start_angle, sweep: sweep * t }
-        }
-        other => other,
-    }
-}
-
 fn check_segments(path: &[Segment], name: &'static str) -> Result<(), Error> {
     for (i, s) in path.iter().enumerate() {
         let (a, b) = (s.start(), s.end());
@@ -418,7 +407,7 @@ impl<'a> Evaluation<'a> {
         // and segment i up to the position.
         // The segment that cut the last point tried is tried first (neighbouring points of
         // the periphery are mostly cut by the same segment).
-        let head = Cutter::new(head(seg, local));
+        let head = Cutter::new(seg.part(0.0, local));
         let last = std::cell::Cell::new(head);
         let room = |p: P2| {
             if !leaves(p, &head, r, tol) || !leaves(p, &last.get(), r, tol) {

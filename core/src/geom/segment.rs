@@ -96,6 +96,24 @@ impl Segment {
         self.length_between(0.0, 1.0)
     }
 
+    /// The part between local parameters `t0 ≤ t1` (a line's ends kept exact at 0 and 1; an
+    /// arc's sweep and a trochoid piece's θ range cut in proportion).
+    pub fn part(&self, t0: f64, t1: f64) -> Segment {
+        match *self {
+            Segment::Line { start, end } => Segment::Line {
+                start: if t0 == 0.0 { start } else { self.point(t0) },
+                end: if t1 == 1.0 { end } else { self.point(t1) },
+            },
+            Segment::Arc { center, radius, start_angle, sweep } => {
+                Segment::Arc { center, radius, start_angle: start_angle + sweep * t0, sweep: sweep * (t1 - t0) }
+            }
+            Segment::Trochoid { origin, a, b, step, theta0, theta1 } => {
+                let d = theta1 - theta0;
+                Segment::Trochoid { origin, a, b, step, theta0: theta0 + d * t0, theta1: theta0 + d * t1 }
+            }
+        }
+    }
+
     /// Arc length between local parameters `t0 ≤ t1` (mm).
     pub fn length_between(&self, t0: f64, t1: f64) -> f64 {
         match *self {
@@ -177,6 +195,27 @@ mod tests {
     fn numeric_derivative(seg: &Segment, t: f64) -> P2 {
         let h = 1e-6;
         (seg.point(t + h) - seg.point(t - h)) / (2.0 * h)
+    }
+
+    #[test]
+    fn parts_join_and_add_up() {
+        // every kind: the part from 0 to t and from t to 1 meet at point(t), start and end where
+        // the segment does, and their lengths add to the whole (arc length is additive)
+        let segs = [
+            Segment::Line { start: p2(1.0, 2.0), end: p2(4.0, -2.0) },
+            Segment::Arc { center: p2(0.0, 0.0), radius: 3.0, start_angle: 0.3, sweep: -2.0 },
+            Segment::Trochoid { origin: p2(0.0, 0.0), a: 2.0, b: 1.5, step: 0.7, theta0: 0.2, theta1: 5.0 },
+        ];
+        for s in segs {
+            let t = 0.37;
+            let (h, tail) = (s.part(0.0, t), s.part(t, 1.0));
+            assert!((h.end() - s.point(t)).norm() < 1e-12 && (tail.start() - s.point(t)).norm() < 1e-12, "{s:?}");
+            assert!((h.start() - s.start()).norm() < 1e-12 && (tail.end() - s.end()).norm() < 1e-12, "{s:?}");
+            assert!((h.length() + tail.length() - s.length()).abs() < 1e-9, "{s:?}");
+        }
+        // a line's ends stay exact
+        let l = segs[0];
+        assert_eq!((l.part(0.0, 0.5).start(), l.part(0.5, 1.0).end()), (l.start(), p2(4.0, -2.0)));
     }
 
     #[test]

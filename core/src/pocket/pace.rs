@@ -352,10 +352,10 @@ fn with_rapids(moves: &[Move], spans: &[Vec<(f64, f64)>], max_feed: f64) -> (Vec
         let mut at = 0.0;
         for &(a, b) in sp {
             if a > at + 1e-9 {
-                out.push(Move { segment: piece(&m.segment, at / len, a / len), ..*m });
+                out.push(Move { segment: m.segment.part(at / len, a / len), ..*m });
             }
             out.push(Move {
-                segment: piece(&m.segment, a / len, b / len),
+                segment: m.segment.part(a / len, b / len),
                 kind: MoveKind::Rapid,
                 feed_mm_per_min: Some(max_feed),
                 ..*m
@@ -363,7 +363,7 @@ fn with_rapids(moves: &[Move], spans: &[Vec<(f64, f64)>], max_feed: f64) -> (Vec
             at = b;
         }
         if at < len - 1e-9 {
-            out.push(Move { segment: piece(&m.segment, at / len, 1.0), ..*m });
+            out.push(Move { segment: m.segment.part(at / len, 1.0), ..*m });
         }
     }
     (out, first)
@@ -413,7 +413,7 @@ fn split_move(
     at.push(s1);
     for w in at.windows(2) {
         let (a, b) = (w[0], w[1]);
-        let seg = if at.len() == 2 { m.segment } else { piece(&m.segment, (a - s0) / len, (b - s0) / len) };
+        let seg = if at.len() == 2 { m.segment } else { m.segment.part((a - s0) / len, (b - s0) / len) };
         let (i, j) = within(run, a, b);
         // no position within (never: every move's ends are measured): the nearest on each side
         let (i, j) = if i < j { (i, j) } else { (i.saturating_sub(1), (j + 1).min(run.len())) };
@@ -428,16 +428,5 @@ fn split_move(
             m.feed_mm_per_min
         };
         out.push(Move { segment: seg, feed_mm_per_min: feed, ..*m });
-    }
-}
-
-/// The part of a line or an arc between fractions `t0 < t1` of its length.
-fn piece(seg: &Segment, t0: f64, t1: f64) -> Segment {
-    match *seg {
-        Segment::Line { .. } => Segment::Line { start: seg.point(t0), end: seg.point(t1) },
-        Segment::Arc { center, radius, start_angle, sweep } => {
-            Segment::Arc { center, radius, start_angle: start_angle + sweep * t0, sweep: sweep * (t1 - t0) }
-        }
-        other => other,
     }
 }

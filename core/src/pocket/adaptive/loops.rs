@@ -36,19 +36,9 @@ pub(crate) fn closest_on(seg: &Segment, q: P2) -> (P2, f64) {
     }
 }
 
-/// The two pieces of a line or arc split at local parameter t.
+/// The two pieces of a segment split at local parameter t ([`Segment::part`]).
 pub(crate) fn split(seg: &Segment, t: f64) -> (Segment, Segment) {
-    match *seg {
-        Segment::Line { start, end } => {
-            let m = seg.point(t);
-            (Segment::Line { start, end: m }, Segment::Line { start: m, end })
-        }
-        Segment::Arc { center, radius, start_angle, sweep } => (
-            Segment::Arc { center, radius, start_angle, sweep: sweep * t },
-            Segment::Arc { center, radius, start_angle: start_angle + sweep * t, sweep: sweep * (1.0 - t) },
-        ),
-        other => (other, other),
-    }
+    (seg.part(0.0, t), seg.part(t, 1.0))
 }
 
 /// The closed loop re-started at its point nearest `q`.
