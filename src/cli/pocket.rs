@@ -143,6 +143,7 @@ impl PaceArgs {
             block_time_s: m.as_ref().map_or(d.block_time_s, |m| m.block_time),
             band_ratio: d.band_ratio,
             rapid_margin_mm: self.rapid_margin,
+            machine: m,
         })
     }
 }

@@ -6,6 +6,7 @@
 //! with the keys of [`Machine`]. Without a machine the plan assumes an ideal one (the
 //! programmed feed everywhere): real and programmed times are then equal.
 
+pub mod link;
 pub mod planner;
 pub mod program_time;
 

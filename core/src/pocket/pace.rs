@@ -4,10 +4,12 @@
 //! - **Rapids through cleared stock.** A straight move whose swept tool disc, grown by the
 //!   margin ([`PaceOptions::rapid_margin_mm`]), meets no uncut material — the evaluator's
 //!   periphery at r + margin reads nothing along it, with the path before it and the entries'
-//!   bores as cut — becomes a rapid at depth ([`MoveKind::Rapid`]). Of the three ways through
-//!   cleared stock (a rapid at depth, a small lift and a rapid, a link at a high feed) it is the
-//!   fastest on every machine model: the rapid rate is at least the largest feed, the same
-//!   acceleration and jerk limit all three, and a lift adds two moves along Z. Where a
+//!   bores as cut — becomes a rapid at depth ([`MoveKind::Rapid`]), or, where the machine model
+//!   ([`PaceOptions::machine`]) times it sooner, a link at the largest feed
+//!   ([`crate::machine::link`]): a rapid runs from rest to rest, a feed link blends into its
+//!   neighbours, so between the small loops of a trochoid the link is sooner, over a long
+//!   stretch the rapid. A small lift and a rapid is never the sooner: it adds two moves along Z,
+//!   each from rest to rest, to the rapid's time. Where a
 //!   controller's G0 is not a straight line (Fanuc with non-linear positioning, Sinumerik's
 //!   G0 outside linear mode), the program writes these moves as G1 at their feed, the largest
 //!   feed ([`Move::feed_mm_per_min`] of the rapid). Arcs through cleared stock stay feed moves;
@@ -29,7 +31,8 @@ use super::PocketPath;
 use crate::engagement::{EngagementSample, EvaluatorOptions, engagement_profile_on, maxima};
 use crate::error::{Error, Param, num};
 use crate::geom::Segment;
-use crate::machine::DEFAULT_BLOCK_TIME_S;
+use crate::machine::link::{feed_link_gain, window_mm};
+use crate::machine::{DEFAULT_BLOCK_TIME_S, Machine};
 use crate::toolpath::{Move, MoveKind};
 use serde::{Deserialize, Serialize};
 
@@ -68,6 +71,10 @@ pub struct PaceOptions {
     pub band_ratio: f64,
     /// Clearance of a rapid at depth from uncut material (mm), beyond the tool radius.
     pub rapid_margin_mm: f64,
+    /// The machine whose model chooses, for each stretch through cleared stock, between a
+    /// rapid and a link at the largest feed, whichever it times sooner; `None`: the rapid (on
+    /// the ideal machine, without acceleration limits, the rapid is never later).
+    pub machine: Option<Machine>,
 }
 
 impl Default for PaceOptions {
@@ -86,6 +93,7 @@ impl Default for PaceOptions {
             block_time_s: DEFAULT_BLOCK_TIME_S,
             band_ratio: 1.05,
             rapid_margin_mm: 0.3,
+            machine: None,
         }
     }
 }
@@ -107,6 +115,9 @@ pub struct Pace {
     pub h_max_peak_mm: f64,
     /// Length of the rapids at depth (mm).
     pub rapid_length_mm: f64,
+    /// Length of the stretches through cleared stock that run as links at the largest feed
+    /// because the machine model times them sooner than rapids (mm; 0 without a machine).
+    pub feed_link_length_mm: f64,
 }
 
 impl PaceOptions {
@@ -155,11 +166,12 @@ pub fn pace(path: &mut PocketPath, opts: &PaceOptions) -> Result<Pace, Error> {
     let feed = path.settings.feed_mm_per_min;
     let (f_z, target, max_feed) = opts.resolve(feed)?;
     let r = path.settings.tool_radius;
-    let (moves, rapid_first) = if opts.rapids {
+    let (moves, rapid_first, origin) = if opts.rapids {
         let spans = clear_spans(path, r, opts.rapid_margin_mm)?;
         with_rapids(&path.toolpath.moves, &spans, max_feed)
     } else {
-        (path.toolpath.moves.clone(), (0..path.toolpath.moves.len()).collect())
+        let kinds = path.toolpath.kinds();
+        (path.toolpath.moves.clone(), (0..path.toolpath.moves.len()).collect(), kinds)
     };
     let old_retracts: Vec<usize> = path.toolpath.retract_before.iter().map(|&i| rapid_first[i]).collect();
     let samples = &path.measurement.profile.samples;
@@ -172,10 +184,13 @@ pub fn pace(path: &mut PocketPath, opts: &PaceOptions) -> Result<Pace, Error> {
     let retracts = &old_retracts;
     let mut out: Vec<Move> = Vec::with_capacity(moves.len());
     let mut first_piece = vec![0; moves.len()];
+    // the rapids among the paced moves, with the kind of the move each came from
+    let mut rapids: Vec<(usize, MoveKind)> = Vec::new();
     let mut i = 0;
     while i < moves.len() {
         if moves[i].kind == MoveKind::Rapid {
             first_piece[i] = out.len();
+            rapids.push((out.len(), origin[i]));
             out.push(moves[i]);
             i += 1;
             continue;
@@ -195,6 +210,10 @@ pub fn pace(path: &mut PocketPath, opts: &PaceOptions) -> Result<Pace, Error> {
         i = j;
     }
     path.toolpath.retract_before = retracts.iter().map(|&i| first_piece[i]).collect();
+    let feed_link_length_mm = match &opts.machine {
+        Some(m) => feed_links(&mut out, &rapids, &path.toolpath.retract_before, (feed, max_feed), m),
+        None => 0.0,
+    };
     path.toolpath.moves = out;
     // the kinds changed (rapids) and moves were split: gather the maxima again
     let segments = path.toolpath.segments();
@@ -230,6 +249,7 @@ pub fn pace(path: &mut PocketPath, opts: &PaceOptions) -> Result<Pace, Error> {
         h_max_peak_mm: h_max.iter().copied().fold(0.0, f64::max),
         // + 0.0: an empty sum is −0
         rapid_length_mm: path.toolpath.length_of(&[MoveKind::Rapid]) + 0.0,
+        feed_link_length_mm,
         feeds_mm_per_min: feeds,
         h_max_mm: h_max,
     })
@@ -337,15 +357,19 @@ fn stretches(
 }
 
 /// The moves with every clear span ([`clear_spans`]) made a rapid at `max_feed` (its feed where
-/// G0 is not straight), and for each old move the index of its first piece. A span is never
-/// stretched: the pieces of the move before and after it, however short, stay feed moves.
-fn with_rapids(moves: &[Move], spans: &[Vec<(f64, f64)>], max_feed: f64) -> (Vec<Move>, Vec<usize>) {
+/// G0 is not straight), for each old move the index of its first piece, and for each new move
+/// the kind of the move it came from. A span is never stretched: the pieces of the move before
+/// and after it, however short, stay feed moves.
+fn with_rapids(moves: &[Move], spans: &[Vec<(f64, f64)>], max_feed: f64) -> (Vec<Move>, Vec<usize>, Vec<MoveKind>) {
     let mut out = Vec::with_capacity(moves.len());
     let mut first = Vec::with_capacity(moves.len());
+    let mut origin = Vec::with_capacity(moves.len());
     for (m, sp) in moves.iter().zip(spans) {
         first.push(out.len());
+        let pieces = out.len();
         if sp.is_empty() {
             out.push(*m);
+            origin.push(m.kind);
             continue;
         }
         let len = m.segment.length();
@@ -365,8 +389,54 @@ fn with_rapids(moves: &[Move], spans: &[Vec<(f64, f64)>], max_feed: f64) -> (Vec
         if at < len - 1e-9 {
             out.push(Move { segment: m.segment.part(at / len, 1.0), ..*m });
         }
+        origin.resize(origin.len() + out.len() - pieces, m.kind);
     }
-    (out, first)
+    (out, first, origin)
+}
+
+/// Every rapid of `out` (index, kind of the move it came from) that the machine model `m`
+/// times longer than a link at the largest feed (`feeds` = (programmed, largest), mm/min)
+/// becomes that link, its kind again the move's own: between the small loops of a trochoid a
+/// rapid's stops at both ends cost more than its higher rate gains ([`feed_link_gain`]). The
+/// neighbours in the comparison are the feed moves joined to the rapid, up to
+/// [`window_mm`] of them on each side, up to a retract (`retract_before`) or another rapid.
+/// Returns the length of the rapids made links (mm).
+fn feed_links(
+    out: &mut [Move],
+    rapids: &[(usize, MoveKind)],
+    retract_before: &[usize],
+    feeds: (f64, f64),
+    m: &Machine,
+) -> f64 {
+    let mut made = 0.0;
+    let (feed, max_feed) = feeds;
+    let w = window_mm(m);
+    let joined = |a: usize, b: usize, out: &[Move]| {
+        !retract_before.contains(&b) && (out[a].segment.end() - out[b].segment.start()).norm() <= 1e-6
+    };
+    for &(q, kind) in rapids {
+        let with_feed = |mv: &Move| (mv.segment, mv.feed_mm_per_min.unwrap_or(feed));
+        let mut before = Vec::new();
+        let (mut k, mut len) = (q, 0.0);
+        while k > 0 && len < w && out[k - 1].kind != MoveKind::Rapid && joined(k - 1, k, out) {
+            k -= 1;
+            before.push(with_feed(&out[k]));
+            len += out[k].segment.length();
+        }
+        before.reverse();
+        let mut after = Vec::new();
+        let (mut k, mut len) = (q, 0.0);
+        while k + 1 < out.len() && len < w && out[k + 1].kind != MoveKind::Rapid && joined(k, k + 1, out) {
+            k += 1;
+            after.push(with_feed(&out[k]));
+            len += out[k].segment.length();
+        }
+        if feed_link_gain(&before, out[q].segment, &after, max_feed, m) > 0.0 {
+            out[q].kind = kind;
+            made += out[q].segment.length();
+        }
+    }
+    made
 }
 
 /// Block boundaries (arc lengths) over a run's measured positions `run` = (s, need), in order:

@@ -143,3 +143,38 @@ fn a_small_pocket_paces_without_rapids() {
     assert!(pace.feeds_mm_per_min.iter().all(|&f| (600.0 - 1e-9..=1800.0 + 1e-9).contains(&f)));
     assert!(pace.h_max_mm.iter().all(|&h| h <= 0.075 * (1.0 + 1e-9)));
 }
+
+/// With a machine, each stretch through cleared stock runs as a rapid or as a link at the
+/// largest feed, whichever the machine model times sooner: the same stretches as without a
+/// machine (their lengths add up to the rapids' then), the moves otherwise the same, and the
+/// program's real time on that machine shorter than with every stretch a rapid (each choice is
+/// made on the model's time over the moves about the stretch: `machine::link`).
+#[test]
+fn a_machine_chooses_rapids_or_feed_links_and_the_program_is_no_slower() {
+    use crate::machine::{CutHeights, Machine, toolpath_time};
+    let vmc = Machine::preset("vmc").expect("preset");
+    let max_feed = Some(vmc.max_speed_mm_per_s() * 60.0);
+    let rapids = paced(PaceOptions { max_feed_mm_per_min: max_feed, ..PaceOptions::default() }).expect("plans");
+    let chosen =
+        paced(PaceOptions { max_feed_mm_per_min: max_feed, machine: Some(vmc.clone()), ..PaceOptions::default() })
+            .expect("plans");
+    let (a, b) = (rapids.path().pace.as_ref().expect("paced"), chosen.path().pace.as_ref().expect("paced"));
+    assert_eq!(a.feed_link_length_mm, 0.0);
+    assert!(a.rapid_length_mm > 100.0, "{}", a.rapid_length_mm);
+    assert!(b.feed_link_length_mm > 0.0);
+    assert!((b.rapid_length_mm + b.feed_link_length_mm - a.rapid_length_mm).abs() < 1e-9);
+    let (ma, mb) = (&rapids.toolpath().moves, &chosen.toolpath().moves);
+    assert_eq!(ma.len(), mb.len());
+    for ((x, y), &f) in ma.iter().zip(mb).zip(&b.feeds_mm_per_min) {
+        assert_eq!(x.segment, y.segment);
+        if x.kind != y.kind {
+            // a rapid made a feed link: at the largest feed, its chip nil
+            assert_eq!(x.kind, MoveKind::Rapid);
+            assert_eq!(f, 20_000.0);
+        }
+    }
+    let heights = CutHeights { depth_mm: 6.0, safe_z_mm: 5.0 };
+    let ta = toolpath_time(rapids.toolpath(), heights, 600.0, &vmc).expect("timed").total_s;
+    let tb = toolpath_time(chosen.toolpath(), heights, 600.0, &vmc).expect("timed").total_s;
+    assert!(tb < ta, "{tb} s with feed links vs {ta} s with rapids");
+}

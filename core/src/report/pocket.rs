@@ -196,16 +196,22 @@ impl PocketReport {
         }
     }
 
-    /// One line on the pace: the range of the feeds, the h_max they hold, the rapids at depth.
+    /// One line on the pace: the range of the feeds, the h_max they hold, the rapids at depth and
+    /// the links through cleared stock at the largest feed.
     pub fn pace_line(&self) -> String {
         let Some(p) = self.pace() else { return "every move at the feed".to_owned() };
         let (lo, hi) = p.feeds_mm_per_min.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), &f| (lo.min(f), hi.max(f)));
         format!(
-            "feed {lo:.0}–{hi:.0} mm/min{}, h_max ≤ {:.4} mm (target {:.4}); rapids at depth {:.0} mm",
+            "feed {lo:.0}–{hi:.0} mm/min{}, h_max ≤ {:.4} mm (target {:.4}); rapids at depth {:.0} mm{}",
             if p.follow_chip { "" } else { " (constant)" },
             p.h_max_peak_mm,
             p.target_h_mm,
-            p.rapid_length_mm
+            p.rapid_length_mm,
+            if p.feed_link_length_mm > 0.0 {
+                format!(", {:.0} mm of links at the largest feed (sooner than rapids here)", p.feed_link_length_mm)
+            } else {
+                String::new()
+            }
         )
     }
 }
