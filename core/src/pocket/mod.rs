@@ -25,6 +25,7 @@ pub mod path;
 pub mod perforative;
 pub mod rings;
 pub mod route;
+mod run_order;
 mod runs;
 pub mod slot;
 
