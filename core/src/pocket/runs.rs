@@ -253,7 +253,6 @@ mod tests {
         b.push(Segment::Line { start: p2(10.0, 15.0), end: p2(10.0, 20.0) }, MoveKind::Spiral);
         cut_runs(&mut b, &pocket, 5.0, rings(), (&[], 0.0, 0.0, 0.0));
         assert_eq!(order(&b), vec![10.0, 12.0, 14.0, 90.0, 88.0, 86.0]);
-        let by_places = link_length(&b);
         let mut one_place = rings();
         one_place[2].pop();
         let mut c = builder();
