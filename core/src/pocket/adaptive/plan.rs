@@ -77,6 +77,16 @@ pub(super) fn measure(
     b: Builder,
     corner_radius_left_mm: f64,
 ) -> Result<AdaptivePlan, Error> {
+    // A retract before a link with no path at depth descends straight down (the entries go,
+    // in order, to the retracts before each later part): one before a later part's start
+    // would hand that part's entry to the link's retract, so such a plan is refused.
+    if let Some(&i) = b.retracts.iter().find(|&&i| parts.iter().skip(1).any(|q| q.first_segment > i)) {
+        return Err(crate::error::Error::param(
+            crate::error::Param::Polygon,
+            format!("a pocket of {} parts with a link that finds no way at depth before move #{}", parts.len(), i + 1),
+            "a pocket whose links at depth, in every part but the last, find a way through cleared stock",
+        ));
+    }
     // a retract before every part but the first, and before the links with no path at depth
     let mut retract_before: Vec<usize> =
         parts.iter().skip(1).map(|q| q.first_segment).chain(b.retracts.iter().copied()).collect();
