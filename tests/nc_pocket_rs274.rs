@@ -409,8 +409,12 @@ fn assert_no_plunge(label: &str, all: &[Motion], json: &serde_json::Value) {
     // polygon (its distance from the polygon, outside it, at least r)
     let stock: Vec<_> = list("polygon").iter().map(pt).collect();
     let outside: Vec<_> = list("entries").iter().filter(|e| e["kind"] == "outside").map(|e| pt(&e["at"])).collect();
+    // straight down into stock the path has cleared (a retract before a link with no way at
+    // depth): the points the JSON lists, accepted only where the tool's whole disc lies within
+    // r of the path already cut at depth ([`disc_cleared`])
+    let down: Vec<_> = list("entries").iter().filter(|e| e["kind"] == "down").map(|e| pt(&e["at"])).collect();
     assert!(!centres.is_empty() || !ramps.is_empty() || !outside.is_empty(), "{label}: no entry in the JSON");
-    for m in all {
+    for (k, m) in all.iter().enumerate() {
         let (a, b) = (m.start(), m.end());
         if !(b[2] < a[2] - 1e-9 && b[2] < -1e-9) {
             continue;
@@ -438,11 +442,39 @@ fn assert_no_plunge(label: &str, all: &[Motion], json: &serde_json::Value) {
                     && outside.iter().any(|&o| (o - pa).norm() < 1e-3)
                     && !inside_polygon(pa, &stock)
                     && trochoplan_core::geom::loop_distance(pa, &stock) >= R - 1e-3;
-                assert!(leg || off_stock, "{label}: straight move down into the stock: {m:?}");
+                let into_cleared = (pb - pa).norm() < 1e-9
+                    && down.iter().any(|&o| (o - pa).norm() < 1e-3)
+                    && disc_cleared(pa, &cut(&all[..k], DEPTH, 1e-4));
+                assert!(leg || off_stock || into_cleared, "{label}: straight move down into the stock: {m:?}");
             }
             Motion::Rapid { .. } => panic!("{label}: rapid below Z0: {m:?}"),
         }
     }
+}
+
+/// Sampling step of [`disc_cleared`] along the path cut (mm): a point within r of the path is
+/// within r + step/2 of its samples.
+const DISC_SAMPLE_MM: f64 = 0.1;
+
+/// Whether the tool's disc at `p` (radius r) lies in what the moves `cut` (at depth) cleared:
+/// every point of it — the centre, rings every 0.25 mm out to r, 0.25 mm apart along each, the
+/// rim itself — within r + [`DISC_SAMPLE_MM`]/2 of the path's samples (so within that slack of
+/// being cut: the descent touches at most 0.05 mm of stock).
+fn disc_cleared(p: trochoplan_core::geom::P2, cut: &[Motion]) -> bool {
+    use trochoplan_core::geom::p2;
+    let pts = nc_common::sample(cut, DISC_SAMPLE_MM);
+    let reach = R + 0.5 * DISC_SAMPLE_MM;
+    let near: Vec<_> = pts.into_iter().filter(|q| (q - p).norm() <= R + reach).collect();
+    let rings = (R / 0.25).ceil() as usize;
+    (0..=rings).all(|i| {
+        let rho = R * i as f64 / rings as f64;
+        let n = ((std::f64::consts::TAU * rho / 0.25).ceil() as usize).max(1);
+        (0..n).all(|j| {
+            let a = std::f64::consts::TAU * j as f64 / n as f64;
+            let q = p + p2(a.cos(), a.sin()) * rho;
+            near.iter().any(|s| (s - q).norm() <= reach)
+        })
+    })
 }
 
 /// Whether `p` is inside the polygon `v` (even–odd ray casting along +x).

@@ -211,7 +211,7 @@ pub fn program_moves(path: &Toolpath, heights: CutHeights, feed_mm_per_min: f64)
         let entry_start = match path.entries.get(part) {
             Some(Entry::Helix(h)) => h.center + p2(h.start_angle.cos(), h.start_angle.sin()) * h.radius,
             Some(Entry::Ramp(r)) => r.first_point(drop),
-            Some(Entry::Outside { at }) => *at,
+            Some(Entry::Outside { at } | Entry::Down { at }) => *at,
             None => start,
         };
         if let Some(p) = from {
@@ -245,7 +245,7 @@ pub fn program_moves(path: &Toolpath, heights: CutHeights, feed_mm_per_min: f64)
                     at = to;
                 }
             }
-            Some(Entry::Outside { .. }) | None => {
+            Some(Entry::Outside { .. } | Entry::Down { .. }) | None => {
                 out.push(line(entry_start, entry_start, safe, z_d, MoveKind::Cut, feed));
             }
         }

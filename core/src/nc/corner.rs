@@ -117,6 +117,7 @@ pub fn adaptive_program(plan: &AdaptivePlan, cut: CutSetup, opts: &NcOptions) ->
         Entry::Helix(h) => format!("helix R {:.3} mm {:.1} deg", h.radius, plan.options.ramp_deg),
         Entry::Ramp(_) => format!("zig-zag ramp {:.1} deg", plan.options.ramp_deg),
         Entry::Outside { .. } => format!("from outside the stock (open edges {:?})", plan.open_edges),
+        Entry::Down { .. } => "straight down into cleared stock".to_owned(),
     };
     let summary = [
         format!(

@@ -399,6 +399,8 @@ pub fn program_for_path(job: &PathJob<'_>, opts: &NcOptions) -> Result<NcProgram
         Some(Entry::Ramp(r)) => ramp_approach(w, r, job.depth_mm, job.feed_mm_per_min, opts),
         // beyond an open edge the tool's disc is off the stock: straight down cuts nothing
         Some(Entry::Outside { at }) => approach(w, *at, job.depth_mm, job.feed_mm_per_min, opts),
+        // into stock the path has cleared: straight down cuts nothing either
+        Some(Entry::Down { at }) => approach(w, *at, job.depth_mm, job.feed_mm_per_min, opts),
         None => approach(w, start, job.depth_mm, job.feed_mm_per_min, opts),
     };
     descend(&mut w, 0, path.moves[0].segment.start());

@@ -134,6 +134,7 @@ impl EntryRow {
             Entry::Helix(_) => "helix",
             Entry::Ramp(_) => "ramp",
             Entry::Outside { .. } => "outside",
+            Entry::Down { .. } => "down",
         };
         EntryRow { kind, at: xy(e.center()) }
     }
@@ -146,7 +147,7 @@ pub fn entry_rows(entries: &[Entry], depth_mm: f64) -> (Vec<HelixRow>, Vec<RampR
         .iter()
         .filter_map(|e| match e {
             Entry::Helix(h) => Some(HelixRow::of(h, depth_mm)),
-            Entry::Ramp(_) | Entry::Outside { .. } => None,
+            Entry::Ramp(_) | Entry::Outside { .. } | Entry::Down { .. } => None,
         })
         .collect();
     let ramps = entries
@@ -158,7 +159,7 @@ pub fn entry_rows(entries: &[Entry], depth_mm: f64) -> (Vec<HelixRow>, Vec<RampR
                 ramp_deg: r.ramp_rad.to_degrees(),
                 legs: r.legs(drop),
             }),
-            Entry::Helix(_) | Entry::Outside { .. } => None,
+            Entry::Helix(_) | Entry::Outside { .. } | Entry::Down { .. } => None,
         })
         .collect();
     (helices, ramps)

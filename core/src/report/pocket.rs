@@ -396,8 +396,10 @@ pub struct AdaptiveReport {
     pub polygon: Vec<[f64; 2]>,
     /// The polygon's open edges (`--open-edges`, as stored: counter-clockwise).
     pub open_edges: Vec<usize>,
-    /// Each part's entry: its kind ("helix", "ramp" or "outside": straight down beyond an open
-    /// edge, where the tool's disc keeps r off the stock) and where; the helices in detail.
+    /// Each way down, in order: each part's entry, its kind ("helix", "ramp" or "outside":
+    /// straight down beyond an open edge, where the tool's disc keeps r off the stock) and
+    /// where, and after a retract where a link finds no way at depth, "down" (straight down
+    /// into stock the path has cleared); the helices in detail.
     pub entries: Vec<EntryRow>,
     pub helices: Vec<HelixRow>,
     pub parts: usize,
@@ -437,7 +439,8 @@ impl AdaptiveReport {
     pub fn of(plan: &AdaptivePlan) -> AdaptiveReport {
         let s = plan.path.settings;
         let m = &plan.path.measurement;
-        let entries: Vec<_> = plan.parts.iter().map(|p| p.entry).collect();
+        // the parts' entries and the descents into cleared stock after retracts
+        let entries = &plan.path.toolpath.entries;
         AdaptiveReport {
             method: PocketStrategy::Adaptive.name(),
             direction: plan.options.direction.name(),
@@ -448,7 +451,7 @@ impl AdaptiveReport {
             polygon: polygon_rows(&plan.path),
             open_edges: plan.open_edges.clone(),
             entries: entries.iter().map(EntryRow::of).collect(),
-            helices: entry_rows(&entries, plan.options.depth_mm).0,
+            helices: entry_rows(entries, plan.options.depth_mm).0,
             parts: plan.parts.len(),
             core_radius_mm: plan.parts.iter().map(|p| p.core_radius_mm).collect(),
             rings: plan.parts.iter().map(|p| p.rings).collect(),

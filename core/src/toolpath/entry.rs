@@ -98,6 +98,12 @@ pub enum Entry {
     Outside {
         at: P2,
     },
+    /// Straight down at `at` into stock the path has already cleared there, through its whole
+    /// depth (a retract where a link finds no way at depth): the tool's disc meets no stock on
+    /// the way down, so the descent cuts nothing (not a plunge).
+    Down {
+        at: P2,
+    },
 }
 
 impl Entry {
@@ -107,7 +113,7 @@ impl Entry {
         match self {
             Entry::Helix(h) => h.circle(),
             Entry::Ramp(r) => Segment::Line { start: r.start, end: r.end },
-            Entry::Outside { at } => Segment::Line { start: *at, end: *at },
+            Entry::Outside { at } | Entry::Down { at } => Segment::Line { start: *at, end: *at },
         }
     }
 
@@ -123,7 +129,7 @@ impl Entry {
                 let u = (r.end - r.start) / (r.end - r.start).norm();
                 Segment::Line { start: r.start - u * RAMP_END_MM, end: r.end + u * RAMP_END_MM }
             }
-            Entry::Outside { at } => Segment::Line { start: *at, end: *at },
+            Entry::Outside { at } | Entry::Down { at } => Segment::Line { start: *at, end: *at },
         }
     }
 
@@ -132,7 +138,7 @@ impl Entry {
         match self {
             Entry::Helix(h) => h.center,
             Entry::Ramp(r) => (r.start + r.end) * 0.5,
-            Entry::Outside { at } => *at,
+            Entry::Outside { at } | Entry::Down { at } => *at,
         }
     }
 
@@ -143,7 +149,7 @@ impl Entry {
         match self {
             Entry::Helix(h) => h.length(drop),
             Entry::Ramp(r) => r.length(drop),
-            Entry::Outside { .. } => drop,
+            Entry::Outside { .. } | Entry::Down { .. } => drop,
         }
     }
 
@@ -158,6 +164,7 @@ impl Entry {
             }),
             Entry::Ramp(r) => Entry::Ramp(Ramp { start: mirror_point(r.start), end: mirror_point(r.end), ..r }),
             Entry::Outside { at } => Entry::Outside { at: mirror_point(at) },
+            Entry::Down { at } => Entry::Down { at: mirror_point(at) },
         }
     }
 }

@@ -139,9 +139,13 @@ impl Toolpath {
     }
 
     /// The bores of the entries that clear material at depth (helices and ramps; a descent
-    /// outside the stock clears nothing): what the path is measured after.
+    /// outside the stock or into cleared stock clears nothing): what the path is measured after.
     pub fn bores(&self) -> Vec<Segment> {
-        self.entries.iter().filter(|e| !matches!(e, Entry::Outside { .. })).map(Entry::bore).collect()
+        self.entries
+            .iter()
+            .filter(|e| !matches!(e, Entry::Outside { .. } | Entry::Down { .. }))
+            .map(Entry::bore)
+            .collect()
     }
 
     /// Length of the entries' descents from [`HELIX_START_Z_MM`] to `depth_mm` below the top (mm).

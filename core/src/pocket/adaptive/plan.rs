@@ -77,22 +77,22 @@ pub(super) fn measure(
     b: Builder,
     corner_radius_left_mm: f64,
 ) -> Result<AdaptivePlan, Error> {
-    // A retract before a link with no path at depth descends straight down (the entries go,
-    // in order, to the retracts before each later part): one before a later part's start
-    // would hand that part's entry to the link's retract, so such a plan is refused.
-    if let Some(&i) = b.retracts.iter().find(|&&i| parts.iter().skip(1).any(|q| q.first_segment > i)) {
-        return Err(crate::error::Error::param(
-            crate::error::Param::Polygon,
-            format!("a pocket of {} parts with a link that finds no way at depth before move #{}", parts.len(), i + 1),
-            "a pocket whose links at depth, in every part but the last, find a way through cleared stock",
-        ));
-    }
-    // a retract before every part but the first, and before the links with no path at depth
+    // a retract before every part but the first, and before the links with no path at depth;
+    // the entries follow the retracts in order: a part's own where the retract starts a part,
+    // else straight down into cleared stock (the link's end, where the tool was going)
     let mut retract_before: Vec<usize> =
         parts.iter().skip(1).map(|q| q.first_segment).chain(b.retracts.iter().copied()).collect();
     retract_before.sort_unstable();
     retract_before.dedup();
-    let entries = parts.iter().map(|p| p.entry).collect();
+    let entries = parts
+        .first()
+        .map(|p| p.entry)
+        .into_iter()
+        .chain(retract_before.iter().map(|&i| match parts.iter().skip(1).find(|q| q.first_segment == i) {
+            Some(q) => q.entry,
+            None => Entry::Down { at: b.segments[i].start() },
+        }))
+        .collect();
     let toolpath = Toolpath::at_depth(&b.segments, &b.kinds, -options.depth_mm, entries, retract_before);
     // the bores of helices and ramps are cut; outside the stock nothing was
     let path = PocketPath::measured(&polygon, settings, toolpath, options.depth_mm)?;

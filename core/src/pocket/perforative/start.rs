@@ -42,7 +42,10 @@ impl Planner<'_> {
                 }
             }
             // (open sides are adaptive clearing's only: `--open-edges` errors for this method)
-            Entry::Outside { .. } => Current { s: 0.0, center, offset_radius: self.r(), entry: None },
+            // (open sides are adaptive clearing's only; a descent into cleared stock is not a way in)
+            Entry::Outside { .. } | Entry::Down { .. } => {
+                Current { s: 0.0, center, offset_radius: self.r(), entry: None }
+            }
         };
         let walks = g.leaf_walks(root);
         let mut prev: Option<(Vec<usize>, Guide, Vec<Current>, f64)> = None;
