@@ -99,9 +99,8 @@ fn inside(p: P2, v: &[P2]) -> bool {
 /// the T. Planned as a slot (no helix fits), every tool position keeps r − 0.005 mm off the
 /// walls, and every point of C (a 0.1 mm raster, the wall distance computed here from the
 /// outline) is within s_f + 0.05 mm of a point of the path (points 0.05 mm apart): so
-/// everything within r of C is cut down to the finish stock, the tips included (a rounded
-/// tip of radius ρ_fin + s_f between the tangents of a 39° corner stops ρ_fin(1/sin 19.5° − 1)
-/// ≈ 1 mm short of it).
+/// everything within r of C is cut down to the finish stock, the tips included (the
+/// finishing contour alone, its tips rounded to ρ_fin + s_f, stays 1.1 mm short of them).
 #[test]
 fn t_junction_tips_are_reached() {
     let v: Vec<P2> = [
