@@ -2,7 +2,10 @@
 //! the tool-centre region offset by r, its convex corners rounded to ρ_fin + s_f so that each
 //! corner arc removes the stock s_f within the target, entered on a quarter-circle lead-in from
 //! cleared material; at every rounded convex corner the arcs into the corner point
-//! ([`corner_point_radii`]), down to the corner tolerance δ.
+//! ([`corner_point_radii`]), down to the corner tolerance δ. A corner is where the tangents at
+//! the rounding arc's ends meet; its sides are walls offset by r or arcs r about a reflex vertex
+//! of the pocket (the tips of the region where a branch of the centre line runs between a
+//! wall and a reflex corner, as at the junction of a T: rounded, they would stay uncut).
 
 use crate::corner::point::corner_point_radii;
 use crate::error::{Error, Param};
@@ -75,15 +78,24 @@ pub(super) fn finishing_pass(b: &mut Builder, f: &Finish<'_>) -> Result<Vec<Corn
     let fin_loop = start_near(&loop_segs, mid);
     let n = fin_loop.len();
     let mut corner_points = Vec::new();
-    let is_line = |sg: &Segment| matches!(sg, Segment::Line { .. });
+    // a side of a corner: a line, or an arc turning the other way (the offset of a reflex vertex
+    // of the pocket, r about it), which turns away from its tangent at the corner, so that no
+    // tool position between the tangents comes nearer than r to that vertex. The tool-centre
+    // region ends in such corners where a branch of the centre line runs between a wall and
+    // a reflex vertex (a junction of arms): the rounded corner leaves its tip uncut.
+    let side = |sg: &Segment| match *sg {
+        Segment::Line { .. } => true,
+        Segment::Arc { sweep, .. } => sweep < 0.0,
+        _ => false,
+    };
     for (i, seg) in fin_loop.iter().enumerate() {
         b.push(*seg, MoveKind::Finish);
         if let Segment::Arc { center, radius, start_angle, sweep } = *seg
             && sweep > 1e-9
             && (radius - (rho_fin + sf)).abs() < 1e-6
             && (radius - f.delta) * (1.0 / (0.5 * sweep).cos() - 1.0) > f.delta
-            && is_line(&fin_loop[(i + n - 1) % n])
-            && is_line(&fin_loop[(i + 1) % n])
+            && side(&fin_loop[(i + n - 1) % n])
+            && side(&fin_loop[(i + 1) % n])
         {
             let before = b.segments.len();
             let point = corner_point_arcs(b, center, radius, start_angle, sweep, f);

@@ -62,16 +62,16 @@ fn at(line: &[P2], s: f64) -> (P2, P2) {
     (line[line.len() - 1], dir)
 }
 
-/// Largest two-circle engagement (rad) of a loop of radius `a` about `c` after the circle
-/// `prev` (centre, radius of what it cut) was cut, tool radius `r`.
-fn engagement(prev: (P2, f64), c: P2, a: f64, r: f64) -> f64 {
+/// Whether the largest two-circle engagement of a loop of radius `a` about `c` after the
+/// circle `prev` (centre, radius of what it cut) was cut, tool radius `r`, is within `phi`.
+fn within(prev: (P2, f64), c: P2, a: f64, r: f64, phi: f64) -> bool {
     let tc = TwoCircle {
         previous: Circle { center: prev.0, radius: prev.1 },
         current: Circle { center: c, radius: a + r },
         tool_radius: r,
         turn: Turn::Ccw,
     };
-    tc.max_engagement().angle
+    !tc.exceeds(phi)
 }
 
 /// The loops along `line` after the cut circle `start` (its centre, the radius it cut, and the
@@ -105,7 +105,7 @@ pub(super) fn loops_along(
             let a = size(c);
             let lp = Loop { center: c, radius: a, dir };
             let (fc, fr, _, _) = lp.arc(if a > prev_a + 1e-9 { 1.0 } else { flat });
-            engagement(prev, fc, fr, r) <= phi
+            within(prev, fc, fr, r, phi)
         };
         let left = total - s;
         // bracketed near the step before (3 × it, where that is short of the end): the bisection
