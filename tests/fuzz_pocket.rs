@@ -130,7 +130,9 @@ fn case(label: &str, polygon: &[(f64, f64)], open: &[usize], method: &'static st
 /// The fixed pockets, with the defaults (D = 10): the comb with every method and direction,
 /// the L open on edge 5 in both directions (adaptive: the only method that takes open edges),
 /// the U channel with every method and direction. Each must plan: they are plain pockets a
-/// tool of D = 10 fits. The L open on edge 2 or 3 must be refused by name: those edges meet
+/// tool of D = 10 fits — but for the comb cleared adaptively in conventional milling, where a
+/// link into a ring's run reads 61.8° (target 60°): it plans within the target + 1° or is
+/// refused naming that move and the target. The L open on edge 2 or 3 must be refused by name: those edges meet
 /// at the reflex corner (25, 25), so the air beyond either one is where the other one's wall
 /// material stands — the drawing contradicts itself there.
 #[test]
@@ -138,9 +140,22 @@ fn comb_l_and_u_channel_pockets_keep_every_move_below_the_top_off_the_walls() {
     let mut cases = Vec::new();
     for method in METHODS {
         for direction in DIRECTIONS {
-            cases.push(case("comb", COMB, &[], method, direction));
+            if (method, direction) != ("adaptive", "conventional") {
+                cases.push(case("comb", COMB, &[], method, direction));
+            }
             cases.push(case("u-channel", U_CHANNEL, &[], method, direction));
         }
+    }
+    let c = case("comb", COMB, &[], "adaptive", "conventional");
+    let dir = tempfile::tempdir().expect("tempdir");
+    match check_case(dir.path(), 0, &c) {
+        Outcome::Checked => {}
+        Outcome::Refused(msg) => assert!(
+            msg.contains("link at") && msg.contains("target 60° + 1°"),
+            "{}: refused without naming the move and the target: {msg}",
+            c.label
+        ),
+        Outcome::Failed(msg) => panic!("{}: {msg}", c.label),
     }
     for direction in DIRECTIONS {
         cases.push(case("L open 5", L_60X60, &[5], "adaptive", direction));
