@@ -81,18 +81,6 @@ fn seg_dist(p: P2, a: P2, b: P2) -> f64 {
     (p - (a + ab * t)).norm()
 }
 
-/// Even-odd containment (computed here).
-fn inside(p: P2, v: &[P2]) -> bool {
-    let mut c = false;
-    for i in 0..v.len() {
-        let (a, b) = (v[i], v[(i + 1) % v.len()]);
-        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) {
-            c = !c;
-        }
-    }
-    c
-}
-
 /// A T whose bar (10.1 mm wide) is too narrow for D = 10 with the finishing stock, on a stem
 /// 13.3 mm wide: the tool-centre region C (wall distance ≥ r + s_f) ends in two tips of about
 /// 20° where the stem meets the bar, each between the bar's far wall and a reflex corner of
@@ -150,7 +138,8 @@ fn t_junction_tips_are_reached() {
     for i in 0..400 {
         for j in 0..360 {
             let c = p2(-3.0 + i as f64 * h, -36.0 + j as f64 * h);
-            if !inside(c, &v) || wall(c) < r + sf {
+            // (containment: the crate's even–odd test; the distances are computed here)
+            if !crate::geom::loop_contains(&v, c) || wall(c) < r + sf {
                 continue;
             }
             region += 1;
