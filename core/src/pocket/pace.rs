@@ -34,6 +34,7 @@ use crate::geom::Segment;
 use crate::machine::link::{feed_link_gain, window_mm};
 use crate::machine::{DEFAULT_BLOCK_TIME_S, Machine};
 use crate::toolpath::{Move, MoveKind};
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 /// Engagement (rad) below which the periphery grown by the margin counts as reading nothing:
@@ -399,7 +400,8 @@ fn with_rapids(moves: &[Move], spans: &[Vec<(f64, f64)>], max_feed: f64) -> (Vec
 /// becomes that link, its kind again the move's own: between the small loops of a trochoid a
 /// rapid's stops at both ends cost more than its higher rate gains ([`feed_link_gain`]). The
 /// neighbours in the comparison are the feed moves joined to the rapid, up to
-/// [`window_mm`] of them on each side, up to a retract (`retract_before`) or another rapid.
+/// [`window_mm`] of them on each side, up to a retract (`retract_before`) or another rapid
+/// (as planned: the stretches are decided independently, in parallel).
 /// Returns the length of the rapids made links (mm).
 fn feed_links(
     out: &mut [Move],
@@ -408,33 +410,40 @@ fn feed_links(
     feeds: (f64, f64),
     m: &Machine,
 ) -> f64 {
-    let mut made = 0.0;
     let (feed, max_feed) = feeds;
     let w = window_mm(m);
-    let joined = |a: usize, b: usize, out: &[Move]| {
-        !retract_before.contains(&b) && (out[a].segment.end() - out[b].segment.start()).norm() <= 1e-6
+    let view: &[Move] = out;
+    let joined = |a: usize, b: usize| {
+        !retract_before.contains(&b) && (view[a].segment.end() - view[b].segment.start()).norm() <= 1e-6
     };
-    for &(q, kind) in rapids {
-        let with_feed = |mv: &Move| (mv.segment, mv.feed_mm_per_min.unwrap_or(feed));
-        let mut before = Vec::new();
-        let (mut k, mut len) = (q, 0.0);
-        while k > 0 && len < w && out[k - 1].kind != MoveKind::Rapid && joined(k - 1, k, out) {
-            k -= 1;
-            before.push(with_feed(&out[k]));
-            len += out[k].segment.length();
-        }
-        before.reverse();
-        let mut after = Vec::new();
-        let (mut k, mut len) = (q, 0.0);
-        while k + 1 < out.len() && len < w && out[k + 1].kind != MoveKind::Rapid && joined(k, k + 1, out) {
-            k += 1;
-            after.push(with_feed(&out[k]));
-            len += out[k].segment.length();
-        }
-        if feed_link_gain(&before, out[q].segment, &after, max_feed, m) > 0.0 {
-            out[q].kind = kind;
-            made += out[q].segment.length();
-        }
+    let with_feed = |mv: &Move| (mv.segment, mv.feed_mm_per_min.unwrap_or(feed));
+    // each stretch decided on the moves as planned, its neighbours up to the next rapid on
+    // either side (the decisions do not see each other: in parallel, the same on any run)
+    let sooner: Vec<bool> = rapids
+        .par_iter()
+        .map(|&(q, _)| {
+            let mut before = Vec::new();
+            let (mut k, mut len) = (q, 0.0);
+            while k > 0 && len < w && view[k - 1].kind != MoveKind::Rapid && joined(k - 1, k) {
+                k -= 1;
+                before.push(with_feed(&view[k]));
+                len += view[k].segment.length();
+            }
+            before.reverse();
+            let mut after = Vec::new();
+            let (mut k, mut len) = (q, 0.0);
+            while k + 1 < view.len() && len < w && view[k + 1].kind != MoveKind::Rapid && joined(k, k + 1) {
+                k += 1;
+                after.push(with_feed(&view[k]));
+                len += view[k].segment.length();
+            }
+            feed_link_gain(&before, view[q].segment, &after, max_feed, m) > 0.0
+        })
+        .collect();
+    let mut made = 0.0;
+    for (&(q, kind), _) in rapids.iter().zip(&sooner).filter(|(_, s)| **s) {
+        out[q].kind = kind;
+        made += out[q].segment.length();
     }
     made
 }
