@@ -1,0 +1,228 @@
+//! The stock as horizontal bands, and the engagement of every move in every band it cuts.
+//!
+//! **Bands.** A flat end mill whose tip is at height z removes, inside its disc, the material
+//! at every height ≥ z. The program's cutting heights — the heights at the ends of its moves
+//! below the stock top — cut the stock into bands: band b from level z_b up to the next level
+//! (the highest up to the stock top). Within one band every move cuts either its whole height
+//! or nothing: a move whose lowest point is at or below z_b sweeps its disc through the band,
+//! a move above it does not touch it. So the material of band b before a move is the stock
+//! outline less the discs swept by the earlier moves at or below z_b, in program order —
+//! exactly the evaluator's model of one plane ([`crate::engagement`]), run once per band over
+//! the moves that reach it. A move's radial engagement is its engagement in the band its tip
+//! is in (the deepest band it reaches, which has the most material: every band above has lost
+//! at least what this one lost), and its axial depth of cut is the height of the bands in which
+//! it engages material (more than 1°).
+//!
+//! A move that descends (a helix turn, a ramp leg, a plunge) is counted at its lowest point:
+//! it sweeps its whole disc through every band down to there. That is exact at the end of the
+//! move and conservative before it (the evaluator reads the plane, not the sloped bottom).
+
+use crate::engagement::evaluator::{EngagementProfile, Evaluation, EvaluatorOptions};
+use crate::engagement::refine::{MAX_REFINED_POSITIONS, refined_profile};
+use crate::engagement::{AIR_ENGAGEMENT_RAD, sample_owners, sample_weights};
+use crate::error::Error;
+use crate::geom::{Polygon, Segment};
+use crate::toolpath::Move;
+
+/// Heights closer than this are one level (mm).
+const LEVEL_TOL_MM: f64 = 1e-4;
+/// Most bands a program is measured in: beyond, only the heights of moves in the plane are
+/// levels (a helix of many turns then counts at its lowest point).
+pub const MAX_BANDS: usize = 64;
+/// Shortest move in the plane that is measured along its length (mm); shorter ones (moves
+/// along Z) cut their disc where they stand and are measured as a point ([`Bands::point`]).
+pub const MIN_PLANE_MM: f64 = 1e-6;
+
+/// One evaluated sample of a move in one band.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MoveSample {
+    /// Distance along the move in the plane (mm).
+    pub u_mm: f64,
+    /// Tool centre (mm).
+    pub x_mm: f64,
+    pub y_mm: f64,
+    /// Engagement (rad) and chip factor κ = h_max / f_z.
+    pub angle_rad: f64,
+    pub chip: f64,
+    /// The path length this sample stands for (mm).
+    pub weight_mm: f64,
+}
+
+/// The stock's bands, each with its evaluation.
+pub struct Bands<'a> {
+    /// Levels from the lowest up; the last is the stock top.
+    pub levels: Vec<f64>,
+    /// Per band: the moves that reach it (program indices, in order), where each starts along
+    /// the band's path, and the prepared evaluation (`None` without such moves).
+    band_moves: Vec<Vec<usize>>,
+    band_starts: Vec<Vec<f64>>,
+    evals: Vec<Option<Evaluation<'a>>>,
+    stock: &'a Polygon,
+    opts: EvaluatorOptions,
+    /// Per move and band (by band index): its samples.
+    pub samples: Vec<Vec<(usize, Vec<MoveSample>)>>,
+}
+
+/// Lowest height of a move (mm).
+pub fn bottom(m: &Move) -> f64 {
+    m.z_start_mm.min(m.z_end_mm)
+}
+
+/// The levels of `moves` below `top` (see the module docs), lowest first, `top` last.
+pub fn levels(moves: &[Move], top: f64) -> Vec<f64> {
+    let collect = |flat_only: bool| {
+        let mut z: Vec<f64> = moves
+            .iter()
+            .filter(|m| !flat_only || m.z_start_mm == m.z_end_mm)
+            .flat_map(|m| [m.z_start_mm, m.z_end_mm])
+            .filter(|&z| z < top - LEVEL_TOL_MM)
+            .collect();
+        z.sort_by(f64::total_cmp);
+        z.dedup_by(|a, b| (*a - *b).abs() <= LEVEL_TOL_MM);
+        z
+    };
+    let mut z = collect(false);
+    if z.len() >= MAX_BANDS {
+        // keep the lowest point of every move too, so that every move has its band
+        let mut flat = collect(true);
+        flat.extend(moves.iter().map(bottom).filter(|&z| z < top - LEVEL_TOL_MM));
+        flat.sort_by(f64::total_cmp);
+        flat.dedup_by(|a, b| (*a - *b).abs() <= LEVEL_TOL_MM);
+        z = flat;
+    }
+    z.push(top);
+    z
+}
+
+impl<'a> Bands<'a> {
+    /// Evaluate every band: `moves` over `stock` (top at `top`), the evaluator's options
+    /// `opts`. Error when a band's path has more positions than the evaluator takes, or when
+    /// there are more than [`MAX_BANDS`] heights of moves in the plane.
+    pub fn evaluate(moves: &[Move], stock: &'a Polygon, top: f64, opts: &EvaluatorOptions) -> Result<Bands<'a>, Error> {
+        let levels = levels(moves, top);
+        if levels.len() > MAX_BANDS + 1 {
+            return Err(Error::geometry(
+                "program",
+                format!("{} cutting heights", levels.len() - 1),
+                format!("at most {MAX_BANDS} heights of moves in the plane below the stock top"),
+            ));
+        }
+        let nb = levels.len() - 1;
+        let mut bands = Bands {
+            levels,
+            band_moves: Vec::with_capacity(nb),
+            band_starts: Vec::with_capacity(nb),
+            evals: Vec::with_capacity(nb),
+            stock,
+            opts: *opts,
+            samples: vec![Vec::new(); moves.len()],
+        };
+        for b in 0..nb {
+            let z_b = bands.levels[b];
+            let idx: Vec<usize> = (0..moves.len()).filter(|&k| bottom(&moves[k]) <= z_b + LEVEL_TOL_MM).collect();
+            let segs: Vec<Segment> = idx.iter().map(|&k| moves[k].segment).collect();
+            let mut starts = Vec::with_capacity(segs.len());
+            let mut acc = 0.0;
+            for s in &segs {
+                starts.push(acc);
+                acc += s.length();
+            }
+            if segs.is_empty() {
+                bands.band_moves.push(idx);
+                bands.band_starts.push(starts);
+                bands.evals.push(None);
+                continue;
+            }
+            let profile = refined_profile(stock, &[], &segs, opts)?;
+            bands.record(b, &idx, &starts, &segs, &profile);
+            bands.evals.push(Some(Evaluation::new(stock, &[], &segs, opts, MAX_REFINED_POSITIONS)?));
+            bands.band_moves.push(idx);
+            bands.band_starts.push(starts);
+        }
+        Ok(bands)
+    }
+
+    /// File the samples of band `b`'s profile under their moves.
+    fn record(&mut self, b: usize, idx: &[usize], starts: &[f64], segs: &[Segment], profile: &EngagementProfile) {
+        let owners = sample_owners(profile, segs);
+        let weights = sample_weights(profile);
+        for ((smp, &o), w) in profile.samples.iter().zip(&owners).zip(weights) {
+            let k = idx[o];
+            let list = &mut self.samples[k];
+            if list.last().is_none_or(|l| l.0 != b) {
+                list.push((b, Vec::new()));
+            }
+            if let Some(l) = list.last_mut() {
+                l.1.push(MoveSample {
+                    u_mm: (smp.s_mm - starts[o]).clamp(0.0, segs[o].length()),
+                    x_mm: smp.x_mm,
+                    y_mm: smp.y_mm,
+                    angle_rad: smp.angle_rad,
+                    chip: smp.chip,
+                    weight_mm: w,
+                });
+            }
+        }
+        // A pass that retraces an earlier one to its very end (a step-down, a repeated
+        // contour) meets, at that end only, a front half exactly r from the earlier pass's end:
+        // the evaluator counts such points as material (its tolerance is on the side of
+        // material). A move that ends engaged with its sample before in air is that case (or
+        // one that enters material less than one sample spacing before its end): its end is
+        // read as the sample before it.
+        for (o, &k) in idx.iter().enumerate() {
+            let len = segs[o].length();
+            if let Some((bb, list)) = self.samples[k].last_mut()
+                && *bb == b
+                && let [.., before, last] = list.as_mut_slice()
+                && last.u_mm >= len - 1e-9
+                && last.angle_rad > AIR_ENGAGEMENT_RAD
+                && before.angle_rad <= AIR_ENGAGEMENT_RAD
+            {
+                (last.angle_rad, last.chip) = (before.angle_rad, before.chip);
+            }
+        }
+    }
+
+    /// Number of bands.
+    pub fn count(&self) -> usize {
+        self.levels.len() - 1
+    }
+
+    /// Height of band `b` (mm).
+    pub fn thickness(&self, b: usize) -> f64 {
+        self.levels[b + 1] - self.levels[b]
+    }
+
+    /// The band whose level is the lowest point of `m` (the band its tip is in), if below the
+    /// stock top.
+    pub fn band_of(&self, m: &Move) -> Option<usize> {
+        let z = bottom(m);
+        let b = self.levels.partition_point(|&l| l < z - LEVEL_TOL_MM);
+        (b < self.count()).then_some(b)
+    }
+
+    /// The engaged arcs (world angles, counter-clockwise) and the sample of move `k` at `u` mm
+    /// along it in band `b` (none where the move does not reach the band).
+    pub fn arcs(&self, b: usize, k: usize, u: f64) -> Option<(f64, Vec<(f64, f64)>)> {
+        let i = self.band_moves.get(b)?.binary_search(&k).ok()?;
+        let eval = self.evals.get(b)?.as_ref()?;
+        let (smp, arcs) = eval.sample_arcs(self.band_starts[b][i] + u);
+        Some((smp.angle_rad, arcs))
+    }
+
+    /// Engagement (rad) of a tool standing at `m`'s end in band `b` after every move before
+    /// move `k` that reaches the band: a plunge, a move along Z only. 0 outside the stock.
+    pub fn point(&self, moves: &[Move], k: usize, b: usize) -> Result<f64, Error> {
+        let Some(list) = self.band_moves.get(b) else { return Ok(0.0) };
+        let before: Vec<Segment> = list.iter().take_while(|&&j| j < k).map(|&j| moves[j].segment).collect();
+        let at = moves[k].segment.end();
+        let point = [Segment::Line { start: at, end: at }];
+        let profile = crate::engagement::engagement_profile(self.stock, &before, &point, &self.opts)?;
+        Ok(profile.max_angle())
+    }
+
+    /// Whether any sample of move `k` in band `b` engages material (more than 1°).
+    pub fn engages(&self, k: usize, b: usize) -> bool {
+        self.samples[k].iter().any(|(bb, s)| *bb == b && s.iter().any(|x| x.angle_rad > AIR_ENGAGEMENT_RAD))
+    }
+}
