@@ -407,6 +407,25 @@ impl<'a> Evaluation<'a> {
         (sample, arcs_of(&ends))
     }
 
+    /// Whether `q` is material for the tool at arc length `s`: inside the stock and at least r
+    /// (less the tolerance) from the `before` paths and from the path up to `s`.
+    pub(crate) fn material_at(&self, s: f64, q: P2) -> bool {
+        let i = self.ends.partition_point(|&e| e < s).min(self.path.len() - 1);
+        let s0 = if i == 0 { 0.0 } else { self.ends[i - 1] };
+        let local = if self.lengths[i] > 0.0 { ((s - s0) / self.lengths[i]).clamp(0.0, 1.0) } else { 1.0 };
+        let head = Cutter::new(self.path[i].part(0.0, local));
+        if !self.stock.contains(q) || !leaves(q, &head, self.r, self.tol) {
+            return false;
+        }
+        let (near, _) = self.grid.near(q);
+        for (_, k) in near.take_while(|(j, _)| *j < self.nb + i) {
+            if !leaves(q, k, self.r, self.tol) {
+                return false;
+            }
+        }
+        true
+    }
+
     fn sample_with(&self, s: f64, ends: Option<&mut Vec<(f64, bool)>>) -> EngagementSample {
         let (path, grid, stock, periphery) = (&self.path, &self.grid, self.stock, &self.periphery);
         let (r, tol, reach, nb) = (self.r, self.tol, self.reach, self.nb);

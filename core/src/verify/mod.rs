@@ -103,12 +103,15 @@ pub struct MoveReport {
 /// The maxima of a group of moves.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct Maxima {
-    pub moves: usize,
+    pub cutting_moves: usize,
     pub max_engagement_deg: f64,
     pub max_engagement_at: At,
     pub h_max_mm: f64,
     pub h_max_at: At,
     pub h_max_programmed_mm: f64,
+    /// The largest f_z·κ at the reached feed (the circular-path chip, mm): an upper bound of
+    /// the chip, the per-move CSV's `h_max_mm`.
+    pub h_max_circular_mm: f64,
     pub force_resultant_max_n: f64,
     pub force_resultant_max_at: At,
     pub force_resultant_max_programmed_n: f64,
@@ -190,6 +193,9 @@ struct Measured {
     h_at: At,
     /// Its samples in the band of its tip (for the 95th percentile).
     tip_samples: Vec<MoveSample>,
+    /// Its sample of the largest f_z·κ at the reached feed and at the programmed feed: band,
+    /// place along the move (mm), that chip (mm), that feed (mm/min).
+    h_candidates: [Option<(usize, f64, f64, f64)>; 2],
     plunge_deg: f64,
 }
 
@@ -208,8 +214,12 @@ pub fn verify(program: &Program, req: &VerifyRequest<'_>) -> Result<VerifyReport
     let top = req.stock_top_mm;
     let cuts = |k: usize| moves[k].kind != MoveKind::Rapid && bottom(&moves[k]) < top;
     let flat = |k: usize| moves[k].z_start_mm == moves[k].z_end_mm;
-    let plane = maxima(&measured, (0..moves.len()).filter(|&k| cuts(k) && flat(k)));
-    let descending = maxima(&measured, (0..moves.len()).filter(|&k| cuts(k) && !flat(k)));
+    let mut plane = maxima(&measured, (0..moves.len()).filter(|&k| cuts(k) && flat(k)));
+    let mut descending = maxima(&measured, (0..moves.len()).filter(|&k| cuts(k) && !flat(k)));
+    for (group, flat_moves) in [(&mut plane, true), (&mut descending, false)] {
+        let which: Vec<usize> = (0..moves.len()).filter(|&k| cuts(k) && flat(k) == flat_moves).collect();
+        exact_peaks(group, &measured, &which, &moves, &bands, req);
+    }
     let p95 = p95_deg((0..moves.len()).filter(|&k| cuts(k) && flat(k)).flat_map(|k| measured[k].tip_samples.iter()));
     let problems = problems::find(program, &moves, &measured_view(&measured), req);
     let ideal = timing::time_moves(&moves, None)?;
@@ -268,16 +278,12 @@ fn maxima(m: &[Measured], which: impl Iterator<Item = usize>) -> Maxima {
     let mut out = Maxima::default();
     for k in which {
         let r = &m[k].report;
-        out.moves += 1;
+        out.cutting_moves += 1;
         if r.engagement_deg > out.max_engagement_deg {
             out.max_engagement_deg = r.engagement_deg;
             out.max_engagement_at = m[k].eng_at;
         }
-        if r.h_max_mm > out.h_max_mm {
-            out.h_max_mm = r.h_max_mm;
-            out.h_max_at = m[k].h_at;
-        }
-        out.h_max_programmed_mm = out.h_max_programmed_mm.max(r.h_max_programmed_mm);
+        out.h_max_circular_mm = out.h_max_circular_mm.max(r.h_max_mm);
         if r.force_n > out.force_resultant_max_n {
             out.force_resultant_max_n = r.force_n;
             out.force_resultant_max_at = m[k].h_at;
@@ -290,6 +296,47 @@ fn maxima(m: &[Measured], which: impl Iterator<Item = usize>) -> Maxima {
         }
     }
     out
+}
+
+/// How many of the largest circular-path chips are measured exactly for the summary.
+pub const EXACT_CHIP_CANDIDATES: usize = 48;
+
+/// The summary's h_max at the reached and at the programmed feed: the exact chip
+/// ([`Bands::chip`]) at the [`EXACT_CHIP_CANDIDATES`] places with the largest f_z·κ of the
+/// moves `which` (the exact chip is at most f_z·κ to first order, so the largest exact chip is
+/// among the largest circular ones unless many moves cut nearly the same chip).
+fn exact_peaks(
+    group: &mut Maxima,
+    m: &[Measured],
+    which: &[usize],
+    moves: &[Move],
+    bands: &Bands<'_>,
+    req: &VerifyRequest<'_>,
+) {
+    for slot in 0..2 {
+        let mut cands: Vec<(usize, (usize, f64, f64, f64))> =
+            which.iter().filter_map(|&k| m[k].h_candidates[slot].map(|c| (k, c))).collect();
+        cands.sort_by(|a, b| b.1.2.total_cmp(&a.1.2));
+        cands.truncate(EXACT_CHIP_CANDIDATES);
+        let exact: Vec<(usize, f64, f64)> = cands
+            .par_iter()
+            .map(|&(k, (b, u, _, feed))| {
+                let rpm = m[k].report.rpm;
+                let f_z = feed / (rpm * f64::from(req.tool.teeth));
+                (k, u, bands.chip(b, k, &moves[k], u, f_z).unwrap_or(0.0))
+            })
+            .collect();
+        if let Some(&(k, u, h)) = exact.iter().max_by(|a, b| a.2.total_cmp(&b.2)) {
+            if slot == 0 {
+                let len = moves[k].segment.length();
+                let p = moves[k].segment.point(if len > 0.0 { (u / len).clamp(0.0, 1.0) } else { 0.0 });
+                group.h_max_mm = h;
+                group.h_max_at = At { line: m[k].report.line, x: p.x, y: p.y, z: bottom(&moves[k]) };
+            } else {
+                group.h_max_programmed_mm = h;
+            }
+        }
+    }
 }
 
 /// Measure move `k`.
@@ -329,6 +376,7 @@ fn measure_move(
         eng_at: at(e.x, e.y),
         h_at: at(e.x, e.y),
         tip_samples: Vec::new(),
+        h_candidates: [None, None],
         plunge_deg: 0.0,
     };
     let Some(tip) = bands.band_of(mv) else { return Ok(out) };
@@ -381,9 +429,17 @@ fn measure_move(
     let fz = |f: f64| f / (rpm * teeth);
     out.report.feed_reached_mm_per_min = reached;
     out.report.h_max_mm = hx.chip * fz(reached);
-    out.report.h_max_programmed_mm =
-        bands.samples[k].iter().flat_map(|(_, l)| l.iter()).map(|x| x.chip).fold(0.0, f64::max) * fz(planar_feed);
+    let (kb, kx) = bands.samples[k]
+        .iter()
+        .flat_map(|(b, l)| l.iter().map(move |x| (*b, *x)))
+        .fold((0, hx), |best, (b, x)| if x.chip > best.1.chip { (b, x) } else { best });
+    out.report.h_max_programmed_mm = kx.chip * fz(planar_feed);
     out.h_at = at(hx.x_mm, hx.y_mm);
+    let hb = best_h.map_or(tip, |(b, _, _)| b);
+    out.h_candidates = [
+        Some((hb, hx.u_mm, out.report.h_max_mm, reached)),
+        Some((kb, kx.u_mm, out.report.h_max_programmed_mm, planar_feed)),
+    ];
     // the load at the sample of the largest chip and at that of the largest engagement
     let load_at = |u: f64, f: f64| -> Load {
         let t = if len_xy > 0.0 { (u / len_xy).clamp(0.0, 1.0) } else { 0.0 };
