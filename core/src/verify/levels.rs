@@ -254,7 +254,7 @@ const CHIP_SCAN_RAD: f64 = std::f64::consts::PI / 360.0;
 /// the previous tooth's circle — at about f_z·cos(θ − θ_f) — or to material the path cut
 /// before, whichever is first: the material test of the evaluator for the tool at s − f_z
 /// (the previous tooth's position), bisected to 1e-7 of that depth. The largest over the angles,
-/// scanned every 0.5° and then every 0.05° about the largest. This is the chip disc(c) \
+/// scanned every 0.5°, then a ternary search within one step of the largest. This is the chip disc(c) \
 /// (disc(c − f_z) ∪ swept) of the slot's analysis (`analysis::chip`), which is less than
 /// f_z·κ where the arc ends at the edge of earlier cuts: there the edge cuts the chip short.
 fn exact_chip(
@@ -301,13 +301,20 @@ fn exact_chip(
         }
     }
     if best.1.is_finite() {
+        // the chip is a minimum of two smooth functions of the angle: one peak, found by a
+        // ternary search within one scan step of the best angle (clamped to its arc)
         let th0 = best.1;
-        for i in -10..=10 {
-            let th = th0 + f64::from(i) * CHIP_SCAN_RAD / 10.0;
-            if arcs.iter().any(|&(a, b)| th >= a && th <= b) {
-                best.0 = best.0.max(depth(th));
+        let (a, b) = arcs.iter().copied().find(|&(a, b)| th0 >= a && th0 <= b).unwrap_or((th0, th0));
+        let (mut lo, mut hi) = ((th0 - CHIP_SCAN_RAD).max(a), (th0 + CHIP_SCAN_RAD).min(b));
+        for _ in 0..40 {
+            let (m1, m2) = (lo + (hi - lo) / 3.0, hi - (hi - lo) / 3.0);
+            if depth(m1) < depth(m2) {
+                lo = m1;
+            } else {
+                hi = m2;
             }
         }
+        best.0 = best.0.max(depth(0.5 * (lo + hi)));
     }
     best.0
 }

@@ -36,8 +36,12 @@ fn run(text: &str, req: &VerifyRequest<'_>) -> VerifyReport {
 }
 
 /// A side cut along a straight wall at radial depth a_e = 2.5 mm (r = 5): engagement
-/// arccos(1 − a_e/r) = 60°, chip factor sin 60°, h_max = f_z·sin 60° with f_z = 800/(2000·4)
-/// = 0.1 mm; axial depth 3 mm (one level at −3, stock top 0); time L/F = 40/800 min.
+/// arccos(1 − a_e/r) = 60°, chip factor sin 60°, circular-path chip f_z·sin 60° with f_z =
+/// 800/(2000·4) = 0.1 mm; axial depth 3 mm (one level at −3, stock top 0); time L/F = 40/800
+/// min. The exact chip, computed here independently: a tooth at angle θ from the feed meets
+/// material from the periphery inward up to the previous tooth's circle (centre f_z behind):
+/// t₁ = r + f_z·cos θ − √(r² − f_z²·sin²θ), or up to the wall y = 2.5: t₂ = r − 2.5/sin θ;
+/// the chip is the largest min(t₁, t₂) over θ (scanned every 1e-6 rad).
 #[test]
 fn side_cut_reads_its_engagement_depth_chip_and_time() {
     let stock = square(-50.0, 2.5, 50.0, 50.0);
@@ -45,8 +49,18 @@ fn side_cut_reads_its_engagement_depth_chip_and_time() {
     assert!((r.plane.max_engagement_deg - 60.0).abs() < 0.05, "{}", r.plane.max_engagement_deg);
     let m = r.moves[1];
     assert!((m.axial_depth_mm - 3.0).abs() < 1e-9, "{}", m.axial_depth_mm);
-    assert!((r.plane.h_max_mm - 0.1 * 60f64.to_radians().sin()).abs() < 1e-4, "{}", r.plane.h_max_mm);
-    assert_eq!(r.plane.h_max_mm, r.plane.h_max_programmed_mm, "ideal machine: reached = programmed");
+    assert!((r.plane.h_max_circular_mm - 0.1 * 60f64.to_radians().sin()).abs() < 1e-4, "{}", r.plane.h_max_circular_mm);
+    let (f, rr) = (0.1f64, 5.0f64);
+    let exact = (0..1_500_000)
+        .map(|i| {
+            let th = 0.5 + f64::from(i) * 1e-6;
+            let t1 = rr + f * th.cos() - (rr * rr - f * f * th.sin().powi(2)).sqrt();
+            let t2 = rr - 2.5 / th.sin();
+            t1.min(t2)
+        })
+        .fold(0.0, f64::max);
+    assert!((r.plane.h_max_mm - exact).abs() < 1e-6 * exact.max(1.0), "{} {exact}", r.plane.h_max_mm);
+    assert!((r.plane.h_max_mm - r.plane.h_max_programmed_mm).abs() < 1e-9, "ideal machine: reached = programmed");
     assert!((r.time_at_feed_s - 40.0 / 800.0 * 60.0).abs() < 1e-9, "{}", r.time_at_feed_s);
     assert_eq!(r.plane.max_engagement_at.line, 5);
     assert!(r.plane.force_resultant_max_n > 0.0 && r.plane.power_max_w > 0.0);
