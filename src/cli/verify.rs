@@ -59,10 +59,12 @@ pub struct VerifyArgs {
     /// Spindle speed (rpm) instead of the program's S words.
     #[arg(long, value_name = "RPM", allow_hyphen_values = true)]
     rpm: Option<f64>,
-    /// Largest spindle power (W): a move above it is a `power` problem.
+    /// Largest spindle power (W): a move above it is a `power` problem. Default: the
+    /// machine's (`spindle-power` of its preset; none without --machine).
     #[arg(long, value_name = "W", allow_hyphen_values = true)]
     spindle_power: Option<f64>,
-    /// Largest spindle torque (N·m): a move above it is a `torque` problem.
+    /// Largest spindle torque (N·m): a move above it is a `torque` problem. Default: the
+    /// machine's (`spindle-torque` of its preset).
     #[arg(long, value_name = "NM", allow_hyphen_values = true)]
     spindle_torque: Option<f64>,
     /// Deepest full-width cut (engagement ≥ 179°) allowed (mm); default 0.5 × D.
@@ -138,8 +140,8 @@ pub fn run(args: &VerifyArgs) -> Result<String, String> {
         stock_top_mm: args.stock_top,
         part: part.as_ref(),
         tool: Tool { radius_mm: d / 2.0, teeth, helix_rad: args.helix_angle.to_radians(), coefficients },
-        spindle_power_w: args.spindle_power,
-        spindle_torque_nm: args.spindle_torque,
+        spindle_power_w: args.spindle_power.or(machine.as_ref().and_then(|m| m.spindle_power)),
+        spindle_torque_nm: args.spindle_torque.or(machine.as_ref().and_then(|m| m.spindle_torque)),
         machine,
         rpm: args.rpm,
         spacing_mm: args.spacing,
@@ -161,6 +163,8 @@ pub fn run(args: &VerifyArgs) -> Result<String, String> {
         obj.insert("tool_diameter_mm".into(), d.into());
         obj.insert("teeth".into(), teeth.into());
         obj.insert("full_width_depth_limit_mm".into(), req.full_width_depth_mm.into());
+        obj.insert("spindle_power_limit_w".into(), req.spindle_power_w.into());
+        obj.insert("spindle_torque_limit_nm".into(), req.spindle_torque_nm.into());
     }
     json_text(&v)
 }
