@@ -14,8 +14,8 @@
 //! point by z·tanβ/R); the forces of all bands at the same spindle angle add.
 //!
 //! **Peak.** The largest resultant over one tooth period: [`COARSE_STEPS`] spindle angles,
-//! then [`FINE_STEPS`] about the largest at a tenth of the step; torque likewise (the largest
-//! over the angles evaluated), power P = T·Ω.
+//! then a golden-section search of [`FINE_STEPS`] steps about the largest; torque likewise
+//! (the largest over the angles evaluated), power P = T·Ω.
 
 use crate::analysis::chip::{EngagedArc, ThicknessSample};
 use crate::analysis::force::{ArcBlend, ArcPair, Cutter, force_at};
@@ -23,9 +23,10 @@ use crate::material::Coefficients;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 /// Spindle angles per tooth period of the first pass.
-pub const COARSE_STEPS: usize = 24;
-/// Spindle angles of the second pass, a tenth of a coarse step apart about the largest.
-pub const FINE_STEPS: usize = 21;
+pub const COARSE_STEPS: usize = 12;
+/// Steps of the golden-section search about the largest (each shrinks the interval by 0.618:
+/// 12 steps from two coarse steps, 60° for four teeth, to 0.2°).
+pub const FINE_STEPS: usize = 12;
 /// Chip samples along one engaged arc (h = f_z·sin φ is smooth).
 const ARC_SAMPLES: usize = 33;
 
@@ -143,15 +144,26 @@ pub fn load(tool: &Tool, bands: &[BandCut], travel: f64, f_z: f64, rpm: f64) -> 
             (best, best_at) = (f, s);
         }
     }
-    let fine = step / (FINE_STEPS - 1) as f64 * 2.0;
-    for i in 0..FINE_STEPS {
-        let s = best_at - step + i as f64 * fine;
-        let (f, t) = at(s);
-        torque = torque.max(t);
-        if f > best {
-            best = f;
+    // golden-section search within one coarse step either side of the largest
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut lo, mut hi) = (best_at - step, best_at + step);
+    let (mut x1, mut x2) = (hi - g * (hi - lo), lo + g * (hi - lo));
+    let (mut f1, mut f2) = (at(x1), at(x2));
+    for _ in 0..FINE_STEPS {
+        torque = torque.max(f1.1).max(f2.1);
+        best = best.max(f1.0).max(f2.0);
+        if f1.0 > f2.0 {
+            (hi, x2, f2) = (x2, x1, f1);
+            x1 = hi - g * (hi - lo);
+            f1 = at(x1);
+        } else {
+            (lo, x1, f1) = (x1, x2, f2);
+            x2 = lo + g * (hi - lo);
+            f2 = at(x2);
         }
     }
+    torque = torque.max(f1.1).max(f2.1);
+    best = best.max(f1.0).max(f2.0);
     Load { force_n: best, torque_nm: torque, power_w: torque * rpm / 60.0 * TAU }
 }
 

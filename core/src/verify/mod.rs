@@ -453,14 +453,22 @@ fn measure_move(
             .collect();
         load::load(&req.tool, &cuts, travel, fz(f), rpm)
     };
-    let reached_e = timing.feed_at(k, mv, ex.u_mm);
-    let (a, b) = (load_at(hx.u_mm, reached), load_at(ex.u_mm, reached_e));
-    let (pa, pb) = (load_at(hx.u_mm, planar_feed), load_at(ex.u_mm, planar_feed));
+    // the load where the chip is largest, and also where the engagement is largest when that
+    // is more than 1° above the engagement there; at the programmed feed only where the
+    // machine does not reach it (else the same)
+    let mut places = vec![(hx.u_mm, reached)];
+    if ex.angle_rad > hx.angle_rad + AIR_ENGAGEMENT_RAD {
+        places.push((ex.u_mm, timing.feed_at(k, mv, ex.u_mm)));
+    }
     r = out.report;
-    r.force_n = a.force_n.max(b.force_n);
-    r.torque_nm = a.torque_nm.max(b.torque_nm);
-    r.power_w = a.power_w.max(b.power_w);
-    r.force_programmed_n = pa.force_n.max(pb.force_n);
+    for &(u, f) in &places {
+        let l = load_at(u, f);
+        r.force_n = r.force_n.max(l.force_n);
+        r.torque_nm = r.torque_nm.max(l.torque_nm);
+        r.power_w = r.power_w.max(l.power_w);
+        let same = (f - planar_feed).abs() <= 1e-3 * planar_feed;
+        r.force_programmed_n = r.force_programmed_n.max(if same { l.force_n } else { load_at(u, planar_feed).force_n });
+    }
     out.report = r;
     Ok(out)
 }
