@@ -12,8 +12,9 @@
 //!   within 0.5° of the plan's `max_engagement_deg` over every move but the flat turn at depth
 //!   after the helix (the plan measures that turn with the helix's bore cut; the program's
 //!   helix is written in half turns, whose last one leaves a wedge 0.81 mm high that the turn
-//!   cuts, which verify measures), h_max at the programmed feeds within 1 % of the pace's
-//!   `h_max_peak_mm`, real time within 1 % of `time_real_s`.
+//!   cuts, which verify measures), the exact chip at the programmed feeds from 2 % below to 1 %
+//!   above the pace's `h_max_peak_mm` (the pace's is the circular-path chip, an upper bound),
+//!   real time within 1 % of `time_real_s`.
 //! - **Corner**: `corner --machine hobby-router --export` (90°, the variable method) verified
 //!   over the corner's stock (the wedge of its walls less what the previous ring, one
 //!   step-over further in, enclosed): peak engagement within 0.5° of `max_engagement_deg`,
@@ -87,7 +88,12 @@ fn slot_agrees_with_analyze() {
     for r in &rows[3..] {
         assert!(rel(r.1, r.2) <= 0.02, "{r:?}");
     }
-    assert_eq!(v["problems"].as_array().map(Vec::len), Some(0), "{}", v["problems"]);
+    // no geometric problem; the job's 726 W and 3.47 N·m at 2000 rpm are above the hobby
+    // router's 710 W and 0.68 N·m (its preset): power and torque problems, as they should be
+    let kinds: Vec<&str> =
+        v["problems"].as_array().expect("problems").iter().filter_map(|p| p["kind"].as_str()).collect();
+    assert!(kinds.contains(&"power") && kinds.contains(&"torque"), "{kinds:?}");
+    assert!(kinds.iter().all(|k| matches!(*k, "power" | "torque")), "{kinds:?}");
 }
 
 #[test]
@@ -122,9 +128,14 @@ fn pocket_agrees_with_its_plan() {
     println!("pocket h_max programmed: verify {:.6} plan {plan_h:.6}", f(&v, "h_max_programmed_mm"));
     println!("pocket h_max reached: {:.6}, circular {:.6}", f(&v, "h_max_mm"), f(&v, "h_max_circular_mm"));
     println!("pocket time: verify {:.4} plan {:.4}", f(&v, "time_real_s"), f(&p, "time_real_s"));
-    println!("pocket problems: {}", v["problems"]);
+    println!("pocket problems: {}", v["problems"].as_array().map_or(0, Vec::len));
     assert!((peak - plan_peak).abs() <= 0.5, "{peak} {plan_peak}");
-    assert!(rel(f(&v, "h_max_programmed_mm"), plan_h) <= 0.01);
+    // The pace holds f_z·κ (the circular-path chip) at the target on its measured positions;
+    // the exact chip is at most that (the edge of earlier cuts shortens it by about
+    // f_z·cos φ/(r·tan φ) relative, 0.4–0.8 % at 50–60°, more on curved passes): at most 1 %
+    // above the plan's h_max, at most 2 % below.
+    let h = f(&v, "h_max_programmed_mm");
+    assert!(h <= plan_h * 1.01 && h >= plan_h * 0.98, "{h} {plan_h}");
     assert!(rel(f(&v, "time_real_s"), f(&p, "time_real_s")) <= 0.01);
     assert!(v["problems"].as_array().is_some_and(|p| p.iter().all(|p| p["kind"] != "gouge")), "{}", v["problems"]);
 }

@@ -57,6 +57,9 @@ pub struct Bands<'a> {
     band_moves: Vec<Vec<usize>>,
     band_starts: Vec<Vec<f64>>,
     evals: Vec<Option<Evaluation<'a>>>,
+    /// Per band: the first move from which its material is band b − 1's (see
+    /// [`Bands::evaluate`]); `usize::MAX`: none.
+    alias_from: Vec<usize>,
     stock: &'a Polygon,
     opts: EvaluatorOptions,
     /// Per move and band (by band index): its samples.
@@ -113,13 +116,26 @@ impl<'a> Bands<'a> {
             band_moves: Vec::with_capacity(nb),
             band_starts: Vec::with_capacity(nb),
             evals: Vec::with_capacity(nb),
+            alias_from: Vec::with_capacity(nb),
             stock,
             opts: *opts,
             samples: vec![Vec::new(); moves.len()],
         };
         for b in 0..nb {
             let z_b = bands.levels[b];
-            let idx: Vec<usize> = (0..moves.len()).filter(|&k| bottom(&moves[k]) <= z_b + LEVEL_TOL_MM).collect();
+            let all: Vec<usize> = (0..moves.len()).filter(|&k| bottom(&moves[k]) <= z_b + LEVEL_TOL_MM).collect();
+            let alias_from = match b.checked_sub(1) {
+                Some(below) => alias_from(moves, &all, bands.levels[below]),
+                None => usize::MAX,
+            };
+            bands.alias_from.push(alias_from);
+            let idx: Vec<usize> = all.iter().copied().filter(|&k| k < alias_from).collect();
+            // the moves from `alias_from` on: band b − 1's samples
+            for &k in all.iter().filter(|&&k| k >= alias_from) {
+                if let Some(list) = bands.samples[k].iter().find(|l| l.0 + 1 == b).map(|l| l.1.clone()) {
+                    bands.samples[k].push((b, list));
+                }
+            }
             let segs: Vec<Segment> = idx.iter().map(|&k| moves[k].segment).collect();
             let mut starts = Vec::with_capacity(segs.len());
             let mut acc = 0.0;
@@ -204,6 +220,9 @@ impl<'a> Bands<'a> {
     /// The engaged arcs (world angles, counter-clockwise) and the sample of move `k` at `u` mm
     /// along it in band `b` (none where the move does not reach the band).
     pub fn arcs(&self, b: usize, k: usize, u: f64) -> Option<(f64, Vec<(f64, f64)>)> {
+        if k >= *self.alias_from.get(b)? {
+            return self.arcs(b - 1, k, u);
+        }
         let i = self.band_moves.get(b)?.binary_search(&k).ok()?;
         let eval = self.evals.get(b)?.as_ref()?;
         let (smp, arcs) = eval.sample_arcs(self.band_starts[b][i] + u);
@@ -215,7 +234,11 @@ impl<'a> Bands<'a> {
     /// the previous tooth's (the tool f_z back along the path), cut short where the material
     /// the path left before ends (see [`exact_chip`]). `None` where the move does not reach the
     /// band.
-    pub fn chip(&self, b: usize, k: usize, mv: &Move, u: f64, f_z: f64) -> Option<f64> {
+    pub fn chip(&self, moves: &[Move], b: usize, k: usize, u: f64, f_z: f64) -> Option<f64> {
+        if k >= *self.alias_from.get(b)? {
+            return self.chip(moves, b - 1, k, u, f_z);
+        }
+        let mv = &moves[k];
         let i = self.band_moves.get(b)?.binary_search(&k).ok()?;
         let eval = self.evals.get(b)?.as_ref()?;
         let s = self.band_starts[b][i] + u;
@@ -225,12 +248,23 @@ impl<'a> Bands<'a> {
             return Some(0.0);
         }
         let (_, arcs) = eval.sample_arcs(s);
-        Some(exact_chip(eval, &arcs, at.p, at.d1.y.atan2(at.d1.x), s, f_z, self.opts.tool_radius))
+        // the previous tooth is on this move or, where the move continues the one before it in
+        // the band's path, on that one; not across a jump (the tool arrived from elsewhere)
+        let joined = i.checked_sub(1).map(|h| self.band_moves[b][h]).is_some_and(|h| {
+            let before = &moves[h].segment;
+            h + 1 == k && before.length() > MIN_PLANE_MM && (before.end() - mv.segment.start()).norm() <= ON_PATH_MM
+        });
+        let floor = if joined { 0.0 } else { self.band_starts[b][i] };
+        let prev = (s - f_z).max(floor);
+        Some(exact_chip(eval, &arcs, at.p, at.d1.y.atan2(at.d1.x), prev, f_z, self.opts.tool_radius))
     }
 
     /// Engagement (rad) of a tool standing at `m`'s end in band `b` after every move before
     /// move `k` that reaches the band: a plunge, a move along Z only. 0 outside the stock.
     pub fn point(&self, moves: &[Move], k: usize, b: usize) -> Result<f64, Error> {
+        if self.alias_from.get(b).is_some_and(|&a| k >= a) {
+            return self.point(moves, k, b - 1);
+        }
         let Some(list) = self.band_moves.get(b) else { return Ok(0.0) };
         let before: Vec<Segment> = list.iter().take_while(|&&j| j < k).map(|&j| moves[j].segment).collect();
         let at = moves[k].segment.end();
@@ -248,12 +282,12 @@ impl<'a> Bands<'a> {
 /// Angular step of the first scan of the chip over the engaged arcs (rad): 0.5°.
 const CHIP_SCAN_RAD: f64 = std::f64::consts::PI / 360.0;
 
-/// The chip of the tool at `c` (arc length `s` along the evaluated path) travelling along
-/// `travel` with its engaged `arcs` (world angles), for a feed per tooth `f_z`: at each angle θ
+/// The chip of the tool at `c` travelling along `travel` with its engaged `arcs` (world
+/// angles), for a feed per tooth `f_z`, the previous tooth at arc length `prev` of the
+/// evaluated path: at each angle θ
 /// of the arcs the tooth meets material from the periphery p inward along the radius, up to
 /// the previous tooth's circle — at about f_z·cos(θ − θ_f) — or to material the path cut
-/// before, whichever is first: the material test of the evaluator for the tool at s − f_z
-/// (the previous tooth's position), bisected to 1e-7 of that depth. The largest over the angles,
+/// before, whichever is first: the material test of the evaluator for the tool at `prev`, bisected to 1e-7 of that depth. The largest over the angles,
 /// scanned every 0.5°, then a ternary search within one step of the largest. This is the chip disc(c) \
 /// (disc(c − f_z) ∪ swept) of the slot's analysis (`analysis::chip`), which is less than
 /// f_z·κ where the arc ends at the edge of earlier cuts: there the edge cuts the chip short.
@@ -262,11 +296,10 @@ fn exact_chip(
     arcs: &[(f64, f64)],
     c: crate::geom::P2,
     travel: f64,
-    s: f64,
+    prev: f64,
     f_z: f64,
     r: f64,
 ) -> f64 {
-    let prev = (s - f_z).max(0.0);
     let depth = |th: f64| -> f64 {
         let h = f_z * (th - travel).cos();
         if h <= 0.0 {
@@ -317,4 +350,52 @@ fn exact_chip(
         best.0 = best.0.max(depth(0.5 * (lo + hi)));
     }
     best.0
+}
+
+/// Distance within which a move's path counts as lying on another's (mm): the rounding of
+/// programs written to 4 decimals.
+const ON_PATH_MM: f64 = 1e-4;
+
+/// The first move from which band b's material is that of the band below (level `z_below`),
+/// for band b's moves `all`: the
+/// moves band b has more (those whose lowest point is above `z_below`) sweep only what a later
+/// move of the band below sweeps too (a helix turn or a ramp leg retraced at depth by the flat
+/// turn or pass after it), so after the last of those later moves both bands have lost the same
+/// material. `usize::MAX` where a move has no such later move.
+fn alias_from(moves: &[Move], all: &[usize], z_below: f64) -> usize {
+    let in_below = |j: usize| bottom(&moves[j]) <= z_below + LEVEL_TOL_MM;
+    let mut last = 0;
+    for &e in all.iter().filter(|&&e| !in_below(e)) {
+        match (e + 1..moves.len()).find(|&j| in_below(j) && contains(&moves[j].segment, &moves[e].segment)) {
+            Some(j) => last = last.max(j + 1),
+            None => return usize::MAX,
+        }
+    }
+    last
+}
+
+/// Whether the path of `inner` lies on that of `outer` (within [`ON_PATH_MM`]), so that the
+/// tool sweeps nothing along `inner` that it does not sweep along `outer`.
+fn contains(outer: &Segment, inner: &Segment) -> bool {
+    let on = |p: crate::geom::P2| match *outer {
+        Segment::Line { start, end } => crate::geom::point_segment_distance(p, start, end) <= ON_PATH_MM,
+        Segment::Arc { center, radius, start_angle, sweep } => {
+            crate::geom::point_arc_distance(p, center, radius, start_angle, sweep) <= ON_PATH_MM
+        }
+        Segment::Trochoid { .. } => false,
+    };
+    match *inner {
+        Segment::Line { start, end } if (end - start).norm() <= ON_PATH_MM => on(start),
+        Segment::Line { start, end } => matches!(outer, Segment::Line { .. }) && on(start) && on(end),
+        Segment::Arc { center, radius, sweep, .. } => match *outer {
+            Segment::Arc { center: c, radius: r, sweep: sw, .. } => {
+                (c - center).norm() <= ON_PATH_MM
+                    && (r - radius).abs() <= ON_PATH_MM
+                    && sweep.abs() <= sw.abs() + 1e-9
+                    && (0..=8).all(|i| on(inner.point(f64::from(i) / 8.0)))
+            }
+            _ => false,
+        },
+        Segment::Trochoid { .. } => false,
+    }
 }

@@ -143,6 +143,8 @@ pub struct VerifyReport {
     pub rapid_length_mm: f64,
     pub vertical_length_mm: f64,
     pub problems: Vec<Problem>,
+    /// How many moves have each kind of problem (every one, also beyond the listed entries).
+    pub problem_moves: std::collections::BTreeMap<String, usize>,
     #[serde(skip)]
     pub moves: Vec<MoveReport>,
 }
@@ -221,7 +223,7 @@ pub fn verify(program: &Program, req: &VerifyRequest<'_>) -> Result<VerifyReport
         exact_peaks(group, &measured, &which, &moves, &bands, req);
     }
     let p95 = p95_deg((0..moves.len()).filter(|&k| cuts(k) && flat(k)).flat_map(|k| measured[k].tip_samples.iter()));
-    let problems = problems::find(program, &moves, &measured_view(&measured), req);
+    let (problems, counts) = problems::find(program, &moves, &measured_view(&measured), req);
     let ideal = timing::time_moves(&moves, None)?;
     Ok(VerifyReport {
         lines: program.lines,
@@ -239,6 +241,7 @@ pub fn verify(program: &Program, req: &VerifyRequest<'_>) -> Result<VerifyReport
         rapid_length_mm: timing.rapid_length_mm,
         vertical_length_mm: timing.vertical_length_mm,
         problems,
+        problem_moves: counts.into_iter().map(|(k, n)| (k.name().to_owned(), n)).collect(),
         moves: measured.into_iter().map(|m| m.report).collect(),
     })
 }
@@ -323,7 +326,7 @@ fn exact_peaks(
             .map(|&(k, (b, u, _, feed))| {
                 let rpm = m[k].report.rpm;
                 let f_z = feed / (rpm * f64::from(req.tool.teeth));
-                (k, u, bands.chip(b, k, &moves[k], u, f_z).unwrap_or(0.0))
+                (k, u, bands.chip(moves, b, k, u, f_z).unwrap_or(0.0))
             })
             .collect();
         if let Some(&(k, u, h)) = exact.iter().max_by(|a, b| a.2.total_cmp(&b.2)) {

@@ -13,7 +13,8 @@
 //!   machine's. Value, with the limit.
 //!
 //! Consecutive moves with the same problem are one entry: the line and place of the largest
-//! value, and the first and last line of the run.
+//! value, and the first and last line of the run. At most [`MAX_PER_KIND`] entries of a kind
+//! are listed (those of the largest values); the count of moves of each kind covers all.
 
 use super::levels::{MIN_PLANE_MM, bottom};
 use super::{At, Program, VerifyRequest};
@@ -83,8 +84,13 @@ pub struct MoveFacts {
     pub plunge_deg: f64,
 }
 
-/// The problems of `program` (its `moves` measured as `facts`).
-pub fn find(program: &Program, moves: &[Move], facts: &[MoveFacts], req: &VerifyRequest<'_>) -> Vec<Problem> {
+/// The problems of `program` (its `moves` measured as `facts`), and how many moves have each kind.
+pub fn find(
+    program: &Program,
+    moves: &[Move],
+    facts: &[MoveFacts],
+    req: &VerifyRequest<'_>,
+) -> (Vec<Problem>, Vec<(ProblemKind, usize)>) {
     let top = req.stock_top_mm;
     let air = AIR_ENGAGEMENT_RAD.to_degrees();
     let grid = req.part.map(|p| part_grid(p, req.tool.radius_mm));
@@ -163,6 +169,43 @@ pub fn find(program: &Program, moves: &[Move], facts: &[MoveFacts], req: &Verify
             && depth > req.gouge_tolerance_mm
         {
             push(ProblemKind::Gouge, At { line, x: at.x, y: at.y, z: bottom(mv) }, depth, "mm", None);
+        }
+    }
+    let total = counts(&out);
+    (worst(out), total)
+}
+
+/// Most entries of one kind in the list: beyond, the [`MAX_PER_KIND`] with the largest values
+/// (in line order); `problem_moves` of the report still counts every move.
+pub const MAX_PER_KIND: usize = 20;
+
+/// `list` with at most [`MAX_PER_KIND`] entries of each kind, the largest values kept.
+fn worst(list: Vec<Problem>) -> Vec<Problem> {
+    let mut keep = vec![true; list.len()];
+    for kind in [
+        ProblemKind::Plunge,
+        ProblemKind::RapidThroughStock,
+        ProblemKind::Gouge,
+        ProblemKind::DeepFullWidthCut,
+        ProblemKind::Power,
+        ProblemKind::Torque,
+    ] {
+        let mut of: Vec<usize> = (0..list.len()).filter(|&i| list[i].kind == kind).collect();
+        of.sort_by(|&a, &b| list[b].value.total_cmp(&list[a].value));
+        for &i in of.iter().skip(MAX_PER_KIND) {
+            keep[i] = false;
+        }
+    }
+    list.into_iter().zip(keep).filter(|(_, k)| *k).map(|(p, _)| p).collect()
+}
+
+/// How many moves have each kind of problem.
+pub fn counts(list: &[Problem]) -> Vec<(ProblemKind, usize)> {
+    let mut out: Vec<(ProblemKind, usize)> = Vec::new();
+    for p in list {
+        match out.iter_mut().find(|c| c.0 == p.kind) {
+            Some(c) => c.1 += p.move_count,
+            None => out.push((p.kind, p.move_count)),
         }
     }
     out
