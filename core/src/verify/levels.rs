@@ -244,7 +244,7 @@ impl<'a> Bands<'a> {
         let s = self.band_starts[b][i] + u;
         let len = mv.segment.length();
         let at = mv.segment.eval(if len > 0.0 { (u / len).clamp(0.0, 1.0) } else { 0.0 });
-        if at.d1.norm() <= 0.0 || !(f_z > 0.0) {
+        if at.d1.norm() <= 0.0 || f_z.is_nan() || f_z <= 0.0 {
             return Some(0.0);
         }
         let (_, arcs) = eval.sample_arcs(s);

@@ -422,7 +422,7 @@ fn measure_move(
     if mv.kind == MoveKind::Rapid || out.report.engagement_deg <= AIR_ENGAGEMENT_RAD.to_degrees() {
         return Ok(out);
     }
-    if !(rpm > 0.0) {
+    if rpm.is_nan() || rpm <= 0.0 {
         return Err(Error::File(format!(
             "line {}: the tool cuts material with no spindle speed (no S word before it; give --rpm)",
             pm.line

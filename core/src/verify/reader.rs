@@ -245,16 +245,16 @@ fn block(st: &mut State, line: &str, number: usize, out: &mut Program) -> Result
         None => 1.0,
     };
     for (i, x) in v.iter_mut().enumerate() {
-        if let Some(x) = x.as_mut() {
-            if i < 7 {
-                *x *= unit;
-                if x.abs() > MAX_COORDINATE_MM {
-                    return Err(format!(
-                        "{}{}: beyond ±{MAX_COORDINATE_MM} mm",
-                        ['X', 'Y', 'Z', 'I', 'J', 'K', 'R'][i],
-                        *x / unit
-                    ));
-                }
+        if let Some(x) = x.as_mut()
+            && i < 7
+        {
+            *x *= unit;
+            if x.abs() > MAX_COORDINATE_MM {
+                return Err(format!(
+                    "{}{}: beyond ±{MAX_COORDINATE_MM} mm",
+                    ['X', 'Y', 'Z', 'I', 'J', 'K', 'R'][i],
+                    *x / unit
+                ));
             }
         }
     }
@@ -343,7 +343,7 @@ fn arc(st: &State, s: P2, e: P2, v: &[Option<f64>; 9], clockwise: bool) -> Resul
         sweep = if clockwise { -TAU } else { TAU };
     }
     if let Some(p) = v[7] {
-        if !(p >= 1.0 && p <= MAX_TURNS && p.fract() == 0.0) {
+        if !((1.0..=MAX_TURNS).contains(&p) && p.fract() == 0.0) {
             return Err(format!("arc turns P{p}: must be a whole number from 1 to {MAX_TURNS}"));
         }
         sweep += sweep.signum() * TAU * (p - 1.0);
