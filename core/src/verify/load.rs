@@ -20,7 +20,9 @@
 use crate::analysis::chip::{EngagedArc, ThicknessSample};
 use crate::analysis::force::{ArcBlend, ArcPair, Cutter, force_at};
 use crate::material::Coefficients;
+use std::collections::HashMap;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
+use std::sync::Mutex;
 
 /// Spindle angles per tooth period of the first pass.
 pub const COARSE_STEPS: usize = 12;
@@ -83,6 +85,58 @@ fn engaged(a: f64, b: f64, f_z: f64) -> EngagedArc {
         })
         .collect();
     EngagedArc { entry_rad: a, exit_rad: b, samples }
+}
+
+/// Most loads kept by [`Loads`] (beyond, new ones are computed and not kept).
+const MAX_KEPT: usize = 1 << 20;
+
+/// Loads already computed, by their rounded inputs ([`Loads::load`]).
+#[derive(Debug, Default)]
+pub struct Loads(Mutex<HashMap<Vec<i64>, Load>>);
+
+impl Loads {
+    /// [`load`] of the inputs rounded — the arcs' angles from the direction of travel to
+    /// 1e-4 rad, the bands' heights to 1e-6 mm, f_z to 1e-9 mm (changes of about 1e-4 of the
+    /// load) — and the direction of travel turned to 0 (the resultant, torque and power do not
+    /// depend on it): moves that cut alike (a raster's rows, repeated cycles) share one
+    /// computation, and the result depends on the rounded inputs only, not on which move came
+    /// first.
+    pub fn load(&self, tool: &Tool, bands: &[BandCut], travel: f64, f_z: f64, rpm: f64) -> Load {
+        let q = |x: f64, unit: f64| (x / unit).round() as i64;
+        let rounded: Vec<BandCut> = bands
+            .iter()
+            .map(|b| BandCut {
+                arcs: b
+                    .arcs
+                    .iter()
+                    .map(|&(a0, a1)| {
+                        let a = (a0 - travel).rem_euclid(TAU);
+                        let len = (a1 - a0).clamp(0.0, TAU);
+                        (q(a, 1e-4) as f64 * 1e-4, q(a + len, 1e-4) as f64 * 1e-4)
+                    })
+                    .collect(),
+                above_tip_mm: q(b.above_tip_mm, 1e-6) as f64 * 1e-6,
+                thickness_mm: q(b.thickness_mm, 1e-6) as f64 * 1e-6,
+            })
+            .collect();
+        let f_z = q(f_z, 1e-9) as f64 * 1e-9;
+        let mut key = vec![q(f_z, 1e-9), rpm.to_bits() as i64];
+        for b in &rounded {
+            key.extend([q(b.above_tip_mm, 1e-6), q(b.thickness_mm, 1e-6)]);
+            key.extend(b.arcs.iter().flat_map(|&(x, y)| [q(x, 1e-4), q(y, 1e-4)]));
+            key.push(i64::MIN);
+        }
+        if let Some(l) = self.0.lock().ok().and_then(|m| m.get(&key).copied()) {
+            return l;
+        }
+        let l = load(tool, &rounded, 0.0, f_z, rpm);
+        if let Ok(mut m) = self.0.lock()
+            && m.len() < MAX_KEPT
+        {
+            m.insert(key, l);
+        }
+        l
+    }
 }
 
 /// The peak load of a tool travelling along world angle `travel` (rad) with feed per tooth

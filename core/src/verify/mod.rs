@@ -209,9 +209,10 @@ pub fn verify(program: &Program, req: &VerifyRequest<'_>) -> Result<VerifyReport
     let timing = timing::time_moves(&moves, req.machine.as_ref())?;
     let opts = EvaluatorOptions::new(req.tool.radius_mm, req.spacing_mm);
     let bands = Bands::evaluate(&moves, req.stock, req.stock_top_mm, &opts)?;
+    let loads = load::Loads::default();
     let measured: Vec<Measured> = (0..moves.len())
         .into_par_iter()
-        .map(|k| measure_move(program, &moves, k, &bands, &timing, req))
+        .map(|k| measure_move(program, &moves, k, &bands, &timing, &loads, req))
         .collect::<Result<_, Error>>()?;
     let top = req.stock_top_mm;
     let cuts = |k: usize| moves[k].kind != MoveKind::Rapid && bottom(&moves[k]) < top;
@@ -349,6 +350,7 @@ fn measure_move(
     k: usize,
     bands: &Bands<'_>,
     timing: &timing::Timing,
+    loads: &load::Loads,
     req: &VerifyRequest<'_>,
 ) -> Result<Measured, Error> {
     let (pm, mv) = (&program.moves[k], &moves[k]);
@@ -454,7 +456,7 @@ fn measure_move(
                 Some(BandCut { arcs, above_tip_mm: bands.levels[b] - bottom(mv), thickness_mm: bands.thickness(b) })
             })
             .collect();
-        load::load(&req.tool, &cuts, travel, fz(f), rpm)
+        loads.load(&req.tool, &cuts, travel, fz(f), rpm)
     };
     // the load where the chip is largest, and also where the engagement is largest when that
     // is more than 1° above the engagement there; at the programmed feed only where the
