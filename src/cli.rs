@@ -335,6 +335,10 @@ fn run(cmd: Command) -> Result<String, String> {
             if variable_feed {
                 variable_feed_json(&p, &mut value)?;
             }
+            let warnings = verify::spindle_warnings(&p);
+            if !warnings.is_empty() {
+                value.insert("warnings".into(), warnings.into());
+            }
             let mut text = serde_json::to_string_pretty(&value).map_err(|e| e.to_string())?;
             text.push('\n');
             Ok(text)

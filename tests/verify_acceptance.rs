@@ -207,3 +207,18 @@ fn freecad_programs_verify() {
         assert!(f(&v, "time_real_s") > 0.0 && f(&v, "max_engagement_deg") > 0.0);
     }
 }
+
+/// `analyze` warns above the machine's spindle limits: the hobby router at 6000 mm/min and
+/// 20 000 rpm (the paper's job otherwise) peaks at about 7.3 kW and 3.5 N·m against its preset's
+/// 710 W and 0.68 N·m; the VMC's 10 kW and 60 N·m hold the paper's job, so no warning.
+#[test]
+fn analyze_warns_above_the_spindle_limits() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let a = json(&run(dir.path(), &["analyze", "--machine", "hobby-router", "--feed", "6000", "--rpm", "20000"]));
+    let w = a["warnings"].as_array().expect("warnings");
+    assert!(f(&a, "power_max_w") > 710.0 && f(&a, "torque_max_nm") > 0.68);
+    assert_eq!(w.len(), 2, "{w:?}");
+    assert!(w[0].as_str().is_some_and(|s| s.contains("710 W")), "{w:?}");
+    let a = json(&run(dir.path(), &["analyze", "--machine", "vmc"]));
+    assert!(a.get("warnings").is_none(), "{a}");
+}

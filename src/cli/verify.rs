@@ -1,6 +1,6 @@
 //! `trochoplan verify PROGRAM`: any NC program read block by block, timed on a machine and
 //! measured move by move over a stock (the core's `verify`), printed as JSON; the per-move
-//! values as CSV with `--moves`.
+//! values as CSV with `--moves`; and the spindle-limit warnings of `analyze`.
 
 use super::common::{err, json_text};
 use crate::shared::files::{Role, read_input, write_atomic};
@@ -202,4 +202,28 @@ fn moves_csv(moves: &[MoveReport]) -> String {
         ));
     }
     s
+}
+
+/// The job's peak power and torque above its machine's spindle limits, in words (none without
+/// a machine or limits).
+pub fn spindle_warnings(p: &trochoplan_core::Plan) -> Vec<String> {
+    let Some(m) = p.job.machine.as_ref() else { return Vec::new() };
+    let mut out = Vec::new();
+    if let Some(limit) = m.spindle_power
+        && p.metrics.power_max_w > limit
+    {
+        out.push(format!(
+            "power_max_w {:.0} W is above the spindle power of machine {} ({limit} W)",
+            p.metrics.power_max_w, m.name
+        ));
+    }
+    if let Some(limit) = m.spindle_torque
+        && p.metrics.torque_max_nm > limit
+    {
+        out.push(format!(
+            "torque_max_nm {:.2} N·m is above the spindle torque of machine {} ({limit} N·m)",
+            p.metrics.torque_max_nm, m.name
+        ));
+    }
+    out
 }
