@@ -31,8 +31,9 @@ pub const MAX_COORDINATE_MM: f64 = 10_000.0;
 /// Largest feed (mm/min) and spindle speed (rpm) a program may ask for.
 pub const MAX_FEED_MM_PER_MIN: f64 = 1.0e6;
 pub const MAX_RPM: f64 = 1.0e6;
-/// Most lines a program may have: 2 million (a 100 000-line program is a large one).
-pub const MAX_LINES: usize = 2_000_000;
+/// Most lines a program may have: 1 million (a 100 000-line program is a large one; the
+/// measurement keeps about 3 kB per cutting move, so this bounds the memory to a few GB).
+pub const MAX_LINES: usize = 1_000_000;
 /// Largest difference of an arc's start and end radii (mm)…
 pub const ARC_RADIUS_TOLERANCE_MM: f64 = 0.002;
 /// …and relative to the radius: an arc is refused when it differs by more than both.
