@@ -197,3 +197,41 @@ impl Timing {
         }
     }
 }
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+mod tests {
+    use super::*;
+    use crate::verify::read_program;
+
+    /// The runs are `machine::program_time`'s: on a program of lines, arcs, a helix, rapids and Z
+    /// moves the totals and their parts are the same on every preset; without a machine a feed
+    /// move takes its 3D length at its feed (a 10 mm line at 600 mm/min: 1 s).
+    #[test]
+    fn totals_are_program_times() {
+        let text = "G21\nG0 X0 Y0 Z5\nG1 Z-1 F300\nG1 X10 F600\nG3 X20 Y0 R5 Z-2\nG2 X20 Y0 I-5 J0\nG0 Z5\nG0 X0 Y20\n\
+                    G1 Z-2 F300\nG1 X30 F1200\nG1 Y30\nG0 Z5\n";
+        let moves: Vec<Move> = read_program(text, "t.ngc").expect("read").moves.iter().map(|m| m.mv).collect();
+        for name in crate::machine::preset_names() {
+            let m = Machine::preset(name).expect("preset");
+            let (ours, theirs) = (
+                time_moves(&moves, Some(&m)).expect("timed"),
+                crate::machine::program_time(&moves, &m, 600.0).expect("timed"),
+            );
+            for (a, b) in [
+                (ours.total_s, theirs.total_s),
+                (ours.feed_s, theirs.feed_s),
+                (ours.rapid_s, theirs.rapid_s),
+                (ours.vertical_s, theirs.vertical_s),
+                (ours.feed_length_mm, theirs.feed_length_mm),
+                (ours.rapid_length_mm, theirs.rapid_length_mm),
+            ] {
+                assert!((a - b).abs() <= 1e-12 * b.max(1.0), "{name}: {a} {b}");
+            }
+            let sum: f64 = ours.move_time_s.iter().sum();
+            assert!((sum - ours.total_s).abs() < 1e-9, "{name}: {sum} {}", ours.total_s);
+        }
+        let ideal = time_moves(&moves, None).expect("timed");
+        assert!((ideal.move_time_s[1] - 1.0).abs() < 1e-12, "{}", ideal.move_time_s[1]);
+    }
+}
