@@ -10,6 +10,7 @@ mod engagement;
 #[path = "export.rs"]
 mod export;
 mod pocket;
+mod verify;
 // The optimiser likewise.
 #[path = "optimize_cmd.rs"]
 mod optimize_cmd;
@@ -95,6 +96,12 @@ enum Command {
     Pocket {
         #[command(flatten)]
         args: pocket::PocketArgs,
+    },
+    /// Verify any NC program over a stock: engagement, axial depth, chip at the feed the
+    /// machine reaches, forces, spindle power, real time and problems, move by move; print JSON.
+    Verify {
+        #[command(flatten)]
+        args: verify::VerifyArgs,
     },
     /// Fit the six cutting-force coefficients to full-slot tests (the edge-force model of
     /// Altintas & Lee 1996, docs/process-model.md); print
@@ -328,6 +335,10 @@ fn run(cmd: Command) -> Result<String, String> {
             if variable_feed {
                 variable_feed_json(&p, &mut value)?;
             }
+            let warnings = verify::spindle_warnings(&p);
+            if !warnings.is_empty() {
+                value.insert("warnings".into(), warnings.into());
+            }
             let mut text = serde_json::to_string_pretty(&value).map_err(|e| e.to_string())?;
             text.push('\n');
             Ok(text)
@@ -345,6 +356,10 @@ fn run(cmd: Command) -> Result<String, String> {
         Command::Pocket { args } => {
             check_distinct(&args.files())?;
             pocket::pocket(&args)
+        }
+        Command::Verify { args } => {
+            check_distinct(&args.files())?;
+            verify::run(&args)
         }
         Command::Calibrate { slot_forces, teeth, depth } => calibrate(&slot_forces, teeth, depth),
         Command::Optimize { args } => optimize_cmd::run(&args),

@@ -32,6 +32,8 @@
 //! - [`plan`]: [`plan()`] — job in, [`Plan`] out; used by the GUI and the CLI.
 //! - [`quantity`]: every metric and per-tooth series column as data (key, label, unit, source).
 //! - [`sweep`]: the swept parameters and their rules (which path, which values).
+//! - [`verify`]: any NC program read, timed and measured move by move: engagement, axial
+//!   depth, chip at the reached feed, force, torque, power, and its problems.
 //! - [`error`]: the [`Error`] type and the [`Param`] names of every user parameter.
 
 pub mod analysis;
@@ -53,6 +55,7 @@ pub mod quantity;
 pub mod report;
 pub mod sweep;
 pub mod toolpath;
+pub mod verify;
 
 pub use error::{Error, Param};
 pub use job::{Job, PathKind, ValidJob};

@@ -396,6 +396,37 @@ impl<'a> Evaluation<'a> {
     /// Engagement at arc length `s` (0 ≤ s ≤ path length): the position on the first segment
     /// whose end is at or beyond s.
     pub(crate) fn sample(&self, s: f64) -> EngagementSample {
+        self.sample_with(s, None)
+    }
+
+    /// [`Evaluation::sample`] and the engaged arcs of the periphery there: `(start, end)`
+    /// world angles (rad), counter-clockwise from start to end, `end − start` in (0, 2π].
+    pub(crate) fn sample_arcs(&self, s: f64) -> (EngagementSample, Vec<(f64, f64)>) {
+        let mut ends = Vec::new();
+        let sample = self.sample_with(s, Some(&mut ends));
+        (sample, arcs_of(&ends))
+    }
+
+    /// Whether `q` is material for the tool at arc length `s`: inside the stock and at least r
+    /// (less the tolerance) from the `before` paths and from the path up to `s`.
+    pub(crate) fn material_at(&self, s: f64, q: P2) -> bool {
+        let i = self.ends.partition_point(|&e| e < s).min(self.path.len() - 1);
+        let s0 = if i == 0 { 0.0 } else { self.ends[i - 1] };
+        let local = if self.lengths[i] > 0.0 { ((s - s0) / self.lengths[i]).clamp(0.0, 1.0) } else { 1.0 };
+        let head = Cutter::new(self.path[i].part(0.0, local));
+        if !self.stock.contains(q) || !leaves(q, &head, self.r, self.tol) {
+            return false;
+        }
+        let (near, _) = self.grid.near(q);
+        for (_, k) in near.take_while(|(j, _)| *j < self.nb + i) {
+            if !leaves(q, k, self.r, self.tol) {
+                return false;
+            }
+        }
+        true
+    }
+
+    fn sample_with(&self, s: f64, ends: Option<&mut Vec<(f64, bool)>>) -> EngagementSample {
         let (path, grid, stock, periphery) = (&self.path, &self.grid, self.stock, &self.periphery);
         let (r, tol, reach, nb) = (self.r, self.tol, self.reach, self.nb);
         let i = self.ends.partition_point(|&e| e < s).min(path.len() - 1);
@@ -428,7 +459,7 @@ impl<'a> Evaluation<'a> {
         let stock = LocalStock::new(stock, c, rp);
         let d1 = seg.eval(local).d1;
         let ahead = if d1.norm() > 0.0 { Some(d1.y.atan2(d1.x)) } else { None };
-        let (mut angle, chip) = engaged_angle(&stock, c, rp, room, periphery, ahead);
+        let (mut angle, chip) = engaged_angle(&stock, c, rp, room, periphery, ahead, ends);
         // Behind a tool that has moved, every point of the periphery is nearer than r to the
         // path just travelled: the engaged arc lies in the front half. Only the tolerance of
         // the material test at the two side points can make it read more than π.
@@ -471,6 +502,7 @@ fn engaged_angle(
     room: impl Fn(P2) -> Option<f64>,
     periphery: &Periphery,
     ahead: Option<f64>,
+    mut ends: Option<&mut Vec<(f64, bool)>>,
 ) -> (f64, f64) {
     if matches!(stock, LocalStock::Outside) {
         return (0.0, 0.0);
@@ -501,6 +533,9 @@ fn engaged_angle(
     // end of an engaged arc (the cosine falls away from `ahead` on both sides).
     let ahead_in = |th: f64| if in_material(at(th)) { 1.0 } else { 0.0 };
     if count == n {
+        if let Some(e) = ends.as_deref_mut() {
+            e.push((0.0, false));
+        }
         return (TAU, ahead.map_or(0.0, |_| 1.0));
     }
     let mut total = if flags[0] { TAU } else { 0.0 };
@@ -522,11 +557,34 @@ fn engaged_angle(
         }
         let boundary = 0.5 * (lo + hi);
         total += if a { boundary } else { -boundary };
+        if let Some(e) = ends.as_deref_mut() {
+            e.push((boundary, !a));
+        }
         if let Some(f) = ahead {
             chip = f64::max(chip, (boundary - f).cos());
         }
     }
     (total, chip.max(0.0))
+}
+
+/// Arcs from the boundaries of [`engaged_angle`] in increasing angle (`true`: material
+/// starts there); one `(θ, false)` alone: the whole periphery.
+fn arcs_of(ends: &[(f64, bool)]) -> Vec<(f64, f64)> {
+    match ends {
+        [] => Vec::new(),
+        [(a, false)] => vec![(*a, a + TAU)],
+        _ => {
+            let n = ends.len();
+            (0..n)
+                .filter(|&k| ends[k].1)
+                .map(|k| {
+                    let start = ends[k].0;
+                    let end = (1..=n).map(|j| ends[(k + j) % n]).find(|e| !e.1).map_or(start, |e| e.0);
+                    (start, start + (end - start).rem_euclid(TAU))
+                })
+                .collect()
+        }
+    }
 }
 
 #[cfg(test)]

@@ -51,6 +51,12 @@ pub struct Machine {
     /// (GRBL runs G0 at the axes' maximum rates).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rapid_feed: Option<f64>,
+    /// Largest power (W) and torque (N·m) of the spindle: `verify` reports the moves above
+    /// them. Job files without them: not checked.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spindle_power: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spindle_torque: Option<f64>,
 }
 
 /// Block time of a machine that does not state one, and of the ideal machine (s): the `vmc`
@@ -125,6 +131,15 @@ impl Machine {
             (Param::BlockTime, self.block_time, 1.0, "s"),
             (Param::RapidFeed, self.rapid_mm_per_min(), MAX_FEED_LIMIT_MM_PER_MIN, "mm/min"),
         ];
+        for (key, v, max, unit) in
+            [("spindle-power", self.spindle_power, 1.0e6, "W"), ("spindle-torque", self.spindle_torque, 1.0e5, "N·m")]
+        {
+            if let Some(v) = v
+                && !(v.is_finite() && v > 0.0 && v <= max)
+            {
+                return Err(Error::geometry(key, v, format!("a finite number > 0 and ≤ {} {unit}", num(max))));
+            }
+        }
         for (param, v, max, unit) in checks {
             if !(v.is_finite() && v > 0.0 && v <= max) {
                 return Err(Error::param(param, v, format!("a finite number > 0 and ≤ {} {unit}", num(max))));

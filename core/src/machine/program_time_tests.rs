@@ -18,6 +18,8 @@ fn machine() -> Machine {
         block_time: 0.004,
         min_feed: 1.0,
         rapid_feed: Some(12000.0),
+        spindle_power: None,
+        spindle_torque: None,
     }
 }
 
