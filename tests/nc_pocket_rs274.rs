@@ -18,7 +18,7 @@ use nc_common::{
     COMB, DUMBBELL, DUMBBELL_8, L_60X60, Motion, U_CHANNEL, budget, check_path_cut, cut, interpret, motions,
     segments_of,
 };
-use pocket_common::{DEPTH, check_pocket_program, export, star_polygon, wall_clearance};
+use pocket_common::{DEPTH, check_pocket_program, export, pocket_export, star_polygon, wall_clearance};
 
 /// Tool radius (the `pocket` default D = 10 mm).
 const R: f64 = 5.0;
@@ -551,7 +551,8 @@ fn open_pockets_enter_from_outside_and_read_back_within_the_acceptance_limits() 
 /// into the wall corner (55, 20), exported by every method in both directions: the programs pass
 /// rs274, retrace the JSON's path, and the tool centre keeps r from every wall within the
 /// budget, every move of every kind (links included), sampled from the read-back cut
-/// ([`check_pocket_program`], its wall distances from the polygon file alone).
+/// ([`check_pocket_program`], its wall distances from the polygon file alone). The comb cleared
+/// adaptively in conventional milling may be refused instead (above its target + 1°).
 #[test]
 fn comb_and_u_channel_programs_keep_r_from_every_wall() {
     let dir = tempfile::tempdir().expect("tempdir");
@@ -560,7 +561,14 @@ fn comb_and_u_channel_programs_keep_r_from_every_wall() {
             for direction in ["climb", "conventional"] {
                 let label = format!("{shape} {method} {direction}");
                 let args = ["--method", method, "--direction", direction, "--step-over", step_over];
-                let e = export(dir.path(), &format!("{shape}_{method}_{direction}.ngc"), polygon, &args);
+                let name = format!("{shape}_{method}_{direction}.ngc");
+                // the comb cleared adaptively in conventional milling may be refused (a link
+                // reads 61.8°, above its target 60° + 1°: tests/fuzz_pocket.rs checks the
+                // message); every other program is written and checked
+                let Some(e) = pocket_export(dir.path(), &name, polygon, &args) else {
+                    assert_eq!(label, "comb adaptive conventional", "{label}: rejected");
+                    continue;
+                };
                 check_pocket_program(&label, &e, polygon, R, 0.005, 4);
             }
         }

@@ -82,6 +82,8 @@ pub enum Param {
     TargetHmax,
     MaxFeed,
     RapidMargin,
+    /// `pocket --peak-limit` (adaptive clearing).
+    PeakLimit,
     FeedBand,
     MinBlock,
     /// `pocket --helix-radius` (adaptive clearing).
@@ -121,7 +123,7 @@ pub enum Param {
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 77] = [
+    pub const ALL: [Param; 78] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
@@ -178,6 +180,7 @@ impl Param {
         Param::TargetHmax,
         Param::MaxFeed,
         Param::RapidMargin,
+        Param::PeakLimit,
         Param::FeedBand,
         Param::MinBlock,
         Param::HelixRadius,
@@ -261,6 +264,7 @@ impl Param {
             Param::TargetHmax => "target-hmax",
             Param::MaxFeed => "max-feed",
             Param::RapidMargin => "rapid-margin",
+            Param::PeakLimit => "peak-limit",
             Param::FeedBand => "feed-band",
             Param::MinBlock => "min-block",
             Param::HelixRadius => "helix-radius",
@@ -344,6 +348,7 @@ impl Param {
             Param::TargetHmax => "Target h",
             Param::MaxFeed => "Maximum feed",
             Param::RapidMargin => "Rapid margin",
+            Param::PeakLimit => "Peak limit",
             Param::FeedBand => "Feed band ratio",
             Param::MinBlock => "Minimum block length",
             Param::HelixRadius => "Helix radius",

@@ -347,11 +347,16 @@ fn reflex_vertex_near_a_wall_is_thinned_below_the_acceptance_peak() {
         (25.0, 40.0),
         (0.0, 40.0),
     ]);
-    let p = adaptive(u, AdaptiveOptions::default());
-    assert_eq!(p.parts.len(), 2);
     // the acceptance peak (60°); measured 56.8° on the cusp passes (docs/adaptive-clearing.md,
     // "Limitations": the first pass runs past the circle onto the tab's side, where the gap
-    // under the tab is open)
+    // under the tab is open): by default refused by name (above the target + 1°), planned with
+    // `--peak-limit 60`
+    let req = PocketRequest { polygon: u, step_over_mm: AE, ..PocketRequest::default() };
+    let e = pocket::plan(&req).expect_err("above the target + 1°");
+    assert!(e.to_string().contains("corner at") && e.to_string().contains("--peak-limit 57"), "{e}");
+    let req = PocketRequest { peak_limit_deg: Some(60.0), ..req };
+    let PocketPlan::Adaptive(p) = pocket::plan(&req).unwrap() else { panic!("adaptive plan expected") };
+    assert_eq!(p.parts.len(), 2);
     assert!(
         p.path.measurement.max_engagement_rad <= 60f64.to_radians(),
         "{}°",

@@ -120,6 +120,8 @@ fn request(v: &[(f64, f64)], strategy: PocketStrategy, direction: Direction, ste
         // the evaluator's spacing does not move the path: its coarsest (r) keeps the test short
         spacing_mm: R,
         adaptive: AdaptiveOptions { direction, ..AdaptiveOptions::default() },
+        // the walls are this test's, not the peak: every plan is kept whatever it reads
+        peak_limit_deg: Some(180.0),
         ..PocketRequest::default()
     }
 }

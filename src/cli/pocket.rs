@@ -73,6 +73,12 @@ pub struct PocketArgs {
     /// most this much; 0 < depth ≤ 0.5 × D, default 0.1 × D.
     #[arg(long, value_name = "MM", allow_hyphen_values = true)]
     ramp_pass_depth: Option<f64>,
+    /// Largest measured peak engagement accepted from adaptive clearing (degrees, `--method
+    /// adaptive`), above the target, at most 180: a shape whose whole path measures above it is
+    /// refused, the message naming the move, where it is and what it reads. Default: the target
+    /// + 1°.
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
+    peak_limit: Option<f64>,
     /// Radial stock of the finishing contour (mm, `--method adaptive`); 0: no finishing pass.
     #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = AdaptiveOptions::default().finish_stock_mm)]
     finish_stock: f64,
@@ -182,6 +188,7 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
         open_edges,
         pace: args.pace.options(args.nc.rpm, args.machine.as_deref())?,
         ramp_pass_depth_mm: args.ramp_pass_depth,
+        peak_limit_deg: args.peak_limit,
     };
     let plan = pocket::plan(&req).map_err(err)?;
     let nc_export = match &args.nc.export {

@@ -222,6 +222,11 @@ pub struct PocketRequest {
     /// `None`: 0.1·D ([`slot::ramp_pass_limit`]).
     #[serde(default)]
     pub ramp_pass_depth_mm: Option<f64>,
+    /// Largest measured peak accepted from adaptive clearing (degrees, `--peak-limit`);
+    /// `None`: the target + 1° ([`TARGET_SLACK_RAD`]). A shape whose peak is above it is
+    /// refused by name.
+    #[serde(default)]
+    pub peak_limit_deg: Option<f64>,
 }
 
 impl Default for PocketRequest {
@@ -241,6 +246,7 @@ impl Default for PocketRequest {
             open_edges: Vec::new(),
             pace: PaceOptions::default(),
             ramp_pass_depth_mm: None,
+            peak_limit_deg: None,
         }
     }
 }
@@ -556,7 +562,7 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
     check_work(&req.polygon, req.strategy, &settings)?;
     let plan = plan_with(req, req.strategy, settings)?;
     if req.strategy == PocketStrategy::Adaptive {
-        within_target(&plan, req.adaptive.target_rad(&settings)?)?;
+        within_target(&plan, req.adaptive.target_rad(&settings)?, req.peak_limit_deg)?;
     }
     Ok(plan)
 }
@@ -565,25 +571,43 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
 /// overshoot at kinks and the planner's models' error, not a cut the plan means.
 pub const TARGET_SLACK_RAD: f64 = std::f64::consts::PI / 180.0;
 
-/// Adaptive clearing keeps every move at depth within its target (+ [`TARGET_SLACK_RAD`]); a
-/// shape where its measured peak is higher (a link or a corner pass its models misjudge) is
-/// refused, the error naming the kind of move, where it is and what it reads, rather than
-/// written as a program that breaks the target.
-fn within_target(plan: &PocketPlan, target: f64) -> Result<(), Error> {
+/// Adaptive clearing keeps every move at depth within its target (+ [`TARGET_SLACK_RAD`], or
+/// up to `limit_deg` where one is given); a shape where its measured peak is higher (a link or
+/// a corner pass its models misjudge) is refused, the error naming the kind of move, where it
+/// is and what it reads, rather than written as a program that breaks the target. Error naming
+/// `--peak-limit` outside (target, 180°].
+fn within_target(plan: &PocketPlan, target: f64, limit_deg: Option<f64>) -> Result<(), Error> {
+    let limit = match limit_deg {
+        Some(d) if d.is_finite() && d.to_radians() > target && d <= 180.0 => d.to_radians(),
+        Some(d) => {
+            return Err(Error::param(
+                Param::PeakLimit,
+                d,
+                format!("above the target {}° and at most 180°", num(target.to_degrees())),
+            ));
+        }
+        None => target + TARGET_SLACK_RAD,
+    };
     let m = &plan.path().measurement;
-    if m.max_engagement_rad <= target + TARGET_SLACK_RAD {
+    if m.max_engagement_rad <= limit {
         return Ok(());
     }
     let worst = m.maxima.iter().max_by(|a, b| a.max_rad.total_cmp(&b.max_rad));
     let (kind, at) = worst
         .map_or(("move".to_owned(), P2::new(f64::NAN, f64::NAN)), |w| (format!("{:?}", w.kind).to_lowercase(), w.at));
+    let peak = m.max_engagement_rad.to_degrees();
     Err(Error::param(
         Param::Polygon,
-        format!("a pocket whose {kind} at ({:.2}, {:.2}) reads {:.2}°", at.x, at.y, m.max_engagement_rad.to_degrees()),
+        format!("a pocket whose {kind} at ({:.2}, {:.2}) reads {peak:.2}°", at.x, at.y),
         format!(
-            "a pocket adaptive clearing plans within its target {}° + 1° (this shape is not; another \
-             --method, a smaller --tool-diameter or another --target-engagement may plan it)",
-            num(target.to_degrees())
+            "a pocket adaptive clearing plans within {} (this shape is not; --peak-limit {} accepts \
+             this plan, or another --method, a smaller --tool-diameter or another --target-engagement \
+             may plan it within its target)",
+            match limit_deg {
+                Some(d) => format!("the peak limit {}°", num(d)),
+                None => format!("its target {}° + 1°", num(target.to_degrees())),
+            },
+            (peak + 0.01).ceil()
         ),
     ))
 }
@@ -712,6 +736,14 @@ mod tests {
         assert_eq!(e.subject(), Some("polygon"), "{e}");
         let text = e.to_string();
         assert!(text.contains("link at") && text.contains("target 50° + 1°"), "{text}");
+        // the user may accept it: --peak-limit above the peak read (52.74°) plans it, a limit
+        // not above the target is refused naming the option
+        assert!(text.contains("--peak-limit 53"), "{text}");
+        let accepted = PocketRequest { peak_limit_deg: Some(53.0), ..req.clone() };
+        let p = plan(&accepted).expect("accepted");
+        assert!(p.max_engagement_rad().to_degrees() <= 53.0);
+        let e = plan(&PocketRequest { peak_limit_deg: Some(50.0), ..req.clone() }).expect_err("not above the target");
+        assert_eq!(e.subject(), Some("peak-limit"), "{e}");
         let plain = PocketRequest { strategy: PocketStrategy::Rings(CornerMethod::Plain), ..req };
         plan(&plain).expect("the ring method plans it");
     }
