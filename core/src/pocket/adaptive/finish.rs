@@ -67,15 +67,24 @@ pub(super) fn finishing_pass(b: &mut Builder, p: &PartContext<'_>) -> Result<Vec
     arc.into_iter().for_each(|a| b.push(a, MoveKind::Finish));
     let fin_loop = start_near(&loop_segs, mid);
     let n = fin_loop.len();
+    // a side of a corner: a line, or an arc turning the other way (the offset of a reflex vertex
+    // of the pocket, r about it), which turns away from its tangent at the corner, so that no
+    // tool position between the tangents comes nearer than r to that vertex. The tool-centre
+    // region ends in such corners where it runs between a wall and a reflex vertex (the mouth
+    // of an arm narrower than the tool plus the stock): the rounded corner leaves its tip uncut.
+    let side = |sg: &Segment| match *sg {
+        Segment::Line { .. } => true,
+        Segment::Arc { sweep, .. } => sweep < 0.0,
+        Segment::Trochoid { .. } => false,
+    };
     for (i, seg) in fin_loop.iter().enumerate() {
         b.push(*seg, MoveKind::Finish);
-        let is_line = |sg: &Segment| matches!(sg, Segment::Line { .. });
         if let Segment::Arc { center, radius, start_angle, sweep } = *seg
             && sweep > 1e-9
             && (radius - (rho_fin + sf)).abs() < 1e-6
             && (radius - options.corner_tolerance_mm) * (1.0 / (0.5 * sweep).cos() - 1.0) > options.corner_tolerance_mm
-            && is_line(&fin_loop[(i + n - 1) % n])
-            && is_line(&fin_loop[(i + 1) % n])
+            && side(&fin_loop[(i + n - 1) % n])
+            && side(&fin_loop[(i + 1) % n])
         {
             let corner = Corner::of_arc(center, radius, start_angle, sweep);
             let (before, point) =
