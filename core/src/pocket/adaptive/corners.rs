@@ -8,7 +8,7 @@ use super::options::concave_step;
 use super::part::PartContext;
 use super::plan::CornerPasses;
 use crate::corner::point::corner_point_radii;
-use crate::geom::{P2, Segment, cross, p2};
+use crate::geom::{P2, Segment, cross, p2, rot90};
 use crate::pocket::CornerPoint;
 use crate::pocket::cusp::Cusp;
 use crate::toolpath::MoveKind;
@@ -107,6 +107,48 @@ impl Corner {
             len_in: l,
             len_out: l,
         }
+    }
+
+    /// The corner of a counter-clockwise finishing arc (centre, radius ρ, start angle, sweep)
+    /// between the loop's segments `prev` and `next`, each a line or an arc about a reflex
+    /// vertex of the pocket run clockwise (the loop outside it). Between two lines: the corner
+    /// of the tangents at the arc's ends ([`Corner::of_arc`]). With an arc side, that tangent
+    /// would cut the corner short of the region's tip: the corner's walls are then the tangents
+    /// at the points of the sides nearest the tip T of the region the loop is the offset of by
+    /// s_f (`sf`), T where the sides moved inward by s_f meet (nearest the arc's middle), so that
+    /// T lies s_f from both walls as in a corner between two lines and the corner points pass
+    /// s_f from it. A line side is its own tangent; a circle of radius ρ_c about c touches the
+    /// wall through c + ρ_c·(T − c)/|T − c| normal to T − c. `None` where the sides do not meet
+    /// or do not make a convex corner.
+    pub(super) fn of_sides(prev: &Segment, arc: &Segment, next: &Segment, sf: f64) -> Option<Corner> {
+        let Segment::Arc { center, radius, start_angle, sweep } = *arc else { return None };
+        let side = |sg: &Segment| match *sg {
+            Segment::Line { start, end } if (end - start).norm() > 0.0 => {
+                Some(Side::Line(start, (end - start).normalize()))
+            }
+            Segment::Arc { center, radius, sweep, .. } if sweep < 0.0 => Some(Side::Circle(center, radius)),
+            _ => None,
+        };
+        let (a, b) = (side(prev)?, side(next)?);
+        if let (Side::Line(..), Side::Line(..)) = (a, b) {
+            return Some(Corner::of_arc(center, radius, start_angle, sweep));
+        }
+        let mid = arc.point(0.5);
+        let tip = a
+            .meet(b, sf)
+            .into_iter()
+            .filter(|q| q.x.is_finite() && q.y.is_finite())
+            .min_by(|p, q| (p - mid).norm().total_cmp(&(q - mid).norm()))?;
+        let ((p_in, d_in), (p_out, d_out)) = (a.tangent(tip), b.tangent(tip));
+        let den = cross(d_in, d_out);
+        let turn = den.atan2(d_in.dot(&d_out));
+        if turn <= 1e-6 || den.abs() < 1e-12 {
+            return None;
+        }
+        let vertex = p_in + d_in * (cross(p_out - p_in, d_out) / den);
+        let alpha = PI - turn;
+        let l = radius / (0.5 * alpha).tan();
+        Some(Corner { vertex, d_in, d_out, alpha, len_in: l, len_out: l })
     }
 
     /// Cap area between the corner and its arc of radius ρ.
@@ -276,4 +318,63 @@ pub(super) fn cusp_passes(b: &mut Builder, p: &PartContext<'_>, cusps_all: &[Cus
         });
     }
     corners
+}
+
+/// A side of a finishing corner: a line through a point with its unit direction (the region on
+/// its left), or a circle about a reflex vertex of the pocket with its radius (the region
+/// outside it, run clockwise).
+#[derive(Clone, Copy)]
+enum Side {
+    Line(P2, P2),
+    Circle(P2, f64),
+}
+
+impl Side {
+    /// The points where the two sides, each moved into the region by `d`, meet.
+    fn meet(self, other: Side, d: f64) -> Vec<P2> {
+        let line_circle = |p: P2, u: P2, c: P2, rho: f64| -> Vec<P2> {
+            // p' + s·u with |p' + s·u − c| = ρ: s² + 2s·u·w + |w|² − ρ² = 0, w = p' − c
+            let w = p + rot90(u) * d - c;
+            let (h, q) = (u.dot(&w), w.norm_squared() - (rho + d).powi(2));
+            let disc = h * h - q;
+            if disc < 0.0 {
+                return Vec::new();
+            }
+            [-h - disc.sqrt(), -h + disc.sqrt()].iter().map(|s| c + w + u * *s).collect()
+        };
+        match (self, other) {
+            (Side::Line(p, u), Side::Circle(c, rho)) | (Side::Circle(c, rho), Side::Line(p, u)) => {
+                line_circle(p, u, c, rho)
+            }
+            (Side::Circle(c1, r1), Side::Circle(c2, r2)) => {
+                let (ra, rb, dist) = (r1 + d, r2 + d, (c2 - c1).norm());
+                if dist < 1e-12 || dist > ra + rb || dist < (ra - rb).abs() {
+                    return Vec::new();
+                }
+                let x = (dist * dist + ra * ra - rb * rb) / (2.0 * dist);
+                let (u, h) = ((c2 - c1) / dist, (ra * ra - x * x).max(0.0).sqrt());
+                vec![c1 + u * x + rot90(u) * h, c1 + u * x - rot90(u) * h]
+            }
+            (Side::Line(p1, u1), Side::Line(p2_, u2)) => {
+                let den = cross(u1, u2);
+                if den.abs() < 1e-12 {
+                    return Vec::new();
+                }
+                let (q1, q2) = (p1 + rot90(u1) * d, p2_ + rot90(u2) * d);
+                vec![q1 + u1 * (cross(q2 - q1, u2) / den)]
+            }
+        }
+    }
+
+    /// The wall through the side's point nearest `tip`, tangent to it, in the loop's direction:
+    /// a point and a unit direction.
+    fn tangent(self, tip: P2) -> (P2, P2) {
+        match self {
+            Side::Line(p, u) => (p, u),
+            Side::Circle(c, rho) => {
+                let n = (tip - c).normalize();
+                (c + n * rho, -rot90(n))
+            }
+        }
+    }
 }

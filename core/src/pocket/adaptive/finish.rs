@@ -1,6 +1,7 @@
 //! Steps 5 and 6 of adaptive clearing (docs/adaptive-clearing.md): the finishing contour — the
 //! opening of the final wall offset with radius ρ_fin + s_f, entered on a quarter-circle lead-in —
-//! and at each of its convex corner arcs the arcs into the corner point.
+//! and at each of its convex corner arcs the arcs into the corner point (a corner between two
+//! lines, or between a line or arc and an arc about a reflex vertex of the pocket).
 
 use super::corners::{Corner, corner_point_arcs};
 use super::loops::{Builder, link, start_near};
@@ -67,19 +68,38 @@ pub(super) fn finishing_pass(b: &mut Builder, p: &PartContext<'_>) -> Result<Vec
     arc.into_iter().for_each(|a| b.push(a, MoveKind::Finish));
     let fin_loop = start_near(&loop_segs, mid);
     let n = fin_loop.len();
+    // a side of a corner: a line, or an arc turning the other way (the offset of a reflex vertex
+    // of the pocket, r about it), which turns away from its tangent at the corner, so that no
+    // tool position between the tangents comes nearer than r to that vertex. The tool-centre
+    // region ends in such corners where it runs between a wall and a reflex vertex (the mouth
+    // of an arm narrower than the tool plus the stock): the rounded corner leaves its tip uncut.
+    // There the corner's walls are the tangents at the sides' points nearest the region's tip
+    // ([`Corner::of_sides`]) and the arcs end at radius s_f about the tip: the pass then comes
+    // s_f from every point of the region, as along its walls.
+    let side = |sg: &Segment| match *sg {
+        Segment::Line { .. } => true,
+        Segment::Arc { sweep, .. } => sweep < 0.0,
+        Segment::Trochoid { .. } => false,
+    };
     for (i, seg) in fin_loop.iter().enumerate() {
         b.push(*seg, MoveKind::Finish);
-        let is_line = |sg: &Segment| matches!(sg, Segment::Line { .. });
         if let Segment::Arc { center, radius, start_angle, sweep } = *seg
             && sweep > 1e-9
             && (radius - (rho_fin + sf)).abs() < 1e-6
             && (radius - options.corner_tolerance_mm) * (1.0 / (0.5 * sweep).cos() - 1.0) > options.corner_tolerance_mm
-            && is_line(&fin_loop[(i + n - 1) % n])
-            && is_line(&fin_loop[(i + 1) % n])
+            && side(&fin_loop[(i + n - 1) % n])
+            && side(&fin_loop[(i + 1) % n])
         {
-            let corner = Corner::of_arc(center, radius, start_angle, sweep);
-            let (before, point) =
-                (b.segments.len(), corner_point_arcs(b, &corner, radius, r, phi, options.corner_tolerance_mm));
+            let (prev, next) = (&fin_loop[(i + n - 1) % n], &fin_loop[(i + 1) % n]);
+            let lines = matches!((prev, next), (Segment::Line { .. }, Segment::Line { .. }));
+            let corner = Corner::of_sides(prev, seg, next, sf)
+                .unwrap_or_else(|| Corner::of_arc(center, radius, start_angle, sweep));
+            // with an arc side, down to the arc of radius s_f about the region's tip
+            let least = if lines { options.corner_tolerance_mm } else { sf.max(options.corner_tolerance_mm) };
+            let (before, point) = (b.segments.len(), corner_point_arcs(b, &corner, radius, r, phi, least));
+            // back to the finishing arc's end (where a side is an arc, the corner's wall is not
+            // that side's tangent at the arc's end)
+            b.line(seg.end(), MoveKind::CornerPoint);
             // not where they would come within r of a wall whose offset the loop has lost
             // (a short edge between the corner's walls, farther than r + s_f from the region)
             if b.segments[before..].iter().all(|sg| crate::pocket::guard::keeps_off_walls(polygon, sg, r)) {

@@ -721,3 +721,36 @@ fn measure_sums_the_lengths_by_kind_and_gives_each_corner_its_peak() {
     // where it peaks lies on the corner move
     assert!(distance_to(&plan.path.toolpath.segments()[3..4], c.at) < 1e-9, "{:?}", c.at);
 }
+
+/// An L for D = 6 whose long arm (6.31 mm wide) is narrower than D + 2 s_f = 6.4: the
+/// tool-centre region C (clearance ≥ r + s_f) ends in a 44° tip at the arm's mouth, between the
+/// left wall's offset and the circle of radius r + s_f about the reflex vertex c. With
+/// u = (b − a)/|b − a| along the wall and n its inward normal (the polygon is
+/// counter-clockwise), the tip is T = a + s·u + (r + s_f)·n with |T − c| = r + s_f, s the smaller
+/// root of s² + 2s·u·w + |w|² − (r + s_f)² = 0, w = a + (r + s_f)·n − c (the larger lies down the
+/// arm, 6.31 − 3.2 = 3.11 mm from its other wall: outside C). A tool position within s_f of T
+/// brings every point within r of T within r + s_f of the tool (what the random pockets' raster
+/// checks). The finishing pass (the offset by r) has its corner there between a line and an arc
+/// (r about c): rounded to ρ_fin + s_f, the pass stayed 1.18 mm from T (2.7 mm² of the arm
+/// uncut); corner points between the tangents at that arc's ends stop 0.24 mm from T. Every
+/// corner-point move keeps r from the walls.
+#[test]
+fn finishing_reaches_the_tip_between_a_wall_and_a_reflex_vertex() {
+    let v = [(-8.6586, -3.0605), (-13.9472, -25.4467), (-7.8048, -26.8978), (-4.8912, -14.5646), (10.2828, -18.1493)];
+    let poly = Polygon::new(v.iter().chain(&[(12.6577, -8.0964)]).map(|&(x, y)| p2(x, y)).collect()).unwrap();
+    let (r, sf) = (3.0, AdaptiveOptions::default().finish_stock_mm);
+    let settings = PocketSettings { tool_radius: r, step_over: 0.6 * AE, ..settings() };
+    let (_, segs, kinds, _) = adaptive_path(&poly, settings, AdaptiveOptions::default()).unwrap();
+    let (a, b, c) = (p2(v[0].0, v[0].1), p2(v[1].0, v[1].1), p2(v[3].0, v[3].1));
+    let u = (b - a).normalize();
+    let n = p2(-u.y, u.x);
+    let w = a + n * (r + sf) - c;
+    let (half_p, q) = (u.dot(&w), w.norm_squared() - (r + sf).powi(2));
+    let tip = a + u * (-half_p - (half_p * half_p - q).sqrt()) + n * (r + sf);
+    assert!((clearance(&poly, tip) - (r + sf)).abs() < 1e-9 && ((tip - c).norm() - (r + sf)).abs() < 1e-9);
+    let reach = distance_to(&segs, tip);
+    assert!(reach <= sf + 1e-9, "the nearest tool position is {reach} mm from the tip {tip:?}");
+    for (s, _) in segs.iter().zip(&kinds).filter(|(_, k)| **k == MoveKind::CornerPoint) {
+        assert!((0..=8).all(|i| clearance(&poly, s.point(f64::from(i) / 8.0)) >= r - 1e-9), "{s:?}");
+    }
+}
