@@ -401,7 +401,7 @@ fn with_rapids(moves: &[Move], spans: &[Vec<(f64, f64)>], max_feed: f64) -> (Vec
 /// rapid's stops at both ends cost more than its higher rate gains ([`feed_link_gain`]). The
 /// neighbours in the comparison are the feed moves joined to the rapid, up to
 /// [`window_mm`] of them on each side, up to a retract (`retract_before`) or another rapid
-/// (as planned: the stretches are decided independently, in parallel).
+/// (as the round before left them: the stretches are decided in parallel, in two rounds).
 /// Returns the length of the rapids made links (mm).
 fn feed_links(
     out: &mut [Move],
@@ -412,38 +412,51 @@ fn feed_links(
 ) -> f64 {
     let (feed, max_feed) = feeds;
     let w = window_mm(m);
-    let view: &[Move] = out;
-    let joined = |a: usize, b: usize| {
-        !retract_before.contains(&b) && (view[a].segment.end() - view[b].segment.start()).norm() <= 1e-6
-    };
-    let with_feed = |mv: &Move| (mv.segment, mv.feed_mm_per_min.unwrap_or(feed));
-    // each stretch decided on the moves as planned, its neighbours up to the next rapid on
-    // either side (the decisions do not see each other: in parallel, the same on any run)
-    let sooner: Vec<bool> = rapids
-        .par_iter()
-        .map(|&(q, _)| {
-            let mut before = Vec::new();
-            let (mut k, mut len) = (q, 0.0);
-            while k > 0 && len < w && view[k - 1].kind != MoveKind::Rapid && joined(k - 1, k) {
-                k -= 1;
-                before.push(with_feed(&view[k]));
-                len += view[k].segment.length();
-            }
-            before.reverse();
-            let mut after = Vec::new();
-            let (mut k, mut len) = (q, 0.0);
-            while k + 1 < view.len() && len < w && view[k + 1].kind != MoveKind::Rapid && joined(k, k + 1) {
-                k += 1;
-                after.push(with_feed(&view[k]));
-                len += view[k].segment.length();
-            }
-            feed_link_gain(&before, view[q].segment, &after, max_feed, m) > 0.0
-        })
-        .collect();
     let mut made = 0.0;
-    for (&(q, kind), _) in rapids.iter().zip(&sooner).filter(|(_, s)| **s) {
-        out[q].kind = kind;
-        made += out[q].segment.length();
+    let mut left: Vec<(usize, MoveKind)> = rapids.to_vec();
+    // two rounds: each stretch decided with its neighbours up to the next rapid on either
+    // side, as the round before left them (within a round the decisions do not see each
+    // other: in parallel, the same on any run); the second sees the first's feed links
+    for _ in 0..2 {
+        let view: &[Move] = out;
+        let joined = |a: usize, b: usize| {
+            !retract_before.contains(&b) && (view[a].segment.end() - view[b].segment.start()).norm() <= 1e-6
+        };
+        let with_feed = |mv: &Move| (mv.segment, mv.feed_mm_per_min.unwrap_or(feed));
+        let sooner: Vec<bool> = left
+            .par_iter()
+            .map(|&(q, _)| {
+                let mut before = Vec::new();
+                let (mut k, mut len) = (q, 0.0);
+                while k > 0 && len < w && view[k - 1].kind != MoveKind::Rapid && joined(k - 1, k) {
+                    k -= 1;
+                    before.push(with_feed(&view[k]));
+                    len += view[k].segment.length();
+                }
+                before.reverse();
+                let mut after = Vec::new();
+                let (mut k, mut len) = (q, 0.0);
+                while k + 1 < view.len() && len < w && view[k + 1].kind != MoveKind::Rapid && joined(k, k + 1) {
+                    k += 1;
+                    after.push(with_feed(&view[k]));
+                    len += view[k].segment.length();
+                }
+                feed_link_gain(&before, view[q].segment, &after, max_feed, m) > 0.0
+            })
+            .collect();
+        let mut still = Vec::new();
+        for (&(q, kind), &s) in left.iter().zip(&sooner) {
+            if s {
+                out[q].kind = kind;
+                made += out[q].segment.length();
+            } else {
+                still.push((q, kind));
+            }
+        }
+        if still.len() == left.len() {
+            break;
+        }
+        left = still;
     }
     made
 }
