@@ -86,12 +86,12 @@ fn class(m: &Move) -> Class {
 }
 
 /// 3D length of a move (mm).
-fn length_3d(m: &Move) -> f64 {
+pub(crate) fn length_3d(m: &Move) -> f64 {
     m.segment.length().hypot(m.z_end_mm - m.z_start_mm)
 }
 
 /// Time of a straight line of `len` mm at `feed` mm/min from rest to rest.
-fn line_time(len: f64, feed: f64, d: &Dynamics) -> f64 {
+pub(crate) fn line_time(len: f64, feed: f64, d: &Dynamics) -> f64 {
     plan_feed(&[Segment::Line { start: p2(0.0, 0.0), end: p2(len, 0.0) }], &[feed], d).time_s()
 }
 

@@ -60,8 +60,9 @@ fn interpret(text: &str, dialect: Dialect, chord_tol_mm: f64) -> Result<Machine,
     Ok(m)
 }
 
+/// The modal motion of a block (G0, G1, G2, G3; also the reader of `verify`).
 #[derive(Clone, Copy, PartialEq, Eq)]
-enum Motion {
+pub(crate) enum Motion {
     Rapid,
     Feed,
     Cw,
@@ -96,8 +97,9 @@ impl Default for Machine {
     }
 }
 
-/// The line without comments: `( … )` up to the closing parenthesis, `;` to the end.
-fn strip_comments(line: &str) -> Result<String, String> {
+/// The line without comments: `( … )` up to the closing parenthesis, `;` to the end (also the
+/// reader of `verify`).
+pub(crate) fn strip_comments(line: &str) -> Result<String, String> {
     let line = line.split(';').next().unwrap_or("");
     let mut out = String::with_capacity(line.len());
     let mut inside = false;
@@ -112,7 +114,7 @@ fn strip_comments(line: &str) -> Result<String, String> {
         }
     }
     if inside {
-        return Err("unclosed comment".into());
+        return Err("unclosed comment (a truncated line?)".into());
     }
     Ok(out)
 }
@@ -124,6 +126,12 @@ fn words(block: &str) -> Result<Vec<(char, f64)>, String> {
             "parameters, expressions, loops and labels are not interpreted (back-plot the expanded program)".into()
         );
     }
+    letter_words(block)
+}
+
+/// Letter-number words of a block without parameters or expressions (also the reader of
+/// `verify`): each a letter and a finite number; a letter without a number is an error.
+pub(crate) fn letter_words(block: &str) -> Result<Vec<(char, f64)>, String> {
     let mut out = Vec::new();
     let mut chars = block.chars().peekable();
     while let Some(c) = chars.next() {
@@ -144,6 +152,9 @@ fn words(block: &str) -> Result<Vec<(char, f64)>, String> {
             } else {
                 break;
             }
+        }
+        if num.is_empty() && chars.peek().is_some_and(|d| d.is_ascii_alphabetic()) {
+            return Err(format!("word {letter}{}: not interpreted", chars.peek().copied().unwrap_or(' ')));
         }
         let v: f64 = num.parse().map_err(|_| format!("word {letter}: no number"))?;
         if !v.is_finite() {

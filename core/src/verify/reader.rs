@@ -23,6 +23,7 @@
 
 use crate::error::Error;
 use crate::geom::{P2, Segment, p2};
+use crate::nc::backplot::{Motion, letter_words, strip_comments};
 use crate::toolpath::{Move, MoveKind};
 use std::f64::consts::TAU;
 
@@ -62,14 +63,6 @@ pub struct Program {
     pub lines: usize,
     /// Whether the program is in inches (`G20`/`G70` seen; coordinates are converted to mm).
     pub inch: bool,
-}
-
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Motion {
-    Rapid,
-    Feed,
-    Cw,
-    Ccw,
 }
 
 /// The interpreter's modal state.
@@ -119,63 +112,12 @@ fn shorten(s: &str) -> String {
     if s.chars().count() > 80 { s.chars().take(77).collect::<String>() + "…" } else { s.to_owned() }
 }
 
-/// The block without comments: `( … )` to the closing parenthesis, `;` to the end.
-fn strip_comments(line: &str) -> Result<String, String> {
-    let line = line.split(';').next().unwrap_or("");
-    let mut out = String::with_capacity(line.len());
-    let mut inside = false;
-    for c in line.chars() {
-        match (c, inside) {
-            ('(', false) => inside = true,
-            (')', true) => inside = false,
-            ('(', true) => return Err("nested comment".into()),
-            (')', false) => return Err("\")\" outside a comment".into()),
-            (c, false) => out.push(c),
-            _ => {}
-        }
-    }
-    if inside {
-        return Err("unclosed comment (a truncated line?)".into());
-    }
-    Ok(out)
-}
-
 /// Letter-number words of a block.
 fn words(block: &str) -> Result<Vec<(char, f64)>, String> {
     if block.contains(['#', '=', '[', ':']) {
         return Err("parameters, expressions, labels and loops are not interpreted".into());
     }
-    let mut out = Vec::new();
-    let mut chars = block.chars().peekable();
-    while let Some(c) = chars.next() {
-        if c.is_whitespace() {
-            continue;
-        }
-        let letter = c.to_ascii_uppercase();
-        if !letter.is_ascii_alphabetic() {
-            return Err(format!("unexpected {c:?}"));
-        }
-        let mut num = String::new();
-        while let Some(&d) = chars.peek() {
-            if d.is_ascii_digit() || matches!(d, '.' | '-' | '+') {
-                num.push(d);
-                chars.next();
-            } else if d == ' ' && num.is_empty() {
-                chars.next();
-            } else {
-                break;
-            }
-        }
-        if num.is_empty() && chars.peek().is_some_and(|d| d.is_ascii_alphabetic()) {
-            return Err(format!("word {letter}{}: not interpreted", chars.peek().copied().unwrap_or(' ')));
-        }
-        let v: f64 = num.parse().map_err(|_| format!("word {letter}: no number"))?;
-        if !v.is_finite() {
-            return Err(format!("word {letter}: not a finite number"));
-        }
-        out.push((letter, v));
-    }
-    Ok(out)
+    letter_words(block)
 }
 
 /// Run one block; `Ok(true)` at the program end.

@@ -10,9 +10,10 @@
 //! programmed feed (rapids take no time: the ideal machine has no rapid rate).
 
 use crate::error::{Error, Param};
-use crate::geom::{Segment, p2};
-use crate::machine::Machine;
+use crate::geom::Segment;
 use crate::machine::planner::{Dynamics, FeedProfile, plan_feed};
+use crate::machine::program_time::{length_3d, line_time};
+use crate::machine::{Machine, ProgramTime};
 use crate::toolpath::{Move, MoveKind};
 
 /// Shortest move that is timed (mm), as in `machine::program_time`.
@@ -33,27 +34,12 @@ enum Source {
 pub struct Timing {
     /// Time of each move (s).
     pub move_time_s: Vec<f64>,
-    /// Time of the whole program (s) and its parts, as `machine::ProgramTime` splits it.
-    pub total_s: f64,
-    pub feed_s: f64,
-    pub rapid_s: f64,
-    pub vertical_s: f64,
-    /// 3D length of the feed moves with motion in the plane and of the rapids with motion in
-    /// the plane, and the length of the moves along Z only (mm).
-    pub feed_length_mm: f64,
-    pub rapid_length_mm: f64,
-    pub vertical_length_mm: f64,
+    /// Time of the whole program (s) and its parts, and their lengths, as
+    /// [`machine::program_time`](crate::machine::program_time) gives them (its
+    /// `feed_held_share` is not kept here).
+    pub totals: ProgramTime,
     sources: Vec<Source>,
     runs: Vec<FeedProfile>,
-}
-
-fn length_3d(m: &Move) -> f64 {
-    m.segment.length().hypot(m.z_end_mm - m.z_start_mm)
-}
-
-/// Time of a straight line of `len` mm at `feed` mm/min from rest to rest.
-fn line_time(len: f64, feed: f64, d: &Dynamics) -> f64 {
-    plan_feed(&[Segment::Line { start: p2(0.0, 0.0), end: p2(len, 0.0) }], &[feed], d).time_s()
 }
 
 /// Time `moves` on `machine` (`None`: the ideal machine). A feed move's feed is its own `F`
@@ -80,23 +66,23 @@ pub fn time_moves(moves: &[Move], machine: Option<&Machine>) -> Result<Timing, E
             let is_vertical = mv.segment.length() <= MIN_MOVE_MM;
             if mv.kind == MoveKind::Rapid {
                 if is_vertical {
-                    t.vertical_length_mm += len
+                    t.totals.vertical_length_mm += len
                 } else {
-                    t.rapid_length_mm += len
+                    t.totals.rapid_length_mm += len
                 }
                 continue;
             }
             let dt = len / feed_of(k, mv)? * 60.0;
             t.move_time_s[k] = dt;
             if is_vertical {
-                t.vertical_s += dt;
-                t.vertical_length_mm += len;
+                t.totals.vertical_s += dt;
+                t.totals.vertical_length_mm += len;
             } else {
-                t.feed_s += dt;
-                t.feed_length_mm += len;
+                t.totals.feed_s += dt;
+                t.totals.feed_length_mm += len;
             }
         }
-        t.total_s = t.feed_s + t.rapid_s + t.vertical_s;
+        t.totals.total_s = t.totals.feed_s + t.totals.rapid_s + t.totals.vertical_s;
         return Ok(t);
     };
     m.validate()?;
@@ -110,7 +96,7 @@ pub fn time_moves(moves: &[Move], machine: Option<&Machine>) -> Result<Timing, E
             return;
         }
         let profile = plan_feed(&run.1, &run.2, &d);
-        t.feed_s += profile.time_s();
+        t.totals.feed_s += profile.time_s();
         let index = t.runs.len();
         let mut s0 = 0.0;
         for (&k, seg) in run.0.iter().zip(&run.1) {
@@ -140,7 +126,7 @@ pub fn time_moves(moves: &[Move], machine: Option<&Machine>) -> Result<Timing, E
             run.0.push(k);
             run.1.push(mv.segment);
             run.2.push(f * mv.segment.length() / len);
-            t.feed_length_mm += len;
+            t.totals.feed_length_mm += len;
             continue;
         }
         flush(&mut run, &mut t);
@@ -148,17 +134,17 @@ pub fn time_moves(moves: &[Move], machine: Option<&Machine>) -> Result<Timing, E
             let (f, dd) = if mv.kind == MoveKind::Rapid { (rapid, &d_rapid) } else { (feed_of(k, mv)?, &d) };
             let dt = line_time(len, f, dd);
             t.move_time_s[k] = dt;
-            t.vertical_s += dt;
-            t.vertical_length_mm += len;
+            t.totals.vertical_s += dt;
+            t.totals.vertical_length_mm += len;
         } else {
             let dt = line_time(len, rapid, &d_rapid);
             t.move_time_s[k] = dt;
-            t.rapid_s += dt;
-            t.rapid_length_mm += len;
+            t.totals.rapid_s += dt;
+            t.totals.rapid_length_mm += len;
         }
     }
     flush(&mut run, &mut t);
-    t.total_s = t.feed_s + t.rapid_s + t.vertical_s;
+    t.totals.total_s = t.totals.feed_s + t.totals.rapid_s + t.totals.vertical_s;
     Ok(t)
 }
 
@@ -219,17 +205,17 @@ mod tests {
                 crate::machine::program_time(&moves, &m, 600.0).expect("timed"),
             );
             for (a, b) in [
-                (ours.total_s, theirs.total_s),
-                (ours.feed_s, theirs.feed_s),
-                (ours.rapid_s, theirs.rapid_s),
-                (ours.vertical_s, theirs.vertical_s),
-                (ours.feed_length_mm, theirs.feed_length_mm),
-                (ours.rapid_length_mm, theirs.rapid_length_mm),
+                (ours.totals.total_s, theirs.total_s),
+                (ours.totals.feed_s, theirs.feed_s),
+                (ours.totals.rapid_s, theirs.rapid_s),
+                (ours.totals.vertical_s, theirs.vertical_s),
+                (ours.totals.feed_length_mm, theirs.feed_length_mm),
+                (ours.totals.rapid_length_mm, theirs.rapid_length_mm),
             ] {
                 assert!((a - b).abs() <= 1e-12 * b.max(1.0), "{name}: {a} {b}");
             }
             let sum: f64 = ours.move_time_s.iter().sum();
-            assert!((sum - ours.total_s).abs() < 1e-9, "{name}: {sum} {}", ours.total_s);
+            assert!((sum - ours.totals.total_s).abs() < 1e-9, "{name}: {sum} {}", ours.totals.total_s);
         }
         let ideal = time_moves(&moves, None).expect("timed");
         assert!((ideal.move_time_s[1] - 1.0).abs() < 1e-12, "{}", ideal.move_time_s[1]);
