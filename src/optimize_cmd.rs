@@ -71,6 +71,11 @@ pub fn run(args: &OptimizeArgs) -> Result<String, String> {
         vf.real.total_s,
         m.mrr_real_mm3_per_min * m.t_cycle_real_s / vf.real.t_cycle_s,
     ));
+    // the spindle limits are not among the optimiser's limits: the best job is checked
+    // against them, as `analyze` checks a job
+    for w in super::verify::spindle_warnings(&p) {
+        text.push_str(&format!("# warning: {w}\n"));
+    }
     text.push_str(&out.best.job.to_toml());
     Ok(text)
 }

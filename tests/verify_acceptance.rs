@@ -222,3 +222,30 @@ fn analyze_warns_above_the_spindle_limits() {
     let a = json(&run(dir.path(), &["analyze", "--machine", "vmc"]));
     assert!(a.get("warnings").is_none(), "{a}");
 }
+
+/// `optimize` checks its best job against the machine's spindle limits as `analyze` does (the
+/// limits are not among the optimiser's): on the hobby router the best job within h_max 0.1 mm
+/// and 60° is the same job `analyze` then reports, and each warning line agrees with that
+/// analysis (power and torque above 710 W and 0.68 N·m); on the VMC (10 kW, 60 N·m) none.
+#[test]
+fn optimize_warns_above_the_spindle_limits() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let args = ["optimize", "--machine", "hobby-router", "--max-hmax", "0.1", "--max-engagement", "60"];
+    let text = run(dir.path(), &args);
+    let warnings: Vec<&str> = text.lines().filter(|l| l.starts_with("# warning: ")).collect();
+    // the best job, analysed on its own
+    let job = dir.path().join("best.toml");
+    let toml: String = text.lines().filter(|l| !l.starts_with('#')).map(|l| format!("{l}\n")).collect();
+    std::fs::write(&job, toml).expect("write job");
+    let a = json(&run(dir.path(), &["analyze", "--job", job.to_str().expect("utf-8")]));
+    let expected: Vec<String> = a["warnings"]
+        .as_array()
+        .expect("warnings")
+        .iter()
+        .map(|w| format!("# warning: {}", w.as_str().expect("text")))
+        .collect();
+    assert!(f(&a, "power_max_w") > 710.0 && f(&a, "torque_max_nm") > 0.68, "{a}");
+    assert_eq!(warnings, expected.iter().map(String::as_str).collect::<Vec<_>>(), "{text}");
+    let vmc = run(dir.path(), &["optimize", "--machine", "vmc", "--max-hmax", "0.1", "--max-engagement", "60"]);
+    assert!(!vmc.contains("# warning"), "{vmc}");
+}
