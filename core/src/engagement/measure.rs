@@ -53,12 +53,8 @@ pub fn peak_and_p95(profile: &EngagementProfile) -> (f64, f64) {
 /// The segment each sample of `profile` belongs to: the first whose end is at or beyond it (a
 /// sample on a joint belongs to the segment that ends there).
 pub fn sample_owners(profile: &EngagementProfile, segments: &[Segment]) -> Vec<usize> {
-    let mut ends = Vec::with_capacity(segments.len());
-    let mut acc = 0.0;
-    for s in segments {
-        acc += s.length();
-        ends.push(acc);
-    }
+    let lengths = crate::geom::cumulative_lengths(segments);
+    let ends = &lengths[1..];
     let last = segments.len().saturating_sub(1);
     profile.samples.iter().map(|smp| ends.partition_point(|&e| e < smp.s_mm - 1e-9).min(last)).collect()
 }

@@ -23,7 +23,7 @@ pub use edge_grid::EdgeGrid;
 pub use medial::{AxisEdge, MedialAxis, WallFeature, Walls, medial_axis};
 pub use polygon::{MAX_COORDINATE_MM, MAX_POLYGON_VERTICES, Polygon, loop_contains, loop_distance};
 pub use quad::gauss_legendre;
-pub use segment::{Segment, SegmentPoint};
+pub use segment::{Segment, SegmentPoint, cumulative_lengths};
 
 /// A point or vector in the XY plane (mm).
 pub type P2 = nalgebra::Vector2<f64>;

@@ -186,6 +186,19 @@ impl Segment {
     }
 }
 
+/// Arc length along `segments` at each joint: `n + 1` values for `n` segments, 0 first, the
+/// start of segment `i` at `i`, the whole length last (summed in order).
+pub fn cumulative_lengths(segments: &[Segment]) -> Vec<f64> {
+    let mut out = Vec::with_capacity(segments.len() + 1);
+    let mut acc = 0.0;
+    out.push(acc);
+    for s in segments {
+        acc += s.length();
+        out.push(acc);
+    }
+    out
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 mod tests {

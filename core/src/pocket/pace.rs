@@ -258,15 +258,9 @@ pub fn pace(path: &mut PocketPath, opts: &PaceOptions) -> Result<Pace, Error> {
 
 /// Arc length at the start of each segment.
 fn starts_of(segments: &[Segment]) -> Vec<f64> {
-    let mut acc = 0.0;
-    segments
-        .iter()
-        .map(|s| {
-            let a = acc;
-            acc += s.length();
-            a
-        })
-        .collect()
+    let mut starts = crate::geom::cumulative_lengths(segments);
+    starts.pop();
+    starts
 }
 
 /// The index range of the positions of `run` (sorted by arc length) within [a, b], ends

@@ -18,7 +18,7 @@
 //! the next ring's run lies a step beyond the last one, along it: the tool clears the place as
 //! far as it goes before it moves to the next, whatever side of the place the run ends on.
 
-use crate::geom::{P2, Segment};
+use crate::geom::{EdgeGrid, P2, Segment};
 
 /// Spacing of the points of a run compared for the dependencies (mm).
 const DEPENDENCY_SAMPLE_MM: f64 = 0.5;
@@ -34,17 +34,6 @@ fn points(run: &[Segment]) -> Vec<P2> {
         out.push(last.end());
     }
     out
-}
-
-/// Bounding box of points: (min, max).
-fn bounds(pts: &[P2]) -> (P2, P2) {
-    let mut lo = P2::new(f64::INFINITY, f64::INFINITY);
-    let mut hi = P2::new(f64::NEG_INFINITY, f64::NEG_INFINITY);
-    for p in pts {
-        lo = P2::new(lo.x.min(p.x), lo.y.min(p.y));
-        hi = P2::new(hi.x.max(p.x), hi.y.max(p.y));
-    }
-    (lo, hi)
 }
 
 /// Whether some point of `a` lies within `d` of some point of `b` (boxes first).
@@ -66,7 +55,7 @@ pub(crate) fn run_order(ring_runs: &[Vec<Vec<Segment>>], r: f64, step: f64, from
         .iter()
         .map(|&(j, k)| {
             let pts = points(&ring_runs[j][k]);
-            let b = bounds(&pts);
+            let b = EdgeGrid::bounds(&pts);
             (pts, b)
         })
         .collect();

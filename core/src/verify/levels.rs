@@ -137,12 +137,8 @@ impl<'a> Bands<'a> {
                 }
             }
             let segs: Vec<Segment> = idx.iter().map(|&k| moves[k].segment).collect();
-            let mut starts = Vec::with_capacity(segs.len());
-            let mut acc = 0.0;
-            for s in &segs {
-                starts.push(acc);
-                acc += s.length();
-            }
+            let mut starts = crate::geom::cumulative_lengths(&segs);
+            starts.pop();
             if segs.is_empty() {
                 bands.band_moves.push(idx);
                 bands.band_starts.push(starts);

@@ -222,13 +222,7 @@ fn measure_corner_points(
     segments: &[Segment],
     points: Vec<(CornerPoint, std::ops::Range<usize>)>,
 ) -> Vec<CornerPoint> {
-    let mut starts = Vec::with_capacity(segments.len() + 1);
-    let mut acc = 0.0;
-    starts.push(acc);
-    for s in segments {
-        acc += s.length();
-        starts.push(acc);
-    }
+    let starts = crate::geom::cumulative_lengths(segments);
     points
         .into_iter()
         .map(|(mut cp, range)| {
