@@ -35,24 +35,13 @@ pub fn raster(n: usize) -> String {
 
 fn verify_raster(c: &mut Criterion) {
     let stock = Polygon::new(vec![p2(-10.0, -10.0), p2(310.0, -10.0), p2(310.0, 260.0), p2(-10.0, 260.0)]).unwrap();
-    let req = VerifyRequest {
-        stock: &stock,
-        stock_top_mm: 0.0,
-        part: None,
-        tool: Tool {
-            radius_mm: 5.0,
-            teeth: 4,
-            helix_rad: 35f64.to_radians(),
-            coefficients: Library::builtin().get("p20").unwrap().coefficients,
-        },
-        machine: Some(Machine::preset("vmc").unwrap()),
-        spindle_power_w: None,
-        spindle_torque_nm: None,
-        rpm: None,
-        spacing_mm: 0.25,
-        full_width_depth_mm: 5.0,
-        gouge_tolerance_mm: 0.01,
+    let tool = Tool {
+        radius_mm: 5.0,
+        teeth: 4,
+        helix_rad: 35f64.to_radians(),
+        coefficients: Library::builtin().get("p20").unwrap().coefficients,
     };
+    let req = VerifyRequest { machine: Some(Machine::preset("vmc").unwrap()), ..VerifyRequest::new(&stock, tool) };
     let mut group = c.benchmark_group("verify/raster");
     group.sample_size(10).measurement_time(Duration::from_secs(30));
     for n in [20_000, 100_000] {

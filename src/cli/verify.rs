@@ -12,7 +12,10 @@ use trochoplan_core::job::DEFAULT_HELIX_ANGLE_DEG;
 use trochoplan_core::machine::Machine;
 use trochoplan_core::material::{DEFAULT_MATERIAL, Library};
 use trochoplan_core::verify::load::Tool;
-use trochoplan_core::verify::{MoveReport, VerifyRequest, read_program, verify};
+use trochoplan_core::verify::{
+    DEFAULT_FULL_WIDTH_DEPTH_RATIO, DEFAULT_GOUGE_TOLERANCE_MM, DEFAULT_SPACING_MM, MoveReport, VerifyRequest,
+    read_program, verify,
+};
 use trochoplan_core::{Error, Param};
 
 /// Flags of `trochoplan verify`.
@@ -71,10 +74,10 @@ pub struct VerifyArgs {
     #[arg(long, value_name = "MM", allow_hyphen_values = true)]
     full_width_depth: Option<f64>,
     /// How far the tool may reach past the part's walls before it is a gouge (mm).
-    #[arg(long, value_name = "MM", default_value_t = 0.01, allow_hyphen_values = true)]
+    #[arg(long, value_name = "MM", default_value_t = DEFAULT_GOUGE_TOLERANCE_MM, allow_hyphen_values = true)]
     gouge_tolerance: f64,
     /// Spacing of the measured tool positions along the moves (mm), 0.01 to the tool radius.
-    #[arg(long, value_name = "MM", default_value_t = 0.25, allow_hyphen_values = true)]
+    #[arg(long, value_name = "MM", default_value_t = DEFAULT_SPACING_MM, allow_hyphen_values = true)]
     spacing: f64,
     /// Also write the per-move values as CSV (`-`: the standard output, the JSON then goes to
     /// stderr).
@@ -145,7 +148,7 @@ pub fn run(args: &VerifyArgs) -> Result<String, String> {
         machine,
         rpm: args.rpm,
         spacing_mm: args.spacing,
-        full_width_depth_mm: args.full_width_depth.unwrap_or(0.5 * d),
+        full_width_depth_mm: args.full_width_depth.unwrap_or(DEFAULT_FULL_WIDTH_DEPTH_RATIO * d),
         gouge_tolerance_mm: args.gouge_tolerance,
     };
     let report = verify(&program, &req).map_err(|e| match e {

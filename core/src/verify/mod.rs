@@ -59,6 +59,34 @@ pub struct VerifyRequest<'a> {
     pub gouge_tolerance_mm: f64,
 }
 
+/// Spacing of the evaluated positions by default (mm): the evaluator's.
+pub const DEFAULT_SPACING_MM: f64 = 0.25;
+/// How far the tool may reach past the part's walls by default before it is a gouge (mm).
+pub const DEFAULT_GOUGE_TOLERANCE_MM: f64 = 0.01;
+/// Deepest full-width cut allowed by default, as a share of the tool diameter.
+pub const DEFAULT_FULL_WIDTH_DEPTH_RATIO: f64 = 0.5;
+
+impl<'a> VerifyRequest<'a> {
+    /// `stock` (top at 0) and `tool` with every other field at its default: no part, the ideal
+    /// machine, no spindle limits, the program's `S`, [`DEFAULT_SPACING_MM`], full-width cuts
+    /// up to [`DEFAULT_FULL_WIDTH_DEPTH_RATIO`] × D, [`DEFAULT_GOUGE_TOLERANCE_MM`].
+    pub fn new(stock: &'a Polygon, tool: Tool) -> VerifyRequest<'a> {
+        VerifyRequest {
+            stock,
+            stock_top_mm: 0.0,
+            part: None,
+            full_width_depth_mm: DEFAULT_FULL_WIDTH_DEPTH_RATIO * 2.0 * tool.radius_mm,
+            tool,
+            machine: None,
+            spindle_power_w: None,
+            spindle_torque_nm: None,
+            rpm: None,
+            spacing_mm: DEFAULT_SPACING_MM,
+            gouge_tolerance_mm: DEFAULT_GOUGE_TOLERANCE_MM,
+        }
+    }
+}
+
 /// Where a maximum is.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct At {

@@ -11,24 +11,15 @@ fn square(x0: f64, y0: f64, x1: f64, y1: f64) -> Polygon {
 }
 
 fn request(stock: &Polygon) -> VerifyRequest<'_> {
-    VerifyRequest {
+    VerifyRequest::new(
         stock,
-        stock_top_mm: 0.0,
-        part: None,
-        tool: Tool {
+        Tool {
             radius_mm: 5.0,
             teeth: 4,
             helix_rad: 30f64.to_radians(),
             coefficients: Library::builtin().get("p20").expect("p20").coefficients,
         },
-        machine: None,
-        spindle_power_w: None,
-        spindle_torque_nm: None,
-        rpm: None,
-        spacing_mm: 0.25,
-        full_width_depth_mm: 5.0,
-        gouge_tolerance_mm: 0.01,
-    }
+    )
 }
 
 fn run(text: &str, req: &VerifyRequest<'_>) -> VerifyReport {
