@@ -548,21 +548,23 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
     // suit), adaptive clearing plans it as before.
     // the slot's option is checked whatever the method, so that a bad value is never ignored
     slot::ramp_pass_limit(req.ramp_pass_depth_mm, settings.tool_radius)?;
+    // so is the peak limit, before any planning
+    let target = req.adaptive.target_rad(&settings)?;
+    let peak_limit = peak_limit_rad(req.peak_limit_deg, target)?;
     let auto_slot = req.strategy == PocketStrategy::Adaptive
         && req.open_edges.is_empty()
         && slot::is_narrow(&req.polygon, &settings, &req.adaptive);
-    if auto_slot && check_work(&req.polygon, PocketStrategy::Slot, &settings).is_ok() {
-        let target = req.adaptive.target_rad(&settings)?;
-        if let Ok(plan) = plan_with(req, PocketStrategy::Slot, settings)
-            && plan.max_engagement_rad() <= target + TARGET_SLACK_RAD
-        {
-            return Ok(plan);
-        }
+    if auto_slot
+        && check_work(&req.polygon, PocketStrategy::Slot, &settings).is_ok()
+        && let Ok(plan) = plan_with(req, PocketStrategy::Slot, settings)
+        && plan.max_engagement_rad() <= target + TARGET_SLACK_RAD
+    {
+        return Ok(plan);
     }
     check_work(&req.polygon, req.strategy, &settings)?;
     let plan = plan_with(req, req.strategy, settings)?;
     if req.strategy == PocketStrategy::Adaptive {
-        within_target(&plan, req.adaptive.target_rad(&settings)?, req.peak_limit_deg)?;
+        within_target(&plan, target, (peak_limit, req.peak_limit_deg))?;
     }
     Ok(plan)
 }
@@ -571,23 +573,25 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
 /// overshoot at kinks and the planner's models' error, not a cut the plan means.
 pub const TARGET_SLACK_RAD: f64 = std::f64::consts::PI / 180.0;
 
+/// The largest measured peak accepted from adaptive clearing (rad): `limit_deg`, else the
+/// target + [`TARGET_SLACK_RAD`]. Error naming `--peak-limit` outside (target, 180°].
+fn peak_limit_rad(limit_deg: Option<f64>, target: f64) -> Result<f64, Error> {
+    match limit_deg {
+        Some(d) if d.is_finite() && d.to_radians() > target && d <= 180.0 => Ok(d.to_radians()),
+        Some(d) => Err(Error::param(
+            Param::PeakLimit,
+            d,
+            format!("above the target {}° and at most 180°", num(target.to_degrees())),
+        )),
+        None => Ok(target + TARGET_SLACK_RAD),
+    }
+}
+
 /// Adaptive clearing keeps every move at depth within its target (+ [`TARGET_SLACK_RAD`], or
-/// up to `limit_deg` where one is given); a shape where its measured peak is higher (a link or
+/// up to the peak limit `limit` = [`peak_limit_rad`] of `limit_deg`); a shape where its measured peak is higher (a link or
 /// a corner pass its models misjudge) is refused, the error naming the kind of move, where it
-/// is and what it reads, rather than written as a program that breaks the target. Error naming
-/// `--peak-limit` outside (target, 180°].
-fn within_target(plan: &PocketPlan, target: f64, limit_deg: Option<f64>) -> Result<(), Error> {
-    let limit = match limit_deg {
-        Some(d) if d.is_finite() && d.to_radians() > target && d <= 180.0 => d.to_radians(),
-        Some(d) => {
-            return Err(Error::param(
-                Param::PeakLimit,
-                d,
-                format!("above the target {}° and at most 180°", num(target.to_degrees())),
-            ));
-        }
-        None => target + TARGET_SLACK_RAD,
-    };
+/// is and what it reads, rather than written as a program that breaks the target.
+fn within_target(plan: &PocketPlan, target: f64, (limit, limit_deg): (f64, Option<f64>)) -> Result<(), Error> {
     let m = &plan.path().measurement;
     if m.max_engagement_rad <= limit {
         return Ok(());
@@ -744,6 +748,13 @@ mod tests {
         assert!(p.max_engagement_rad().to_degrees() <= 53.0);
         let e = plan(&PocketRequest { peak_limit_deg: Some(50.0), ..req.clone() }).expect_err("not above the target");
         assert_eq!(e.subject(), Some("peak-limit"), "{e}");
+        // checked whatever the method, before planning: a bad value is never ignored
+        let plain_bad = PocketRequest {
+            peak_limit_deg: Some(f64::NAN),
+            strategy: PocketStrategy::Rings(CornerMethod::Plain),
+            ..req.clone()
+        };
+        assert_eq!(plan(&plain_bad).expect_err("NaN").subject(), Some("peak-limit"));
         let plain = PocketRequest { strategy: PocketStrategy::Rings(CornerMethod::Plain), ..req };
         plan(&plain).expect("the ring method plans it");
     }
