@@ -63,37 +63,55 @@ fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / b.abs()
 }
 
-#[test]
-fn slot_agrees_with_analyze() {
-    let dir = tempfile::tempdir().expect("tempdir");
-    let d = dir.path();
-    run(d, &["export", "--machine", "hobby-router", "--dialect", "linuxcnc", "--output", "slot.ngc"]);
-    let a = json(&run(d, &["analyze", "--machine", "hobby-router"]));
+/// The slot program verified against `analyze` for the same job (`extra`: job flags).
+/// Returns verify's problem kinds.
+fn slot_case(d: &Path, extra: &[&'static str]) -> Vec<String> {
+    let with = |args: &[&'static str]| [args, extra].concat();
+    run(d, &with(&["export", "--machine", "hobby-router", "--dialect", "linuxcnc", "--output", "slot.ngc"]));
+    let a = json(&run(d, &with(&["analyze", "--machine", "hobby-router"])));
     // the paper's Table 1 slot: B 20, L 20 from the face y = 0; the stock beyond the walls
     let v = json(&run(d, &["verify", "slot.ngc", "--stock-box=-30,0,30,20", "--machine", "hobby-router"]));
     let rows = [
         ("engagement (deg)", f(&v, "max_engagement_deg"), f(&a, "engagement_max_deg")),
         ("h_max (mm)", f(&v, "h_max_mm"), f(&a, "h_max_mm")),
+        ("h_max at the programmed feed (mm)", f(&v, "h_max_programmed_mm"), f(&a, "h_max_programmed_mm")),
         ("time at feed (s)", f(&v, "time_at_feed_s"), f(&a, "machining_time_real_s")),
         ("F_R,max (N)", f(&v, "force_resultant_max_n"), f(&a, "force_resultant_max_n")),
         ("torque (N·m)", f(&v, "torque_max_nm"), f(&a, "torque_max_nm")),
         ("power (W)", f(&v, "power_max_w"), f(&a, "power_max_w")),
     ];
     for (name, ours, plan) in rows {
-        println!("slot {name}: verify {ours:.6} plan {plan:.6} ({:+.3} %)", 100.0 * (ours - plan) / plan);
+        println!("slot {extra:?} {name}: verify {ours:.6} plan {plan:.6} ({:+.3} %)", 100.0 * (ours - plan) / plan);
     }
     assert!((rows[0].1 - rows[0].2).abs() <= 0.5, "{rows:?}");
-    assert!(rel(rows[1].1, rows[1].2) <= 0.01, "{rows:?}");
-    assert!(rel(rows[2].1, rows[2].2) <= 0.01, "{rows:?}");
-    for r in &rows[3..] {
+    for r in &rows[1..4] {
+        assert!(rel(r.1, r.2) <= 0.01, "{r:?}");
+    }
+    for r in &rows[4..] {
         assert!(rel(r.1, r.2) <= 0.02, "{r:?}");
     }
+    v["problems"].as_array().expect("problems").iter().filter_map(|p| p["kind"].as_str().map(str::to_owned)).collect()
+}
+
+#[test]
+fn slot_agrees_with_analyze() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let kinds = slot_case(dir.path(), &[]);
     // no geometric problem; the job's 726 W and 3.47 N·m at 2000 rpm are above the hobby
     // router's 710 W and 0.68 N·m (its preset): power and torque problems, as they should be
-    let kinds: Vec<&str> =
-        v["problems"].as_array().expect("problems").iter().filter_map(|p| p["kind"].as_str()).collect();
-    assert!(kinds.contains(&"power") && kinds.contains(&"torque"), "{kinds:?}");
-    assert!(kinds.iter().all(|k| matches!(*k, "power" | "torque")), "{kinds:?}");
+    assert!(kinds.iter().any(|k| k == "power") && kinds.iter().any(|k| k == "torque"), "{kinds:?}");
+    assert!(kinds.iter().all(|k| matches!(k.as_str(), "power" | "torque")), "{kinds:?}");
+}
+
+/// At 6000 mm/min and 20 000 rpm the hobby router (5000 mm/min at most, less on its arcs) never
+/// reaches the programmed feed: the chip, forces, torque and power at the feed it reaches
+/// agree between `analyze` (the tooth series scaled by the planned feed profile) and `verify`
+/// (the program read back, its own feed planning and chip), and the programmed-feed chip
+/// beside them agrees too.
+#[test]
+fn slot_at_a_feed_the_machine_cannot_reach_agrees_with_analyze() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    slot_case(dir.path(), &["--feed", "6000", "--rpm", "20000"]);
 }
 
 #[test]

@@ -36,8 +36,12 @@ pub struct Metrics {
     pub mrr_mm3_per_min: f64,
     /// f_z = f_r / (n·z) (mm).
     pub f_z_mm: f64,
-    /// Largest local maximum chip thickness over a steady-state cycle (mm), eqs. 3–6.
+    /// Largest local maximum chip thickness over a steady-state cycle (mm), eqs. 3–6, at the
+    /// feed the machine reaches (each tooth's chip scaled by the reached over the programmed
+    /// feed, [`at_reached_feed`]); without a machine the programmed feed's.
     pub h_max_mm: f64,
+    /// The same at the programmed feed f_z everywhere (mm).
+    pub h_max_programmed_mm: f64,
     /// Time from the start of cutting to h_max (s).
     pub t_hmax_s: f64,
     /// Time per cycle in which no tooth cuts (s).
@@ -71,7 +75,9 @@ pub struct Metrics {
     /// Largest step for a straight-cut-equivalent depth of 15 % of D (mm).
     pub step_limit_15pct_depth_mm: f64,
     /// F_R,max: largest resultant cutting force over a steady-state cycle (N), linear
-    /// edge-force model with helix (Altintas & Lee 1996; docs/process-model.md).
+    /// edge-force model with helix (Altintas & Lee 1996; docs/process-model.md). This and
+    /// the torques and powers below are at the feed the machine reaches
+    /// ([`force_series`]).
     pub force_resultant_max_n: f64,
     /// Mean F_R over the part of the cycle in which the tool cuts (N).
     pub force_resultant_mean_n: f64,
@@ -85,8 +91,13 @@ pub struct Metrics {
     /// Largest and mean (while cutting) cutting power (W).
     pub power_max_w: f64,
     pub power_mean_w: f64,
+    /// F_R,max, the largest torque and the largest power at the programmed feed everywhere (N,
+    /// N·m, W; equal to the above without a machine or where it holds the feed).
+    pub force_resultant_max_programmed_n: f64,
+    pub torque_max_programmed_nm: f64,
+    pub power_max_programmed_w: f64,
     /// PI = MRR / (F_R,max · Ra,max · W_max), eq. (7) (mm³/min, N, µm, µm; W_max = max(W_l, W_r),
-    /// at least [`W_RESOLUTION_UM`]); `None` without
+    /// at least [`W_RESOLUTION_UM`]; MRR and F_R,max at the programmed feed); `None` without
     /// Ra,max (JSON null).
     pub performance_index: Option<f64>,
     /// MRR / (F_R,max · W_max): eq. (7) without Ra (mm³/min, N, µm).
@@ -194,8 +205,19 @@ pub fn plan_valid(job: ValidJob) -> Plan {
         || tooth_series(&paper, &edge, r, f_z, feed_mm_per_s),
         || rayon::join(|| wall_profile(&paper, r, Wall::Left), || wall_profile(&paper, r, Wall::Right)),
     );
-    // Forces from the analysis-frame series (refined there), mirrored inside for climb.
-    let forces = force_series(&job, &paper, &edge, &series);
+    // Forces from the analysis-frame series (refined there), mirrored inside for climb: at
+    // the programmed feed, and at the feed the machine reaches where that is lower.
+    let real = slot_real_time(&job, &path);
+    let (forces_programmed, forces) = match job.machine.is_some() && !held_everywhere(&series, &real.cycle) {
+        true => rayon::join(
+            || force_series(&job, &paper, &edge, &series, None),
+            || force_series(&job, &paper, &edge, &series, Some(&real.cycle)),
+        ),
+        false => {
+            let f = force_series(&job, &paper, &edge, &series, None);
+            (f.clone(), f)
+        }
+    };
     let (series, left_wall, right_wall) = match job.direction {
         Direction::Conventional => (series, left_wall, right_wall),
         Direction::Climb => {
@@ -206,16 +228,18 @@ pub fn plan_valid(job: ValidJob) -> Plan {
     let stride = analysis::chip::tooth_stride(cycle_length, f_z);
     let timing = chip_timing(&series, stride as f64 * f_z / feed_mm_per_s);
     let t_cycle = cycle_length / feed_mm_per_s;
-    let real = slot_real_time(&job, &path);
+    let h_max_reached = h_max_at_reached_feed(&job, &paper, &edge, &series, &real.cycle).unwrap_or(timing.h_max_mm);
     let mrr_at = |t: f64| job.slot_width * job.step * job.depth / t * 60.0;
     let mrr = mrr_at(t_cycle);
     let xs: Vec<f64> = series.iter().map(|t| t.x_mm).collect();
     let imprints = imprint_density(&xs, stride, r, job.slot_width, job.step);
-    let f = &forces.summary;
+    let (f, fp) = (&forces.summary, &forces_programmed.summary);
     // eq. (7), W in µm, at least the paper's measuring resolution (1 µm, section 4): a
     // linear-elliptical path with d ≥ s leaves no geometric waviness, and PI would be infinite.
     let w_max_um = (left_wall.waviness_mm.max(right_wall.waviness_mm) * 1000.0).max(W_RESOLUTION_UM);
-    let pi_without_ra = if f.resultant_max_n > 0.0 { mrr / (f.resultant_max_n * w_max_um) } else { 0.0 };
+    // eq. (7) is the paper's, of the programmed job (its MRR at the programmed feed): F_R,max
+    // at the programmed feed.
+    let pi_without_ra = if fp.resultant_max_n > 0.0 { mrr / (fp.resultant_max_n * w_max_um) } else { 0.0 };
     let metrics = Metrics {
         path: job.path,
         direction: job.direction,
@@ -223,7 +247,8 @@ pub fn plan_valid(job: ValidJob) -> Plan {
         t_cycle_s: t_cycle,
         mrr_mm3_per_min: mrr,
         f_z_mm: f_z,
-        h_max_mm: timing.h_max_mm,
+        h_max_mm: h_max_reached,
+        h_max_programmed_mm: timing.h_max_mm,
         t_hmax_s: timing.t_hmax_s,
         // Each analysed tooth counts for `stride` periods, the last one partly beyond the cycle.
         t_cooling_s: timing.t_cooling_s.min(t_cycle),
@@ -257,6 +282,9 @@ pub fn plan_valid(job: ValidJob) -> Plan {
         torque_mean_nm: f.torque_mean_nm,
         power_max_w: f.power_max_w,
         power_mean_w: f.power_mean_w,
+        force_resultant_max_programmed_n: fp.resultant_max_n,
+        torque_max_programmed_nm: fp.torque_max_nm,
+        power_max_programmed_w: fp.power_max_w,
         performance_index: job.ra_um.map(|ra| pi_without_ra / ra),
         performance_index_without_ra: pi_without_ra,
         imprint_density_mean_per_mm: imprints.mean_per_mm,
@@ -281,6 +309,46 @@ pub fn plan_valid(job: ValidJob) -> Plan {
     }
 }
 
+/// How many of the largest scaled chips [`h_max_at_reached_feed`] measures again at their own f_z.
+pub const REACHED_CHIP_CANDIDATES: usize = 48;
+
+/// h_max at the feed the machine reaches (mm): the chips of [`at_reached_feed`] (each tooth's
+/// h scaled by v/F, first order in f_z) pick the [`REACHED_CHIP_CANDIDATES`] largest, and each
+/// of those teeth is analysed again after a tooth f_z·v/F before it (the chip at its own feed
+/// per tooth, eqs. 3–6); the largest of them. `series` is the job's (mirrored for climb: its
+/// arc lengths are the analysis frame's). `None` where the feed is held everywhere.
+pub fn h_max_at_reached_feed(
+    job: &ValidJob,
+    paper: &Cycle,
+    edge: &PreviousEdge,
+    series: &[ToothSample],
+    profile: &FeedProfile,
+) -> Option<f64> {
+    let (scaled, _) = at_reached_feed(series, profile)?;
+    let mut order: Vec<usize> = (0..scaled.len()).collect();
+    order.sort_by(|&a, &b| scaled[b].h_mm.total_cmp(&scaled[a].h_mm));
+    order.truncate(REACHED_CHIP_CANDIDATES);
+    let (r, f_z, feed) = (job.tool_radius(), job.f_z(), job.feed / 60.0);
+    use rayon::prelude::*;
+    order
+        .par_iter()
+        .filter_map(|&i| {
+            let s = series[i].s_mm;
+            let k = profile.at(s)?.1.clamp(0.0, 1.0);
+            if !(k * f_z >= analysis::chip::H_CUT_MM) {
+                return Some(scaled[i].h_mm);
+            }
+            analysis::chip::tooth_samples_at(paper, edge, r, k * f_z, feed * k, &[s]).first().map(|t| t.h_mm)
+        })
+        .reduce_with(f64::max)
+}
+
+/// Whether the machine holds the programmed feed at every tooth position of the cycle (or
+/// there is no machine profile).
+fn held_everywhere(series: &[ToothSample], profile: &FeedProfile) -> bool {
+    series.iter().all(|t| profile.at(t.s_mm).is_none_or(|(_, k)| k >= 1.0 - 1e-12))
+}
+
 /// Rounds of [`force_series`]' refinement; each halves the gaps that still change too fast.
 const FORCE_REFINE_ROUNDS: usize = 3;
 
@@ -290,7 +358,18 @@ const FORCE_REFINE_ROUNDS: usize = 3;
 /// [`FORCE_REFINE_ROUNDS`] times: at most an eighth of a tooth period apart there).
 /// `cycle`, `edge` and `series` are in the analysis frame (the paper's clockwise cycle,
 /// [`Cycle::for_job`]); for a climb job the refined series is mirrored before the forces.
-pub fn force_series(job: &ValidJob, cycle: &Cycle, edge: &PreviousEdge, series: &[ToothSample]) -> ForceSeries {
+///
+/// With `reached` (the steady-state cycle's feed on the machine, [`RealTime::cycle`]) the
+/// forces are those at the feed the machine reaches: every tooth position's chip scaled by
+/// the ratio of the reached to the programmed feed there (h is proportional to f_z, eqs.
+/// 3–6), on the cycle's real time axis ([`at_reached_feed`]).
+pub fn force_series(
+    job: &ValidJob,
+    cycle: &Cycle,
+    edge: &PreviousEdge,
+    series: &[ToothSample],
+    reached: Option<&FeedProfile>,
+) -> ForceSeries {
     let (r, f_z, feed) = (job.tool_radius(), job.f_z(), job.feed / 60.0);
     let len = cycle.length();
     let mut dense = std::borrow::Cow::Borrowed(series);
@@ -310,7 +389,40 @@ pub fn force_series(job: &ValidJob, cycle: &Cycle, edge: &PreviousEdge, series: 
     if job.direction == Direction::Climb {
         dense = std::borrow::Cow::Owned(dense.iter().map(ToothSample::mirrored_x).collect());
     }
-    cycle_forces(&dense, len / feed, &cutter(job), &job.coefficients, job.rpm)
+    match reached.and_then(|profile| at_reached_feed(&dense, profile)) {
+        Some((scaled, t_cycle)) => cycle_forces(&scaled, t_cycle, &cutter(job), &job.coefficients, job.rpm),
+        None => cycle_forces(&dense, len / feed, &cutter(job), &job.coefficients, job.rpm),
+    }
+}
+
+/// The tooth positions of one steady-state cycle at the feed the machine reaches: each
+/// position's chip h (and its arcs' h(φ)) times the ratio v/F of the reached to the
+/// programmed feed at its arc length, its time the real time there; and the real cycle time.
+/// h is proportional to f_z at a fixed geometry (eqs. 3–6 are lengths measured on tool
+/// circles f_z apart), so a tooth at a feed v cuts the chip of f_z·v/F. `None` where the
+/// profile is empty or the feed is held everywhere (no chip changes).
+pub fn at_reached_feed(series: &[ToothSample], profile: &FeedProfile) -> Option<(Vec<ToothSample>, f64)> {
+    let at: Vec<(f64, f64)> = series.iter().map(|t| profile.at(t.s_mm)).collect::<Option<_>>()?;
+    if at.iter().all(|&(_, k)| k >= 1.0 - 1e-12) {
+        return None;
+    }
+    let scaled = series
+        .iter()
+        .zip(at)
+        .map(|(t, (time_s, k))| {
+            let k = k.clamp(0.0, 1.0);
+            let mut t = t.clone();
+            t.time_s = time_s;
+            t.h_mm *= k;
+            for arc in &mut t.arcs {
+                for x in &mut arc.samples {
+                    x.h_mm *= k;
+                }
+            }
+            t
+        })
+        .collect();
+    Some((scaled, profile.time_s()))
 }
 
 /// The job's cutter for the force model.
@@ -378,6 +490,31 @@ pub fn engagement_limited_step(job: &Job, limit_rad: f64) -> Result<f64, Error> 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// On a machine that holds the feed the chip and forces are the programmed ones; on one
+    /// that reaches less than half of it (the hobby router, 5000 mm/min at most, at a job of
+    /// 6000 mm/min) h_max, F_R,max, torque and power are lower, and h_max lies between the
+    /// programmed one times the least and the largest ratio v/F of the cycle (h ∝ f_z).
+    #[test]
+    fn the_chip_and_forces_are_at_the_feed_the_machine_reaches() {
+        let machine = crate::machine::MachineChoice::Preset("hobby-router".into());
+        let held = plan(&Job { machine: Some(machine.clone()), ..Job::default() }).expect("plan");
+        let m = &held.metrics;
+        assert_eq!(m.feed_held_share, 1.0);
+        assert_eq!((m.h_max_mm, m.power_max_w), (m.h_max_programmed_mm, m.power_max_programmed_w));
+        let fast = plan(&Job { machine: Some(machine), feed: 6000.0, rpm: 20000.0, ..Job::default() }).expect("plan");
+        let m = &fast.metrics;
+        let ratios: Vec<f64> = fast.feed.points.iter().map(|p| p.feed_mm_per_min / p.programmed_mm_per_min).collect();
+        let (lo, hi) = ratios.iter().fold((1.0_f64, 0.0_f64), |(a, b), &k| (a.min(k), b.max(k)));
+        assert!(hi < 5000.0 / 6000.0 + 1e-9, "{hi}");
+        assert!(m.h_max_mm >= lo * m.h_max_programmed_mm * 0.99 && m.h_max_mm <= hi * m.h_max_programmed_mm * 1.01);
+        assert!(m.force_resultant_max_n < m.force_resultant_max_programmed_n);
+        assert!(m.torque_max_nm < m.torque_max_programmed_nm && m.power_max_w < m.power_max_programmed_w);
+        // the programmed values are the ideal machine's
+        let ideal = plan(&Job { feed: 6000.0, rpm: 20000.0, ..Job::default() }).expect("plan");
+        assert_eq!(m.h_max_programmed_mm, ideal.metrics.h_max_mm);
+        assert_eq!(m.force_resultant_max_programmed_n, ideal.metrics.force_resultant_max_n);
+    }
 
     /// The slot's tool path is the planned path: as long as the metrics' path length (the same
     /// segments summed), every move a cut at the slot depth and the job's feed, consecutive

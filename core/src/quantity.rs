@@ -107,9 +107,18 @@ pub const H_MAX: Metric = Metric::new(
     "mm",
     4,
     |m| m.h_max_mm,
-    "Largest local maximum chip thickness over a steady-state cycle, eqs. (3)–(6) (Table 2).",
+    "Largest local maximum chip thickness over a steady-state cycle, eqs. (3)–(6) (Table 2), at the feed \
+     the machine reaches (each tooth's chip scaled by the reached over the programmed feed).",
 )
 .lower_is_better();
+pub const H_MAX_PROGRAMMED: Metric = Metric::new(
+    "h_max_programmed_mm",
+    "h_max at f_r",
+    "mm",
+    4,
+    |m| m.h_max_programmed_mm,
+    "h_max at the programmed feed everywhere (the same as h_max without a machine or where it holds the feed).",
+);
 pub const T_HMAX: Metric =
     Metric::new("t_hmax_s", "t_hmax", "s", 3, |m| m.t_hmax_s, "Time from the start of cutting to h_max (Table 2).");
 pub const T_COOLING: Metric = Metric::new(
@@ -259,6 +268,30 @@ pub const TORQUE_MEAN: Metric =
 pub const POWER_MAX: Metric =
     Metric::new("power_max_w", "P_max", "W", 0, |m| m.power_max_w, "Largest cutting power P = T·Ω = T·2πn/60.")
         .lower_is_better();
+pub const FORCE_RESULTANT_MAX_PROGRAMMED: Metric = Metric::new(
+    "force_resultant_max_programmed_n",
+    "F_R,max at f_r",
+    "N",
+    1,
+    |m| m.force_resultant_max_programmed_n,
+    "F_R,max at the programmed feed everywhere (the forces above are at the feed the machine reaches).",
+);
+pub const TORQUE_MAX_PROGRAMMED: Metric = Metric::new(
+    "torque_max_programmed_nm",
+    "T_max at f_r",
+    "N·m",
+    2,
+    |m| m.torque_max_programmed_nm,
+    "Largest spindle torque at the programmed feed everywhere.",
+);
+pub const POWER_MAX_PROGRAMMED: Metric = Metric::new(
+    "power_max_programmed_w",
+    "P_max at f_r",
+    "W",
+    0,
+    |m| m.power_max_programmed_w,
+    "Largest cutting power at the programmed feed everywhere.",
+);
 pub const POWER_MEAN: Metric =
     Metric::new("power_mean_w", "mean P", "W", 0, |m| m.power_mean_w, "Mean cutting power while the tool cuts.");
 pub const PERFORMANCE_INDEX: Metric = Metric::new(
@@ -339,12 +372,13 @@ pub const FEED_HELD_SHARE: Metric = Metric::new(
 .higher_is_better();
 
 /// Every numeric metric of [`Metrics`] (all its fields but the path kind), in field order.
-pub const METRICS: [&Metric; 37] = [
+pub const METRICS: [&Metric; 41] = [
     &CYCLE_LENGTH,
     &T_CYCLE,
     &MRR,
     &F_Z,
     &H_MAX,
+    &H_MAX_PROGRAMMED,
     &T_HMAX,
     &T_COOLING,
     &ENGAGEMENT_MAX,
@@ -369,6 +403,9 @@ pub const METRICS: [&Metric; 37] = [
     &TORQUE_MEAN,
     &POWER_MAX,
     &POWER_MEAN,
+    &FORCE_RESULTANT_MAX_PROGRAMMED,
+    &TORQUE_MAX_PROGRAMMED,
+    &POWER_MAX_PROGRAMMED,
     &PERFORMANCE_INDEX,
     &PERFORMANCE_INDEX_WITHOUT_RA,
     &IMPRINT_DENSITY_MEAN,

@@ -117,6 +117,26 @@ impl FeedProfile {
         if t > 0.0 { held / t + 0.0 } else { 1.0 }
     }
 
+    /// Time (s) and the ratio of the planned to the programmed feed at arc length `s_mm`, by
+    /// linear interpolation between the nodes (clamped to the ends); `None` for an empty
+    /// profile.
+    pub fn at(&self, s_mm: f64) -> Option<(f64, f64)> {
+        let p = &self.points;
+        let ratio = |q: &FeedPoint| {
+            if q.programmed_mm_per_min > 0.0 { q.feed_mm_per_min / q.programmed_mm_per_min } else { 1.0 }
+        };
+        let i = p.partition_point(|q| q.s_mm < s_mm);
+        match (i.checked_sub(1).and_then(|j| p.get(j)), p.get(i)) {
+            (Some(a), Some(b)) if b.s_mm > a.s_mm => {
+                let w = (s_mm - a.s_mm) / (b.s_mm - a.s_mm);
+                Some((a.t_s + w * (b.t_s - a.t_s), ratio(a) + w * (ratio(b) - ratio(a))))
+            }
+            (_, Some(b)) => Some((b.t_s, ratio(b))),
+            (Some(a), None) => Some((a.t_s, ratio(a))),
+            (None, None) => None,
+        }
+    }
+
     /// The part from arc length `s0` to `s1`, with s and t counted from `s0`.
     pub fn window(&self, s0: f64, s1: f64) -> FeedProfile {
         let inside: Vec<&FeedPoint> =
@@ -470,6 +490,12 @@ mod tests {
         let p = plan_feed(&line, &[6000.0], &d);
         assert!((p.points[p.points.len() / 2].feed_mm_per_min - 3000.0).abs() < 1e-6);
         assert_eq!(p.held_share(), 0.0);
+        // mid-line: half the programmed feed, at the time of the ramp to 50 mm/s (1/20 s
+        // over 1.25 mm at a = 1000) and the cruise from 1.25 mm to 50 mm
+        let (t, k) = p.at(50.0).expect("a profile");
+        assert!((k - 0.5).abs() < 1e-9, "{k}");
+        assert!((t - (0.05 + 48.75 / 50.0)).abs() < 1e-3, "{t}");
+        assert_eq!(FeedProfile::default().at(1.0), None);
     }
 
     #[test]

@@ -85,11 +85,11 @@ impl LimitKind {
     /// The limited quantity of a plan, in the limit's unit.
     pub fn measure(self, m: &Metrics) -> f64 {
         match self {
-            LimitKind::HMax => m.h_max_mm,
+            LimitKind::HMax => m.h_max_programmed_mm,
             LimitKind::Engagement => m.engagement_max_deg,
             LimitKind::Waviness => m.waviness_left_mm.max(m.waviness_right_mm),
             LimitKind::Cooling => m.t_cooling_s / m.t_cycle_s,
-            LimitKind::Force => m.force_resultant_max_n,
+            LimitKind::Force => m.force_resultant_max_programmed_n,
         }
     }
 
@@ -367,7 +367,7 @@ impl Search<'_> {
             .of_class(LimitClass::FeedScaled)
             .map(|l| {
                 let value = match l.kind {
-                    LimitKind::Force => force_series(job, &cycle, &edge, &series).summary.resultant_max_n,
+                    LimitKind::Force => force_series(job, &cycle, &edge, &series, None).summary.resultant_max_n,
                     _ => series.iter().map(|t| t.h_mm).fold(0.0, f64::max),
                 };
                 (*l, value)
