@@ -28,6 +28,17 @@ pub struct OptimizeArgs {
     /// Largest resultant cutting force F_R,max (N, force model of `analyze`); none: not limited.
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub max_force: Option<f64>,
+    /// Largest cutting power (W, at the programmed feed, which bounds the power at any feed
+    /// the machine reaches); none: not limited.
+    #[arg(long, value_name = "W", allow_hyphen_values = true)]
+    pub max_power: Option<f64>,
+    /// Largest spindle torque (N·m, at the programmed feed); none: not limited.
+    #[arg(long, value_name = "NM", allow_hyphen_values = true)]
+    pub max_torque: Option<f64>,
+    /// Hold the machine's spindle power and torque (its preset's or its [machine] table's) as
+    /// limits; without it the best job is only checked against them (a "# warning:" line).
+    #[arg(long)]
+    pub hold_spindle_limits: bool,
     /// Write the Pareto fronts (real MRR against W_max and against F_R,max) as CSV; the
     /// column `front` says which front a row is on (`-`: the standard output).
     #[arg(long, value_name = "FILE.csv")]
@@ -43,6 +54,27 @@ pub fn run(args: &OptimizeArgs) -> Result<String, String> {
     if let Some(f) = args.max_force {
         limits = limits.with_max_force(f).map_err(|e| e.to_string())?;
     }
+    let (mut power, mut torque) = (args.max_power, args.max_torque);
+    if args.hold_spindle_limits {
+        let machine = base.validate().map_err(|e| e.to_string())?.machine;
+        let (p, t) = machine.as_ref().map_or((None, None), |m| (m.spindle_power, m.spindle_torque));
+        if p.is_none() && t.is_none() {
+            return Err(
+                "--hold-spindle-limits: the job's machine has no spindle power or torque (give --machine with \
+                        spindle-power or spindle-torque, or --max-power / --max-torque)"
+                    .to_owned(),
+            );
+        }
+        // the smaller of a limit given and the machine's
+        power = [power, p].into_iter().flatten().reduce(f64::min);
+        torque = [torque, t].into_iter().flatten().reduce(f64::min);
+    }
+    if let Some(p) = power {
+        limits = limits.with_max_power(p).map_err(|e| e.to_string())?;
+    }
+    if let Some(t) = torque {
+        limits = limits.with_max_torque(t).map_err(|e| e.to_string())?;
+    }
     let out = optimize(&base, &limits, &Control::NONE).map_err(|e| e.to_string())?.ok_or("cancelled")?;
     if let Some(file) = &args.front {
         write_atomic(file, front_csv(&[("waviness", &out.front), ("force", &out.front_force)]).as_bytes())?;
@@ -51,7 +83,9 @@ pub fn run(args: &OptimizeArgs) -> Result<String, String> {
     let mut text = format!(
         "# trochoplan optimize: highest real MRR within the limits ({} plans)\n\
          # real MRR {:.0} mm³/min, real cycle {:.3} s, real machining time {:.1} s\n\
-         # h_max {:.4} mm, engagement {:.2}°, W_max {:.4} mm, F_R,max {:.1} N, feed held {:.3}\n",
+         # h_max {:.4} mm, engagement {:.2}°, W_max {:.4} mm, F_R,max {:.1} N, feed held {:.3}\n\
+         # power {:.0} W, torque {:.2} N·m (at the feed the machine reaches; at the programmed feed \
+         {:.0} W, {:.2} N·m)\n",
         out.evaluations,
         m.mrr_real_mm3_per_min,
         m.t_cycle_real_s,
@@ -61,6 +95,10 @@ pub fn run(args: &OptimizeArgs) -> Result<String, String> {
         m.waviness_left_mm.max(m.waviness_right_mm),
         m.force_resultant_max_n,
         m.feed_held_share,
+        m.power_max_w,
+        m.torque_max_nm,
+        m.power_max_programmed_w,
+        m.torque_max_programmed_nm,
     );
     // The same job with the variable feed (cutting teeth at the target h, air at the return
     // feed): what `analyze --variable-feed` reports and `export --variable-feed` writes.
@@ -71,8 +109,8 @@ pub fn run(args: &OptimizeArgs) -> Result<String, String> {
         vf.real.total_s,
         m.mrr_real_mm3_per_min * m.t_cycle_real_s / vf.real.t_cycle_s,
     ));
-    // the spindle limits are not among the optimiser's limits: the best job is checked
-    // against them, as `analyze` checks a job
+    // unless held, the spindle limits are not among the optimiser's limits: the best job is
+    // checked against them (at the feed the machine reaches), as `analyze` checks a job
     for w in super::verify::spindle_warnings(&p) {
         text.push_str(&format!("# warning: {w}\n"));
     }

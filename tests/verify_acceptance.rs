@@ -267,3 +267,37 @@ fn optimize_warns_above_the_spindle_limits() {
     let vmc = run(dir.path(), &["optimize", "--machine", "vmc", "--max-hmax", "0.1", "--max-engagement", "60"]);
     assert!(!vmc.contains("# warning"), "{vmc}");
 }
+
+/// `optimize --hold-spindle-limits` holds the machine's spindle power and torque: the best job,
+/// analysed on its own, is within the hobby router's 710 W and 0.68 N·m at the programmed feed
+/// (which bounds them at any feed the machine reaches), with no warning, and its real MRR is
+/// at most that of the search without them; without a machine with limits the flag is refused
+/// by name.
+#[test]
+fn optimize_holds_the_spindle_limits() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let base = ["optimize", "--machine", "hobby-router", "--max-hmax", "0.1", "--max-engagement", "60"];
+    let free = run(dir.path(), &base);
+    let held = run(dir.path(), &[&base[..], &["--hold-spindle-limits"]].concat());
+    assert!(!held.contains("# warning"), "{held}");
+    let mrr = |text: &str| -> f64 {
+        let line = text.lines().find(|l| l.starts_with("# real MRR ")).expect("MRR line");
+        line["# real MRR ".len()..].split(' ').next().expect("number").parse().expect("number")
+    };
+    assert!(mrr(&held) <= mrr(&free), "{held}\n{free}");
+    let job = dir.path().join("held.toml");
+    let toml: String = held.lines().filter(|l| !l.starts_with('#')).map(|l| format!("{l}\n")).collect();
+    std::fs::write(&job, toml).expect("write job");
+    let a = json(&run(dir.path(), &["analyze", "--job", job.to_str().expect("utf-8")]));
+    println!("held: power {} W torque {} N·m", f(&a, "power_max_programmed_w"), f(&a, "torque_max_programmed_nm"));
+    assert!(f(&a, "power_max_programmed_w") <= 710.0 * (1.0 + 1e-9), "{a}");
+    assert!(f(&a, "torque_max_programmed_nm") <= 0.68 * (1.0 + 1e-9), "{a}");
+    assert!(f(&a, "h_max_programmed_mm") <= 0.1 && f(&a, "engagement_max_deg") <= 60.0, "{a}");
+    assert!(a.get("warnings").is_none(), "{a}");
+    let out = Command::new(env!("CARGO_BIN_EXE_trochoplan"))
+        .args(["optimize", "--max-hmax", "0.1", "--max-engagement", "60", "--hold-spindle-limits"])
+        .output()
+        .expect("runs");
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--hold-spindle-limits"));
+}

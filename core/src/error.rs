@@ -78,6 +78,8 @@ pub enum Param {
     MinCooling,
     /// `optimize --max-force`: limit on F_R,max (N).
     MaxForce,
+    MaxPower,
+    MaxTorque,
     /// Variable feed: the target chip thickness.
     TargetHmax,
     MaxFeed,
@@ -123,7 +125,7 @@ pub enum Param {
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 78] = [
+    pub const ALL: [Param; 80] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
@@ -177,6 +179,8 @@ impl Param {
         Param::MaxWaviness,
         Param::MinCooling,
         Param::MaxForce,
+        Param::MaxPower,
+        Param::MaxTorque,
         Param::TargetHmax,
         Param::MaxFeed,
         Param::RapidMargin,
@@ -261,6 +265,8 @@ impl Param {
             Param::MaxWaviness => "max-waviness",
             Param::MinCooling => "min-cooling",
             Param::MaxForce => "max-force",
+            Param::MaxPower => "max-power",
+            Param::MaxTorque => "max-torque",
             Param::TargetHmax => "target-hmax",
             Param::MaxFeed => "max-feed",
             Param::RapidMargin => "rapid-margin",
@@ -345,6 +351,8 @@ impl Param {
             Param::MaxWaviness => "Limit waviness W_max",
             Param::MinCooling => "Minimum cooling share",
             Param::MaxForce => "Limit F_R,max",
+            Param::MaxPower => "Limit spindle power",
+            Param::MaxTorque => "Limit spindle torque",
             Param::TargetHmax => "Target h",
             Param::MaxFeed => "Maximum feed",
             Param::RapidMargin => "Rapid margin",

@@ -61,6 +61,10 @@ pub enum LimitKind {
     Cooling,
     /// F_R,max ≤ limit (N), `--max-force`.
     Force,
+    /// Largest cutting power ≤ limit (W), `--max-power` (or the machine's spindle power).
+    Power,
+    /// Largest spindle torque ≤ limit (N·m), `--max-torque` (or the machine's spindle torque).
+    Torque,
 }
 
 /// How a limit is met: by the step (geometry) or by the feed.
@@ -79,6 +83,8 @@ impl LimitKind {
             LimitKind::Waviness => Param::MaxWaviness,
             LimitKind::Cooling => Param::MinCooling,
             LimitKind::Force => Param::MaxForce,
+            LimitKind::Power => Param::MaxPower,
+            LimitKind::Torque => Param::MaxTorque,
         }
     }
 
@@ -90,7 +96,15 @@ impl LimitKind {
             LimitKind::Waviness => m.waviness_left_mm.max(m.waviness_right_mm),
             LimitKind::Cooling => m.t_cooling_s / m.t_cycle_s,
             LimitKind::Force => m.force_resultant_max_programmed_n,
+            LimitKind::Power => m.power_max_programmed_w,
+            LimitKind::Torque => m.torque_max_programmed_nm,
         }
+    }
+
+    /// Whether the quantity is affine in f_z (the forces and what follows from them: edge
+    /// part plus cutting part, module docs) rather than proportional to it (h_max).
+    pub fn affine(self) -> bool {
+        matches!(self, LimitKind::Force | LimitKind::Power | LimitKind::Torque)
     }
 
     /// Whether the limit is an upper one (else a lower one).
@@ -100,7 +114,7 @@ impl LimitKind {
 
     pub fn class(self) -> LimitClass {
         match self {
-            LimitKind::HMax | LimitKind::Force => LimitClass::FeedScaled,
+            LimitKind::HMax | LimitKind::Force | LimitKind::Power | LimitKind::Torque => LimitClass::FeedScaled,
             _ => LimitClass::Geometric,
         }
     }
@@ -111,6 +125,8 @@ impl LimitKind {
             LimitKind::Engagement => "°",
             LimitKind::Cooling => "",
             LimitKind::Force => " N",
+            LimitKind::Power => " W",
+            LimitKind::Torque => " N·m",
         }
     }
 }
@@ -170,6 +186,24 @@ impl Limits {
             return Err(Error::param(Param::MaxForce, force_n, "a finite number > 0 and ≤ 1e6 N".to_owned()));
         }
         self.list.push(Limit { kind: LimitKind::Force, value: force_n });
+        Ok(self)
+    }
+
+    /// The limits with the largest cutting power ≤ `power_w` (W) added (`--max-power`).
+    pub fn with_max_power(mut self, power_w: f64) -> Result<Limits, Error> {
+        if !(power_w.is_finite() && power_w > 0.0 && power_w <= 1e7) {
+            return Err(Error::param(Param::MaxPower, power_w, "a finite number > 0 and ≤ 1e7 W".to_owned()));
+        }
+        self.list.push(Limit { kind: LimitKind::Power, value: power_w });
+        Ok(self)
+    }
+
+    /// The limits with the largest spindle torque ≤ `torque_nm` (N·m) added (`--max-torque`).
+    pub fn with_max_torque(mut self, torque_nm: f64) -> Result<Limits, Error> {
+        if !(torque_nm.is_finite() && torque_nm > 0.0 && torque_nm <= 1e5) {
+            return Err(Error::param(Param::MaxTorque, torque_nm, "a finite number > 0 and ≤ 1e5 N·m".to_owned()));
+        }
+        self.list.push(Limit { kind: LimitKind::Torque, value: torque_nm });
         Ok(self)
     }
 
@@ -298,7 +332,7 @@ impl Search<'_> {
                     let t = analysis::chip_timing(&series, stride as f64 * job.f_z() / feed);
                     t.t_cooling_s.min(cycle.length() / feed) / (cycle.length() / feed)
                 }
-                LimitKind::HMax | LimitKind::Force => continue,
+                LimitKind::HMax | LimitKind::Force | LimitKind::Power | LimitKind::Torque => continue,
             };
             let e = if l.kind.upper() { value / l.value - 1.0 } else { 1.0 - value / l.value };
             if e > worst.0 {
@@ -363,11 +397,18 @@ impl Search<'_> {
         let edge = PreviousEdge::new(&cycle, r);
         let feed = job.feed / 60.0;
         let series = analysis::tooth_series(&cycle, &edge, r, f_z, feed);
+        let forces = self
+            .limits
+            .of_class(LimitClass::FeedScaled)
+            .any(|l| l.kind.affine())
+            .then(|| force_series(job, &cycle, &edge, &series, None).summary);
         self.limits
             .of_class(LimitClass::FeedScaled)
             .map(|l| {
-                let value = match l.kind {
-                    LimitKind::Force => force_series(job, &cycle, &edge, &series, None).summary.resultant_max_n,
+                let value = match (l.kind, &forces) {
+                    (LimitKind::Force, Some(f)) => f.resultant_max_n,
+                    (LimitKind::Power, Some(f)) => f.power_max_w,
+                    (LimitKind::Torque, Some(f)) => f.torque_max_nm,
                     _ => series.iter().map(|t| t.h_mm).fold(0.0, f64::max),
                 };
                 (*l, value)
@@ -391,36 +432,34 @@ impl Search<'_> {
     }
 
     /// The feed at which each feed-scaled quantity of `quantities` (measured at `feed`) meets
-    /// its limit, the smallest of them. h_max is proportional to f_z. F_R,max is affine in it
-    /// (module docs), F(f) = F(feed)·(ρ + (1 − ρ)·f/feed) with ρ = F_e/F the edge share: with
-    /// ρ known, aimed 0.05 % under the limit; else the secant through `last` (the previous
-    /// feed and F_R,max), else lowered by r² (raised by r). Returns the feed and ρ.
-    fn feed_target(quantities: &[(Limit, f64)], feed: f64, last: Option<(f64, f64)>, rho: Option<f64>) -> (f64, f64) {
-        let mut edge_share = rho.unwrap_or(0.0);
-        let target = quantities
+    /// its limit, the smallest of them. h_max is proportional to f_z. F_R,max, the torque and
+    /// the power are affine in it (module docs), Q(f) = Q(feed)·(ρ + (1 − ρ)·f/feed) with
+    /// ρ = Q_e/Q the edge share: from the secant through `last` (the previous feed and the
+    /// quantities measured there, in the same order), aimed 0.05 % under the limit; else
+    /// lowered by r² (raised by r).
+    fn feed_target(quantities: &[(Limit, f64)], feed: f64, last: Option<(f64, &[(Limit, f64)])>) -> f64 {
+        quantities
             .iter()
-            .map(|&(l, value)| {
+            .enumerate()
+            .map(|(i, &(l, value))| {
                 let r = l.value / value;
-                if l.kind != LimitKind::Force {
+                if !l.kind.affine() {
                     return feed * r;
                 }
                 let aim = l.value * (1.0 - 5e-4) / value;
-                let secant = last.and_then(|(f0, v0)| {
+                let secant = last.and_then(|(f0, q0)| {
+                    let v0 = q0.get(i)?.1;
                     let slope = (value - v0) / (feed - f0);
                     let rho = 1.0 - slope * feed / value;
                     (slope.is_finite() && (0.0..1.0).contains(&rho)).then_some(rho)
                 });
-                match secant.or(rho) {
-                    Some(rho) => {
-                        edge_share = rho;
-                        feed * (aim - rho) / (1.0 - rho)
-                    }
+                match secant {
+                    Some(rho) => feed * (aim - rho) / (1.0 - rho),
                     None if r < 1.0 => feed * r * r,
                     None => feed * r,
                 }
             })
-            .fold(f64::INFINITY, f64::min);
-        (target, edge_share)
+            .fold(f64::INFINITY, f64::min)
     }
 
     /// The largest feed at step `s` that meets the feed-scaled limits ([`Self::feed_range`]),
@@ -430,7 +469,7 @@ impl Search<'_> {
     fn best_feed(&self, shape: Shape, s: f64, start: Option<f64>) -> Result<(f64, bool), Error> {
         let (v, f_lo, f_hi) = self.feed_range(shape, s)?;
         let mut feed = start.unwrap_or(v.feed).clamp(f_lo, f_hi);
-        let mut last: Option<(f64, f64)> = None;
+        let mut last: Option<(f64, Vec<(Limit, f64)>)> = None;
         for _ in 0..6 {
             let job = self.job(shape, s, feed).validate()?;
             let quantities = self.feed_scaled(&job);
@@ -438,8 +477,8 @@ impl Search<'_> {
             if (1.0..=1.001).contains(&ratio) {
                 return Ok((feed, true));
             }
-            let (target, _) = Self::feed_target(&quantities, feed, last, None);
-            last = quantities.iter().find(|(l, _)| l.kind == LimitKind::Force).map(|&(_, v)| (feed, v));
+            let target = Self::feed_target(&quantities, feed, last.as_ref().map(|(f, q)| (*f, q.as_slice())));
+            last = Some((feed, quantities));
             let next = (target * (1.0 - 1e-9)).clamp(f_lo, f_hi);
             if (next - feed).abs() <= 1e-9 * feed {
                 return Ok((feed, ratio >= 1.0));
@@ -464,11 +503,9 @@ impl Search<'_> {
         let measure = |feed: f64| self.job(shape, s, feed).validate().map(|job| self.feed_scaled(&job));
         let feed = start.unwrap_or(v.feed).clamp(f_lo, f_hi);
         let Ok(quantities) = measure(feed) else { return fail };
-        let (first, _) = Self::feed_target(&quantities, feed, None, None);
-        let next = first.clamp(f_lo, f_hi);
+        let next = Self::feed_target(&quantities, feed, None).clamp(f_lo, f_hi);
         let Ok(second) = measure(next) else { return fail };
-        let force = quantities.iter().find(|(l, _)| l.kind == LimitKind::Force).map(|&(_, v)| (feed, v));
-        let (target, _) = Self::feed_target(&second, next, force, None);
+        let target = Self::feed_target(&second, next, Some((feed, &quantities)));
         if target < f_lo {
             return fail;
         }
@@ -503,8 +540,8 @@ impl Search<'_> {
             Ok(s) => s,
             Err((limit, best)) => return Ok(Scored::Infeasible { limit, best }),
         };
-        let mut scored = if self.limits.all().iter().any(|l| l.kind == LimitKind::Force) {
-            // Under a force limit the feed falls as the engagement grows with s, and the real
+        let mut scored = if self.limits.all().iter().any(|l| l.kind.affine()) {
+            // Under a force (torque, power) limit the feed falls as the engagement grows with s, and the real
             // MRR need not grow with s: golden section over s ∈ [s_max/20, s_max] (the MRR is
             // unimodal in s there: it rises with s while the engagement is small and falls once
             // the force limit takes the feed down faster), with the end s_max compared.
