@@ -48,7 +48,7 @@ fn parts(c: &mut Criterion) {
     // The force series as plan() computes it: the extra tooth positions where the chip
     // changes shape fast, then the series.
     c.bench_function("analysis/force series (default job, spindle steps ≤ 1°)", |b| {
-        b.iter(|| force_series(&job, &path.cycle, &edge, black_box(&series)))
+        b.iter(|| force_series(&job, &path.cycle, &edge, black_box(&series), None))
     });
     let xs: Vec<f64> = series.iter().map(|t| t.x_mm).collect();
     c.bench_function("analysis/imprint density", |b| {

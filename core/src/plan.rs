@@ -335,7 +335,7 @@ pub fn h_max_at_reached_feed(
         .filter_map(|&i| {
             let s = series[i].s_mm;
             let k = profile.at(s)?.1.clamp(0.0, 1.0);
-            if !(k * f_z >= analysis::chip::H_CUT_MM) {
+            if k * f_z < analysis::chip::H_CUT_MM || k.is_nan() {
                 return Some(scaled[i].h_mm);
             }
             analysis::chip::tooth_samples_at(paper, edge, r, k * f_z, feed * k, &[s]).first().map(|t| t.h_mm)

@@ -10,6 +10,7 @@ use trochoplan_core::geom::Polygon;
 use trochoplan_core::job::Direction;
 use trochoplan_core::machine::Machine;
 use trochoplan_core::nc::pocket_program;
+use trochoplan_core::pocket::chip::chip_peaks;
 use trochoplan_core::pocket::{self, AdaptiveOptions, PaceOptions, PocketPlan, PocketRequest, PocketStrategy};
 use trochoplan_core::report;
 
@@ -196,10 +197,31 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
         None => None,
     };
     let text = report_json(&report::pocket(&req, &plan).map_err(err)?, nc_export)?;
-    match &args.machine {
-        Some(name) => with_real_time(&text, plan.toolpath(), &args.nc, args.feed, name),
-        None => Ok(text),
+    let text = match &args.machine {
+        Some(name) => with_real_time(&text, plan.toolpath(), &args.nc, args.feed, name)?,
+        None => text,
+    };
+    with_chip_peaks(&text, &plan, args)
+}
+
+/// The JSON `text` with the exact chip at the peaks of the pocket's moves ([`chip_peaks`]):
+/// `h_max_mm` at the feed the machine reaches (with `--machine`; else at the programmed
+/// feeds) and `h_max_programmed_mm` at the programmed feeds.
+fn with_chip_peaks(text: &str, plan: &PocketPlan, args: &PocketArgs) -> Result<String, String> {
+    let machine = match &args.machine {
+        Some(name) => Some(trochoplan_core::machine::Machine::preset(name).map_err(err)?),
+        None => None,
+    };
+    let heights =
+        trochoplan_core::machine::CutHeights { depth_mm: args.nc.depth, safe_z_mm: args.nc.options().safe_z_mm };
+    let peaks =
+        chip_peaks(plan.path(), args.pace.teeth, args.nc.rpm, machine.as_ref().map(|m| (m, heights))).map_err(err)?;
+    let mut v: serde_json::Value = serde_json::from_str(text).map_err(|e| e.to_string())?;
+    if let Some(obj) = v.as_object_mut() {
+        obj.insert("h_max_mm".into(), peaks.h_max_mm.into());
+        obj.insert("h_max_programmed_mm".into(), peaks.h_max_programmed_mm.into());
     }
+    super::common::json_text(&v)
 }
 
 /// Write the whole pocket ([`PocketPlan::tool_path`]) to `file`.

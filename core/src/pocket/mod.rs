@@ -12,6 +12,7 @@
 //! would gouge a wall is an error, never written.
 
 pub mod adaptive;
+pub mod chip;
 mod corner_point;
 mod cusp;
 pub mod entry;

@@ -225,6 +225,17 @@ impl<'a> Bands<'a> {
         Some((smp.angle_rad, arcs))
     }
 
+    /// The chip factor κ (the circular-path chip per f_z) of move `k` at `u` mm along it in
+    /// band `b` (none where the move does not reach the band).
+    pub fn chip_factor(&self, b: usize, k: usize, u: f64) -> Option<f64> {
+        if k >= *self.alias_from.get(b)? {
+            return self.chip_factor(b - 1, k, u);
+        }
+        let i = self.band_moves.get(b)?.binary_search(&k).ok()?;
+        let eval = self.evals.get(b)?.as_ref()?;
+        Some(eval.sample(self.band_starts[b][i] + u).chip)
+    }
+
     /// The chip (mm) of move `k` at `u` mm along it in band `b`, for a tooth that advances
     /// `f_z` mm: the largest radial thickness of the material between the tool's periphery and
     /// the previous tooth's (the tool f_z back along the path), cut short where the material
@@ -287,7 +298,7 @@ const CHIP_SCAN_RAD: f64 = std::f64::consts::PI / 360.0;
 /// scanned every 0.5°, then a ternary search within one step of the largest. This is the chip disc(c) \
 /// (disc(c − f_z) ∪ swept) of the slot's analysis (`analysis::chip`), which is less than
 /// f_z·κ where the arc ends at the edge of earlier cuts: there the edge cuts the chip short.
-fn exact_chip(
+pub(crate) fn exact_chip(
     eval: &Evaluation<'_>,
     arcs: &[(f64, f64)],
     c: crate::geom::P2,

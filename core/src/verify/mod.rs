@@ -249,7 +249,7 @@ pub fn verify(program: &Program, req: &VerifyRequest<'_>) -> Result<VerifyReport
     let mut descending = maxima(&measured, (0..moves.len()).filter(|&k| cuts(k) && !flat(k)));
     for (group, flat_moves) in [(&mut plane, true), (&mut descending, false)] {
         let which: Vec<usize> = (0..moves.len()).filter(|&k| cuts(k) && flat(k) == flat_moves).collect();
-        exact_peaks(group, &measured, &which, &moves, &bands, req);
+        exact_peaks(group, &measured, &which, &moves, &bands, &timing, req);
     }
     let p95 = p95_deg((0..moves.len()).filter(|&k| cuts(k) && flat(k)).flat_map(|k| measured[k].tip_samples.iter()));
     let (problems, counts) = problems::find(program, &moves, &measured_view(&measured), req);
@@ -332,17 +332,22 @@ fn maxima(m: &[Measured], which: impl Iterator<Item = usize>) -> Maxima {
 
 /// How many of the largest circular-path chips are measured exactly for the summary.
 pub const EXACT_CHIP_CANDIDATES: usize = 48;
+/// Most positions of one candidate move sampled again for its largest circular chip.
+const MAX_RESCAN: usize = 4096;
 
 /// The summary's h_max at the reached and at the programmed feed: the exact chip
-/// ([`Bands::chip`]) at the [`EXACT_CHIP_CANDIDATES`] places with the largest f_z·κ of the
-/// moves `which` (the exact chip is at most f_z·κ to first order, so the largest exact chip is
-/// among the largest circular ones unless many moves cut nearly the same chip).
+/// ([`Bands::chip`]) on the [`EXACT_CHIP_CANDIDATES`] moves of `which` with the largest f_z·κ,
+/// each sampled again every half spacing for its largest f_z·κ (the profile's positions are
+/// up to 0.25·r apart where the engagement is steady) and measured there (the exact chip is at
+/// most f_z·κ to first order, so the largest exact chip is among the largest circular ones
+/// unless many moves cut nearly the same chip).
 fn exact_peaks(
     group: &mut Maxima,
     m: &[Measured],
     which: &[usize],
     moves: &[Move],
     bands: &Bands<'_>,
+    timing: &timing::Timing,
     req: &VerifyRequest<'_>,
 ) {
     for slot in 0..2 {
@@ -352,10 +357,17 @@ fn exact_peaks(
         cands.truncate(EXACT_CHIP_CANDIDATES);
         let exact: Vec<(usize, f64, f64)> = cands
             .par_iter()
-            .map(|&(k, (b, u, _, feed))| {
+            .map(|&(k, (b, u, value, feed))| {
                 let rpm = m[k].report.rpm;
-                let f_z = feed / (rpm * f64::from(req.tool.teeth));
-                (k, u, bands.chip(moves, b, k, u, f_z).unwrap_or(0.0))
+                let f_z = |f: f64| f / (rpm * f64::from(req.tool.teeth));
+                let feed_at = |u: f64| if slot == 0 { timing.feed_at(k, &moves[k], u) } else { feed };
+                let len = moves[k].segment.length();
+                let n = ((len / (0.5 * req.spacing_mm)).ceil() as usize).clamp(1, MAX_RESCAN);
+                let (u, feed, _) = (0..=n)
+                    .map(|i| len * i as f64 / n as f64)
+                    .filter_map(|u| bands.chip_factor(b, k, u).map(|c| (u, feed_at(u), c * f_z(feed_at(u)))))
+                    .fold((u, feed, value), |best, x| if x.2 > best.2 { x } else { best });
+                (k, u, bands.chip(moves, b, k, u, f_z(feed)).unwrap_or(0.0))
             })
             .collect();
         if let Some(&(k, u, h)) = exact.iter().max_by(|a, b| a.2.total_cmp(&b.2)) {
