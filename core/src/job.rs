@@ -140,6 +140,14 @@ pub struct Job {
     /// limits; none: an ideal machine that holds every programmed feed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub machine: Option<MachineChoice>,
+    /// Deepest cut of one level (mm): the depth is cut in n = ⌈depth / max⌉ equal levels
+    /// (docs/slot-paths.md, "Levels"); none: one level at the full depth.
+    #[serde(skip_serializing_if = "Option::is_none", alias = "max_step_down")]
+    pub max_step_down: Option<f64>,
+    /// A slot closed at both ends (a keyway): entered by a helix inside it, the tool centre
+    /// kept r from both end walls; false: open at both ends, entered from outside the stock.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub closed: bool,
 }
 
 impl Default for Job {
@@ -166,6 +174,8 @@ impl Default for Job {
             allow_unusual_ratio: false,
             coefficients: None,
             machine: None,
+            max_step_down: None,
+            closed: false,
         }
     }
 }
@@ -245,6 +255,12 @@ pub struct ValidJob {
     pub ra_um: Option<f64>,
     /// The machine's validated limits (none: ideal).
     pub machine: Option<Machine>,
+    /// Deepest cut of one level (mm; none: one level), checked ([`crate::path::levels`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_step_down: Option<f64>,
+    /// Closed at both ends ([`Job::closed`]).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub closed: bool,
 }
 
 fn positive(param: Param, v: f64, max: f64) -> Result<f64, Error> {
@@ -375,7 +391,7 @@ impl Job {
             ));
         }
         let (material, coefficients, helix_rad, runout_mm, ra_um) = self.process()?;
-        Ok(ValidJob {
+        let job = ValidJob {
             material,
             coefficients,
             helix_rad,
@@ -394,7 +410,11 @@ impl Job {
             linear_distance: d,
             direction: self.direction,
             machine,
-        })
+            max_step_down: self.max_step_down,
+            closed: self.closed,
+        };
+        crate::path::levels::check(&job)?;
+        Ok(job)
     }
 
     /// The process inputs of the force model: material and coefficients (checked), helix
