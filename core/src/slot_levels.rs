@@ -3,9 +3,11 @@
 //! the level's axial depth, and every move of the level measured by the engagement evaluator
 //! ([`crate::engagement::measure`]) over the stock around the slot.
 //!
-//! Equal levels cut the same planar path at the same axial depth; each level is analysed and
-//! measured all the same (the analysis at the level's axial depth, not the slot's: the forces,
-//! torque and power scale with it).
+//! Equal levels cut the same planar path at the same axial depth; each level is analysed all
+//! the same, at the level's axial depth, not the slot's (the forces, torque and power scale
+//! with it). The evaluator's input is the same on every level — the same moves, the same bore,
+//! the same stock around the slot (the levels above cut nothing of the level's slab) — so the
+//! moves are measured once and the measurement given to every level.
 //!
 //! - Open slot: every level is entered from outside the stock, straight down beside the open
 //!   end y = 0 where the tool's disc is off the stock ([`Entry::Outside`]), then the cycles of
@@ -36,8 +38,8 @@ pub struct SlotLevel {
     pub z_mm: f64,
     /// Axial depth of the level (mm).
     pub axial_depth_mm: f64,
-    /// Where the descent starts (mm): outside the stock the safe height (the program's);
-    /// for a helix [`HELIX_START_Z_MM`] above `top_mm`.
+    /// Where the helix starts (mm): [`HELIX_START_Z_MM`] above `top_mm`; outside the stock
+    /// `top_mm` (the program goes down there from its safe height).
     pub descent_from_mm: f64,
     /// The slot analysis at the level's axial depth.
     pub metrics: Metrics,
@@ -116,38 +118,32 @@ pub fn plan_levels(plan: &Plan) -> Result<LevelPlan, Error> {
     };
     let opts = EvaluatorOptions::new(job.tool_radius(), SPACING_RATIO * job.tool_diameter);
     let level_job = ValidJob { depth: levels.axial_depth_mm, ..job.clone() };
+    let toolpath_at = |z_mm: f64| Toolpath {
+        moves: moves
+            .iter()
+            .map(|&(segment, kind)| Move {
+                segment,
+                z_start_mm: z_mm,
+                z_end_mm: z_mm,
+                kind,
+                feed_mm_per_min: Some(job.feed),
+            })
+            .collect(),
+        entries: vec![entry],
+        retract_before: Vec::new(),
+    };
+    let measurement = measure(&toolpath_at(levels.z_mm[0]), Stock::solid(&stock), &opts)?;
     let per_level = (0..levels.count())
         .into_par_iter()
         .map(|k| {
             let (top_mm, z_mm) = (levels.top_mm(k), levels.z_mm[k]);
-            let toolpath = Toolpath {
-                moves: moves
-                    .iter()
-                    .map(|&(segment, kind)| Move {
-                        segment,
-                        z_start_mm: z_mm,
-                        z_end_mm: z_mm,
-                        kind,
-                        feed_mm_per_min: Some(job.feed),
-                    })
-                    .collect(),
-                entries: vec![entry],
-                retract_before: Vec::new(),
-            };
-            let measurement = measure(&toolpath, Stock::solid(&stock), &opts)?;
+            let toolpath = toolpath_at(z_mm);
+            let measurement = measurement.clone();
             let metrics = plan_valid(level_job.clone()).metrics;
             let descent_from_mm = if closed.is_some() { top_mm + HELIX_START_Z_MM } else { top_mm };
-            Ok(SlotLevel {
-                top_mm,
-                z_mm,
-                axial_depth_mm: top_mm - z_mm,
-                descent_from_mm,
-                metrics,
-                measurement,
-                toolpath,
-            })
+            SlotLevel { top_mm, z_mm, axial_depth_mm: top_mm - z_mm, descent_from_mm, metrics, measurement, toolpath }
         })
-        .collect::<Result<Vec<_>, Error>>()?;
+        .collect();
     Ok(LevelPlan { levels, closed, stock, centre_y_mm, per_level })
 }
 

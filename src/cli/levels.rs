@@ -57,16 +57,14 @@ pub fn levels_json(p: &Plan, lp: &LevelPlan, obj: &mut Map<String, Value>) {
                 .iter()
                 .map(|km| (km.kind.name().to_string(), km.max_rad.to_degrees().into()))
                 .collect();
+            let helix = matches!(l.toolpath.entries.first(), Some(trochoplan_core::toolpath::Entry::Helix(_)));
             let chip = l.measurement.profile.samples.iter().map(|s| s.chip).fold(0.0, f64::max);
             json!({
                 "level": k + 1,
                 "z_mm": l.z_mm,
                 "axial_depth_mm": l.axial_depth_mm,
-                "entry": match l.toolpath.entries.first() {
-                    Some(trochoplan_core::toolpath::Entry::Helix(_)) => "helix",
-                    _ => "outside",
-                },
-                "descent_from_z_mm": l.descent_from_mm,
+                "entry": if helix { "helix" } else { "outside" },
+                "helix_from_z_mm": if helix { Value::from(l.descent_from_mm) } else { Value::Null },
                 "engagement_max_deg": m.engagement_max_deg,
                 "h_max_mm": m.h_max_mm,
                 "force_resultant_max_n": m.force_resultant_max_n,

@@ -40,6 +40,7 @@ pub fn levels_program(plan: &Plan, levels: &LevelPlan, opts: &NcOptions) -> Resu
             format!("from the machine's min-feed {} to 1000000 mm/min", num(min_feed)),
         ));
     }
+    let job = &plan.job;
     let moves = match &opts.variable_feed {
         Some(vf) => variable_feed_moves(plan, vf, opts)?,
         None => cycle_moves(plan, opts),
@@ -58,9 +59,11 @@ pub fn levels_program(plan: &Plan, levels: &LevelPlan, opts: &NcOptions) -> Resu
             ),
         ));
     }
-    let job = &plan.job;
     let mut header = slot_header(plan, opts);
-    header.description.push(level_line(levels));
+    // the first line: the path of one level (the slot header's is the open one-level path)
+    let length = levels.per_level.first().map_or(0.0, |l| l.toolpath.length_mm());
+    header.description[0] = format!("path {}, {cycles} cycles a level, {length:.3} mm a level", job.path.name());
+    header.description.extend(level_lines(levels));
     let mut w = Writer::new(opts.dialect.spec());
     preamble(&mut w, &header, opts);
     for level in &levels.per_level {
@@ -108,19 +111,20 @@ fn write_cycle(w: &mut Writer, moves: &[CycleMove], origin: P2) {
     }
 }
 
-/// The header line of the levels and the slot's ends.
-fn level_line(levels: &LevelPlan) -> String {
+/// The header lines of the levels and the slot's ends (each within a comment's 70 characters).
+fn level_lines(levels: &LevelPlan) -> [String; 2] {
     let (lo, hi) = levels.centre_y_mm;
-    format!(
-        "{} levels of {:.3} mm, {}; tool centre from Y{:.3} to Y{:.3}",
-        levels.levels.count(),
-        levels.levels.axial_depth_mm,
-        if levels.closed.is_some() {
-            "closed slot, helix entry inside it"
-        } else {
-            "open slot, entered outside the stock"
-        },
-        lo,
-        hi
-    )
+    [
+        format!(
+            "{} levels of {:.3} mm, {}",
+            levels.levels.count(),
+            levels.levels.axial_depth_mm,
+            if levels.closed.is_some() {
+                "closed slot, helix entry inside it"
+            } else {
+                "open slot, entry outside the stock"
+            }
+        ),
+        format!("tool centre from Y{lo:.3} to Y{hi:.3}"),
+    ]
 }
