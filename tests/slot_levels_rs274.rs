@@ -76,7 +76,6 @@ fn descends(m: &Motion, q: f64) -> bool {
 fn the_closed_keyway_in_three_levels_never_plunges_and_stays_within_the_target() {
     let dir = tempfile::tempdir().expect("tempdir");
     let job = keyway_job();
-    let p = plan(&job).expect("keyway");
     let (r, a, l) = (4.0, 1.0, 60.0);
     // The target: the steady-state cycle's engagement of `analyze` (the tooth series against the
     // previous cycle's edge, independent of the evaluator used below).
