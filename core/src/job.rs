@@ -146,6 +146,7 @@ pub struct Job {
     pub max_step_down: Option<f64>,
     /// A slot closed at both ends (a keyway): entered by a helix inside it, the tool centre
     /// kept r from both end walls; false: open at both ends, entered from outside the stock.
+    /// Its width and length are checked when it is planned (`plan::plan`).
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub closed: bool,
 }
@@ -224,6 +225,36 @@ pub mod limits {
     pub const MAX_RUNOUT_MM: f64 = 0.1;
     /// Ra,max range (µm).
     pub const RA_UM: (f64, f64) = (0.001, 1000.0);
+    /// Most levels of one slot (`max-step-down`): each level is analysed on its own (a 5·D
+    /// deep slot at a step-down of D/20 has 100).
+    pub const MAX_LEVELS: usize = 100;
+}
+
+/// Levels of a slot `depth` mm deep cut at most `max` mm a level: n = ⌈depth / max⌉; a quotient
+/// within 10⁻⁹ of a whole number counts as that number (12 / 4 is 3 levels, whatever the
+/// rounding of the division).
+pub fn level_count(depth: f64, max: f64) -> usize {
+    ((depth / max) - 1e-9).ceil().max(1.0) as usize
+}
+
+/// The step-down `m` of a slot `depth` mm deep, checked: finite, > 0, at most
+/// [`limits::MAX_SIZE_MM`], and at most [`limits::MAX_LEVELS`] levels.
+fn max_step_down(m: f64, depth: f64) -> Result<f64, Error> {
+    use limits::{MAX_LEVELS, MAX_SIZE_MM};
+    if !(m.is_finite() && m > 0.0 && m <= MAX_SIZE_MM) {
+        return Err(Error::param(Param::MaxStepDown, m, format!("a finite number > 0 and ≤ {} mm", num(MAX_SIZE_MM))));
+    }
+    if level_count(depth, m) > MAX_LEVELS {
+        return Err(Error::param(
+            Param::MaxStepDown,
+            m,
+            format!(
+                "at least depth / {MAX_LEVELS} = {} mm (at most {MAX_LEVELS} levels, each analysed)",
+                num(depth / MAX_LEVELS as f64)
+            ),
+        ));
+    }
+    Ok(m)
 }
 
 /// A job that passed validation; everything downstream takes this type.
@@ -255,7 +286,7 @@ pub struct ValidJob {
     pub ra_um: Option<f64>,
     /// The machine's validated limits (none: ideal).
     pub machine: Option<Machine>,
-    /// Deepest cut of one level (mm; none: one level), checked ([`crate::path::levels`]).
+    /// Deepest cut of one level (mm; none: one level), checked.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_step_down: Option<f64>,
     /// Closed at both ends ([`Job::closed`]).
@@ -410,10 +441,9 @@ impl Job {
             linear_distance: d,
             direction: self.direction,
             machine,
-            max_step_down: self.max_step_down,
+            max_step_down: self.max_step_down.map(|m| max_step_down(m, depth)).transpose()?,
             closed: self.closed,
         };
-        crate::path::levels::check(&job)?;
         Ok(job)
     }
 

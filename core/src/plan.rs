@@ -171,9 +171,15 @@ impl Plan {
     }
 }
 
-/// Validate `job`, build its path and analyse a steady-state cycle.
+/// Validate `job` (a closed slot's width and length too, [`ClosedSlot::check`]), build its
+/// path and analyse a steady-state cycle.
+///
+/// [`ClosedSlot::check`]: crate::path::closed::ClosedSlot::check
 pub fn plan(job: &Job) -> Result<Plan, Error> {
     let job = job.validate()?;
+    if job.closed {
+        crate::path::closed::ClosedSlot::check(&job)?;
+    }
     Ok(plan_valid(job))
 }
 

@@ -105,6 +105,9 @@ fn stock(job: &ValidJob) -> Result<Polygon, Error> {
 /// The levels of a planned slot: each level's tool path, analysis and measurement.
 pub fn plan_levels(plan: &Plan) -> Result<LevelPlan, Error> {
     let job = &plan.job;
+    if job.closed {
+        ClosedSlot::check(job)?;
+    }
     let levels = Levels::of(job);
     let closed = job.closed.then(|| ClosedSlot::for_job(job));
     let (moves, entry) = level_moves(&plan.path, closed.as_ref());

@@ -259,18 +259,16 @@ mod tests {
     fn a_closed_slot_too_short_or_too_narrow_names_the_flag_and_range() {
         // shorter than the tool, and shorter than the least length (about B + s/4 for a circular path)
         for l in [5.0, 9.0, 10.0] {
-            let err = Job { closed: true, slot_width: 10.0, tool_diameter: 8.0, slot_length: l, ..Job::default() }
-                .validate()
-                .expect_err("too short");
+            let job = Job { closed: true, slot_width: 10.0, tool_diameter: 8.0, slot_length: l, ..Job::default() };
+            let err = crate::plan::plan(&job).expect_err("too short");
             assert_eq!(err.parameter(), Some(Param::SlotLength), "{err}");
             assert!(err.to_string().contains("--closed") && err.to_string().contains("at least"), "{err}");
         }
         // (B − D)/2 = 0.2 mm < 0.05 · 10 mm
-        let err = Job { closed: true, slot_width: 10.4, tool_diameter: 10.0, step: 0.5, ..Job::default() }
-            .validate()
-            .expect_err("too narrow");
+        let job = Job { closed: true, slot_width: 10.4, tool_diameter: 10.0, step: 0.5, ..Job::default() };
+        let err = crate::plan::plan(&job).expect_err("too narrow");
         assert_eq!(err.parameter(), Some(Param::SlotWidth), "{err}");
         // the same job open is fine
-        assert!(Job { slot_width: 10.4, tool_diameter: 10.0, step: 0.5, ..Job::default() }.validate().is_ok());
+        assert!(crate::plan::plan(&Job { closed: false, ..job }).is_ok());
     }
 }

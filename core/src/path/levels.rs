@@ -1,17 +1,10 @@
 //! The slot's depth in levels (docs/slot-paths.md, "Levels and slot ends"): with a largest
 //! step-down m the depth a_p is cut in n = ⌈a_p / m⌉ equal levels of a_p / n each, level k
 //! (1…n) reaching Z = −k·a_p/n below the stock top. Equal levels keep one planar path: every
-//! level cuts the same loops at the same axial depth. Also the checks of the options that shape
-//! the levels and the slot's ends ([`check`], called by [`crate::job::Job::validate`]).
+//! level cuts the same loops at the same axial depth. The step-down is checked with the job
+//! ([`crate::job::Job::validate`], at most [`crate::job::limits::MAX_LEVELS`] levels).
 
-use super::closed::ClosedSlot;
-use crate::error::{Error, Param, num};
-use crate::job::ValidJob;
-use crate::job::limits::MAX_SIZE_MM;
-
-/// Most levels of one slot: each level is analysed and measured on its own (a 5·D deep slot
-/// at a step-down of D/20 has 100).
-pub const MAX_LEVELS: usize = 100;
+use crate::job::{ValidJob, level_count};
 
 /// The levels of a slot: their count and depths.
 #[derive(Clone, Debug, PartialEq)]
@@ -44,45 +37,16 @@ impl Levels {
     }
 }
 
-/// n = ⌈depth / max⌉ (1 without a step-down); a quotient within 10⁻⁹ of a whole number counts
-/// as that number (12 / 4 is 3 levels, whatever the rounding of the division).
+/// n = ⌈depth / max⌉ ([`level_count`]), 1 without a step-down.
 fn count(depth: f64, max_step_down: Option<f64>) -> usize {
-    max_step_down.map_or(1, |m| ((depth / m) - 1e-9).ceil().max(1.0) as usize)
-}
-
-/// Check the step-down and the slot's ends of a validated job: the error names the flag and
-/// its range.
-pub fn check(job: &ValidJob) -> Result<(), Error> {
-    if let Some(m) = job.max_step_down {
-        if !(m.is_finite() && m > 0.0 && m <= MAX_SIZE_MM) {
-            return Err(Error::param(
-                Param::MaxStepDown,
-                m,
-                format!("a finite number > 0 and ≤ {} mm", num(MAX_SIZE_MM)),
-            ));
-        }
-        let least = job.depth / MAX_LEVELS as f64;
-        if count(job.depth, Some(m)) > MAX_LEVELS {
-            return Err(Error::param(
-                Param::MaxStepDown,
-                m,
-                format!(
-                    "at least depth / {MAX_LEVELS} = {} mm (at most {MAX_LEVELS} levels, each analysed and measured)",
-                    num(least)
-                ),
-            ));
-        }
-    }
-    if job.closed {
-        ClosedSlot::check(job)?;
-    }
-    Ok(())
+    max_step_down.map_or(1, |m| level_count(depth, m))
 }
 
 #[cfg(test)]
 #[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 mod tests {
     use super::*;
+    use crate::error::Param;
     use crate::job::Job;
 
     #[test]
