@@ -9,6 +9,7 @@ mod corner;
 mod engagement;
 #[path = "export.rs"]
 mod export;
+mod levels;
 mod pocket;
 mod verify;
 // The optimiser likewise.
@@ -38,6 +39,8 @@ enum Command {
     Analyze {
         #[command(flatten)]
         job: JobArgs,
+        #[command(flatten)]
+        levels: levels::LevelArgs,
         /// Also write the per-tooth series of a steady-state cycle as CSV (`-`: the standard
         /// output, the JSON report then goes to stderr).
         #[arg(long, value_name = "FILE.csv")]
@@ -76,6 +79,8 @@ enum Command {
     Export {
         #[command(flatten)]
         job: JobArgs,
+        #[command(flatten)]
+        levels: levels::LevelArgs,
         #[command(flatten)]
         nc: export::ExportArgs,
     },
@@ -308,7 +313,7 @@ pub fn main() -> ExitCode {
 
 fn run(cmd: Command) -> Result<String, String> {
     match cmd {
-        Command::Analyze { job, series, engagement_limit, force_series, variable_feed } => {
+        Command::Analyze { job, levels, series, engagement_limit, force_series, variable_feed } => {
             check_distinct(
                 &[
                     &job.inputs()[..],
@@ -319,8 +324,13 @@ fn run(cmd: Command) -> Result<String, String> {
                 ]
                 .concat(),
             )?;
-            let job = job.job()?;
+            let mut job = job.job()?;
+            levels.apply(&mut job);
             let p = plan(&job).map_err(|e| e.to_string())?;
+            let level_plan = levels::LevelArgs::asked(&job)
+                .then(|| trochoplan_core::slot_levels::plan_levels(&p))
+                .transpose()
+                .map_err(|e| e.to_string())?;
             let limited = engagement_limited_step(&job, engagement_limit.to_radians()).map_err(|e| e.to_string())?;
             if let Some(file) = series {
                 write_atomic(&file, series_csv(&p).as_bytes())?;
@@ -335,7 +345,11 @@ fn run(cmd: Command) -> Result<String, String> {
             if variable_feed {
                 variable_feed_json(&p, &mut value)?;
             }
-            let warnings = verify::spindle_warnings(&p);
+            let mut warnings = verify::spindle_warnings(&p);
+            if let Some(lp) = &level_plan {
+                levels::levels_json(&p, lp, &mut value);
+                warnings.extend(levels::levels_warning(&p, lp));
+            }
             if !warnings.is_empty() {
                 value.insert("warnings".into(), warnings.into());
             }
@@ -347,9 +361,11 @@ fn run(cmd: Command) -> Result<String, String> {
             check_distinct(&job.inputs())?;
             sweep(job.job()?, param, from, to, steps)
         }
-        Command::Export { job, nc } => {
+        Command::Export { job, levels, nc } => {
             check_distinct(&[&job.inputs()[..], &[("--output", Some(nc.output()), Role::Output)]].concat())?;
-            export::run(&job.job()?, &nc)
+            let mut job = job.job()?;
+            levels.apply(&mut job);
+            export::run(&job, &nc)
         }
         Command::Corner { args } => corner::corner(&args),
         Command::Engagement { args } => engagement::engagement(&args),

@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use trochoplan_core::error::num;
 use trochoplan_core::feed::VariableFeed;
 use trochoplan_core::geom::polyline_estimate;
-use trochoplan_core::nc::{DEFAULT_TOLERANCE_MM, Dialect, MAX_PROGRAM_BLOCKS, NcOptions, program};
+use trochoplan_core::nc::{DEFAULT_TOLERANCE_MM, Dialect, MAX_PROGRAM_BLOCKS, NcOptions, levels_program, program};
 use trochoplan_core::{Error, Job, Param, Plan, plan};
 
 /// NC options of `export`.
@@ -87,15 +87,25 @@ pub fn run(job: &Job, args: &ExportArgs) -> Result<String, String> {
     if opts.linear_segments {
         check_chords(&p, &opts)?;
     }
-    let prog = program(&p, &opts).map_err(|e| e.to_string())?;
+    // A slot in levels or closed: its own program (open, one level: the slot program).
+    let (prog, levels) = if super::levels::LevelArgs::asked(job) {
+        let lp = trochoplan_core::slot_levels::plan_levels(&p).map_err(|e| e.to_string())?;
+        let cycles = lp.closed.as_ref().map_or(p.metrics.cycles, |c| c.cycles + 1);
+        let levels =
+            format!(", {} levels, {} slot", lp.levels.count(), if lp.closed.is_some() { "closed" } else { "open" });
+        (levels_program(&p, &lp, &opts).map_err(|e| e.to_string())?, Some((cycles, levels)))
+    } else {
+        (program(&p, &opts).map_err(|e| e.to_string())?, None)
+    };
     write_atomic(&args.output, prog.text.as_bytes())?;
+    let (cycles, levels) = levels.unwrap_or((p.metrics.cycles, String::new()));
     Ok(format!(
-        "wrote {}: {} program, {} blocks, {} bytes, {} cycles\n",
+        "wrote {}: {} program, {} blocks, {} bytes, {} cycles{levels}\n",
         args.output.display(),
         opts.dialect.name(),
         prog.blocks,
         prog.text.len(),
-        p.metrics.cycles
+        cycles
     ))
 }
 

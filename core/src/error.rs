@@ -121,6 +121,10 @@ pub enum Param {
     CornerTolerance,
     /// `pocket --open-edges`: the pocket's edges without a wall (adaptive clearing).
     OpenEdges,
+    /// `--max-step-down`: the deepest level of a slot cut in several levels (mm).
+    MaxStepDown,
+    /// `--closed`: a slot closed at both ends (a keyway).
+    Closed,
 }
 
 impl Param {
@@ -206,6 +210,8 @@ impl Param {
         Param::TargetEngagement,
         Param::CornerTolerance,
         Param::OpenEdges,
+        Param::MaxStepDown,
+        Param::Closed,
     ];
 
     /// The command-line flag without `--` (also the job-file key). The NC tolerance and the
@@ -292,6 +298,8 @@ impl Param {
             Param::TargetEngagement => "target-engagement",
             Param::CornerTolerance => "corner-tolerance",
             Param::OpenEdges => "open-edges",
+            Param::MaxStepDown => "max-step-down",
+            Param::Closed => "closed",
         }
     }
 
@@ -378,6 +386,8 @@ impl Param {
             Param::TargetEngagement => "Target engagement",
             Param::CornerTolerance => "Corner tolerance",
             Param::OpenEdges => "Open edges",
+            Param::MaxStepDown => "Max step-down",
+            Param::Closed => "Closed slot",
         }
     }
 }

@@ -140,6 +140,15 @@ pub struct Job {
     /// limits; none: an ideal machine that holds every programmed feed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub machine: Option<MachineChoice>,
+    /// Deepest cut of one level (mm): the depth is cut in n = ⌈depth / max⌉ equal levels
+    /// (docs/slot-paths.md, "Levels"); none: one level at the full depth.
+    #[serde(skip_serializing_if = "Option::is_none", alias = "max_step_down")]
+    pub max_step_down: Option<f64>,
+    /// A slot closed at both ends (a keyway): entered by a helix inside it, the tool centre
+    /// kept r from both end walls; false: open at both ends, entered from outside the stock.
+    /// Its width and length are checked when it is planned (`plan::plan`).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub closed: bool,
 }
 
 impl Default for Job {
@@ -166,6 +175,8 @@ impl Default for Job {
             allow_unusual_ratio: false,
             coefficients: None,
             machine: None,
+            max_step_down: None,
+            closed: false,
         }
     }
 }
@@ -214,6 +225,36 @@ pub mod limits {
     pub const MAX_RUNOUT_MM: f64 = 0.1;
     /// Ra,max range (µm).
     pub const RA_UM: (f64, f64) = (0.001, 1000.0);
+    /// Most levels of one slot (`max-step-down`): each level is analysed on its own (a 5·D
+    /// deep slot at a step-down of D/20 has 100).
+    pub const MAX_LEVELS: usize = 100;
+}
+
+/// Levels of a slot `depth` mm deep cut at most `max` mm a level: n = ⌈depth / max⌉; a quotient
+/// within 10⁻⁹ of a whole number counts as that number (12 / 4 is 3 levels, whatever the
+/// rounding of the division).
+pub fn level_count(depth: f64, max: f64) -> usize {
+    ((depth / max) - 1e-9).ceil().max(1.0) as usize
+}
+
+/// The step-down `m` of a slot `depth` mm deep, checked: finite, > 0, at most
+/// [`limits::MAX_SIZE_MM`], and at most [`limits::MAX_LEVELS`] levels.
+fn max_step_down(m: f64, depth: f64) -> Result<f64, Error> {
+    use limits::{MAX_LEVELS, MAX_SIZE_MM};
+    if !(m.is_finite() && m > 0.0 && m <= MAX_SIZE_MM) {
+        return Err(Error::param(Param::MaxStepDown, m, format!("a finite number > 0 and ≤ {} mm", num(MAX_SIZE_MM))));
+    }
+    if level_count(depth, m) > MAX_LEVELS {
+        return Err(Error::param(
+            Param::MaxStepDown,
+            m,
+            format!(
+                "at least depth / {MAX_LEVELS} = {} mm (at most {MAX_LEVELS} levels, each analysed)",
+                num(depth / MAX_LEVELS as f64)
+            ),
+        ));
+    }
+    Ok(m)
 }
 
 /// A job that passed validation; everything downstream takes this type.
@@ -245,6 +286,12 @@ pub struct ValidJob {
     pub ra_um: Option<f64>,
     /// The machine's validated limits (none: ideal).
     pub machine: Option<Machine>,
+    /// Deepest cut of one level (mm; none: one level), checked.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_step_down: Option<f64>,
+    /// Closed at both ends ([`Job::closed`]).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub closed: bool,
 }
 
 fn positive(param: Param, v: f64, max: f64) -> Result<f64, Error> {
@@ -375,7 +422,7 @@ impl Job {
             ));
         }
         let (material, coefficients, helix_rad, runout_mm, ra_um) = self.process()?;
-        Ok(ValidJob {
+        let job = ValidJob {
             material,
             coefficients,
             helix_rad,
@@ -394,7 +441,10 @@ impl Job {
             linear_distance: d,
             direction: self.direction,
             machine,
-        })
+            max_step_down: self.max_step_down.map(|m| max_step_down(m, depth)).transpose()?,
+            closed: self.closed,
+        };
+        Ok(job)
     }
 
     /// The process inputs of the force model: material and coefficients (checked), helix

@@ -30,6 +30,8 @@
 //!   into pockets with islands; [`outline::read`].
 //! - [`pocket`]: polygonal pockets by rings or along the medial axis; [`pocket::plan`].
 //! - [`plan`]: [`plan()`] — job in, [`Plan`] out; used by the GUI and the CLI.
+//! - [`slot_levels`]: a slot in levels, open or closed: each level's tool path, analysis and
+//!   measured moves.
 //! - [`quantity`]: every metric and per-tooth series column as data (key, label, unit, source).
 //! - [`sweep`]: the swept parameters and their rules (which path, which values).
 //! - [`verify`]: any NC program read, timed and measured move by move: engagement, axial
@@ -53,6 +55,7 @@ pub mod plan;
 pub mod pocket;
 pub mod quantity;
 pub mod report;
+pub mod slot_levels;
 pub mod sweep;
 pub mod toolpath;
 pub mod verify;

@@ -182,9 +182,15 @@ impl Plan {
     }
 }
 
-/// Validate `job`, build its path and analyse a steady-state cycle.
+/// Validate `job` (a closed slot's width and length too, [`ClosedSlot::check`]), build its
+/// path and analyse a steady-state cycle.
+///
+/// [`ClosedSlot::check`]: crate::path::closed::ClosedSlot::check
 pub fn plan(job: &Job) -> Result<Plan, Error> {
     let job = job.validate()?;
+    if job.closed {
+        crate::path::closed::ClosedSlot::check(&job)?;
+    }
     Ok(plan_valid(job))
 }
 
@@ -469,7 +475,8 @@ pub fn engagement_limited_step(job: &Job, limit_rad: f64) -> Result<f64, Error> 
     let engagement = |s: f64| -> Result<f64, Error> {
         // One cycle long: the steady-state engagement does not depend on the slot length, and
         // a trial step below slot-length / MAX_CYCLES must not be refused for it.
-        let j = Job { step: s, slot_length: s, ..job.clone() }.validate()?;
+        // Open and in one level: the ends and the levels do not change the steady state.
+        let j = Job { step: s, slot_length: s, closed: false, max_step_down: None, ..job.clone() }.validate()?;
         let (cycle, r) = (Cycle::for_job(&j), j.tool_radius());
         let max = analysis::chip::max_engagement(&cycle, &PreviousEdge::new(&cycle, r), r, j.f_z());
         // Through degrees as `Metrics::engagement_max_deg`, so the bisection compares the

@@ -17,7 +17,7 @@ use std::path::Path;
 #[rustfmt::skip]
 const ORDER: &[&str] = &[
     "error", "geom", "toolpath", "outline", "material", "machine", "job", "path", "analysis", "plan", "feed",
-    "optimize", "quantity", "sweep", "engagement", "corner", "pocket", "report", "nc", "verify",
+    "optimize", "quantity", "sweep", "engagement", "slot_levels", "corner", "pocket", "report", "nc", "verify",
 ];
 
 /// Production code of one file: up to the first `#[cfg(test)]`, plain `//` comments removed,

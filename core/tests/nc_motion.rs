@@ -328,3 +328,58 @@ fn corner_programs_in_every_dialect_retrace_the_corner_path() {
         }
     }
 }
+
+/// A slot in levels, closed and open, in every dialect (Sinumerik too, which rs274 does not
+/// read): each level's cut retraces the planned moves of the level, and below the stock top the
+/// tool only descends on a helical arc or straight into space already cut (at most to the floor
+/// cut so far) — the open slot straight down beside its open end, off the stock.
+#[test]
+fn slots_in_levels_retrace_every_level_in_every_dialect() {
+    use nc_common::check_path_cut;
+    use trochoplan_core::Job;
+    use trochoplan_core::nc::levels_program;
+    use trochoplan_core::path::closed::ClosedSlot;
+    use trochoplan_core::slot_levels::plan_levels;
+    let keyway = Job {
+        slot_width: 10.0,
+        slot_length: 60.0,
+        depth: 12.0,
+        tool_diameter: 8.0,
+        max_step_down: Some(4.0),
+        closed: true,
+        ..Job::default()
+    };
+    let open = Job { max_step_down: Some(2.5), ..Job::default() };
+    for job in [keyway, open] {
+        let p = trochoplan_core::plan(&job).expect("plan");
+        let lp = plan_levels(&p).expect("levels");
+        let planned: Vec<trochoplan_core::geom::Segment> = match &lp.closed {
+            Some(c) => c.moves().iter().map(|m| m.0).collect(),
+            None => p.path.segments().collect(),
+        };
+        assert!(lp.closed.is_none() || lp.closed.as_ref() == Some(&ClosedSlot::for_job(&p.job)));
+        for d in Dialect::ALL {
+            let o = NcOptions { dialect: d, ..NcOptions::default() };
+            let text = levels_program(&p, &lp, &o).expect("program").text;
+            let motions = evaluate(&text, d != Dialect::Sinumerik).unwrap_or_else(|e| panic!("{d:?}: {e}"));
+            let q = quantum(d);
+            for z in &lp.levels.z_mm {
+                let label = format!("closed {} {d:?} Z{z}", job.closed);
+                check_path_cut(&label, &cut(&motions, -z, 1e-9), &planned, o.tolerance_mm, q)
+                    .unwrap_or_else(|e| panic!("{e}"));
+            }
+            let mut floor = 0.0f64;
+            for m in &motions {
+                let (s, e) = (m.start(), m.end());
+                if e[2] < s[2] - q && e[2] < -q && !matches!(m, Motion::Arc { .. }) {
+                    let outside = e[1] + p.job.tool_radius() < 0.0;
+                    assert!(outside || e[2] >= floor - q, "closed {} {d:?}: plunge {m:?}", job.closed);
+                    assert_eq!(outside, !job.closed, "{d:?}: {m:?}");
+                }
+                if !matches!(m, Motion::Rapid { .. }) {
+                    floor = floor.min(e[2]);
+                }
+            }
+        }
+    }
+}

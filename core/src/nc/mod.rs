@@ -22,10 +22,12 @@
 pub mod backplot;
 pub mod corner;
 mod dialect;
+mod levels;
 mod writer;
 
 pub use backplot::{backplot, read_toolpath};
 pub use corner::{CutSetup, corner_program, perforative_program, pocket_program};
+pub use levels::levels_program;
 
 pub use dialect::{CommentStyle, Dialect, DialectSpec, LoopStyle, ToolCall, sanitize_comment};
 pub use writer::{Writer, YForm};

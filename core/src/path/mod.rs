@@ -8,6 +8,13 @@
 //! analysis works in this frame. A [`SlotPath`] is the job's path in the job's
 //! [`Direction`]: for climb milling every cycle is mirrored in the slot's centre line x = 0
 //! (it starts at the right extreme and turns counter-clockwise; docs/slot-paths.md).
+//!
+//! A [`SlotPath`] is the open slot's path (entered from outside the stock at y < 0, leaving
+//! it beyond y = L); [`closed`] the path of a slot closed at both ends, and [`levels`] the
+//! slot's depth in equal levels.
+
+pub mod closed;
+pub mod levels;
 
 use crate::geom::{P2, Segment, SegmentPoint, p2};
 use crate::job::{Direction, PathKind, ValidJob};
