@@ -129,7 +129,7 @@ pub enum Param {
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 80] = [
+    pub const ALL: [Param; 82] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
