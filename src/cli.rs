@@ -10,6 +10,7 @@ mod engagement;
 #[path = "export.rs"]
 mod export;
 mod pocket;
+mod program;
 mod verify;
 // The optimiser likewise.
 #[path = "optimize_cmd.rs"]

@@ -33,7 +33,7 @@ pub enum Param {
     ReturnFeed,
     /// Safe height of the NC program (GUI only).
     SafeZ,
-    /// Tool number of the NC program (GUI only).
+    /// Tool number of the NC program (`--tool-number`, job-file `[program]` table).
     ToolNumber,
     Title,
     /// `corner --angle`.
@@ -119,11 +119,20 @@ pub enum Param {
     CornerTolerance,
     /// `pocket --open-edges`: the pocket's edges without a wall (adaptive clearing).
     OpenEdges,
+    Clearance,
+    Retract,
+    WorkOffset,
+    Units,
+    LengthOffset,
+    ProgramNumber,
+    ProgramName,
+    SpindleDirection,
+    Coolant,
 }
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 78] = [
+    pub const ALL: [Param; 87] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
@@ -202,6 +211,15 @@ impl Param {
         Param::TargetEngagement,
         Param::CornerTolerance,
         Param::OpenEdges,
+        Param::Clearance,
+        Param::Retract,
+        Param::WorkOffset,
+        Param::Units,
+        Param::LengthOffset,
+        Param::ProgramNumber,
+        Param::ProgramName,
+        Param::SpindleDirection,
+        Param::Coolant,
     ];
 
     /// The command-line flag without `--` (also the job-file key). The NC tolerance and the
@@ -286,6 +304,15 @@ impl Param {
             Param::TargetEngagement => "target-engagement",
             Param::CornerTolerance => "corner-tolerance",
             Param::OpenEdges => "open-edges",
+            Param::Clearance => "clearance",
+            Param::Retract => "retract",
+            Param::WorkOffset => "work-offset",
+            Param::Units => "units",
+            Param::LengthOffset => "length-offset",
+            Param::ProgramNumber => "program-number",
+            Param::ProgramName => "program-name",
+            Param::SpindleDirection => "spindle-direction",
+            Param::Coolant => "coolant",
         }
     }
 
@@ -370,6 +397,15 @@ impl Param {
             Param::TargetEngagement => "Target engagement",
             Param::CornerTolerance => "Corner tolerance",
             Param::OpenEdges => "Open edges",
+            Param::Clearance => "Clearance height",
+            Param::Retract => "Retract height",
+            Param::WorkOffset => "Work offset",
+            Param::Units => "Program units",
+            Param::LengthOffset => "Length offset",
+            Param::ProgramNumber => "Program number",
+            Param::ProgramName => "Program name",
+            Param::SpindleDirection => "Spindle direction",
+            Param::Coolant => "Coolant",
         }
     }
 }

@@ -9,6 +9,7 @@
 use crate::error::{Error, Param, num};
 use crate::machine::{DEFAULT_MIN_FEED_MM_PER_MIN, Machine, MachineChoice};
 use crate::material::{Coefficients, DEFAULT_MATERIAL, Library};
+use crate::nc::ProgramFrame;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
@@ -140,6 +141,10 @@ pub struct Job {
     /// limits; none: an ideal machine that holds every programmed feed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub machine: Option<MachineChoice>,
+    /// The frame of its NC programs (table `[program]`: `tool-number`, `work-offset`,
+    /// `clearance`, `retract`, `units`, …; the export flags of the same names override it).
+    #[serde(skip_serializing_if = "ProgramFrame::is_default")]
+    pub program: ProgramFrame,
 }
 
 impl Default for Job {
@@ -166,6 +171,7 @@ impl Default for Job {
             allow_unusual_ratio: false,
             coefficients: None,
             machine: None,
+            program: ProgramFrame::default(),
         }
     }
 }
@@ -562,5 +568,16 @@ mod tests {
         assert_eq!(Job::from_toml(&text).expect("parse"), job);
         assert!(Job::from_toml("slot-width = \"wide\"").is_err());
         assert!(Job::from_toml("nonsense = 1").is_err());
+    }
+
+    #[test]
+    fn the_program_frame_is_saved_with_the_job_only_when_set() {
+        assert!(!Job::default().to_toml().contains("[program]"));
+        let text =
+            "feed = 718.9\n[program]\ntool-number = 7\nwork-offset = \"G55\"\nclearance = 25\nunits = \"inch\"\n";
+        let job = Job::from_toml(text).expect("job with a program table");
+        assert_eq!((job.program.tool_number, job.program.clearance_mm), (7, 25.0));
+        assert_eq!(Job::from_toml(&job.to_toml()).expect("round trip"), job);
+        assert!(Job::from_toml("[program]\ntool-nummer = 7").is_err(), "unknown keys are refused");
     }
 }

@@ -262,6 +262,9 @@ impl App {
     fn refresh_corner(&mut self) {
         use panels::corner::CornerMode;
         use panels::corner_nc::Source;
+        self.state.corner.feed_mm_per_min = self.state.job.feed;
+        self.state.corner_nc.spindle_rpm = self.state.job.rpm;
+        self.state.corner_nc.frame.clone_from(&self.state.job.program);
         self.corner.update(&self.state.corner);
         let source = match self.state.corner.mode {
             CornerMode::Corner => self.corner.last.clone().map(Source::Corner),
@@ -273,6 +276,11 @@ impl App {
     /// Collect the Pocket tab's plans, ask for a new one if its inputs changed, and regenerate
     /// its NC program if the pocket or the export settings changed.
     fn refresh_pocket(&mut self) {
+        let job = &self.state.job;
+        (self.state.pocket.feed_mm_per_min, self.state.pocket.spindle_rpm) = (job.feed, job.rpm);
+        self.state.pocket.teeth = job.teeth;
+        self.state.pocket_nc.spindle_rpm = job.rpm;
+        self.state.pocket_nc.frame.clone_from(&job.program);
         self.pocket.update(&self.state.pocket);
         let source = self.pocket.last.clone().map(panels::corner_nc::Source::Pocket);
         self.pocket_nc.update(source, &self.state.pocket_nc);
@@ -280,6 +288,7 @@ impl App {
 
     /// Regenerate the NC program if the plan or the export settings changed.
     fn refresh_export(&mut self) {
+        self.state.export.frame.clone_from(&self.state.job.program);
         if let Some(p) = &self.planner.last {
             self.export.update(&p.plan, &self.state.export);
         }

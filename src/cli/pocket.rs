@@ -169,6 +169,7 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
     let points = read_single(&args.polygon, "polygon file")?;
     let polygon = Polygon::new(points.clone()).map_err(|e| format!("{what}: {e}"))?;
     let open_edges = pocket::stored_open_edges(&polygon, &points, &args.open_edges).map_err(err)?;
+    args.nc.options()?; // the program's flags are checked before the plan
     let req = PocketRequest {
         polygon,
         tool_diameter_mm: args.tool_diameter,
@@ -204,7 +205,7 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
 
 /// Write the whole pocket ([`PocketPlan::tool_path`]) to `file`.
 fn export_pocket(nc: &CornerExportArgs, file: &std::path::Path, plan: &PocketPlan) -> Result<NcExportOut, String> {
-    let opts = nc.options();
+    let opts = nc.options()?;
     let prog = pocket_program(plan, nc.cut_setup(), &opts).map_err(err)?;
     write_program(file, &prog, &opts)
 }

@@ -14,6 +14,7 @@ pub mod params;
 pub mod plane;
 pub mod plots;
 pub mod pocket;
+pub mod program;
 pub mod sweep;
 pub mod teach;
 
