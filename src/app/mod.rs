@@ -64,7 +64,7 @@ pub fn run(job: Job) -> eframe::Result<()> {
             let stored = stored.map(|s| if job == Job::default() { s } else { s.with_job(job.clone()) });
             let ctx = cc.egui_ctx.clone();
             let planner = Planner::threaded(move || ctx.request_repaint());
-            let mut app = App::with_planner(job, stored, Box::new(NativeDialogs), planner);
+            let mut app = App::with_planner(job, stored, Box::new(NativeDialogs::default()), planner);
             let ctx = cc.egui_ctx.clone();
             app.corner = panels::corner::CornerView::threaded(move || ctx.request_repaint());
             let ctx = cc.egui_ctx.clone();
@@ -121,6 +121,11 @@ pub struct App {
     /// The chip of the animated tooth.
     pub chip: Chip,
     dialogs: Box<dyn FileDialogs>,
+    /// Why no file dialog can be shown, once one failed: file commands then ask in the path
+    /// field.
+    no_dialog: Option<String>,
+    /// The open path field, if any.
+    prompt: Option<panels::path_field::PathPrompt>,
     /// Last message for the status bar: (text, is_error).
     pub status: Option<(String, bool)>,
     frames: FrameStats,
@@ -154,6 +159,8 @@ impl App {
             pocket_nc: panels::corner_nc::CornerNcCache::default(),
             chip: Chip::default(),
             dialogs,
+            no_dialog: None,
+            prompt: None,
             status: None,
             titled: None,
             frames: FrameStats::new(std::env::var_os(FRAME_LOG_ENV).is_some()),
@@ -218,6 +225,7 @@ impl App {
         }
         self.animate(ui);
         egui::CentralPanel::default().show(ui, |ui| (self.view.tab.spec().show)(self, ui, &mut cmds));
+        self.path_field(ui.ctx());
 
         for c in cmds {
             self.apply(c, ui.ctx());

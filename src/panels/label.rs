@@ -45,6 +45,12 @@ pub const SPINDLE_DIRECTION: &str = "Spindle direction";
 pub const PROGRAM_NUMBER: &str = "Program number";
 pub const PROGRAM_NAME: &str = "Program name";
 
+// The path field (no system file dialog).
+pub const PATH_FIELD: &str = "File path";
+pub const PATH_OPEN: &str = "Open file";
+pub const PATH_SAVE: &str = "Save file";
+pub const PATH_CANCEL: &str = "Cancel";
+
 // Corner and Pocket tabs: the NC export.
 pub const NC_EXPORT: &str = "NC export";
 pub const CORNER_NC_TOLERANCE: &str = "Corner NC tolerance";

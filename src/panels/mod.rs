@@ -11,6 +11,7 @@ pub mod label;
 pub mod metrics;
 pub mod optimise;
 pub mod params;
+pub mod path_field;
 pub mod plane;
 pub mod plots;
 pub mod pocket;

@@ -5,6 +5,7 @@
 //! machine and optimiser).
 
 mod corner;
+mod files;
 mod machine;
 mod pocket;
 mod slot;
