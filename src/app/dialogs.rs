@@ -125,9 +125,7 @@ impl App {
                 return answer;
             }
             self.no_dialog = self.dialogs.unavailable();
-            if self.no_dialog.is_none() {
-                return None; // cancelled
-            }
+            self.no_dialog.as_ref()?; // none: the user cancelled
         }
         let why = self.no_dialog.clone().unwrap_or_default();
         let suggestion = self.suggested_path(&purpose, nc_name);
