@@ -7,9 +7,9 @@
 //! and a 20 mm long slot.
 
 use crate::error::{Error, Param, num};
+use crate::frame::ProgramFrame;
 use crate::machine::{DEFAULT_MIN_FEED_MM_PER_MIN, Machine, MachineChoice};
 use crate::material::{Coefficients, DEFAULT_MATERIAL, Library};
-use crate::nc::ProgramFrame;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 

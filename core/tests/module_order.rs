@@ -16,7 +16,7 @@ use std::path::Path;
 /// The allowed order, lowest first: a module may use the modules before it.
 #[rustfmt::skip]
 const ORDER: &[&str] = &[
-    "error", "geom", "toolpath", "outline", "material", "machine", "job", "path", "analysis", "plan", "feed",
+    "error", "geom", "toolpath", "outline", "material", "machine", "frame", "job", "path", "analysis", "plan", "feed",
     "optimize", "quantity", "sweep", "engagement", "corner", "pocket", "report", "nc", "verify",
 ];
 

@@ -7,7 +7,8 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use std::path::PathBuf;
-use trochoplan_core::nc::{Coolant, Dialect, NcOptions, ProgramFrame, program};
+use trochoplan_core::frame::{Coolant, ProgramFrame};
+use trochoplan_core::nc::{Dialect, NcOptions, program};
 use trochoplan_core::{Job, PathKind, plan};
 
 /// (file, job, options): short slots keep the files readable.

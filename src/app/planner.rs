@@ -4,7 +4,7 @@
 use super::panels::graphics::Graphics;
 use crate::worker::{Keep, Task, Worker};
 use std::time::Instant;
-use trochoplan_core::nc::ProgramFrame;
+use trochoplan_core::frame::ProgramFrame;
 use trochoplan_core::{Error, Job, Plan, plan};
 
 /// A plan and its plot data.

@@ -7,8 +7,9 @@ use crate::shared::nc::{NcChoices, cut_setup};
 use clap::Args;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
+use trochoplan_core::frame::ProgramFrame;
 use trochoplan_core::machine::{CutHeights, Machine, toolpath_time};
-use trochoplan_core::nc::{CutSetup, DEFAULT_TOLERANCE_MM, Dialect, NcOptions, NcProgram, ProgramFrame};
+use trochoplan_core::nc::{CutSetup, DEFAULT_TOLERANCE_MM, Dialect, NcOptions, NcProgram};
 use trochoplan_core::toolpath::Toolpath;
 use trochoplan_core::{Error, Param};
 

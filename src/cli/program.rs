@@ -5,8 +5,8 @@
 
 use super::core_names;
 use clap::Args;
-use trochoplan_core::nc::frame::work_offset_from_name;
-use trochoplan_core::nc::{Coolant, Dialect, ProgramFrame, SpindleDirection, Units, WorkOffset};
+use trochoplan_core::frame::{Coolant, ProgramFrame, SpindleDirection, Units, WorkOffset, work_offset_from_name};
+use trochoplan_core::nc::Dialect;
 use trochoplan_core::{Error, Param};
 
 /// Flags of the program's frame (defaults: [`ProgramFrame::default`] or the job file's).

@@ -18,7 +18,8 @@ use crate::shared::nc::{self as shared_nc, NcChoices};
 use eframe::egui::{self, DragValue, RichText, Slider, SliderClamping};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
-use trochoplan_core::nc::{self, CutSetup, DEFAULT_TOLERANCE_MM, Dialect, NcOptions, ProgramFrame};
+use trochoplan_core::frame::ProgramFrame;
+use trochoplan_core::nc::{self, CutSetup, DEFAULT_TOLERANCE_MM, Dialect, NcOptions};
 
 /// The export options of the Corner tab, or of the Pocket tab (persisted with the app state).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

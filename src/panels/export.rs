@@ -15,8 +15,9 @@ use eframe::egui::{self, Color32, RichText};
 use egui_plot::{Corner, Legend, Line, Plot, PlotPoint, PlotPoints};
 use serde::{Deserialize, Serialize};
 use trochoplan_core::Plan;
+use trochoplan_core::frame::ProgramFrame;
 use trochoplan_core::job::ValidJob;
-use trochoplan_core::nc::{self, DEFAULT_TOLERANCE_MM, Dialect, NcOptions, ProgramFrame};
+use trochoplan_core::nc::{self, DEFAULT_TOLERANCE_MM, Dialect, NcOptions};
 
 /// Chord tolerance of the drawn back-plot (mm), raised for very long programs.
 const BACKPLOT_CHORD_MM: f64 = 0.002;

@@ -7,8 +7,10 @@
 
 use super::label;
 use eframe::egui::{self, DragValue, RichText};
-use trochoplan_core::nc::frame::{DEFAULT_PROGRAM_NUMBER, MAX_CLEARANCE_MM};
-use trochoplan_core::nc::{Coolant, Dialect, ProgramFrame, SpindleDirection, Units, WorkOffset};
+use trochoplan_core::frame::{
+    Coolant, DEFAULT_PROGRAM_NUMBER, MAX_CLEARANCE_MM, ProgramFrame, SpindleDirection, Units, WorkOffset,
+};
+use trochoplan_core::nc::Dialect;
 
 /// The panel: one wrapped row of fields for `frame`; `dialect` decides which of the tool,
 /// number and name fields apply.

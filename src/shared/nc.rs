@@ -4,7 +4,8 @@
 //! field of [`NcOptions`] is one of these choices.
 
 use trochoplan_core::feed::VariableFeed;
-use trochoplan_core::nc::{CutSetup, Dialect, NcOptions, ProgramFrame};
+use trochoplan_core::frame::ProgramFrame;
+use trochoplan_core::nc::{CutSetup, Dialect, NcOptions};
 
 /// What a user chooses for an NC program (the fields of [`NcOptions`] a front end offers).
 #[derive(Clone, Debug, PartialEq)]

@@ -20,7 +20,7 @@
 //! move with its exact segment, heights and feed), and [`backplot`], the points to draw.
 
 use super::Dialect;
-use super::frame::MM_PER_INCH;
+use crate::frame::MM_PER_INCH;
 use crate::geom::{P2, Segment, p2};
 use crate::toolpath::{Move, MoveKind, Toolpath};
 use std::f64::consts::{FRAC_PI_2, TAU};

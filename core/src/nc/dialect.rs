@@ -1,8 +1,8 @@
 //! NC dialects as data: what differs between controllers is written down here, once; the
 //! emitter ([`super::writer`]) reads it (docs/architecture.md).
 
-use super::frame::Units;
 use crate::error::{Error, Param};
+use crate::frame::Units;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 

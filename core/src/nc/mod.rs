@@ -24,18 +24,18 @@
 pub mod backplot;
 pub mod corner;
 mod dialect;
-pub mod frame;
+mod frame;
 mod writer;
 
 pub use backplot::{backplot, read_toolpath};
 pub use corner::{CutSetup, corner_program, perforative_program, pocket_program};
 
 pub use dialect::{CommentStyle, Dialect, DialectSpec, LoopStyle, ToolCall, sanitize_comment};
-pub use frame::{Coolant, ProgramFrame, SpindleDirection, Units, WorkOffset};
 pub use writer::{Writer, YForm};
 
 use crate::error::{Error, Param, num};
 use crate::feed::VariableFeed;
+use crate::frame::{ProgramFrame, SpindleDirection, Units};
 use crate::geom::{FitPiece, P2, Segment, fit_biarcs, p2, polyline};
 use crate::job::{Direction, PathKind};
 use crate::plan::Plan;

@@ -2,6 +2,7 @@
 //! `core/tests/nc_*.rs` and through LinuxCNC's interpreter in `tests/nc_rs274.rs`.
 
 use super::*;
+use crate::frame::Coolant;
 use crate::job::Job;
 use crate::plan::plan;
 use crate::toolpath::MoveKind;

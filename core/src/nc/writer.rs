@@ -17,8 +17,8 @@
 //! inch/min with two decimals (0.01 inch/min = 0.254 mm/min; metric feeds in 0.1 mm/min).
 
 use super::dialect::{CommentStyle, DialectSpec, sanitize_comment};
-use super::frame::Units;
 use crate::error::{Error, num};
+use crate::frame::Units;
 use crate::geom::{P2, Segment, p2, rot90};
 use std::f64::consts::{PI, TAU};
 

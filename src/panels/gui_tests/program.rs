@@ -2,7 +2,8 @@
 //! Corner and Pocket tabs' programs in that frame, at the job's feed and spindle speed.
 
 use super::*;
-use trochoplan_core::nc::{NcOptions, ProgramFrame, Units, program};
+use trochoplan_core::frame::{ProgramFrame, Units};
+use trochoplan_core::nc::{NcOptions, program};
 
 #[test]
 fn the_program_panel_sets_the_frame_of_every_program_and_is_saved_with_the_job() {
