@@ -44,17 +44,29 @@ impl NativeDialogs {
     /// Run the dialog `ask`, noting whether it could have been shown (module docs).
     fn run(&mut self, ask: impl FnOnce() -> Option<PathBuf>) -> Option<PathBuf> {
         self.failed = None;
-        if cfg!(target_os = "linux") && std::env::var_os("DBUS_SESSION_BUS_ADDRESS").is_none() {
+        if cfg!(target_os = "linux") && !session_bus() {
             self.failed = Some("No file dialog: no desktop session bus for a desktop portal".into());
             return None;
         }
         let t = Instant::now();
         let answer = ask();
-        if answer.is_none() && t.elapsed() < QUICK_ANSWER {
-            self.failed = Some("No file dialog appeared (no XDG desktop portal running?)".into());
-        }
+        self.failed = not_shown(answer.as_deref(), t.elapsed());
         answer
     }
+}
+
+/// Why a dialog that answered `answer` after `elapsed` was not shown: no file, faster than a
+/// user can cancel ([`QUICK_ANSWER`]). `None`: it was shown (a file, or a cancel).
+fn not_shown(answer: Option<&Path>, elapsed: Duration) -> Option<String> {
+    (answer.is_none() && elapsed < QUICK_ANSWER)
+        .then(|| "No file dialog appeared (no XDG desktop portal running?)".to_string())
+}
+
+/// Whether a desktop session bus can be reached (where a portal would answer): its address in
+/// the environment, or the default socket `$XDG_RUNTIME_DIR/bus`.
+fn session_bus() -> bool {
+    std::env::var_os("DBUS_SESSION_BUS_ADDRESS").is_some()
+        || std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|d| Path::new(&d).join("bus").exists())
 }
 
 impl FileDialogs for NativeDialogs {
@@ -190,5 +202,17 @@ impl App {
         self.view.recent.retain(|p| p != path);
         self.view.recent.insert(0, path.to_owned());
         self.view.recent.truncate(MAX_RECENT);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_instant_no_is_no_dialog_and_a_slow_one_a_cancel() {
+        assert!(not_shown(None, Duration::from_millis(5)).is_some());
+        assert_eq!(not_shown(None, Duration::from_secs(2)), None, "the user cancelled");
+        assert_eq!(not_shown(Some(Path::new("/tmp/a.toml")), Duration::from_millis(5)), None);
     }
 }
