@@ -11,6 +11,7 @@ mod engagement;
 mod export;
 mod levels;
 mod pocket;
+mod program;
 mod verify;
 // The optimiser likewise.
 #[path = "optimize_cmd.rs"]

@@ -2,6 +2,7 @@
 //! rename), so an existing program is never left half-written.
 
 use crate::cli::core_names;
+use crate::cli::program::ProgramArgs;
 use crate::shared::files::write_atomic;
 use crate::shared::nc::NcChoices;
 use clap::Args;
@@ -28,9 +29,6 @@ pub struct ExportArgs {
     /// must keep the program within its block limit).
     #[arg(long)]
     linear_segments: bool,
-    /// Coolant on (M8) during the cut.
-    #[arg(long)]
-    coolant: bool,
     /// Feed on moves where no tooth cuts (mm/min); default: the cutting feed everywhere.
     #[arg(long, value_name = "MM_PER_MIN", allow_hyphen_values = true)]
     return_feed: Option<f64>,
@@ -54,6 +52,8 @@ pub struct ExportArgs {
     /// Variable feed: shortest block (mm), on top of the machine's block time.
     #[arg(long, value_name = "MM", default_value_t = VariableFeed::default().min_block_mm, allow_hyphen_values = true)]
     min_block: f64,
+    #[command(flatten)]
+    program: ProgramArgs,
     /// Output file; `-` or /dev/stdout: the standard output (the summary then goes to stderr).
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     output: PathBuf,
@@ -80,7 +80,12 @@ pub fn run(job: &Job, args: &ExportArgs) -> Result<String, String> {
             band_ratio: args.feed_band,
             min_block_mm: args.min_block,
         }),
-        ..NcChoices::new(args.dialect, args.tolerance, args.linear_segments, args.coolant)
+        ..NcChoices::new(
+            args.dialect,
+            args.tolerance,
+            args.linear_segments,
+            args.program.frame(&job.program, args.dialect)?,
+        )
     }
     .options();
     opts.validate().map_err(|e| e.to_string())?;

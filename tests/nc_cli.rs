@@ -195,3 +195,48 @@ fn programs_too_long_to_write_name_the_step() {
     let out = trochoplan(&[&["export", "--dialect", "linuxcnc", "--compact", "-o", f][..], &job].concat());
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
 }
+
+/// The program's frame from a job file's `[program]` table, a flag overriding it, and bad
+/// values named by their flag with the range.
+#[test]
+fn the_frame_comes_from_the_job_file_and_the_flags_override_it() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let job = dir.path().join("job.toml");
+    std::fs::write(&job, "feed = 718.9\n[program]\ntool-number = 7\nwork-offset = \"G56\"\nclearance = 20\nretract = 2\ncoolant = \"mist\"\n")
+        .expect("job file");
+    let (j, file) = (job.to_str().expect("utf-8"), dir.path().join("slot.nc"));
+    let f = file.to_str().expect("utf-8");
+    let run = |extra: &[&str]| {
+        let args: Vec<&str> =
+            ["export", "--job", j, "--dialect", "fanuc", "-o", f].iter().chain(extra).copied().collect();
+        let out = trochoplan(&args);
+        assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+        std::fs::read_to_string(&file).expect("program")
+    };
+    let text = run(&[]);
+    for word in ["\nG56\n", "\nT7 M6\nG43 H7\n", "\nS2000 M3\nM7\n", "\nG0 Z20.000\n", "F718.9", "\nM9\n"] {
+        assert!(text.contains(word), "{word:?} in {text}");
+    }
+    let text = run(&["--tool-number", "3", "--program-number", "42", "--spindle-direction", "ccw"]);
+    assert!(text.contains("\nT3 M6\nG43 H3\n") && text.starts_with("%\nO42\n"), "{text}");
+    // M4 with the conventional job: the header says the program cuts climb
+    assert!(text.contains("(climb milling with M4: loops clockwise)"), "{text}");
+
+    for (flags, flag, range) in [
+        (&["--tool-number", "0"][..], "tool-number", "from 1 to 9999"),
+        (&["--tool-number", "-2"][..], "tool-number", "from 1 to 9999"),
+        (&["--retract", "25"][..], "retract", "≤ 20 mm"),
+        (&["--clearance", "0"][..], "clearance", "> 0 and ≤ 1000 mm"),
+        (&["--program-name", "9X"][..], "program-name", "a letter"),
+    ] {
+        let args: Vec<&str> =
+            ["export", "--job", j, "--dialect", "fanuc", "-o", f].iter().chain(flags).copied().collect();
+        let out = trochoplan(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success() && err.contains(flag) && err.contains(range), "{flags:?}: {err}");
+    }
+    // the frame flags of corner and pocket need --export
+    let out = trochoplan(&["corner", "--units", "inch"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && err.contains("--units") && err.contains("--export"), "{err}");
+}

@@ -33,7 +33,7 @@ pub enum Param {
     ReturnFeed,
     /// Safe height of the NC program (GUI only).
     SafeZ,
-    /// Tool number of the NC program (GUI only).
+    /// Tool number of the NC program (`--tool-number`, job-file `[program]` table).
     ToolNumber,
     Title,
     /// `corner --angle`.
@@ -125,11 +125,20 @@ pub enum Param {
     MaxStepDown,
     /// `--closed`: a slot closed at both ends (a keyway).
     Closed,
+    Clearance,
+    Retract,
+    WorkOffset,
+    Units,
+    LengthOffset,
+    ProgramNumber,
+    ProgramName,
+    SpindleDirection,
+    Coolant,
 }
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 82] = [
+    pub const ALL: [Param; 91] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
@@ -212,6 +221,15 @@ impl Param {
         Param::OpenEdges,
         Param::MaxStepDown,
         Param::Closed,
+        Param::Clearance,
+        Param::Retract,
+        Param::WorkOffset,
+        Param::Units,
+        Param::LengthOffset,
+        Param::ProgramNumber,
+        Param::ProgramName,
+        Param::SpindleDirection,
+        Param::Coolant,
     ];
 
     /// The command-line flag without `--` (also the job-file key). The NC tolerance and the
@@ -300,6 +318,15 @@ impl Param {
             Param::OpenEdges => "open-edges",
             Param::MaxStepDown => "max-step-down",
             Param::Closed => "closed",
+            Param::Clearance => "clearance",
+            Param::Retract => "retract",
+            Param::WorkOffset => "work-offset",
+            Param::Units => "units",
+            Param::LengthOffset => "length-offset",
+            Param::ProgramNumber => "program-number",
+            Param::ProgramName => "program-name",
+            Param::SpindleDirection => "spindle-direction",
+            Param::Coolant => "coolant",
         }
     }
 
@@ -388,6 +415,15 @@ impl Param {
             Param::OpenEdges => "Open edges",
             Param::MaxStepDown => "Max step-down",
             Param::Closed => "Closed slot",
+            Param::Clearance => "Clearance height",
+            Param::Retract => "Retract height",
+            Param::WorkOffset => "Work offset",
+            Param::Units => "Program units",
+            Param::LengthOffset => "Length offset",
+            Param::ProgramNumber => "Program number",
+            Param::ProgramName => "Program name",
+            Param::SpindleDirection => "Spindle direction",
+            Param::Coolant => "Coolant",
         }
     }
 }

@@ -7,6 +7,7 @@
 //! and a 20 mm long slot.
 
 use crate::error::{Error, Param, num};
+use crate::frame::ProgramFrame;
 use crate::machine::{DEFAULT_MIN_FEED_MM_PER_MIN, Machine, MachineChoice};
 use crate::material::{Coefficients, DEFAULT_MATERIAL, Library};
 use serde::{Deserialize, Serialize};
@@ -149,6 +150,10 @@ pub struct Job {
     /// Its width and length are checked when it is planned (`plan::plan`).
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub closed: bool,
+    /// The frame of its NC programs (table `[program]`: `tool-number`, `work-offset`,
+    /// `clearance`, `retract`, `units`, …; the export flags of the same names override it).
+    #[serde(skip_serializing_if = "ProgramFrame::is_default")]
+    pub program: ProgramFrame,
 }
 
 impl Default for Job {
@@ -177,6 +182,7 @@ impl Default for Job {
             machine: None,
             max_step_down: None,
             closed: false,
+            program: ProgramFrame::default(),
         }
     }
 }
@@ -612,5 +618,16 @@ mod tests {
         assert_eq!(Job::from_toml(&text).expect("parse"), job);
         assert!(Job::from_toml("slot-width = \"wide\"").is_err());
         assert!(Job::from_toml("nonsense = 1").is_err());
+    }
+
+    #[test]
+    fn the_program_frame_is_saved_with_the_job_only_when_set() {
+        assert!(!Job::default().to_toml().contains("[program]"));
+        let text =
+            "feed = 718.9\n[program]\ntool-number = 7\nwork-offset = \"G55\"\nclearance = 25\nunits = \"inch\"\n";
+        let job = Job::from_toml(text).expect("job with a program table");
+        assert_eq!((job.program.tool_number, job.program.clearance_mm), (7, 25.0));
+        assert_eq!(Job::from_toml(&job.to_toml()).expect("round trip"), job);
+        assert!(Job::from_toml("[program]\ntool-nummer = 7").is_err(), "unknown keys are refused");
     }
 }

@@ -43,6 +43,7 @@ pub mod corner;
 pub mod engagement;
 pub mod error;
 pub mod feed;
+pub mod frame;
 pub mod geom;
 pub mod job;
 pub mod machine;

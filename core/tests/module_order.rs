@@ -16,8 +16,9 @@ use std::path::Path;
 /// The allowed order, lowest first: a module may use the modules before it.
 #[rustfmt::skip]
 const ORDER: &[&str] = &[
-    "error", "geom", "toolpath", "outline", "material", "machine", "job", "path", "analysis", "plan", "feed",
-    "optimize", "quantity", "sweep", "engagement", "slot_levels", "corner", "pocket", "report", "nc", "verify",
+    "error", "geom", "toolpath", "outline", "material", "machine", "frame", "job", "path", "analysis", "plan",
+    "feed", "optimize", "quantity", "sweep", "engagement", "slot_levels", "corner", "pocket", "report", "nc",
+    "verify",
 ];
 
 /// Production code of one file: up to the first `#[cfg(test)]`, plain `//` comments removed,

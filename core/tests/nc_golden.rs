@@ -7,6 +7,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use std::path::PathBuf;
+use trochoplan_core::frame::{Coolant, ProgramFrame};
 use trochoplan_core::nc::{Dialect, NcOptions, program};
 use trochoplan_core::{Job, PathKind, plan};
 
@@ -29,7 +30,11 @@ fn cases() -> Vec<(&'static str, Job, NcOptions)> {
         (
             "circular_type_loop.ngc",
             circular_type.clone(),
-            NcOptions { compact: true, coolant: true, ..o(Dialect::LinuxCnc) },
+            NcOptions {
+                compact: true,
+                frame: ProgramFrame { coolant: Coolant::Flood, ..ProgramFrame::default() },
+                ..o(Dialect::LinuxCnc)
+            },
         ),
         ("circular_type.nc", circular_type.clone(), o(Dialect::Fanuc)),
         ("circular_type.gcode", circular_type.clone(), o(Dialect::Grbl)),

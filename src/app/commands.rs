@@ -4,6 +4,7 @@
 use super::panels::compare::{self, MAX_VARIANTS};
 use super::panels::corner_nc::NcPreview;
 use super::panels::optimise::OptimiseRun;
+use super::panels::path_field::PathPurpose;
 use super::panels::sweep::SweepRun;
 use super::{App, PinnedJob, Variant};
 use crate::shared::files::write_atomic;
@@ -99,7 +100,7 @@ impl App {
                 }
             }
             Command::OpenOutline => {
-                if let Some(path) = self.dialogs.open_outline() {
+                if let Some(path) = self.ask_path(PathPurpose::OpenOutline, None) {
                     self.open_outline(&path);
                 }
             }
@@ -109,14 +110,14 @@ impl App {
     /// Open, Save and Save as (through the dialogs).
     fn file_command(&mut self, cmd: Command) {
         if cmd == Command::Open {
-            if let Some(path) = self.dialogs.open_job() {
+            if let Some(path) = self.ask_path(PathPurpose::OpenJob, None) {
                 self.open(&path);
             }
             return;
         }
         let target = match (&self.view.file, cmd) {
             (Some(f), Command::Save) => Some(f.clone()),
-            (f, _) => self.dialogs.save_job(f.as_deref()),
+            _ => self.ask_path(PathPurpose::SaveJob, None),
         };
         if let Some(path) = target {
             self.save_to(&path);
@@ -181,6 +182,7 @@ impl App {
             Ok(job) => {
                 self.set_job(job);
                 self.view.file = Some(path.to_owned());
+                self.remember(path);
                 self.status = Some((format!("opened {}", path.display()), false));
             }
             Err(e) => self.status = Some((format!("cannot open {}: {e}", path.display()), true)),
@@ -193,6 +195,7 @@ impl App {
         match read {
             Ok(points) => {
                 self.state.pocket.polygon_text = crate::shared::outline::points_text(&points);
+                self.remember(path);
                 self.status = Some((format!("opened outline {} ({} vertices)", path.display(), points.len()), false));
             }
             Err(e) => self.status = Some((format!("cannot open {}: {e}", path.display()), true)),
@@ -204,6 +207,7 @@ impl App {
         match write_atomic(path, self.state.job.to_toml().as_bytes()) {
             Ok(()) => {
                 self.view.file = Some(path.to_owned());
+                self.remember(path);
                 self.status = Some((format!("saved {}", path.display()), false));
             }
             Err(e) => self.status = Some((e, true)),
@@ -258,8 +262,15 @@ impl App {
 
     /// Ask where to save an NC program (`stem`.`extension` proposed) and write `text` there.
     fn write_nc(&mut self, stem: &str, extension: &str, text: &str) {
-        let Some(path) = self.dialogs.save_nc(stem, extension) else { return };
-        match write_atomic(&path, text.as_bytes()) {
+        let purpose = PathPurpose::SaveNc { text: text.to_owned() };
+        if let Some(path) = self.ask_path(purpose, Some((stem, extension))) {
+            self.write_nc_to(&path, text);
+        }
+    }
+
+    /// Write the NC program `text` to `path` (atomically).
+    pub(super) fn write_nc_to(&mut self, path: &Path, text: &str) {
+        match write_atomic(path, text.as_bytes()) {
             Ok(()) => self.status = Some((format!("exported {} ({} bytes)", path.display(), text.len()), false)),
             Err(e) => self.status = Some((e, true)),
         }

@@ -78,6 +78,7 @@ pub fn move_pocket(earlier: EarlierRecord, inputs: &mut Inputs, view: &mut View)
         step_over_mm: c.pocket_step_over_mm,
         strategy: if c.pocket_adaptive { PocketStrategy::Adaptive } else { PocketStrategy::from_method(c.method) },
         open_edges: c.pocket_open_edges,
+        ..PocketInputs::default()
     };
     inputs.pocket_nc = inputs.corner_nc.clone();
     if c.mode == EarlierMode::Pocket && view.tab == Tab::Corner {

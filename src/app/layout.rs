@@ -16,9 +16,12 @@ impl App {
             (KeyboardShortcut::new(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z), Command::Redo),
             (KeyboardShortcut::new(Modifiers::COMMAND, Key::Z), Command::Undo),
             (KeyboardShortcut::new(Modifiers::COMMAND, Key::Y), Command::Redo),
+            // with Shift before without: a shortcut without Shift matches with it too
+            (KeyboardShortcut::new(Modifiers::COMMAND | Modifiers::SHIFT, Key::O), Command::OpenOutline),
             (KeyboardShortcut::new(Modifiers::COMMAND, Key::O), Command::Open),
             (KeyboardShortcut::new(Modifiers::COMMAND | Modifiers::SHIFT, Key::S), Command::SaveAs),
             (KeyboardShortcut::new(Modifiers::COMMAND, Key::S), Command::Save),
+            (KeyboardShortcut::new(Modifiers::COMMAND, Key::E), self.export_command()),
         ];
         for (shortcut, cmd) in table {
             if ui.input_mut(|i| i.consume_shortcut(&shortcut)) {
@@ -60,15 +63,52 @@ impl App {
         if ui.button("Save job as…  (Ctrl+Shift+S)").clicked() {
             cmds.push(Command::SaveAs);
         }
+        self.recent_menu(ui);
         ui.separator();
         let export = Tab::Export.spec();
         if ui.button(format!("{}…", export.label)).on_hover_text(export.tooltip).clicked() {
             self.view.tab = Tab::Export;
         }
+        if ui
+            .button("Save NC program…  (Ctrl+E)")
+            .on_hover_text("The program of the Corner or Pocket tab when it is shown, else the slot's.")
+            .clicked()
+        {
+            cmds.push(self.export_command());
+        }
+        if ui.button("Open pocket outline…  (Ctrl+Shift+O)").clicked() {
+            cmds.push(Command::OpenOutline);
+        }
         ui.separator();
         if ui.button("Reset to the paper's default job").clicked() {
             cmds.push(Command::ResetJob);
         }
+    }
+
+    /// Save the NC program of the tab shown: the corner's, the pocket's, else the slot's.
+    fn export_command(&self) -> Command {
+        match self.view.tab {
+            Tab::Corner => Command::ExportCornerNc,
+            Tab::Pocket => Command::ExportPocketNc,
+            _ => Command::ExportNc,
+        }
+    }
+
+    /// The recent jobs (`.toml`) and outlines, newest first; a click opens one.
+    fn recent_menu(&mut self, ui: &mut egui::Ui) {
+        use super::panels::path_field::PathPurpose;
+        ui.add_enabled_ui(!self.view.recent.is_empty(), |ui| {
+            ui.menu_button("Open recent", |ui| {
+                for path in self.view.recent.clone() {
+                    let job = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml"));
+                    let kind = if job { "job" } else { "outline" };
+                    if ui.button(format!("{} ({kind})", path.display())).clicked() {
+                        let purpose = if job { PathPurpose::OpenJob } else { PathPurpose::OpenOutline };
+                        self.run_path(&purpose, &path);
+                    }
+                }
+            });
+        });
     }
 
     /// The Undo and Redo buttons labelled `labels`, enabled when there is something to undo or

@@ -64,7 +64,7 @@ pub fn run(job: Job) -> eframe::Result<()> {
             let stored = stored.map(|s| if job == Job::default() { s } else { s.with_job(job.clone()) });
             let ctx = cc.egui_ctx.clone();
             let planner = Planner::threaded(move || ctx.request_repaint());
-            let mut app = App::with_planner(job, stored, Box::new(NativeDialogs), planner);
+            let mut app = App::with_planner(job, stored, Box::new(NativeDialogs::default()), planner);
             let ctx = cc.egui_ctx.clone();
             app.corner = panels::corner::CornerView::threaded(move || ctx.request_repaint());
             let ctx = cc.egui_ctx.clone();
@@ -121,6 +121,11 @@ pub struct App {
     /// The chip of the animated tooth.
     pub chip: Chip,
     dialogs: Box<dyn FileDialogs>,
+    /// Why no file dialog can be shown, once one failed: file commands then ask in the path
+    /// field.
+    no_dialog: Option<String>,
+    /// The open path field, if any.
+    prompt: Option<panels::path_field::PathPrompt>,
     /// Last message for the status bar: (text, is_error).
     pub status: Option<(String, bool)>,
     frames: FrameStats,
@@ -154,6 +159,8 @@ impl App {
             pocket_nc: panels::corner_nc::CornerNcCache::default(),
             chip: Chip::default(),
             dialogs,
+            no_dialog: None,
+            prompt: None,
             status: None,
             titled: None,
             frames: FrameStats::new(std::env::var_os(FRAME_LOG_ENV).is_some()),
@@ -218,6 +225,7 @@ impl App {
         }
         self.animate(ui);
         egui::CentralPanel::default().show(ui, |ui| (self.view.tab.spec().show)(self, ui, &mut cmds));
+        self.path_field(ui.ctx());
 
         for c in cmds {
             self.apply(c, ui.ctx());
@@ -262,6 +270,9 @@ impl App {
     fn refresh_corner(&mut self) {
         use panels::corner::CornerMode;
         use panels::corner_nc::Source;
+        self.state.corner.feed_mm_per_min = self.state.job.feed;
+        self.state.corner_nc.spindle_rpm = self.state.job.rpm;
+        self.state.corner_nc.frame.clone_from(&self.state.job.program);
         self.corner.update(&self.state.corner);
         let source = match self.state.corner.mode {
             CornerMode::Corner => self.corner.last.clone().map(Source::Corner),
@@ -273,6 +284,11 @@ impl App {
     /// Collect the Pocket tab's plans, ask for a new one if its inputs changed, and regenerate
     /// its NC program if the pocket or the export settings changed.
     fn refresh_pocket(&mut self) {
+        let job = &self.state.job;
+        (self.state.pocket.feed_mm_per_min, self.state.pocket.spindle_rpm) = (job.feed, job.rpm);
+        self.state.pocket.teeth = job.teeth;
+        self.state.pocket_nc.spindle_rpm = job.rpm;
+        self.state.pocket_nc.frame.clone_from(&job.program);
         self.pocket.update(&self.state.pocket);
         let source = self.pocket.last.clone().map(panels::corner_nc::Source::Pocket);
         self.pocket_nc.update(source, &self.state.pocket_nc);
@@ -280,6 +296,7 @@ impl App {
 
     /// Regenerate the NC program if the plan or the export settings changed.
     fn refresh_export(&mut self) {
+        self.state.export.frame.clone_from(&self.state.job.program);
         if let Some(p) = &self.planner.last {
             self.export.update(&p.plan, &self.state.export);
         }

@@ -4,6 +4,7 @@
 use super::panels::graphics::Graphics;
 use crate::worker::{Keep, Task, Worker};
 use std::time::Instant;
+use trochoplan_core::frame::ProgramFrame;
 use trochoplan_core::{Error, Job, Plan, plan};
 
 /// A plan and its plot data.
@@ -83,6 +84,8 @@ impl Planner {
     /// first plan is computed at once, so the first frame has one.
     pub fn update(&mut self, job: &Job, cycles_shown: usize) -> bool {
         self.poll();
+        // the program's frame does not change the plan
+        let job = &Job { program: ProgramFrame::default(), ..job.clone() };
         if self.key.as_ref().is_some_and(|(j, c)| j == job && *c == cycles_shown) {
             return false;
         }

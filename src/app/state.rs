@@ -100,6 +100,8 @@ pub struct View {
     pub tab: Tab,
     /// The job file last opened or saved.
     pub file: Option<PathBuf>,
+    /// Jobs and outlines last opened or saved, newest first (the File menu's recent files).
+    pub recent: Vec<PathBuf>,
 }
 
 /// eframe storage key of [`Inputs`].

@@ -7,12 +7,14 @@ use crate::shared::nc::{NcChoices, cut_setup};
 use clap::Args;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
+use trochoplan_core::frame::ProgramFrame;
 use trochoplan_core::machine::{CutHeights, Machine, toolpath_time};
 use trochoplan_core::nc::{CutSetup, DEFAULT_TOLERANCE_MM, Dialect, NcOptions, NcProgram};
 use trochoplan_core::toolpath::Toolpath;
 use trochoplan_core::{Error, Param};
 
 use super::core_names;
+use super::program::ProgramArgs;
 
 /// NC export of `trochoplan corner` and `trochoplan pocket` (same program frame as
 /// `trochoplan export`; the corner's own frame: apex at X0 Y0, bisector along +X; the pocket's:
@@ -38,9 +40,6 @@ pub struct CornerExportArgs {
     /// Write arcs as G1 chords instead of G2/G3 (--export).
     #[arg(long, requires = "export")]
     linear_segments: bool,
-    /// Coolant on (M8) during the cut (--export).
-    #[arg(long, requires = "export")]
-    coolant: bool,
     /// Cutting depth below the stock top Z0 (mm), for --export.
     #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = CutSetup::default().depth_mm, requires = "export")]
     pub(super) depth: f64,
@@ -50,16 +49,25 @@ pub struct CornerExportArgs {
     /// Text for the header comment (--export).
     #[arg(long, value_name = "TEXT", requires = "export")]
     title: Option<String>,
+    #[command(flatten)]
+    program: ProgramArgs,
 }
 
 impl CornerExportArgs {
-    /// The NC options of these flags (the header comment from `--title`).
-    pub fn options(&self) -> NcOptions {
-        NcChoices {
-            title: self.title.clone().unwrap_or_default(),
-            ..NcChoices::new(self.dialect, self.nc_tolerance, self.linear_segments, self.coolant)
+    /// The NC options of these flags (the header comment from `--title`); a program-frame
+    /// flag without `--export`, or outside its range, is an error naming it.
+    pub fn options(&self) -> Result<NcOptions, String> {
+        if self.export.is_none()
+            && let Some(flag) = self.program.first_given()
+        {
+            return Err(format!("{flag} sets the program written by --export: give --export FILE"));
         }
-        .options()
+        let frame = self.program.frame(&ProgramFrame::default(), self.dialect)?;
+        Ok(NcChoices {
+            title: self.title.clone().unwrap_or_default(),
+            ..NcChoices::new(self.dialect, self.nc_tolerance, self.linear_segments, frame)
+        }
+        .options())
     }
 
     /// The depth and spindle speed of these flags.
@@ -115,7 +123,7 @@ pub fn with_real_time(
     name: &str,
 ) -> Result<String, String> {
     let m = Machine::preset(name).map_err(err)?;
-    let heights = CutHeights { depth_mm: nc.depth, safe_z_mm: nc.options().safe_z_mm };
+    let heights = CutHeights { depth_mm: nc.depth, safe_z_mm: nc.options()?.frame.retract_height_mm() };
     let t = toolpath_time(path, heights, feed_mm_per_min, &m).map_err(err)?;
     let mut v: serde_json::Value = serde_json::from_str(text).map_err(|e| e.to_string())?;
     if let Some(obj) = v.as_object_mut() {

@@ -105,7 +105,7 @@ impl CornerArgs {
 
 /// Write the corner program of `report` to `file` (see [`CornerExportArgs`]).
 fn export_corner(nc: &CornerExportArgs, file: &std::path::Path, report: &CornerReport) -> Result<NcExportOut, String> {
-    let opts = nc.options();
+    let opts = nc.options()?;
     let prog = corner_program(&report.plan, report.settings(), report.angle_deg, nc.cut_setup(), &opts).map_err(err)?;
     write_program(file, &prog, &opts)
 }
@@ -113,6 +113,7 @@ fn export_corner(nc: &CornerExportArgs, file: &std::path::Path, report: &CornerR
 /// `trochoplan corner`: plan one corner (JSON) or print the acceptance table (Markdown).
 pub fn corner(args: &CornerArgs) -> Result<String, String> {
     let req = args.request();
+    args.nc.options()?; // the program's flags are checked before the plan
     if args.table {
         if args.nc.export.is_some() {
             req.settings().map_err(err)?; // an invalid input is named first

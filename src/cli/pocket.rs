@@ -10,9 +10,9 @@ use trochoplan_core::geom::Polygon;
 use trochoplan_core::job::Direction;
 use trochoplan_core::machine::Machine;
 use trochoplan_core::nc::pocket_program;
-use trochoplan_core::pocket::chip::chip_peaks;
 use trochoplan_core::pocket::{self, AdaptiveOptions, PaceOptions, PocketPlan, PocketRequest, PocketStrategy};
 use trochoplan_core::report;
+use trochoplan_core::verify::plan_chip::chip_peaks;
 
 /// Flags of `trochoplan pocket` (defaults: [`PocketRequest::default`]).
 #[derive(Args)]
@@ -170,6 +170,7 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
     let points = read_single(&args.polygon, "polygon file")?;
     let polygon = Polygon::new(points.clone()).map_err(|e| format!("{what}: {e}"))?;
     let open_edges = pocket::stored_open_edges(&polygon, &points, &args.open_edges).map_err(err)?;
+    args.nc.options()?; // the program's flags are checked before the plan
     let req = PocketRequest {
         polygon,
         tool_diameter_mm: args.tool_diameter,
@@ -212,8 +213,10 @@ fn with_chip_peaks(text: &str, plan: &PocketPlan, args: &PocketArgs) -> Result<S
         Some(name) => Some(trochoplan_core::machine::Machine::preset(name).map_err(err)?),
         None => None,
     };
-    let heights =
-        trochoplan_core::machine::CutHeights { depth_mm: args.nc.depth, safe_z_mm: args.nc.options().safe_z_mm };
+    let heights = trochoplan_core::machine::CutHeights {
+        depth_mm: args.nc.depth,
+        safe_z_mm: args.nc.options()?.frame.retract_height_mm(),
+    };
     let peaks =
         chip_peaks(plan.path(), args.pace.teeth, args.nc.rpm, machine.as_ref().map(|m| (m, heights))).map_err(err)?;
     let mut v: serde_json::Value = serde_json::from_str(text).map_err(|e| e.to_string())?;
@@ -226,7 +229,7 @@ fn with_chip_peaks(text: &str, plan: &PocketPlan, args: &PocketArgs) -> Result<S
 
 /// Write the whole pocket ([`PocketPlan::tool_path`]) to `file`.
 fn export_pocket(nc: &CornerExportArgs, file: &std::path::Path, plan: &PocketPlan) -> Result<NcExportOut, String> {
-    let opts = nc.options();
+    let opts = nc.options()?;
     let prog = pocket_program(plan, nc.cut_setup(), &opts).map_err(err)?;
     write_program(file, &prog, &opts)
 }

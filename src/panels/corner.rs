@@ -55,6 +55,9 @@ pub struct CornerInputs {
     /// Allowed excess t1: target a* = a_str·(1 + t1).
     pub t1: f64,
     pub mode: CornerMode,
+    /// The job's feed f_r (mm/min; a copy taken each frame): the corner's program runs at it.
+    #[serde(skip)]
+    pub feed_mm_per_min: f64,
 }
 
 impl Default for CornerInputs {
@@ -71,13 +74,15 @@ impl Default for CornerInputs {
             straight_engagement_deg: corner.straight_engagement_deg,
             t1: corner.t1,
             mode: CornerMode::Corner,
+            feed_mm_per_min: corner.feed_mm_per_min,
         }
     }
 }
 
 impl CornerInputs {
-    /// The core's corner request of the tab's inputs (the tab has no target, tolerance, wall
-    /// length, feed, isometric radius or spacing fields: the defaults of `trochoplan corner`).
+    /// The core's corner request of the tab's inputs at the job's feed (the tab has no target,
+    /// tolerance, wall length, isometric radius or spacing fields: the defaults of
+    /// `trochoplan corner`).
     pub fn request(&self) -> CornerRequest {
         CornerRequest {
             angle_deg: self.angle_deg,
@@ -86,6 +91,7 @@ impl CornerInputs {
             step_over_mm: self.use_step_over.then_some(self.step_over_mm),
             straight_engagement_deg: self.straight_engagement_deg,
             t1: self.t1,
+            feed_mm_per_min: self.feed_mm_per_min,
             ..CornerRequest::DEFAULT
         }
     }

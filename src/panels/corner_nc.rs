@@ -1,5 +1,6 @@
 //! NC export from the Corner and Pocket tabs: the program of the planned corner or pocket,
-//! with dialect, tolerance, arcs or G1 chords, coolant, depth and spindle speed; previewed
+//! with dialect, tolerance, arcs or G1 chords and depth, at the job's feed and spindle speed in the
+//! job's program frame (the Export tab's Program panel); previewed
 //! read-only and saved through the app's file dialog (`Command::ExportCornerNc`,
 //! `Command::ExportPocketNc`). Each tab has its own settings and program.
 //!
@@ -17,6 +18,7 @@ use crate::shared::nc::{self as shared_nc, NcChoices};
 use eframe::egui::{self, DragValue, RichText, Slider, SliderClamping};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
+use trochoplan_core::frame::ProgramFrame;
 use trochoplan_core::nc::{self, CutSetup, DEFAULT_TOLERANCE_MM, Dialect, NcOptions};
 
 /// The export options of the Corner tab, or of the Pocket tab (persisted with the app state).
@@ -29,10 +31,14 @@ pub struct CornerNcSettings {
     /// Largest distance of the written path from the planned one, before rounding (mm).
     pub tolerance_mm: f64,
     pub linear_segments: bool,
-    pub coolant: bool,
     /// Cutting depth below the stock top Z0 (mm).
     pub depth_mm: f64,
+    /// The job's spindle speed (rpm; a copy taken each frame).
+    #[serde(skip)]
     pub spindle_rpm: f64,
+    /// The job's program frame (a copy taken each frame; saved with the job, not here).
+    #[serde(skip)]
+    pub frame: ProgramFrame,
 }
 
 impl Default for CornerNcSettings {
@@ -44,9 +50,9 @@ impl Default for CornerNcSettings {
             dialect: Dialect::LinuxCnc,
             tolerance_mm: DEFAULT_TOLERANCE_MM,
             linear_segments: false,
-            coolant: false,
             depth_mm: cut.depth_mm,
             spindle_rpm: cut.spindle_rpm,
+            frame: ProgramFrame::default(),
         }
     }
 }
@@ -54,7 +60,7 @@ impl Default for CornerNcSettings {
 impl CornerNcSettings {
     /// The core's options (validated by the core when the program is written).
     pub fn options(&self) -> NcOptions {
-        NcChoices::new(self.dialect, self.tolerance_mm, self.linear_segments, self.coolant).options()
+        NcChoices::new(self.dialect, self.tolerance_mm, self.linear_segments, self.frame.clone()).options()
     }
 
     pub fn cut(&self) -> CutSetup {
@@ -180,16 +186,14 @@ pub(super) fn tolerance_slider(tolerance_mm: &mut f64) -> Slider<'_> {
 fn cut_options(ui: &mut egui::Ui, settings: &mut CornerNcSettings) {
     ui.checkbox(&mut settings.linear_segments, label::G1_CHORDS_ONLY)
         .on_hover_text("Write every arc as G1 chords instead of G2/G3 (more blocks).");
-    ui.checkbox(&mut settings.coolant, label::COOLANT);
     ui.separator();
     let l = ui.label(label::DEPTH_BELOW_Z0);
     ui.add(DragValue::new(&mut settings.depth_mm).speed(0.1).suffix(" mm")).labelled_by(l.id).on_hover_text(
         "Cutting depth below the stock top Z0, 0 < depth ≤ 1000 mm; the tool feeds down at the path start.",
     );
-    let l = ui.label(label::SPINDLE);
-    ui.add(DragValue::new(&mut settings.spindle_rpm).speed(10.0).suffix(" rpm"))
-        .labelled_by(l.id)
-        .on_hover_text("Spindle speed (M3), 0 < n ≤ 1000000 rpm.");
+    ui.label(format!("{}: {:.0} rpm (the job's)", label::SPINDLE, settings.spindle_rpm));
+    ui.end_row();
+    ui.label(super::program::summary(&settings.frame, settings.dialect));
 }
 
 /// The save button (disabled while the inputs are invalid) and the program's size; true when

@@ -15,6 +15,7 @@ use eframe::egui::{self, Color32, RichText};
 use egui_plot::{Corner, Legend, Line, Plot, PlotPoint, PlotPoints};
 use serde::{Deserialize, Serialize};
 use trochoplan_core::Plan;
+use trochoplan_core::frame::ProgramFrame;
 use trochoplan_core::job::ValidJob;
 use trochoplan_core::nc::{self, DEFAULT_TOLERANCE_MM, Dialect, NcOptions};
 
@@ -33,9 +34,11 @@ pub struct ExportSettings {
     pub tolerance_mm: f64,
     pub linear_segments: bool,
     pub compact: bool,
-    pub coolant: bool,
     pub return_feed: bool,
     pub return_feed_mm_per_min: f64,
+    /// The job's program frame (a copy taken each frame; saved with the job, not here).
+    #[serde(skip)]
+    pub frame: ProgramFrame,
 }
 
 impl Default for ExportSettings {
@@ -45,9 +48,9 @@ impl Default for ExportSettings {
             tolerance_mm: DEFAULT_TOLERANCE_MM,
             linear_segments: false,
             compact: false,
-            coolant: false,
             return_feed: false,
             return_feed_mm_per_min: 1800.0,
+            frame: ProgramFrame::default(),
         }
     }
 }
@@ -58,7 +61,7 @@ impl ExportSettings {
         NcChoices {
             return_feed_mm_per_min: self.return_feed.then_some(self.return_feed_mm_per_min),
             compact: self.compact,
-            ..NcChoices::new(self.dialect, self.tolerance_mm, self.linear_segments, self.coolant)
+            ..NcChoices::new(self.dialect, self.tolerance_mm, self.linear_segments, self.frame.clone())
         }
         .options()
     }
@@ -209,16 +212,19 @@ fn generate(plan: &Plan, settings: &ExportSettings) -> Result<ExportView, String
     })
 }
 
-/// The export panel: options on top, then preview and back-plot side by side.
-/// `job_error`: the edited job is invalid (the program would be of the last valid plan).
+/// The export panel: options and the program's frame (`frame`: the job's, edited here) on
+/// top, then preview and back-plot side by side. `job_error`: the edited job is invalid (the
+/// program would be of the last valid plan).
 pub fn show(
     ui: &mut egui::Ui,
     settings: &mut ExportSettings,
+    frame: &mut ProgramFrame,
     cache: &ExportCache,
     job_error: Option<&str>,
 ) -> Option<Command> {
     ui.horizontal_wrapped(|ui| dialect_row(ui, settings));
     ui.horizontal_wrapped(|ui| options_row(ui, settings));
+    super::program::show(ui, frame, settings.dialect);
     if let Some(e) = job_error {
         ui.colored_label(ERROR_COLOR, format!("Job invalid ({e}): fix it before exporting."));
     }
@@ -264,7 +270,6 @@ fn options_row(ui: &mut egui::Ui, settings: &mut ExportSettings) {
     ui.add_enabled(loops, egui::Checkbox::new(&mut settings.compact, label::COMPACT_LOOP))
         .on_hover_text("LinuxCNC O-word while loop / Sinumerik R-parameter loop: one cycle's blocks, repeated.")
         .on_disabled_hover_text("Only LinuxCNC and Sinumerik have a loop form.");
-    ui.checkbox(&mut settings.coolant, label::COOLANT);
     ui.checkbox(&mut settings.return_feed, label::FASTER_RETURN_FEED)
         .on_hover_text("A faster feed on the moves where no tooth cuts in the steady state.");
     let l = ui.label(label::RETURN_FEED);

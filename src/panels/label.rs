@@ -8,7 +8,6 @@
 pub const NC_TOLERANCE: &str = "NC tolerance";
 pub const LINEAR_SEGMENTS: &str = "Linear segments (G1 chords only)";
 pub const COMPACT_LOOP: &str = "Compact loop";
-pub const COOLANT: &str = "Coolant (M8/M9)";
 pub const FASTER_RETURN_FEED: &str = "Faster return feed";
 pub const RETURN_FEED: &str = "Return feed";
 pub const SAVE_NC_PROGRAM: &str = "Save NC program…";
@@ -32,7 +31,27 @@ pub const POCKET_OPEN_OUTLINE: &str = "Open outline…";
 pub const CANCEL_TABLE: &str = "Cancel table";
 pub const RESTART_TABLE: &str = "Restart table";
 
-// Corner and Pocket tabs: the NC export (its coolant box is [`COOLANT`]).
+// Program panel (the frame of every program; Export tab).
+pub const TOOL_NUMBER: &str = "Tool number";
+pub const OWN_LENGTH_OFFSET: &str = "Own length offset";
+pub const LENGTH_OFFSET: &str = "Length offset";
+pub const WORK_OFFSET: &str = "Work offset";
+pub const CLEARANCE: &str = "Clearance height";
+pub const OWN_RETRACT: &str = "Own retract height";
+pub const RETRACT: &str = "Retract height";
+pub const UNITS: &str = "Units";
+pub const PROGRAM_COOLANT: &str = "Coolant";
+pub const SPINDLE_DIRECTION: &str = "Spindle direction";
+pub const PROGRAM_NUMBER: &str = "Program number";
+pub const PROGRAM_NAME: &str = "Program name";
+
+// The path field (no system file dialog).
+pub const PATH_FIELD: &str = "File path";
+pub const PATH_OPEN: &str = "Open file";
+pub const PATH_SAVE: &str = "Save file";
+pub const PATH_CANCEL: &str = "Cancel";
+
+// Corner and Pocket tabs: the NC export.
 pub const NC_EXPORT: &str = "NC export";
 pub const CORNER_NC_TOLERANCE: &str = "Corner NC tolerance";
 pub const G1_CHORDS_ONLY: &str = "G1 chords only";

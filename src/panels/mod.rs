@@ -11,9 +11,11 @@ pub mod label;
 pub mod metrics;
 pub mod optimise;
 pub mod params;
+pub mod path_field;
 pub mod plane;
 pub mod plots;
 pub mod pocket;
+pub mod program;
 pub mod sweep;
 pub mod teach;
 

@@ -34,6 +34,14 @@ pub struct PocketInputs {
     pub strategy: PocketStrategy,
     /// The pocket's open edges, "i, j, …" (`--open-edges`: edge i from vertex i to i + 1).
     pub open_edges: String,
+    /// The job's feed f_r (mm/min), spindle speed (rpm) and teeth (copies taken each frame):
+    /// the pocket is paced and its program written at them.
+    #[serde(skip)]
+    pub feed_mm_per_min: f64,
+    #[serde(skip)]
+    pub spindle_rpm: f64,
+    #[serde(skip)]
+    pub teeth: u32,
 }
 
 impl Default for PocketInputs {
@@ -46,6 +54,9 @@ impl Default for PocketInputs {
             step_over_mm: pocket.step_over_mm,
             strategy: pocket.strategy,
             open_edges: String::new(),
+            feed_mm_per_min: pocket.feed_mm_per_min,
+            spindle_rpm: pocket.pace.rpm,
+            teeth: pocket.pace.teeth,
         }
     }
 }
@@ -74,6 +85,12 @@ impl PocketInputs {
             tool_diameter_mm: self.tool_diameter_mm,
             step_over_mm: self.step_over_mm,
             strategy: self.strategy,
+            feed_mm_per_min: self.feed_mm_per_min,
+            pace: trochoplan_core::pocket::PaceOptions {
+                rpm: self.spindle_rpm,
+                teeth: self.teeth,
+                ..PocketRequest::default().pace
+            },
             ..PocketRequest::default()
         })
     }

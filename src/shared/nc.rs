@@ -1,9 +1,10 @@
 //! The NC options of an export, built in one place for every export of both front ends
 //! (`export`, `corner --export`, `pocket --export`, the window's slot, corner and pocket
 //! exports): an export's choices in, the core's [`NcOptions`] and [`CutSetup`] out; every
-//! option no front end offers keeps the core's default (safe height, tool number).
+//! field of [`NcOptions`] is one of these choices.
 
 use trochoplan_core::feed::VariableFeed;
+use trochoplan_core::frame::ProgramFrame;
 use trochoplan_core::nc::{CutSetup, Dialect, NcOptions};
 
 /// What a user chooses for an NC program (the fields of [`NcOptions`] a front end offers).
@@ -14,8 +15,8 @@ pub struct NcChoices {
     pub tolerance_mm: f64,
     /// Curves as G1 chords instead of G2/G3 arcs.
     pub linear_segments: bool,
-    /// Coolant on (M8) during the cut.
-    pub coolant: bool,
+    /// Tool, offsets, heights, units, coolant, spindle direction, program number or name.
+    pub frame: ProgramFrame,
     /// Header comment text.
     pub title: String,
     /// Loop form (slot programs).
@@ -29,13 +30,13 @@ pub struct NcChoices {
 impl NcChoices {
     /// The choices every export offers; the others as the core's defaults (no title, expanded
     /// program, cutting feed everywhere).
-    pub fn new(dialect: Dialect, tolerance_mm: f64, linear_segments: bool, coolant: bool) -> NcChoices {
+    pub fn new(dialect: Dialect, tolerance_mm: f64, linear_segments: bool, frame: ProgramFrame) -> NcChoices {
         let d = NcOptions::default();
         NcChoices {
             dialect,
             tolerance_mm,
             linear_segments,
-            coolant,
+            frame,
             title: d.title,
             compact: d.compact,
             return_feed_mm_per_min: d.return_feed_mm_per_min,
@@ -49,12 +50,11 @@ impl NcChoices {
             dialect: self.dialect,
             tolerance_mm: self.tolerance_mm,
             linear_segments: self.linear_segments,
-            coolant: self.coolant,
+            frame: self.frame.clone(),
             title: self.title.clone(),
             compact: self.compact,
             return_feed_mm_per_min: self.return_feed_mm_per_min,
             variable_feed: self.variable_feed.clone(),
-            ..NcOptions::default()
         }
     }
 }
@@ -71,16 +71,18 @@ mod tests {
 
     #[test]
     fn choices_set_what_they_name_and_keep_the_cores_other_defaults() {
-        let mut c = NcChoices::new(Dialect::Fanuc, 0.02, true, true);
+        let frame = ProgramFrame { tool_number: 7, ..ProgramFrame::default() };
+        let mut c = NcChoices::new(Dialect::Fanuc, 0.02, true, frame.clone());
         c.title = "t".into();
         c.return_feed_mm_per_min = Some(900.0);
         let o = c.options();
         let d = NcOptions::default();
-        assert_eq!((o.dialect, o.tolerance_mm, o.linear_segments, o.coolant), (Dialect::Fanuc, 0.02, true, true));
+        assert_eq!((o.dialect, o.tolerance_mm, o.linear_segments), (Dialect::Fanuc, 0.02, true));
+        assert_eq!(o.frame, frame);
         assert_eq!((o.title.as_str(), o.return_feed_mm_per_min), ("t", Some(900.0)));
-        assert_eq!((o.safe_z_mm, o.tool_number, o.compact), (d.safe_z_mm, d.tool_number, d.compact));
+        assert_eq!(o.compact, d.compact);
         // the choices every export offers alone: the core's defaults for the rest
-        let short = NcChoices::new(Dialect::Fanuc, 0.02, true, true).options();
+        let short = NcChoices::new(Dialect::Fanuc, 0.02, true, frame).options();
         assert_eq!(short, NcOptions { title: String::new(), return_feed_mm_per_min: None, ..o });
     }
 }

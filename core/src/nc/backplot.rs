@@ -5,7 +5,9 @@
 //! dialect: words `G0 G1 G2 G3` (modal), `X Y Z I J`, `G90`/`G91` (absolute/incremental
 //! positions), `G90.1`/`G91.1` (absolute/incremental arc centres; incremental is the default,
 //! as on LinuxCNC, Fanuc, GRBL and Sinumerik), `N` numbers, comments `( … )` and `; …`, tape
-//! marks `%` and program numbers `O…`. Set-up, tool, spindle, coolant and feed words are
+//! marks `%`, program numbers `O…` and Sinumerik's `%_N_…` header, units `G21`/`G71`/`G710`
+//! (mm) and `G20`/`G70`/`G700` (inch: every length and feed is converted to mm, so an inch
+//! program reads back as the same motion in mm). Set-up, tool, spindle, coolant and feed words are
 //! accepted and ignored. Arcs are turned into points at a chord tolerance (the largest
 //! distance between an arc and its chords); a block whose start and end radii differ (written
 //! rounding) is drawn as the controller runs it, the radius changing linearly with the angle.
@@ -18,6 +20,7 @@
 //! move with its exact segment, heights and feed), and [`backplot`], the points to draw.
 
 use super::Dialect;
+use crate::frame::MM_PER_INCH;
 use crate::geom::{P2, Segment, p2};
 use crate::toolpath::{Move, MoveKind, Toolpath};
 use std::f64::consts::{FRAC_PI_2, TAU};
@@ -77,6 +80,8 @@ struct Machine {
     y: Option<f64>,
     z: Option<f64>,
     feed: Option<f64>,
+    /// Millimetres per program unit (1, or 25.4 after G20).
+    unit_mm: f64,
     points: Vec<P2>,
     moves: Vec<Move>,
 }
@@ -91,6 +96,7 @@ impl Default for Machine {
             y: None,
             z: None,
             feed: None,
+            unit_mm: 1.0,
             points: Vec::new(),
             moves: Vec::new(),
         }
@@ -169,7 +175,7 @@ impl Machine {
     fn block(&mut self, line: &str, chord_tol: f64) -> Result<(), String> {
         let text = strip_comments(line)?;
         let t = text.trim();
-        if t.is_empty() || t == "%" {
+        if t.is_empty() || t == "%" || t.starts_with("%_N_") {
             return Ok(());
         }
         if t.starts_with(['O', 'o']) && t[1..].chars().all(|c| c.is_ascii_digit()) && t.len() > 1 {
@@ -178,8 +184,15 @@ impl Machine {
         if t.starts_with(['O', 'o']) {
             return Err("O-word control flow is not interpreted (back-plot the expanded program)".into());
         }
-        let (mut x, mut y, mut z, mut i, mut j) = (None, None, None, None, None);
-        for (letter, v) in words(t)? {
+        let (mut x, mut y, mut z, mut i, mut j, mut f) = (None, None, None, None, None, None);
+        let words = words(t)?;
+        // the units word first: it applies to the whole block
+        for &(letter, v) in &words {
+            if letter == 'G' {
+                self.units_word(v);
+            }
+        }
+        for (letter, v) in words {
             match letter {
                 'G' => self.g_word(v)?,
                 'X' => x = Some(v),
@@ -187,11 +200,16 @@ impl Machine {
                 'Z' => z = Some(v),
                 'I' => i = Some(v),
                 'J' => j = Some(v),
-                'F' => self.feed = Some(v),
+                'F' => f = Some(v),
                 'K' | 'R' => return Err(format!("{letter} words are not interpreted")),
                 // N, S, T, M, H, D, P: no motion
                 _ => {}
             }
+        }
+        let mm = |v: Option<f64>| v.map(|v| v * self.unit_mm);
+        let (x, y, z, i, j) = (mm(x), mm(y), mm(z), mm(i), mm(j));
+        if let Some(f) = mm(f) {
+            self.feed = Some(f);
         }
         let target = |cur: Option<f64>, v: Option<f64>, absolute: bool| match (v, absolute) {
             (Some(v), true) => Some(v),
@@ -252,6 +270,16 @@ impl Machine {
         });
     }
 
+    /// G20/G70/G700 (inch) and G21/G71/G710 (mm): the units of the lengths and feeds that
+    /// follow.
+    fn units_word(&mut self, v: f64) {
+        match (v * 10.0).round() as i64 {
+            200 | 700 | 7000 => self.unit_mm = MM_PER_INCH,
+            210 | 710 | 7100 => self.unit_mm = 1.0,
+            _ => {}
+        }
+    }
+
     fn g_word(&mut self, v: f64) -> Result<(), String> {
         let code = (v * 10.0).round() as i64;
         match code {
@@ -259,13 +287,15 @@ impl Machine {
             10 => self.motion = Some(Motion::Feed),
             20 => self.motion = Some(Motion::Cw),
             30 => self.motion = Some(Motion::Ccw),
-            170 | 210 | 710 | 400 | 490 | 800 | 940 | 540 | 640 | 430 | 610 => {}
+            // units (read by `units_word`), work offsets G54–G59
+            200 | 700 | 7000 | 210 | 710 | 7100 => {}
+            550 | 560 | 570 | 580 | 590 => {}
+            170 | 400 | 490 | 800 | 940 | 540 | 640 | 430 | 610 => {}
             900 => self.absolute = true,
             910 => self.absolute = false,
             901 => self.ij_incremental = false,
             911 => self.ij_incremental = true,
             180 | 190 => return Err("only the XY plane (G17) is interpreted".into()),
-            200 | 700 => return Err("inch programs are not interpreted".into()),
             _ => return Err(format!("G{v} is not interpreted")),
         }
         Ok(())

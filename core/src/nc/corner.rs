@@ -62,7 +62,7 @@ pub fn corner_program(
             format!("depth {:.3} mm below the stock top Z0", cut.depth_mm),
             format!(
                 "tool T{} D {:.3} mm, {:.0} rpm, feed {:.1} mm/min",
-                opts.tool_number,
+                opts.frame.tool_number,
                 2.0 * s.tool_radius,
                 cut.spindle_rpm,
                 s.feed_mm_per_min
@@ -204,7 +204,7 @@ fn pocket_path_program(
             format!("polygon file coordinates, depth {:.3} mm below the stock top Z0", cut.depth_mm),
             format!(
                 "tool T{} D {:.3} mm, {:.0} rpm, feed {:.1} mm/min, a_e {:.4} mm",
-                opts.tool_number,
+                opts.frame.tool_number,
                 2.0 * s.tool_radius,
                 cut.spindle_rpm,
                 s.feed_mm_per_min,

@@ -2,6 +2,7 @@
 //! emitter ([`super::writer`]) reads it (docs/architecture.md).
 
 use crate::error::{Error, Param};
+use crate::frame::Units;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 
@@ -67,10 +68,21 @@ pub struct DialectSpec {
     /// Decimals of coordinates (mm); the quantum is 10^-decimals.
     pub decimals: u32,
     pub comment: CommentStyle,
-    /// Lines before the header comment (tape start, program number).
+    /// Lines before the header comment (tape start).
     pub program_start: &'static [&'static str],
-    /// The modal set-up block: plane, units, absolute, feed per minute, cancels.
+    /// Whether the program number `O…` follows the tape start (Fanuc).
+    pub program_number: bool,
+    /// Whether a program name is written as the `%_N_NAME_MPF` header (Sinumerik), when given.
+    pub program_name_header: bool,
+    /// The modal set-up block: plane, units, absolute, feed per minute, cancels (metric; see
+    /// [`DialectSpec::setup_words`]).
     pub setup: &'static str,
+    /// The metric word of `setup` and the word that replaces it in an inch program.
+    pub unit_words: (&'static str, &'static str),
+    /// Largest tool number T.
+    pub max_tool_number: u32,
+    /// Largest length offset number (H; D on Sinumerik).
+    pub max_length_offset: u32,
     /// Path-blending word followed by the tolerance (LinuxCNC `G64 P…`: blend corners but stay
     /// within the tolerance of the programmed path), if the dialect takes one.
     pub blend_tolerance_word: Option<&'static str>,
@@ -103,8 +115,13 @@ const LINUXCNC: DialectSpec = DialectSpec {
     decimals: 4,
     comment: CommentStyle::Parens,
     program_start: &[],
+    program_number: false,
+    program_name_header: false,
     // G91.1: arc centres I/J incremental from the arc start (LinuxCNC default, stated anyway)
     setup: "G17 G21 G40 G49 G80 G90 G91.1 G94",
+    unit_words: ("G21", "G20"),
+    max_tool_number: 99_999,
+    max_length_offset: 99_999,
     blend_tolerance_word: Some("G64 P"),
     tool_call: ToolCall::ChangeAndLengthOffset,
     max_arc_sweep: TAU,
@@ -117,12 +134,17 @@ const LINUXCNC: DialectSpec = DialectSpec {
 const FANUC: DialectSpec = DialectSpec {
     name: "fanuc",
     label: "Fanuc-style ISO",
-    about: "Fanuc-style ISO: % tape marks, program number O1000, 3 decimals.",
+    about: "Fanuc-style ISO: % tape marks, program number (O1000 unless set), 3 decimals.",
     extension: "nc",
     decimals: 3,
     comment: CommentStyle::Parens,
-    program_start: &["%", "O1000"],
+    program_start: &["%"],
+    program_number: true,
+    program_name_header: false,
     setup: "G17 G21 G40 G49 G80 G90 G94",
+    unit_words: ("G21", "G20"),
+    max_tool_number: 9_999,
+    max_length_offset: 999,
     blend_tolerance_word: None,
     tool_call: ToolCall::ChangeAndLengthOffset,
     max_arc_sweep: TAU,
@@ -140,7 +162,12 @@ const GRBL: DialectSpec = DialectSpec {
     decimals: 3,
     comment: CommentStyle::Parens,
     program_start: &[],
+    program_number: false,
+    program_name_header: false,
     setup: "G17 G21 G40 G90 G94",
+    unit_words: ("G21", "G20"),
+    max_tool_number: 99_999,
+    max_length_offset: 99_999,
     blend_tolerance_word: None,
     tool_call: ToolCall::CommentOnly,
     max_arc_sweep: PI,
@@ -158,8 +185,13 @@ const SINUMERIK: DialectSpec = DialectSpec {
     decimals: 3,
     comment: CommentStyle::Semicolon,
     program_start: &[],
+    program_number: false,
+    program_name_header: true,
     // G71: metric in Siemens mode (G21 is the ISO-dialect word)
     setup: "G17 G40 G71 G90 G94",
+    unit_words: ("G71", "G700"),
+    max_tool_number: 32_000,
+    max_length_offset: 9,
     blend_tolerance_word: None,
     tool_call: ToolCall::SinumerikTD,
     max_arc_sweep: TAU,
@@ -168,6 +200,22 @@ const SINUMERIK: DialectSpec = DialectSpec {
     loop_style: Some(LoopStyle::RParameter),
     straight_rapid: false,
 };
+
+impl DialectSpec {
+    /// The set-up block for `units`: the metric word replaced by the inch word in an inch
+    /// program.
+    pub fn setup_words(&self, units: Units) -> String {
+        match units {
+            Units::Mm => self.setup.to_string(),
+            Units::Inch => self
+                .setup
+                .split(' ')
+                .map(|w| if w == self.unit_words.0 { self.unit_words.1 } else { w })
+                .collect::<Vec<_>>()
+                .join(" "),
+        }
+    }
+}
 
 impl Dialect {
     /// All dialects, in CLI order.

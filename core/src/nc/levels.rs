@@ -66,12 +66,13 @@ pub fn levels_program(plan: &Plan, levels: &LevelPlan, opts: &NcOptions) -> Resu
     header.description.extend(level_lines(levels));
     let mut w = Writer::new(opts.dialect.spec());
     preamble(&mut w, &header, opts);
-    for level in &levels.per_level {
+    for (index, level) in levels.per_level.iter().enumerate() {
+        let first = index == 0;
         match (&levels.closed, level.toolpath.entries.first()) {
             (Some(c), Some(Entry::Helix(h))) => {
                 let start = h.center + p2(h.start_angle.cos(), h.start_angle.sin()) * h.radius;
-                let top = level.descent_from_mm.min(opts.safe_z_mm);
-                w.linear(None, None, Some(opts.safe_z_mm), None);
+                let top = level.descent_from_mm.min(super::retract(opts));
+                w.linear(None, None, Some(super::up_height(first, opts)), None);
                 w.linear(Some(start.x), Some(start.y), None, None);
                 w.linear(None, None, Some(top), None);
                 let drop = top - level.z_mm;
@@ -92,7 +93,7 @@ pub fn levels_program(plan: &Plan, levels: &LevelPlan, opts: &NcOptions) -> Resu
             _ => {
                 let path = &plan.path;
                 let start = path.origin(0) + moves.first().map_or(path.cycle.segments[0].start(), |m| m.seg.start());
-                approach(&mut w, start, -level.z_mm, job.feed, opts);
+                approach(&mut w, start, -level.z_mm, job.feed, first, opts);
                 for i in 0..path.cycles {
                     write_cycle(&mut w, &moves, path.origin(i));
                 }

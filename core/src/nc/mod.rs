@@ -2,11 +2,13 @@
 //! ([`Dialect`], [`DialectSpec`]).
 //!
 //! Coordinates: the slot starts at X0 Y0 and runs along +Y, top of stock at Z0, depth −a_p;
-//! units mm (G21; G71 on Sinumerik), XY plane (G17), absolute (G90), feed per minute (G94),
-//! work offset G54, spindle M3.
+//! XY plane (G17), absolute (G90), feed per minute (G94). The frame — units (G21/G20; G71/G700
+//! on Sinumerik), work offset (G54–G59), tool and length offset, clearance and retract
+//! heights, coolant, spindle direction, program number or name — is the user's
+//! ([`ProgramFrame`]; default mm, G54, T1 H1, Z5, M3).
 //!
 //! Program: header comment with the job (deterministic: no dates), set-up block, tool and
-//! spindle, optional coolant, safe Z, rapid to the path start (outside the open slot end
+//! spindle, optional coolant, clearance height, rapid to the path start (outside the open slot end
 //! y = 0: the first cycle's swept disc stays at y < 0, see `SlotPath::for_job`), feed down to
 //! depth there, the cycles, retract, program end.
 //!
@@ -22,6 +24,7 @@
 pub mod backplot;
 pub mod corner;
 mod dialect;
+mod frame;
 mod levels;
 mod writer;
 
@@ -34,6 +37,7 @@ pub use writer::{Writer, YForm};
 
 use crate::error::{Error, Param, num};
 use crate::feed::VariableFeed;
+use crate::frame::{ProgramFrame, SpindleDirection, Units};
 use crate::geom::{FitPiece, P2, Segment, fit_biarcs, p2, polyline};
 use crate::job::{Direction, PathKind};
 use crate::plan::Plan;
@@ -55,16 +59,12 @@ pub struct NcOptions {
     pub tolerance_mm: f64,
     /// Write every curve (arcs too) as G1 chords instead of G2/G3.
     pub linear_segments: bool,
-    /// Coolant on (M8) during the cut.
-    pub coolant: bool,
     /// Feed for moves that cut nothing in the steady state (mm/min); `None`: cutting feed.
     pub return_feed_mm_per_min: Option<f64>,
     /// Loop form instead of one block list per cycle (LinuxCNC and Sinumerik).
     pub compact: bool,
-    /// Safe height above the stock for rapid moves (mm).
-    pub safe_z_mm: f64,
-    /// Tool number.
-    pub tool_number: u32,
+    /// Tool, offsets, heights, units, coolant, spindle direction, program number or name.
+    pub frame: ProgramFrame,
     /// Free text for the header comment (sanitised).
     pub title: String,
     /// Per-block feed for a target chip thickness, in bands ([`crate::feed`]);
@@ -78,11 +78,9 @@ impl Default for NcOptions {
             dialect: Dialect::LinuxCnc,
             tolerance_mm: DEFAULT_TOLERANCE_MM,
             linear_segments: false,
-            coolant: false,
             return_feed_mm_per_min: None,
             compact: false,
-            safe_z_mm: 5.0,
-            tool_number: 1,
+            frame: ProgramFrame::default(),
             title: String::new(),
             variable_feed: None,
         }
@@ -97,17 +95,11 @@ impl NcOptions {
         if !(t.is_finite() && (lo..=hi).contains(&t)) {
             return Err(Error::param(Param::Tolerance, t, format!("from {} to {} mm", num(lo), num(hi))));
         }
-        let z = self.safe_z_mm;
-        if !(z.is_finite() && z > 0.0 && z <= 1000.0) {
-            return Err(Error::param(Param::SafeZ, z, "a finite number > 0 and ≤ 1000 mm"));
-        }
+        self.frame.validate(self.dialect)?;
         if let Some(f) = self.return_feed_mm_per_min
             && !(f.is_finite() && f > 0.0 && f <= 1.0e6)
         {
             return Err(Error::param(Param::ReturnFeed, f, "a finite number > 0 and ≤ 1000000 mm/min"));
-        }
-        if self.tool_number == 0 || self.tool_number > 9999 {
-            return Err(Error::param(Param::ToolNumber, self.tool_number, "a whole number from 1 to 9999"));
         }
         if self.compact && self.dialect.spec().loop_style.is_none() {
             return Err(Error::param(
@@ -218,13 +210,13 @@ pub fn program(plan: &Plan, opts: &NcOptions) -> Result<NcProgram, Error> {
         None => cycle_moves(plan, opts),
     };
     check_program_size(plan, moves.len(), opts)?;
-    let mut w = Writer::new(spec);
+    let mut w = Writer::with_units(spec, opts.frame.units);
     let job = &plan.job;
     preamble(&mut w, &slot_header(plan, opts), opts);
     let path = &plan.path;
     let start = path.origin(0) + moves.first().map_or(path.cycle.segments[0].start(), |m| m.seg.start());
     // approach outside the open slot end at safe Z, feed down to depth there
-    approach(&mut w, start, job.depth, job.feed, opts);
+    approach(&mut w, start, job.depth, job.feed, true, opts);
     match (opts.compact, spec.loop_style) {
         (true, Some(LoopStyle::OWord)) => oword_loop(&mut w, plan, &moves),
         (true, Some(LoopStyle::RParameter)) => {
@@ -387,7 +379,7 @@ pub fn program_for_path(job: &PathJob<'_>, opts: &NcOptions) -> Result<NcProgram
     if let Some(f) = opts.return_feed_mm_per_min {
         return Err(Error::param(Param::ReturnFeed, f, "unset for a path without a tooth series"));
     }
-    let mut w = Writer::new(opts.dialect.spec());
+    let mut w = Writer::with_units(opts.dialect.spec(), opts.frame.units);
     let header = Header {
         default_title: job.default_title,
         description: job.description.clone(),
@@ -396,14 +388,17 @@ pub fn program_for_path(job: &PathJob<'_>, opts: &NcOptions) -> Result<NcProgram
     };
     preamble(&mut w, &header, opts);
     let path = job.toolpath;
-    let descend = |w: &mut Writer, part: usize, start: P2| match path.entries.get(part) {
-        Some(Entry::Helix(h)) => helical_approach(w, h, job.depth_mm, job.feed_mm_per_min, opts),
-        Some(Entry::Ramp(r)) => ramp_approach(w, r, job.depth_mm, job.feed_mm_per_min, opts),
-        // beyond an open edge the tool's disc is off the stock: straight down cuts nothing
-        Some(Entry::Outside { at }) => approach(w, *at, job.depth_mm, job.feed_mm_per_min, opts),
-        // into stock the path has cleared: straight down cuts nothing either
-        Some(Entry::Down { at }) => approach(w, *at, job.depth_mm, job.feed_mm_per_min, opts),
-        None => approach(w, start, job.depth_mm, job.feed_mm_per_min, opts),
+    let descend = |w: &mut Writer, part: usize, start: P2| {
+        let first = part == 0;
+        match path.entries.get(part) {
+            Some(Entry::Helix(h)) => helical_approach(w, h, job.depth_mm, job.feed_mm_per_min, first, opts),
+            Some(Entry::Ramp(r)) => ramp_approach(w, r, job.depth_mm, job.feed_mm_per_min, first, opts),
+            // beyond an open edge the tool's disc is off the stock: straight down cuts nothing
+            Some(Entry::Outside { at }) => approach(w, *at, job.depth_mm, job.feed_mm_per_min, first, opts),
+            // into stock the path has cleared: straight down cuts nothing either
+            Some(Entry::Down { at }) => approach(w, *at, job.depth_mm, job.feed_mm_per_min, first, opts),
+            None => approach(w, start, job.depth_mm, job.feed_mm_per_min, first, opts),
+        }
     };
     descend(&mut w, 0, path.moves[0].segment.start());
     for (i, m) in path.moves.iter().enumerate() {
@@ -449,8 +444,9 @@ fn slot_header<'a>(plan: &Plan, opts: &NcOptions) -> Header<'a> {
         description: vec![
             format!("path {}, {} cycles, path length {:.3} mm", job.path.name(), m.cycles, m.path_length_mm),
             format!(
-                "{} milling with M3: loops {}",
-                job.direction.name(),
+                "{} milling with {}: loops {}",
+                milling_with(job.direction, opts.frame.spindle_direction).name(),
+                opts.frame.spindle_direction.word(),
                 match job.direction {
                     Direction::Conventional => "clockwise",
                     Direction::Climb => "counter-clockwise",
@@ -460,7 +456,7 @@ fn slot_header<'a>(plan: &Plan, opts: &NcOptions) -> Header<'a> {
             "slot from X0 Y0 along +Y, stock top Z0".to_string(),
             format!(
                 "tool T{} D {:.3} mm, {} teeth, {:.0} rpm, feed {:.1} mm/min",
-                opts.tool_number, job.tool_diameter, job.teeth, job.rpm, job.feed
+                opts.frame.tool_number, job.tool_diameter, job.teeth, job.rpm, job.feed
             ),
             format!(
                 "step s {:.4} mm, r_e {:.4}, d {:.4} mm, a {:.4} mm",
@@ -475,37 +471,66 @@ fn slot_header<'a>(plan: &Plan, opts: &NcOptions) -> Header<'a> {
     }
 }
 
-/// Safe Z, rapid to `start`, feed down to `depth` there.
-fn approach(w: &mut Writer, start: P2, depth: f64, feed: f64, opts: &NcOptions) {
-    w.linear(None, None, Some(opts.safe_z_mm), None);
+/// The milling direction a path planned for `direction` with M3 gets with the spindle turning
+/// `spindle` (M4 turns the teeth the other way: climb and conventional swap).
+pub fn milling_with(direction: Direction, spindle: SpindleDirection) -> Direction {
+    match (spindle, direction) {
+        (SpindleDirection::Cw, d) => d,
+        (SpindleDirection::Ccw, Direction::Conventional) => Direction::Climb,
+        (SpindleDirection::Ccw, Direction::Climb) => Direction::Conventional,
+    }
+}
+
+/// The height of the first approach and the final retract (mm above Z0).
+fn clearance(opts: &NcOptions) -> f64 {
+    opts.frame.clearance_mm
+}
+
+/// The height between the parts of a path (mm above Z0).
+fn retract(opts: &NcOptions) -> f64 {
+    opts.frame.retract_height_mm()
+}
+
+/// The height the tool rises to before a rapid to the start of a part: the clearance before
+/// the first part (the tool comes from the tool change), the retract height between parts.
+fn up_height(first: bool, opts: &NcOptions) -> f64 {
+    if first { clearance(opts) } else { retract(opts) }
+}
+
+/// Up (see [`up_height`]), rapid to `start`, rapid down to the retract height, feed down to
+/// `depth` there.
+fn approach(w: &mut Writer, start: P2, depth: f64, feed: f64, first: bool, opts: &NcOptions) {
+    w.linear(None, None, Some(up_height(first, opts)), None);
     w.linear(Some(start.x), Some(start.y), None, None);
+    w.linear(None, None, Some(retract(opts)), None);
     w.linear(None, None, Some(-depth), Some(feed));
 }
 
-/// Safe Z, rapid to the helix start, rapid down to [`HELIX_START_Z_MM`] above the stock top,
+/// Up (see [`up_height`]), rapid to the helix start, rapid down to [`HELIX_START_Z_MM`] above the stock top,
 /// then whole helical turns (half turns per block) down to `depth` at the ramp angle.
-fn helical_approach(w: &mut Writer, h: &Helix, depth: f64, feed: f64, opts: &NcOptions) {
+fn helical_approach(w: &mut Writer, h: &Helix, depth: f64, feed: f64, first: bool, opts: &NcOptions) {
     let start = h.center + p2(h.start_angle.cos(), h.start_angle.sin()) * h.radius;
-    w.linear(None, None, Some(opts.safe_z_mm), None);
+    let top = HELIX_START_Z_MM.min(retract(opts));
+    w.linear(None, None, Some(up_height(first, opts)), None);
     w.linear(Some(start.x), Some(start.y), None, None);
-    w.linear(None, None, Some(HELIX_START_Z_MM.min(opts.safe_z_mm)), None);
-    let drop = HELIX_START_Z_MM.min(opts.safe_z_mm) + depth;
+    w.linear(None, None, Some(top), None);
+    let drop = top + depth;
     let turns = h.turns(drop);
     for k in 1..=turns {
-        let z = HELIX_START_Z_MM.min(opts.safe_z_mm) - drop * k as f64 / turns as f64;
+        let z = top - drop * k as f64 / turns as f64;
         w.helical_arc(&h.circle(), z, feed);
     }
 }
 
-/// Safe Z, rapid to the ramp's first point, rapid down to [`HELIX_START_Z_MM`] above the stock
+/// Up (see [`up_height`]), rapid to the ramp's first point, rapid down to [`HELIX_START_Z_MM`] above the stock
 /// top, then straight legs back and forth on the ramp line (3D G1), each descending the same
 /// amount at most at the ramp angle, the last reaching `depth` at the ramp's start.
-fn ramp_approach(w: &mut Writer, r: &Ramp, depth: f64, feed: f64, opts: &NcOptions) {
-    let top = HELIX_START_Z_MM.min(opts.safe_z_mm);
+fn ramp_approach(w: &mut Writer, r: &Ramp, depth: f64, feed: f64, first: bool, opts: &NcOptions) {
+    let top = HELIX_START_Z_MM.min(retract(opts));
     let drop = top + depth;
-    let first = r.first_point(drop);
-    w.linear(None, None, Some(opts.safe_z_mm), None);
-    w.linear(Some(first.x), Some(first.y), None, None);
+    let at = r.first_point(drop);
+    w.linear(None, None, Some(up_height(first, opts)), None);
+    w.linear(Some(at.x), Some(at.y), None, None);
     w.linear(None, None, Some(top), None);
     let legs = r.legs(drop);
     for k in 1..=legs {
@@ -515,10 +540,10 @@ fn ramp_approach(w: &mut Writer, r: &Ramp, depth: f64, feed: f64, opts: &NcOptio
     }
 }
 
-/// Retract to safe Z, coolant and spindle off, program end.
+/// Retract to the clearance height, coolant and spindle off, program end.
 fn epilogue(w: &mut Writer, opts: &NcOptions) {
-    w.linear(None, None, Some(opts.safe_z_mm), None);
-    if opts.coolant {
+    w.linear(None, None, Some(clearance(opts)), None);
+    if opts.frame.coolant.word().is_some() {
         w.raw("M9");
     }
     w.raw("M5");
@@ -530,8 +555,17 @@ fn epilogue(w: &mut Writer, opts: &NcOptions) {
 /// Header comment, set-up, tool, spindle and coolant.
 fn preamble(w: &mut Writer, header: &Header<'_>, opts: &NcOptions) {
     let spec = opts.dialect.spec();
+    let frame = &opts.frame;
+    if let Some(name) = frame.program_name.as_deref().filter(|_| spec.program_name_header) {
+        // Sinumerik's archive header: the program's name and the directory of main programs
+        w.raw(&format!("%_N_{}_MPF", name.to_ascii_uppercase()));
+        w.raw(";$PATH=/_N_MPF_DIR");
+    }
     for line in spec.program_start {
         w.raw(line);
+    }
+    if spec.program_number {
+        w.raw(&format!("O{}", frame.program_number_or_default()));
     }
     let title = if opts.title.trim().is_empty() { header.default_title.to_string() } else { opts.title.clone() };
     w.comment(&title);
@@ -554,27 +588,31 @@ fn preamble(w: &mut Writer, header: &Header<'_>, opts: &NcOptions) {
             vf.band_ratio, vf.min_block_mm
         ));
     }
-    w.raw(spec.setup);
+    if frame.units == Units::Inch {
+        w.comment("inch program: coordinates in inch, feeds in inch/min");
+    }
+    w.raw(&spec.setup_words(frame.units));
     if let Some(word) = spec.blend_tolerance_word {
         let tol = w.format("tolerance", opts.tolerance_mm);
         w.raw(&format!("{word}{tol}"));
     }
-    w.raw("G54");
-    let t = opts.tool_number;
+    w.raw(frame.work_offset.name());
+    let t = frame.tool_number;
+    let h = frame.length_offset_number(opts.dialect);
     match spec.tool_call {
         dialect::ToolCall::ChangeAndLengthOffset => {
             w.raw(&format!("T{t} M6"));
-            w.raw(&format!("G43 H{t}"));
+            w.raw(&format!("G43 H{h}"));
         }
         dialect::ToolCall::SinumerikTD => {
-            w.raw(&format!("T{t} D1"));
+            w.raw(&format!("T{t} D{h}"));
             w.raw("M6");
         }
         dialect::ToolCall::CommentOnly => w.comment(&format!("load tool {t}: D {:.3} mm", header.tool_diameter_mm)),
     }
-    w.spindle_on(header.spindle_rpm);
-    if opts.coolant {
-        w.raw("M8");
+    w.spindle_start(header.spindle_rpm, frame.spindle_direction.word());
+    if let Some(word) = frame.coolant.word() {
+        w.raw(word);
     }
 }
 

@@ -2,6 +2,7 @@
 //! `core/tests/nc_*.rs` and through LinuxCNC's interpreter in `tests/nc_rs274.rs`.
 
 use super::*;
+use crate::frame::Coolant;
 use crate::job::Job;
 use crate::plan::plan;
 use crate::toolpath::MoveKind;
@@ -29,9 +30,18 @@ fn bad_options_name_the_option() {
         (NcOptions { tolerance_mm: -0.01, ..NcOptions::default() }, "tolerance"),
         (NcOptions { tolerance_mm: f64::NAN, ..NcOptions::default() }, "tolerance"),
         (NcOptions { tolerance_mm: 5.0, ..NcOptions::default() }, "tolerance"),
-        (NcOptions { safe_z_mm: f64::INFINITY, ..NcOptions::default() }, "safe-z"),
+        (
+            NcOptions {
+                frame: ProgramFrame { clearance_mm: f64::INFINITY, ..ProgramFrame::default() },
+                ..NcOptions::default()
+            },
+            "clearance",
+        ),
         (NcOptions { return_feed_mm_per_min: Some(-1.0), ..NcOptions::default() }, "return-feed"),
-        (NcOptions { tool_number: 0, ..NcOptions::default() }, "tool-number"),
+        (
+            NcOptions { frame: ProgramFrame { tool_number: 0, ..ProgramFrame::default() }, ..NcOptions::default() },
+            "tool-number",
+        ),
         (NcOptions { compact: true, ..opts(Dialect::Fanuc) }, "compact"),
         (NcOptions { compact: true, ..opts(Dialect::Grbl) }, "compact"),
     ];
@@ -51,7 +61,11 @@ fn programs_are_deterministic_and_numbers_are_clean() {
                 if compact && d.spec().loop_style.is_none() {
                     continue;
                 }
-                let o = NcOptions { compact, coolant: true, ..opts(d) };
+                let o = NcOptions {
+                    compact,
+                    frame: ProgramFrame { coolant: Coolant::Flood, ..ProgramFrame::default() },
+                    ..opts(d)
+                };
                 let a = program(&p, &o).expect("program");
                 assert_eq!(a, program(&p, &o).expect("program"), "deterministic");
                 for bad in ["NaN", "nan", "inf", "-0.000 ", "-0.0000 "] {

@@ -10,9 +10,15 @@
 //! end and I/J and reject a block whose two radii differ (see [`DialectSpec`]). So the centre
 //! written is the true centre moved onto the perpendicular bisector of the rounded start and
 //! end (equal radii before rounding I/J), then rounded: the radii differ by at most q·√2.
+//!
+//! Units: every length and feed is given to the writer in mm and mm/min and written in the
+//! program's units ([`Units`]): an inch program writes one decimal more than the dialect's
+//! metric programs (quantum 0.0001 inch = 0.00254 mm for three metric decimals) and feeds in
+//! inch/min with two decimals (0.01 inch/min = 0.254 mm/min; metric feeds in 0.1 mm/min).
 
 use super::dialect::{CommentStyle, DialectSpec, sanitize_comment};
 use crate::error::{Error, num};
+use crate::frame::Units;
 use crate::geom::{P2, Segment, p2, rot90};
 use std::f64::consts::{PI, TAU};
 
@@ -48,7 +54,14 @@ fn max_part_sweep(spec: &DialectSpec, full_circle: bool) -> f64 {
 /// The modal machine writing one program.
 pub struct Writer {
     spec: &'static DialectSpec,
+    /// Quanta per mm.
     scale: f64,
+    /// Decimals of coordinates in the program's units.
+    decimals: u32,
+    /// Millimetres per program unit.
+    unit_mm: f64,
+    /// Decimals of feeds in the program's units.
+    feed_decimals: u32,
     text: String,
     blocks: usize,
     motion: Option<&'static str>,
@@ -61,10 +74,24 @@ pub struct Writer {
 }
 
 impl Writer {
+    /// A writer of a metric program.
     pub fn new(spec: &'static DialectSpec) -> Writer {
+        Writer::with_units(spec, Units::Mm)
+    }
+
+    /// A writer of a program in `units` (module docs).
+    pub fn with_units(spec: &'static DialectSpec, units: Units) -> Writer {
+        let (decimals, feed_decimals) = match units {
+            Units::Mm => (spec.decimals, 1),
+            Units::Inch => (spec.decimals + 1, 2),
+        };
+        let unit_mm = units.mm_per_unit();
         Writer {
             spec,
-            scale: 10f64.powi(spec.decimals as i32),
+            scale: 10f64.powi(decimals as i32) / unit_mm,
+            decimals,
+            unit_mm,
+            feed_decimals,
             text: String::new(),
             blocks: 0,
             motion: None,
@@ -86,7 +113,7 @@ impl Writer {
         }
     }
 
-    /// The coordinate quantum q (mm).
+    /// The coordinate quantum q (mm; the written quantum in mm, whatever the units).
     pub fn quantum(&self) -> f64 {
         1.0 / self.scale
     }
@@ -105,8 +132,8 @@ impl Writer {
 
     /// A quantized number with the dialect's fixed decimals ("-0.000" cannot occur: 0 has no sign).
     pub fn number(&self, n: i64) -> String {
-        let d = self.spec.decimals as usize;
-        let unit = 10i64.pow(self.spec.decimals);
+        let d = self.decimals as usize;
+        let unit = 10i64.pow(self.decimals);
         let sign = if n < 0 { "-" } else { "" };
         let a = n.unsigned_abs();
         if d == 0 { format!("{sign}{a}") } else { format!("{sign}{}.{:0d$}", a / unit as u64, a % unit as u64) }
@@ -182,25 +209,40 @@ impl Writer {
         }
     }
 
-    /// `feed` in the written steps of 0.1 mm/min, at least one step: a feed that is not
-    /// finite, or that would be written as `F0.0` or negative, records an error (the last
-    /// check: the options that set feeds are checked against the machine's `min-feed` before).
+    /// `feed` (mm/min) in the written steps (0.1 mm/min, or 0.01 inch/min), at least one
+    /// step: a feed that is not finite, or that would be written as `F0.0` or negative,
+    /// records an error (the last check: the options that set feeds are checked against the
+    /// machine's `min-feed` before).
     fn feed_quanta(&mut self, feed: f64) -> i64 {
-        let f = if feed.is_finite() && feed <= MAX_FEED_MM_PER_MIN { (feed * 10.0).round() as i64 } else { 0 };
+        let steps = 10f64.powi(self.feed_decimals as i32) / self.unit_mm;
+        let f = if feed.is_finite() && feed <= MAX_FEED_MM_PER_MIN { (feed * steps).round() as i64 } else { 0 };
         if f < 1 && self.error.is_none() {
             self.error = Some(Error::nc(
                 "feed",
                 feed,
-                format!("a finite number from 0.05 to {} mm/min (written as F0.1 or more)", num(MAX_FEED_MM_PER_MIN)),
+                format!(
+                    "a finite number from {} to {} mm/min (written as F{} or more)",
+                    num(0.5 / steps),
+                    num(MAX_FEED_MM_PER_MIN),
+                    self.feed_number(1)
+                ),
             ));
         }
         f.max(1)
     }
 
+    /// A feed in written steps as its number (`600.0`; `23.62` in inch/min).
+    fn feed_number(&self, f: i64) -> String {
+        let d = self.feed_decimals as usize;
+        let unit = 10i64.pow(self.feed_decimals);
+        format!("{}.{:0d$}", f / unit, f % unit)
+    }
+
     /// A feed as a loop parameter (six decimals), with the checks of the F word.
     pub fn feed_param(&mut self, feed: f64) -> String {
         let f = self.feed_quanta(feed);
-        format!("{}.{}00000", f / 10, f % 10)
+        let d = 6 - self.feed_decimals as usize;
+        format!("{}{}", self.feed_number(f), "0".repeat(d))
     }
 
     /// A loop parameter (a length in mm) with six decimals: R-parameters and named parameters
@@ -213,25 +255,30 @@ impl Writer {
             }
             return "0.000000".into();
         }
-        let s = format!("{v:.6}");
+        let s = format!("{:.6}", v / self.unit_mm);
         if s.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') { "0.000000".into() } else { s }
     }
 
     /// The spindle-on block `S… M3`; a speed that is not finite or rounds to `S0` records an
     /// error (a tool that does not turn must not be fed into the stock).
     pub fn spindle_on(&mut self, rpm: f64) {
+        self.spindle_start(rpm, "M3");
+    }
+
+    /// The spindle-on block `S… <word>` (`M3` or `M4`), checked as [`Writer::spindle_on`].
+    pub fn spindle_start(&mut self, rpm: f64, word: &str) {
         let s = if rpm.is_finite() && rpm <= MAX_RPM { rpm.round() } else { 0.0 };
         if s < 1.0 && self.error.is_none() {
             self.error = Some(Error::nc("rpm", rpm, "a finite number from 0.5 rpm (written as S1 or more)"));
         }
-        self.raw(&format!("S{:.0} M3", s.max(1.0)));
+        self.raw(&format!("S{:.0} {word}", s.max(1.0)));
     }
 
     fn feed_word(&mut self, feed: f64, words: &mut Vec<String>) {
         // feeds in 0.1 mm/min
         let f = self.feed_quanta(feed);
         if self.feed != Some(f) {
-            words.push(format!("F{}.{}", f / 10, f % 10));
+            words.push(format!("F{}", self.feed_number(f)));
             self.feed = Some(f);
         }
     }

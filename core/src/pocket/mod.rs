@@ -12,7 +12,6 @@
 //! would gouge a wall is an error, never written.
 
 pub mod adaptive;
-pub mod chip;
 mod corner_point;
 mod cusp;
 pub mod entry;

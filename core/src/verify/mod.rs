@@ -14,6 +14,7 @@
 
 pub mod levels;
 pub mod load;
+pub mod plan_chip;
 pub mod problems;
 pub mod reader;
 pub mod timing;

@@ -10,7 +10,7 @@ fn persisted_state_round_trips() {
     State::save(&state.inputs, &state.view, &mut storage);
     let back = State::load(&storage).expect("stored");
     assert_eq!(back, state);
-    let app = App::new(Job::default(), Some(back), Box::new(NativeDialogs));
+    let app = App::new(Job::default(), Some(back), Box::new(NativeDialogs::default()));
     assert!((app.planner.last.as_ref().expect("plan").plan.metrics.step_mm - 0.6).abs() < 1e-12);
     assert_eq!(app.view.tab, Tab::Sweep);
 }
@@ -35,8 +35,8 @@ fn an_earlier_saved_state_still_loads_with_its_pins() {
     let earlier = EarlierState { job, tab: Tab::Compare, teach: true, cycles_shown: 4, pinned, file: file.clone() };
     let mut storage = MemoryStorage::default();
     eframe::set_value(&mut storage, state::INPUTS_KEY, &earlier);
-    let app = App::new(Job::default(), State::load(&storage), Box::new(NativeDialogs));
-    assert_eq!(app.view, View { tab: Tab::Compare, file });
+    let app = App::new(Job::default(), State::load(&storage), Box::new(NativeDialogs::default()));
+    assert_eq!(app.view, View { tab: Tab::Compare, file, ..View::default() });
     assert_eq!((app.state.teach, app.state.cycles_shown), (true, 4));
     assert_eq!(app.state.corner, Inputs::default().corner, "missing fields take their defaults");
     assert_eq!(app.variants.len(), 1, "the valid pin is planned, the invalid one dropped");
@@ -109,7 +109,7 @@ fn a_state_stored_with_the_corner_tabs_pocket_mode_opens_on_the_pocket_tab() {
     let mut storage = MemoryStorage::default();
     eframe::set_value(&mut storage, state::INPUTS_KEY, &earlier);
     assert!(storage.0.get(state::INPUTS_KEY).is_some_and(|t| t.contains("Pocket")), "stored as then");
-    eframe::set_value(&mut storage, state::VIEW_KEY, &View { tab: Tab::Corner, file: None });
+    eframe::set_value(&mut storage, state::VIEW_KEY, &View { tab: Tab::Corner, ..View::default() });
     let loaded = State::load(&storage).expect("the earlier record loads");
     assert_eq!(loaded.view.tab, Tab::Pocket, "the pocket was shown: the Pocket tab is");
     let p = &loaded.inputs.pocket;

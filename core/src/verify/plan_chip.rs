@@ -2,7 +2,7 @@
 //! machine reaches (docs/feed-and-rapids.md, "The chip at the peaks").
 //!
 //! The pace holds the circular-path chip f_z·κ at the target on the measured positions
-//! ([`super::pace`]); that is an upper bound of the chip the tooth cuts (the edge of earlier
+//! ([`crate::pocket::pace`]); that is an upper bound of the chip the tooth cuts (the edge of earlier
 //! cuts shortens it) and it is read only at those positions. Here the moves whose paced chip is
 //! largest are sampled again, every half spacing, and at the largest f_z·κ of each the exact
 //! chip is measured — the material between the tooth's periphery and the previous tooth's, cut
@@ -11,14 +11,14 @@
 //! machine, at the feed its planner reaches there (the program's moves as the NC writer
 //! writes them, [`crate::machine::program_moves`], timed as `verify` times them).
 
-use super::PocketPath;
+use super::levels::exact_chip;
+use super::timing::time_moves;
 use crate::engagement::evaluator::{Evaluation, EvaluatorOptions};
 use crate::engagement::refine::MAX_REFINED_POSITIONS;
 use crate::error::Error;
 use crate::machine::{CutHeights, Machine, program_moves};
+use crate::pocket::PocketPath;
 use crate::toolpath::MoveKind;
-use crate::verify::levels::exact_chip;
-use crate::verify::timing::time_moves;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
