@@ -13,6 +13,8 @@ pub trait FileDialogs {
     fn save_nc(&mut self, stem: &str, extension: &str) -> Option<PathBuf>;
     /// Ask for a pocket outline: a drawing (DXF, SVG) or an "x,y" point list.
     fn open_outline(&mut self) -> Option<PathBuf>;
+    /// Ask for an NC program to verify.
+    fn open_program(&mut self) -> Option<PathBuf>;
 }
 
 /// rfd dialogs (XDG desktop portal on Linux).
@@ -53,6 +55,14 @@ impl FileDialogs for NativeDialogs {
             .set_title("Open pocket outline")
             .add_filter("Drawing (DXF, SVG)", &["dxf", "svg"])
             .add_filter("Points x,y", &["txt", "csv", "poly"])
+            .add_filter("All files", &["*"])
+            .pick_file()
+    }
+
+    fn open_program(&mut self) -> Option<PathBuf> {
+        rfd::FileDialog::new()
+            .set_title("Open NC program")
+            .add_filter("NC program", &["ngc", "nc", "tap", "gcode", "cnc", "mpf", "txt"])
             .add_filter("All files", &["*"])
             .pick_file()
     }

@@ -14,6 +14,9 @@ pub mod params;
 pub mod plane;
 pub mod plots;
 pub mod pocket;
+pub mod program;
+pub mod program_plots;
+pub mod program_view;
 pub mod sweep;
 pub mod teach;
 

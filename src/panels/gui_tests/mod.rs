@@ -1,12 +1,13 @@
 //! Headless GUI tests (egui_kittest, no display): drive the real window contents through the
 //! accessibility tree and check the plan and the shown values. This file holds the harness;
 //! the tests are grouped by what they drive: `slot` (the slot job's tabs), `window` (tabs,
-//! persisted state), `corner` (the Corner tab), `pocket` (the Pocket tab), `machine` (forces,
+//! persisted state), `corner` (the Corner tab), `pocket` (the Pocket tab), `program` (the Program tab), `machine` (forces,
 //! machine and optimiser).
 
 mod corner;
 mod machine;
 mod pocket;
+mod program;
 mod slot;
 mod window;
 
@@ -36,6 +37,9 @@ impl FileDialogs for FakeDialogs {
         self.save.clone()
     }
     fn open_outline(&mut self) -> Option<PathBuf> {
+        self.open.clone()
+    }
+    fn open_program(&mut self) -> Option<PathBuf> {
         self.open.clone()
     }
 }
