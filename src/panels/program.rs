@@ -241,6 +241,11 @@ impl Verified {
         Some([p.x, p.y])
     }
 
+    /// The time halfway through move `k` (s).
+    pub fn middle_s(&self, k: usize) -> f64 {
+        self.starts_s[k] + 0.5 * self.report.moves[k].time_s
+    }
+
     /// The first move of program line `line`.
     pub fn move_of_line(&self, line: usize) -> Option<usize> {
         self.report.moves.iter().position(|m| m.line == line)
@@ -295,6 +300,11 @@ impl VerifyRun {
 
     pub fn running(&self) -> bool {
         !self.cancelled && self.worker.running()
+    }
+
+    /// Whether the job started (it reported its progress).
+    pub fn started(&self) -> bool {
+        self.worker.progress().is_some()
     }
 
     /// How far it got (0–1).

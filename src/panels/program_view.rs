@@ -166,9 +166,8 @@ fn tool_row(ui: &mut egui::Ui, s: &mut ProgramSettings, tab: &ProgramTab, cmds: 
             {
                 cmds.push(Command::StartVerify);
             }
-            let cancelled: Vec<_> = tab.slots.iter().filter_map(|s| s.run.as_ref().filter(|r| r.cancelled)).collect();
-            if !cancelled.is_empty() {
-                ui.label(if cancelled.iter().all(|r| r.stopped().is_some()) { "Cancelled." } else { "Cancelling…" });
+            if tab.slots.iter().any(|s| s.run.as_ref().is_some_and(|r| r.cancelled)) {
+                ui.label("Cancelled.");
             }
         }
     });
@@ -200,7 +199,7 @@ fn single(ui: &mut egui::Ui, tab: &mut ProgramTab) {
                 let cursor = v.position_at(tab.cursor_s);
                 if let Some(PathClick::Move(k)) = path_plot(ui, &format!("program_path_{i}"), &v, q, max, cursor, mark)
                 {
-                    tab.cursor_s = v.starts_s[k];
+                    tab.cursor_s = v.middle_s(k);
                 }
             });
             position_slider(ui, &v, &mut tab.cursor_s);
@@ -217,7 +216,7 @@ fn single(ui: &mut egui::Ui, tab: &mut ProgramTab) {
                 tab.scroll_to_selected = true;
                 let p = &v.report.problems[k];
                 if let Some(m) = v.move_of_line(p.line) {
-                    tab.cursor_s = v.starts_s[m];
+                    tab.cursor_s = v.middle_s(m);
                 }
             }
             ui.separator();
@@ -241,7 +240,7 @@ fn position_slider(ui: &mut egui::Ui, v: &Verified, cursor_s: &mut f64) {
     ui.horizontal(|ui| {
         let l = ui.label(label::POSITION);
         ui.spacing_mut().slider_width = (ui.available_width() - 200.0).max(100.0);
-        ui.add(egui::Slider::new(cursor_s, 0.0..=v.total_s.max(1e-9)).suffix(" s").max_decimals(2))
+        ui.add(egui::Slider::new(cursor_s, 0.0..=v.total_s.max(1e-9)).suffix(" s"))
             .labelled_by(l.id)
             .on_hover_text("Where the tool is: drag, or click the time plot or the path");
         if let Some((k, _)) = v.move_at(*cursor_s) {

@@ -136,8 +136,13 @@ fn program_tab_cancel_stops_the_verification() {
     let mut h = program_harness(program, Some(outline), false);
     h.get_by_label(label::VERIFY).click();
     h.step();
-    h.step();
-    assert!(h.state().program.running());
+    // cancel once the job runs (a request cancelled before its thread takes it is skipped)
+    let t0 = Instant::now();
+    while !h.state().program.slots[0].run.as_ref().is_some_and(|r| r.started()) && t0.elapsed().as_secs() < 60 {
+        std::thread::sleep(Duration::from_millis(5));
+        h.step();
+    }
+    assert!(h.state().program.running(), "still verifying");
     h.get_by_label(label::CANCEL_VERIFY).click();
     h.step();
     assert!(!h.state().program.running(), "the tab stops waiting at once");
