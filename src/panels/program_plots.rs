@@ -227,19 +227,40 @@ fn colour_bar(ui: &mut egui::Ui, size: egui::Vec2, q: Quantity, max: f64) {
     p.text(egui::pos2(bar.right() + 4.0, y), egui::Align2::LEFT_CENTER, "rapid", font, text);
 }
 
+/// Most time buckets drawn: beyond, the steps are drawn as the least and largest value of each
+/// bucket (min/max decimation: every peak stays visible).
+const TIME_BUCKETS: usize = 1000;
+
+/// `q` over the program's time as a step per move, or min/max per bucket of time for long
+/// programs.
+fn time_points(v: &Verified, q: Quantity) -> Vec<PlotPoint> {
+    let steps = v.report.moves.iter().zip(&v.starts_s).map(|(m, &t)| (t, t + m.time_s, q.of(m)));
+    if v.report.moves.len() <= TIME_BUCKETS || v.total_s <= 0.0 {
+        return steps.flat_map(|(t0, t1, y)| [PlotPoint::new(t0, y), PlotPoint::new(t1, y)]).collect();
+    }
+    let width = v.total_s / TIME_BUCKETS as f64;
+    let mut lo = vec![f64::INFINITY; TIME_BUCKETS];
+    let mut hi = vec![f64::NEG_INFINITY; TIME_BUCKETS];
+    for (t0, t1, y) in steps {
+        let (b0, b1) = ((t0 / width) as usize, (t1 / width) as usize);
+        for b in b0.min(TIME_BUCKETS - 1)..=b1.min(TIME_BUCKETS - 1) {
+            lo[b] = lo[b].min(y);
+            hi[b] = hi[b].max(y);
+        }
+    }
+    (0..TIME_BUCKETS)
+        .filter(|&b| lo[b] <= hi[b])
+        .flat_map(|b| {
+            let t = (b as f64 + 0.5) * width;
+            [PlotPoint::new(t, lo[b]), PlotPoint::new(t, hi[b])]
+        })
+        .collect()
+}
+
 /// `q` over the program's time (a step per move) with the position `cursor_s` marked; returns
 /// the time clicked.
 pub fn time_plot(ui: &mut egui::Ui, id: &str, v: &Verified, q: Quantity, cursor_s: f64) -> Option<f64> {
-    let pts: Vec<PlotPoint> = v
-        .report
-        .moves
-        .iter()
-        .zip(&v.starts_s)
-        .flat_map(|(m, &t)| {
-            let y = q.of(m);
-            [PlotPoint::new(t, y), PlotPoint::new(t + m.time_s, y)]
-        })
-        .collect();
+    let pts = time_points(v, q);
     let here = v.move_at(cursor_s).map(|(k, _)| q.of(&v.report.moves[k]));
     let resp = Plot::new(id)
         .x_axis_label("time on the machine (s)")

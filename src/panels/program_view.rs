@@ -166,7 +166,12 @@ fn tool_row(ui: &mut egui::Ui, s: &mut ProgramSettings, tab: &ProgramTab, cmds: 
             {
                 cmds.push(Command::StartVerify);
             }
-            if tab.slots.iter().any(|s| s.run.as_ref().is_some_and(|r| r.cancelled)) {
+            let cancelled: Vec<_> = tab.slots.iter().filter_map(|s| s.run.as_ref().filter(|r| r.cancelled)).collect();
+            // a run that started stops at its next progress report (after the bands of the stock
+            // at the latest)
+            if cancelled.iter().any(|r| r.started() && r.stopped().is_none()) {
+                ui.label("Stopping…");
+            } else if !cancelled.is_empty() {
                 ui.label("Cancelled.");
             }
         }

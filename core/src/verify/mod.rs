@@ -267,7 +267,7 @@ pub fn verify_with_progress(
         .map(|k| {
             let done = measured_count.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
             // report every 64th move: often enough for a bar, rarely enough to cost nothing
-            if done % 64 == 0 {
+            if done.is_multiple_of(64) {
                 go_on(band_steps + done)?;
             }
             measure_move(program, &moves, k, &bands, &timing, &loads, req)
