@@ -15,6 +15,8 @@ const CURSOR: Color32 = Color32::from_rgb(230, 0, 200);
 const PROBLEM: Color32 = Color32::from_rgb(220, 30, 30);
 /// Colour steps of the scale.
 const STEPS: usize = 24;
+/// Shortest step between the points of a drawn polyline (screen points).
+const MIN_PIXEL_STEP: f32 = 0.75;
 /// Below this engagement (°) a feed move is in the air.
 const AIR_DEG: f64 = 1.0;
 
@@ -139,7 +141,9 @@ fn path_only(
     let frame = *t.frame();
     let painter = ui.painter().with_clip_rect(frame);
     let screen = |p: &[f64; 2]| t.position_from_point(&PlotPoint::new(p[0], p[1]));
-    // runs of consecutive moves of one colour as one polyline each
+    // runs of consecutive moves of one colour as one polyline each: first the rapids and the
+    // moves in the air, then the cutting moves over them (a trochoid's return half would
+    // otherwise hide the cutting half of the loop before)
     let mut run: Vec<Pos2> = Vec::new();
     let mut run_colour: Option<Option<Color32>> = None;
     let flush = |run: &mut Vec<Pos2>, c: Option<Option<Color32>>| {
@@ -154,18 +158,30 @@ fn path_only(
         }
         run.clear();
     };
-    for (k, poly) in v.polylines.iter().enumerate() {
-        let c = Some(move_colour(v, k, q, max));
-        if c != run_colour {
-            let last = run.last().copied();
-            flush(&mut run, run_colour);
-            run_colour = c;
-            run.extend(last);
+    for cutting in [false, true] {
+        for (k, poly) in v.polylines.iter().enumerate() {
+            let c = move_colour(v, k, q, max);
+            let c = (matches!(c, Some(c) if c != AIR) == cutting).then_some(c);
+            if c != run_colour {
+                // a run continues from the end of the move before it when that move is drawn
+                let last = if c.is_some() && run_colour.is_some() { run.last().copied() } else { None };
+                flush(&mut run, run_colour);
+                run_colour = c;
+                run.extend(last);
+            }
+            if c.is_none() {
+                continue;
+            }
+            // points closer than a pixel to the last one drawn add nothing on screen
+            for p in poly.iter().map(screen) {
+                if run.last().is_none_or(|q| q.distance_sq(p) >= MIN_PIXEL_STEP * MIN_PIXEL_STEP) {
+                    run.push(p);
+                }
+            }
         }
-        let pts = poly.iter().map(screen);
-        if run.is_empty() { run.extend(pts) } else { run.extend(pts.skip(1)) }
+        flush(&mut run, run_colour);
+        run_colour = None;
     }
-    flush(&mut run, run_colour);
     // the markers over the path
     if let Some(c) = cursor {
         painter.circle_filled(screen(&c), 5.0, CURSOR);
