@@ -287,7 +287,8 @@ impl VerifyRun {
                 }
                 Err(Error::Cancelled) => STOPPED,
                 Err(e) => {
-                    task.send(Err(e.message(Param::label)));
+                    // the command line's advice in the tab's words
+                    task.send(Err(e.message(Param::label).replace("give --rpm", "tick spindle speed")));
                     ENDED
                 }
             };

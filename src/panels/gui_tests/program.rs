@@ -266,3 +266,25 @@ fn program_tab_frame_time_while_verifying_a_large_program() {
          tessellation median {t_med:.2} ms max {t_max:.2} ms"
     );
 }
+
+#[test]
+fn program_tab_asks_for_a_spindle_speed_and_verifies_with_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("no-s.ngc");
+    // a side cut with no S word: the core refuses it, naming the line
+    std::fs::write(&file, "G21 G90\nG0 X-20 Y0 Z5\nG0 Z-3\nG1 X20 F800\nG0 Z5\nM30\n").unwrap();
+    let mut h = program_harness(file, None, false);
+    h.state_mut().state.program.stock_from_file = false; // the default box -30,0 – 30,20
+    h.run();
+    verify_and_wait(&mut h);
+    let err = h.state().program.slots[0].result.clone().and_then(Result::err).expect("an error");
+    assert!(err.contains("line 4") && err.contains("tick spindle speed") && !err.contains("--"), "{err}");
+    assert!(shows(&h, &format!("Program A: {err}")));
+    h.get_by_label("spindle speed").click();
+    h.run();
+    assert!(h.state().state.program.rpm_override);
+    verify_and_wait(&mut h);
+    let v = h.state().program.slots[0].verified().expect("verified with the spindle speed").clone();
+    assert!(v.report.moves.iter().all(|m| m.kind == "rapid" || m.rpm == h.state().state.program.rpm));
+    assert!(v.report.plane.max_engagement_deg > 0.0, "it cuts the box");
+}
