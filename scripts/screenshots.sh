@@ -5,9 +5,11 @@
 #
 # BINARY is a built `trochoplan` (e.g. target/release/trochoplan); NAMEs pick pictures
 # (main invalid-value compare sweep forces teaching export machine corner corner-table
-# pocket pocket-adaptive; default: all twelve). Each picture starts the window afresh with an
+# pocket pocket-adaptive program program-compare; default: all fourteen). Each picture starts
+# the window afresh with an
 # empty HOME / XDG_DATA_HOME / XDG_CONFIG_HOME, so no saved job or layout is restored, drives it
-# with xdotool and writes screenshots/NAME.png at 1400×900.
+# with xdotool and writes screenshots/NAME.png at 1400×900. The Program tab's pictures open
+# their programs at start through the TROCHOPLAN_PROGRAM_* variables (docs/verify.md).
 #
 # Needs Xvfb, xdotool, ImageMagick (`import`) and x11-utils installed
 # (apt-get install -y xvfb xdotool imagemagick x11-utils). The click positions below belong to
@@ -21,7 +23,7 @@ shift
 OUT=$(cd "$(dirname "$0")/.." && pwd)/screenshots
 NAMES=("$@")
 [ ${#NAMES[@]} -gt 0 ] || NAMES=(main invalid-value compare sweep forces teaching export
-	machine corner corner-table pocket pocket-adaptive)
+	machine corner corner-table pocket pocket-adaptive program program-compare)
 
 # A display of our own: the first free number from 57 on (SCREENSHOT_DISPLAY picks another start).
 N=${SCREENSHOT_DISPLAY:-57}
@@ -32,7 +34,9 @@ export DISPLAY=:$N
 unset WAYLAND_DISPLAY
 APP=
 APP_HOME=
+APP_TMP=$(mktemp -d) # programs made for the pictures
 cleanup() {
+	rm -rf "$APP_TMP"
 	[ -n "$APP" ] && kill "$APP" 2>/dev/null || true
 	[ -n "$APP_HOME" ] && rm -rf "$APP_HOME"
 	kill "$XVFB" 2>/dev/null || true
@@ -45,10 +49,10 @@ for _ in $(seq 50); do
 done
 sleep .5
 
-start_app() {
+start_app() { # [VAR=value...]: the window's extra environment
 	APP_HOME=$(mktemp -d)
 	HOME=$APP_HOME XDG_DATA_HOME=$APP_HOME/data XDG_CONFIG_HOME=$APP_HOME/config \
-		"$BIN" >"${SCREENSHOT_LOG:-/dev/null}" 2>&1 &
+		env "$@" "$BIN" >"${SCREENSHOT_LOG:-/dev/null}" 2>&1 &
 	APP=$!
 	WID=
 	for _ in $(seq 300); do # up to a minute on a busy machine
@@ -98,6 +102,24 @@ RUN_SWEEP="1084 43"                      # Sweep tab
 OPTIMISE="458 354"                       # Machine & optimise tab
 ACCEPTANCE_TABLE="154 43"                # Corner tab
 POCKET_MEDIAL_AXIS="633 43" POCKET_STEP_OVER="1140 43" # Pocket tab
+FIRST_PROBLEM="870 447" SIDE_BY_SIDE="232 89" # Program tab
+FREECAD=$(cd "$(dirname "$0")/.." && pwd)/tests/data/freecad
+
+# The Program tab's window: FreeCAD's program for the L pocket (A; with `ours`, our own
+# adaptive clearing of the same outline as A and FreeCAD's as B), the outline as stock and part,
+# the vmc machine.
+start_program() { # [ours]
+	local a=$FREECAD/L.ngc b=
+	if [ "${1:-}" = ours ]; then
+		b=$a
+		a=$APP_TMP/L-ours.ngc
+		"$BIN" pocket --polygon "$FREECAD/L.txt" --tool-diameter 10 --step-over 1.526 --depth 6 \
+			--feed 600 --rpm 2000 --export "$a" >/dev/null
+	fi
+	start_app TROCHOPLAN_PROGRAM_A="$a" ${b:+TROCHOPLAN_PROGRAM_B="$b"} \
+		TROCHOPLAN_PROGRAM_STOCK="$FREECAD/L.txt" TROCHOPLAN_PROGRAM_PART="$FREECAD/L.txt" \
+		TROCHOPLAN_PROGRAM_MACHINE=vmc
+}
 
 take() {
 	case $1 in
@@ -151,7 +173,20 @@ take() {
 }
 
 for name in "${NAMES[@]}"; do
-	start_app
-	take "$name"
+	case $name in
+	program)
+		start_program
+		sleep 12 # verified in the background
+		click $FIRST_PROBLEM
+		shot program ;;
+	program-compare)
+		start_program ours
+		sleep 25
+		click $SIDE_BY_SIDE
+		shot program-compare ;;
+	*)
+		start_app
+		take "$name" ;;
+	esac
 	stop_app
 done

@@ -447,6 +447,8 @@ pub enum Error {
     Nc { what: &'static str, value: String, allowed: String },
     /// A job, polygon or CSV file that does not parse; the message names the file and line.
     File(String),
+    /// A long computation stopped at the caller's request (its progress callback said stop).
+    Cancelled,
 }
 
 impl Error {
@@ -470,7 +472,7 @@ impl Error {
         match self {
             Error::Param { param, .. } => Some(param.cli_name()),
             Error::Geometry { what, .. } | Error::Nc { what, .. } => Some(what),
-            Error::File(_) => None,
+            Error::File(_) | Error::Cancelled => None,
         }
     }
 
@@ -491,6 +493,7 @@ impl Error {
                 format!("invalid {what} = {value}: must be {allowed}")
             }
             Error::File(m) => m.clone(),
+            Error::Cancelled => "cancelled".to_owned(),
         }
     }
 }

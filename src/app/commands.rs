@@ -46,6 +46,17 @@ pub enum Command {
     LoadOptimised(Option<usize>),
     /// Ask for a pocket outline (DXF, SVG or points) and put its vertices in the Pocket tab.
     OpenOutline,
+    /// Ask for an NC program for the Program tab's slot (0: A, 1: B).
+    OpenProgram(usize),
+    /// Ask for the Program tab's stock outline.
+    OpenProgramStock,
+    /// Ask for the Program tab's part outline.
+    OpenProgramPart,
+    /// The Program tab without a part outline.
+    ClearProgramPart,
+    /// Verify the Program tab's programs on worker threads.
+    StartVerify,
+    CancelVerify,
 }
 
 impl App {
@@ -104,6 +115,23 @@ impl App {
                     self.open_outline(&path);
                 }
             }
+            Command::OpenProgram(slot) => {
+                if let Some(path) = self.ask_path(PathPurpose::OpenProgram(slot), None) {
+                    self.open_program(slot, &path);
+                }
+            }
+            Command::OpenProgramStock | Command::OpenProgramPart => {
+                let stock = cmd == Command::OpenProgramStock;
+                if let Some(path) = self.ask_path(PathPurpose::OpenProgramOutline(stock), None) {
+                    self.open_program_outline(&path, stock);
+                }
+            }
+            Command::ClearProgramPart => self.program.part = None,
+            Command::StartVerify => {
+                let ctx = ctx.clone();
+                self.program.start(&self.state.program, move || ctx.request_repaint());
+            }
+            Command::CancelVerify => self.program.cancel(),
         }
     }
 
@@ -197,6 +225,32 @@ impl App {
                 self.state.pocket.polygon_text = crate::shared::outline::points_text(&points);
                 self.remember(path);
                 self.status = Some((format!("opened outline {} ({} vertices)", path.display(), points.len()), false));
+            }
+            Err(e) => self.status = Some((format!("cannot open {}: {e}", path.display()), true)),
+        }
+    }
+
+    /// Read an NC program into the Program tab's slot `slot` (0: A, 1: B).
+    pub fn open_program(&mut self, slot: usize, path: &Path) {
+        let Some(s) = self.program.slots.get_mut(slot) else { return };
+        self.status = Some(match s.open(path) {
+            Ok(()) => (format!("opened program {}", path.display()), false),
+            Err(e) => (format!("cannot open {}: {e}", path.display()), true),
+        });
+    }
+
+    /// Read the Program tab's stock (`stock`) or part outline.
+    pub fn open_program_outline(&mut self, path: &Path, stock: bool) {
+        let what = if stock { "stock outline" } else { "part outline" };
+        match super::panels::program::Outline::read(path, what) {
+            Ok(o) => {
+                self.status = Some((format!("opened {what} {}", path.display()), false));
+                if stock {
+                    self.program.stock = Some(o);
+                    self.state.program.stock_from_file = true;
+                } else {
+                    self.program.part = Some(o);
+                }
             }
             Err(e) => self.status = Some((format!("cannot open {}: {e}", path.display()), true)),
         }

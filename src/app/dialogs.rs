@@ -23,6 +23,8 @@ pub trait FileDialogs {
     fn save_nc(&mut self, stem: &str, extension: &str) -> Option<PathBuf>;
     /// Ask for a pocket outline: a drawing (DXF, SVG) or an "x,y" point list.
     fn open_outline(&mut self) -> Option<PathBuf>;
+    /// Ask for an NC program to verify.
+    fn open_program(&mut self) -> Option<PathBuf>;
     /// Why the last call that answered `None` showed no dialog, if it showed none (`None`: the
     /// user cancelled it). The window then asks for the path in its path field.
     fn unavailable(&mut self) -> Option<String> {
@@ -101,6 +103,16 @@ impl FileDialogs for NativeDialogs {
         self.run(|| d.save_file())
     }
 
+    fn open_program(&mut self) -> Option<PathBuf> {
+        self.run(|| {
+            rfd::FileDialog::new()
+                .set_title("Open NC program")
+                .add_filter("NC program", &["ngc", "nc", "tap", "gcode", "cnc", "mpf", "txt"])
+                .add_filter("All files", &["*"])
+                .pick_file()
+        })
+    }
+
     fn open_outline(&mut self) -> Option<PathBuf> {
         self.run(|| {
             rfd::FileDialog::new()
@@ -131,7 +143,8 @@ impl App {
                 (PathPurpose::SaveJob, _) => self.dialogs.save_job(self.view.file.as_deref()),
                 (PathPurpose::SaveNc { .. }, Some((stem, ext))) => self.dialogs.save_nc(stem, ext),
                 (PathPurpose::SaveNc { .. }, None) => self.dialogs.save_nc("program", "nc"),
-                (PathPurpose::OpenOutline, _) => self.dialogs.open_outline(),
+                (PathPurpose::OpenOutline | PathPurpose::OpenProgramOutline(_), _) => self.dialogs.open_outline(),
+                (PathPurpose::OpenProgram(_), _) => self.dialogs.open_program(),
             };
             if answer.is_some() {
                 return answer;
@@ -194,6 +207,8 @@ impl App {
             PathPurpose::SaveJob => self.save_to(path),
             PathPurpose::SaveNc { text } => self.write_nc_to(path, text),
             PathPurpose::OpenOutline => self.open_outline(path),
+            PathPurpose::OpenProgram(slot) => self.open_program(*slot, path),
+            PathPurpose::OpenProgramOutline(stock) => self.open_program_outline(path, *stock),
         }
     }
 

@@ -69,10 +69,21 @@ pub fn run(job: Job) -> eframe::Result<()> {
             app.corner = panels::corner::CornerView::threaded(move || ctx.request_repaint());
             let ctx = cc.egui_ctx.clone();
             app.pocket = panels::pocket::PocketView::threaded(move || ctx.request_repaint());
+            app.preload_program(&cc.egui_ctx);
             Ok(Box::new(app))
         }),
     )
 }
+
+/// Environment variables that open programs in the Program tab at start and verify them (the
+/// screenshots use them): program A and B, the stock and part outlines, a machine preset.
+const PROGRAM_ENV: [&str; 5] = [
+    "TROCHOPLAN_PROGRAM_A",
+    "TROCHOPLAN_PROGRAM_B",
+    "TROCHOPLAN_PROGRAM_STOCK",
+    "TROCHOPLAN_PROGRAM_PART",
+    "TROCHOPLAN_PROGRAM_MACHINE",
+];
 
 /// A pinned variant with its plan.
 pub struct Variant {
@@ -120,6 +131,8 @@ pub struct App {
     pub pocket_nc: panels::corner_nc::CornerNcCache,
     /// The chip of the animated tooth.
     pub chip: Chip,
+    /// The Program tab's programs and their verifications.
+    pub program: panels::program::ProgramTab,
     dialogs: Box<dyn FileDialogs>,
     /// Why no file dialog can be shown, once one failed: file commands then ask in the path
     /// field.
@@ -158,6 +171,7 @@ impl App {
             pocket: panels::pocket::PocketView::default(),
             pocket_nc: panels::corner_nc::CornerNcCache::default(),
             chip: Chip::default(),
+            program: panels::program::ProgramTab::default(),
             dialogs,
             no_dialog: None,
             prompt: None,
@@ -204,6 +218,7 @@ impl App {
         if let Some(run) = &mut self.optimise {
             run.poll();
         }
+        self.program.poll();
 
         egui::Panel::top("menu_bar").show(ui, |ui| self.menu_bar(ui, &mut cmds));
         egui::Panel::bottom("status_bar").show(ui, |ui| self.status_bar(ui));
@@ -236,6 +251,29 @@ impl App {
         self.frames.ui_ms = t0.elapsed().as_secs_f32() * 1e3;
         let dragging = ui.ctx().dragged_id().is_some();
         self.frames.record(ui.input(|i| i.time), dragging, replanned, self.planner.plan_ms);
+    }
+
+    /// Open the programs, outlines and machine named by [`PROGRAM_ENV`], if program A is named:
+    /// show the Program tab and start verifying.
+    fn preload_program(&mut self, ctx: &egui::Context) {
+        let [a, b, stock, part, machine] = PROGRAM_ENV.map(std::env::var_os);
+        let Some(a) = a else { return };
+        self.view.tab = Tab::Program;
+        self.open_program(0, std::path::Path::new(&a));
+        if let Some(b) = b {
+            self.open_program(1, std::path::Path::new(&b));
+        }
+        if let Some(f) = stock {
+            self.open_program_outline(std::path::Path::new(&f), true);
+        }
+        if let Some(f) = part {
+            self.open_program_outline(std::path::Path::new(&f), false);
+        }
+        if let Some(m) = machine {
+            self.state.program.machine = Some(m.to_string_lossy().into_owned());
+        }
+        let ctx = ctx.clone();
+        self.program.start(&self.state.program, move || ctx.request_repaint());
     }
 
     /// Advance the teaching animation and the chip of its tooth.

@@ -7,6 +7,7 @@ use super::panels::corner_nc::CornerNcSettings;
 use super::panels::export::ExportSettings;
 use super::panels::optimise::OptimiseSettings;
 use super::panels::pocket::PocketInputs;
+use super::panels::program::ProgramSettings;
 use super::panels::sweep::SweepSettings;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
@@ -29,6 +30,8 @@ pub enum Tab {
     Pocket,
     /// Feed over the cycle on the machine, and the optimiser.
     Optimise,
+    /// Verify an NC program.
+    Program,
 }
 
 /// A pinned variant as persisted.
@@ -70,6 +73,8 @@ pub struct Inputs {
     pub pocket_nc: CornerNcSettings,
     /// Limits of the optimiser.
     pub optimise: OptimiseSettings,
+    /// Stock, tool, material and machine of the Program tab.
+    pub program: ProgramSettings,
 }
 
 impl Default for Inputs {
@@ -88,6 +93,7 @@ impl Default for Inputs {
             pocket: PocketInputs::default(),
             pocket_nc: CornerNcSettings::default(),
             optimise: OptimiseSettings::default(),
+            program: ProgramSettings::default(),
         }
     }
 }

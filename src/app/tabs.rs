@@ -21,7 +21,7 @@ pub struct TabSpec {
 }
 
 /// Every tab, in the order of the menu and the tab bar.
-pub const TABS: [TabSpec; 8] = [
+pub const TABS: [TabSpec; 9] = [
     TabSpec {
         tab: Tab::Plots,
         label: "Plots",
@@ -77,6 +77,13 @@ pub const TABS: [TabSpec; 8] = [
         tooltip: "Feed over one cycle on the job's machine; the job of highest real MRR within your limits",
         slot_panels: true,
         show: optimise_tab,
+    },
+    TabSpec {
+        tab: Tab::Program,
+        label: "Program",
+        tooltip: "Check any NC program: engagement, chip, force and problems along its path, two programs compared",
+        slot_panels: false,
+        show: program_tab,
     },
 ];
 
@@ -158,6 +165,10 @@ fn export_tab(app: &mut App, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
 fn optimise_tab(app: &mut App, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
     let plan = app.planner.last.as_ref().map(|p| &p.plan);
     cmds.extend(panels::optimise::show(ui, &mut app.state.optimise, app.optimise.as_ref(), plan));
+}
+
+fn program_tab(app: &mut App, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
+    cmds.extend(panels::program_view::show(ui, &mut app.state.program, &mut app.program));
 }
 
 fn corner_tab(app: &mut App, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {

@@ -193,7 +193,7 @@ fn cut_options(ui: &mut egui::Ui, settings: &mut CornerNcSettings) {
     );
     ui.label(format!("{}: {:.0} rpm (the job's)", label::SPINDLE, settings.spindle_rpm));
     ui.end_row();
-    ui.label(super::program::summary(&settings.frame, settings.dialect));
+    ui.label(super::program_frame::summary(&settings.frame, settings.dialect));
 }
 
 /// The save button (disabled while the inputs are invalid) and the program's size; true when

@@ -224,7 +224,7 @@ pub fn show(
 ) -> Option<Command> {
     ui.horizontal_wrapped(|ui| dialect_row(ui, settings));
     ui.horizontal_wrapped(|ui| options_row(ui, settings));
-    super::program::show(ui, frame, settings.dialect);
+    super::program_frame::show(ui, frame, settings.dialect);
     if let Some(e) = job_error {
         ui.colored_label(ERROR_COLOR, format!("Job invalid ({e}): fix it before exporting."));
     }

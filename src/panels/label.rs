@@ -27,6 +27,15 @@ pub const POCKET_STEP_OVER: &str = "Pocket step-over a_e (mm)";
 pub const POCKET_OPEN_EDGES: &str = "Open edges";
 pub const POCKET_OPEN_OUTLINE: &str = "Open outline…";
 
+// Program tab.
+pub const OPEN_PROGRAM_A: &str = "Open program A…";
+pub const OPEN_PROGRAM_B: &str = "Open program B…";
+pub const OPEN_STOCK: &str = "Open stock outline…";
+pub const OPEN_PART: &str = "Open part outline…";
+pub const VERIFY: &str = "Verify";
+pub const CANCEL_VERIFY: &str = "Cancel verification";
+pub const POSITION: &str = "Position in the program";
+
 // Corner tab: the acceptance table.
 pub const CANCEL_TABLE: &str = "Cancel table";
 pub const RESTART_TABLE: &str = "Restart table";

@@ -16,6 +16,9 @@ pub mod plane;
 pub mod plots;
 pub mod pocket;
 pub mod program;
+pub mod program_frame;
+pub mod program_plots;
+pub mod program_view;
 pub mod sweep;
 pub mod teach;
 

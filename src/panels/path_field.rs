@@ -19,6 +19,10 @@ pub enum PathPurpose {
         text: String,
     },
     OpenOutline,
+    /// Open an NC program into the Program tab's slot (0: A, 1: B).
+    OpenProgram(usize),
+    /// Open the Program tab's stock outline (`true`) or part outline.
+    OpenProgramOutline(bool),
 }
 
 impl PathPurpose {
@@ -29,13 +33,19 @@ impl PathPurpose {
             PathPurpose::SaveJob => "Save job as",
             PathPurpose::SaveNc { .. } => "Save NC program as",
             PathPurpose::OpenOutline => "Open pocket outline",
+            PathPurpose::OpenProgram(_) => "Open NC program",
+            PathPurpose::OpenProgramOutline(true) => "Open stock outline",
+            PathPurpose::OpenProgramOutline(false) => "Open part outline",
         }
     }
 
     /// The confirm button's label.
     fn confirm(&self) -> &'static str {
         match self {
-            PathPurpose::OpenJob | PathPurpose::OpenOutline => label::PATH_OPEN,
+            PathPurpose::OpenJob
+            | PathPurpose::OpenOutline
+            | PathPurpose::OpenProgram(_)
+            | PathPurpose::OpenProgramOutline(_) => label::PATH_OPEN,
             PathPurpose::SaveJob | PathPurpose::SaveNc { .. } => label::PATH_SAVE,
         }
     }

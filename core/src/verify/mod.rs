@@ -233,16 +233,48 @@ struct Measured {
 /// Verify `program` (see the module docs). Errors name the line of a move that cuts with no
 /// spindle speed, and the parameters of the request.
 pub fn verify(program: &Program, req: &VerifyRequest<'_>) -> Result<VerifyReport, Error> {
+    verify_with_progress(program, req, &|_, _| true)
+}
+
+/// A progress callback of [`verify_with_progress`]: called with the steps done and the steps
+/// in all; it returns whether to go on.
+pub type ProgressFn<'a> = &'a (dyn Fn(usize, usize) -> bool + Sync);
+
+/// [`verify`] reporting its progress to `progress` and stopping with [`Error::Cancelled`] as
+/// soon as `progress` returns false. The steps: half a step per move for the bands of the
+/// stock (reported when they are done; they take about a third of the time of the moves'
+/// measurements), one per move measured, and one for the summary; the callback is called
+/// from several threads while the moves are measured.
+pub fn verify_with_progress(
+    program: &Program,
+    req: &VerifyRequest<'_>,
+    progress: ProgressFn<'_>,
+) -> Result<VerifyReport, Error> {
     check(req)?;
     let moves: Vec<Move> = program.moves.iter().map(|m| m.mv).collect();
+    let n = moves.len();
+    let band_steps = n.div_ceil(2);
+    let total = band_steps + n + 1;
+    let go_on = |done: usize| if progress(done, total) { Ok(()) } else { Err(Error::Cancelled) };
+    go_on(0)?;
     let timing = timing::time_moves(&moves, req.machine.as_ref())?;
     let opts = EvaluatorOptions::new(req.tool.radius_mm, req.spacing_mm);
     let bands = Bands::evaluate(&moves, req.stock, req.stock_top_mm, &opts)?;
+    go_on(band_steps)?;
     let loads = load::Loads::default();
-    let measured: Vec<Measured> = (0..moves.len())
+    let measured_count = std::sync::atomic::AtomicUsize::new(0);
+    let measured: Vec<Measured> = (0..n)
         .into_par_iter()
-        .map(|k| measure_move(program, &moves, k, &bands, &timing, &loads, req))
+        .map(|k| {
+            let done = measured_count.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            // report every 64th move: often enough for a bar, rarely enough to cost nothing
+            if done.is_multiple_of(64) {
+                go_on(band_steps + done)?;
+            }
+            measure_move(program, &moves, k, &bands, &timing, &loads, req)
+        })
         .collect::<Result<_, Error>>()?;
+    go_on(band_steps + n)?;
     let top = req.stock_top_mm;
     let cuts = |k: usize| moves[k].kind != MoveKind::Rapid && bottom(&moves[k]) < top;
     let flat = |k: usize| moves[k].z_start_mm == moves[k].z_end_mm;
@@ -255,7 +287,7 @@ pub fn verify(program: &Program, req: &VerifyRequest<'_>) -> Result<VerifyReport
     let p95 = p95_deg((0..moves.len()).filter(|&k| cuts(k) && flat(k)).flat_map(|k| measured[k].tip_samples.iter()));
     let (problems, counts) = problems::find(program, &moves, &measured_view(&measured), req);
     let ideal = timing::time_moves(&moves, None)?;
-    Ok(VerifyReport {
+    let report = VerifyReport {
         lines: program.lines,
         move_count: moves.len(),
         levels_mm: bands.levels.clone(),
@@ -273,7 +305,9 @@ pub fn verify(program: &Program, req: &VerifyRequest<'_>) -> Result<VerifyReport
         problems,
         problem_moves: counts.into_iter().map(|(k, n)| (k.name().to_owned(), n)).collect(),
         moves: measured.into_iter().map(|m| m.report).collect(),
-    })
+    };
+    progress(total, total);
+    Ok(report)
 }
 
 /// What the problem search needs of each move.

@@ -96,3 +96,38 @@ fn gouge_depth() {
     assert_eq!(g.len(), 1, "{:?}", r.problems);
     assert!((g[0].value - 1.0).abs() < 1e-9 && g[0].line == 5, "{:?}", g[0]);
 }
+
+/// The progress callback sees steps that only grow up to the total, the report equals
+/// `verify`'s, and a callback that says stop ends the run with `Error::Cancelled`.
+#[test]
+fn progress_reports_growing_steps_and_a_stop_cancels() {
+    use std::sync::Mutex;
+    let stock = square(-50.0, 2.5, 50.0, 50.0);
+    let req = request(&stock);
+    let text = "G21 G90\nS2000 M3\nG0 X-20 Y0 Z5\nG0 Z-3\nG1 X20 F800\nG1 Y5\nG1 X-20\nG0 Z5\nM30\n";
+    let program = read_program(text, "t.ngc").unwrap();
+    let seen = Mutex::new(Vec::new());
+    let record = |done: usize, total: usize| {
+        seen.lock().unwrap().push((done, total));
+        true
+    };
+    let with = verify_with_progress(&program, &req, &record).unwrap();
+    assert_eq!(with, verify(&program, &req).unwrap());
+    let seen = seen.into_inner().unwrap();
+    // n moves: ⌈n/2⌉ steps for the bands (half a step a move), n measured moves, 1 summary;
+    // the moves are reported every 64th, so with n < 64: 0, the bands, all moves, the end
+    let n = program.moves.len();
+    let (b, total) = (n.div_ceil(2), n.div_ceil(2) + n + 1);
+    assert_eq!(seen, vec![(0, total), (b, total), (b + n, total), (total, total)]);
+    // stop at the first report after the bands
+    let calls = Mutex::new(0usize);
+    let stop = |done: usize, _: usize| {
+        *calls.lock().unwrap() += 1;
+        done == 0
+    };
+    match verify_with_progress(&program, &req, &stop) {
+        Err(Error::Cancelled) => {}
+        other => panic!("expected a cancel, got {other:?}"),
+    }
+    assert_eq!(*calls.lock().unwrap(), 2, "no report after the stop");
+}

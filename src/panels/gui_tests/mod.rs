@@ -2,7 +2,8 @@
 //! accessibility tree and check the plan and the shown values. This file holds the harness;
 //! the tests are grouped by what they drive: `slot` (the slot job's tabs), `window` (tabs,
 //! persisted state), `corner` (the Corner tab), `pocket` (the Pocket tab), `program` (the
-//! program's frame), `files` (files without a system dialog), `machine` (forces,
+//! Program tab), `program_frame` (the program's frame), `files` (files without a system
+//! dialog), `machine` (forces,
 //! machine and optimiser).
 
 mod corner;
@@ -10,6 +11,7 @@ mod files;
 mod machine;
 mod pocket;
 mod program;
+mod program_frame;
 mod slot;
 mod window;
 
@@ -39,6 +41,9 @@ impl FileDialogs for FakeDialogs {
         self.save.clone()
     }
     fn open_outline(&mut self) -> Option<PathBuf> {
+        self.open.clone()
+    }
+    fn open_program(&mut self) -> Option<PathBuf> {
         self.open.clone()
     }
 }
