@@ -5,7 +5,7 @@
 //! **Interpreted** (ISO G-code as LinuxCNC, Fanuc-style controllers, GRBL and Sinumerik write
 //! it): `G0 G1 G2 G3` (modal), arcs by centre (`I J`, incremental by default, `G90.1`/`G91.1`)
 //! or by radius (`R`, negative for the longer arc), helical arcs (`Z` on `G2`/`G3`), LinuxCNC's
-//! turn count `P` on arcs, `G17`, `G90`/`G91`, `G20`/`G21` (and Sinumerik's `G70`/`G71`), `F`,
+//! turn count `P` on arcs, `G17`, `G90`/`G91`, `G20`/`G21` (and Sinumerik's `G70`/`G71`, `G700`/`G710`, and its `%_N_…` name line), `F`,
 //! `S`, `M3`/`M4`/`M5`, comments `( … )` and `; …`, `N` numbers, `%`, a program number `O…`
 //! alone, and words without motion (`T M6 M7 M8 M9 M0 M1 G40 G43 H G49 G54…G59 G61 G64 G80
 //! G94 G4`). The program ends at `M2`/`M30`.
@@ -124,8 +124,8 @@ fn words(block: &str) -> Result<Vec<(char, f64)>, String> {
 fn block(st: &mut State, line: &str, number: usize, out: &mut Program) -> Result<bool, String> {
     let text = strip_comments(line)?;
     let t = text.trim().trim_start_matches('/').trim();
-    if t.is_empty() || t == "%" {
-        return Ok(false);
+    if t.is_empty() || t == "%" || t.starts_with("%_N_") {
+        return Ok(false); // a tape mark, a Sinumerik program name
     }
     if let Some(rest) = t.strip_prefix(['O', 'o']) {
         if !rest.is_empty() && rest.chars().all(|c| c.is_ascii_digit()) {
@@ -327,8 +327,9 @@ fn g_word(st: &mut State, g: f64) -> Result<Option<Motion>, String> {
         20 => return Ok(Some(Motion::Cw)),
         30 => return Ok(Some(Motion::Ccw)),
         170 | 400 | 430 | 490 | 540..=590 | 610 | 611 | 640 | 800 | 940 | 40 => {}
-        200 | 700 => st.unit = Some(25.4),
-        210 | 710 => st.unit = Some(1.0),
+        // G20, Sinumerik's G70 and G700 (inch; G700 the feeds too) and their metric pairs
+        200 | 700 | 7000 => st.unit = Some(25.4),
+        210 | 710 | 7100 => st.unit = Some(1.0),
         900 => st.absolute = true,
         910 => st.absolute = false,
         901 => st.ij_absolute = true,
@@ -397,6 +398,11 @@ mod tests {
         assert_eq!(p.moves[0].mv.segment.end(), p2(25.4, 0.0));
         assert_eq!(p.moves[0].mv.feed_mm_per_min, Some(254.0));
         assert!(p.inch);
+        // Sinumerik: a name line, G700 (inch, feeds too), G710 back to mm
+        let p = read("%_N_SLOT_MPF\nG700\nG0 X0 Y0 Z0\nG1 X1 F10\nG710\nG1 X30 F300\n").expect("read");
+        assert_eq!(p.moves[0].mv.segment.end(), p2(25.4, 0.0));
+        assert_eq!(p.moves[0].mv.feed_mm_per_min, Some(254.0));
+        assert_eq!(p.moves[1].mv.segment.end(), p2(30.0, 0.0));
     }
 
     #[test]
