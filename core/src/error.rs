@@ -119,11 +119,14 @@ pub enum Param {
     CornerTolerance,
     /// `pocket --open-edges`: the pocket's edges without a wall (adaptive clearing).
     OpenEdges,
+    /// The islands of a pocket (`pocket --polygon`: the loops inside the boundary; JSON
+    /// `islands`).
+    Islands,
 }
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 78] = [
+    pub const ALL: [Param; 79] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
@@ -202,6 +205,7 @@ impl Param {
         Param::TargetEngagement,
         Param::CornerTolerance,
         Param::OpenEdges,
+        Param::Islands,
     ];
 
     /// The command-line flag without `--` (also the job-file key). The NC tolerance and the
@@ -286,6 +290,7 @@ impl Param {
             Param::TargetEngagement => "target-engagement",
             Param::CornerTolerance => "corner-tolerance",
             Param::OpenEdges => "open-edges",
+            Param::Islands => "islands",
         }
     }
 
@@ -370,6 +375,7 @@ impl Param {
             Param::TargetEngagement => "Target engagement",
             Param::CornerTolerance => "Corner tolerance",
             Param::OpenEdges => "Open edges",
+            Param::Islands => "Islands",
         }
     }
 }

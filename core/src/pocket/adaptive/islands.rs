@@ -1,0 +1,289 @@
+//! Adaptive clearing round islands (docs/pockets.md, "Islands"): each region of tool centres —
+//! the boundary offset inward by r + s_f less the islands offset outward by r + s_f
+//! ([`centre_regions`]), split into parts where a neck between island and wall (or between
+//! two islands) is narrower than the tool — is one part with its own helix.
+//!
+//! **Rings (DERIVED like step 3 of [`super`]).** The core K = C ⊖ T of the part (its outer
+//! loop offset inward by T, its holes outward by T) must be one piece: T starts at the helix
+//! radius r_h and shrinks by 10 % until it is (at least [`MIN_CORE_SHARE`]·r). The rings are
+//! ∂(G_j ⊕ T) with G₀ the disc about the helix centre k0 of radius r_h − T (ring 0 is then the
+//! helix's circle) and G_j+1 = K ∩ (G_j ⊕ a), a the concave-cut step of radius T: geodesic
+//! growth in K, which goes round the islands, never through them. Each ring lies within a of
+//! the one before and its convex arcs have radius ≥ T, so a pass cuts at most the concave-cut
+//! step of radius T: within the target φ. Where G_j holds an island's hole of K whole (the
+//! growth closed round it), the ring also has the loop round that island r + s_f off it,
+//! clockwise (climb); before that, the rings run along the island where G_j meets its hole.
+//! Each ring is cut only where it adds to the one before ([`crate::pocket::runs`]).
+//!
+//! **Corners and finish.** The convex corners of the part's outer loop get the corner passes
+//! of step 4, the outer loop the finishing contour of step 5; then each island the part goes
+//! round gets its own finishing loop, r off it, clockwise, reached by a link straight onto it
+//! (it cuts the finishing stock s_f: a straight cut of depth s_f).
+//!
+//! Every link — between runs, to the corners and the finishing loops — is routed round the
+//! islands ([`crate::pocket::route::Router::with_islands`]); the plan's last check measures
+//! every move against the walls and the islands ([`crate::pocket::guard`]).
+
+use super::corners::{convex_corners, corner_passes, cusp_passes};
+use super::finish::finishing_pass;
+use super::loops::{Builder, link, start_near};
+use super::open::{Seed, merge_into};
+use super::options::{AdaptiveOptions, concave_step};
+use super::part::PartContext;
+use super::plan::AdaptivePart;
+use super::walk::reversed;
+use super::{MAX_PASSES, PocketSettings};
+use crate::error::{Error, Param, num};
+use crate::geom::offset::{BoolOp, Region, largest};
+use crate::geom::{P2, Polygon, Segment, p2};
+use crate::pocket::islands::{HoledRegion, centre_regions, subtract};
+use crate::pocket::route::RouterCache;
+use crate::pocket::runs::{entered_runs, entry_gap};
+use crate::toolpath::{Entry, Helix, MoveKind};
+
+/// The least core radius round islands, as a share of the tool radius: a core that needs a
+/// smaller one to stay one piece (a neck just wider than the tool) is refused by name.
+pub(super) const MIN_CORE_SHARE: f64 = 0.2;
+
+/// Bisection steps of the inscribed radius.
+const INSCRIBED_STEPS: usize = 40;
+
+/// The core of `region` at radius `t`: its outer loop offset inward by t less its holes offset
+/// outward by t; the pieces of area above 1e-6 mm².
+fn core_of(region: &HoledRegion, t: f64) -> Vec<HoledRegion> {
+    let mut pieces: Vec<HoledRegion> =
+        region.outer.offset(t).into_iter().map(|outer| HoledRegion { outer, holes: Vec::new() }).collect();
+    for h in &region.holes {
+        if let Some(zone) = largest(h.offset(-t)) {
+            pieces = subtract(pieces, &zone);
+        }
+    }
+    pieces.retain(|p| p.outer.area() > 1e-6);
+    pieces
+}
+
+/// A point inside the region `piece`: the middle of its bounding box where that lies inside,
+/// else its first vertex.
+fn point_in(piece: &HoledRegion) -> P2 {
+    let first = piece.outer.vertices().first().copied().unwrap_or_else(P2::zeros);
+    match piece.outer.extents() {
+        Some((a, b)) => {
+            let m = p2(0.5 * (a.x + b.x), 0.5 * (a.y + b.y));
+            if piece.contains(m) { m } else { first }
+        }
+        None => first,
+    }
+}
+
+/// The radius of the largest circle in `region` (holes included) by bisection on its cores,
+/// and a centre: a point of the last core that does not vanish.
+fn inscribed(region: &HoledRegion) -> (f64, P2) {
+    let ext = region.outer.extents();
+    let (mut lo, mut hi) = (0.0, ext.map_or(1.0, |(a, b)| 0.5 * (b.x - a.x).min(b.y - a.y)) + 1e-9);
+    let mut centre = point_in(region);
+    for _ in 0..INSCRIBED_STEPS {
+        let mid = 0.5 * (lo + hi);
+        let core = core_of(region, mid);
+        match core.iter().max_by(|a, b| a.outer.area().total_cmp(&b.outer.area())) {
+            Some(piece) => {
+                lo = mid;
+                centre = point_in(piece);
+            }
+            None => hi = mid,
+        }
+    }
+    (lo, centre)
+}
+
+/// Adaptive clearing of `work` round `islands` (both as planned: mirrored already for
+/// conventional milling): one part per region of tool centres (module docs).
+pub(super) fn clear_round_islands(
+    work: &Polygon,
+    islands: &[Polygon],
+    settings: &PocketSettings,
+    options: &AdaptiveOptions,
+    (phi, rho_fin): (f64, f64),
+) -> Result<(Vec<AdaptivePart>, Builder), Error> {
+    let r = settings.tool_radius;
+    let rs = r + options.finish_stock_mm;
+    let regions = centre_regions(work, islands, rs);
+    if regions.is_empty() {
+        return Err(Error::param(
+            Param::Islands,
+            "no room for the tool between the islands and the walls",
+            format!("room for a tool of D = {} mm plus the finishing stock beside the islands", num(2.0 * r)),
+        ));
+    }
+    let mut b = Builder { router: RouterCache::with_islands(islands), ..Builder::default() };
+    let mut parts = Vec::new();
+    for region in &regions {
+        // (a retract before each part but the first: [`super::plan::measure`])
+        let first = b.segments.len();
+        let part = clear_part(&mut b, region, (work, islands), settings, options, (phi, rho_fin))?;
+        parts.push(AdaptivePart { first_segment: first, end_segment: b.segments.len(), ..part });
+    }
+    Ok((parts, b))
+}
+
+/// One part: helix, rings round the islands, corner passes, finishing contour and the
+/// islands' finishing loops (module docs).
+fn clear_part(
+    b: &mut Builder,
+    region: &HoledRegion,
+    (work, islands): (&Polygon, &[Polygon]),
+    settings: &PocketSettings,
+    options: &AdaptiveOptions,
+    (phi, rho_fin): (f64, f64),
+) -> Result<AdaptivePart, Error> {
+    let r = settings.tool_radius;
+    let sf = options.finish_stock_mm;
+    let (inscribed_radius, k0) = inscribed(region);
+    let r_h = crate::pocket::entry::helix_radius(options, r, inscribed_radius)?;
+    // T: the largest radius from r_h down whose core is one piece
+    let mut t = r_h;
+    let core = loop {
+        let mut pieces = core_of(region, t);
+        if pieces.len() == 1 {
+            break pieces.remove(0);
+        }
+        t *= 0.9;
+        if t < MIN_CORE_SHARE * r {
+            return Err(Error::param(
+                Param::Islands,
+                format!("a neck round an island about {} mm wider than the tool", num(2.0 * t / 0.9)),
+                format!(
+                    "islands at least D + 2 × the finishing stock + {} mm from the walls and from each other, \
+                     or near enough that the tool does not pass (each side then its own part)",
+                    num(2.0 * MIN_CORE_SHARE * r)
+                ),
+            ));
+        }
+    };
+    let step = concave_step(t, r, phi);
+    let helix = Helix { center: k0, radius: r_h, start_angle: 0.0, sense: 1.0, ramp_rad: options.ramp_deg.to_radians() };
+    b.push(helix.circle(), MoveKind::Entry);
+    // the rings: geodesic growth in the core from the helix's disc
+    let s0 = (r_h - t).max(1e-3);
+    let k_holes: Vec<Region> = core.holes.clone();
+    let grow = |g: &[Region]| -> Vec<Region> {
+        let mut next: Vec<Region> = Vec::new();
+        for piece in g {
+            let Some(d) = largest(piece.offset(-step)) else { continue };
+            let cut: Vec<HoledRegion> = core
+                .outer
+                .boolean(&d, BoolOp::And)
+                .into_iter()
+                .map(Region::ccw)
+                .filter(|p| p.area() > 1e-9)
+                .map(|outer| HoledRegion { outer, holes: Vec::new() })
+                .collect();
+            let cut = k_holes.iter().fold(cut, |pieces, h| subtract(pieces, h));
+            for p in cut {
+                merge_into(&mut next, p.outer);
+            }
+        }
+        next
+    };
+    let holes = core_holes_of(region, &core);
+    let ring_of = |g: &[Region]| -> Vec<Vec<Segment>> {
+        let mut loops: Vec<Vec<Segment>> = g.iter().filter_map(|p| largest(p.offset(-t))).map(|o| o.segments()).collect();
+        for (zone, k_hole) in region.holes.iter().zip(&holes) {
+            let Some(k_hole) = k_hole else { continue };
+            if k_hole.vertices().first().is_some_and(|&v| g.iter().any(|p| p.contains(v))) {
+                loops.push(zone.segments().iter().rev().map(reversed).collect());
+            }
+        }
+        loops
+    };
+    let mut grown: Vec<Region> = largest(
+        core.outer.boolean(&Region::disc(k0, s0), BoolOp::And).into_iter().map(Region::ccw).collect(),
+    )
+    .into_iter()
+    .collect();
+    let mut area: f64 = grown.iter().map(Region::area).sum();
+    let least_growth = 1e-6 * core.outer.area().max(1.0);
+    let mut rings: Vec<Vec<Vec<Segment>>> = vec![vec![vec![helix.circle()]]];
+    while rings.len() < MAX_PASSES {
+        let next = grow(&grown);
+        let next_area: f64 = next.iter().map(Region::area).sum();
+        if next_area <= area + least_growth {
+            break;
+        }
+        (grown, area) = (next, next_area);
+        rings.push(ring_of(&grown));
+    }
+    // the last ring: the opening of the region with radius T (the whole core grown; where the
+    // growth reached it already, it adds nothing and has no runs)
+    rings.push(ring_of(std::slice::from_ref(&core.outer)));
+    let gap = entry_gap(r, phi);
+    let flat = |loops: &[Vec<Segment>]| loops.iter().flatten().copied().collect::<Vec<Segment>>();
+    let (mut ring_runs, mut safe): (Vec<Vec<Vec<Segment>>>, Vec<Vec<Segment>>) = (Vec::new(), Vec::new());
+    for pair in rings.windows(2) {
+        let prev = flat(&pair[0]);
+        let runs: Vec<Vec<Segment>> = pair[1].iter().flat_map(|lp| entered_runs(lp, &prev, gap)).collect();
+        if !runs.is_empty() {
+            ring_runs.push(runs);
+            safe.push(prev);
+        }
+    }
+    let count = ring_runs.len();
+    crate::pocket::runs::cut_runs(b, work, r, ring_runs, (&safe, step, gap, sf));
+    // corners and cusps of the outer loop, its finishing contour
+    let seed = Seed::Helix;
+    let p = PartContext {
+        region: &region.outer,
+        inscribed: inscribed_radius,
+        k0,
+        polygon: work,
+        options,
+        r,
+        phi,
+        rho_fin,
+        seed: &seed,
+        arms: false,
+    };
+    let corners_all = convex_corners(&region.outer.segments());
+    let mut corners = corner_passes(b, &p, &corners_all, t, None);
+    let cusps_all = crate::pocket::cusp::cusps(&region.outer.segments(), work, r + sf, sf);
+    corners.extend(cusp_passes(b, &p, &cusps_all, t));
+    let corner_points = if sf > 0.0 {
+        let points = finishing_pass(b, &p)?;
+        for island in islands {
+            let inside = island.vertices().first().is_some_and(|&v| region.holes.iter().any(|h| h.contains(v)));
+            if inside && let Some(lp) = largest(Region::polygon(island.vertices()).offset(-r)) {
+                let around: Vec<Segment> = lp.segments().iter().rev().map(reversed).collect();
+                let from = start_near(&around, b.at());
+                if let Some(first) = from.first() {
+                    link(b, work, r, first.start());
+                    from.iter().for_each(|sg| b.push(*sg, MoveKind::Finish));
+                }
+            }
+        }
+        points
+    } else {
+        Vec::new()
+    };
+    Ok(AdaptivePart {
+        entry: Entry::Helix(helix),
+        first_segment: 0,
+        end_segment: 0,
+        core_radius_mm: t,
+        rings: count,
+        corners,
+        corner_points,
+    })
+}
+
+/// For each hole of `region`, the hole of its core `core` round the same island: the core's
+/// hole that holds the region's hole's first vertex (`None` where the core has none there:
+/// the island's offset joined the core's outer loop).
+fn core_holes_of(region: &HoledRegion, core: &HoledRegion) -> Vec<Option<Region>> {
+    region
+        .holes
+        .iter()
+        .map(|h| {
+            let v = h.vertices().first().copied();
+            core.holes.iter().find(|k| v.is_some_and(|v| k.contains(v))).cloned()
+        })
+        .collect()
+}
