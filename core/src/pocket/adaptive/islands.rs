@@ -26,7 +26,7 @@
 
 use super::corners::{convex_corners, corner_passes, cusp_passes};
 use super::finish::finishing_pass;
-use super::loops::{Builder, link, start_near};
+use super::loops::{Builder, closest_on, link, start_near};
 use super::open::{Seed, merge_into};
 use super::options::{AdaptiveOptions, concave_step};
 use super::part::PartContext;
@@ -40,6 +40,7 @@ use crate::pocket::islands::{HoledRegion, centre_regions, subtract};
 use crate::pocket::route::RouterCache;
 use crate::pocket::runs::{entered_runs, entry_gap};
 use crate::toolpath::{Entry, Helix, MoveKind};
+use std::f64::consts::{PI, TAU};
 
 /// The least core radius round islands, as a share of the tool radius: a core that needs a
 /// smaller one to stay one piece (a neck just wider than the tool) is refused by name.
@@ -162,8 +163,13 @@ fn clear_part(
     let step = concave_step(t, r, phi);
     let helix = Helix { center: k0, radius: r_h, start_angle: 0.0, sense: 1.0, ramp_rad: options.ramp_deg.to_radians() };
     b.push(helix.circle(), MoveKind::Entry);
-    // the rings: geodesic growth in the core from the helix's disc
-    let s0 = (r_h - t).max(1e-3);
+    // the spiral out of the bore to the largest circle about k0 in the region, then that circle
+    let walls: Vec<Segment> = region.outer.segments().into_iter().chain(region.holes.iter().flat_map(Region::segments)).collect();
+    let clearance = walls.iter().map(|sg| (closest_on(sg, k0).0 - k0).norm()).fold(f64::INFINITY, f64::min);
+    let q_f = (0.995 * clearance).max(r_h);
+    let ring0 = spiral(b, k0, (r_h, q_f), (r, phi));
+    // the rings: geodesic growth in the core from the spiral's disc
+    let s0 = (q_f - t).max(1e-3);
     let k_holes: Vec<Region> = core.holes.clone();
     let grow = |g: &[Region]| -> Vec<Region> {
         let mut next: Vec<Region> = Vec::new();
@@ -202,7 +208,7 @@ fn clear_part(
     .collect();
     let mut area: f64 = grown.iter().map(Region::area).sum();
     let least_growth = 1e-6 * core.outer.area().max(1.0);
-    let mut rings: Vec<Vec<Vec<Segment>>> = vec![vec![vec![helix.circle()]]];
+    let mut rings: Vec<Vec<Vec<Segment>>> = vec![vec![ring0]];
     while rings.len() < MAX_PASSES {
         let next = grow(&grown);
         let next_area: f64 = next.iter().map(Region::area).sum();
@@ -272,6 +278,25 @@ fn clear_part(
         corners,
         corner_points,
     })
+}
+
+/// The spiral out of the helix bore about `k0` (the tool at radius `q0` on the +x side): half
+/// turns, each from radius q_i on one side to q_i+1 on the other (centre offset (q_i − q_i+1)/2:
+/// G1), q_i+1 = q_i + half the concave-cut step of q_i (a revolution steps the concave-cut step:
+/// within φ), up to `q_f`; then once round the circle of radius `q_f`, which is returned (ring 0
+/// of the rings).
+fn spiral(b: &mut Builder, k0: P2, (q0, q_f): (f64, f64), (r, phi): (f64, f64)) -> Vec<Segment> {
+    let (mut q, mut e) = (q0, p2(1.0, 0.0));
+    let mut halves = 0;
+    while q < q_f - 1e-9 && halves < MAX_PASSES {
+        let next = (q + 0.5 * concave_step(q, r, phi)).min(q_f);
+        let center = k0 + e * (0.5 * (q - next));
+        b.push(Segment::Arc { center, radius: 0.5 * (q + next), start_angle: e.y.atan2(e.x), sweep: PI }, MoveKind::Spiral);
+        (q, e, halves) = (next, -e, halves + 1);
+    }
+    let circle = Segment::Arc { center: k0, radius: q, start_angle: e.y.atan2(e.x), sweep: TAU };
+    b.push(circle, MoveKind::Spiral);
+    vec![circle]
 }
 
 /// For each hole of `region`, the hole of its core `core` round the same island: the core's
