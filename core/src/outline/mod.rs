@@ -143,9 +143,10 @@ impl Pockets {
             return Ok((&one.boundary, &one.islands));
         }
         let first = |o: &Outline| o.boundary[0];
-        let nested = self.pockets.iter().find(|p| {
-            self.pockets.iter().flat_map(|q| &q.islands).any(|i| crate::geom::loop_contains(i, first(p)))
-        });
+        let nested = self
+            .pockets
+            .iter()
+            .find(|p| self.pockets.iter().flat_map(|q| &q.islands).any(|i| crate::geom::loop_contains(i, first(p))));
         let loops = self.loop_count();
         Err(Error::File(match nested {
             Some(p) => format!(

@@ -38,7 +38,11 @@ fn edge_gap(a: &Polygon, b: &Polygon) -> (f64, P2) {
 /// island (1-based, in the order given) and what is wrong.
 pub fn validate_islands(boundary: &Polygon, islands: &[Polygon]) -> Result<(), Error> {
     if islands.len() > MAX_ISLANDS {
-        return Err(Error::param(Param::Islands, format!("{} islands", islands.len()), format!("at most {MAX_ISLANDS}")));
+        return Err(Error::param(
+            Param::Islands,
+            format!("{} islands", islands.len()),
+            format!("at most {MAX_ISLANDS}"),
+        ));
     }
     let xy = |p: P2| format!("({}, {})", num(p.x), num(p.y));
     for (k, island) in islands.iter().enumerate() {
@@ -62,7 +66,8 @@ pub fn validate_islands(boundary: &Polygon, islands: &[Polygon]) -> Result<(), E
             let (gap, at) = edge_gap(island, other);
             let inside = other.contains(island.vertices()[0]) || island.contains(other.vertices()[0]);
             if gap < MIN_GAP_MM || inside {
-                let how = if inside { "lies inside".to_owned() } else { format!("touches or crosses it near {}", xy(at)) };
+                let how =
+                    if inside { "lies inside".to_owned() } else { format!("touches or crosses it near {}", xy(at)) };
                 return Err(Error::param(
                     Param::Islands,
                     format!("island {} overlaps island {} ({how})", k + 1, j + 1),
@@ -177,6 +182,33 @@ mod tests {
             assert_eq!(e.subject(), Some("islands"), "{e}");
             assert!(e.to_string().contains(what), "{e}");
         }
+    }
+
+    /// A request with bad islands is refused by `pocket::plan` before any planning, naming
+    /// `islands`; an island with a ring method is refused naming the method.
+    #[test]
+    fn the_planner_refuses_bad_islands_by_name() {
+        use crate::pocket::{PocketRequest, PocketStrategy, plan};
+        let pocket = rect(0.0, 0.0, 80.0, 60.0);
+        for (islands, what) in [
+            (vec![rect(0.0, 10.0, 20.0, 20.0)], "touches or crosses the pocket wall"),
+            (vec![rect(-5.0, 10.0, 20.0, 20.0)], "touches or crosses the pocket wall"),
+            (vec![rect(-30.0, 10.0, -20.0, 20.0)], "outside the pocket boundary"),
+            (vec![rect(10.0, 10.0, 30.0, 30.0), rect(20.0, 20.0, 40.0, 40.0)], "overlaps"),
+        ] {
+            let req = PocketRequest { polygon: pocket.clone(), islands, ..PocketRequest::default() };
+            let e = plan(&req).expect_err(what);
+            assert_eq!(e.subject(), Some("islands"), "{e}");
+            assert!(e.to_string().contains(what), "{e}");
+        }
+        let req = PocketRequest {
+            polygon: pocket,
+            islands: vec![rect(30.0, 20.0, 50.0, 40.0)],
+            strategy: PocketStrategy::MedialAxis,
+            ..PocketRequest::default()
+        };
+        let e = plan(&req).expect_err("medial axis");
+        assert!(e.to_string().contains("--method medial-axis") && e.to_string().contains("adaptive"), "{e}");
     }
 
     /// The 80 × 60 pocket with a 10 × 10 island at (35..45, 25..35), offset d = 5: one region,

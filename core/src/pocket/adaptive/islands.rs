@@ -161,10 +161,12 @@ fn clear_part(
         }
     };
     let step = concave_step(t, r, phi);
-    let helix = Helix { center: k0, radius: r_h, start_angle: 0.0, sense: 1.0, ramp_rad: options.ramp_deg.to_radians() };
+    let helix =
+        Helix { center: k0, radius: r_h, start_angle: 0.0, sense: 1.0, ramp_rad: options.ramp_deg.to_radians() };
     b.push(helix.circle(), MoveKind::Entry);
     // the spiral out of the bore to the largest circle about k0 in the region, then that circle
-    let walls: Vec<Segment> = region.outer.segments().into_iter().chain(region.holes.iter().flat_map(Region::segments)).collect();
+    let walls: Vec<Segment> =
+        region.outer.segments().into_iter().chain(region.holes.iter().flat_map(Region::segments)).collect();
     let clearance = walls.iter().map(|sg| (closest_on(sg, k0).0 - k0).norm()).fold(f64::INFINITY, f64::min);
     let q_f = (0.995 * clearance).max(r_h);
     let ring0 = spiral(b, k0, (r_h, q_f), (r, phi));
@@ -192,7 +194,8 @@ fn clear_part(
     };
     let holes = core_holes_of(region, &core);
     let ring_of = |g: &[Region]| -> Vec<Vec<Segment>> {
-        let mut loops: Vec<Vec<Segment>> = g.iter().filter_map(|p| largest(p.offset(-t))).map(|o| o.segments()).collect();
+        let mut loops: Vec<Vec<Segment>> =
+            g.iter().filter_map(|p| largest(p.offset(-t))).map(|o| o.segments()).collect();
         for (zone, k_hole) in region.holes.iter().zip(&holes) {
             let Some(k_hole) = k_hole else { continue };
             if k_hole.vertices().first().is_some_and(|&v| g.iter().any(|p| p.contains(v))) {
@@ -201,11 +204,10 @@ fn clear_part(
         }
         loops
     };
-    let mut grown: Vec<Region> = largest(
-        core.outer.boolean(&Region::disc(k0, s0), BoolOp::And).into_iter().map(Region::ccw).collect(),
-    )
-    .into_iter()
-    .collect();
+    let mut grown: Vec<Region> =
+        largest(core.outer.boolean(&Region::disc(k0, s0), BoolOp::And).into_iter().map(Region::ccw).collect())
+            .into_iter()
+            .collect();
     let mut area: f64 = grown.iter().map(Region::area).sum();
     let least_growth = 1e-6 * core.outer.area().max(1.0);
     let mut rings: Vec<Vec<Vec<Segment>>> = vec![vec![ring0]];
@@ -291,7 +293,10 @@ fn spiral(b: &mut Builder, k0: P2, (q0, q_f): (f64, f64), (r, phi): (f64, f64)) 
     while q < q_f - 1e-9 && halves < MAX_PASSES {
         let next = (q + 0.5 * concave_step(q, r, phi)).min(q_f);
         let center = k0 + e * (0.5 * (q - next));
-        b.push(Segment::Arc { center, radius: 0.5 * (q + next), start_angle: e.y.atan2(e.x), sweep: PI }, MoveKind::Spiral);
+        b.push(
+            Segment::Arc { center, radius: 0.5 * (q + next), start_angle: e.y.atan2(e.x), sweep: PI },
+            MoveKind::Spiral,
+        );
         (q, e, halves) = (next, -e, halves + 1);
     }
     let circle = Segment::Arc { center: k0, radius: q, start_angle: e.y.atan2(e.x), sweep: TAU };

@@ -209,8 +209,7 @@ pub fn plan_adaptive_islands(
     let phi = options.target_rad(&settings)?;
     let sf = options.finish_stock_mm;
     let rho_fin = if sf > 0.0 { fin_radius(sf, r, phi) } else { 0.1 * r };
-    let (mut parts, mut b) =
-        islands::clear_round_islands(&work, &work_islands, &settings, &options, (phi, rho_fin))?;
+    let (mut parts, mut b) = islands::clear_round_islands(&work, &work_islands, &settings, &options, (phi, rho_fin))?;
     if mirror {
         mirror_back(&mut parts, &mut b);
     }
