@@ -111,11 +111,26 @@ fn in_pocket(polygon: &Polygon, open_edges: &[usize], p: P2) -> bool {
 }
 
 /// Check every move at depth `segments` (with `what[i]` naming move i) and what the entries
+/// cut at depth against the walls of `polygon` (its edges but `open_edges`) for a tool of
+/// radius `r` (module docs). Error (geometry, `tool path`) naming the first move that comes
+/// nearer than r − [`GUARD_TOLERANCE_MM`] to a wall, or leaves the pocket.
+pub fn check_clearance(
+    polygon: &Polygon,
+    open_edges: &[usize],
+    r: f64,
+    segments: &[Segment],
+    what: impl Fn(usize) -> String,
+    entries: &[Entry],
+) -> Result<(), Error> {
+    check_clearance_with_islands((polygon, &[]), open_edges, r, segments, what, entries)
+}
+
+/// Check every move at depth `segments` (with `what[i]` naming move i) and what the entries
 /// cut at depth against the walls of `polygon` (its edges but `open_edges`) and of its
 /// `islands` for a tool of radius `r` (module docs). Error (geometry, `tool path`) naming the
 /// first move that comes nearer than r − [`GUARD_TOLERANCE_MM`] to a wall, or leaves the
 /// pocket, or starts inside an island.
-pub fn check_clearance(
+pub fn check_clearance_with_islands(
     (polygon, islands): (&Polygon, &[Polygon]),
     open_edges: &[usize],
     r: f64,

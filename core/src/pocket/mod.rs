@@ -676,7 +676,7 @@ fn plan_with(req: &PocketRequest, strategy: PocketStrategy, settings: PocketSett
     let name = |i: usize| {
         format!("move #{} ({})", i + 1, kinds.get(i).map_or("move".into(), |k| format!("{k:?}").to_lowercase()))
     };
-    guard::check_clearance(
+    guard::check_clearance_with_islands(
         (&req.polygon, &req.islands),
         &req.open_edges,
         settings.tool_radius,
