@@ -99,6 +99,8 @@ fn a_pocket_with_a_boss_and_a_rectangular_island_passes_rs274_within_the_target_
     assert!(ok, "{stderr}");
     let json: serde_json::Value = serde_json::from_str(&stdout).expect("json");
     assert_eq!(json["islands"].as_u64(), Some(2), "{}", json["islands"]);
+    assert_eq!(json["island_polygons"][0].as_array().map(Vec::len), Some(128));
+    assert_eq!(json["island_polygons"][1].as_array().map(Vec::len), Some(4));
     assert_eq!(json["method"], "adaptive");
     // the target of a_e = 2.5, D = 10: the straight cut's arccos(1 − 2.5/5) = 60° (above the
     // 50° cap of the area-rate default, so the straight cut's)
