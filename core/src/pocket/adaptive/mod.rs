@@ -112,6 +112,7 @@
 mod arms;
 mod corners;
 mod finish;
+mod hot_links;
 mod islands;
 mod loops;
 mod open;
@@ -214,7 +215,22 @@ pub fn plan_adaptive_islands(
         mirror_back(&mut parts, &mut b);
     }
     let left = if sf > 0.0 { r + options.corner_tolerance_mm } else { r + rho_fin };
-    measure(polygon.clone(), islands, settings, options, phi, parts, b, left)
+    // links that cut above the target + 1° (round an island through stock not yet cleared)
+    // become retracts ([`hot_links`])
+    let limit = phi + crate::pocket::TARGET_SLACK_RAD;
+    let copy = |b: &Builder| Builder {
+        segments: b.segments.clone(),
+        kinds: b.kinds.clone(),
+        retracts: b.retracts.clone(),
+        ..Builder::default()
+    };
+    let mut plan = measure(polygon.clone(), islands, settings, options, phi, parts.clone(), copy(&b), left)?;
+    for _ in 0..hot_links::MAX_ROUNDS {
+        let Some((nb, np)) = hot_links::without_hot_links(&plan.path, &b, &parts, limit) else { break };
+        plan = measure(polygon.clone(), islands, settings, options, phi, np.clone(), copy(&nb), left)?;
+        (b, parts) = (nb, np);
+    }
+    Ok(plan)
 }
 
 /// The moves and the parts' entries and corners of a plan of the mirrored pocket, mirrored back.
