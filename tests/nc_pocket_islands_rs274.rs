@@ -83,20 +83,30 @@ fn loop_distance(p: P2, poly: &[P2]) -> f64 {
     (0..poly.len()).map(|i| edge_distance(p, poly[i], poly[(i + 1) % poly.len()])).fold(f64::INFINITY, f64::min)
 }
 
+/// The boss's vertices as a drawing's export gives them, rounded to 1e-6 mm: the pocket is the
+/// same to the eye, but the planner's choices (the helix's place between the two equal gaps
+/// above and below the boss, the order of the runs) differ, so the checks see another plan.
+fn rounded(v: &[P2]) -> Vec<P2> {
+    v.iter().map(|p| p2((p.x * 1e6).round() / 1e6, (p.y * 1e6).round() / 1e6)).collect()
+}
+
 #[test]
 fn a_pocket_with_a_boss_and_a_rectangular_island_passes_rs274_within_the_target_and_off_the_islands() {
     let dir = tempfile::tempdir().expect("tempdir");
+    for (label, boss) in [("exact", boss()), ("rounded", rounded(&boss()))] {
+        check_islands_program(dir.path(), label, boss);
+    }
+}
+
+/// The acceptance checks (module docs) of the pocket with the boss `boss`.
+fn check_islands_program(dir: &Path, label: &str, boss: Vec<P2>) {
     let boundary = rect(0.0, 0.0, 80.0, 60.0);
-    let islands = [boss(), rect(50.0, 15.0, 65.0, 45.0)];
+    let islands = [boss, rect(50.0, 15.0, 65.0, 45.0)];
     let loops = [boundary.clone(), islands[0].clone(), islands[1].clone()];
-    let nc = dir.path().join("islands.ngc");
-    let (ok, stdout, stderr) = run(
-        dir.path(),
-        "islands",
-        &loops,
-        &["--depth", "4", "--export", nc.to_str().expect("utf-8"), "--dialect", "linuxcnc"],
-    );
-    assert!(ok, "{stderr}");
+    let nc = dir.join(format!("{label}.ngc"));
+    let (ok, stdout, stderr) =
+        run(dir, label, &loops, &["--depth", "4", "--export", nc.to_str().expect("utf-8"), "--dialect", "linuxcnc"]);
+    assert!(ok, "{label}: {stderr}");
     let json: serde_json::Value = serde_json::from_str(&stdout).expect("json");
     assert_eq!(json["islands"].as_u64(), Some(2), "{}", json["islands"]);
     assert_eq!(json["island_polygons"][0].as_array().map(Vec::len), Some(128));
@@ -110,8 +120,8 @@ fn a_pocket_with_a_boss_and_a_rectangular_island_passes_rs274_within_the_target_
     let p95 = json["p95_engagement_deg"].as_f64().expect("p95");
     // (the rings on straight walls and the corner-point arcs are planned to the target itself:
     // the evaluator reads them to within 1e-3°)
-    assert!(peak <= 60.0 + 1e-3 && peak <= target + 1.0, "peak {peak}");
-    assert!(p95 <= target, "p95 {p95}");
+    assert!(peak <= 60.0 + 1e-3 && peak <= target + 1.0, "{label}: peak {peak}");
+    assert!(p95 <= target, "{label}: p95 {p95}");
     // every kind of move, entries included, within the target + 1°
     for row in json["by_kind"].as_array().expect("by_kind") {
         assert!(row["max_engagement_deg"].as_f64().is_some_and(|m| m <= target + 1.0), "{row}");
@@ -130,7 +140,7 @@ fn a_pocket_with_a_boss_and_a_rectangular_island_passes_rs274_within_the_target_
     }
     let c = cut(&all, DEPTH, 1e-4);
     let planned: Vec<Segment> = serde_json::from_value(json["segments"].clone()).expect("segments");
-    check_path_cut("islands", &c, &planned, 0.005, 1e-4).unwrap_or_else(|e| panic!("{e}"));
+    check_path_cut(label, &c, &planned, 0.005, 1e-4).unwrap_or_else(|e| panic!("{e}"));
     // every point of the cut, every 0.02 mm: inside the boundary, outside the islands, at least
     // r − 0.005 mm from every wall and island edge
     let mut least: f64 = f64::INFINITY;
@@ -142,7 +152,7 @@ fn a_pocket_with_a_boss_and_a_rectangular_island_passes_rs274_within_the_target_
         let d = islands.iter().map(|i| loop_distance(p, i)).fold(loop_distance(p, &boundary), f64::min);
         least = least.min(d);
     }
-    assert!(least >= R - 0.005, "the tool centre comes {least:.6} mm from a wall or island (r = {R})");
+    assert!(least >= R - 0.005, "{label}: the tool centre comes {least:.6} mm from a wall or island (r = {R})");
     // the islands are gone round: the cut comes within r + the finishing stock + 0.01 mm of each
     for island in &islands {
         let near = sample(&c, 0.5).iter().map(|&p| loop_distance(p, island)).fold(f64::INFINITY, f64::min);
