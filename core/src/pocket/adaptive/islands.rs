@@ -185,7 +185,7 @@ fn clear_part(
                 .filter(|p| p.area() > 1e-9)
                 .map(|outer| HoledRegion { outer, holes: Vec::new() })
                 .collect();
-            let cut = k_holes.iter().fold(cut, |pieces, h| subtract(pieces, h));
+            let cut = k_holes.iter().fold(cut, subtract);
             for p in cut {
                 merge_into(&mut next, p.outer);
             }
