@@ -79,6 +79,26 @@ pub fn validate_islands(boundary: &Polygon, islands: &[Polygon]) -> Result<(), E
     Ok(())
 }
 
+/// The islands of a request checked ([`validate_islands`]), and refused with a method other
+/// than adaptive clearing or with open edges: the error names the method (or `--open-edges`)
+/// and says that adaptive clearing plans round islands.
+pub fn validate_request(req: &crate::pocket::PocketRequest) -> Result<(), Error> {
+    validate_islands(&req.polygon, &req.islands)?;
+    let adaptive = req.strategy == crate::pocket::PocketStrategy::Adaptive;
+    if req.islands.is_empty() || (adaptive && req.open_edges.is_empty()) {
+        return Ok(());
+    }
+    let what =
+        if req.open_edges.is_empty() { format!("--method {}", req.strategy.name()) } else { "--open-edges".to_owned() };
+    let n = req.islands.len();
+    Err(Error::param(
+        Param::Islands,
+        format!("{n} island{} with {what}", if n == 1 { "" } else { "s" }),
+        "a pocket without islands for this method: adaptive clearing (--method adaptive, the default, \
+         without --open-edges) plans round islands",
+    ))
+}
+
 /// A region of tool centres: its outer loop and the loops of the islands it wraps (each the
 /// island offset outward, counter-clockwise; the region is outside them).
 #[derive(Clone, Debug)]

@@ -542,20 +542,7 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
         ));
     }
     guard::validate_open_corners(&req.polygon, &req.open_edges)?;
-    islands::validate_islands(&req.polygon, &req.islands)?;
-    if !req.islands.is_empty() && (req.strategy != PocketStrategy::Adaptive || !req.open_edges.is_empty()) {
-        let what = if req.open_edges.is_empty() {
-            format!("--method {}", req.strategy.name())
-        } else {
-            "--open-edges".to_owned()
-        };
-        return Err(Error::param(
-            Param::Islands,
-            format!("{} island{} with {what}", req.islands.len(), if req.islands.len() == 1 { "" } else { "s" }),
-            "a pocket without islands for this method: adaptive clearing (--method adaptive, the default, \
-             without --open-edges) plans round islands",
-        ));
-    }
+    islands::validate_request(req)?;
     let least = MEDIAL_AXIS_MIN_STEP_OVER_RATIO * 2.0 * settings.tool_radius;
     if req.strategy == PocketStrategy::MedialAxis && settings.step_over < least {
         return Err(Error::param(
