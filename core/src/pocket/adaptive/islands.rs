@@ -27,7 +27,7 @@
 use super::corners::{convex_corners, corner_passes, cusp_passes};
 use super::finish::finishing_pass;
 use super::loops::{Builder, closest_on, link, start_near};
-use super::open::{Seed, merge_into};
+use super::open::Seed;
 use super::options::{AdaptiveOptions, concave_step};
 use super::part::PartContext;
 use super::plan::AdaptivePart;
@@ -172,48 +172,16 @@ fn clear_part(
     let ring0 = spiral(b, k0, (r_h, q_f), (r, phi));
     // the rings: geodesic growth in the core from the spiral's disc
     let s0 = (q_f - t).max(1e-3);
-    let k_holes: Vec<Region> = core.holes.clone();
-    let grow = |g: &[Region]| -> Vec<Region> {
-        let mut next: Vec<Region> = Vec::new();
-        for piece in g {
-            let Some(d) = largest(piece.offset(-step)) else { continue };
-            let cut: Vec<HoledRegion> = core
-                .outer
-                .boolean(&d, BoolOp::And)
-                .into_iter()
-                .map(Region::ccw)
-                .filter(|p| p.area() > 1e-9)
-                .map(|outer| HoledRegion { outer, holes: Vec::new() })
-                .collect();
-            let cut = k_holes.iter().fold(cut, subtract);
-            for p in cut {
-                merge_into(&mut next, p.outer);
-            }
-        }
-        next
-    };
-    let holes = core_holes_of(region, &core);
-    let ring_of = |g: &[Region]| -> Vec<Vec<Segment>> {
-        let mut loops: Vec<Vec<Segment>> =
-            g.iter().filter_map(|p| largest(p.offset(-t))).map(|o| o.segments()).collect();
-        for (zone, k_hole) in region.holes.iter().zip(&holes) {
-            let Some(k_hole) = k_hole else { continue };
-            if k_hole.vertices().first().is_some_and(|&v| g.iter().any(|p| p.contains(v))) {
-                loops.push(zone.segments().iter().rev().map(reversed).collect());
-            }
-        }
-        loops
-    };
-    let mut grown: Vec<Region> =
-        largest(core.outer.boolean(&Region::disc(k0, s0), BoolOp::And).into_iter().map(Region::ccw).collect())
-            .into_iter()
-            .collect();
-    let mut area: f64 = grown.iter().map(Region::area).sum();
+    let grow = |g: &[HoledRegion]| -> Vec<HoledRegion> { grown_by(g, &core, step) };
+    let ring_of = |g: &[HoledRegion]| -> Vec<Vec<Segment>> { ring_loops(g, t) };
+    let first = largest(core.outer.boolean(&Region::disc(k0, s0), BoolOp::And).into_iter().map(Region::ccw).collect());
+    let mut grown: Vec<HoledRegion> = first.map(|outer| HoledRegion { outer, holes: Vec::new() }).into_iter().collect();
+    let mut area: f64 = grown.iter().map(net_area).sum();
     let least_growth = 1e-6 * core.outer.area().max(1.0);
     let mut rings: Vec<Vec<Vec<Segment>>> = vec![vec![ring0]];
     while rings.len() < MAX_PASSES {
         let next = grow(&grown);
-        let next_area: f64 = next.iter().map(Region::area).sum();
+        let next_area: f64 = next.iter().map(net_area).sum();
         if next_area <= area + least_growth {
             break;
         }
@@ -222,7 +190,7 @@ fn clear_part(
     }
     // the last ring: the opening of the region with radius T (the whole core grown; where the
     // growth reached it already, it adds nothing and has no runs)
-    rings.push(ring_of(std::slice::from_ref(&core.outer)));
+    rings.push(ring_of(std::slice::from_ref(&core)));
     let gap = entry_gap(r, phi);
     let flat = |loops: &[Vec<Segment>]| loops.iter().flatten().copied().collect::<Vec<Segment>>();
     let (mut ring_runs, mut safe): (Vec<Vec<Vec<Segment>>>, Vec<Vec<Segment>>) = (Vec::new(), Vec::new());
@@ -304,16 +272,64 @@ fn spiral(b: &mut Builder, k0: P2, (q0, q_f): (f64, f64), (r, phi): (f64, f64)) 
     vec![circle]
 }
 
-/// For each hole of `region`, the hole of its core `core` round the same island: the core's
-/// hole that holds the region's hole's first vertex (`None` where the core has none there:
-/// the island's offset joined the core's outer loop).
-fn core_holes_of(region: &HoledRegion, core: &HoledRegion) -> Vec<Option<Region>> {
-    region
-        .holes
-        .iter()
-        .map(|h| {
-            let v = h.vertices().first().copied();
-            core.holes.iter().find(|k| v.is_some_and(|v| k.contains(v))).cloned()
-        })
-        .collect()
+/// The area of a region less its holes (mm²).
+fn net_area(g: &HoledRegion) -> f64 {
+    g.outer.area() - g.holes.iter().map(Region::area).sum::<f64>()
+}
+
+/// G_j+1 = K ∩ (G_j ⊕ a) for the sets `g` (each an outer loop with holes: islands' holes of the
+/// core and what the growth has not reached round them), the core `core` and the step `a`:
+/// each outer loop offset outward (the loops it closes round become holes), each hole inward,
+/// pieces that overlap united (their holes kept), cut to the core's outer loop, less the
+/// core's holes.
+fn grown_by(g: &[HoledRegion], core: &HoledRegion, a: f64) -> Vec<HoledRegion> {
+    let mut merged: Vec<HoledRegion> = Vec::new();
+    for piece in g {
+        let offs = piece.outer.offset(-a);
+        let Some(k) = (0..offs.len()).max_by(|&x, &y| offs[x].area().total_cmp(&offs[y].area())) else { continue };
+        let mut holes: Vec<Region> = offs.iter().enumerate().filter(|&(j, _)| j != k).map(|(_, o)| o.clone()).collect();
+        holes.extend(piece.holes.iter().flat_map(|h| h.offset(a)));
+        let mut grown = HoledRegion { outer: offs[k].clone(), holes };
+        while let Some(i) = merged.iter().position(|q| !q.outer.boolean(&grown.outer, BoolOp::And).is_empty()) {
+            let q = merged.swap_remove(i);
+            let Some(u) = largest(q.outer.boolean(&grown.outer, BoolOp::Or)) else { break };
+            let mut holes = q.holes;
+            holes.append(&mut grown.holes);
+            grown = HoledRegion { outer: u.ccw(), holes };
+        }
+        merged.push(grown);
+    }
+    let mut out: Vec<HoledRegion> = Vec::new();
+    for m in merged {
+        for outer in core.outer.boolean(&m.outer, BoolOp::And).into_iter().map(Region::ccw).filter(|p| p.area() > 1e-9)
+        {
+            let holes: Vec<Region> = m
+                .holes
+                .iter()
+                .filter(|h| h.area() > 1e-9 && h.vertices().first().is_some_and(|&v| outer.contains(v)))
+                .cloned()
+                .collect();
+            out.push(HoledRegion { outer, holes });
+        }
+    }
+    core.holes.iter().fold(out, subtract)
+}
+
+/// The ring ∂(G ⊕ T) of the sets `g` as loops: each outer loop offset outward by T
+/// (counter-clockwise; a loop it closes round, clockwise) and each hole offset inward by T
+/// (clockwise: round the island or what is not cut yet, climb).
+fn ring_loops(g: &[HoledRegion], t: f64) -> Vec<Vec<Segment>> {
+    let cw = |o: &Region| -> Vec<Segment> { o.segments().iter().rev().map(reversed).collect() };
+    let mut loops: Vec<Vec<Segment>> = Vec::new();
+    for p in g {
+        let offs = p.outer.offset(-t);
+        let outer = (0..offs.len()).max_by(|&a, &b| offs[a].area().total_cmp(&offs[b].area()));
+        for (k, o) in offs.iter().enumerate() {
+            loops.push(if Some(k) == outer { o.segments() } else { cw(o) });
+        }
+        for h in &p.holes {
+            loops.extend(h.offset(t).iter().map(cw));
+        }
+    }
+    loops
 }
