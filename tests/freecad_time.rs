@@ -166,7 +166,7 @@ fn measured(moves: &[Move], pocket: &Polygon, stock: f64) -> Acceptance {
             return;
         }
         let path = Toolpath { moves: std::mem::take(run), ..Toolpath::default() };
-        let m = measure(&path, Stock { polygon: pocket, precut: before }, &opts).unwrap();
+        let m = measure(&path, Stock { polygon: pocket, precut: before, islands: &[] }, &opts).unwrap();
         rapid_max = rapid_max.max(m.max_of(MoveKind::Rapid));
         // one profile along all runs: each run's arc lengths after the runs before it (the
         // percentile weighs each position by the length it stands for)

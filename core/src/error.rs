@@ -134,11 +134,14 @@ pub enum Param {
     ProgramName,
     SpindleDirection,
     Coolant,
+    /// The islands of a pocket (`pocket --polygon`: the loops inside the boundary; JSON
+    /// `islands`).
+    Islands,
 }
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 91] = [
+    pub const ALL: [Param; 92] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
@@ -230,6 +233,7 @@ impl Param {
         Param::ProgramName,
         Param::SpindleDirection,
         Param::Coolant,
+        Param::Islands,
     ];
 
     /// The command-line flag without `--` (also the job-file key). The NC tolerance and the
@@ -327,6 +331,7 @@ impl Param {
             Param::ProgramName => "program-name",
             Param::SpindleDirection => "spindle-direction",
             Param::Coolant => "coolant",
+            Param::Islands => "islands",
         }
     }
 
@@ -424,6 +429,7 @@ impl Param {
             Param::ProgramName => "Program name",
             Param::SpindleDirection => "Spindle direction",
             Param::Coolant => "Coolant",
+            Param::Islands => "Islands",
         }
     }
 }

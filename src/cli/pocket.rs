@@ -3,7 +3,7 @@
 
 use super::common::{CornerExportArgs, NcExportOut, err, report_json, with_real_time, write_program};
 use super::core_names;
-use crate::shared::outline::read_single;
+use crate::shared::outline::read_pocket;
 use clap::Args;
 use std::path::PathBuf;
 use trochoplan_core::geom::Polygon;
@@ -21,9 +21,12 @@ pub struct PocketArgs {
     /// by an empty line; or a drawing, `.dxf` (closed polylines, circles, ellipses and LINE/ARC
     /// chains; $INSUNITS, extrusion ±z and block inserts applied, hidden layers skipped) or
     /// `.svg` (every rendered shape and subpath; transforms, nested viewports, <use> and the
-    /// root's size in mm applied, y up), arcs and curves as chords within 0.01 mm. It must hold
-    /// exactly one closed loop, a simple polygon (islands and several pockets are refused);
-    /// at most 20000 vertices. Full rules: docs/outlines.md.
+    /// root's size in mm applied, y up), arcs and curves as chords within 0.01 mm. It holds
+    /// one pocket: the boundary, a simple polygon, and the islands directly inside it (the
+    /// loops after the first in a point list; nested closed loops in a drawing), each apart
+    /// from the walls and the other islands; adaptive clearing plans round the islands, the
+    /// other methods refuse them; several pockets and loops inside islands are refused; at
+    /// most 20000 vertices. Full rules: docs/outlines.md, docs/pockets.md.
     #[arg(long, value_name = "FILE")]
     polygon: PathBuf,
     /// Machine preset (hobby-router, vmc, hsc) for the real time of the pocket's program
@@ -167,8 +170,13 @@ impl PocketArgs {
 /// perforative trochoids along its medial axis (`--method medial-axis`), or adaptive clearing.
 pub fn pocket(args: &PocketArgs) -> Result<String, String> {
     let what = args.polygon.display().to_string();
-    let points = read_single(&args.polygon, "polygon file")?;
+    let (points, island_points) = read_pocket(&args.polygon, "polygon file")?;
     let polygon = Polygon::new(points.clone()).map_err(|e| format!("{what}: {e}"))?;
+    let islands = island_points
+        .into_iter()
+        .enumerate()
+        .map(|(k, v)| Polygon::new(v).map_err(|e| format!("{what}: island {}: {e}", k + 1)))
+        .collect::<Result<Vec<_>, _>>()?;
     let open_edges = pocket::stored_open_edges(&polygon, &points, &args.open_edges).map_err(err)?;
     args.nc.options()?; // the program's flags are checked before the plan
     let req = PocketRequest {
@@ -191,6 +199,7 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
         pace: args.pace.options(args.nc.rpm, args.machine.as_deref())?,
         ramp_pass_depth_mm: args.ramp_pass_depth,
         peak_limit_deg: args.peak_limit,
+        islands,
     };
     let plan = pocket::plan(&req).map_err(err)?;
     let nc_export = match &args.nc.export {

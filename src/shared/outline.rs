@@ -19,6 +19,15 @@ pub fn read_single(path: &Path, what: &str) -> Result<Vec<P2>, String> {
     read_pockets(path, what)?.single().map(<[P2]>::to_vec).map_err(|e| e.to_string())
 }
 
+/// The one pocket of the outline file `path`: its boundary and its islands (the loops directly
+/// inside it); an error names the file when it holds several pockets, a loop inside an
+/// island, or none.
+pub fn read_pocket(path: &Path, what: &str) -> Result<(Vec<P2>, Vec<Vec<P2>>), String> {
+    let pockets = read_pockets(path, what)?;
+    let (boundary, islands) = pockets.one_pocket().map_err(|e| e.to_string())?;
+    Ok((boundary.to_vec(), islands.to_vec()))
+}
+
 /// `points` as the point-list text the pocket editor shows and `outline::read` reads back: one
 /// "x,y" vertex per line.
 pub fn points_text(points: &[P2]) -> String {

@@ -290,8 +290,11 @@ pub fn check(dir: &std::path::Path, label: &str, ext: &str, text: &str, e: &Expe
     let got = loop_of(&json["polygon"]);
     if several {
         // planned with its islands only if the JSON lists each one; two pockets never as one
-        let islands: Vec<Vec<P2>> =
-            json.get("islands").and_then(|v| v.as_array()).map(|a| a.iter().map(loop_of).collect()).unwrap_or_default();
+        let islands: Vec<Vec<P2>> = json
+            .get("island_polygons")
+            .and_then(|v| v.as_array())
+            .map(|a| a.iter().map(loop_of).collect())
+            .unwrap_or_default();
         if e.shape == Shape::TwoPockets || islands.len() + 1 != e.loops.len() {
             return Err(format!(
                 "{} loops planned as a pocket of {} vertices and {} islands (drawn outer loop {:.3} mm off, second {:.3} mm off)",

@@ -275,7 +275,8 @@ pub(super) fn measured(
     opts: &EvaluatorOptions,
 ) -> Result<(CornerPlan, Measurement), Error> {
     let plan = plan_corner(sc, method)?;
-    let measurement = measure(&plan.toolpath, Stock { polygon: &plan.stock, precut: &plan.precut }, opts)?;
+    let measurement =
+        measure(&plan.toolpath, Stock { polygon: &plan.stock, precut: &plan.precut, islands: &[] }, opts)?;
     Ok((plan, measurement))
 }
 

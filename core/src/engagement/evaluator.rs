@@ -274,6 +274,8 @@ pub fn engagement_profile_on(
 /// [`refined_profile`](super::refine::refined_profile)).
 pub(crate) struct Evaluation<'a> {
     stock: &'a Polygon,
+    /// Islands inside the stock polygon: not material ([`Evaluation::with_islands`]).
+    islands: &'a [Polygon],
     path: Vec<Segment>,
     lengths: Vec<f64>,
     /// Arc length at the end of every segment, summed in path order.
@@ -346,6 +348,7 @@ impl<'a> Evaluation<'a> {
         let periphery = Periphery::new(opts.samples);
         Ok(Evaluation {
             stock,
+            islands: &[],
             path,
             lengths,
             ends,
@@ -407,6 +410,14 @@ impl<'a> Evaluation<'a> {
         (sample, arcs_of(&ends))
     }
 
+    /// The same evaluation with `islands` (polygons inside the stock polygon, apart from its
+    /// edges and from each other) taken out of the stock: the material is inside the stock
+    /// polygon and outside every island.
+    pub(crate) fn with_islands(mut self, islands: &'a [Polygon]) -> Evaluation<'a> {
+        self.islands = islands;
+        self
+    }
+
     /// Whether `q` is material for the tool at arc length `s`: inside the stock and at least r
     /// (less the tolerance) from the `before` paths and from the path up to `s`.
     pub(crate) fn material_at(&self, s: f64, q: P2) -> bool {
@@ -414,7 +425,8 @@ impl<'a> Evaluation<'a> {
         let s0 = if i == 0 { 0.0 } else { self.ends[i - 1] };
         let local = if self.lengths[i] > 0.0 { ((s - s0) / self.lengths[i]).clamp(0.0, 1.0) } else { 1.0 };
         let head = Cutter::new(self.path[i].part(0.0, local));
-        if !self.stock.contains(q) || !leaves(q, &head, self.r, self.tol) {
+        if !self.stock.contains(q) || self.islands.iter().any(|i| i.contains(q)) || !leaves(q, &head, self.r, self.tol)
+        {
             return false;
         }
         let (near, _) = self.grid.near(q);
@@ -456,7 +468,7 @@ impl<'a> Evaluation<'a> {
             Some(room - r)
         };
         let rp = r + self.margin;
-        let stock = LocalStock::new(stock, c, rp);
+        let stock = LocalStock::new(stock, self.islands, c, rp);
         let d1 = seg.eval(local).d1;
         let ahead = if d1.norm() > 0.0 { Some(d1.y.atan2(d1.x)) } else { None };
         let (mut angle, chip) = engaged_angle(&stock, c, rp, room, periphery, ahead, ends);

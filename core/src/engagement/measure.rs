@@ -9,7 +9,7 @@
 //! [`sample_weights`]), so they mean what they mean on a uniform profile.
 
 use super::evaluator::{EngagementProfile, EvaluatorOptions};
-use super::refine::{refined_profile, sample_weights};
+use super::refine::{refined_profile_with_islands, sample_weights};
 use crate::error::Error;
 use crate::geom::{P2, Polygon, Segment};
 use crate::toolpath::{MoveKind, Toolpath};
@@ -117,12 +117,14 @@ pub struct Stock<'a> {
     /// Tool-centre paths cut before the tool path (a corner's previous ring and legs); empty for
     /// a pocket, whose only earlier cuts are its entries' bores.
     pub precut: &'a [Segment],
+    /// Islands of the stock polygon: material that stays (never cut, not counted as stock).
+    pub islands: &'a [Polygon],
 }
 
 impl<'a> Stock<'a> {
     /// The whole polygon, nothing cut before.
     pub fn solid(polygon: &'a Polygon) -> Stock<'a> {
-        Stock { polygon, precut: &[] }
+        Stock { polygon, precut: &[], islands: &[] }
     }
 }
 
@@ -134,7 +136,7 @@ pub fn measure(path: &Toolpath, stock: Stock<'_>, opts: &EvaluatorOptions) -> Re
     let kinds = path.kinds();
     let mut cut = stock.precut.to_vec();
     cut.extend(path.bores());
-    let profile = refined_profile(stock.polygon, &cut, &segments, opts)?;
+    let profile = refined_profile_with_islands(stock.polygon, stock.islands, &cut, &segments, opts)?;
     Ok(measured(profile, &segments, &kinds))
 }
 

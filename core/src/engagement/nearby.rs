@@ -155,7 +155,7 @@ fn pieces(k: &Cutter, len: f64) -> Vec<(P2, P2)> {
         .collect()
 }
 
-/// The stock near a tool position c of radius r, for points p with |p − c| ≤ r: wholly inside
+/// The stock (a polygon less its islands) near a tool position c of radius r, for points p with |p − c| ≤ r: wholly inside
 /// or outside the stock (c more than r from every edge), or the edges that can decide the
 /// crossing test of [`Polygon::contains`] for such points — those whose y-range meets the band
 /// |y − c.y| ≤ r and that do not lie wholly left of c.x − r (the test casts its ray towards +x).
@@ -167,24 +167,33 @@ pub enum LocalStock {
 }
 
 impl LocalStock {
-    pub fn new(stock: &Polygon, c: P2, r: f64) -> LocalStock {
-        let v = stock.vertices();
-        let scale = v.iter().fold(c.x.abs().max(c.y.abs()), |m, q| m.max(q.x.abs()).max(q.y.abs()));
+    /// The stock polygon `stock` without its `islands` (polygons inside it, apart from its
+    /// edges and from each other) near c: the crossing test over the edges of every loop is
+    /// the even-odd rule, inside the boundary and outside every island.
+    pub fn new(stock: &Polygon, islands: &[Polygon], c: P2, r: f64) -> LocalStock {
+        let all = std::iter::once(stock).chain(islands);
+        let scale = all
+            .clone()
+            .flat_map(|p| p.vertices())
+            .fold(c.x.abs().max(c.y.abs()), |m, q| m.max(q.x.abs()).max(q.y.abs()));
         let m = 1e-9 * (scale + r);
         let mut edges = Vec::new();
         let mut far = true;
-        let mut j = v.len() - 1;
-        for i in 0..v.len() {
-            // (a, b) as Polygon::contains pairs them, so the crossing test is the same.
-            let (a, b) = (v[i], v[j]);
-            j = i;
-            if a.y.max(b.y) < c.y - r - m || a.y.min(b.y) > c.y + r + m || a.x.max(b.x) < c.x - r - m {
-                continue;
+        for poly in all {
+            let v = poly.vertices();
+            let mut j = v.len() - 1;
+            for i in 0..v.len() {
+                // (a, b) as Polygon::contains pairs them, so the crossing test is the same.
+                let (a, b) = (v[i], v[j]);
+                j = i;
+                if a.y.max(b.y) < c.y - r - m || a.y.min(b.y) > c.y + r + m || a.x.max(b.x) < c.x - r - m {
+                    continue;
+                }
+                edges.push((a, b));
+                far = far && point_segment(c, a, b) > r + m;
             }
-            edges.push((a, b));
-            far = far && point_segment(c, a, b) > r + m;
         }
-        match (far, stock.contains(c)) {
+        match (far, stock.contains(c) && !islands.iter().any(|i| i.contains(c))) {
             (true, true) => LocalStock::Inside,
             (true, false) => LocalStock::Outside,
             (false, _) => LocalStock::Edges(edges),

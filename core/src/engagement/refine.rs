@@ -63,7 +63,19 @@ pub fn refined_profile(
     path: &[Segment],
     opts: &EvaluatorOptions,
 ) -> Result<EngagementProfile, Error> {
-    let eval = Evaluation::new(stock, before, path, opts, MAX_REFINED_POSITIONS)?;
+    refined_profile_with_islands(stock, &[], before, path, opts)
+}
+
+/// [`refined_profile`] over the stock polygon `stock` without its `islands` (polygons inside
+/// it, apart from its edges and from each other: material that stays, never cut).
+pub fn refined_profile_with_islands(
+    stock: &Polygon,
+    islands: &[Polygon],
+    before: &[Segment],
+    path: &[Segment],
+    opts: &EvaluatorOptions,
+) -> Result<EngagementProfile, Error> {
+    let eval = Evaluation::new(stock, before, path, opts, MAX_REFINED_POSITIONS)?.with_islands(islands);
     let positions = eval.positions();
     let coarse = (COARSE_SPACING_PER_RADIUS * opts.tool_radius).max(opts.spacing);
     let picks = coarse_picks(&positions, eval.segment_ends(), coarse);

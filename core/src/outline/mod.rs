@@ -7,8 +7,10 @@
 //! other. A loop's *depth* is the number of other loops around it: a loop of even depth (0, 2,
 //! …) is the boundary of a pocket, a loop of odd depth is an island of the loop immediately
 //! around it (even-odd by nesting). Several top-level loops are several pockets. Every loop
-//! keeps its vertices in the file's order and sense (edge numbers of the file stay valid). Until the planners cut around islands, a pocket
-//! program takes exactly one loop: [`Pockets::single`] is the error naming what the file holds.
+//! keeps its vertices in the file's order and sense (edge numbers of the file stay valid). A pocket
+//! program takes one pocket with its islands ([`Pockets::one_pocket`]: one level of nesting;
+//! a loop inside an island is refused by name); [`Pockets::single`] takes exactly one loop
+//! where islands have no meaning.
 //!
 //! # Formats
 //! - Point lists ([`text`]): one vertex per line, loops separated by an empty line (the first
@@ -129,6 +131,38 @@ impl Pockets {
                 )))
             }
         }
+    }
+}
+
+impl Pockets {
+    /// The one pocket of the file: its boundary and its islands (the loops directly inside
+    /// it). An error names the file and what it holds where it has several pockets side by
+    /// side, or a loop inside an island (nesting deeper than boundary and islands).
+    pub fn one_pocket(&self) -> Result<(&[P2], &[Vec<P2>]), Error> {
+        if let [one] = &self.pockets[..] {
+            return Ok((&one.boundary, &one.islands));
+        }
+        let first = |o: &Outline| o.boundary[0];
+        let nested = self
+            .pockets
+            .iter()
+            .find(|p| self.pockets.iter().flat_map(|q| &q.islands).any(|i| crate::geom::loop_contains(i, first(p))));
+        let loops = self.loop_count();
+        Err(Error::File(match nested {
+            Some(p) => format!(
+                "{}: a loop lies inside an island (the loop through ({}, {})): a pocket is a boundary with \
+                 islands directly inside it, no deeper nesting; give the pocket inside the island as its own file",
+                self.name,
+                num(first(p).x),
+                num(first(p).y)
+            ),
+            None => format!(
+                "{}: the drawing has {loops} closed loops making {} separate pockets: give one pocket (a boundary \
+                 and the islands inside it) per file",
+                self.name,
+                self.pockets.len()
+            ),
+        }))
     }
 }
 

@@ -26,10 +26,15 @@ struct Walls {
 }
 
 impl Walls {
-    fn new(polygon: &Polygon, open_edges: &[usize], r: f64) -> Walls {
+    fn new(polygon: &Polygon, open_edges: &[usize], islands: &[Polygon], r: f64) -> Walls {
         let v = polygon.vertices();
         let n = v.len();
-        let edges: Vec<(P2, P2)> = (0..n).filter(|i| !open_edges.contains(i)).map(|i| (v[i], v[(i + 1) % n])).collect();
+        let mut edges: Vec<(P2, P2)> =
+            (0..n).filter(|i| !open_edges.contains(i)).map(|i| (v[i], v[(i + 1) % n])).collect();
+        for island in islands {
+            let w = island.vertices();
+            edges.extend((0..w.len()).map(|i| (w[i], w[(i + 1) % w.len()])));
+        }
         let (lo, hi) = EdgeGrid::bounds(v);
         let span = (hi - lo).x.max((hi - lo).y).max(1e-9);
         let cell = r.max(span / MAX_CELLS_PER_SIDE as f64);
@@ -117,7 +122,23 @@ pub fn check_clearance(
     what: impl Fn(usize) -> String,
     entries: &[Entry],
 ) -> Result<(), Error> {
-    let walls = Walls::new(polygon, open_edges, r);
+    check_clearance_with_islands((polygon, &[]), open_edges, r, segments, what, entries)
+}
+
+/// Check every move at depth `segments` (with `what[i]` naming move i) and what the entries
+/// cut at depth against the walls of `polygon` (its edges but `open_edges`) and of its
+/// `islands` for a tool of radius `r` (module docs). Error (geometry, `tool path`) naming the
+/// first move that comes nearer than r − [`GUARD_TOLERANCE_MM`] to a wall, or leaves the
+/// pocket, or starts inside an island.
+pub fn check_clearance_with_islands(
+    (polygon, islands): (&Polygon, &[Polygon]),
+    open_edges: &[usize],
+    r: f64,
+    segments: &[Segment],
+    what: impl Fn(usize) -> String,
+    entries: &[Entry],
+) -> Result<(), Error> {
+    let walls = Walls::new(polygon, open_edges, islands, r);
     let mut seen = vec![usize::MAX; walls.grid.edges().len()];
     let entry_moves: Vec<(Segment, String)> = entries
         .iter()
@@ -135,7 +156,11 @@ pub fn check_clearance(
     for (stamp, (seg, name, i)) in all.enumerate() {
         let name = || name.clone().unwrap_or_else(|| what(i));
         let at = seg.start();
-        if !(at.x.is_finite() && at.y.is_finite() && in_pocket(polygon, open_edges, at)) {
+        if !(at.x.is_finite()
+            && at.y.is_finite()
+            && in_pocket(polygon, open_edges, at)
+            && !islands.iter().any(|i| i.contains(at)))
+        {
             return Err(Error::geometry(
                 "tool path",
                 format!("{} starts at ({}, {}), outside the pocket", name(), num(at.x), num(at.y)),
@@ -160,7 +185,7 @@ pub fn check_clearance(
                     num(edge.1.y),
                     num(r)
                 ),
-                format!("every move at depth at least r − {GUARD_TOLERANCE_MM} mm from every wall"),
+                format!("every move at depth at least r − {GUARD_TOLERANCE_MM} mm from every wall and island"),
             ));
         }
     }

@@ -178,7 +178,7 @@ mod tests {
                     assert!((sa + sb).abs() < 1e-12);
                 }
             }
-            let stock = Stock { polygon: &conv.plan.stock, precut: &conv.plan.precut };
+            let stock = Stock { polygon: &conv.plan.stock, precut: &conv.plan.precut, islands: &[] };
             let own = measure(&conv.plan.toolpath, stock, &EvaluatorOptions::new(5.0, 0.25)).expect("measure");
             let reported = &conv.measurement;
             assert!((own.max_engagement_rad - reported.max_engagement_rad).abs() < 1e-6, "{method:?}");

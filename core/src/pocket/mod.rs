@@ -17,6 +17,7 @@ mod cusp;
 pub mod entry;
 mod growth;
 pub mod guard;
+pub mod islands;
 pub mod mirror;
 pub mod pace;
 #[cfg(test)]
@@ -29,7 +30,9 @@ mod run_order;
 mod runs;
 pub mod slot;
 
-pub use adaptive::{AdaptiveOptions, AdaptivePart, AdaptivePlan, CornerPasses, plan_adaptive, plan_adaptive_open};
+pub use adaptive::{
+    AdaptiveOptions, AdaptivePart, AdaptivePlan, CornerPasses, plan_adaptive, plan_adaptive_islands, plan_adaptive_open,
+};
 pub use corner_point::CornerPoint;
 pub use pace::{Pace, PaceOptions};
 pub use path::PocketPath;
@@ -227,6 +230,12 @@ pub struct PocketRequest {
     /// refused by name.
     #[serde(default)]
     pub peak_limit_deg: Option<f64>,
+    /// Islands inside `polygon` (JSON `islands`; the loops inside the boundary of the
+    /// `--polygon` file): material that stays, each apart from the walls and from the other
+    /// islands ([`islands::validate_islands`]). Adaptive clearing plans round them
+    /// ([`plan_adaptive_islands`]); the other methods refuse them.
+    #[serde(default)]
+    pub islands: Vec<Polygon>,
 }
 
 impl Default for PocketRequest {
@@ -247,6 +256,7 @@ impl Default for PocketRequest {
             pace: PaceOptions::default(),
             ramp_pass_depth_mm: None,
             peak_limit_deg: None,
+            islands: Vec::new(),
         }
     }
 }
@@ -532,6 +542,7 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
         ));
     }
     guard::validate_open_corners(&req.polygon, &req.open_edges)?;
+    islands::validate_request(req)?;
     let least = MEDIAL_AXIS_MIN_STEP_OVER_RATIO * 2.0 * settings.tool_radius;
     if req.strategy == PocketStrategy::MedialAxis && settings.step_over < least {
         return Err(Error::param(
@@ -553,6 +564,7 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
     let peak_limit = peak_limit_rad(req.peak_limit_deg, target)?;
     let auto_slot = req.strategy == PocketStrategy::Adaptive
         && req.open_edges.is_empty()
+        && req.islands.is_empty()
         && slot::is_narrow(&req.polygon, &settings, &req.adaptive);
     if auto_slot
         && check_work(&req.polygon, PocketStrategy::Slot, &settings).is_ok()
@@ -635,6 +647,9 @@ fn plan_with(req: &PocketRequest, strategy: PocketStrategy, settings: PocketSett
         PocketStrategy::MedialAxis => {
             plan_perforative(&polygon, settings, &req.adaptive).map(PocketPlan::MedialAxis).map(back)
         }
+        PocketStrategy::Adaptive if !req.islands.is_empty() => {
+            plan_adaptive_islands(&req.polygon, &req.islands, settings, req.adaptive).map(PocketPlan::Adaptive)
+        }
         PocketStrategy::Adaptive => {
             plan_adaptive_open(&req.polygon, &req.open_edges, settings, req.adaptive).map(PocketPlan::Adaptive)
         }
@@ -648,7 +663,14 @@ fn plan_with(req: &PocketRequest, strategy: PocketStrategy, settings: PocketSett
     let name = |i: usize| {
         format!("move #{} ({})", i + 1, kinds.get(i).map_or("move".into(), |k| format!("{k:?}").to_lowercase()))
     };
-    guard::check_clearance(&req.polygon, &req.open_edges, settings.tool_radius, &segments, name, &plan.entries())?;
+    guard::check_clearance_with_islands(
+        (&req.polygon, &req.islands),
+        &req.open_edges,
+        settings.tool_radius,
+        &segments,
+        name,
+        &plan.entries(),
+    )?;
     let mut plan = plan;
     let path = plan.path_mut();
     path.pace = Some(pace::pace(path, &req.pace)?);

@@ -15,6 +15,9 @@ use serde::{Deserialize, Serialize};
 pub struct PocketPath {
     /// The validated pocket (counter-clockwise).
     pub polygon: Polygon,
+    /// Its islands (material that stays; none: a plain pocket).
+    #[serde(default)]
+    pub islands: Vec<Polygon>,
     pub settings: PocketSettings,
     /// Every move at depth in machining order, the entries of the parts, the retracts.
     pub toolpath: Toolpath,
@@ -42,13 +45,26 @@ impl PocketPath {
         toolpath: Toolpath,
         depth_mm: f64,
     ) -> Result<PocketPath, Error> {
+        PocketPath::measured_with_islands(polygon, &[], settings, toolpath, depth_mm)
+    }
+
+    /// [`Self::measured`] over the pocket `polygon` with its `islands` (the evaluator's stock
+    /// is the pocket less the islands).
+    pub fn measured_with_islands(
+        polygon: &Polygon,
+        islands: &[Polygon],
+        settings: PocketSettings,
+        toolpath: Toolpath,
+        depth_mm: f64,
+    ) -> Result<PocketPath, Error> {
         let opts = EvaluatorOptions::new(settings.tool_radius, settings.spacing);
-        let measurement = measure(&toolpath, Stock::solid(polygon), &opts)?;
+        let measurement = measure(&toolpath, Stock { polygon, precut: &[], islands }, &opts)?;
         let link_length_mm = toolpath.length_of(&[MoveKind::Link]);
         let entry_length_mm = toolpath.entry_length_mm(depth_mm);
         let time_s = (measurement.length_at_depth_mm + entry_length_mm) / settings.feed_mm_per_min * 60.0;
         Ok(PocketPath {
             polygon: polygon.clone(),
+            islands: islands.to_vec(),
             settings,
             toolpath,
             measurement,
@@ -83,6 +99,7 @@ impl PocketPath {
     /// moves, entries, the profile's positions and the maxima's places.
     pub fn mirrored(mut self, polygon: &Polygon) -> PocketPath {
         self.polygon = polygon.clone();
+        self.islands = self.islands.iter().filter_map(|i| crate::geom::mirror::mirrored_polygon(i).ok()).collect();
         for m in &mut self.toolpath.moves {
             m.segment = m.segment.mirrored_x();
         }

@@ -53,6 +53,8 @@ pub const MAX_EXPANSIONS: usize = 400;
 /// The link router of one pocket and tool radius, with the visibility edges found so far.
 pub struct Router {
     polygon: Polygon,
+    /// The pocket's islands: the links keep r from their edges too and never cross them.
+    islands: Vec<Polygon>,
     r: f64,
     waypoints: Vec<P2>,
     /// `visible[i]`: the waypoints a straight leg from waypoint i reaches, with its length;
@@ -78,16 +80,29 @@ impl PartialOrd for Queued {
 impl Router {
     /// The router of `polygon` for a tool of radius `r`: its waypoints (module docs).
     pub fn new(polygon: &Polygon, r: f64) -> Router {
-        let v = polygon.vertices();
-        let n = v.len();
+        Router::with_islands(polygon, &[], r)
+    }
+
+    /// The router of `polygon` with its `islands` (polygons inside it, apart from its walls):
+    /// the tool-centre region is also r off every island, so the waypoints include those
+    /// about the islands' convex vertices (reflex vertices of the region's boundary, seen
+    /// from the pocket), and every leg is checked against the islands' edges as well.
+    pub fn with_islands(polygon: &Polygon, islands: &[Polygon], r: f64) -> Router {
         let r_w = r + WAYPOINT_MARGIN_MM;
-        // (vertex, inward normal in, turn angle β > 0) of each reflex vertex
-        let reflex: Vec<(P2, P2, f64)> = (0..n)
-            .filter_map(|i| {
-                let (a, b, c) = (v[(i + n - 1) % n], v[i], v[(i + 1) % n]);
-                let (d_in, d_out) = ((b - a).normalize(), (c - b).normalize());
-                let turn = cross(d_in, d_out).atan2(d_in.dot(&d_out));
-                (turn < -1e-12).then(|| (b, rot90(d_in), -turn))
+        // (vertex, inward normal in, turn angle β > 0) of each reflex vertex of the region's
+        // boundary: the pocket's reflex vertices, the islands' convex ones (an island's loop
+        // runs clockwise as a boundary of the region: its vertices reversed)
+        let reversed: Vec<Vec<P2>> = islands.iter().map(|i| i.vertices().iter().rev().copied().collect()).collect();
+        let reflex: Vec<(P2, P2, f64)> = std::iter::once(polygon.vertices())
+            .chain(reversed.iter().map(Vec::as_slice))
+            .flat_map(|v| {
+                let n = v.len();
+                (0..n).filter_map(move |i| {
+                    let (a, b, c) = (v[(i + n - 1) % n], v[i], v[(i + 1) % n]);
+                    let (d_in, d_out) = ((b - a).normalize(), (c - b).normalize());
+                    let turn = cross(d_in, d_out).atan2(d_in.dot(&d_out));
+                    (turn < -1e-12).then(|| (b, rot90(d_in), -turn))
+                })
             })
             .collect();
         let total: f64 = reflex.iter().map(|&(_, _, beta)| (beta / WAYPOINT_STEP_RAD).ceil() + 1.0).sum();
@@ -104,18 +119,34 @@ impl Router {
             for k in 0..=m {
                 let ang = a0 - delta * k as f64;
                 let w = vertex + p2(ang.cos(), ang.sin()) * rho;
-                if polygon.contains(w) && polygon.boundary_distance(w) >= r_w - 1e-12 {
+                if polygon.contains(w)
+                    && polygon.boundary_distance(w) >= r_w - 1e-12
+                    && islands.iter().all(|i| !i.contains(w) && i.boundary_distance(w) >= r_w - 1e-12)
+                {
                     waypoints.push(w);
                 }
             }
         }
         let count = waypoints.len();
-        Router { polygon: polygon.clone(), r, waypoints, visible: vec![None; count] }
+        Router { polygon: polygon.clone(), islands: islands.to_vec(), r, waypoints, visible: vec![None; count] }
     }
 
     /// The polygon and tool radius this router is for.
     pub fn is_for(&self, polygon: &Polygon, r: f64) -> bool {
         self.r == r && self.polygon == *polygon
+    }
+
+    /// Whether the straight leg from `a` to `b` keeps `r` from every island's edges and does
+    /// not start inside one (so it never crosses one).
+    fn off_islands(&self, a: P2, b: P2, r: f64) -> bool {
+        off_islands(&self.islands, a, b, r)
+    }
+
+    /// Whether the straight leg from `a` to `b` keeps the tool radius from every island of
+    /// the pocket (true where it has none): what a planner checks before a straight move that
+    /// is not routed.
+    pub fn keeps_off_islands(&self, a: P2, b: P2) -> bool {
+        self.islands.is_empty() || self.off_islands(a, b, self.r - LINK_SLACK_MM)
     }
 
     /// The waypoints (module docs).
@@ -124,7 +155,7 @@ impl Router {
     }
 
     fn clear(&self, a: P2, b: P2) -> bool {
-        link_is_inside(&self.polygon, a, b, self.r - LINK_SLACK_MM)
+        link_is_inside(&self.polygon, a, b, self.r - LINK_SLACK_MM) && self.off_islands(a, b, self.r - LINK_SLACK_MM)
     }
 
     /// The shortest path from `a` to `b` (both ends included) along which the tool centre
@@ -164,8 +195,7 @@ impl Router {
             let pu = if u == nw { a } else { self.waypoints[u] };
             // the goal from u (a itself does not see it: checked above)
             if u < nw {
-                let sees =
-                    *sees_goal[u].get_or_insert_with(|| link_is_inside(&self.polygon, pu, b, self.r - LINK_SLACK_MM));
+                let sees = *sees_goal[u].get_or_insert_with(|| self.clear(pu, b));
                 if sees {
                     let len = g + (b - pu).norm();
                     if best.is_none_or(|(l, _)| len < l) {
@@ -224,12 +254,19 @@ impl Router {
 pub struct RouterCache {
     router: Option<Router>,
     pinned: bool,
+    /// The islands every router of this cache keeps off.
+    islands: Vec<Polygon>,
 }
 
 impl RouterCache {
+    /// A cache whose routers keep off `islands` as well as the walls.
+    pub fn with_islands(islands: &[Polygon]) -> RouterCache {
+        RouterCache { router: None, pinned: false, islands: islands.to_vec() }
+    }
+
     /// A cache whose links are routed in `polygon` whatever pocket they are asked for.
     pub fn pinned(polygon: &Polygon, r: f64) -> RouterCache {
-        RouterCache { router: Some(Router::new(polygon, r)), pinned: true }
+        RouterCache { router: Some(Router::new(polygon, r)), pinned: true, islands: Vec::new() }
     }
 
     /// The router of `polygon` and `r` (built on first use, rebuilt when they change), or the
@@ -237,10 +274,20 @@ impl RouterCache {
     pub fn get(&mut self, polygon: &Polygon, r: f64) -> &mut Router {
         let keep = self.router.as_ref().is_some_and(|rt| if self.pinned { rt.r == r } else { rt.is_for(polygon, r) });
         if !keep {
-            (self.router, self.pinned) = (Some(Router::new(polygon, r)), false);
+            (self.router, self.pinned) = (Some(Router::with_islands(polygon, &self.islands, r)), false);
         }
-        self.router.get_or_insert_with(|| Router::new(polygon, r))
+        self.router.get_or_insert_with(|| Router::with_islands(polygon, &self.islands, r))
     }
+}
+
+/// Whether the straight leg from `a` to `b` keeps `r` from the edges of every island of
+/// `islands` and does not start inside one (exact distances).
+pub fn off_islands(islands: &[Polygon], a: P2, b: P2, r: f64) -> bool {
+    islands.iter().all(|i| {
+        let v = i.vertices();
+        let n = v.len();
+        !i.contains(a) && (0..n).all(|k| crate::geom::segment_segment_distance(a, b, v[k], v[(k + 1) % n]) >= r - 1e-9)
+    })
 }
 
 /// Length of a path through the points `pts` (mm).

@@ -25,6 +25,11 @@ pub enum PocketReport {
     Slot(SlotReport),
 }
 
+/// Whether a count is zero (a key left out of the JSON then).
+fn is_zero(n: &usize) -> bool {
+    *n == 0
+}
+
 /// The report of `plan`, planned from `req`.
 pub fn pocket(req: &PocketRequest, plan: &PocketPlan) -> Result<PocketReport, Error> {
     Ok(match plan {
@@ -396,6 +401,12 @@ pub struct AdaptiveReport {
     pub polygon: Vec<[f64; 2]>,
     /// The polygon's open edges (`--open-edges`, as stored: counter-clockwise).
     pub open_edges: Vec<usize>,
+    /// How many islands the pocket has, and their vertices (counter-clockwise, as `polygon`);
+    /// both keys only where it has any.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub islands: usize,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub island_polygons: Vec<Vec<[f64; 2]>>,
     /// Each way down, in order: each part's entry, its kind ("helix", "ramp" or "outside":
     /// straight down beyond an open edge, where the tool's disc keeps r off the stock) and
     /// where, and after a retract where a link finds no way at depth, "down" (straight down
@@ -450,6 +461,8 @@ impl AdaptiveReport {
             target_deg: plan.target_rad.to_degrees(),
             polygon: polygon_rows(&plan.path),
             open_edges: plan.open_edges.clone(),
+            islands: plan.path.islands.len(),
+            island_polygons: plan.path.islands.iter().map(|i| i.vertices().iter().map(|&v| xy(v)).collect()).collect(),
             entries: entries.iter().map(EntryRow::of).collect(),
             helices: entry_rows(entries, plan.options.depth_mm).0,
             parts: plan.parts.len(),

@@ -25,6 +25,10 @@ impl FileDialogs for NoPortal {
         self.calls += 1;
         None
     }
+    fn open_program(&mut self) -> Option<PathBuf> {
+        self.calls += 1;
+        None
+    }
     fn unavailable(&mut self) -> Option<String> {
         Some("No file dialog appeared".into())
     }
@@ -99,5 +103,18 @@ fn without_a_portal_jobs_programs_and_outlines_are_saved_and_opened_through_the_
     assert_eq!(h.state().state.pocket.polygon_text, "0,0\n50,0\n50,30\n0,30\n", "{:?}", status(&h));
 
     // the recent files list them, newest first
-    assert_eq!(h.state().view.recent, vec![outline, job_file]);
+    assert_eq!(h.state().view.recent, vec![outline.clone(), job_file]);
+
+    // the Program tab: an NC program (the slot's, written above) and its stock outline
+    h.get_by_label("Program").click();
+    h.run();
+    h.get_by_label(label::OPEN_PROGRAM_A).click();
+    h.run();
+    type_path(&mut h, &nc_file);
+    let loaded = h.state().program.slots[0].loaded.as_ref().map(|p| p.path.clone());
+    assert_eq!(loaded.as_deref(), Some(nc_file.as_path()), "{:?}", status(&h));
+    h.get_by_label(label::OPEN_STOCK).click();
+    h.run();
+    type_path(&mut h, &outline);
+    assert!(h.state().program.stock.is_some(), "{:?}", status(&h));
 }

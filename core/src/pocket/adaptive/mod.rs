@@ -112,6 +112,8 @@
 mod arms;
 mod corners;
 mod finish;
+mod hot_links;
+mod islands;
 mod loops;
 mod open;
 mod options;
@@ -168,7 +170,7 @@ pub fn plan_adaptive_open(
 ) -> Result<AdaptivePlan, Error> {
     let (parts, b, corner_radius_left_mm) = plan_path(polygon, open_edges, &settings, &options)?;
     let phi = options.target_rad(&settings)?;
-    let mut plan = measure(polygon.clone(), settings, options, phi, parts, b, corner_radius_left_mm)?;
+    let mut plan = measure(polygon.clone(), &[], settings, options, phi, parts, b, corner_radius_left_mm)?;
     plan.open_edges = open_edges.to_vec();
     Ok(plan)
 }
@@ -184,6 +186,67 @@ pub fn adaptive_path(
 ) -> Result<AdaptivePath, Error> {
     let (parts, b, left) = plan_path(polygon, &[], &settings, &options)?;
     Ok((parts, b.segments, b.kinds, left))
+}
+
+/// Plan the adaptive clearing of `polygon` round its `islands` (polygons inside it, apart from
+/// its walls and from each other: [`crate::pocket::islands::validate_islands`]): one part per
+/// region of tool centres, each round the islands it holds ([`islands`]); measured over the
+/// pocket less the islands.
+pub fn plan_adaptive_islands(
+    polygon: &Polygon,
+    islands: &[Polygon],
+    settings: PocketSettings,
+    options: AdaptiveOptions,
+) -> Result<AdaptivePlan, Error> {
+    settings.validate()?;
+    options.validate(&settings)?;
+    let mirror = options.direction == Direction::Conventional;
+    let (work, work_islands) = if mirror {
+        (mirrored_polygon(polygon)?, islands.iter().map(mirrored_polygon).collect::<Result<Vec<_>, _>>()?)
+    } else {
+        (polygon.clone(), islands.to_vec())
+    };
+    let r = settings.tool_radius;
+    let phi = options.target_rad(&settings)?;
+    let sf = options.finish_stock_mm;
+    let rho_fin = if sf > 0.0 { fin_radius(sf, r, phi) } else { 0.1 * r };
+    let (mut parts, mut b) = islands::clear_round_islands(&work, &work_islands, &settings, &options, (phi, rho_fin))?;
+    if mirror {
+        mirror_back(&mut parts, &mut b);
+    }
+    let left = if sf > 0.0 { r + options.corner_tolerance_mm } else { r + rho_fin };
+    // links that cut above the target + 1° (round an island through stock not yet cleared)
+    // become retracts ([`hot_links`])
+    let limit = phi + crate::pocket::TARGET_SLACK_RAD;
+    let copy = |b: &Builder| Builder {
+        segments: b.segments.clone(),
+        kinds: b.kinds.clone(),
+        retracts: b.retracts.clone(),
+        ..Builder::default()
+    };
+    let mut plan = measure(polygon.clone(), islands, settings, options, phi, parts.clone(), copy(&b), left)?;
+    for _ in 0..hot_links::MAX_ROUNDS {
+        let Some((nb, np)) = hot_links::without_hot_links(&plan.path, &b, &parts, limit) else { break };
+        plan = measure(polygon.clone(), islands, settings, options, phi, np.clone(), copy(&nb), left)?;
+        (b, parts) = (nb, np);
+    }
+    Ok(plan)
+}
+
+/// The moves and the parts' entries and corners of a plan of the mirrored pocket, mirrored back.
+fn mirror_back(parts: &mut [AdaptivePart], b: &mut Builder) {
+    for s in &mut b.segments {
+        *s = mirror_segment(s);
+    }
+    for p in parts {
+        p.entry = p.entry.mirrored();
+        for c in &mut p.corners {
+            c.vertex.x = -c.vertex.x;
+        }
+        for c in &mut p.corner_points {
+            c.vertex.x = -c.vertex.x;
+        }
+    }
 }
 
 fn plan_path(
@@ -224,18 +287,7 @@ fn plan_path(
         clear_regions(&regions, &open.near_polygon, &settings, &options, phi, rho_fin, (Some(&open), true))?
     };
     if mirror {
-        for s in &mut b.segments {
-            *s = mirror_segment(s);
-        }
-        for p in &mut parts {
-            p.entry = p.entry.mirrored();
-            for c in &mut p.corners {
-                c.vertex.x = -c.vertex.x;
-            }
-            for c in &mut p.corner_points {
-                c.vertex.x = -c.vertex.x;
-            }
-        }
+        mirror_back(&mut parts, &mut b);
     }
     let left = if sf > 0.0 { r + options.corner_tolerance_mm } else { r + rho_fin };
     Ok((parts, b, left))

@@ -68,8 +68,10 @@ pub struct AdaptivePlan {
 }
 
 /// Evaluate every move at depth and gather the report.
+#[allow(clippy::too_many_arguments)]
 pub(super) fn measure(
     polygon: Polygon,
+    islands: &[Polygon],
     settings: PocketSettings,
     options: AdaptiveOptions,
     phi: f64,
@@ -95,7 +97,7 @@ pub(super) fn measure(
         .collect();
     let toolpath = Toolpath::at_depth(&b.segments, &b.kinds, -options.depth_mm, entries, retract_before);
     // the bores of helices and ramps are cut; outside the stock nothing was
-    let path = PocketPath::measured(&polygon, settings, toolpath, options.depth_mm)?;
+    let path = PocketPath::measured_with_islands(&polygon, islands, settings, toolpath, options.depth_mm)?;
     let profile = &path.measurement.profile;
     // Corner maxima: the samples on each part's corner passes nearest each corner.
     for (smp, &i) in profile.samples.iter().zip(&sample_owners(profile, &b.segments)) {

@@ -701,7 +701,7 @@ fn measure_sums_the_lengths_by_kind_and_gives_each_corner_its_peak() {
     let parts = vec![part(helix(p2(15.0, 15.0)), 0, 2, Vec::new()), part(helix(p2(30.0, 25.0)), 2, 5, vec![corner])];
     let b = Builder { segments, kinds, radii: Vec::new(), router: Default::default(), retracts: vec![4, 2] };
     let options = AdaptiveOptions::default();
-    let plan = measure(polygon, settings(), options, target(), parts, b, R + 0.005).unwrap();
+    let plan = measure(polygon, &[], settings(), options, target(), parts, b, R + 0.005).unwrap();
     assert_eq!(plan.path.toolpath.retract_before, vec![2, 4]);
     let m = &plan.path.measurement;
     let derived = [

@@ -155,7 +155,7 @@ fn within(p: P2, polys: &[Vec<P2>], ring: &[Segment], cleared: &Cleared) -> bool
 }
 
 /// `sg` run backwards.
-fn reversed(sg: &Segment) -> Segment {
+pub(super) fn reversed(sg: &Segment) -> Segment {
     match *sg {
         Segment::Line { start, end } => Segment::Line { start: end, end: start },
         Segment::Arc { center, radius, start_angle, sweep } => {
@@ -246,7 +246,12 @@ pub(crate) fn link_within(
     };
     let (j, t, _) = nearest(lp, to);
     let (jb, tb) = before(lp, (j, t), LEAD_IN_RUN * gap);
-    reach(b, polygon, r, (&rings, &polys, safe, cleared), lp[jb].point(tb));
+    let lead = lp[jb].point(tb);
+    // (a pocket with islands: not where the slant would pass an island)
+    if !b.router.get(polygon, r).keeps_off_islands(lead, to) {
+        return reach(b, polygon, r, (&rings, &polys, safe, cleared), to);
+    }
+    reach(b, polygon, r, (&rings, &polys, safe, cleared), lead);
     b.line(to, MoveKind::Link);
 }
 
