@@ -97,7 +97,7 @@ PIN_PAPER_SET="594 43"                   # Compare tab
 RUN_SWEEP="1084 43"                      # Sweep tab
 OPTIMISE="458 354"                       # Machine & optimise tab
 ACCEPTANCE_TABLE="154 43"                # Corner tab
-POCKET_MEDIAL_AXIS="633 43" POCKET_STEP_OVER="1140 43" # Pocket tab
+POCKET_MEDIAL_AXIS="633 65" POCKET_STEP_OVER="129 89" # Pocket tab
 
 take() {
 	case $1 in
