@@ -9,12 +9,16 @@ use super::pocket::PocketResult;
 use eframe::egui::{self, Color32};
 use std::hash::{Hash, Hasher};
 use std::sync::Arc;
-use trochoplan_core::nc::{Dialect, backplot::DEFAULT_CHORD_TOLERANCE_MM, backplot::backplot};
+use trochoplan_core::nc::{Dialect, backplot};
 
 /// Label of the toggle that draws the program over the plan.
 pub const SHOW_PROGRAM: &str = "Program over the plan";
 /// Legend name of the program read back.
 pub const PROGRAM_LINE: &str = "NC program (read back)";
+/// Largest distance of the drawn chords from the program's arcs (mm): a fifth of a pixel of
+/// a 60 mm pocket 1000 pixels wide (0.06 mm a pixel), so the drawing is exact to the eye with
+/// about a third of the points of the back-plot's own 0.001 mm.
+pub const DRAW_CHORD_TOLERANCE_MM: f64 = 0.01;
 /// Colour of the program read back.
 const PROGRAM_COLOR: Color32 = Color32::from_rgb(230, 140, 20);
 
@@ -29,7 +33,7 @@ fn memory_id() -> egui::Id {
 /// The tool-centre polyline of the program `text` written in `dialect`, in mm (the back-plot
 /// reads an inch program's G20 and gives mm).
 pub fn read_back(text: &str, dialect: Dialect) -> Result<Vec<[f64; 2]>, String> {
-    let points = backplot(text, dialect, DEFAULT_CHORD_TOLERANCE_MM)?;
+    let points = backplot(text, dialect, DRAW_CHORD_TOLERANCE_MM)?;
     Ok(points.iter().map(|p| [p.x, p.y]).collect())
 }
 

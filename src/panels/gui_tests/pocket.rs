@@ -385,7 +385,11 @@ fn pocket_draws_the_program_read_back() {
     let mut h = pocket_harness();
     assert!(h.state().state.pocket.show_program, "shown by default");
     let text = h.state().pocket_nc.view().expect("a program").text.clone();
-    let want: Vec<[f64; 2]> = backplot(&text, Dialect::LinuxCnc, 0.001).unwrap().iter().map(|p| [p.x, p.y]).collect();
+    let want: Vec<[f64; 2]> = backplot(&text, Dialect::LinuxCnc, panels::pocket_plot::DRAW_CHORD_TOLERANCE_MM)
+        .unwrap()
+        .iter()
+        .map(|p| [p.x, p.y])
+        .collect();
     let shown = panels::pocket_plot::shown_backplot(&h.ctx).expect("the program drawn");
     assert_eq!(shown.as_ref().as_ref().unwrap(), &want);
     // the program ends where the plan ends (its last move in the plane)
@@ -398,7 +402,11 @@ fn pocket_draws_the_program_read_back() {
     h.run();
     let text = h.state().pocket_nc.view().expect("a program").text.clone();
     assert!(text.contains("G20"), "an inch program");
-    let inch: Vec<[f64; 2]> = backplot(&text, Dialect::LinuxCnc, 0.001).unwrap().iter().map(|p| [p.x, p.y]).collect();
+    let inch: Vec<[f64; 2]> = backplot(&text, Dialect::LinuxCnc, panels::pocket_plot::DRAW_CHORD_TOLERANCE_MM)
+        .unwrap()
+        .iter()
+        .map(|p| [p.x, p.y])
+        .collect();
     let shown = panels::pocket_plot::shown_backplot(&h.ctx).expect("the program drawn");
     assert_eq!(shown.as_ref().as_ref().unwrap(), &inch);
     let last = inch.last().unwrap();
