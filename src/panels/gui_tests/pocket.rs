@@ -412,3 +412,35 @@ fn pocket_draws_the_program_read_back() {
     let last = inch.last().unwrap();
     assert!((last[0] - b[0]).hypot(last[1] - b[1]) < 0.05, "inch program ends at {last:?} mm, plan at {b:?}");
 }
+
+/// Planning on the worker thread: while the plan is being made the tab shows a spinner and
+/// "planning…" with the seconds spent, and the last plan stays on screen; when the answer
+/// arrives the line goes and the new plan is shown.
+#[test]
+fn pocket_shows_planning_until_the_threaded_plan_arrives() {
+    let mut h = pocket_harness();
+    h.state_mut().pocket = panels::pocket::PocketView::threaded(|| {});
+    h.step();
+    wait_for_pocket(&mut h);
+    let first = pocket_result(&h);
+    h.state_mut().state.pocket.strategy = PocketStrategy::MedialAxis;
+    h.step();
+    let mut seen = h.state().pocket.pending() && h.query_all_by_label_contains("planning…").next().is_some();
+    let t0 = Instant::now();
+    while h.state().pocket.pending() && t0.elapsed().as_secs() < 120 {
+        std::thread::sleep(std::time::Duration::from_millis(5));
+        h.step();
+        if h.state().pocket.pending() {
+            assert!(
+                h.state().pocket.last.as_ref().is_some_and(|p| std::sync::Arc::ptr_eq(p, &first)),
+                "the last plan stays"
+            );
+            seen |= h.query_all_by_label_contains("planning…").next().is_some();
+        }
+    }
+    h.step();
+    assert!(seen, "the planning line was shown while the plan was made");
+    assert!(!h.state().pocket.pending(), "answered within 120 s");
+    assert_eq!(pocket_result(&h).plan.strategy(), PocketStrategy::MedialAxis);
+    assert!(h.query_all_by_label_contains("planning…").next().is_none(), "the line goes with the answer");
+}
