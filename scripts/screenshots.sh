@@ -101,7 +101,8 @@ PIN_PAPER_SET="594 43"                   # Compare tab
 RUN_SWEEP="1084 43"                      # Sweep tab
 OPTIMISE="458 354"                       # Machine & optimise tab
 ACCEPTANCE_TABLE="154 43"                # Corner tab
-POCKET_MEDIAL_AXIS="633 43" POCKET_STEP_OVER="1140 43" # Pocket tab
+POCKET_MEDIAL_AXIS="633 65" POCKET_STEP_OVER="129 89" # Pocket tab
+POCKET_MACHINE="927 112" POCKET_VMC="890 186"
 FIRST_PROBLEM="870 447" SIDE_BY_SIDE="232 89" # Program tab
 FREECAD=$(cd "$(dirname "$0")/.." && pwd)/tests/data/freecad
 
@@ -165,6 +166,8 @@ take() {
 	pocket-adaptive)
 		click $TAB_POCKET # adaptive clearing is chosen by default
 		type_into $POCKET_STEP_OVER 1.527
+		click $POCKET_MACHINE
+		click $POCKET_VMC # the real time of the program on the vmc preset
 		shot pocket-adaptive 10 ;;
 	*)
 		echo "unknown picture $1" >&2

@@ -74,7 +74,6 @@ pub fn move_pocket(earlier: EarlierRecord, inputs: &mut Inputs, view: &mut View)
     let c = earlier.corner;
     inputs.pocket = PocketInputs {
         polygon_text: c.polygon_text,
-        tool_diameter_mm: c.tool_diameter_mm,
         step_over_mm: c.pocket_step_over_mm,
         strategy: if c.pocket_adaptive { PocketStrategy::Adaptive } else { PocketStrategy::from_method(c.method) },
         open_edges: c.pocket_open_edges,

@@ -324,7 +324,9 @@ impl App {
     fn refresh_pocket(&mut self) {
         let job = &self.state.job;
         (self.state.pocket.feed_mm_per_min, self.state.pocket.spindle_rpm) = (job.feed, job.rpm);
-        self.state.pocket.teeth = job.teeth;
+        (self.state.pocket.teeth, self.state.pocket.tool_diameter_mm) = (job.teeth, job.tool_diameter);
+        self.state.pocket.depth_mm = self.state.pocket_nc.depth_mm;
+        self.state.pocket.safe_z_mm = job.program.retract_height_mm();
         self.state.pocket_nc.spindle_rpm = job.rpm;
         self.state.pocket_nc.frame.clone_from(&job.program);
         self.pocket.update(&self.state.pocket);

@@ -20,9 +20,7 @@ pub const STRAIGHT_ENGAGEMENT: &str = "Straight engagement a_str (°)";
 pub const ALLOWED_EXCESS_T1: &str = "Allowed excess t1";
 
 // Pocket tab.
-pub const POCKET_TOOL_DIAMETER: &str = "Pocket tool diameter D (mm)";
 pub const POCKET_VERTICES: &str = "Pocket vertices (x,y per line)";
-pub const POCKET_STEP_OVER: &str = "Pocket step-over a_e (mm)";
 /// The pocket's open edges (adaptive clearing).
 pub const POCKET_OPEN_EDGES: &str = "Open edges";
 pub const POCKET_OPEN_OUTLINE: &str = "Open outline…";

@@ -127,7 +127,7 @@ fn pocket_tab_plans_adaptive_clearing() {
     let rows = trochoplan_core::report::pocket(&req, &PocketPlan::Adaptive(want)).unwrap().by_kind().to_vec();
     assert!(rows.len() >= 4, "helix entry, rings, corners, finish at least: {rows:?}");
     for row in &rows {
-        assert!(shows(&h, row.kind.name()), "{:?} row", row.kind);
+        assert!(shows(&h, panels::pocket_numbers::kind_label(row.kind)), "{:?} row", row.kind);
         assert!(shows(&h, &format!("{:.1} mm", row.length_mm)), "{:?} length", row.kind);
     }
     assert!(!shows(&h, "offset"), "no ring table for adaptive clearing");
@@ -213,5 +213,234 @@ fn pocket_strategy_row_shows_and_sets_the_strategy() {
     wait_for_pocket(&mut h);
     assert_eq!(h.state().state.pocket.strategy, iso);
     assert!(only(&h, iso), "isometric alone shown chosen");
-    assert_eq!(pocket_result(&h).method, iso.name());
+    assert_eq!(pocket_result(&h).plan.strategy(), iso);
+}
+
+/// Set the spin button labelled `label` to `v`.
+fn set_number(h: &mut Harness<'_, App>, label: &str, v: f64) {
+    h.get_by_role_and_label(Role::SpinButton, label).set_value_accesskit(v);
+    h.run();
+}
+
+/// Tick the checkbox of the optional field labelled `label`.
+fn tick(h: &mut Harness<'_, App>, label: &str) {
+    h.get_by_role_and_label(Role::CheckBox, label).click();
+    h.run();
+}
+
+/// Every field of the Pocket tab reaches the core's request: set through the window, the plan
+/// shown is the one `pocket::plan` makes of the request built here as `trochoplan pocket`
+/// builds it from the same flags (`--step-over 2 --target-engagement 55 --peak-limit 70
+/// --helix-radius 3 --ramp-angle 3 --finish-stock 0.3 --depth 4 --direction conventional
+/// --machine vmc`, the job's tool and cutting data); the real time is the core's
+/// `toolpath_time` of that plan on vmc, shown as h:min:s.
+#[test]
+fn pocket_fields_reach_the_request() {
+    use panels::pocket_inputs as pi;
+    use trochoplan_core::job::Direction;
+    use trochoplan_core::machine::{CutHeights, Machine, toolpath_time};
+    use trochoplan_core::pocket::{self, AdaptiveOptions, PaceOptions, PocketRequest};
+    let mut h = pocket_harness();
+    // a_e = 2 on D = 10: φ* = arccos(1 − 2/5) = 53.1°, so a target of 55° is allowed
+    set_number(&mut h, pi::STEP_OVER, 2.0);
+    tick(&mut h, pi::TARGET);
+    set_number(&mut h, pi::TARGET, 55.0);
+    tick(&mut h, pi::PEAK_LIMIT);
+    set_number(&mut h, pi::PEAK_LIMIT, 70.0);
+    tick(&mut h, pi::HELIX_RADIUS);
+    set_number(&mut h, pi::HELIX_RADIUS, 3.0);
+    set_number(&mut h, pi::RAMP_ANGLE, 3.0);
+    set_number(&mut h, pi::FINISH_STOCK, 0.3);
+    set_number(&mut h, pi::DEPTH, 4.0);
+    h.get_by_label("conventional").click();
+    h.run();
+    h.get_by_role_and_label(Role::ComboBox, pi::MACHINE).click();
+    h.run();
+    h.get_by_label("vmc").click();
+    h.run();
+    wait_for_pocket(&mut h);
+    assert!(h.state().pocket.error.is_none(), "{:?}", h.state().pocket.error);
+    assert_eq!(h.state().state.pocket_nc.depth_mm, 4.0, "the program's depth is the pocket's");
+
+    let job = Job::default();
+    let vmc = Machine::preset("vmc").unwrap();
+    let req = PocketRequest {
+        tool_diameter_mm: job.tool_diameter,
+        step_over_mm: 2.0,
+        feed_mm_per_min: job.feed,
+        adaptive: AdaptiveOptions {
+            helix_radius_mm: Some(3.0),
+            ramp_deg: 3.0,
+            finish_stock_mm: 0.3,
+            direction: Direction::Conventional,
+            depth_mm: 4.0,
+            target_deg: Some(55.0),
+            ..AdaptiveOptions::default()
+        },
+        pace: PaceOptions {
+            teeth: job.teeth,
+            rpm: job.rpm,
+            max_feed_mm_per_min: Some(vmc.max_speed_mm_per_s() * 60.0),
+            block_time_s: vmc.block_time,
+            machine: Some(vmc.clone()),
+            ..PaceOptions::default()
+        },
+        peak_limit_deg: Some(70.0),
+        ..PocketRequest::default()
+    };
+    assert_eq!(h.state().state.pocket.request().unwrap(), req, "the tab's request");
+    let want = pocket::plan(&req).unwrap();
+    let p = pocket_result(&h);
+    assert_eq!(p.plan, want, "the plan shown is the core's plan of the request");
+    let report = trochoplan_core::report::pocket(&req, &want).unwrap();
+    assert_eq!(panels::pocket_numbers::target_deg(&report), Some(55.0));
+    let heights = CutHeights { depth_mm: 4.0, safe_z_mm: job.program.retract_height_mm() };
+    let t = toolpath_time(want.toolpath(), heights, job.feed, &vmc).unwrap();
+    let (name, shown) = p.real_time.clone().expect("a machine");
+    assert_eq!((name.as_str(), shown.unwrap().total_s), ("vmc", t.total_s));
+    let line = panels::pocket_numbers::lines(&p, &h.state().state.pocket)
+        .into_iter()
+        .map(|(l, _)| l)
+        .find(|l| l.starts_with("real time"))
+        .expect("a real-time line");
+    assert!(line.contains(&panels::pocket_numbers::hms(t.total_s)) && shows(&h, &line), "{line}");
+}
+
+/// The method row: whichever method is clicked is the one shown selected, alone, and the plan
+/// shown is of it (the trochoidal slot on a narrow pocket, the others on the default
+/// rectangle); a pocket too narrow for adaptive clearing's helix is planned as a slot and the
+/// tab says so.
+#[test]
+fn pocket_method_row_shows_the_planned_method() {
+    use egui_kittest::kittest::NodeT;
+    let mut h = pocket_harness();
+    let selected = |h: &Harness<'_, App>, s: PocketStrategy| {
+        h.get_by_label(s.label()).accesskit_node().toggled() == Some(egui::accesskit::Toggled::True)
+    };
+    let narrow = "0,0\n60,0\n60,14\n0,14\n";
+    for chosen in PocketStrategy::ALL {
+        if chosen == PocketStrategy::Slot {
+            h.state_mut().state.pocket.polygon_text = narrow.to_owned();
+        } else {
+            h.state_mut().state.pocket.polygon_text = panels::pocket::PocketInputs::default().polygon_text;
+        }
+        h.get_by_label(chosen.label()).click();
+        h.run();
+        wait_for_pocket(&mut h);
+        assert!(h.state().pocket.error.is_none(), "{}: {:?}", chosen.label(), h.state().pocket.error);
+        for s in PocketStrategy::ALL {
+            assert_eq!(
+                selected(&h, s),
+                s == chosen,
+                "{} shown {} while {} is chosen",
+                s.label(),
+                selected(&h, s),
+                chosen.label()
+            );
+        }
+        assert_eq!(pocket_result(&h).plan.strategy(), chosen, "the plan shown is of the chosen method");
+        assert!(!h.query_all_by_label_contains("Planned as").any(|_| true), "no note for {}", chosen.label());
+    }
+    // 60 × 14 mm with D = 10: the default helix (0.375·D = 3.75 mm, bore 17.5 mm) does not fit
+    h.get_by_label(PocketStrategy::Adaptive.label()).click();
+    h.state_mut().state.pocket.polygon_text = narrow.to_owned();
+    h.run();
+    wait_for_pocket(&mut h);
+    // the helix's bore, even at 0.25·D (2 × 2.5 + 10 = 15 mm), is wider than the 14 mm pocket
+    assert_eq!(pocket_result(&h).plan.strategy(), PocketStrategy::Slot);
+    assert!(selected(&h, PocketStrategy::Adaptive), "the chosen method stays selected");
+    assert!(h.query_all_by_label_contains("Planned as trochoidal slot").next().is_some(), "the note says why");
+}
+
+/// The vertex editor keeps what is typed while the message line above it changes: an outline
+/// typed line by line is invalid (a message), then valid (no message), and every character
+/// typed is in the editor.
+#[test]
+fn pocket_editor_keeps_the_text_while_the_message_changes() {
+    let mut h = pocket_harness();
+    h.state_mut().state.pocket.polygon_text.clear();
+    h.run();
+    h.get_by_label(label::POCKET_VERTICES).click();
+    h.run();
+    let mut typed = String::new();
+    let mut errors = Vec::new();
+    for chunk in ["0,0\n", "50,0\n", "50,30\n", "0,30\n", "# a comment\n"] {
+        h.get_by_label(label::POCKET_VERTICES).type_text(chunk);
+        h.run();
+        wait_for_pocket(&mut h);
+        typed.push_str(chunk);
+        assert_eq!(h.state().state.pocket.polygon_text, typed, "the editor kept every character");
+        errors.push(h.state().pocket.error.is_some());
+    }
+    assert_eq!(errors, [true, true, false, false, false], "the message line changed while typing");
+    let p = pocket_result(&h);
+    assert_eq!(p.boundary.len(), 5, "the typed rectangle is planned: {:?}", p.boundary);
+}
+
+/// The program's back-plot: the NC program of the shown plan, read back by the core's
+/// back-plot, is what the plot draws over the planned path; an inch program reads back in mm.
+#[test]
+fn pocket_draws_the_program_read_back() {
+    use trochoplan_core::nc::{Dialect, backplot};
+    let mut h = pocket_harness();
+    assert!(h.state().state.pocket.show_program, "shown by default");
+    let text = h.state().pocket_nc.view().expect("a program").text.clone();
+    let want: Vec<[f64; 2]> = backplot(&text, Dialect::LinuxCnc, panels::pocket_plot::DRAW_CHORD_TOLERANCE_MM)
+        .unwrap()
+        .iter()
+        .map(|p| [p.x, p.y])
+        .collect();
+    let shown = panels::pocket_plot::shown_backplot(&h.ctx).expect("the program drawn");
+    assert_eq!(shown.as_ref().as_ref().unwrap(), &want);
+    // the program ends where the plan ends (its last move in the plane)
+    let p = pocket_result(&h);
+    let (a, b) = (want.last().unwrap(), p.path.last().unwrap());
+    assert!((a[0] - b[0]).hypot(a[1] - b[1]) < 0.01, "program ends at {a:?}, plan at {b:?}");
+    // an inch program (G20) is read back in mm
+    h.state_mut().state.job.program.units = trochoplan_core::frame::Units::Inch;
+    h.run();
+    h.run();
+    let text = h.state().pocket_nc.view().expect("a program").text.clone();
+    assert!(text.contains("G20"), "an inch program");
+    let inch: Vec<[f64; 2]> = backplot(&text, Dialect::LinuxCnc, panels::pocket_plot::DRAW_CHORD_TOLERANCE_MM)
+        .unwrap()
+        .iter()
+        .map(|p| [p.x, p.y])
+        .collect();
+    let shown = panels::pocket_plot::shown_backplot(&h.ctx).expect("the program drawn");
+    assert_eq!(shown.as_ref().as_ref().unwrap(), &inch);
+    let last = inch.last().unwrap();
+    assert!((last[0] - b[0]).hypot(last[1] - b[1]) < 0.05, "inch program ends at {last:?} mm, plan at {b:?}");
+}
+
+/// Planning on the worker thread: while the plan is being made the tab shows a spinner and
+/// "planning…" with the seconds spent, and the last plan stays on screen; when the answer
+/// arrives the line goes and the new plan is shown.
+#[test]
+fn pocket_shows_planning_until_the_threaded_plan_arrives() {
+    let mut h = pocket_harness();
+    h.state_mut().pocket = panels::pocket::PocketView::threaded(|| {});
+    h.step();
+    wait_for_pocket(&mut h);
+    let first = pocket_result(&h);
+    h.state_mut().state.pocket.strategy = PocketStrategy::MedialAxis;
+    h.step();
+    let mut seen = h.state().pocket.pending() && h.query_all_by_label_contains("planning…").next().is_some();
+    let t0 = Instant::now();
+    while h.state().pocket.pending() && t0.elapsed().as_secs() < 120 {
+        std::thread::sleep(std::time::Duration::from_millis(5));
+        h.step();
+        if h.state().pocket.pending() {
+            assert!(
+                h.state().pocket.last.as_ref().is_some_and(|p| std::sync::Arc::ptr_eq(p, &first)),
+                "the last plan stays"
+            );
+            seen |= h.query_all_by_label_contains("planning…").next().is_some();
+        }
+    }
+    h.step();
+    assert!(seen, "the planning line was shown while the plan was made");
+    assert!(!h.state().pocket.pending(), "answered within 120 s");
+    assert_eq!(pocket_result(&h).plan.strategy(), PocketStrategy::MedialAxis);
+    assert!(h.query_all_by_label_contains("planning…").next().is_none(), "the line goes with the answer");
 }
