@@ -219,12 +219,25 @@ impl App {
 
     /// Read a pocket outline (`pocket --polygon`'s formats) into the Pocket tab's vertices.
     pub fn open_outline(&mut self, path: &Path) {
-        let read = crate::shared::outline::read_single(path, "outline");
+        // the boundary and its islands, as `trochoplan pocket --polygon` reads them: the
+        // islands follow the boundary, each after an empty line
+        let read = crate::shared::outline::read_pocket(path, "outline");
         match read {
-            Ok(points) => {
-                self.state.pocket.polygon_text = crate::shared::outline::points_text(&points);
+            Ok((points, islands)) => {
+                let mut text = crate::shared::outline::points_text(&points);
+                for island in &islands {
+                    text.push('\n');
+                    text.push_str(&crate::shared::outline::points_text(island));
+                }
+                self.state.pocket.polygon_text = text;
                 self.remember(path);
-                self.status = Some((format!("opened outline {} ({} vertices)", path.display(), points.len()), false));
+                let with = match islands.len() {
+                    0 => String::new(),
+                    1 => ", 1 island".to_owned(),
+                    n => format!(", {n} islands"),
+                };
+                self.status =
+                    Some((format!("opened outline {} ({} vertices{with})", path.display(), points.len()), false));
             }
             Err(e) => self.status = Some((format!("cannot open {}: {e}", path.display()), true)),
         }

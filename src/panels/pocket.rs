@@ -31,6 +31,8 @@ pub use super::pocket_inputs::PocketInputs;
 #[derive(Clone, Debug)]
 pub struct PocketResult {
     pub boundary: Vec<[f64; 2]>,
+    /// The islands' outlines, closed, for drawing.
+    pub islands: Vec<Vec<[f64; 2]>>,
     /// The whole tool path at depth, as points for drawing.
     pub path: Vec<[f64; 2]>,
     /// The core's report of the plan (length, time, engagement, rows).
@@ -49,10 +51,15 @@ pub fn compute(i: &PocketInputs) -> Result<PocketResult, String> {
     let req = i.request()?;
     let plan = pocket::plan(&req).map_err(|e| e.to_string())?;
     let report = report::pocket(&req, &plan).map_err(|e| e.to_string())?;
-    let mut boundary: Vec<[f64; 2]> = plan.polygon().vertices().iter().map(|v| [v.x, v.y]).collect();
-    if let Some(&first) = boundary.first() {
-        boundary.push(first);
-    }
+    let closed = |poly: &trochoplan_core::geom::Polygon| {
+        let mut v: Vec<[f64; 2]> = poly.vertices().iter().map(|v| [v.x, v.y]).collect();
+        if let Some(&first) = v.first() {
+            v.push(first);
+        }
+        v
+    };
+    let boundary = closed(plan.polygon());
+    let islands = req.islands.iter().map(closed).collect();
     let path = segment_points(&plan.path().segments(), MAX_PATH_POINTS);
     let heights = CutHeights { depth_mm: i.depth_mm, safe_z_mm: i.safe_z_mm };
     let machine = i.machine()?;
@@ -62,7 +69,7 @@ pub fn compute(i: &PocketInputs) -> Result<PocketResult, String> {
     });
     let chip = chip_peaks(plan.path(), i.teeth, i.spindle_rpm, machine.as_ref().map(|m| (m, heights)))
         .map_err(|e| e.to_string());
-    Ok(PocketResult { boundary, path, report, plan, real_time, chip })
+    Ok(PocketResult { boundary, islands, path, report, plan, real_time, chip })
 }
 
 /// Plan `inputs`.

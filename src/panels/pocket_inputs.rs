@@ -37,7 +37,8 @@ pub const IDEAL_MACHINE: &str = "ideal (feeds held)";
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct PocketInputs {
-    /// Pocket boundary, one vertex "x,y" per line.
+    /// Pocket boundary, one vertex "x,y" per line; after an empty line each further loop is an
+    /// island inside it.
     pub polygon_text: String,
     /// Ring step-over a_e (mm).
     pub step_over_mm: f64,
@@ -118,11 +119,17 @@ impl PocketInputs {
     /// from its flags: the polygon text read and validated, every other input the CLI does not
     /// take from the tab at its default.
     pub fn request(&self) -> Result<PocketRequest, String> {
-        // read as a point-list outline: loops separated by an empty line are an error naming
-        // them, never joined into one polygon
+        // read as a point-list outline, as `trochoplan pocket --polygon` reads its file: loops
+        // separated by an empty line, the first the boundary, the loops inside it its islands
         let pockets = trochoplan_core::outline::read("polygon", &self.polygon_text).map_err(|e| e.to_string())?;
-        let points = pockets.single().map_err(|e| e.to_string())?.to_vec();
+        let (boundary, island_points) = pockets.one_pocket().map_err(|e| e.to_string())?;
+        let points = boundary.to_vec();
         let polygon = Polygon::new(points.clone()).map_err(|e| format!("polygon: {e}"))?;
+        let islands = island_points
+            .iter()
+            .enumerate()
+            .map(|(k, v)| Polygon::new(v.clone()).map_err(|e| format!("island {}: {e}", k + 1)))
+            .collect::<Result<Vec<_>, _>>()?;
         let open: Vec<usize> = self
             .open_edges
             .split([',', ' '])
@@ -136,6 +143,7 @@ impl PocketInputs {
         let p = PaceOptions::default();
         Ok(PocketRequest {
             polygon,
+            islands,
             tool_diameter_mm: self.tool_diameter_mm,
             step_over_mm: self.step_over_mm,
             feed_mm_per_min: self.feed_mm_per_min,

@@ -73,6 +73,9 @@ pub fn view(ui: &mut egui::Ui, r: &PocketResult, show_program: bool, nc: &NcExpo
         }
         plane_plot("pocket_rings_plot", h).width(plot_w).show(ui, |p| {
             p.line(line("pocket", &r.boundary).color(Color32::GRAY).width(2.5));
+            for island in &r.islands {
+                p.line(line("islands", island).color(Color32::GRAY).width(2.5));
+            }
             p.line(line("planned tool path", &r.path).color(STRATEGY_COLOR).width(2.5));
             if let Some(Ok(points)) = program.as_deref() {
                 p.line(

@@ -444,3 +444,26 @@ fn pocket_shows_planning_until_the_threaded_plan_arrives() {
     assert_eq!(pocket_result(&h).plan.strategy(), PocketStrategy::MedialAxis);
     assert!(h.query_all_by_label_contains("planning…").next().is_none(), "the line goes with the answer");
 }
+
+/// An outline file with an island (a square inside the boundary): the editor holds the
+/// boundary and, after an empty line, the island; the plan is the core's for that boundary and
+/// island (adaptive clearing round it), and the island is drawn.
+#[test]
+fn pocket_tab_opens_and_plans_an_outline_with_an_island() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("island.txt");
+    std::fs::write(&file, "0,0\n60,0\n60,40\n0,40\n\n25,15\n35,15\n35,25\n25,25\n").unwrap();
+    let mut h = pocket_harness_with(Some(file), None);
+    h.get_by_label(label::POCKET_OPEN_OUTLINE).click();
+    h.run();
+    assert_eq!(h.state().state.pocket.polygon_text, "0,0\n60,0\n60,40\n0,40\n\n25,15\n35,15\n35,25\n25,25\n");
+    assert!(h.state().status.as_ref().is_some_and(|(m, _)| m.contains("1 island")), "{:?}", h.state().status);
+    wait_for_pocket(&mut h);
+    assert!(h.state().pocket.error.is_none(), "{:?}", h.state().pocket.error);
+    let r = pocket_result(&h);
+    assert_eq!(r.islands, vec![vec![[25.0, 15.0], [35.0, 15.0], [35.0, 25.0], [25.0, 25.0], [25.0, 15.0]]]);
+    let req = h.state().state.pocket.request().unwrap();
+    assert_eq!(req.islands.len(), 1);
+    let core = trochoplan_core::pocket::plan(&req).unwrap();
+    assert_eq!(r.plan.path().segments(), core.path().segments());
+}
