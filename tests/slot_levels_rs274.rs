@@ -159,7 +159,7 @@ fn the_closed_keyway_in_three_levels_never_plunges_and_stays_within_the_target()
                 })
                 .collect();
             let tp = Toolpath { moves, entries: Vec::new(), retract_before: Vec::new() };
-            let m = measure(&tp, Stock { polygon: &stock, precut: &bore }, &opts).expect("measure");
+            let m = measure(&tp, Stock { polygon: &stock, precut: &bore, islands: &[] }, &opts).expect("measure");
             let peak = m.max_engagement_rad.to_degrees();
             assert!(peak <= target + 1.0, "{dialect} level {}: {peak}° > {target}° + 1°", k + 1);
         }
