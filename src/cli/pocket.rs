@@ -23,11 +23,11 @@ pub struct PocketArgs {
     /// `.svg` (every rendered shape and subpath; transforms, nested viewports, <use> and the
     /// root's size in mm applied, y up), arcs and curves as chords within 0.01 mm. It must hold
     /// exactly one closed loop, a simple polygon (islands and several pockets are refused);
-    /// at most 20000 vertices. Full rules: docs/outlines.md.
+    /// at most 20000 vertices.
     #[arg(long, value_name = "FILE")]
     polygon: PathBuf,
-    /// Machine preset (hobby-router, vmc, hsc) for the real time of the pocket's program
-    /// (docs/process-model.md): every move its --export program makes at --depth (6 mm without --export) — helix or
+    /// Machine preset (hobby-router, vmc, hsc) for the real time of the pocket's program:
+    /// every move its --export program makes at --depth (6 mm without --export) — helix or
     /// ramp, moves at depth, retracts and rapids — timed with the machine's acceleration, jerk
     /// and rapid rate. Adds `machine`, `time_real_s`, `feed_held_share` and `real_time` (by kind
     /// of move) to the JSON.
@@ -88,7 +88,8 @@ pub struct PocketArgs {
     /// read as FreeCAD reads it, an area rate (a_e mm² per mm), on a 90° corner pass, capped
     /// at 50° and never below φ*: 50° for D = 10, a_e = 1.527 (φ* = 46.0°); the JSON's
     /// `target_deg` reports it. With `--method medial-axis` it replaces the corner strategies'
-    /// a* = a_str·(1 + t1) (52.9° there), which is its default.
+    /// target, the straight engagement × (1 + the corner's --t1) (52.9° there), which is its
+    /// default.
     #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
     target_engagement: Option<f64>,
     /// How near the corner-point arcs reach each convex corner point (mm): those of the

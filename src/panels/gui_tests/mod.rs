@@ -7,11 +7,13 @@
 
 mod corner;
 mod files;
+mod levels;
 mod machine;
 mod pocket;
 mod program;
 mod slot;
 mod window;
+mod words;
 
 use super::panels::label;
 use super::*;
