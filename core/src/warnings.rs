@@ -5,13 +5,12 @@
 
 use crate::plan::{ENGAGEMENT_LIMIT_DEG, Plan};
 
-/// Thinnest chip a carbide end mill is taken to cut rather than rub (mm). Below a minimum
-/// chip thickness of the order of the cutting edge's radius the edge ploughs and rubs the
-/// material instead of shearing a chip: the minimum is about 0.2–0.4 of the edge radius in
-/// steel (Son, Lim & Ahn 2005; Liu, DeVor & Kapoor 2006), and the edges of ground carbide end
-/// mills are rounded to about 0.01–0.04 mm, so chips of less than about 0.01 mm rub. An order of
-/// magnitude, not a measured value for a given tool.
-pub const MIN_CHIP_MM: f64 = 0.01;
+/// Thinnest chip a carbide end mill is taken to cut cleanly rather than rub (mm): a typical
+/// cutting-edge radius of a ground carbide end mill (about 0.01–0.04 mm). A chip of the order of
+/// the edge radius or thinner is partly ploughed and rubbed under the rounded edge instead of
+/// sheared off; no chip forms at all below about 0.2–0.4 of the edge radius in steel (Son, Lim &
+/// Ahn 2005; Liu, DeVor & Kapoor 2006). An order of magnitude, not a value measured for a tool.
+pub const MIN_CHIP_MM: f64 = 0.02;
 
 /// How firm a limit is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -110,7 +109,7 @@ pub fn warnings(plan: &Plan) -> Vec<Warning> {
             limit: MIN_CHIP_MM,
             text: format!(
                 "Largest chip h_max {:.4} mm is thinner than the {MIN_CHIP_MM} mm minimum chip of a carbide end \
-                 mill (of the order of its edge radius): the edge rubs instead of cutting, which heats and \
+                 mill (a typical radius of its cutting edge): the edge rubs more than it cuts, which heats and \
                  wears it; raise the step or the feed per tooth.",
                 m.h_max_mm
             ),
@@ -130,7 +129,7 @@ mod tests {
     fn the_papers_job_is_only_advised_about_its_engagement() {
         let p = plan(&Job::default()).expect("plan");
         let w = warnings(&p);
-        // the paper's job: 51.5° > 46° (advice), h_max ≈ 0.047 mm ≥ 0.01 mm, no machine
+        // the paper's job: 51.5° > 46° (advice), h_max ≈ 0.047 mm ≥ 0.02 mm, no machine
         assert_eq!(w.len(), 1, "{w:?}");
         assert_eq!((w[0].check, w[0].severity), (Check::Engagement, Severity::Advice));
         assert!(w[0].text.contains("46°") && w[0].text.contains("Grechishnikov et al. (2017)"), "{}", w[0].text);
@@ -138,7 +137,7 @@ mod tests {
 
     #[test]
     fn a_tiny_step_rubs() {
-        // s = 0.04 mm: h_max scales about as √s below the paper's 1 mm, far under 0.01 mm
+        // s = 0.04 mm: h_max about 0.012 mm (h_max grows about as √s for small steps: 0.047 mm at 1 mm)
         let p = plan(&Job { step: 0.04, ..Job::default() }).expect("plan");
         assert!(p.metrics.h_max_mm < MIN_CHIP_MM, "{}", p.metrics.h_max_mm);
         let w = warnings(&p);

@@ -72,8 +72,9 @@ fn metric_of(check: Check) -> &'static Metric {
 const COLOURS_TIP: &str = "Orange: above a recommendation from the literature (the job runs, at a cost \
     the message names). Red: above a limit of the tool or the machine (the job will not run as \
     planned). The limits: engagement 46° (Grechishnikov et al. 2017, recommended); the thinnest \
-    chip a carbide end mill cuts rather than rubs, 0.01 mm (of the order of the edge radius: Son, \
-    Lim & Ahn 2005; Liu, DeVor & Kapoor 2006); the spindle power and torque of the job's machine.";
+    chip a carbide end mill cuts rather than rubs, 0.02 mm (a typical radius of its cutting edge; \
+    chips of the order of the edge radius are ploughed: Son, Lim & Ahn 2005; Liu, DeVor & Kapoor \
+    2006); the spindle power and torque of the job's machine.";
 
 /// The limits the plan exceeds, each in its colour, and what the colours mean.
 fn limits(ui: &mut egui::Ui, warnings: &[Warning]) {

@@ -3,11 +3,13 @@
 //! the tests are grouped by what they drive: `slot` (the slot job's tabs), `window` (tabs,
 //! persisted state), `corner` (the Corner tab), `pocket` (the Pocket tab), `program` (the
 //! program's frame), `files` (files without a system dialog), `machine` (forces,
-//! machine and optimiser).
+//! machine and optimiser), `levels` (a slot in levels and a closed slot), `limits` (the shop's
+//! words and the limits a job exceeds), `words` (no code names in the window or the help).
 
 mod corner;
 mod files;
 mod levels;
+mod limits;
 mod machine;
 mod pocket;
 mod program;
