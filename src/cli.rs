@@ -312,27 +312,6 @@ pub fn main() -> ExitCode {
     }
 }
 
-/// Run the CLI on `args` (the program's name first) as [`main`] does, returning its report
-/// (the window's tests compare its files with the CLI's).
-#[cfg(test)]
-pub fn run_args(args: &[&str]) -> Result<String, String> {
-    let cli = Cli::try_parse_from(args).map_err(|e| e.to_string())?;
-    run(cli.command)
-}
-
-/// The `--help` text of the program and of every subcommand, with the command's name.
-#[cfg(test)]
-pub fn help_texts() -> Vec<(String, String)> {
-    use clap::CommandFactory;
-    let mut cmd = Cli::command();
-    cmd.build();
-    let mut texts = vec![("trochoplan".to_owned(), cmd.render_long_help().to_string())];
-    for sub in cmd.get_subcommands_mut() {
-        texts.push((sub.get_name().to_owned(), sub.render_long_help().to_string()));
-    }
-    texts
-}
-
 fn run(cmd: Command) -> Result<String, String> {
     match cmd {
         Command::Analyze { job, levels, series, engagement_limit, force_series, variable_feed } => {

@@ -57,7 +57,6 @@ fn a_closed_keyway_exported_from_the_window_is_the_clis_export_program() {
     let cli_file = dir.path().join("cli.ngc");
     let cli = cli_file.to_str().expect("path");
     let args = [
-        "trochoplan",
         "export",
         "--slot-width",
         "10",
@@ -75,7 +74,9 @@ fn a_closed_keyway_exported_from_the_window_is_the_clis_export_program() {
         "-o",
         cli,
     ];
-    let report = crate::cli::run_args(&args).expect("the CLI's export");
+    let out = command_line(&args);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let report = String::from_utf8_lossy(&out.stdout);
     assert!(report.contains("3 levels, closed slot"), "{report}");
     let want = std::fs::read_to_string(&cli_file).expect("the CLI wrote the program");
     assert_eq!(gui, want, "the window's program is the CLI's");

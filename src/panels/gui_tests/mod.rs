@@ -71,6 +71,16 @@ fn shows(h: &Harness<'_, App>, text: &str) -> bool {
     h.query_all_by_label(text).next().is_some()
 }
 
+/// Run the command line `trochoplan` built with these tests on `args` (the window's tests
+/// compare its files and texts with the command line's; the window does not call the command
+/// line's code). `cargo test` builds it next to the test binary, one folder up.
+fn command_line(args: &[&str]) -> std::process::Output {
+    let exe = std::env::current_exe().expect("test binary");
+    let bin = exe.parent().and_then(Path::parent).map(|d| d.join("trochoplan")).expect("target folder");
+    assert!(bin.exists(), "{} not built (cargo test builds it)", bin.display());
+    std::process::Command::new(&bin).args(args).output().expect("run trochoplan")
+}
+
 /// eframe storage in memory.
 #[derive(Default)]
 struct MemoryStorage(std::collections::HashMap<String, String>);
