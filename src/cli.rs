@@ -110,7 +110,7 @@ enum Command {
         args: verify::VerifyArgs,
     },
     /// Fit the six cutting-force coefficients to full-slot tests (the edge-force model of
-    /// Altintas & Lee 1996, docs/process-model.md); print
+    /// Altintas & Lee 1996); print
     /// them as JSON with the fit residuals.
     Calibrate {
         /// CSV with a header naming the columns f_z, fx, fy, fz (mean forces of full-slot

@@ -325,6 +325,21 @@ pub fn teeth_error(z: i64) -> Error {
 }
 
 impl Job {
+    /// Cutting speed Vc = π·D·n/1000 (m/min), the shop's measure of the spindle speed: the
+    /// speed of the cutting edge's tip (D in mm, n in rpm). `None` unless D and n are finite
+    /// and > 0.
+    pub fn cutting_speed_m_per_min(&self) -> Option<f64> {
+        let (d, n) = (self.tool_diameter, self.rpm);
+        (d.is_finite() && n.is_finite() && d > 0.0 && n > 0.0).then(|| std::f64::consts::PI * d * n / 1000.0)
+    }
+
+    /// Chip load per tooth f_z = f_r/(n·z) (mm): the feed each tooth advances in one turn.
+    /// `None` unless f_r, n and z are finite and > 0.
+    pub fn chip_load_mm(&self) -> Option<f64> {
+        let (f, n, z) = (self.feed, self.rpm, f64::from(self.teeth));
+        (f.is_finite() && n.is_finite() && f > 0.0 && n > 0.0 && z > 0.0).then(|| f / (n * z))
+    }
+
     /// Check every parameter once; the error names the first bad one, its value and range.
     pub fn validate(&self) -> Result<ValidJob, Error> {
         use limits::*;
@@ -503,6 +518,12 @@ impl Job {
 }
 
 impl ValidJob {
+    /// Whether the slot is cut in levels or closed ([`crate::slot_levels`]): its program is then
+    /// the levels' program, not the one-level slot program.
+    pub fn in_levels(&self) -> bool {
+        self.max_step_down.is_some() || self.closed
+    }
+
     /// The smallest feed of the job's machine (mm/min; the ideal machine's without one): no
     /// feed of its programs is lower.
     pub fn min_feed(&self) -> f64 {
@@ -571,6 +592,13 @@ mod tests {
         // f_z = 600 / (2000 · 4) = 0.075 mm
         assert!((v.f_z() - 0.075).abs() < 1e-15);
         assert_eq!(v.trochoidal_radius(), 5.0);
+        // the shop's words of the same job: f_z as above; Vc = π · 10 mm · 2000 rpm / 1000 = 62.83 m/min
+        let j = Job::default();
+        assert_eq!(j.chip_load_mm(), Some(v.f_z()));
+        let vc = j.cutting_speed_m_per_min().expect("vc");
+        assert!((vc - 20.0 * std::f64::consts::PI).abs() < 1e-12, "{vc}");
+        assert_eq!(Job { rpm: 0.0, ..Job::default() }.cutting_speed_m_per_min(), None);
+        assert_eq!(Job { teeth: 0, ..Job::default() }.chip_load_mm(), None);
     }
 
     #[test]

@@ -36,6 +36,8 @@
 //! - [`sweep`]: the swept parameters and their rules (which path, which values).
 //! - [`verify`]: any NC program read, timed and measured move by move: engagement, axial
 //!   depth, chip at the reached feed, force, torque, power, and its problems.
+//! - [`warnings`]: the limits a planned slot is checked against (engagement, minimum chip,
+//!   spindle power and torque), each with its source, and the plan's warnings in words.
 //! - [`error`]: the [`Error`] type and the [`Param`] names of every user parameter.
 
 pub mod analysis;
@@ -60,6 +62,7 @@ pub mod slot_levels;
 pub mod sweep;
 pub mod toolpath;
 pub mod verify;
+pub mod warnings;
 
 pub use error::{Error, Param};
 pub use job::{Job, PathKind, ValidJob};

@@ -75,6 +75,7 @@ impl Metric {
         match self.unit {
             "" => v,
             "°" => format!("{v}°"),
+            "s" => seconds_with_clock(x, self.decimals),
             unit => format!("{v} {unit}"),
         }
     }
@@ -100,6 +101,26 @@ pub const T_CYCLE: Metric =
 pub const MRR: Metric =
     Metric::new("mrr_mm3_per_min", "MRR", "mm³/min", 0, |m| m.mrr_mm3_per_min, "MRR = B·s·a_p / t_cycle (Table 2).")
         .higher_is_better();
+/// `seconds` as hours, minutes and seconds, `h:mm:ss`, rounded to the whole second
+/// (3180.1 s: `0:53:00`); negative or not finite: `—`.
+pub fn clock(seconds: f64) -> String {
+    if !(seconds.is_finite() && seconds >= 0.0) {
+        return "—".to_owned();
+    }
+    let whole = seconds.round() as u64;
+    format!("{}:{:02}:{:02}", whole / 3600, whole / 60 % 60, whole % 60)
+}
+
+/// A time in seconds with `decimals`, and from a minute on also as `h:mm:ss` ([`clock`]):
+/// `3180.1 s (0:53:00)`; `12.5 s`.
+pub fn seconds_with_clock(seconds: f64, decimals: usize) -> String {
+    if seconds >= 60.0 && seconds.is_finite() {
+        format!("{seconds:.decimals$} s ({})", clock(seconds))
+    } else {
+        format!("{seconds:.decimals$} s")
+    }
+}
+
 pub const F_Z: Metric = Metric::new("f_z_mm", "f_z", "mm", 4, |m| m.f_z_mm, "Feed per tooth f_z = f_r/(n·z).");
 pub const H_MAX: Metric = Metric::new(
     "h_max_mm",
@@ -311,7 +332,7 @@ pub const PERFORMANCE_INDEX_WITHOUT_RA: Metric = Metric::new(
     3,
     |m| m.performance_index_without_ra,
     "Eq. (7) without Ra: MRR / (F_R,max · W_max) (mm³/min, N, µm) ranks paths by the predictable part; \
-     Ra,max is not predicted (docs/process-model.md).",
+     Ra,max is not predicted (it depends on the tool's wear, the machine and the chatter).",
 )
 .higher_is_better();
 pub const IMPRINT_DENSITY_MEAN: Metric = Metric::new(
@@ -536,6 +557,12 @@ mod tests {
     fn display_and_heading_follow_the_unit() {
         let m = plan(&Job::default()).expect("plan").metrics;
         assert_eq!(F_Z.display(&m), "0.0750 mm");
+        // 3180.1 s = 53 min 0.1 s: 0 h, 53 min, 0 s after rounding; 3600 s + 61 s = 1:01:01
+        assert_eq!(seconds_with_clock(3180.1, 1), "3180.1 s (0:53:00)");
+        assert_eq!(clock(3661.0), "1:01:01");
+        assert_eq!(clock(59.6), "0:01:00", "rounded to the whole second");
+        assert_eq!(seconds_with_clock(12.5, 1), "12.5 s", "under a minute: seconds only");
+        assert_eq!(clock(f64::NAN), "—");
         assert_eq!(CYCLES.display(&m), m.cycles.to_string());
         assert!(ENGAGEMENT_MAX.display(&m).ends_with('°'));
         assert_eq!(MRR.heading(), "MRR [mm³/min]");

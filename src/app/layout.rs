@@ -144,6 +144,9 @@ impl App {
     pub(super) fn derived_panel(&self, ui: &mut egui::Ui) {
         egui::ScrollArea::vertical().show(ui, |ui| {
             panels::metrics::show(ui, self.planner.last.as_ref().map(|p| &p.plan), self.planner.error.is_some());
+            if let Some((p, levels)) = self.planner.last.as_ref().and_then(|p| Some((&p.plan, p.levels.as_ref()?))) {
+                panels::metrics::show_levels(ui, p, levels);
+            }
         });
     }
 

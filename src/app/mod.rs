@@ -97,7 +97,8 @@ impl Variant {
     fn planned(pinned: &PinnedJob, cycles_shown: usize) -> Option<Variant> {
         let p = plan(&pinned.job).ok()?;
         let graphics = Graphics::new(&p, cycles_shown);
-        Some(Variant { label: pinned.label.clone(), job: pinned.job.clone(), planned: Planned { plan: p, graphics } })
+        let planned = Planned { plan: p, graphics, levels: None };
+        Some(Variant { label: pinned.label.clone(), job: pinned.job.clone(), planned })
     }
 
     fn is(&self, pinned: &PinnedJob) -> bool {
@@ -338,7 +339,7 @@ impl App {
     fn refresh_export(&mut self) {
         self.state.export.frame.clone_from(&self.state.job.program);
         if let Some(p) = &self.planner.last {
-            self.export.update(&p.plan, &self.state.export);
+            self.export.update(&p.plan, p.levels.as_ref(), &self.state.export);
         }
     }
 }

@@ -5,6 +5,7 @@ use super::panels::graphics::Graphics;
 use crate::worker::{Keep, Task, Worker};
 use std::time::Instant;
 use trochoplan_core::frame::ProgramFrame;
+use trochoplan_core::slot_levels::{LevelPlan, plan_levels};
 use trochoplan_core::{Error, Job, Plan, plan};
 
 /// A plan and its plot data.
@@ -12,6 +13,18 @@ use trochoplan_core::{Error, Job, Plan, plan};
 pub struct Planned {
     pub plan: Plan,
     pub graphics: Graphics,
+    /// The slot's levels, each measured, when the job is cut in levels or closed (or the
+    /// core's message); `None`: one level along the open path.
+    pub levels: Option<Result<LevelPlan, String>>,
+}
+
+impl Planned {
+    /// The plan of a valid job drawn with `cycles_shown` cycles, with its levels if it has any.
+    pub fn new(plan: Plan, cycles_shown: usize) -> Planned {
+        let graphics = Graphics::new(&plan, cycles_shown);
+        let levels = plan.job.in_levels().then(|| plan_levels(&plan).map_err(|e| e.to_string()));
+        Planned { plan, graphics, levels }
+    }
 }
 
 /// A request to the planning worker: the job and the cycles drawn.
@@ -22,7 +35,7 @@ type PlanAnswer = (Result<Planned, Error>, f64);
 /// Plan `job` and convert it for drawing.
 fn plan_and_draw((job, cycles_shown): PlanRequest, task: &Task<PlanAnswer>) {
     let t0 = Instant::now();
-    let planned = plan(&job).map(|p| Planned { graphics: Graphics::new(&p, cycles_shown), plan: p });
+    let planned = plan(&job).map(|p| Planned::new(p, cycles_shown));
     task.send((planned, t0.elapsed().as_secs_f64() * 1e3));
 }
 

@@ -156,8 +156,9 @@ fn sweep_tab(app: &mut App, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
 fn export_tab(app: &mut App, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
     app.refresh_export();
     let job_error = app.planner.error.as_ref().map(ToString::to_string);
+    let levels = app.planner.last.as_ref().is_some_and(|p| p.plan.job.in_levels());
     let (export, frame) = (&mut app.state.export, &mut app.state.job.program);
-    cmds.extend(panels::export::show(ui, export, frame, &app.export, job_error.as_deref()));
+    cmds.extend(panels::export::show(ui, export, frame, &app.export, levels, job_error.as_deref()));
     // settings edited this frame: regenerate now, so the next frame shows them
     app.refresh_export();
 }

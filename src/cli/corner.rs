@@ -70,8 +70,8 @@ pub struct CornerArgs {
     /// corner point (reads π − angle there). 0, or 0.001 to 1.
     #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = CornerRequest::DEFAULT.corner_tolerance_mm)]
     corner_tolerance: f64,
-    /// Machine preset (hobby-router, vmc, hsc) for the real time of the corner's program
-    /// (docs/process-model.md): the moves its --export program makes at --depth (6 mm without --export; straight down
+    /// Machine preset (hobby-router, vmc, hsc) for the real time of the corner's program:
+    /// the moves its --export program makes at --depth (6 mm without --export; straight down
     /// at the start, the ring piece, the retract) timed with the machine's acceleration, jerk
     /// and rapid rate. Adds `machine`, `time_real_s`, `feed_held_share` and `real_time` (by kind
     /// of move) to the JSON.

@@ -26,11 +26,11 @@ pub struct PocketArgs {
     /// loops after the first in a point list; nested closed loops in a drawing), each apart
     /// from the walls and the other islands; adaptive clearing plans round the islands, the
     /// other methods refuse them; several pockets and loops inside islands are refused; at
-    /// most 20000 vertices. Full rules: docs/outlines.md, docs/pockets.md.
+    /// most 20000 vertices.
     #[arg(long, value_name = "FILE")]
     polygon: PathBuf,
-    /// Machine preset (hobby-router, vmc, hsc) for the real time of the pocket's program
-    /// (docs/process-model.md): every move its --export program makes at --depth (6 mm without --export) — helix or
+    /// Machine preset (hobby-router, vmc, hsc) for the real time of the pocket's program:
+    /// every move its --export program makes at --depth (6 mm without --export) — helix or
     /// ramp, moves at depth, retracts and rapids — timed with the machine's acceleration, jerk
     /// and rapid rate. Adds `machine`, `time_real_s`, `feed_held_share` and `real_time` (by kind
     /// of move) to the JSON.
@@ -91,7 +91,8 @@ pub struct PocketArgs {
     /// read as FreeCAD reads it, an area rate (a_e mm² per mm), on a 90° corner pass, capped
     /// at 50° and never below φ*: 50° for D = 10, a_e = 1.527 (φ* = 46.0°); the JSON's
     /// `target_deg` reports it. With `--method medial-axis` it replaces the corner strategies'
-    /// a* = a_str·(1 + t1) (52.9° there), which is its default.
+    /// target, the straight engagement × (1 + the corner's --t1) (52.9° there), which is its
+    /// default.
     #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
     target_engagement: Option<f64>,
     /// How near the corner-point arcs reach each convex corner point (mm): those of the

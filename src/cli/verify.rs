@@ -25,7 +25,7 @@ pub struct VerifyArgs {
     /// G0 G1 G2 G3 (I J or R; helical arcs), G17, G90/G91, G90.1/G91.1, G20/G21 (G70/G71), F,
     /// S, M3/M4/M5 and comments are interpreted; G18/G19, cutter compensation, canned cycles,
     /// subprograms, parameters and any other G or M word are refused with an error naming the
-    /// line (nothing is skipped). Full rules: docs/verify.md.
+    /// line (nothing is skipped).
     #[arg(value_name = "PROGRAM")]
     program: PathBuf,
     /// Stock outline (the formats of `pocket --polygon`: "x,y" lines, .dxf or .svg; one closed
@@ -207,26 +207,20 @@ fn moves_csv(moves: &[MoveReport]) -> String {
     s
 }
 
-/// The job's peak power and torque above its machine's spindle limits, in words (none without
-/// a machine or limits).
+/// The job's peak power and torque above its machine's spindle limits (the core's checks,
+/// [`trochoplan_core::warnings::spindle`]), in the CLI's words with the report's keys (none
+/// without a machine or limits).
 pub fn spindle_warnings(p: &trochoplan_core::Plan) -> Vec<String> {
-    let Some(m) = p.job.machine.as_ref() else { return Vec::new() };
-    let mut out = Vec::new();
-    if let Some(limit) = m.spindle_power
-        && p.metrics.power_max_w > limit
-    {
-        out.push(format!(
-            "power_max_w {:.0} W is above the spindle power of machine {} ({limit} W)",
-            p.metrics.power_max_w, m.name
-        ));
-    }
-    if let Some(limit) = m.spindle_torque
-        && p.metrics.torque_max_nm > limit
-    {
-        out.push(format!(
-            "torque_max_nm {:.2} N·m is above the spindle torque of machine {} ({limit} N·m)",
-            p.metrics.torque_max_nm, m.name
-        ));
-    }
-    out
+    use trochoplan_core::warnings::{Check, spindle};
+    let name = p.job.machine.as_ref().map_or("", |m| m.name.as_str());
+    spindle(p)
+        .into_iter()
+        .map(|w| match w.check {
+            Check::SpindleTorque => format!(
+                "torque_max_nm {:.2} N·m is above the spindle torque of machine {name} ({} N·m)",
+                w.value, w.limit
+            ),
+            _ => format!("power_max_w {:.0} W is above the spindle power of machine {name} ({} W)", w.value, w.limit),
+        })
+        .collect()
 }

@@ -28,7 +28,7 @@ fn quantities() -> impl Iterator<Item = &'static Metric> {
 
 /// Percentage change of `v` against `base` (None when the base is zero).
 pub fn percent_change(v: f64, base: f64) -> Option<f64> {
-    (base.abs() > 1e-12).then(|| (v - base) / base * 100.0)
+    (base.abs() > 1e-12).then(|| (v - base) / base * 100.0).filter(|p| p.is_finite())
 }
 
 /// A short label for a job, as the paper names its variants; ", climb" when it is not the
@@ -78,9 +78,11 @@ pub fn show(ui: &mut egui::Ui, variants: &[VariantView], can_pin: bool) -> Optio
     ui.add(
         egui::Label::new(
             RichText::new(
-                "% change against variant #1. Green: better, red: worse (MRR and cooling time up, h_max, \
-             engagement and waviness down). The paper ranks paths by PI = MRR/(F_R,max·R_a,max·W_max), \
-             eq. (7); forces and roughness are not modelled here.",
+                "% change against variant #1. Green: better, red: worse, by at least 0.05 % (MRR and \
+             cooling time up, h_max, engagement and waviness down). The paper ranks paths by \
+             PI = MRR/(F_R,max·Ra,max·W_max), eq. (7): the forces are modelled, the roughness Ra,max \
+             is not; PI has a value once Ra,max is entered in the Material and process fields \
+             (— (no value) until then).",
             )
             .weak(),
         )
@@ -133,6 +135,9 @@ fn header_row(ui: &mut egui::Ui, variants: &[VariantView]) -> Option<Command> {
     cmd
 }
 
+/// Shown for a quantity without a value (PI without a measured Ra,max).
+const NO_VALUE: &str = "— (no value)";
+
 /// One quantity of every variant, with the % change against the first coloured by whether it
 /// is better.
 fn quantity_row(ui: &mut egui::Ui, q: &Metric, variants: &[VariantView]) {
@@ -142,6 +147,7 @@ fn quantity_row(ui: &mut egui::Ui, q: &Metric, variants: &[VariantView]) {
         let x = q.of(v.metrics);
         let change = if i > 0 { percent_change(x, base) } else { None };
         let text = match change {
+            _ if !x.is_finite() => NO_VALUE.to_owned(),
             Some(p) => format!("{x:.*}  ({p:+.1} %)", q.decimals),
             None => format!("{x:.*}", q.decimals),
         };
@@ -170,6 +176,7 @@ mod tests {
         assert!((percent_change(110.0, 100.0).unwrap_or(0.0) - 10.0).abs() < 1e-12);
         assert!((percent_change(90.0, 100.0).unwrap_or(0.0) + 10.0).abs() < 1e-12);
         assert_eq!(percent_change(1.0, 0.0), None);
+        assert_eq!(percent_change(f64::NAN, 1.0), None, "no value: no change");
     }
 
     #[test]

@@ -244,7 +244,7 @@ fn mode_bar(ui: &mut egui::Ui, inputs: &mut CornerInputs, nc: &mut CornerNcSetti
             .on_hover_text("A single line–line corner between two walls, apex at the origin");
         ui.selectable_value(&mut inputs.mode, CornerMode::Table, "Acceptance table").on_hover_text(
             "Every corner angle from 30° to 150° in 15° steps: the plain ring and the three strategies, measured \
-             by the evaluator (`trochoplan corner --method M --table`)",
+             by the evaluator (the rows of trochoplan corner --method M --table)",
         );
         ui.separator();
         ui.add_enabled_ui(inputs.mode != CornerMode::Table, |ui| {
@@ -275,16 +275,17 @@ fn tool_inputs(ui: &mut egui::Ui, inputs: &mut CornerInputs) {
             ui.add(DragValue::new(&mut inputs.straight_engagement_deg).speed(0.5).suffix("°"))
                 .labelled_by(l.id)
                 .on_hover_text(
-                    "Engagement angle of the ring on the straight part of the walls, a_str = arccos(1 − a_e/r) \
-                     (straight cut); the acceptance table uses 46°.",
+                    "Engagement angle of the ring on the straight part of the walls, arccos(1 − a_e/r) \
+                     for a step-over a_e and a tool radius r (straight cut); the acceptance table uses 46°.",
                 );
         }
         ui.separator();
-        let l = ui.label(label::ALLOWED_EXCESS_T1);
+        let l = ui.label(label::ALLOWED_CORNER_EXCESS);
         ui.add(DragValue::new(&mut inputs.t1).speed(0.01).range(-1.0..=2.0)).labelled_by(l.id).on_hover_text(
-            "Wu et al. 2016 eq. 23: the target engagement of the corner circles is a* = a_str·(1 + t1); \
-                 the variable circles are bisected until their engagement lies in (a*, a* + ε] (eq. 24); \
-                 isometric circles use a* for their spacing and the threshold rh1 (eq. 25). t1 from 0 to 1.",
+            "Wu et al. (2016): the corner circles aim at the straight walls' engagement × (1 + this \
+                 share) (their eq. 23); the variable circles are bisected until their engagement lies just \
+                 above that target (eq. 24); isometric circles use it for their spacing and their least \
+                 radius (eq. 25). From 0 to 1.",
         );
     });
 }
@@ -365,7 +366,7 @@ fn numbers(ui: &mut egui::Ui, r: &CornerResult) {
         ui.label("max engagement");
         ui.label("body / tip (limit)").on_hover_text(
             "Body: everything but the way into the corner point. Tip: that way in — arcs tangent to both walls \
-             shrinking to the corner tolerance (0.005 mm), each planned to the target a*, so the corner is cut \
+             shrinking to the corner tolerance (0.005 mm), each planned to the target engagement, so the corner is cut \
              to radius r + 0.005 mm; its stated limit in brackets (see the README's acceptance table). \
              Measured by the evaluator.",
         );
@@ -390,7 +391,7 @@ fn numbers(ui: &mut egui::Ui, r: &CornerResult) {
         ui.end_row();
     });
     ui.label(format!(
-        "a_e {:.3} mm · a_str {:.1}° · target a* {:.1}° · feed {:.0} mm/min",
+        "step-over a_e {:.3} mm · straight walls {:.1}° · target {:.1}° · feed {:.0} mm/min",
         r.summary.step_over_mm,
         r.summary.straight_engagement_deg,
         r.summary.target_deg,
@@ -433,8 +434,8 @@ fn engagement_plot(ui: &mut egui::Ui, r: &CornerResult, height: f32) {
         .show(ui, |p| {
             p.line(line("plain ring", &r.plain_profile).color(PLAIN_COLOR));
             p.line(line(r.summary.method, &r.profile).color(STRATEGY_COLOR));
-            p.hline(HLine::new("target a*", r.summary.target_deg).color(Color32::from_rgb(200, 40, 40)));
-            p.hline(HLine::new("straight a_str", r.summary.straight_engagement_deg).color(Color32::GRAY));
+            p.hline(HLine::new("target", r.summary.target_deg).color(Color32::from_rgb(200, 40, 40)));
+            p.hline(HLine::new("straight walls", r.summary.straight_engagement_deg).color(Color32::GRAY));
         });
 }
 
@@ -442,7 +443,7 @@ fn engagement_plot(ui: &mut egui::Ui, r: &CornerResult, height: f32) {
 fn teaching(ui: &mut egui::Ui) {
     egui::ScrollArea::vertical().id_salt("corner_teach").max_height(TEACH_HEIGHT).show(ui, |ui| {
         ui.label(
-            "Engagement: on a straight wall the tool of radius r cuts the arc a_str = arccos(1 − a_e/r) \
+            "Engagement: on a straight wall the tool of radius r cuts the arc arccos(1 − a_e/r) \
              (the straight cut). At an inside corner the next ring's tool wraps around the material the \
              previous ring left, and the engaged arc jumps (two-circle model, Wu et al. 2016 eqs. 2–6): \
              forces spike. The right plot is measured by the independent evaluator (material left by \
@@ -451,11 +452,12 @@ fn teaching(ui: &mut egui::Ui) {
         ui.label(
             "Variable circles: circles tangent to both offset walls with centres on the bisector \
              (eqs. 21–22); each next circle is found by bisection between the limit points M and N until \
-             its engagement lies in (a*, a* + ε], with a* = a_str·(1 + t1) (eqs. 23–24).",
+             its engagement lies just above the target, the straight walls' engagement × (1 + the allowed \
+             corner excess) (eqs. 23–24).",
         );
         ui.label(
-            "Isometric circles: one radius rh, centre spacing from the engagement limit; rh must exceed \
-             the threshold rh1 (eq. 25). Medial axis: perforative circles along the medial axis of the \
+            "Isometric circles: one radius rh, centre spacing from the engagement limit; the radius must \
+             exceed a least radius (eq. 25). Medial axis: perforative circles along the medial axis of the \
              remaining material (segment Voronoi diagram). Plain: the ring as it is, for comparison.",
         );
     });

@@ -166,7 +166,7 @@ fn format_options(ui: &mut egui::Ui, settings: &mut CornerNcSettings) {
     ui.separator();
     let l = ui.label(label::CORNER_NC_TOLERANCE).on_hover_text(
         "Largest distance of the written path from the planned one before rounding (mm); \
-         curves become biarcs (or chords) within it. Default 0.005 mm (docs/nc-export.md).",
+         curves become biarcs (or chords) within it. Default 0.005 mm.",
     );
     ui.spacing_mut().slider_width = 110.0;
     ui.add(tolerance_slider(&mut settings.tolerance_mm)).labelled_by(l.id);
@@ -176,6 +176,7 @@ fn format_options(ui: &mut egui::Ui, settings: &mut CornerNcSettings) {
 /// kept (the core rejects them with its message).
 pub(super) fn tolerance_slider(tolerance_mm: &mut f64) -> Slider<'_> {
     Slider::new(tolerance_mm, 1e-4..=1.0)
+        .custom_parser(super::number::parse)
         .logarithmic(true)
         .clamping(SliderClamping::Never)
         .max_decimals(4)

@@ -156,15 +156,15 @@ mod tip {
     pub const PLAIN: &str = "Peak engagement of the plain contour-parallel ring turning at the corner, no trochoids \
         (measured by the evaluator, like every number here).";
     pub const BODY: &str = "Body: peak engagement of the strategy's whole path except the way into the corner point. \
-        It must stay within the target a* + 1°.";
+        It must stay within the target + 1°.";
     pub const TIP: &str = "Tip: peak engagement of the way into the corner point: arcs tangent to both walls whose \
-        radii shrink from the last circle's to the corner tolerance (0.005 mm), each planned to a*; the corner is \
+        radii shrink from the last circle's to the corner tolerance (0.005 mm), each planned to the target; the corner is \
         cut to radius r + 0.005 mm. (With --corner-tolerance 0, Wu et al.'s straight move into the corner point, \
         which engages about 180° minus the corner angle.)";
-    pub const LIMIT: &str = "Stated limit of the tip: a* for the corner-point arcs (each is planned to it); for Wu \
+    pub const LIMIT: &str = "Stated limit of the tip: the target for the corner-point arcs (each is planned to it); for Wu \
         et al.'s move into the corner point the arc of the tool periphery outside the last offset circle, \
-        2(π − ψ). The tip is judged against max(a* + 1°, limit + 1°).";
-    pub const PASS: &str = "pass: body ≤ a* + 1° and tip ≤ max(a* + 1°, tip limit + 1°) (core: AcceptanceRow::passes).";
+        2(π − ψ). The tip is judged against max(target + 1°, limit + 1°).";
+    pub const PASS: &str = "pass: body ≤ target + 1° and tip ≤ max(target + 1°, tip limit + 1°).";
     pub const LENGTH: &str =
         "Tool-centre path length (mm): both walls and the corner; medial axis: the corner branch only.";
     pub const TIME: &str = "Machining time at the feed rate (s).";
@@ -187,8 +187,8 @@ fn strategy_label(i: usize) -> &'static str {
 /// What the table's body and tip columns mean (under the grid).
 const BODY_AND_TIP: &str = "Body and tip: every strategy ends its chain of wall-tangent circles when the next circle \
     gets too small; the tip is the way from there into the corner point — arcs tangent to both walls shrinking to \
-    0.005 mm, each planned to a* — reported apart (dashed in the plot); reaching the corner point itself would \
-    engage 180° minus the corner angle. Body and tip must both stay within a* + 1°. Hover the column titles for details.";
+    0.005 mm, each planned to the target — reported apart (dashed in the plot); reaching the corner point itself would \
+    engage 180° minus the corner angle. Body and tip must both stay within the target + 1°. Hover the column titles for details.";
 
 /// The table (grid) and the plot of peak engagement against the corner angle.
 pub fn show(ui: &mut egui::Ui, view: &TableView) -> Option<Command> {
@@ -204,7 +204,7 @@ pub fn show(ui: &mut egui::Ui, view: &TableView) -> Option<Command> {
     };
     let target = s.target.to_degrees();
     ui.label(format!(
-        "target a* {target:.2}° (pass: body ≤ a* + {MARGIN_DEG:.0}° = {:.2}°) · a_e {:.3} mm · D {:.1} mm · feed {:.0} mm/min",
+        "target {target:.2}° (pass: body ≤ target + {MARGIN_DEG:.0}° = {:.2}°) · a_e {:.3} mm · D {:.1} mm · feed {:.0} mm/min",
         target + MARGIN_DEG,
         s.step_over,
         2.0 * s.tool_radius,
@@ -243,7 +243,7 @@ fn progress(ui: &mut egui::Ui, view: &TableView) -> Option<Command> {
     if view.complete() {
         ui.label(format!(
             "{n} corner angles × 3 strategies, measured by the evaluator every {} mm — the rows of \
-             `trochoplan corner --method M --table`.",
+             trochoplan corner --method M --table.",
             view.spacing_mm
         ));
     }
@@ -349,7 +349,7 @@ fn plot(ui: &mut egui::Ui, view: &TableView, target_deg: f64, width: f32, height
                         .style(LineStyle::dashed_loose()),
                 );
             }
-            p.hline(HLine::new("target a* + 1°", target_deg + MARGIN_DEG).color(Color32::from_rgb(200, 40, 40)));
+            p.hline(HLine::new("target + 1°", target_deg + MARGIN_DEG).color(Color32::from_rgb(200, 40, 40)));
         });
 }
 

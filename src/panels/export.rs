@@ -5,6 +5,8 @@
 //! (`nc::backplot`), both computed once per (plan, settings) in [`ExportCache`], not per frame.
 //! Compact loop programs are not interpreted: their back-plot is that of the expanded program
 //! with the same options (the core guarantees the same motion), and the panel says so.
+//! A slot cut in levels or closed gets the core's levels program (`nc::levels_program`), the
+//! one `trochoplan export` writes for the same job.
 
 use super::Command;
 use super::corner_nc::tolerance_slider;
@@ -17,7 +19,8 @@ use serde::{Deserialize, Serialize};
 use trochoplan_core::Plan;
 use trochoplan_core::frame::ProgramFrame;
 use trochoplan_core::job::ValidJob;
-use trochoplan_core::nc::{self, DEFAULT_TOLERANCE_MM, Dialect, NcOptions};
+use trochoplan_core::nc::{self, DEFAULT_TOLERANCE_MM, Dialect, NcOptions, NcProgram};
+use trochoplan_core::slot_levels::LevelPlan;
 
 /// Chord tolerance of the drawn back-plot (mm), raised for very long programs.
 const BACKPLOT_CHORD_MM: f64 = 0.002;
@@ -164,9 +167,20 @@ impl<K: PartialEq, V> ProgramCache<K, V> {
 pub type ExportCache = ProgramCache<(ValidJob, ExportSettings), ExportView>;
 
 impl ExportCache {
-    /// Regenerate if `plan` or `settings` changed since the last call.
-    pub fn update(&mut self, plan: &Plan, settings: &ExportSettings) {
-        self.update_with((plan.job.clone(), settings.clone()), |(_, settings)| generate(plan, settings));
+    /// Regenerate if `plan` or `settings` changed since the last call; `levels`: the plan's
+    /// levels (or the core's message) when the job is cut in levels or closed.
+    pub fn update(&mut self, plan: &Plan, levels: Option<&Result<LevelPlan, String>>, settings: &ExportSettings) {
+        self.update_with((plan.job.clone(), settings.clone()), |(_, settings)| generate(plan, levels, settings));
+    }
+}
+
+/// The program of `plan` with `opts`: the levels' program when the job has levels, else the
+/// one-level slot program.
+fn write(plan: &Plan, levels: Option<&Result<LevelPlan, String>>, opts: &NcOptions) -> Result<NcProgram, String> {
+    match levels {
+        Some(Ok(lp)) => nc::levels_program(plan, lp, opts).map_err(|e| e.to_string()),
+        Some(Err(e)) => Err(e.clone()),
+        None => nc::program(plan, opts).map_err(|e| e.to_string()),
     }
 }
 
@@ -174,9 +188,13 @@ fn to_points(pts: Vec<trochoplan_core::geom::P2>) -> Vec<PlotPoint> {
     pts.into_iter().map(|p| PlotPoint::new(p.x, p.y)).collect()
 }
 
-fn generate(plan: &Plan, settings: &ExportSettings) -> Result<ExportView, String> {
+fn generate(
+    plan: &Plan,
+    levels: Option<&Result<LevelPlan, String>>,
+    settings: &ExportSettings,
+) -> Result<ExportView, String> {
     let opts = settings.options();
-    let program = nc::program(plan, &opts).map_err(|e| e.to_string())?;
+    let program = write(plan, levels, &opts)?;
     // Loop programs are not interpreted: back-plot the expanded program of the same options.
     let (plotted, note) = if opts.compact {
         let expanded = NcOptions { compact: false, ..opts.clone() };
@@ -199,7 +217,11 @@ fn generate(plan: &Plan, settings: &ExportSettings) -> Result<ExportView, String
     };
     let path = &plan.path;
     let per_segment = (PLANNED_POINTS_PER_SEGMENT * 40 / path.cycles.max(1)).clamp(8, PLANNED_POINTS_PER_SEGMENT);
-    let planned = to_points(path.sample_cycles(0, path.cycles, per_segment));
+    let planned = match levels.and_then(|l| l.as_ref().ok()).and_then(|lp| lp.per_level.first()) {
+        // every level has the same planar moves: the first level's
+        Some(level) => to_points(level.toolpath.moves.iter().flat_map(|m| m.segment.sample(per_segment)).collect()),
+        None => to_points(path.sample_cycles(0, path.cycles, per_segment)),
+    };
     let line_starts = line_starts(&program.text);
     Ok(ExportView {
         text: program.text,
@@ -213,18 +235,26 @@ fn generate(plan: &Plan, settings: &ExportSettings) -> Result<ExportView, String
 }
 
 /// The export panel: options and the program's frame (`frame`: the job's, edited here) on
-/// top, then preview and back-plot side by side. `job_error`: the edited job is invalid (the
+/// top, then preview and back-plot side by side. `levels`: the job is cut in levels or closed
+/// (no loop form). `job_error`: the edited job is invalid (the
 /// program would be of the last valid plan).
 pub fn show(
     ui: &mut egui::Ui,
     settings: &mut ExportSettings,
     frame: &mut ProgramFrame,
     cache: &ExportCache,
+    levels: bool,
     job_error: Option<&str>,
 ) -> Option<Command> {
     ui.horizontal_wrapped(|ui| dialect_row(ui, settings));
-    ui.horizontal_wrapped(|ui| options_row(ui, settings));
+    ui.horizontal_wrapped(|ui| options_row(ui, settings, levels));
     super::program_frame::show(ui, frame, settings.dialect);
+    if levels {
+        ui.label(
+            "The slot is cut in levels or closed: the program cuts level by level, each entered as \
+             the Slot fields say (the loop form writes one level only, so it is not offered).",
+        );
+    }
     if let Some(e) = job_error {
         ui.colored_label(ERROR_COLOR, format!("Job invalid ({e}): fix it before exporting."));
     }
@@ -254,28 +284,34 @@ fn dialect_row(ui: &mut egui::Ui, settings: &mut ExportSettings) {
 }
 
 /// Tolerance, chords, loop form, coolant and return feed.
-fn options_row(ui: &mut egui::Ui, settings: &mut ExportSettings) {
+fn options_row(ui: &mut egui::Ui, settings: &mut ExportSettings, levels: bool) {
     let l = ui.label(label::NC_TOLERANCE).on_hover_text(
         "Largest distance of the written path from the planned one before rounding (mm). \
-         Curves become biarcs (or chords) within it; default 0.005 mm (docs/nc-export.md).",
+         Curves become biarcs (or chords) within it; default 0.005 mm.",
     );
     ui.spacing_mut().slider_width = 140.0;
     ui.add(tolerance_slider(&mut settings.tolerance_mm)).labelled_by(l.id);
     ui.checkbox(&mut settings.linear_segments, label::LINEAR_SEGMENTS)
         .on_hover_text("Write every curve as G1 chords instead of G2/G3 arcs (many more blocks).");
-    let loops = settings.dialect.spec().loop_style.is_some();
+    let loops = settings.dialect.spec().loop_style.is_some() && !levels;
     if !loops {
         settings.compact = false;
     }
     ui.add_enabled(loops, egui::Checkbox::new(&mut settings.compact, label::COMPACT_LOOP))
         .on_hover_text("LinuxCNC O-word while loop / Sinumerik R-parameter loop: one cycle's blocks, repeated.")
-        .on_disabled_hover_text("Only LinuxCNC and Sinumerik have a loop form.");
+        .on_disabled_hover_text(
+            "Only LinuxCNC and Sinumerik have a loop form, and it writes one level: not for a slot \
+             in levels or a closed slot.",
+        );
     ui.checkbox(&mut settings.return_feed, label::FASTER_RETURN_FEED)
         .on_hover_text("A faster feed on the moves where no tooth cuts in the steady state.");
     let l = ui.label(label::RETURN_FEED);
     ui.add_enabled(
         settings.return_feed,
-        egui::DragValue::new(&mut settings.return_feed_mm_per_min).speed(10.0).suffix(" mm/min"),
+        egui::DragValue::new(&mut settings.return_feed_mm_per_min)
+            .custom_parser(super::number::parse)
+            .speed(10.0)
+            .suffix(" mm/min"),
     )
     .labelled_by(l.id);
 }
@@ -346,18 +382,18 @@ mod tests {
         let plan = trochoplan_core::plan(&trochoplan_core::Job::default()).expect("plan");
         let mut c = ExportCache::default();
         let s = ExportSettings::default();
-        c.update(&plan, &s);
-        c.update(&plan, &s);
+        c.update(&plan, None, &s);
+        c.update(&plan, None, &s);
         assert_eq!(c.generated, 1);
         let v = c.view().expect("program");
         assert_eq!(v.line(0), v.text.lines().next().expect("a line"));
         assert_eq!(v.lines(), v.text.lines().count());
         assert!(!v.backplot.is_empty() && v.backplot_error.is_none());
-        c.update(&plan, &ExportSettings { tolerance_mm: 5.0, ..s.clone() });
+        c.update(&plan, None, &ExportSettings { tolerance_mm: 5.0, ..s.clone() });
         assert_eq!(c.generated, 2);
         let e = c.result.as_ref().expect("result").as_ref().expect_err("invalid tolerance");
         assert!(e.contains("tolerance"), "{e}");
-        c.update(&plan, &ExportSettings { compact: true, dialect: Dialect::Sinumerik, ..s });
+        c.update(&plan, None, &ExportSettings { compact: true, dialect: Dialect::Sinumerik, ..s });
         let v = c.view().expect("compact program");
         assert!(v.text.contains("GOTOB"));
         assert!(v.backplot_note.is_some() && !v.backplot.is_empty());

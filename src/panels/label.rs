@@ -16,8 +16,8 @@ pub const SAVE_NC_PROGRAM: &str = "Save NC program…";
 pub const CORNER_ANGLE: &str = "Corner angle (°)";
 pub const CORNER_TOOL_DIAMETER: &str = "Corner tool diameter D (mm)";
 pub const RING_STEP_OVER: &str = "Ring step-over a_e (mm)";
-pub const STRAIGHT_ENGAGEMENT: &str = "Straight engagement a_str (°)";
-pub const ALLOWED_EXCESS_T1: &str = "Allowed excess t1";
+pub const STRAIGHT_ENGAGEMENT: &str = "Engagement on the straight walls (°)";
+pub const ALLOWED_CORNER_EXCESS: &str = "Allowed corner excess (share)";
 
 // Pocket tab.
 pub const POCKET_VERTICES: &str = "Pocket vertices (x,y per line)";

@@ -9,6 +9,7 @@ pub mod export;
 pub mod graphics;
 pub mod label;
 pub mod metrics;
+pub mod number;
 pub mod optimise;
 pub mod params;
 pub mod path_field;

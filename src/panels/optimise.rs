@@ -163,22 +163,40 @@ pub fn show(
     ui.horizontal_wrapped(|ui| {
         ui.add_enabled_ui(!running, |ui| {
             let l = ui.label("h_max <=");
-            ui.add(egui::DragValue::new(&mut settings.max_hmax_mm).speed(0.001).max_decimals(4).suffix(" mm"))
-                .labelled_by(l.id);
+            ui.add(
+                egui::DragValue::new(&mut settings.max_hmax_mm)
+                    .custom_parser(super::number::parse)
+                    .speed(0.001)
+                    .max_decimals(4)
+                    .suffix(" mm"),
+            )
+            .labelled_by(l.id);
             let l = ui.label("engagement <=");
-            ui.add(egui::DragValue::new(&mut settings.max_engagement_deg).speed(0.5).max_decimals(2).suffix("°"))
-                .labelled_by(l.id);
+            ui.add(
+                egui::DragValue::new(&mut settings.max_engagement_deg)
+                    .custom_parser(super::number::parse)
+                    .speed(0.5)
+                    .max_decimals(2)
+                    .suffix("°"),
+            )
+            .labelled_by(l.id);
             ui.checkbox(&mut settings.limit_waviness, "W_max <=");
             ui.add_enabled(
                 settings.limit_waviness,
-                egui::DragValue::new(&mut settings.max_waviness_mm).speed(0.001).max_decimals(4).suffix(" mm"),
+                egui::DragValue::new(&mut settings.max_waviness_mm)
+                    .custom_parser(super::number::parse)
+                    .speed(0.001)
+                    .max_decimals(4)
+                    .suffix(" mm"),
             );
             ui.checkbox(&mut settings.limit_cooling, "cooling share >=").on_hover_text(
-                "Smallest share of the cycle in which a tooth does not cut (t_cooling, `--min-cooling`)",
+                "Smallest share of the cycle in which a tooth does not cut: its cooling time t_cooling \
+                 over the cycle time.",
             );
             ui.add_enabled(
                 settings.limit_cooling,
                 egui::DragValue::new(&mut settings.min_cooling_share)
+                    .custom_parser(super::number::parse)
                     .range(0.0..=1.0)
                     .speed(0.005)
                     .max_decimals(3)
@@ -189,7 +207,11 @@ pub fn show(
             );
             ui.add_enabled(
                 settings.limit_force,
-                egui::DragValue::new(&mut settings.max_force_n).speed(5.0).max_decimals(0).suffix(" N"),
+                egui::DragValue::new(&mut settings.max_force_n)
+                    .custom_parser(super::number::parse)
+                    .speed(5.0)
+                    .max_decimals(0)
+                    .suffix(" N"),
             );
         });
         if running {

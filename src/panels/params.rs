@@ -52,6 +52,7 @@ impl<'a> Field<'a> {
             .clamping(SliderClamping::Never)
             .logarithmic(self.log)
             .max_decimals(self.decimals)
+            .custom_parser(super::number::parse)
             .suffix(format!(" {}", self.unit));
         if self.log {
             slider = slider.smallest_positive(1e-3);
@@ -171,9 +172,15 @@ fn process_fields(ui: &mut egui::Ui, job: &mut Job, error: Option<&Error>) {
             job.ra_um = on.then_some(1.0);
         }
         if let Some(ra) = &mut job.ra_um {
-            ui.add(egui::DragValue::new(ra).speed(0.01).range(0.0..=1000.0).suffix(" µm"))
-                .labelled_by(lab.id)
-                .on_hover_text(tip);
+            ui.add(
+                egui::DragValue::new(ra)
+                    .speed(0.01)
+                    .range(0.0..=1000.0)
+                    .custom_parser(super::number::parse)
+                    .suffix(" µm"),
+            )
+            .labelled_by(lab.id)
+            .on_hover_text(tip);
         } else {
             ui.label(RichText::new("not entered").weak());
         }
@@ -242,6 +249,57 @@ fn slot_fields(ui: &mut egui::Ui, job: &mut Job, error: Option<&Error>) {
     .log()
     .error(error)
     .show(ui, &mut job.depth);
+    levels_fields(ui, job, error);
+}
+
+/// Tooltip of the deepest cut of one level.
+const MAX_STEP_DOWN_TIP: &str = "Deepest cut of one level (mm). Ticked, the depth is cut in \
+    n = ⌈depth / max step-down⌉ equal levels of depth / n each (12 mm at 5 mm: 3 levels of 4 mm, \
+    not 5 + 5 + 2). Every level repeats the same loops at its own floor: the chips and the \
+    engagement are those of one pass, the forces, torque and power those of one level's depth. \
+    Unticked: one level at the full depth.";
+
+/// Tooltip of the closed slot.
+const CLOSED_TIP: &str = "A slot closed at both ends, as a keyway: the slot runs from Y0 to the \
+    slot length with round ends. The tool centre stays D/2 from both end walls, so the cutting \
+    edge stops at the wall. Each level is entered by a helix on the loop radius (B − D)/2 inside \
+    the slot (at most 0.1·D and 5° down per turn; a centre-cutting end mill), then the loops, a \
+    link back along the wall and one last loop into the end. Target: every move engages at most \
+    the steady-state loop's engagement + 1° (measured, in the derived values). \
+    Unticked (open slot): each level starts outside the stock before Y0, and the loops run on \
+    past the slot length until the whole width is cut there (the tool centre then passes the \
+    end by about a + s, in the air beyond the part).";
+
+/// The levels (a ticked maximum step-down) and the slot's ends.
+fn levels_fields(ui: &mut egui::Ui, job: &mut Job, error: Option<&Error>) {
+    let lab = ui.label(Param::MaxStepDown.label()).on_hover_text(MAX_STEP_DOWN_TIP);
+    ui.horizontal(|ui| {
+        let mut on = job.max_step_down.is_some();
+        if ui.checkbox(&mut on, "").labelled_by(lab.id).on_hover_text(MAX_STEP_DOWN_TIP).changed() {
+            job.max_step_down = on.then_some((job.depth / 2.0).max(0.1));
+        }
+        if let Some(m) = &mut job.max_step_down {
+            let depth = job.depth.max(0.2);
+            ui.add(
+                Slider::new(m, 0.1..=depth)
+                    .clamping(SliderClamping::Never)
+                    .logarithmic(true)
+                    .max_decimals(3)
+                    .custom_parser(super::number::parse)
+                    .suffix(" mm"),
+            )
+            .labelled_by(lab.id)
+            .on_hover_text(MAX_STEP_DOWN_TIP);
+        } else {
+            ui.label(RichText::new("one level at the full depth").weak());
+        }
+    });
+    ui.end_row();
+    field_error(ui, Param::MaxStepDown, error);
+    let lab = ui.label(Param::Closed.label()).on_hover_text(CLOSED_TIP);
+    ui.checkbox(&mut job.closed, "both ends are walls (keyway)").labelled_by(lab.id).on_hover_text(CLOSED_TIP);
+    ui.end_row();
+    field_error(ui, Param::Closed, error);
 }
 
 /// Tool diameter, teeth, feed and spindle speed.
@@ -281,6 +339,24 @@ fn tool_fields(ui: &mut egui::Ui, job: &mut Job, error: Option<&Error>) {
     .decimals(0)
     .error(error)
     .show(ui, &mut job.rpm);
+    shop_values(ui, job);
+}
+
+/// The cutting speed and the chip load per tooth of the fields above, as the shop states them.
+fn shop_values(ui: &mut egui::Ui, job: &Job) {
+    let vc_tip = "Cutting speed Vc = π·D·n/1000 (m/min): the speed of the cutting edge, from the \
+        tool diameter and the spindle speed; tool makers give its range for each work material.";
+    let fz_tip = "Chip load per tooth f_z = f_r/(n·z) (mm): the feed each tooth advances in one \
+        turn of the spindle; the chip thickness h is proportional to it.";
+    let shown = |x: Option<f64>, decimals: usize, unit: &str| {
+        x.map_or_else(|| "— (needs valid values)".to_owned(), |x| format!("{x:.decimals$} {unit}"))
+    };
+    ui.label("Cutting speed Vc").on_hover_text(vc_tip);
+    ui.label(RichText::new(shown(job.cutting_speed_m_per_min(), 1, "m/min")).monospace()).on_hover_text(vc_tip);
+    ui.end_row();
+    ui.label("Chip load per tooth f_z").on_hover_text(fz_tip);
+    ui.label(RichText::new(shown(job.chip_load_mm(), 4, "mm")).monospace()).on_hover_text(fz_tip);
+    ui.end_row();
 }
 
 /// The whole-number slider of the teeth z.
@@ -289,7 +365,8 @@ fn teeth_field(ui: &mut egui::Ui, teeth: &mut u32, error: Option<&Error>) {
     let tip = "Number of teeth z. Feed per tooth f_z = f_r/(n·z): more teeth, thinner chips \
         (h scales with f_z) and a shorter cooling time per tooth. Paper: 4.";
     lab.clone().on_hover_text(tip);
-    ui.add(Slider::new(teeth, 1..=12).clamping(SliderClamping::Never)).labelled_by(lab.id).on_hover_text(tip);
+    let slider = Slider::new(teeth, 1..=12).clamping(SliderClamping::Never).custom_parser(super::number::parse);
+    ui.add(slider.suffix(" teeth")).labelled_by(lab.id).on_hover_text(tip);
     ui.end_row();
     field_error(ui, Param::Teeth, error);
 }

@@ -51,7 +51,7 @@ pub mod explain {
         y = b·sin θ + s·θ/2π, with a = (B − D)/2 and b = r_e·a (eq. 2). Dashed: the tool edge of the \
         previous cycle C₂, the offset of C₁ by R (eq. 3); shaded: the region that cycle swept. Circle: the tool C₃ (eq. 5) at the current \
         tooth, red while it cuts. Grey lines: the slot walls x = ±B/2. Equal axis scale.";
-    pub const CHIP: &str = "Chip cut by the current tooth (Plan::chip_outline): between this \
+    pub const CHIP: &str = "Chip cut by the current tooth: between this \
         tooth's edge C₃ (eq. 5), the previous tooth's edge f_z back and the previous cycle's edge \
         C₂ (eq. 3); its thickness along the ray from the tool centre is h (eqs. 4, 6).";
     pub const H: &str = "Local maximum chip thickness per tooth, h = |DB| (eq. 4): B is where the \
@@ -68,7 +68,7 @@ pub mod explain {
         Figs. 8–9). Waviness W = peak-to-valley height; its spacing is the step s. Smaller r_e \
         raises W (Fig. 9); a linear distance d along the walls lowers it (Figs. 12, 28).";
     pub const FORCES: &str = "Cutting forces on the tool over one steady-state cycle (paper \
-        Figs. 14–15): linear edge-force model with helix (Altintas & Lee 1996; docs/process-model.md). \
+        Figs. 14–15): linear edge-force model with helix (Altintas & Lee 1996). \
         Every tooth, every axial slice dz = a_p/50, spindle steps ≤ 1°: dF_t = (Ktc·h + Kte)·dz, \
         dF_r = (Krc·h + Kre)·dz, dF_a = (Kac·h + Kae)·dz with h(φ) the chip thickness at the slice's \
         angle on the engaged arc (the same material model as h, eqs. 3–6); F_R = sqrt(Fx² + Fy² + Fz²). \
@@ -431,7 +431,7 @@ pub fn engagement_plot(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Curso
         ui,
         |p| {
             p.hline(
-                HLine::new("46° recommended limit", ENGAGEMENT_LIMIT_DEG)
+                HLine::new("46° recommended (Grechishnikov et al. 2017)", ENGAGEMENT_LIMIT_DEG)
                     .color(Color32::from_rgb(200, 60, 60))
                     .style(LineStyle::dashed_dense()),
             );

@@ -169,12 +169,17 @@ fn settings_row(ui: &mut egui::Ui, settings: &mut SweepSettings, running: bool, 
     {
         (settings.from, settings.to) = range;
     }
+    // r_e is a ratio b/a, d a length
+    let unit = if settings.param == SweepParam::LinearDistance { " mm" } else { " (b/a)" };
     let l = ui.label("from");
-    ui.add(egui::DragValue::new(&mut settings.from).speed(0.01).max_decimals(3)).labelled_by(l.id);
+    let from = egui::DragValue::new(&mut settings.from).custom_parser(super::number::parse).speed(0.01);
+    ui.add(from.max_decimals(3).suffix(unit)).labelled_by(l.id);
     let l = ui.label("to");
-    ui.add(egui::DragValue::new(&mut settings.to).speed(0.01).max_decimals(3)).labelled_by(l.id);
+    let to = egui::DragValue::new(&mut settings.to).custom_parser(super::number::parse).speed(0.01);
+    ui.add(to.max_decimals(3).suffix(unit)).labelled_by(l.id);
     let l = ui.label("values");
-    ui.add(egui::DragValue::new(&mut settings.steps).range(2..=400)).labelled_by(l.id);
+    ui.add(egui::DragValue::new(&mut settings.steps).custom_parser(super::number::parse).range(2..=400))
+        .labelled_by(l.id);
     let refusal = settings.refusal(current);
     let cmd = run_button(ui, running, refusal.as_deref());
     if let Some(why) = refusal {

@@ -77,6 +77,7 @@ pub fn controls(ui: &mut egui::Ui, anim: &mut Animation, plan: &Plan) {
         let r = ui
             .add(
                 egui::Slider::new(&mut t, 0.0..=t_cycle)
+                    .custom_parser(super::number::parse)
                     .clamping(egui::SliderClamping::Never)
                     .suffix(" s")
                     .max_decimals(3),
@@ -89,9 +90,15 @@ pub fn controls(ui: &mut egui::Ui, anim: &mut Animation, plan: &Plan) {
         }
         ui.spacing_mut().slider_width = 80.0;
         let l = ui.label("speed");
-        ui.add(egui::Slider::new(&mut anim.speed, 0.05..=2.0).logarithmic(true).suffix("×").max_decimals(2))
-            .labelled_by(l.id)
-            .on_hover_text("Playback speed relative to real time");
+        ui.add(
+            egui::Slider::new(&mut anim.speed, 0.05..=2.0)
+                .custom_parser(super::number::parse)
+                .logarithmic(true)
+                .suffix("×")
+                .max_decimals(2),
+        )
+        .labelled_by(l.id)
+        .on_hover_text("Playback speed relative to real time");
         if ui.small_button("at h_max").on_hover_text("Jump to the tooth with the largest h").clicked() {
             anim.t_s = None;
             anim.playing = false;

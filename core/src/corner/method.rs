@@ -48,7 +48,7 @@ impl CornerMethod {
         match self {
             CornerMethod::Plain => "The plain contour-parallel ring (no corner trochoids), for comparison",
             CornerMethod::Variable => "Variable circles on the bisector (Wu et al. 2016 eqs. 23–24)",
-            CornerMethod::Isometric => "Isometric circles (Wu et al. 2016 §4.2.2, eq. 25)",
+            CornerMethod::Isometric => "Isometric circles (Wu et al. 2016, section 4.2.2, eq. 25)",
             CornerMethod::MedialAxis => {
                 "Perforative circles along the medial axis of the pocket (Voronoi, boostvoronoi)"
             }
@@ -80,7 +80,7 @@ impl CornerMethod {
             }
             CornerMethod::MedialAxis => {
                 "Perforative circles along the medial axis of the corner's remaining material \
-                 (segment Voronoi diagram; Wu et al. 2016 §4.2)."
+                 (segment Voronoi diagram; Wu et al. 2016, section 4.2)."
             }
         }
     }

@@ -3,17 +3,21 @@
 //! the tests are grouped by what they drive: `slot` (the slot job's tabs), `window` (tabs,
 //! persisted state), `corner` (the Corner tab), `pocket` (the Pocket tab), `program` (the
 //! Program tab), `program_frame` (the program's frame), `files` (files without a system
-//! dialog), `machine` (forces,
-//! machine and optimiser).
+//! dialog), `machine` (forces, machine and optimiser), `levels` (a slot in levels and a closed
+//! slot), `limits` (the shop's words and the limits a job exceeds), `words` (no code names in
+//! the window or the help).
 
 mod corner;
 mod files;
+mod levels;
+mod limits;
 mod machine;
 mod pocket;
 mod program;
 mod program_frame;
 mod slot;
 mod window;
+mod words;
 
 use super::panels::label;
 use super::*;
@@ -70,6 +74,16 @@ fn metrics(h: &Harness<'_, App>) -> trochoplan_core::Metrics {
 
 fn shows(h: &Harness<'_, App>, text: &str) -> bool {
     h.query_all_by_label(text).next().is_some()
+}
+
+/// Run the command line `trochoplan` built with these tests on `args` (the window's tests
+/// compare its files and texts with the command line's; the window does not call the command
+/// line's code). `cargo test` builds it next to the test binary, one folder up.
+fn command_line(args: &[&str]) -> std::process::Output {
+    let exe = std::env::current_exe().expect("test binary");
+    let bin = exe.parent().and_then(Path::parent).map(|d| d.join("trochoplan")).expect("target folder");
+    assert!(bin.exists(), "{} not built (cargo test builds it)", bin.display());
+    std::process::Command::new(&bin).args(args).output().expect("run trochoplan")
 }
 
 /// eframe storage in memory.

@@ -332,6 +332,8 @@ fn export_panel_previews_each_dialect_reports_errors_and_saves_the_previewed_tex
     assert!(h.query_by_label(label::SAVE_NC_PROGRAM).is_none(), "no save button without a program");
 
     h.get_by_role_and_label(Role::Slider, label::NC_TOLERANCE).set_value_accesskit(0.01);
+    // the panel laid out again (the preview back) before the click finds the box where it is
+    h.run();
     h.get_by_label(label::COMPACT_LOOP).click();
     h.run();
     let view = h.state().export.view().expect("program").clone();

@@ -103,7 +103,7 @@ pub(super) fn isometric_circles(
     let tip = variable_chain(sc, big_r / sin)?;
     if !tip.is_empty() {
         notes.push(format!(
-            "corner tip finished with {} variable circles (Wu et al. 2016 §4.2.1) after the bisector circle",
+            "corner tip finished with {} variable circles (Wu et al. 2016, section 4.2.1) after the bisector circle",
             tip.len()
         ));
     }
