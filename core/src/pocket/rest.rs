@@ -18,6 +18,10 @@ use crate::toolpath::{Entry, Toolpath};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
+/// Longest stretch of dropped moves kept as a link at depth between two kept moves, in tool
+/// diameters: a longer one is a retract and a descent straight down.
+const LINK_AT_DEPTH_DIAMETERS: f64 = 2.0;
+
 /// What a rest plan was planned after, and what it saves.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RestSource {
@@ -26,7 +30,8 @@ pub struct RestSource {
     /// Length at depth of the smaller tool's full adaptive clearing of the pocket (mm): what
     /// the rest path replaces.
     pub full_length_mm: f64,
-    /// Moves of the full clearing kept (they engage the rest material), of all its moves.
+    /// Moves of the full clearing kept (they engage the rest material, or link two that do at
+    /// depth), of all its moves.
     pub kept_moves: usize,
     pub full_moves: usize,
 }
@@ -51,7 +56,7 @@ pub fn validate_rest_from(req: &PocketRequest) -> Result<Option<f64>, Error> {
         return Err(Error::param(
             Param::RestFrom,
             format!("{} with --method {}", num(big), req.strategy.name()),
-            "no rest machining for this method: --method adaptive (the default) plans it",
+            "--method adaptive (the default): the other methods plan no rest machining",
         ));
     }
     Ok(Some(big))
@@ -147,7 +152,24 @@ pub(super) fn plan_rest(req: &PocketRequest, settings: PocketSettings, big: f64)
     for (smp, &i) in over_rest.profile.samples.iter().zip(&sample_owners(&over_rest.profile, &segments)) {
         peak[i] = peak[i].max(smp.angle_rad);
     }
-    let keep: Vec<usize> = (0..segments.len()).filter(|&i| peak[i] > AIR_ENGAGEMENT_RAD).collect();
+    let mut keep: Vec<usize> = (0..segments.len()).filter(|&i| peak[i] > AIR_ENGAGEMENT_RAD).collect();
+    // a short stretch of dropped moves between two kept ones, with no retract in it, stays as
+    // a link at depth: it cuts nothing (it read no material) and kept the walls (the full plan
+    // was checked), and it spares a retract and a descent
+    let mut linked = Vec::with_capacity(keep.len());
+    for (n, &k) in keep.iter().enumerate() {
+        if n > 0 {
+            let prev = keep[n - 1];
+            let gap = prev + 1..k;
+            let length: f64 = segments[gap.clone()].iter().map(Segment::length).sum();
+            let retract = (prev + 1..=k).any(|j| full_tp.retract_before.contains(&j));
+            if !gap.is_empty() && !retract && length <= LINK_AT_DEPTH_DIAMETERS * 2.0 * r {
+                linked.extend(gap);
+            }
+        }
+        linked.push(k);
+    }
+    keep = linked;
     if keep.is_empty() {
         return Err(Error::param(
             Param::RestFrom,
