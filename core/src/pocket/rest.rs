@@ -7,14 +7,14 @@
 //! plan's tool was, in stock cleared there: straight down ([`Entry::Down`]) after a retract, or
 //! the full plan's own entry where the run starts with it.
 
-use super::adaptive::AdaptivePlan;
+use super::adaptive::{AdaptivePart, AdaptivePlan};
 use super::path::PocketPath;
 use super::{PocketPlan, PocketRequest, PocketSettings, PocketStrategy, guard, pace, plan_with};
 use crate::corner::limits::MAX_TOOL_DIAMETER_MM;
 use crate::engagement::{AIR_ENGAGEMENT_RAD, EvaluatorOptions, Stock, measure, sample_owners};
 use crate::error::{Error, Param, num};
 use crate::geom::{P2, Segment};
-use crate::toolpath::{Entry, Toolpath};
+use crate::toolpath::{Entry, MoveKind, Toolpath};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
@@ -223,6 +223,7 @@ pub(super) fn plan_rest(req: &PocketRequest, settings: PocketSettings, big: f64)
         name,
         &path.toolpath.entries,
     )?;
+    let parts = refreshed(full.parts.clone(), &keep, &path);
     path.pace = Some(pace::pace(&mut path, &req.pace)?);
     let rest = RestSource {
         rest_from_mm: big,
@@ -230,7 +231,47 @@ pub(super) fn plan_rest(req: &PocketRequest, settings: PocketSettings, big: f64)
         kept_moves: keep.len(),
         full_moves: segments.len(),
     };
-    Ok(PocketPlan::Adaptive(AdaptivePlan { path, rest: Some(rest), ..full }))
+    Ok(PocketPlan::Adaptive(AdaptivePlan { path, parts, rest: Some(rest), ..full }))
+}
+
+/// The full plan's parts for the rest path: their segment ranges in the kept moves (`keep`:
+/// the full plan's index of each), and their corner passes' and corner points' maxima as the
+/// rest path measures them (the samples on its corner and corner-point moves, each given to
+/// the nearest corner, as the adaptive planner gives them; 0 where no such move is kept).
+fn refreshed(mut parts: Vec<AdaptivePart>, keep: &[usize], path: &PocketPath) -> Vec<AdaptivePart> {
+    let new_index = |old: usize| keep.partition_point(|&k| k < old);
+    for p in &mut parts {
+        p.first_segment = new_index(p.first_segment);
+        p.end_segment = new_index(p.end_segment);
+        p.corners.iter_mut().for_each(|c| c.max_engagement_rad = 0.0);
+        p.corner_points.iter_mut().for_each(|c| c.max_engagement_rad = 0.0);
+    }
+    let profile = &path.measurement.profile;
+    let (segments, kinds) = (path.segments(), path.kinds());
+    for (smp, &i) in profile.samples.iter().zip(&sample_owners(profile, &segments)) {
+        let at = P2::new(smp.x_mm, smp.y_mm);
+        let nearest = |v: P2, w: P2| (v - at).norm().total_cmp(&(w - at).norm());
+        let slot = match kinds.get(i) {
+            Some(MoveKind::Corner) => parts
+                .iter_mut()
+                .flat_map(|p| p.corners.iter_mut())
+                .min_by(|a, c| nearest(a.vertex, c.vertex))
+                .map(|c| (&mut c.max_engagement_rad, &mut c.at)),
+            Some(MoveKind::CornerPoint) => parts
+                .iter_mut()
+                .flat_map(|p| p.corner_points.iter_mut())
+                .min_by(|a, c| nearest(a.vertex, c.vertex))
+                .map(|c| (&mut c.max_engagement_rad, &mut c.at)),
+            _ => None,
+        };
+        if let Some((max, where_)) = slot
+            && smp.angle_rad > *max
+        {
+            *max = smp.angle_rad;
+            *where_ = at;
+        }
+    }
+    parts
 }
 
 #[cfg(test)]
