@@ -94,6 +94,8 @@ pub enum Param {
     RampAngle,
     /// `pocket --ramp-pass-depth`: axial depth of each full-width pass of a narrow pocket's ramp.
     RampPassDepth,
+    /// `pocket --rest-from` (rest machining after a larger tool).
+    RestFrom,
     /// `pocket --finish-stock`.
     FinishStock,
     /// Work material by name (`--material`, job key `material`).
@@ -141,7 +143,7 @@ pub enum Param {
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 92] = [
+    pub const ALL: [Param; 93] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
@@ -206,6 +208,7 @@ impl Param {
         Param::HelixRadius,
         Param::RampAngle,
         Param::RampPassDepth,
+        Param::RestFrom,
         Param::FinishStock,
         Param::Material,
         Param::Materials,
@@ -304,6 +307,7 @@ impl Param {
             Param::HelixRadius => "helix-radius",
             Param::RampAngle => "ramp-angle",
             Param::RampPassDepth => "ramp-pass-depth",
+            Param::RestFrom => "rest-from",
             Param::FinishStock => "finish-stock",
             Param::Material => "material",
             Param::Materials => "materials",
@@ -402,6 +406,7 @@ impl Param {
             Param::HelixRadius => "Helix radius",
             Param::RampAngle => "Ramp angle",
             Param::RampPassDepth => "Ramp pass depth",
+            Param::RestFrom => "Rest from tool diameter",
             Param::FinishStock => "Finishing stock",
             Param::Material => "Material",
             Param::Materials => "Material library",

@@ -83,6 +83,13 @@ pub struct PocketArgs {
     /// + 1°.
     #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
     peak_limit: Option<f64>,
+    /// Rest machining (`--method adaptive`): the diameter of a larger tool that cleared this
+    /// pocket before (mm, larger than --tool-diameter). This tool clears only what that one
+    /// left (corners, narrow gaps): the moves of its full adaptive clearing that engage the
+    /// material left, entering straight down where that clearing had cleared the stock. The
+    /// JSON's `rest_full_length_mm` is the full clearing's length at depth.
+    #[arg(long, value_name = "DIAMETER", allow_hyphen_values = true)]
+    rest_from: Option<f64>,
     /// Radial stock of the finishing contour (mm, `--method adaptive`); 0: no finishing pass.
     #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = AdaptiveOptions::default().finish_stock_mm)]
     finish_stock: f64,
@@ -201,6 +208,7 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
         ramp_pass_depth_mm: args.ramp_pass_depth,
         peak_limit_deg: args.peak_limit,
         islands,
+        rest_from_mm: args.rest_from,
     };
     let plan = pocket::plan(&req).map_err(err)?;
     let nc_export = match &args.nc.export {
@@ -233,6 +241,15 @@ fn with_chip_peaks(text: &str, plan: &PocketPlan, args: &PocketArgs) -> Result<S
     if let Some(obj) = v.as_object_mut() {
         obj.insert("h_max_mm".into(), peaks.h_max_mm.into());
         obj.insert("h_max_programmed_mm".into(), peaks.h_max_programmed_mm.into());
+        // rest machining: the larger tool and the full clearing the path was taken from
+        if let PocketPlan::Adaptive(a) = plan
+            && let Some(rest) = a.rest
+        {
+            obj.insert("rest_from_mm".into(), rest.rest_from_mm.into());
+            obj.insert("rest_full_length_mm".into(), rest.full_length_mm.into());
+            obj.insert("rest_kept_moves".into(), rest.kept_moves.into());
+            obj.insert("rest_full_moves".into(), rest.full_moves.into());
+        }
     }
     super::common::json_text(&v)
 }

@@ -24,6 +24,7 @@ pub mod pace;
 mod pace_tests;
 pub mod path;
 pub mod perforative;
+pub mod rest;
 pub mod rings;
 pub mod route;
 mod run_order;
@@ -236,6 +237,10 @@ pub struct PocketRequest {
     /// ([`plan_adaptive_islands`]); the other methods refuse them.
     #[serde(default)]
     pub islands: Vec<Polygon>,
+    /// Diameter of a larger tool that cleared the pocket before (mm, `--rest-from`): this
+    /// tool clears only what that one left ([`rest`]). Adaptive clearing only.
+    #[serde(default)]
+    pub rest_from_mm: Option<f64>,
 }
 
 impl Default for PocketRequest {
@@ -257,6 +262,7 @@ impl Default for PocketRequest {
             ramp_pass_depth_mm: None,
             peak_limit_deg: None,
             islands: Vec::new(),
+            rest_from_mm: None,
         }
     }
 }
@@ -562,6 +568,12 @@ pub fn plan(req: &PocketRequest) -> Result<PocketPlan, Error> {
     // so is the peak limit, before any planning
     let target = req.adaptive.target_rad(&settings)?;
     let peak_limit = peak_limit_rad(req.peak_limit_deg, target)?;
+    if let Some(big) = rest::validate_rest_from(req)? {
+        check_work(&req.polygon, PocketStrategy::Adaptive, &settings)?;
+        let plan = rest::plan_rest(req, settings, big)?;
+        within_target(&plan, target, (peak_limit, req.peak_limit_deg))?;
+        return Ok(plan);
+    }
     let auto_slot = req.strategy == PocketStrategy::Adaptive
         && req.open_edges.is_empty()
         && req.islands.is_empty()

@@ -57,8 +57,20 @@ impl PocketPath {
         toolpath: Toolpath,
         depth_mm: f64,
     ) -> Result<PocketPath, Error> {
+        PocketPath::measured_over(Stock { polygon, precut: &[], islands }, settings, toolpath, depth_mm)
+    }
+
+    /// [`Self::measured_with_islands`] over `stock` with its earlier cuts (`precut`, e.g. a
+    /// larger tool's sweep before rest machining) as cut.
+    pub fn measured_over(
+        stock: Stock<'_>,
+        settings: PocketSettings,
+        toolpath: Toolpath,
+        depth_mm: f64,
+    ) -> Result<PocketPath, Error> {
+        let (polygon, islands) = (stock.polygon, stock.islands);
         let opts = EvaluatorOptions::new(settings.tool_radius, settings.spacing);
-        let measurement = measure(&toolpath, Stock { polygon, precut: &[], islands }, &opts)?;
+        let measurement = measure(&toolpath, stock, &opts)?;
         let link_length_mm = toolpath.length_of(&[MoveKind::Link]);
         let entry_length_mm = toolpath.entry_length_mm(depth_mm);
         let time_s = (measurement.length_at_depth_mm + entry_length_mm) / settings.feed_mm_per_min * 60.0;

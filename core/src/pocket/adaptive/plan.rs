@@ -65,6 +65,10 @@ pub struct AdaptivePlan {
     /// Radius of the pocket's convex corners as cut (mm): r + δ after the finishing pass's
     /// corner arcs, r + ρ_fin without a finishing pass ([`corner_point_bound_rad`](crate::corner::point::corner_point_bound_rad)).
     pub corner_radius_left_mm: f64,
+    /// Rest machining: the larger tool cut before and the full clearing the path was taken
+    /// from ([`crate::pocket::rest`]); `None`: the full clearing.
+    #[serde(default)]
+    pub rest: Option<crate::pocket::rest::RestSource>,
 }
 
 /// Evaluate every move at depth and gather the report.
@@ -123,5 +127,13 @@ pub(super) fn measure(
             *where_ = at;
         }
     }
-    Ok(AdaptivePlan { path, open_edges: Vec::new(), options, target_rad: phi, parts, corner_radius_left_mm })
+    Ok(AdaptivePlan {
+        path,
+        open_edges: Vec::new(),
+        options,
+        target_rad: phi,
+        parts,
+        corner_radius_left_mm,
+        rest: None,
+    })
 }
