@@ -75,11 +75,7 @@ pub fn operations_program(ops: &[OperationNc<'_>], opts: &NcOptions) -> Result<N
     let mut w = Writer::with_units(opts.dialect.spec(), opts.frame.units);
     let header = Header {
         default_title: "TrochoPlan job",
-        description: ops
-            .iter()
-            .enumerate()
-            .map(|(k, op)| format!("{}: {}, T{}", k + 1, op.label, op.tool.number))
-            .collect(),
+        description: ops.iter().enumerate().map(|(k, op)| format!("{}: {}", k + 1, op.label)).collect(),
         tool_diameter_mm: first.tool.diameter_mm,
         spindle_rpm: first.tool.spindle_rpm,
     };
