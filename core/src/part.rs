@@ -173,6 +173,10 @@ pub fn parse(text: &str) -> Result<PartFile, PartError> {
     Ok(file)
 }
 
+/// Reads the outline file a pocket operation names (relative to the job file) into its
+/// boundary and islands; the error is the message.
+pub type OutlineReader<'a> = dyn Fn(&str) -> Result<(Vec<P2>, Vec<Vec<P2>>), String> + 'a;
+
 /// The kinds of operation, as the `kind` key names them.
 pub const KINDS: [&str; 3] = ["slot", "pocket", "corner"];
 
@@ -181,7 +185,7 @@ pub const KINDS: [&str; 3] = ["slot", "pocket", "corner"];
 /// pockets' feeds to the machine as `pocket --machine` does.
 pub fn plan_part(
     file: &PartFile,
-    outline: &dyn Fn(&str) -> Result<(Vec<P2>, Vec<Vec<P2>>), String>,
+    outline: &OutlineReader<'_>,
     machine: Option<&Machine>,
 ) -> Result<Vec<PlannedOperation>, PartError> {
     let mut out = Vec::with_capacity(file.operation.len());
@@ -244,7 +248,7 @@ fn plan_slot(mut t: toml::Table, tool: &Tool) -> Result<Planned, Error> {
 fn plan_pocket(
     t: toml::Table,
     tool: &Tool,
-    outline: &dyn Fn(&str) -> Result<(Vec<P2>, Vec<Vec<P2>>), String>,
+    outline: &OutlineReader<'_>,
     machine: Option<&Machine>,
 ) -> Result<Planned, Error> {
     no_tool_keys(&t)?;
