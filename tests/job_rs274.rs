@@ -236,10 +236,20 @@ fn bad_job_files_are_refused_naming_the_operation() {
         ),
     ] {
         let job = write(d, name, &format!("{TOOLS}{ops}"));
-        let out =
-            trochoplan(&["job", job.to_str().expect("utf-8"), "--export", d.join("x.ngc").to_str().expect("utf-8")]);
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert!(!out.status.success() && err.contains(want), "{name}: {err}");
-        assert!(!d.join("x.ngc").exists(), "{name}: no program written");
+        refused(d, name, &job, want);
     }
+    // a tool given twice; a tool's key given by an operation
+    let twice = format!("{TOOLS}{}{}", TOOLS.split("\n\n").nth(1).expect("tool 2"), "\n\n");
+    let job = write(d, "twice.toml", &format!("{twice}{}", slot_op(1)));
+    refused(d, "twice", &job, "tool table: tool 2 is given twice");
+    let job = write(d, "feed.toml", &format!("{TOOLS}{}", slot_op(1).replace("depth", "feed = 300.0\ndepth")));
+    refused(d, "feed", &job, "operation 1: feed: comes from the tool table");
+}
+
+/// `trochoplan job` refuses `job` with a message containing `want` and writes no program.
+fn refused(d: &Path, name: &str, job: &Path, want: &str) {
+    let out = trochoplan(&["job", job.to_str().expect("utf-8"), "--export", d.join("x.ngc").to_str().expect("utf-8")]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && err.contains(want), "{name}: {err}");
+    assert!(!d.join("x.ngc").exists(), "{name}: no program written");
 }
