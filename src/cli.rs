@@ -9,6 +9,7 @@ mod corner;
 mod engagement;
 #[path = "export.rs"]
 mod export;
+mod job;
 mod levels;
 mod pocket;
 mod program;
@@ -108,6 +109,13 @@ enum Command {
     Verify {
         #[command(flatten)]
         args: verify::VerifyArgs,
+    },
+    /// Plan a part made by several operations (slots, pockets, corners) with a tool table, from
+    /// a job file (docs/jobs.md); print JSON per operation and for the part; write one NC program
+    /// with the tool changes.
+    Job {
+        #[command(flatten)]
+        args: job::JobFileArgs,
     },
     /// Fit the six cutting-force coefficients to full-slot tests (the edge-force model of
     /// Altintas & Lee 1996); print
@@ -378,6 +386,7 @@ fn run(cmd: Command) -> Result<String, String> {
             check_distinct(&args.files())?;
             verify::run(&args)
         }
+        Command::Job { args } => job::run(&args),
         Command::Calibrate { slot_forces, teeth, depth } => calibrate(&slot_forces, teeth, depth),
         Command::Optimize { args } => optimize_cmd::run(&args),
     }

@@ -34,6 +34,8 @@
 //!   measured moves.
 //! - [`quantity`]: every metric and per-tooth series column as data (key, label, unit, source).
 //! - [`sweep`]: the swept parameters and their rules (which path, which values).
+//! - [`part`]: a part made by several operations (slots, pockets, corners) with a tool table:
+//!   planned in order, reported, written as one program with tool changes.
 //! - [`verify`]: any NC program read, timed and measured move by move: engagement, axial
 //!   depth, chip at the reached feed, force, torque, power, and its problems.
 //! - [`warnings`]: the limits a planned slot is checked against (engagement, minimum chip,
@@ -53,6 +55,7 @@ pub mod material;
 pub mod nc;
 pub mod optimize;
 pub mod outline;
+pub mod part;
 pub mod path;
 pub mod plan;
 pub mod pocket;

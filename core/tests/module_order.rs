@@ -18,7 +18,7 @@ use std::path::Path;
 const ORDER: &[&str] = &[
     "error", "geom", "toolpath", "outline", "material", "machine", "frame", "job", "path", "analysis", "plan",
     "feed", "optimize", "quantity", "sweep", "engagement", "slot_levels", "corner", "pocket", "report", "nc",
-    "verify",
+    "part", "verify",
 ];
 
 /// Production code of one file: up to the first `#[cfg(test)]`, plain `//` comments removed,

@@ -32,6 +32,24 @@ pub fn levels_program(plan: &Plan, levels: &LevelPlan, opts: &NcOptions) -> Resu
             "false for a slot in levels or closed (--max-step-down, --closed): the loop form writes one level",
         ));
     }
+    let job = &plan.job;
+    let cycles = levels.closed.as_ref().map_or(plan.path.cycles, |c| c.cycles + 1);
+    let mut header = slot_header(plan, opts);
+    // the first line: the path of one level (the slot header's is the open one-level path)
+    let length = levels.per_level.first().map_or(0.0, |l| l.toolpath.length_mm());
+    header.description[0] = format!("path {}, {cycles} cycles a level, {length:.3} mm a level", job.path.name());
+    header.description.extend(level_lines(levels));
+    let mut w = Writer::new(opts.dialect.spec());
+    preamble(&mut w, &header, opts);
+    levels_body(&mut w, plan, levels, opts)?;
+    epilogue(&mut w, opts);
+    let (text, blocks) = w.finish()?;
+    Ok(NcProgram { text, blocks })
+}
+
+/// The levels of `plan` after the tool is loaded and turning (module docs), the first approach
+/// from the clearance height; shared by [`levels_program`] and a program of several operations.
+pub(super) fn levels_body(w: &mut Writer, plan: &Plan, levels: &LevelPlan, opts: &NcOptions) -> Result<(), Error> {
     let min_feed = plan.job.min_feed();
     if let Some(f) = opts.return_feed_mm_per_min.filter(|&f| f < min_feed) {
         return Err(Error::param(
@@ -59,13 +77,6 @@ pub fn levels_program(plan: &Plan, levels: &LevelPlan, opts: &NcOptions) -> Resu
             ),
         ));
     }
-    let mut header = slot_header(plan, opts);
-    // the first line: the path of one level (the slot header's is the open one-level path)
-    let length = levels.per_level.first().map_or(0.0, |l| l.toolpath.length_mm());
-    header.description[0] = format!("path {}, {cycles} cycles a level, {length:.3} mm a level", job.path.name());
-    header.description.extend(level_lines(levels));
-    let mut w = Writer::new(opts.dialect.spec());
-    preamble(&mut w, &header, opts);
     for (index, level) in levels.per_level.iter().enumerate() {
         let first = index == 0;
         match (&levels.closed, level.toolpath.entries.first()) {
@@ -83,26 +94,24 @@ pub fn levels_program(plan: &Plan, levels: &LevelPlan, opts: &NcOptions) -> Resu
                 // the flat turn at the floor, then the loops
                 w.segment(&h.circle(), job.feed);
                 for i in 0..c.cycles {
-                    write_cycle(&mut w, &moves, c.origin(i));
+                    write_cycle(w, &moves, c.origin(i));
                 }
                 if let Some(link) = c.link() {
                     w.segment(&link, job.feed);
                 }
-                write_cycle(&mut w, &moves, p2(0.0, c.end_origin_y));
+                write_cycle(w, &moves, p2(0.0, c.end_origin_y));
             }
             _ => {
                 let path = &plan.path;
                 let start = path.origin(0) + moves.first().map_or(path.cycle.segments[0].start(), |m| m.seg.start());
-                approach(&mut w, start, -level.z_mm, job.feed, first, opts);
+                approach(w, start, -level.z_mm, job.feed, first, opts);
                 for i in 0..path.cycles {
-                    write_cycle(&mut w, &moves, path.origin(i));
+                    write_cycle(w, &moves, path.origin(i));
                 }
             }
         }
     }
-    epilogue(&mut w, opts);
-    let (text, blocks) = w.finish()?;
-    Ok(NcProgram { text, blocks })
+    Ok(())
 }
 
 /// One cycle's blocks about `origin`.

@@ -26,11 +26,13 @@ pub mod corner;
 mod dialect;
 mod frame;
 mod levels;
+mod operations;
 mod writer;
 
 pub use backplot::{backplot, read_toolpath};
 pub use corner::{CutSetup, corner_program, perforative_program, pocket_program};
 pub use levels::levels_program;
+pub use operations::{OperationBody, OperationNc, ToolSetup, operations_program};
 
 pub use dialect::{CommentStyle, Dialect, DialectSpec, LoopStyle, ToolCall, sanitize_comment};
 pub use writer::{Writer, YForm};
@@ -196,6 +198,18 @@ pub fn cuts_nothing(plan: &Plan, cycle_len: f64, s0: f64, s1: f64) -> bool {
 /// The NC program of a planned slot (module docs for its structure).
 pub fn program(plan: &Plan, opts: &NcOptions) -> Result<NcProgram, Error> {
     opts.validate()?;
+    let mut w = Writer::with_units(opts.dialect.spec(), opts.frame.units);
+    preamble(&mut w, &slot_header(plan, opts), opts);
+    slot_body(&mut w, plan, opts)?;
+    epilogue(&mut w, opts);
+    let (text, blocks) = w.finish()?;
+    Ok(NcProgram { text, blocks })
+}
+
+/// The moves of a planned slot after the tool is loaded and turning: approach outside the open
+/// slot end from the clearance height, feed down to depth there, the cycles (expanded or as a
+/// loop); shared by [`program`] and a program of several operations.
+fn slot_body(w: &mut Writer, plan: &Plan, opts: &NcOptions) -> Result<(), Error> {
     let min_feed = plan.job.min_feed();
     if let Some(f) = opts.return_feed_mm_per_min.filter(|&f| f < min_feed) {
         return Err(Error::param(
@@ -210,20 +224,18 @@ pub fn program(plan: &Plan, opts: &NcOptions) -> Result<NcProgram, Error> {
         None => cycle_moves(plan, opts),
     };
     check_program_size(plan, moves.len(), opts)?;
-    let mut w = Writer::with_units(spec, opts.frame.units);
     let job = &plan.job;
-    preamble(&mut w, &slot_header(plan, opts), opts);
     let path = &plan.path;
     let start = path.origin(0) + moves.first().map_or(path.cycle.segments[0].start(), |m| m.seg.start());
     // approach outside the open slot end at safe Z, feed down to depth there
-    approach(&mut w, start, job.depth, job.feed, true, opts);
+    approach(w, start, job.depth, job.feed, true, opts);
     match (opts.compact, spec.loop_style) {
-        (true, Some(LoopStyle::OWord)) => oword_loop(&mut w, plan, &moves),
+        (true, Some(LoopStyle::OWord)) => oword_loop(w, plan, &moves),
         (true, Some(LoopStyle::RParameter)) => {
             if is_circle_cycle(plan, &moves) {
-                grechishnikov_loop(&mut w, plan, &moves)
+                grechishnikov_loop(w, plan, &moves)
             } else {
-                r_parameter_loop(&mut w, plan, &moves)
+                r_parameter_loop(w, plan, &moves)
             }
         }
         _ => {
@@ -235,9 +247,7 @@ pub fn program(plan: &Plan, opts: &NcOptions) -> Result<NcProgram, Error> {
             }
         }
     }
-    epilogue(&mut w, opts);
-    let (text, blocks) = w.finish()?;
-    Ok(NcProgram { text, blocks })
+    Ok(())
 }
 
 /// Most blocks of one expanded slot program: 25–33 bytes a block, so at most about 130 MB of
@@ -373,12 +383,6 @@ impl PathJob<'_> {
 pub fn program_for_path(job: &PathJob<'_>, opts: &NcOptions) -> Result<NcProgram, Error> {
     opts.validate()?;
     job.validate()?;
-    if opts.compact {
-        return Err(Error::param(Param::Compact, "true", "false for a path without repeating cycles"));
-    }
-    if let Some(f) = opts.return_feed_mm_per_min {
-        return Err(Error::param(Param::ReturnFeed, f, "unset for a path without a tooth series"));
-    }
     let mut w = Writer::with_units(opts.dialect.spec(), opts.frame.units);
     let header = Header {
         default_title: job.default_title,
@@ -387,6 +391,21 @@ pub fn program_for_path(job: &PathJob<'_>, opts: &NcOptions) -> Result<NcProgram
         spindle_rpm: job.spindle_rpm,
     };
     preamble(&mut w, &header, opts);
+    path_body(&mut w, job, opts)?;
+    epilogue(&mut w, opts);
+    let (text, blocks) = w.finish()?;
+    Ok(NcProgram { text, blocks })
+}
+
+/// The moves of a [`PathJob`] after the tool is loaded and turning (see [`program_for_path`]),
+/// the first approach from the clearance height; shared with a program of several operations.
+fn path_body(w: &mut Writer, job: &PathJob<'_>, opts: &NcOptions) -> Result<(), Error> {
+    if opts.compact {
+        return Err(Error::param(Param::Compact, "true", "false for a path without repeating cycles"));
+    }
+    if let Some(f) = opts.return_feed_mm_per_min {
+        return Err(Error::param(Param::ReturnFeed, f, "unset for a path without a tooth series"));
+    }
     let path = job.toolpath;
     let descend = |w: &mut Writer, part: usize, start: P2| {
         let first = part == 0;
@@ -400,10 +419,10 @@ pub fn program_for_path(job: &PathJob<'_>, opts: &NcOptions) -> Result<NcProgram
             None => approach(w, start, job.depth_mm, job.feed_mm_per_min, first, opts),
         }
     };
-    descend(&mut w, 0, path.moves[0].segment.start());
+    descend(w, 0, path.moves[0].segment.start());
     for (i, m) in path.moves.iter().enumerate() {
         if let Some(k) = path.retract_before.iter().position(|&j| j == i) {
-            descend(&mut w, k + 1, m.segment.start());
+            descend(w, k + 1, m.segment.start());
         }
         // a rapid at depth through cleared stock: G0 where G0 is a straight line
         if let (MoveKind::Rapid, Segment::Line { end, .. }) = (m.kind, m.segment)
@@ -417,9 +436,7 @@ pub fn program_for_path(job: &PathJob<'_>, opts: &NcOptions) -> Result<NcProgram
             w.segment(&piece.seg, feed);
         }
     }
-    epilogue(&mut w, opts);
-    let (text, blocks) = w.finish()?;
-    Ok(NcProgram { text, blocks })
+    Ok(())
 }
 
 /// Lines and arcs for one planned segment: biarcs within the tolerance, or chords when asked.
@@ -597,6 +614,14 @@ fn preamble(w: &mut Writer, header: &Header<'_>, opts: &NcOptions) {
         w.raw(&format!("{word}{tol}"));
     }
     w.raw(frame.work_offset.name());
+    tool_start(w, header.tool_diameter_mm, header.spindle_rpm, opts);
+}
+
+/// The frame's tool loaded with its length offset (as the dialect calls tools), the spindle
+/// started and the coolant on.
+fn tool_start(w: &mut Writer, tool_diameter_mm: f64, spindle_rpm: f64, opts: &NcOptions) {
+    let spec = opts.dialect.spec();
+    let frame = &opts.frame;
     let t = frame.tool_number;
     let h = frame.length_offset_number(opts.dialect);
     match spec.tool_call {
@@ -608,9 +633,9 @@ fn preamble(w: &mut Writer, header: &Header<'_>, opts: &NcOptions) {
             w.raw(&format!("T{t} D{h}"));
             w.raw("M6");
         }
-        dialect::ToolCall::CommentOnly => w.comment(&format!("load tool {t}: D {:.3} mm", header.tool_diameter_mm)),
+        dialect::ToolCall::CommentOnly => w.comment(&format!("load tool {t}: D {tool_diameter_mm:.3} mm")),
     }
-    w.spindle_start(header.spindle_rpm, frame.spindle_direction.word());
+    w.spindle_start(spindle_rpm, frame.spindle_direction.word());
     if let Some(word) = frame.coolant.word() {
         w.raw(word);
     }
