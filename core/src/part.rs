@@ -301,6 +301,7 @@ fn plan_pocket(
         ramp_pass_depth_mm: p.ramp_pass_depth,
         peak_limit_deg: p.peak_limit,
         islands,
+        rest_from_mm: None,
     };
     let plan = pocket::plan(&req)?;
     Ok(Planned::Pocket { plan: Box::new(plan), depth_mm: p.depth })

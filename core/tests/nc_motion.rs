@@ -380,6 +380,25 @@ fn slots_in_levels_retrace_every_level_in_every_dialect() {
                     floor = floor.min(e[2]);
                 }
             }
+            // the same levels in inch: read back (the back-plot converts to mm), the same moves
+            // within the inch program's rounding (4 decimals: 0.00005 in = 0.00127 mm, twice)
+            let inch = NcOptions {
+                frame: trochoplan_core::frame::ProgramFrame {
+                    units: trochoplan_core::frame::Units::Inch,
+                    ..Default::default()
+                },
+                ..o.clone()
+            };
+            let text_in = levels_program(&p, &lp, &inch).expect("inch program").text;
+            let (mm, inch) = (
+                trochoplan_core::nc::read_toolpath(&text, d).expect("mm read back"),
+                trochoplan_core::nc::read_toolpath(&text_in, d).expect("inch read back"),
+            );
+            assert_eq!(mm.moves.len(), inch.moves.len(), "{d:?}");
+            for (a, b) in mm.moves.iter().zip(&inch.moves) {
+                let gap = (a.segment.end() - b.segment.end()).norm().max((a.z_end_mm - b.z_end_mm).abs());
+                assert!(gap <= 0.003, "{d:?} inch levels: {a:?} against {b:?}");
+            }
         }
     }
 }

@@ -39,7 +39,7 @@ pub fn levels_program(plan: &Plan, levels: &LevelPlan, opts: &NcOptions) -> Resu
     let length = levels.per_level.first().map_or(0.0, |l| l.toolpath.length_mm());
     header.description[0] = format!("path {}, {cycles} cycles a level, {length:.3} mm a level", job.path.name());
     header.description.extend(level_lines(levels));
-    let mut w = Writer::new(opts.dialect.spec());
+    let mut w = Writer::with_units(opts.dialect.spec(), opts.frame.units);
     preamble(&mut w, &header, opts);
     levels_body(&mut w, plan, levels, opts)?;
     epilogue(&mut w, opts);
