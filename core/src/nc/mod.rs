@@ -26,11 +26,13 @@ pub mod corner;
 mod dialect;
 mod frame;
 mod levels;
+mod pocket_levels;
 mod writer;
 
 pub use backplot::{backplot, read_toolpath};
 pub use corner::{CutSetup, corner_program, perforative_program, pocket_program};
 pub use levels::levels_program;
+pub use pocket_levels::pocket_levels_program;
 
 pub use dialect::{CommentStyle, Dialect, DialectSpec, LoopStyle, ToolCall, sanitize_comment};
 pub use writer::{Writer, YForm};
@@ -371,6 +373,25 @@ impl PathJob<'_> {
 /// The loop form and the return feed need the repeating cycles and the tooth series of a slot
 /// plan: asking for them here is an error naming the option.
 pub fn program_for_path(job: &PathJob<'_>, opts: &NcOptions) -> Result<NcProgram, Error> {
+    program_for_path_levels(job, &[PathLevel { top_mm: 0.0, depth_mm: job.depth_mm }], opts)
+}
+
+/// One pass of a [`PathJob`]'s path in a program of several ([`program_for_path_levels`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PathLevel {
+    /// The height the pass cuts down from (mm; 0: the stock top, else the floor of the pass
+    /// above, ≤ 0): helices and ramps start [`HELIX_START_Z_MM`] above it.
+    pub top_mm: f64,
+    /// The pass's floor below the stock top Z0 (mm, > 0).
+    pub depth_mm: f64,
+}
+
+/// The program of a [`PathJob`] cut in `levels`, top to bottom, one after the other
+/// ([`program_for_path`] for each, in one program: one header, set-up and end): every level
+/// writes the whole path at its depth, each part entered as in [`program_for_path`] but from
+/// [`HELIX_START_Z_MM`] above the level's top (inside the bore the level above cut there), a
+/// retract and rapid between the levels as between parts.
+pub fn program_for_path_levels(job: &PathJob<'_>, levels: &[PathLevel], opts: &NcOptions) -> Result<NcProgram, Error> {
     opts.validate()?;
     job.validate()?;
     if opts.compact {
@@ -378,6 +399,17 @@ pub fn program_for_path(job: &PathJob<'_>, opts: &NcOptions) -> Result<NcProgram
     }
     if let Some(f) = opts.return_feed_mm_per_min {
         return Err(Error::param(Param::ReturnFeed, f, "unset for a path without a tooth series"));
+    }
+    if levels.is_empty() {
+        return Err(Error::nc("levels", "none", "at least one level"));
+    }
+    for l in levels {
+        if !(l.depth_mm.is_finite() && l.depth_mm > 0.0 && l.depth_mm <= 1000.0) {
+            return Err(Error::param(Param::Depth, l.depth_mm, "a finite number > 0 and ≤ 1000 mm"));
+        }
+        if !(l.top_mm.is_finite() && l.top_mm <= 0.0 && l.top_mm > -l.depth_mm) {
+            return Err(Error::nc("level top", num(l.top_mm), format!("from {} to 0 mm", num(-l.depth_mm))));
+        }
     }
     let mut w = Writer::with_units(opts.dialect.spec(), opts.frame.units);
     let header = Header {
@@ -387,23 +419,35 @@ pub fn program_for_path(job: &PathJob<'_>, opts: &NcOptions) -> Result<NcProgram
         spindle_rpm: job.spindle_rpm,
     };
     preamble(&mut w, &header, opts);
+    for (index, level) in levels.iter().enumerate() {
+        write_path_level(&mut w, job, *level, index == 0, opts);
+    }
+    epilogue(&mut w, opts);
+    let (text, blocks) = w.finish()?;
+    Ok(NcProgram { text, blocks })
+}
+
+/// The whole path of `job` at one level ([`program_for_path_levels`]); `first_level`: the
+/// first part comes from the tool change (the clearance height).
+fn write_path_level(w: &mut Writer, job: &PathJob<'_>, level: PathLevel, first_level: bool, opts: &NcOptions) {
     let path = job.toolpath;
+    let (depth, feed, top) = (level.depth_mm, job.feed_mm_per_min, level.top_mm);
     let descend = |w: &mut Writer, part: usize, start: P2| {
-        let first = part == 0;
+        let first = first_level && part == 0;
         match path.entries.get(part) {
-            Some(Entry::Helix(h)) => helical_approach(w, h, job.depth_mm, job.feed_mm_per_min, first, opts),
-            Some(Entry::Ramp(r)) => ramp_approach(w, r, job.depth_mm, job.feed_mm_per_min, first, opts),
+            Some(Entry::Helix(h)) => helical_approach(w, h, top, depth, feed, first, opts),
+            Some(Entry::Ramp(r)) => ramp_approach(w, r, top, depth, feed, first, opts),
             // beyond an open edge the tool's disc is off the stock: straight down cuts nothing
-            Some(Entry::Outside { at }) => approach(w, *at, job.depth_mm, job.feed_mm_per_min, first, opts),
+            Some(Entry::Outside { at }) => approach(w, *at, depth, feed, first, opts),
             // into stock the path has cleared: straight down cuts nothing either
-            Some(Entry::Down { at }) => approach(w, *at, job.depth_mm, job.feed_mm_per_min, first, opts),
-            None => approach(w, start, job.depth_mm, job.feed_mm_per_min, first, opts),
+            Some(Entry::Down { at }) => approach(w, *at, depth, feed, first, opts),
+            None => approach(w, start, depth, feed, first, opts),
         }
     };
-    descend(&mut w, 0, path.moves[0].segment.start());
+    descend(w, 0, path.moves[0].segment.start());
     for (i, m) in path.moves.iter().enumerate() {
         if let Some(k) = path.retract_before.iter().position(|&j| j == i) {
-            descend(&mut w, k + 1, m.segment.start());
+            descend(w, k + 1, m.segment.start());
         }
         // a rapid at depth through cleared stock: G0 where G0 is a straight line
         if let (MoveKind::Rapid, Segment::Line { end, .. }) = (m.kind, m.segment)
@@ -412,14 +456,11 @@ pub fn program_for_path(job: &PathJob<'_>, opts: &NcOptions) -> Result<NcProgram
             w.linear(Some(end.x), Some(end.y), None, None);
             continue;
         }
-        let feed = m.feed_mm_per_min.unwrap_or(job.feed_mm_per_min);
+        let feed = m.feed_mm_per_min.unwrap_or(feed);
         for piece in fit(&m.segment, opts) {
             w.segment(&piece.seg, feed);
         }
     }
-    epilogue(&mut w, opts);
-    let (text, blocks) = w.finish()?;
-    Ok(NcProgram { text, blocks })
 }
 
 /// Lines and arcs for one planned segment: biarcs within the tolerance, or chords when asked.
@@ -506,11 +547,12 @@ fn approach(w: &mut Writer, start: P2, depth: f64, feed: f64, first: bool, opts:
     w.linear(None, None, Some(-depth), Some(feed));
 }
 
-/// Up (see [`up_height`]), rapid to the helix start, rapid down to [`HELIX_START_Z_MM`] above the stock top,
-/// then whole helical turns (half turns per block) down to `depth` at the ramp angle.
-fn helical_approach(w: &mut Writer, h: &Helix, depth: f64, feed: f64, first: bool, opts: &NcOptions) {
+/// Up (see [`up_height`]), rapid to the helix start, rapid down to [`HELIX_START_Z_MM`] above
+/// `from` (the stock top 0, or the floor of the level above), then whole helical turns (half
+/// turns per block) down to `depth` at the ramp angle.
+fn helical_approach(w: &mut Writer, h: &Helix, from: f64, depth: f64, feed: f64, first: bool, opts: &NcOptions) {
     let start = h.center + p2(h.start_angle.cos(), h.start_angle.sin()) * h.radius;
-    let top = HELIX_START_Z_MM.min(retract(opts));
+    let top = (from + HELIX_START_Z_MM).min(retract(opts));
     w.linear(None, None, Some(up_height(first, opts)), None);
     w.linear(Some(start.x), Some(start.y), None, None);
     w.linear(None, None, Some(top), None);
@@ -522,11 +564,12 @@ fn helical_approach(w: &mut Writer, h: &Helix, depth: f64, feed: f64, first: boo
     }
 }
 
-/// Up (see [`up_height`]), rapid to the ramp's first point, rapid down to [`HELIX_START_Z_MM`] above the stock
-/// top, then straight legs back and forth on the ramp line (3D G1), each descending the same
-/// amount at most at the ramp angle, the last reaching `depth` at the ramp's start.
-fn ramp_approach(w: &mut Writer, r: &Ramp, depth: f64, feed: f64, first: bool, opts: &NcOptions) {
-    let top = HELIX_START_Z_MM.min(retract(opts));
+/// Up (see [`up_height`]), rapid to the ramp's first point, rapid down to [`HELIX_START_Z_MM`]
+/// above `from` (the stock top 0, or the floor of the level above), then straight legs back
+/// and forth on the ramp line (3D G1), each descending the same amount at most at the ramp
+/// angle, the last reaching `depth` at the ramp's start.
+fn ramp_approach(w: &mut Writer, r: &Ramp, from: f64, depth: f64, feed: f64, first: bool, opts: &NcOptions) {
+    let top = (from + HELIX_START_Z_MM).min(retract(opts));
     let drop = top + depth;
     let at = r.first_point(drop);
     w.linear(None, None, Some(up_height(first, opts)), None);
