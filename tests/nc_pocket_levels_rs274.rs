@@ -2,8 +2,8 @@
 //! the pocket with islands (80 × 60, a Ø20 round boss about (25, 30), a 15 × 30 island x 50..65,
 //! y 15..45), D 10, the defaults otherwise (a_e 2.5: target 60°), `--export` a LinuxCNC program
 //! read back through `rs274`. Checked from the JSON and the program alone: three levels of
-//! 4 mm (⌈12/4⌉ = 3) with floors at −4, −8, −12; every level's peak ≤ 60° and ≤ the target
-//! + 1°, its p95 ≤ the target; every move in the plane below the stock top at one of the three
+//! 4 mm (⌈12/4⌉ = 3) with floors at −4, −8, −12; every level's peak ≤ 60° and ≤ the
+//! target + 1°, its p95 ≤ the target; every move in the plane below the stock top at one of the three
 //! floors, each floor retracing the planned moves; no plunge into stock: every straight descent
 //! below the stock top goes down where the tool has been at least as deep before, every
 //! helix or ramp starts 0.5 mm above the floor of the level above it (only the level's new
