@@ -159,3 +159,41 @@ fn bad_step_downs_are_refused_by_name() {
         assert!(!nc.exists(), "{m}: a program was written");
     }
 }
+
+/// `--floor-stock 0.5` leaves 0.5 mm on the floor: 12 − 0.5 = 11.5 mm in levels of at most
+/// 4 mm is ⌈11.5/4⌉ = 3 levels of 11.5/3 mm, the lowest at Z −11.5; no Z word of the program
+/// goes below it (read from the program's text). Bad floor stocks name `floor-stock` and the
+/// range; no program is written.
+#[test]
+fn floor_stock_raises_the_lowest_level() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let loops = vec![islands_common::rect(0.0, 0.0, 60.0, 40.0)];
+    let nc = dir.path().join("floor.ngc");
+    let args =
+        ["--depth", "12", "--max-step-down", "4", "--floor-stock", "0.5", "--export", nc.to_str().expect("utf-8")];
+    let (ok, stdout, stderr) = run(dir.path(), "floor", &loops, &args);
+    assert!(ok, "{stderr}");
+    let json: serde_json::Value = serde_json::from_str(&stdout).expect("json");
+    assert_eq!(json["floor_stock_mm"].as_f64(), Some(0.5));
+    let z: Vec<f64> =
+        json["levels"].as_array().expect("levels").iter().map(|l| l["z_mm"].as_f64().expect("z")).collect();
+    let each = 11.5 / 3.0;
+    assert_eq!(z.len(), 3);
+    for (k, zk) in z.iter().enumerate() {
+        assert!((zk + each * (k + 1) as f64).abs() < 1e-9, "{z:?}");
+    }
+    let text = std::fs::read_to_string(&nc).expect("program");
+    let lowest = text
+        .split_whitespace()
+        .filter_map(|w| w.strip_prefix('Z').and_then(|v| v.parse::<f64>().ok()))
+        .fold(f64::INFINITY, f64::min);
+    assert!((lowest + 11.5).abs() < 1e-4, "lowest Z {lowest}");
+    for s in ["-0.1", "12", "NaN", "13"] {
+        let bad = dir.path().join("bad.ngc");
+        let args = ["--depth", "12", "--floor-stock", s, "--export", bad.to_str().expect("utf-8")];
+        let (ok, _, stderr) = run(dir.path(), "floor_bad", &loops, &args);
+        assert!(!ok, "{s}: accepted");
+        assert!(stderr.contains("floor-stock") && stderr.contains("≥ 0 and < the depth 12 mm"), "{s}: {stderr}");
+        assert!(!bad.exists(), "{s}: a program was written");
+    }
+}

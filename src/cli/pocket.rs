@@ -115,6 +115,11 @@ pub struct PocketArgs {
     /// level at --depth.
     #[arg(long, value_name = "MM", allow_hyphen_values = true)]
     max_step_down: Option<f64>,
+    /// Axial stock left on the floor (mm, every method): the lowest level at --depth − this,
+    /// the levels (--max-step-down) dividing that depth; from 0 to less than --depth. Adds
+    /// `floor_stock_mm` and `levels` to the JSON.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    floor_stock: Option<f64>,
     #[command(flatten)]
     pace: PaceArgs,
     #[command(flatten)]
@@ -189,8 +194,9 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
         .collect::<Result<Vec<_>, _>>()?;
     let open_edges = pocket::stored_open_edges(&polygon, &points, &args.open_edges).map_err(err)?;
     args.nc.options()?; // the program's flags are checked before the plan
+    let cut_depth = cut_depth(args)?;
     if let Some(m) = args.max_step_down {
-        pocket::levels::check_step_down(args.nc.depth, m).map_err(err)?;
+        pocket::levels::check_step_down(cut_depth, m).map_err(err)?;
     }
     let req = PocketRequest {
         polygon,
@@ -215,9 +221,9 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
         islands,
     };
     let plan = pocket::plan(&req).map_err(err)?;
-    let levels = match args.max_step_down {
-        Some(m) => Some(plan_levels(plan.path(), args.nc.depth, Some(m)).map_err(err)?),
-        None => None,
+    let levels = match (args.max_step_down, args.floor_stock) {
+        (None, None) => None,
+        (m, _) => Some(plan_levels(plan.path(), cut_depth, m).map_err(err)?),
     };
     let nc_export = match &args.nc.export {
         Some(file) => Some(export_pocket(&args.nc, file, &plan, levels.as_ref())?),
@@ -225,7 +231,7 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
     };
     let text = report_json(&report::pocket(&req, &plan).map_err(err)?, nc_export)?;
     let text = match &levels {
-        Some(l) => with_levels(&text, l, args.max_step_down)?,
+        Some(l) => with_levels(&text, l, args.max_step_down, args.floor_stock)?,
         None => text,
     };
     let text = match &args.machine {
@@ -257,9 +263,27 @@ fn with_chip_peaks(text: &str, plan: &PocketPlan, args: &PocketArgs) -> Result<S
     super::common::json_text(&v)
 }
 
-/// The JSON `text` with the pocket's `levels`: the step-down, the peak over every level and
-/// each level's top, floor, axial depth, peak and p95 engagement.
-fn with_levels(text: &str, levels: &PocketLevels, max_step_down: Option<f64>) -> Result<String, String> {
+/// The depth the levels divide: `--depth` less `--floor-stock` (checked: finite, from 0 to less
+/// than the depth), `--depth` without it.
+fn cut_depth(args: &PocketArgs) -> Result<f64, String> {
+    let depth = args.nc.depth;
+    let Some(s) = args.floor_stock else { return Ok(depth) };
+    // the depth itself first: its own error names --depth
+    pocket::levels::check_step_down(depth, depth).map_err(err)?;
+    if !(s.is_finite() && s >= 0.0 && s < depth) {
+        return Err(format!("invalid floor-stock = {s}: must be a finite number ≥ 0 and < the depth {depth} mm"));
+    }
+    Ok(depth - s)
+}
+
+/// The JSON `text` with the pocket's `levels`: the step-down, the floor stock, the peak over
+/// every level and each level's top, floor, axial depth, peak and p95 engagement.
+fn with_levels(
+    text: &str,
+    levels: &PocketLevels,
+    max_step_down: Option<f64>,
+    floor_stock: Option<f64>,
+) -> Result<String, String> {
     let mut v: serde_json::Value = serde_json::from_str(text).map_err(|e| e.to_string())?;
     let rows: Vec<serde_json::Value> = levels
         .per_level
@@ -276,6 +300,7 @@ fn with_levels(text: &str, levels: &PocketLevels, max_step_down: Option<f64>) ->
         .collect();
     if let Some(obj) = v.as_object_mut() {
         obj.insert("max_step_down_mm".into(), max_step_down.into());
+        obj.insert("floor_stock_mm".into(), floor_stock.unwrap_or(0.0).into());
         obj.insert("levels_max_engagement_deg".into(), levels.peak_rad().to_degrees().into());
         obj.insert("levels".into(), rows.into());
     }
