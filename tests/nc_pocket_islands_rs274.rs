@@ -11,77 +11,19 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
+mod islands_common;
 #[path = "../core/tests/nc_common/mod.rs"]
 mod nc_common;
 
+use islands_common::{boss, least_clearance, loop_distance, rect, run};
 use nc_common::{Motion, check_path_cut, cut, interpret, motions, sample};
 use std::path::Path;
-use std::process::Command;
 use trochoplan_core::geom::{P2, Segment, p2};
 
 /// Tool radius (D 10), depth and safe height of the program (mm).
 const R: f64 = 5.0;
 const DEPTH: f64 = 4.0;
 const SAFE_Z: f64 = 5.0;
-
-/// The boss: a 128-gon inscribed in the circle of radius 10 about (25, 30) (its chords lie
-/// within 10·(1 − cos(π/128)) = 0.003 mm of the circle).
-fn boss() -> Vec<P2> {
-    (0..128)
-        .map(|k| {
-            let a = std::f64::consts::TAU * k as f64 / 128.0;
-            p2(25.0 + 10.0 * a.cos(), 30.0 + 10.0 * a.sin())
-        })
-        .collect()
-}
-
-fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<P2> {
-    vec![p2(x0, y0), p2(x1, y0), p2(x1, y1), p2(x0, y1)]
-}
-
-/// The point-list text of the loops, separated by empty lines.
-fn loops_text(loops: &[Vec<P2>]) -> String {
-    loops
-        .iter()
-        .map(|l| l.iter().map(|p| format!("{},{}\n", p.x, p.y)).collect::<String>())
-        .collect::<Vec<_>>()
-        .join("\n")
-}
-
-/// `trochoplan pocket --polygon` of `loops` with `args`: the exit status, stdout and stderr.
-fn run(dir: &Path, name: &str, loops: &[Vec<P2>], args: &[&str]) -> (bool, String, String) {
-    let file = dir.join(format!("{name}.txt"));
-    std::fs::write(&file, loops_text(loops)).expect("write polygon");
-    let mut all = vec!["pocket", "--polygon", file.to_str().expect("utf-8")];
-    all.extend_from_slice(args);
-    let out = Command::new(env!("CARGO_BIN_EXE_trochoplan")).args(&all).output().expect("run trochoplan");
-    let (stdout, stderr) = (String::from_utf8_lossy(&out.stdout).into_owned(), String::from_utf8_lossy(&out.stderr));
-    assert!(!stderr.contains("panicked"), "{stderr}");
-    (out.status.success(), stdout, stderr.into_owned())
-}
-
-fn edge_distance(p: P2, a: P2, b: P2) -> f64 {
-    let ab = b - a;
-    let t = ((p - a).dot(&ab) / ab.dot(&ab)).clamp(0.0, 1.0);
-    (p - (a + ab * t)).norm()
-}
-
-/// Even–odd ray casting along +x.
-fn inside(p: P2, poly: &[P2]) -> bool {
-    let mut c = false;
-    for i in 0..poly.len() {
-        let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
-        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) {
-            c = !c;
-        }
-    }
-    c
-}
-
-/// The least distance from `p` to an edge of `poly`.
-fn loop_distance(p: P2, poly: &[P2]) -> f64 {
-    (0..poly.len()).map(|i| edge_distance(p, poly[i], poly[(i + 1) % poly.len()])).fold(f64::INFINITY, f64::min)
-}
 
 /// The boss's vertices as a drawing's export gives them, rounded to 1e-6 mm: the pocket is the
 /// same to the eye, but the planner's choices (the helix's place between the two equal gaps
@@ -153,15 +95,7 @@ fn check_islands_program(dir: &Path, label: &str, boundary: &[P2], islands: &[Ve
     check_path_cut(label, &c, &planned, 0.005, 1e-4).unwrap_or_else(|e| panic!("{e}"));
     // every point of the cut, every 0.02 mm: inside the boundary, outside the islands, at least
     // r − 0.005 mm from every wall and island edge
-    let mut least: f64 = f64::INFINITY;
-    for p in sample(&c, 0.02) {
-        assert!(inside(p, &boundary), "({}, {}) outside the pocket", p.x, p.y);
-        for island in islands {
-            assert!(!inside(p, island), "({}, {}) inside an island", p.x, p.y);
-        }
-        let d = islands.iter().map(|i| loop_distance(p, i)).fold(loop_distance(p, &boundary), f64::min);
-        least = least.min(d);
-    }
+    let least = least_clearance(&sample(&c, 0.02), &boundary, islands).unwrap_or_else(|e| panic!("{label}: {e}"));
     assert!(least >= R - 0.005, "{label}: the tool centre comes {least:.6} mm from a wall or island (r = {R})");
     // the islands are gone round: the cut comes within r + the finishing stock + 0.01 mm of each
     for island in islands {

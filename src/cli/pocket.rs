@@ -9,8 +9,10 @@ use std::path::PathBuf;
 use trochoplan_core::geom::Polygon;
 use trochoplan_core::job::Direction;
 use trochoplan_core::machine::Machine;
-use trochoplan_core::nc::pocket_program;
-use trochoplan_core::pocket::{self, AdaptiveOptions, PaceOptions, PocketPlan, PocketRequest, PocketStrategy};
+use trochoplan_core::nc::{pocket_levels_program, pocket_program};
+use trochoplan_core::pocket::{
+    self, AdaptiveOptions, PaceOptions, PocketLevels, PocketPlan, PocketRequest, PocketStrategy, plan_levels,
+};
 use trochoplan_core::report;
 use trochoplan_core::verify::plan_chip::chip_peaks;
 
@@ -113,6 +115,19 @@ pub struct PocketArgs {
     /// outside the stock beyond an open edge and clears inward from there.
     #[arg(long, value_name = "I[,J…]", value_delimiter = ',', value_parser = super::edge_index, allow_hyphen_values = true)]
     open_edges: Vec<usize>,
+    /// Largest axial depth of one level (mm, every method): the pocket is cut --depth deep in
+    /// n = ⌈depth / this⌉ equal levels, the planned path repeated on each, every level's helix
+    /// or ramp starting 0.5 mm above the floor of the level above; more than 0 and at most
+    /// --depth (at most 100 levels). Adds `levels` (each level's Z, axial depth, peak and p95
+    /// engagement) to the JSON; --export writes every level in one program. Without it: one
+    /// level at --depth.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    max_step_down: Option<f64>,
+    /// Axial stock left on the floor (mm, every method): the lowest level at --depth − this,
+    /// the levels (--max-step-down) dividing that depth; from 0 to less than --depth. Adds
+    /// `floor_stock_mm` and `levels` to the JSON.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    floor_stock: Option<f64>,
     #[command(flatten)]
     pace: PaceArgs,
     #[command(flatten)]
@@ -187,6 +202,10 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
         .collect::<Result<Vec<_>, _>>()?;
     let open_edges = pocket::stored_open_edges(&polygon, &points, &args.open_edges).map_err(err)?;
     args.nc.options()?; // the program's flags are checked before the plan
+    let cut_depth = cut_depth(args)?;
+    if let Some(m) = args.max_step_down {
+        pocket::levels::check_step_down(cut_depth, m).map_err(err)?;
+    }
     let req = PocketRequest {
         polygon,
         tool_diameter_mm: args.tool_diameter,
@@ -211,11 +230,19 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
         rest_from_mm: args.rest_from,
     };
     let plan = pocket::plan(&req).map_err(err)?;
+    let levels = match (args.max_step_down, args.floor_stock) {
+        (None, None) => None,
+        (m, _) => Some(plan_levels(plan.path(), cut_depth, m).map_err(err)?),
+    };
     let nc_export = match &args.nc.export {
-        Some(file) => Some(export_pocket(&args.nc, file, &plan)?),
+        Some(file) => Some(export_pocket(&args.nc, file, &plan, levels.as_ref())?),
         None => None,
     };
     let text = report_json(&report::pocket(&req, &plan).map_err(err)?, nc_export)?;
+    let text = match &levels {
+        Some(l) => with_levels(&text, l, args.max_step_down, args.floor_stock)?,
+        None => text,
+    };
     let text = match &args.machine {
         Some(name) => with_real_time(&text, plan.toolpath(), &args.nc, args.feed, name)?,
         None => text,
@@ -254,10 +281,63 @@ fn with_chip_peaks(text: &str, plan: &PocketPlan, args: &PocketArgs) -> Result<S
     super::common::json_text(&v)
 }
 
-/// Write the whole pocket ([`PocketPlan::tool_path`]) to `file`.
-fn export_pocket(nc: &CornerExportArgs, file: &std::path::Path, plan: &PocketPlan) -> Result<NcExportOut, String> {
+/// The depth the levels divide: `--depth` less `--floor-stock` (checked: finite, from 0 to less
+/// than the depth), `--depth` without it.
+fn cut_depth(args: &PocketArgs) -> Result<f64, String> {
+    let depth = args.nc.depth;
+    let Some(s) = args.floor_stock else { return Ok(depth) };
+    // the depth itself first: its own error names --depth
+    pocket::levels::check_step_down(depth, depth).map_err(err)?;
+    if !(s.is_finite() && s >= 0.0 && s < depth) {
+        return Err(format!("invalid floor-stock = {s}: must be a finite number ≥ 0 and < the depth {depth} mm"));
+    }
+    Ok(depth - s)
+}
+
+/// The JSON `text` with the pocket's `levels`: the step-down, the floor stock, the peak over
+/// every level and each level's top, floor, axial depth, peak and p95 engagement.
+fn with_levels(
+    text: &str,
+    levels: &PocketLevels,
+    max_step_down: Option<f64>,
+    floor_stock: Option<f64>,
+) -> Result<String, String> {
+    let mut v: serde_json::Value = serde_json::from_str(text).map_err(|e| e.to_string())?;
+    let rows: Vec<serde_json::Value> = levels
+        .per_level
+        .iter()
+        .map(|l| {
+            serde_json::json!({
+                "top_mm": l.top_mm,
+                "z_mm": l.z_mm,
+                "axial_depth_mm": l.axial_depth_mm,
+                "max_engagement_deg": l.measurement.max_engagement_rad.to_degrees(),
+                "p95_engagement_deg": l.measurement.p95_engagement_rad.to_degrees(),
+            })
+        })
+        .collect();
+    if let Some(obj) = v.as_object_mut() {
+        obj.insert("max_step_down_mm".into(), max_step_down.into());
+        obj.insert("floor_stock_mm".into(), floor_stock.unwrap_or(0.0).into());
+        obj.insert("levels_max_engagement_deg".into(), levels.peak_rad().to_degrees().into());
+        obj.insert("levels".into(), rows.into());
+    }
+    super::common::json_text(&v)
+}
+
+/// Write the whole pocket ([`PocketPlan::tool_path`]) to `file`, in its `levels` when given.
+fn export_pocket(
+    nc: &CornerExportArgs,
+    file: &std::path::Path,
+    plan: &PocketPlan,
+    levels: Option<&PocketLevels>,
+) -> Result<NcExportOut, String> {
     let opts = nc.options()?;
-    let prog = pocket_program(plan, nc.cut_setup(), &opts).map_err(err)?;
+    let prog = match levels {
+        Some(l) => pocket_levels_program(plan, l, nc.cut_setup(), &opts),
+        None => pocket_program(plan, nc.cut_setup(), &opts),
+    }
+    .map_err(err)?;
     write_program(file, &prog, &opts)
 }
 

@@ -7,7 +7,7 @@
 //! Frames: a corner has its apex at X0 Y0 and its bisector along +X; a pocket keeps the
 //! coordinates of its polygon; the stock top is Z0 in both.
 
-use super::{NcOptions, NcProgram, PathJob, program_for_path};
+use super::{NcOptions, NcProgram, PathJob, PathLevel, program_for_path, program_for_path_levels};
 use crate::corner::{CornerPlan, CornerSettings};
 use crate::error::{Error, Param};
 use crate::pocket::{AdaptivePlan, LinkKind, PerforativePlan, PocketPath, PocketPlan, RingPlan};
@@ -80,16 +80,21 @@ pub fn corner_program(
 
 /// The program of the whole pocket `plan`, any strategy ([`PocketPlan::toolpath`]).
 pub fn pocket_program(plan: &PocketPlan, cut: CutSetup, opts: &NcOptions) -> Result<NcProgram, Error> {
+    pocket_path_program(plan.path(), pocket_summary(plan), cut, &[], opts)
+}
+
+/// The two header lines that summarise the plan of the whole pocket `plan`, any strategy.
+pub(super) fn pocket_summary(plan: &PocketPlan) -> [String; 2] {
     match plan {
-        PocketPlan::Rings(p) => ring_program(p, cut, opts),
-        PocketPlan::MedialAxis(p) => perforative_program(p, cut, opts),
-        PocketPlan::Adaptive(p) => adaptive_program(p, cut, opts),
+        PocketPlan::Rings(p) => ring_summary(p),
+        PocketPlan::MedialAxis(p) => perforative_summary(p),
+        PocketPlan::Adaptive(p) => adaptive_summary(p),
         PocketPlan::Slot(p) => {
             let ramp_deg = match p.path.toolpath.entries.first() {
                 Some(Entry::Ramp(r)) => r.ramp_rad.to_degrees(),
                 _ => p.options.ramp_deg,
             };
-            let summary = [
+            [
                 format!(
                     "pocket of {} vertices, slot {}, ramp {:.2} deg, passes {:.2} mm",
                     p.path.polygon.vertices().len(),
@@ -104,22 +109,21 @@ pub fn pocket_program(plan: &PocketPlan, cut: CutSetup, opts: &NcOptions) -> Res
                     p.path.measurement.max_engagement_rad.to_degrees(),
                     p.target_rad.to_degrees()
                 ),
-            ];
-            pocket_path_program(&p.path, summary, cut, opts)
+            ]
         }
     }
 }
 
-/// The program of an adaptively cleared pocket: per part a helical entry from above the stock
-/// top (no plunge), then its moves at depth; a retract and rapid between parts.
-pub fn adaptive_program(plan: &AdaptivePlan, cut: CutSetup, opts: &NcOptions) -> Result<NcProgram, Error> {
+/// The summary of an adaptively cleared pocket (its program: per part a helical entry from
+/// above the stock top, no plunge, then its moves at depth; a retract and rapid between parts).
+fn adaptive_summary(plan: &AdaptivePlan) -> [String; 2] {
     let way_in = match plan.parts[0].entry {
         Entry::Helix(h) => format!("helix R {:.3} mm {:.1} deg", h.radius, plan.options.ramp_deg),
         Entry::Ramp(_) => format!("zig-zag ramp {:.1} deg", plan.options.ramp_deg),
         Entry::Outside { .. } => format!("from outside the stock (open edges {:?})", plan.open_edges),
         Entry::Down { .. } => "straight down into cleared stock".to_owned(),
     };
-    let summary = [
+    [
         format!(
             "pocket of {} vertices, adaptive {}, {} part(s), {}",
             plan.path.polygon.vertices().len(),
@@ -134,15 +138,14 @@ pub fn adaptive_program(plan: &AdaptivePlan, cut: CutSetup, opts: &NcOptions) ->
             plan.path.measurement.max_engagement_rad.to_degrees(),
             plan.target_rad.to_degrees()
         ),
-    ];
-    pocket_path_program(&plan.path, summary, cut, opts)
+    ]
 }
 
-/// The program of a pocket cleared by rings: its tool path ([`RingPlan::path`]), retracting
-/// before the links that a straight move cannot take.
-fn ring_program(plan: &RingPlan, cut: CutSetup, opts: &NcOptions) -> Result<NcProgram, Error> {
+/// The summary of a pocket cleared by rings (its program: its tool path, [`RingPlan::path`],
+/// retracting before the links that a straight move cannot take).
+fn ring_summary(plan: &RingPlan) -> [String; 2] {
     let feed_links = plan.links.iter().filter(|l| l.kind == LinkKind::Feed).count();
-    let summary = [
+    [
         format!(
             "pocket of {} vertices, method {}, {} rings, {} corner trochoids",
             plan.path.polygon.vertices().len(),
@@ -157,14 +160,18 @@ fn ring_program(plan: &RingPlan, cut: CutSetup, opts: &NcOptions) -> Result<NcPr
             plan.path.link_length_mm,
             plan.links.len() - feed_links
         ),
-    ];
-    pocket_path_program(&plan.path, summary, cut, opts)
+    ]
 }
 
 /// The program of a pocket cleared by perforative trochoids along its medial axis: its path
 /// in machining order, a retract, rapid and plunge at the start of every part but the first.
 pub fn perforative_program(plan: &PerforativePlan, cut: CutSetup, opts: &NcOptions) -> Result<NcProgram, Error> {
-    let summary = [
+    pocket_path_program(&plan.path, perforative_summary(plan), cut, &[], opts)
+}
+
+/// The summary of a pocket cleared along its medial axis.
+fn perforative_summary(plan: &PerforativePlan) -> [String; 2] {
+    [
         format!(
             "pocket of {} vertices, method medial-axis, {} circles, {} part(s)",
             plan.path.polygon.vertices().len(),
@@ -177,16 +184,18 @@ pub fn perforative_program(plan: &PerforativePlan, cut: CutSetup, opts: &NcOptio
             plan.body_max_rad.to_degrees(),
             plan.target_rad.to_degrees()
         ),
-    ];
-    pocket_path_program(&plan.path, summary, cut, opts)
+    ]
 }
 
 /// A pocket's program in polygon coordinates: two summary lines of the plan, then the frame
-/// and the tool lines shared by every pocket method.
-fn pocket_path_program(
+/// and the tool lines shared by every pocket method; the path at `levels`
+/// ([`program_for_path_levels`], a line on them in the header), at `cut.depth_mm` when there
+/// are none.
+pub(super) fn pocket_path_program(
     path: &PocketPath,
     summary: [String; 2],
     cut: CutSetup,
+    levels: &[PathLevel],
     opts: &NcOptions,
 ) -> Result<NcProgram, Error> {
     let [first, second] = summary;
@@ -212,7 +221,18 @@ fn pocket_path_program(
             ),
         ],
     };
-    program_for_path(&job, opts)
+    if levels.is_empty() {
+        return program_for_path(&job, opts);
+    }
+    let axial = levels.iter().map(|l| l.top_mm + l.depth_mm).fold(0.0, f64::max);
+    let mut job = job;
+    job.description.push(format!(
+        "{} levels of {:.3} mm, each entered {:.1} mm above the floor above",
+        levels.len(),
+        axial,
+        crate::toolpath::HELIX_START_Z_MM
+    ));
+    program_for_path_levels(&job, levels, opts)
 }
 
 #[cfg(test)]

@@ -27,12 +27,14 @@ mod dialect;
 mod frame;
 mod levels;
 mod operations;
+mod pocket_levels;
 mod writer;
 
 pub use backplot::{backplot, read_toolpath};
 pub use corner::{CutSetup, corner_program, perforative_program, pocket_program};
 pub use levels::levels_program;
 pub use operations::{OperationBody, OperationNc, ToolSetup, operations_program};
+pub use pocket_levels::{PathLevel, pocket_levels_program, program_for_path_levels};
 
 pub use dialect::{CommentStyle, Dialect, DialectSpec, LoopStyle, ToolCall, sanitize_comment};
 pub use writer::{Writer, YForm};
@@ -43,7 +45,7 @@ use crate::frame::{ProgramFrame, SpindleDirection, Units};
 use crate::geom::{FitPiece, P2, Segment, fit_biarcs, p2, polyline};
 use crate::job::{Direction, PathKind};
 use crate::plan::Plan;
-use crate::toolpath::{Entry, HELIX_START_Z_MM, Helix, MoveKind, Ramp, Toolpath};
+use crate::toolpath::{HELIX_START_Z_MM, Helix, Ramp, Toolpath};
 use std::f64::consts::TAU;
 
 /// Default chord/biarc tolerance (mm); docs/nc-export.md ("Biarcs") gives the arc counts it
@@ -375,67 +377,26 @@ impl PathJob<'_> {
 /// pieces as biarcs, or all as chords with [`NcOptions::linear_segments`]). Before each segment
 /// in the tool path's `retract_before`: retract to safe Z, rapid to its start, feed down (the
 /// approach again). A connected path (no retracts) has one approach and one final retract.
-/// A straight [`MoveKind::Rapid`] at depth (through cleared stock) is a G0 where the dialect's
+/// A straight [`crate::toolpath::MoveKind::Rapid`] at depth (through cleared stock) is a G0 where the dialect's
 /// G0 is a straight line ([`DialectSpec::straight_rapid`]), else a G1 at the move's feed.
 ///
 /// The loop form and the return feed need the repeating cycles and the tooth series of a slot
 /// plan: asking for them here is an error naming the option.
 pub fn program_for_path(job: &PathJob<'_>, opts: &NcOptions) -> Result<NcProgram, Error> {
-    opts.validate()?;
-    job.validate()?;
-    let mut w = Writer::with_units(opts.dialect.spec(), opts.frame.units);
-    let header = Header {
-        default_title: job.default_title,
-        description: job.description.clone(),
-        tool_diameter_mm: job.tool_diameter_mm,
-        spindle_rpm: job.spindle_rpm,
-    };
-    preamble(&mut w, &header, opts);
-    path_body(&mut w, job, opts)?;
-    epilogue(&mut w, opts);
-    let (text, blocks) = w.finish()?;
-    Ok(NcProgram { text, blocks })
+    pocket_levels::program_for_path_levels(job, &[PathLevel { top_mm: 0.0, depth_mm: job.depth_mm }], opts)
 }
 
 /// The moves of a [`PathJob`] after the tool is loaded and turning (see [`program_for_path`]),
 /// the first approach from the clearance height; shared with a program of several operations.
 fn path_body(w: &mut Writer, job: &PathJob<'_>, opts: &NcOptions) -> Result<(), Error> {
+    job.validate()?;
     if opts.compact {
         return Err(Error::param(Param::Compact, "true", "false for a path without repeating cycles"));
     }
     if let Some(f) = opts.return_feed_mm_per_min {
         return Err(Error::param(Param::ReturnFeed, f, "unset for a path without a tooth series"));
     }
-    let path = job.toolpath;
-    let descend = |w: &mut Writer, part: usize, start: P2| {
-        let first = part == 0;
-        match path.entries.get(part) {
-            Some(Entry::Helix(h)) => helical_approach(w, h, job.depth_mm, job.feed_mm_per_min, first, opts),
-            Some(Entry::Ramp(r)) => ramp_approach(w, r, job.depth_mm, job.feed_mm_per_min, first, opts),
-            // beyond an open edge the tool's disc is off the stock: straight down cuts nothing
-            Some(Entry::Outside { at }) => approach(w, *at, job.depth_mm, job.feed_mm_per_min, first, opts),
-            // into stock the path has cleared: straight down cuts nothing either
-            Some(Entry::Down { at }) => approach(w, *at, job.depth_mm, job.feed_mm_per_min, first, opts),
-            None => approach(w, start, job.depth_mm, job.feed_mm_per_min, first, opts),
-        }
-    };
-    descend(w, 0, path.moves[0].segment.start());
-    for (i, m) in path.moves.iter().enumerate() {
-        if let Some(k) = path.retract_before.iter().position(|&j| j == i) {
-            descend(w, k + 1, m.segment.start());
-        }
-        // a rapid at depth through cleared stock: G0 where G0 is a straight line
-        if let (MoveKind::Rapid, Segment::Line { end, .. }) = (m.kind, m.segment)
-            && opts.dialect.spec().straight_rapid
-        {
-            w.linear(Some(end.x), Some(end.y), None, None);
-            continue;
-        }
-        let feed = m.feed_mm_per_min.unwrap_or(job.feed_mm_per_min);
-        for piece in fit(&m.segment, opts) {
-            w.segment(&piece.seg, feed);
-        }
-    }
+    pocket_levels::write_path_level(w, job, PathLevel { top_mm: 0.0, depth_mm: job.depth_mm }, true, opts);
     Ok(())
 }
 
@@ -523,11 +484,12 @@ fn approach(w: &mut Writer, start: P2, depth: f64, feed: f64, first: bool, opts:
     w.linear(None, None, Some(-depth), Some(feed));
 }
 
-/// Up (see [`up_height`]), rapid to the helix start, rapid down to [`HELIX_START_Z_MM`] above the stock top,
-/// then whole helical turns (half turns per block) down to `depth` at the ramp angle.
-fn helical_approach(w: &mut Writer, h: &Helix, depth: f64, feed: f64, first: bool, opts: &NcOptions) {
+/// Up (see [`up_height`]), rapid to the helix start, rapid down to [`HELIX_START_Z_MM`] above
+/// `from` (the stock top 0, or the floor of the level above), then whole helical turns (half
+/// turns per block) down to `depth` at the ramp angle.
+fn helical_approach(w: &mut Writer, h: &Helix, from: f64, depth: f64, feed: f64, first: bool, opts: &NcOptions) {
     let start = h.center + p2(h.start_angle.cos(), h.start_angle.sin()) * h.radius;
-    let top = HELIX_START_Z_MM.min(retract(opts));
+    let top = (from + HELIX_START_Z_MM).min(retract(opts));
     w.linear(None, None, Some(up_height(first, opts)), None);
     w.linear(Some(start.x), Some(start.y), None, None);
     w.linear(None, None, Some(top), None);
@@ -539,11 +501,12 @@ fn helical_approach(w: &mut Writer, h: &Helix, depth: f64, feed: f64, first: boo
     }
 }
 
-/// Up (see [`up_height`]), rapid to the ramp's first point, rapid down to [`HELIX_START_Z_MM`] above the stock
-/// top, then straight legs back and forth on the ramp line (3D G1), each descending the same
-/// amount at most at the ramp angle, the last reaching `depth` at the ramp's start.
-fn ramp_approach(w: &mut Writer, r: &Ramp, depth: f64, feed: f64, first: bool, opts: &NcOptions) {
-    let top = HELIX_START_Z_MM.min(retract(opts));
+/// Up (see [`up_height`]), rapid to the ramp's first point, rapid down to [`HELIX_START_Z_MM`]
+/// above `from` (the stock top 0, or the floor of the level above), then straight legs back
+/// and forth on the ramp line (3D G1), each descending the same amount at most at the ramp
+/// angle, the last reaching `depth` at the ramp's start.
+fn ramp_approach(w: &mut Writer, r: &Ramp, from: f64, depth: f64, feed: f64, first: bool, opts: &NcOptions) {
+    let top = (from + HELIX_START_Z_MM).min(retract(opts));
     let drop = top + depth;
     let at = r.first_point(drop);
     w.linear(None, None, Some(up_height(first, opts)), None);

@@ -18,10 +18,16 @@ pub struct Levels {
 impl Levels {
     /// The levels of a validated job: one level at the full depth without a step-down.
     pub fn of(job: &ValidJob) -> Levels {
-        let n = count(job.depth, job.max_step_down);
-        let axial_depth_mm = job.depth / n as f64;
+        Levels::equal(job.depth, job.max_step_down)
+    }
+
+    /// The equal levels of `depth` (mm, > 0) cut at most `max_step_down` a level (checked by
+    /// the caller: > 0): one level at the full depth without a step-down.
+    pub fn equal(depth: f64, max_step_down: Option<f64>) -> Levels {
+        let n = count(depth, max_step_down);
+        let axial_depth_mm = depth / n as f64;
         // The last level exactly at the depth, whatever the rounding of k·a_p/n.
-        let z_mm = (1..=n).map(|k| if k == n { -job.depth } else { -(k as f64) * axial_depth_mm }).collect();
+        let z_mm = (1..=n).map(|k| if k == n { -depth } else { -(k as f64) * axial_depth_mm }).collect();
         Levels { axial_depth_mm, z_mm }
     }
 

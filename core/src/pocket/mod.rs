@@ -18,6 +18,7 @@ pub mod entry;
 mod growth;
 pub mod guard;
 pub mod islands;
+pub mod levels;
 pub mod mirror;
 pub mod pace;
 #[cfg(test)]
@@ -35,6 +36,7 @@ pub use adaptive::{
     AdaptiveOptions, AdaptivePart, AdaptivePlan, CornerPasses, plan_adaptive, plan_adaptive_islands, plan_adaptive_open,
 };
 pub use corner_point::CornerPoint;
+pub use levels::{PocketLevel, PocketLevels, plan_levels};
 pub use pace::{Pace, PaceOptions};
 pub use path::PocketPath;
 pub use perforative::{AxisCircle, PerforativePlan, plan_perforative};
