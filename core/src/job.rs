@@ -518,7 +518,7 @@ impl Job {
 }
 
 impl ValidJob {
-    /// Whether the slot is cut in levels or closed ([`crate::slot_levels`]): its program is then
+    /// Whether the slot is cut in levels or closed (the slot levels' plan): its program is then
     /// the levels' program, not the one-level slot program.
     pub fn in_levels(&self) -> bool {
         self.max_step_down.is_some() || self.closed

@@ -17,7 +17,7 @@ use std::path::Path;
 #[rustfmt::skip]
 const ORDER: &[&str] = &[
     "error", "geom", "toolpath", "outline", "material", "machine", "frame", "job", "path", "analysis", "plan",
-    "feed", "optimize", "quantity", "sweep", "engagement", "slot_levels", "corner", "pocket", "report", "nc",
+    "warnings", "feed", "optimize", "quantity", "sweep", "engagement", "slot_levels", "corner", "pocket", "report", "nc",
     "part", "verify",
 ];
 

@@ -27,7 +27,9 @@ pub fn pocket_levels_program(
     cut: CutSetup,
     opts: &NcOptions,
 ) -> Result<NcProgram, Error> {
-    let path_levels = levels.path_levels();
+    // the levels as the program writes them: each from its top down to its floor
+    let path_levels: Vec<PathLevel> =
+        levels.per_level.iter().map(|l| PathLevel { top_mm: l.top_mm, depth_mm: -l.z_mm }).collect();
     let depth_mm = path_levels.last().map_or(cut.depth_mm, |l| l.depth_mm);
     pocket_path_program(plan.path(), pocket_summary(plan), CutSetup { depth_mm, ..cut }, &path_levels, opts)
 }

@@ -17,7 +17,6 @@ use crate::engagement::{EvaluatorOptions, Measurement, Stock, measure};
 use crate::error::{Error, Param, num};
 use crate::job::level_count;
 use crate::job::limits::{MAX_LEVELS, MAX_SIZE_MM};
-use crate::nc::PathLevel;
 use crate::path::levels::Levels;
 use crate::pocket::PocketPath;
 use rayon::prelude::*;
@@ -45,11 +44,6 @@ impl PocketLevels {
     /// Largest engagement measured over every move of every level (rad).
     pub fn peak_rad(&self) -> f64 {
         self.per_level.iter().map(|l| l.measurement.max_engagement_rad).fold(0.0, f64::max)
-    }
-
-    /// The levels as the program writes them ([`crate::nc::program_for_path_levels`]).
-    pub fn path_levels(&self) -> Vec<PathLevel> {
-        self.per_level.iter().map(|l| PathLevel { top_mm: l.top_mm, depth_mm: -l.z_mm }).collect()
     }
 }
 
@@ -130,7 +124,7 @@ mod tests {
             assert!((a - b).abs().to_degrees() < 0.01, "{a} vs {b}");
         }
         assert_eq!(lv.peak_rad(), first.max_engagement_rad);
-        assert_eq!(lv.path_levels()[2], PathLevel { top_mm: -8.0, depth_mm: 12.0 });
+        assert_eq!((lv.per_level[2].top_mm, lv.per_level[2].z_mm), (-8.0, -12.0));
         // 12 / 4 is 3 levels, 12 / 12 one
         assert_eq!(plan_levels(p.path(), 12.0, Some(4.0)).expect("levels").levels.count(), 3);
         assert_eq!(plan_levels(p.path(), 12.0, None).expect("levels").levels.count(), 1);
