@@ -111,8 +111,8 @@ enum Command {
         args: verify::VerifyArgs,
     },
     /// Plan a part made by several operations (slots, pockets, corners) with a tool table, from
-    /// a job file (docs/jobs.md); print JSON per operation and for the part; write one NC program
-    /// with the tool changes.
+    /// a job file; print JSON per operation and for the part; write one NC program with the tool
+    /// changes.
     Job {
         #[command(flatten)]
         args: job::JobFileArgs,
