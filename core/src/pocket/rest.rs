@@ -14,7 +14,7 @@ use crate::corner::limits::MAX_TOOL_DIAMETER_MM;
 use crate::engagement::{AIR_ENGAGEMENT_RAD, EvaluatorOptions, Stock, measure, sample_owners};
 use crate::error::{Error, Param, num};
 use crate::geom::{P2, Segment};
-use crate::toolpath::{Entry, MoveKind, Toolpath};
+use crate::toolpath::{Entry, Toolpath};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
@@ -246,31 +246,7 @@ fn refreshed(mut parts: Vec<AdaptivePart>, keep: &[usize], path: &PocketPath) ->
         p.corners.iter_mut().for_each(|c| c.max_engagement_rad = 0.0);
         p.corner_points.iter_mut().for_each(|c| c.max_engagement_rad = 0.0);
     }
-    let profile = &path.measurement.profile;
-    let (segments, kinds) = (path.segments(), path.kinds());
-    for (smp, &i) in profile.samples.iter().zip(&sample_owners(profile, &segments)) {
-        let at = P2::new(smp.x_mm, smp.y_mm);
-        let nearest = |v: P2, w: P2| (v - at).norm().total_cmp(&(w - at).norm());
-        let slot = match kinds.get(i) {
-            Some(MoveKind::Corner) => parts
-                .iter_mut()
-                .flat_map(|p| p.corners.iter_mut())
-                .min_by(|a, c| nearest(a.vertex, c.vertex))
-                .map(|c| (&mut c.max_engagement_rad, &mut c.at)),
-            Some(MoveKind::CornerPoint) => parts
-                .iter_mut()
-                .flat_map(|p| p.corner_points.iter_mut())
-                .min_by(|a, c| nearest(a.vertex, c.vertex))
-                .map(|c| (&mut c.max_engagement_rad, &mut c.at)),
-            _ => None,
-        };
-        if let Some((max, where_)) = slot
-            && smp.angle_rad > *max
-        {
-            *max = smp.angle_rad;
-            *where_ = at;
-        }
-    }
+    super::adaptive::corner_maxima(&mut parts, path);
     parts
 }
 

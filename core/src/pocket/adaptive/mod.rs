@@ -119,6 +119,7 @@ mod open;
 mod options;
 mod part;
 mod plan;
+pub(crate) use plan::corner_maxima;
 mod spiral;
 #[cfg(test)]
 pub(crate) mod tests;

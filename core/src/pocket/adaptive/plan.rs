@@ -102,12 +102,28 @@ pub(super) fn measure(
     let toolpath = Toolpath::at_depth(&b.segments, &b.kinds, -options.depth_mm, entries, retract_before);
     // the bores of helices and ramps are cut; outside the stock nothing was
     let path = PocketPath::measured_with_islands(&polygon, islands, settings, toolpath, options.depth_mm)?;
+    corner_maxima(&mut parts, &path);
+    Ok(AdaptivePlan {
+        path,
+        open_edges: Vec::new(),
+        options,
+        target_rad: phi,
+        parts,
+        corner_radius_left_mm,
+        rest: None,
+    })
+}
+
+/// Each part's corner and corner-point maxima from `path`'s measurement: every sample on a
+/// corner (corner-point) move goes to the nearest corner (corner point) of the parts; the
+/// largest engagement and where it is, over the values already there.
+pub(crate) fn corner_maxima(parts: &mut [AdaptivePart], path: &PocketPath) {
     let profile = &path.measurement.profile;
-    // Corner maxima: the samples on each part's corner passes nearest each corner.
-    for (smp, &i) in profile.samples.iter().zip(&sample_owners(profile, &b.segments)) {
+    let (segments, kinds) = (path.segments(), path.kinds());
+    for (smp, &i) in profile.samples.iter().zip(&sample_owners(profile, &segments)) {
         let at = p2(smp.x_mm, smp.y_mm);
         let nearest = |v: P2, w: P2| (v - at).norm().total_cmp(&(w - at).norm());
-        let slot = match b.kinds.get(i) {
+        let slot = match kinds.get(i) {
             Some(MoveKind::Corner) => parts
                 .iter_mut()
                 .flat_map(|p| p.corners.iter_mut())
@@ -127,13 +143,4 @@ pub(super) fn measure(
             *where_ = at;
         }
     }
-    Ok(AdaptivePlan {
-        path,
-        open_edges: Vec::new(),
-        options,
-        target_rad: phi,
-        parts,
-        corner_radius_left_mm,
-        rest: None,
-    })
 }
