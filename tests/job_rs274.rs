@@ -12,9 +12,9 @@
 #[path = "../core/tests/nc_common/mod.rs"]
 mod nc_common;
 
-use nc_common::{Motion, check_cut, check_path_cut, cut, interpret, motions, rs274, same_motion};
+use nc_common::{Motion, check_cut, check_path_cut, cut, interpret, motions, same_motion};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::{Command, Output};
 use trochoplan_core::geom::Segment;
 use trochoplan_core::{Job, plan};
 
@@ -67,25 +67,7 @@ fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
 
 /// rs274 on `file` with a tool table of tools 1 (D 10) and 2 (D 6); its canonical output.
 fn rs274_with_tools(file: &Path) -> String {
-    let home = file.with_extension("home");
-    std::fs::create_dir_all(&home).expect("home");
-    let table = home.join("tools.tbl");
-    std::fs::write(&table, "T1 P1 D10.0 Z0 ;tool 1\nT2 P2 D6.0 Z0 ;tool 2\n").expect("tool table");
-    let canon = file.with_extension("canon");
-    let run = Command::new(rs274())
-        .arg("-t")
-        .arg(&table)
-        .arg("-g")
-        .arg(file)
-        .arg(&canon)
-        .env("HOME", &home)
-        .stdin(Stdio::null())
-        .output()
-        .expect("run rs274 (apt-get install linuxcnc-uspace, or set RS274)");
-    let stderr = String::from_utf8_lossy(&run.stderr);
-    let messages: Vec<&str> = stderr.lines().filter(|l| l.trim() != "executing" && !l.trim().is_empty()).collect();
-    assert!(run.status.success() && messages.is_empty(), "rs274 on {}: {}", file.display(), messages.join(" | "));
-    std::fs::read_to_string(&canon).expect("canon")
+    nc_common::rs274_with_tools(file, "T1 P1 D10.0 Z0 ;tool 1\nT2 P2 D6.0 Z0 ;tool 2\n")
 }
 
 /// The motions of each operation: from its comment `(operation k: …)` to the next one (the

@@ -14,9 +14,9 @@
 #[path = "../core/tests/nc_common/mod.rs"]
 mod nc_common;
 
-use nc_common::{Motion, check_cut, cut, length, motions, ordered_deviation, rs274, sample};
+use nc_common::{Motion, check_cut, cut, length, motions, ordered_deviation, sample};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use std::process::Command;
 use trochoplan_core::geom::P2;
 use trochoplan_core::nc::{Dialect, backplot, read_toolpath};
 use trochoplan_core::toolpath::MoveKind;
@@ -60,25 +60,7 @@ fn program(dir: &Path, command: &str, dialect: &str, inch: bool, polygon: &Path)
 
 /// rs274 on `file` with a tool table holding tools 1 and 7; its canonical output.
 fn rs274_with_tools(file: &Path) -> String {
-    let home = file.with_extension("home");
-    std::fs::create_dir_all(&home).expect("home");
-    let table = home.join("tools.tbl");
-    std::fs::write(&table, "T1 P1 D10.0 Z0 ;tool 1\nT7 P7 D10.0 Z0 ;tool 7\n").expect("tool table");
-    let canon = file.with_extension("canon");
-    let run = Command::new(rs274())
-        .arg("-t")
-        .arg(&table)
-        .arg("-g")
-        .arg(file)
-        .arg(&canon)
-        .env("HOME", &home)
-        .stdin(Stdio::null())
-        .output()
-        .expect("run rs274 (apt-get install linuxcnc-uspace, or set RS274)");
-    let stderr = String::from_utf8_lossy(&run.stderr);
-    let messages: Vec<&str> = stderr.lines().filter(|l| l.trim() != "executing" && !l.trim().is_empty()).collect();
-    assert!(run.status.success() && messages.is_empty(), "rs274 on {}: {}", file.display(), messages.join(" | "));
-    std::fs::read_to_string(&canon).expect("canon")
+    nc_common::rs274_with_tools(file, "T1 P1 D10.0 Z0 ;tool 1\nT7 P7 D10.0 Z0 ;tool 7\n")
 }
 
 /// Motions in inch scaled to mm.

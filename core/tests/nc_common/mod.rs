@@ -397,6 +397,31 @@ pub fn interpret(file: &Path) -> Result<String, String> {
     std::fs::read_to_string(&out).map_err(|e| format!("{}: {e}", out.display()))
 }
 
+/// rs274 on `file` with the tool table `table` (its lines, e.g. "T7 P7 D10.0 Z0 ;tool 7"):
+/// rs274's built-in table has tools 1 to 3 only. Its canonical calls; a failed run or any
+/// message of the interpreter fails the test.
+pub fn rs274_with_tools(file: &Path, table: &str) -> String {
+    let home = file.with_extension("home");
+    std::fs::create_dir_all(&home).expect("home");
+    let tbl = home.join("tools.tbl");
+    std::fs::write(&tbl, table).expect("tool table");
+    let canon = file.with_extension("canon");
+    let run = Command::new(rs274())
+        .arg("-t")
+        .arg(&tbl)
+        .arg("-g")
+        .arg(file)
+        .arg(&canon)
+        .env("HOME", &home)
+        .stdin(Stdio::null())
+        .output()
+        .expect("run rs274 (apt-get install linuxcnc-uspace, or set RS274)");
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    let messages: Vec<&str> = stderr.lines().filter(|l| l.trim() != "executing" && !l.trim().is_empty()).collect();
+    assert!(run.status.success() && messages.is_empty(), "rs274 on {}: {}", file.display(), messages.join(" | "));
+    std::fs::read_to_string(&canon).expect("canon")
+}
+
 /// The motions in rs274's canonical output, from (0, 0, 0).
 pub fn motions(canon: &str) -> Vec<Motion> {
     let mut pos = [0.0f64; 3];
