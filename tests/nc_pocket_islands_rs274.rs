@@ -14,6 +14,7 @@
 mod islands_common;
 #[path = "../core/tests/nc_common/mod.rs"]
 mod nc_common;
+mod pocket_common;
 
 use islands_common::{boss, least_clearance, loop_distance, rect, run};
 use nc_common::{Motion, check_path_cut, cut, interpret, motions, sample};

@@ -16,6 +16,7 @@
 mod islands_common;
 #[path = "../core/tests/nc_common/mod.rs"]
 mod nc_common;
+mod pocket_common;
 
 use islands_common::{acceptance_loops, least_clearance, run};
 use nc_common::{Motion, check_path_cut, cut, interpret, motions, sample};

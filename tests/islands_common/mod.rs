@@ -50,23 +50,9 @@ pub fn run(dir: &Path, name: &str, loops: &[Vec<P2>], args: &[&str]) -> (bool, S
     (out.status.success(), stdout, stderr.into_owned())
 }
 
-pub fn edge_distance(p: P2, a: P2, b: P2) -> f64 {
-    let ab = b - a;
-    let t = ((p - a).dot(&ab) / ab.dot(&ab)).clamp(0.0, 1.0);
-    (p - (a + ab * t)).norm()
-}
-
-/// Even–odd ray casting along +x.
-pub fn inside(p: P2, poly: &[P2]) -> bool {
-    let mut c = false;
-    for i in 0..poly.len() {
-        let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
-        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) {
-            c = !c;
-        }
-    }
-    c
-}
+// the distance to an edge and the even–odd test of the pocket tests (the crate includes
+// `pocket_common` beside this module)
+use crate::pocket_common::{dist_to_edge as edge_distance, inside};
 
 /// The least distance from `p` to an edge of `poly`.
 pub fn loop_distance(p: P2, poly: &[P2]) -> f64 {
