@@ -270,7 +270,10 @@ fn freecad_adaptive_and_ours_on_the_pocket_with_islands() {
     println!("problems: FreeCAD {:?}; ours {:?}", f.problems, o.problems);
 
     // ours keeps off the wall and both islands; FreeCAD's comes closer
-    let (least_o, least_f) = (o.closest.iter().copied().fold(f64::INFINITY, f64::min), f.closest.iter().copied().fold(f64::INFINITY, f64::min));
+    let (least_o, least_f) = (
+        o.closest.iter().copied().fold(f64::INFINITY, f64::min),
+        f.closest.iter().copied().fold(f64::INFINITY, f64::min),
+    );
     assert!(least_o >= R - 0.005, "ours comes {least_o} mm from a wall or island");
     assert!(least_o >= least_f, "ours {least_o} mm, FreeCAD {least_f} mm");
     // away from the entries, ours within the target + 1° and below FreeCAD's
