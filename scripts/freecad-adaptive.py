@@ -46,7 +46,6 @@ import FreeCAD
 import Part
 import PathScripts.PathAdaptive as PathAdaptive
 import PathScripts.PathJob as PathJob
-import PathScripts.PathToolBit as PathToolBit  # noqa: F401  (the Job's default tool bit)
 from PathScripts.post import linuxcnc_post
 
 OUTLINE = os.environ.get("FC_OUTLINE", "tests/data/freecad/islands.txt")
