@@ -205,3 +205,101 @@ fn check_placement(p: &Placement, opts: &NcOptions) -> Result<(), Error> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+mod tests {
+    use super::*;
+    use crate::geom::Segment;
+    use crate::nc::{Dialect, read_toolpath};
+    use crate::pocket::{PocketRequest, plan};
+
+    const TOOL: ToolSetup = ToolSetup {
+        number: 1,
+        length_offset: None,
+        diameter_mm: 10.0,
+        spindle_rpm: 2000.0,
+        spindle_direction: SpindleDirection::Cw,
+        coolant: Coolant::Off,
+    };
+
+    fn program(toolpath: &crate::toolpath::Toolpath, placement: Placement, dialect: Dialect) -> String {
+        let body = OperationBody::Path(PathJob {
+            toolpath,
+            depth_mm: 3.0,
+            feed_mm_per_min: 600.0,
+            spindle_rpm: 2000.0,
+            tool_diameter_mm: 10.0,
+            default_title: "test",
+            description: Vec::new(),
+        });
+        let op = OperationNc { label: "pocket".into(), tool: TOOL, body, placement };
+        let opts = NcOptions { dialect, ..NcOptions::default() };
+        operations_program(&[op], &opts).expect("program").text
+    }
+
+    /// The 60 × 40 adaptive pocket (lines, arcs, helical entries, rapids at depth) written
+    /// placed at X25 Y−7.5 turned 120° reads back, move by move, as its unplaced program read
+    /// back and placed: the same kind of move (an arc stays an arc with the same sense), each
+    /// end within the rounding of the two programs (the unplaced point off its plan by at most
+    /// q/√2, the placed one by q/2 per axis; an arc's read-back end also by its radii's
+    /// difference), in every dialect.
+    #[test]
+    fn a_placed_operation_is_its_own_program_turned_and_moved() {
+        let p = plan(&PocketRequest::default()).expect("plan");
+        let place = Placement { origin: p2(25.0, -7.5), rotation_rad: 120f64.to_radians() };
+        for dialect in Dialect::ALL {
+            let own = read_toolpath(&program(p.toolpath(), Placement::IDENTITY, dialect), dialect).expect("own");
+            let placed = read_toolpath(&program(p.toolpath(), place, dialect), dialect).expect("placed");
+            let q = 10f64.powi(-(dialect.spec().decimals as i32));
+            let tol = q * std::f64::consts::FRAC_1_SQRT_2 + 0.5 * q + 1e-9;
+            assert_eq!(own.moves.len(), placed.moves.len(), "{dialect:?}");
+            let arcs = own.moves.iter().filter(|m| matches!(m.segment, Segment::Arc { .. })).count();
+            assert!(arcs > 100, "{dialect:?}: {arcs} arcs");
+            // a read-back arc ends at its start radius: off the written end by the difference
+            // of its two written radii, at most q·√2 in each program (the writer's module docs)
+            let arc_tol = tol + 2.0 * std::f64::consts::SQRT_2 * q;
+            for (k, (a, b)) in own.moves.iter().zip(&placed.moves).enumerate() {
+                let end = place.apply(a.segment.end());
+                let off = end - b.segment.end();
+                let t = if matches!(a.segment, Segment::Arc { .. }) { arc_tol } else { tol };
+                assert!(off.x.abs() <= t && off.y.abs() <= t, "{dialect:?} move {k}: {a:?} vs {b:?}");
+                assert!((a.z_end_mm - b.z_end_mm).abs() <= 1e-12, "{dialect:?} move {k}");
+                match (a.segment, b.segment) {
+                    (Segment::Arc { sweep: s0, .. }, Segment::Arc { sweep: s1, .. }) => {
+                        assert_eq!(s0 > 0.0, s1 > 0.0, "{dialect:?} move {k}: the sense of the arc");
+                    }
+                    (Segment::Line { .. }, Segment::Line { .. }) => {}
+                    _ => panic!("{dialect:?} move {k}: {a:?} vs {b:?}"),
+                }
+            }
+        }
+        // the identity writes the program as it was
+        let d = Dialect::LinuxCnc;
+        let shifted = Placement { origin: p2(0.0, 0.0), rotation_rad: 0.0 };
+        assert_eq!(program(p.toolpath(), shifted, d), program(p.toolpath(), Placement::IDENTITY, d));
+    }
+
+    #[test]
+    fn a_placement_that_is_not_finite_is_refused_naming_it() {
+        let p = plan(&PocketRequest::default()).expect("plan");
+        for (place, key) in [
+            (Placement { origin: p2(f64::NAN, 0.0), rotation_rad: 0.0 }, "origin"),
+            (Placement { origin: p2(0.0, f64::INFINITY), rotation_rad: 0.0 }, "origin"),
+            (Placement { origin: p2(0.0, 0.0), rotation_rad: f64::NAN }, "rotation"),
+        ] {
+            let body = OperationBody::Path(PathJob {
+                toolpath: p.toolpath(),
+                depth_mm: 3.0,
+                feed_mm_per_min: 600.0,
+                spindle_rpm: 2000.0,
+                tool_diameter_mm: 10.0,
+                default_title: "test",
+                description: Vec::new(),
+            });
+            let op = OperationNc { label: "pocket".into(), tool: TOOL, body, placement: place };
+            let (k, e) = operations_program(&[op], &NcOptions::default()).expect_err("refused");
+            assert_eq!((k, e.subject()), (1, Some(key)), "{e}");
+        }
+    }
+}
