@@ -326,14 +326,11 @@ fn bad_rest_machining_and_placement_keys_are_refused_naming_the_operation_and_th
             ),
             "operation 2: rest-from-operation = 1: operation 1 cut down to 3 mm only",
         ),
-        (format!("{SLOT}").replace("depth = 4.0", "depth = 4.0\norigin = [nan, 0.0]"), "operation 1: origin = [nan, 0"),
-        (format!("{p1}").replace("depth = 3.0", "depth = 3.0\nrotation = inf"), "operation 1: rotation = inf"),
+        (SLOT.replace("depth = 4.0", "depth = 4.0\norigin = [nan, 0.0]"), "operation 1: origin = [nan, 0"),
+        (p1.replace("depth = 3.0", "depth = 3.0\nrotation = inf"), "operation 1: rotation = inf"),
+        (p1.replace("depth = 3.0", "depth = 3.0\nmax-step-down = 4.0"), "operation 1: invalid max-step-down = 4"),
         (
-            format!("{p1}").replace("depth = 3.0", "depth = 3.0\nmax-step-down = 4.0"),
-            "operation 1: invalid max-step-down = 4",
-        ),
-        (
-            format!("{p1}").replace("depth = 3.0", "depth = 3.0\nfloor-stock = 3.0"),
+            p1.replace("depth = 3.0", "depth = 3.0\nfloor-stock = 3.0"),
             "operation 1: floor-stock = 3: must be a finite number ≥ 0 and < the depth 3 mm",
         ),
     ];
@@ -399,5 +396,52 @@ fn a_pocket_in_levels_is_its_own_levels_program_placed() {
     // both floors reached: −1.25 and −2.5
     for z in [-1.25, -2.5] {
         assert!(ours[0].iter().any(|m| (m.end()[2] - z).abs() < Q), "floor {z}");
+    }
+}
+
+/// A rest pass in levels: every level's stock is what the larger tool left on it (that tool cut
+/// every level down to its floor), the stock its plan was measured over; the report's peak is
+/// that plan's (`pocket --rest-from`'s `max_engagement_deg`), not a measure over the uncut
+/// pocket, and its levels reach both floors.
+#[test]
+fn a_rest_pass_in_levels_is_measured_over_the_stock_the_larger_tool_left() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let ops = format!(
+        "{}{}",
+        pocket(1, "part-pocket.txt", ""),
+        pocket(2, "part-pocket.txt", "rest-from-operation = 1\nmax-step-down = 1.5")
+    );
+    let job = job_with(d, "rest-levels.toml", &ops);
+    let nc = d.join("rest-levels.ngc");
+    let v = ok(&["job", job.to_str().expect("utf-8"), "--export", nc.to_str().expect("utf-8")]);
+    let own_nc = d.join("own.ngc");
+    let json = ok(&[
+        "pocket",
+        "--polygon",
+        d.join("part-pocket.txt").to_str().expect("utf-8"),
+        "--depth",
+        "3",
+        "--rest-from",
+        "10",
+        "--tool-diameter",
+        "6",
+        "--teeth",
+        "3",
+        "--rpm",
+        "4000",
+        "--feed",
+        "500",
+        "--export",
+        own_nc.to_str().expect("utf-8"),
+    ]);
+    let o = &v["operations"][1];
+    assert_eq!((o["levels"].as_u64(), o["rest_from_operation"].as_u64()), (Some(2), Some(1)));
+    assert_eq!(o["peak_engagement_deg"].as_f64(), json["max_engagement_deg"].as_f64());
+    let (length, own) = (f64_of(&o["path_length_mm"]), 2.0 * f64_of(&json["length_at_depth_mm"]));
+    assert!((length - own).abs() <= 1e-9 * own, "{length} vs {own}");
+    let ours = per_operation(&rs274_with_tools(&nc), 2);
+    for z in [-1.5, -3.0] {
+        assert!(ours[1].iter().any(|m| (m.end()[2] - z).abs() < Q), "floor {z}");
     }
 }
