@@ -444,4 +444,17 @@ fn a_rest_pass_in_levels_is_measured_over_the_stock_the_larger_tool_left() {
     for z in [-1.5, -3.0] {
         assert!(ours[1].iter().any(|m| (m.end()[2] - z).abs() < Q), "floor {z}");
     }
+    // `rest-from = 10` (the diameter, as the flag) plans the same pass as the operation whose
+    // tool is D 10, and writes the same program
+    let by_diameter = ops.replace("rest-from-operation = 1", "rest-from = 10.0");
+    let job = job_with(d, "rest-diameter.toml", &by_diameter);
+    let nc2 = d.join("rest-diameter.ngc");
+    let w = ok(&["job", job.to_str().expect("utf-8"), "--export", nc2.to_str().expect("utf-8")]);
+    let o2 = &w["operations"][1];
+    assert_eq!((o2["rest_from_mm"].as_f64(), o2["rest_from_operation"].as_u64()), (Some(10.0), None));
+    for key in ["path_length_mm", "peak_engagement_deg", "levels"] {
+        assert_eq!(o2[key], o[key], "{key}");
+    }
+    let text = |f: &Path| std::fs::read_to_string(f).expect("program");
+    assert_eq!(text(&nc2), text(&nc));
 }
