@@ -20,8 +20,11 @@ pub struct JobFileArgs {
     /// The job file (TOML): `[program]` (the frame: work offset, heights, units, …), a tool
     /// table (`[[tool]]`: number, diameter, teeth, rpm, feed; length-offset, spindle-direction,
     /// coolant) and the operations in order (`[[operation]]`: kind = slot, pocket or corner,
-    /// tool = a tool number, and the keys of its kind: a slot's those of `--job`, a pocket's
-    /// outline, depth and the options of `pocket`, a corner's depth and the options of `corner`).
+    /// tool = a tool number, origin = [x, y] (mm) and rotation (degrees) placing its own
+    /// coordinates on the part, and the keys of its kind: a slot's those of `--job`, a pocket's
+    /// outline, depth and the options of `pocket` (max-step-down, floor-stock, rest-from, or
+    /// rest-from-operation = an earlier pocket whose larger tool left the stock), a corner's
+    /// depth and the options of `corner`).
     #[arg(value_name = "FILE")]
     file: PathBuf,
     /// Write the one NC program of all operations, with the tool changes, to this file.

@@ -33,7 +33,7 @@ mod writer;
 pub use backplot::{backplot, read_toolpath};
 pub use corner::{CutSetup, corner_program, perforative_program, pocket_program};
 pub use levels::levels_program;
-pub use operations::{OperationBody, OperationNc, ToolSetup, operations_program};
+pub use operations::{OperationBody, OperationNc, Placement, ToolSetup, operations_program};
 pub use pocket_levels::{PathLevel, pocket_levels_program, program_for_path_levels};
 
 pub use dialect::{CommentStyle, Dialect, DialectSpec, LoopStyle, ToolCall, sanitize_comment};

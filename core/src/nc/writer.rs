@@ -17,6 +17,7 @@
 //! inch/min with two decimals (0.01 inch/min = 0.254 mm/min; metric feeds in 0.1 mm/min).
 
 use super::dialect::{CommentStyle, DialectSpec, sanitize_comment};
+use super::operations::Placement;
 use crate::error::{Error, num};
 use crate::frame::Units;
 use crate::geom::{P2, Segment, p2, rot90};
@@ -70,6 +71,8 @@ pub struct Writer {
     z: Option<i64>,
     feed: Option<i64>,
     y_form: YForm,
+    /// Where the XY coordinates given to the writer are placed ([`Writer::set_placement`]).
+    placement: Option<Placement>,
     error: Option<Error>,
 }
 
@@ -100,7 +103,33 @@ impl Writer {
             z: None,
             feed: None,
             y_form: YForm::Plain,
+            placement: None,
             error: None,
+        }
+    }
+
+    /// Place every XY position given from now on (none: as given): an operation of a part
+    /// written in its own coordinates lands in the part's ([`Placement`]); arcs stay arcs,
+    /// their ends and centres placed. A move in X or Y alone cannot be placed under a rotation
+    /// and records an error.
+    pub fn set_placement(&mut self, placement: Option<Placement>) {
+        self.placement = placement.filter(|p| !p.is_identity());
+    }
+
+    /// `(x, y)` placed; both or neither given under a placement.
+    fn placed(&mut self, x: Option<f64>, y: Option<f64>) -> (Option<f64>, Option<f64>) {
+        match (self.placement, x, y) {
+            (None, x, y) | (Some(_), x @ None, y @ None) => (x, y),
+            (Some(p), Some(x), Some(y)) => {
+                let q = p.apply(p2(x, y));
+                (Some(q.x), Some(q.y))
+            }
+            (Some(_), x, y) => {
+                if self.error.is_none() {
+                    self.error = Some(Error::nc("placement", "a move in X or Y alone", "moves in X and Y together"));
+                }
+                (x, y)
+            }
         }
     }
 
@@ -181,6 +210,10 @@ impl Writer {
     /// Take (x, y) as the current position without writing a block (a loop body starts where
     /// the previous iteration, or the approach, left the tool).
     pub fn assume_position(&mut self, x: f64, y: f64) {
+        let (x, y) = match self.placed(Some(x), Some(y)) {
+            (Some(x), Some(y)) => (x, y),
+            _ => (x, y),
+        };
         self.x = Some(self.quantize("x", x));
         self.y = Some(self.quantize("y", y));
     }
@@ -287,6 +320,7 @@ impl Writer {
     /// `None` do not move. Unchanged coordinates are not written; a move to where the tool
     /// already is writes nothing.
     pub fn linear(&mut self, x: Option<f64>, y: Option<f64>, z: Option<f64>, feed: Option<f64>) {
+        let (x, y) = self.placed(x, y);
         let mut axes = Vec::new();
         if let Some(x) = x {
             let n = self.quantize("x", x);
@@ -372,6 +406,10 @@ impl Writer {
     /// One arc block from the current position to `end` around `center` (see module docs),
     /// descending to `z` on the way when given (a helix).
     fn arc(&mut self, end: P2, center: P2, clockwise: bool, full_circle: bool, z: Option<f64>, feed: f64) {
+        let (end, center) = match self.placement {
+            Some(p) => (p.apply(end), p.apply(center)),
+            None => (end, center),
+        };
         let (Some(sx), Some(sy)) = (self.x, self.y) else {
             if self.error.is_none() {
                 self.error = Some(Error::nc("path", "arc", "to start from a known position"));

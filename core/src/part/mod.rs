@@ -6,20 +6,30 @@
 //! reported (kind, tool, path length, peak engagement, time on a machine) and written as one
 //! NC program with tool changes ([`crate::nc::operations_program`]).
 //!
-//! Every operation is in its own coordinates, as its own program writes them: a slot from X0
-//! Y0 along +Y, a pocket in its outline's coordinates, a corner with its apex at X0 Y0.
+//! Every operation is planned in its own coordinates, as its own program writes them: a slot
+//! from X0 Y0 along +Y, a pocket in its outline's coordinates, a corner with its apex at X0 Y0;
+//! its `origin` and `rotation` keys place it on the part ([`placement`]), and the program is
+//! in the part's coordinates. A pocket may be cut in levels and may machine the rest an
+//! earlier, larger tool left ([`pocket`]).
+
+pub mod placement;
+pub mod pocket;
+mod report;
+
+pub use pocket::{PocketInLevels, RestFrom};
+pub use report::{OperationReport, PartReport, report};
 
 use crate::corner::{CornerMethod, CornerReport, CornerRequest, evaluate};
 use crate::error::Error;
 use crate::frame::{Coolant, ProgramFrame, SpindleDirection};
-use crate::geom::{P2, Polygon};
+use crate::geom::P2;
 use crate::job::{Direction, Job};
 use crate::machine::{CutHeights, Machine, toolpath_time};
-use crate::nc::{NcOptions, NcProgram, OperationBody, OperationNc, PathJob, ToolSetup, operations_program};
+use crate::nc::{NcOptions, NcProgram, OperationBody, OperationNc, PathJob, Placement, ToolSetup, operations_program};
 use crate::plan::Plan;
-use crate::pocket::{self, AdaptiveOptions, PaceOptions, PocketPlan, PocketRequest, PocketStrategy};
+use crate::pocket::PocketPlan;
 use crate::slot_levels::{LevelPlan, plan_levels};
-use serde::{Deserialize, Serialize};
+use serde::Deserialize;
 
 /// The job file of a part.
 #[derive(Clone, Debug, Default, Deserialize)]
@@ -61,33 +71,6 @@ pub struct Tool {
     /// Coolant; none: the `[program]` table's.
     #[serde(default)]
     pub coolant: Option<Coolant>,
-}
-
-/// A pocket operation's own keys (the `pocket` command's flags; the tool gives D, z, rpm and
-/// feed). Options of more pocket methods (levels, rest machining) join this table.
-#[derive(Clone, Debug, Deserialize)]
-#[serde(rename_all = "kebab-case", deny_unknown_fields)]
-struct PocketKeys {
-    /// Outline file, relative to the job file.
-    outline: String,
-    depth: f64,
-    method: Option<String>,
-    step_over: Option<f64>,
-    spacing: Option<f64>,
-    direction: Option<Direction>,
-    helix_radius: Option<f64>,
-    ramp_angle: Option<f64>,
-    ramp_pass_depth: Option<f64>,
-    peak_limit: Option<f64>,
-    finish_stock: Option<f64>,
-    target_engagement: Option<f64>,
-    corner_tolerance: Option<f64>,
-    #[serde(default)]
-    open_edges: Vec<usize>,
-    #[serde(default)]
-    constant_feed: bool,
-    #[serde(default)]
-    no_rapids: bool,
 }
 
 /// A corner operation's own keys (the `corner` command's flags; the tool gives D and feed).
@@ -142,9 +125,14 @@ pub enum Planned {
         plan: Box<Plan>,
         levels: Option<Box<LevelPlan>>,
     },
+    /// A pocket: its plan, its `depth`, its levels when cut in levels (`max-step-down`,
+    /// `floor-stock`), what it machines the rest of, and its outline file as the job names it.
     Pocket {
         plan: Box<PocketPlan>,
         depth_mm: f64,
+        levels: Option<Box<PocketInLevels>>,
+        rest: Option<RestFrom>,
+        outline: String,
     },
     Corner {
         report: Box<CornerReport>,
@@ -152,11 +140,13 @@ pub enum Planned {
     },
 }
 
-/// A planned operation and its tool.
+/// A planned operation, its tool and its place on the part.
 #[derive(Clone, Debug)]
 pub struct PlannedOperation {
     pub tool: Tool,
     pub planned: Planned,
+    /// Where its own coordinates sit on the part (`origin`, `rotation`).
+    pub placement: Placement,
 }
 
 /// Parse a job file's text.
@@ -206,13 +196,18 @@ pub fn plan_part(
         let Some(tool) = file.tool.iter().find(|u| i64::from(u.number) == number).copied() else {
             return Err(fail(format!("tool {number} is not in the tool table")));
         };
+        let placement = placement::take_placement(&mut t).map_err(|e| PartError::op(k, e))?;
         let planned = match kind.as_str() {
-            "slot" => plan_slot(t, &tool).map_err(|e| PartError::op(k, e))?,
-            "pocket" => plan_pocket(t, &tool, outline, machine).map_err(|e| PartError::op(k, e))?,
-            "corner" => plan_corner(t, &tool).map_err(|e| PartError::op(k, e))?,
+            "slot" => plan_slot(t, &tool),
+            "pocket" => {
+                let cx = pocket::PocketContext { before: &out, operation: k, placement, outline, machine };
+                pocket::plan_pocket(t, &tool, &cx)
+            }
+            "corner" => plan_corner(t, &tool),
             other => return Err(fail(format!("kind = \"{other}\": must be one of {}", KINDS.join(", ")))),
-        };
-        out.push(PlannedOperation { tool, planned });
+        }
+        .map_err(|e| PartError::op(k, e))?;
+        out.push(PlannedOperation { tool, planned, placement });
     }
     Ok(out)
 }
@@ -243,68 +238,6 @@ fn plan_slot(mut t: toml::Table, tool: &Tool) -> Result<Planned, Error> {
     let plan = crate::plan::plan(&job)?;
     let levels = if job.max_step_down.is_some() || job.closed { Some(Box::new(plan_levels(&plan)?)) } else { None };
     Ok(Planned::Slot { plan: Box::new(plan), levels })
-}
-
-fn plan_pocket(
-    t: toml::Table,
-    tool: &Tool,
-    outline: &OutlineReader<'_>,
-    machine: Option<&Machine>,
-) -> Result<Planned, Error> {
-    no_tool_keys(&t)?;
-    let p: PocketKeys = keys(t)?;
-    let (points, island_points) = outline(&p.outline).map_err(|e| Error::File(format!("outline: {e}")))?;
-    let polygon = Polygon::new(points.clone()).map_err(|e| Error::File(format!("outline {}: {e}", p.outline)))?;
-    let islands = island_points
-        .into_iter()
-        .enumerate()
-        .map(|(k, v)| Polygon::new(v).map_err(|e| Error::File(format!("outline {}: island {}: {e}", p.outline, k + 1))))
-        .collect::<Result<Vec<_>, _>>()?;
-    let open_edges = pocket::stored_open_edges(&polygon, &points, &p.open_edges)?;
-    let d = PocketRequest::default();
-    let a = AdaptiveOptions::default();
-    let strategy = match &p.method {
-        Some(name) => PocketStrategy::from_name(name).ok_or_else(|| {
-            let all: Vec<&str> = PocketStrategy::ALL.iter().map(|s| s.name()).collect();
-            Error::File(format!("method = \"{name}\": must be one of {}", all.join(", ")))
-        })?,
-        None => d.strategy,
-    };
-    let pace_default = PaceOptions::default();
-    let req = PocketRequest {
-        polygon,
-        tool_diameter_mm: tool.diameter,
-        step_over_mm: p.step_over.unwrap_or(d.step_over_mm),
-        feed_mm_per_min: tool.feed,
-        strategy,
-        spacing_mm: p.spacing.unwrap_or(d.spacing_mm),
-        adaptive: AdaptiveOptions {
-            helix_radius_mm: p.helix_radius,
-            ramp_deg: p.ramp_angle.unwrap_or(a.ramp_deg),
-            finish_stock_mm: p.finish_stock.unwrap_or(a.finish_stock_mm),
-            direction: p.direction.unwrap_or(a.direction),
-            depth_mm: p.depth,
-            target_deg: p.target_engagement,
-            corner_tolerance_mm: p.corner_tolerance.unwrap_or(a.corner_tolerance_mm),
-        },
-        open_edges,
-        pace: PaceOptions {
-            follow_chip: !p.constant_feed,
-            rapids: !p.no_rapids,
-            teeth: tool.teeth,
-            rpm: tool.rpm,
-            max_feed_mm_per_min: machine.map(|m| m.max_speed_mm_per_s() * 60.0),
-            block_time_s: machine.map_or(pace_default.block_time_s, |m| m.block_time),
-            machine: machine.cloned(),
-            ..pace_default
-        },
-        ramp_pass_depth_mm: p.ramp_pass_depth,
-        peak_limit_deg: p.peak_limit,
-        islands,
-        rest_from_mm: None,
-    };
-    let plan = pocket::plan(&req)?;
-    Ok(Planned::Pocket { plan: Box::new(plan), depth_mm: p.depth })
 }
 
 fn plan_corner(t: toml::Table, tool: &Tool) -> Result<Planned, Error> {
@@ -348,24 +281,26 @@ impl Planned {
         }
     }
 
-    /// Tool-centre path length (mm): every level of a slot in levels, a pocket's or a
-    /// corner's whole tool path.
+    /// Tool-centre path length (mm): every level of a slot or a pocket in levels, a pocket's
+    /// or a corner's whole tool path.
     pub fn path_length_mm(&self) -> f64 {
         match self {
             Planned::Slot { plan, levels: None } => plan.metrics.path_length_mm,
             Planned::Slot { levels: Some(l), .. } => l.length_mm(),
-            Planned::Pocket { plan, .. } => plan.toolpath().length_mm(),
+            Planned::Pocket { plan, levels: None, .. } => plan.toolpath().length_mm(),
+            Planned::Pocket { plan, levels: Some(l), .. } => l.levels.len() as f64 * plan.toolpath().length_mm(),
             Planned::Corner { report, .. } => report.plan.toolpath.length_mm(),
         }
     }
 
     /// Peak engagement (rad): a slot's steady-state cycle (every level's moves when in
-    /// levels), the measured moves of a pocket or a corner.
+    /// levels), the measured moves of a pocket (of every level, in levels) or a corner.
     pub fn peak_engagement_rad(&self) -> f64 {
         match self {
             Planned::Slot { plan, levels: None } => plan.metrics.engagement_max_deg.to_radians(),
             Planned::Slot { levels: Some(l), .. } => l.peak_rad(),
-            Planned::Pocket { plan, .. } => plan.max_engagement_rad(),
+            Planned::Pocket { plan, levels: None, .. } => plan.max_engagement_rad(),
+            Planned::Pocket { levels: Some(l), .. } => l.peak_rad,
             Planned::Corner { report, .. } => report.measurement.max_engagement_rad,
         }
     }
@@ -382,29 +317,36 @@ impl Planned {
             Planned::Slot { levels: Some(l), .. } => {
                 l.per_level.iter().map(|lv| time(&lv.toolpath, -lv.z_mm, tool.feed)).sum()
             }
-            Planned::Pocket { plan, depth_mm } => time(plan.toolpath(), *depth_mm, tool.feed),
+            Planned::Pocket { plan, depth_mm, levels: None, .. } => time(plan.toolpath(), *depth_mm, tool.feed),
+            Planned::Pocket { plan, levels: Some(l), .. } => {
+                l.levels.iter().map(|lv| time(plan.toolpath(), lv.depth_mm, tool.feed)).sum()
+            }
             Planned::Corner { report, depth_mm } => time(&report.plan.toolpath, *depth_mm, tool.feed),
         }
     }
 
     /// The moves as the NC writer takes them.
     pub fn body(&self, tool: &Tool) -> OperationBody<'_> {
-        let path = |toolpath, depth_mm| {
-            OperationBody::Path(PathJob {
-                toolpath,
-                depth_mm,
-                feed_mm_per_min: tool.feed,
-                spindle_rpm: tool.rpm,
-                tool_diameter_mm: tool.diameter,
-                default_title: "TrochoPlan job",
-                description: Vec::new(),
-            })
+        let job = |toolpath, depth_mm| PathJob {
+            toolpath,
+            depth_mm,
+            feed_mm_per_min: tool.feed,
+            spindle_rpm: tool.rpm,
+            tool_diameter_mm: tool.diameter,
+            default_title: "TrochoPlan job",
+            description: Vec::new(),
         };
         match self {
             Planned::Slot { plan, levels: None } => OperationBody::Slot(plan),
             Planned::Slot { plan, levels: Some(l) } => OperationBody::Levels(plan, l),
-            Planned::Pocket { plan, depth_mm } => path(plan.toolpath(), *depth_mm),
-            Planned::Corner { report, depth_mm } => path(&report.plan.toolpath, *depth_mm),
+            Planned::Pocket { plan, depth_mm, levels: None, .. } => {
+                OperationBody::Path(job(plan.toolpath(), *depth_mm))
+            }
+            Planned::Pocket { plan, levels: Some(l), .. } => {
+                let depth_mm = l.levels.last().map_or(0.0, |lv| lv.depth_mm);
+                OperationBody::PathLevels(job(plan.toolpath(), depth_mm), l.levels.clone())
+            }
+            Planned::Corner { report, depth_mm } => OperationBody::Path(job(&report.plan.toolpath, *depth_mm)),
         }
     }
 }
@@ -429,62 +371,10 @@ pub fn part_program(ops: &[PlannedOperation], opts: &NcOptions) -> Result<NcProg
                     coolant: t.coolant.unwrap_or(frame.coolant),
                 },
                 body: op.planned.body(t),
+                placement: op.placement,
             }
         })
         .collect();
     operations_program(&nc, opts)
         .map_err(|(k, e)| if k == 0 { PartError { operation: None, error: e } } else { PartError::op(k, e) })
-}
-
-/// The report of one operation.
-#[derive(Clone, Debug, Serialize)]
-pub struct OperationReport {
-    /// 1-based, in machining order.
-    pub operation: usize,
-    pub kind: &'static str,
-    pub tool: u32,
-    pub tool_diameter_mm: f64,
-    pub path_length_mm: f64,
-    pub peak_engagement_deg: f64,
-    /// Time on the machine (s); none without a machine.
-    pub time_real_s: Option<f64>,
-}
-
-/// The report of the part: per operation and over all.
-#[derive(Clone, Debug, Serialize)]
-pub struct PartReport {
-    pub operations: Vec<OperationReport>,
-    pub path_length_mm: f64,
-    pub peak_engagement_deg: f64,
-    /// Sum of the operations' times on the machine (s), tool changes not counted; none without
-    /// a machine.
-    pub time_real_s: Option<f64>,
-}
-
-/// The report of `ops`; with a machine, each operation timed from the safe height `safe_z_mm`.
-pub fn report(ops: &[PlannedOperation], machine: Option<(&Machine, f64)>) -> Result<PartReport, PartError> {
-    let mut operations = Vec::with_capacity(ops.len());
-    for (i, op) in ops.iter().enumerate() {
-        let time_real_s = match machine {
-            Some((m, safe_z)) => {
-                Some(op.planned.machine_time_s(&op.tool, safe_z, m).map_err(|e| PartError::op(i + 1, e))?)
-            }
-            None => None,
-        };
-        operations.push(OperationReport {
-            operation: i + 1,
-            kind: op.planned.kind(),
-            tool: op.tool.number,
-            tool_diameter_mm: op.tool.diameter,
-            path_length_mm: op.planned.path_length_mm(),
-            peak_engagement_deg: op.planned.peak_engagement_rad().to_degrees(),
-            time_real_s,
-        });
-    }
-    Ok(PartReport {
-        path_length_mm: operations.iter().map(|o| o.path_length_mm).sum(),
-        peak_engagement_deg: operations.iter().map(|o| o.peak_engagement_deg).fold(0.0, f64::max),
-        time_real_s: machine.map(|_| operations.iter().filter_map(|o| o.time_real_s).sum()),
-        operations,
-    })
 }
