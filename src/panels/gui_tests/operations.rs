@@ -117,6 +117,12 @@ fn the_example_part_lists_its_operations_with_the_cores_numbers() {
     );
     assert!(shows(&h, &length_text(want.path_length_mm)) && shows(&h, &time_text(want.time_real_s)));
     assert!(shows(&h, list::WHOLE_PART));
+    // the tab's words with a part open: no code names, no document paths (the words test's rule)
+    let bad: Vec<String> = super::words::texts(&h)
+        .into_iter()
+        .filter(|t| !super::words::code_names(t, &|_| false).is_empty() || t.contains('`'))
+        .collect();
+    assert!(bad.is_empty(), "{bad:?}");
 }
 
 #[test]
