@@ -78,14 +78,14 @@ pub fn show(ui: &mut egui::Ui, view: &mut PartView) -> Option<Command> {
     }
     progress(ui, view);
     ui.separator();
-    egui::ScrollArea::vertical()
-        .id_salt("part_operations")
-        .max_height((ui.available_height() - 150.0).max(160.0))
-        .show(ui, |ui| {
+    egui::ScrollArea::both().id_salt("part_operations").max_height((ui.available_height() - 150.0).max(160.0)).show(
+        ui,
+        |ui| {
             if let Some(c) = table(ui, view) {
                 cmd = Some(c);
             }
-        });
+        },
+    );
     ui.separator();
     if export(ui, view) {
         cmd = Some(Command::ExportPart);
@@ -158,7 +158,8 @@ fn table(ui: &mut egui::Ui, view: &PartView) -> Option<Command> {
                     ui.label("—");
                     ui.label("—");
                     ui.label("—");
-                    ui.add(egui::Label::new(RichText::new(e).color(ERROR_COLOR)).wrap());
+                    // one line (the table scrolls sideways): a row of the grid keeps one height
+                    ui.add(egui::Label::new(RichText::new(e).color(ERROR_COLOR)).extend());
                 }
             }
             ui.end_row();
@@ -243,6 +244,31 @@ fn machine_choice(ui: &mut egui::Ui, choice: &mut Option<String>) {
         );
 }
 
+/// One line saying what the part's program writes: the set-up of the part file and the tool
+/// calls with their length offsets, in the order the tools are first used.
+fn set_up(view: &PartView, frame: &trochoplan_core::frame::ProgramFrame) -> String {
+    let sinumerik = view.settings.dialect == Dialect::Sinumerik;
+    let mut tools: Vec<String> = Vec::new();
+    for t in view.rows.iter().filter_map(|r| r.tool) {
+        let call = if sinumerik {
+            format!("T{} D{}", t.number, t.length_offset.unwrap_or(1))
+        } else {
+            format!("T{} H{}", t.number, t.length_offset.unwrap_or(t.number))
+        };
+        if !tools.contains(&call) {
+            tools.push(call);
+        }
+    }
+    format!(
+        "Set-up: {}, clearance {} mm, retract {} mm, {}; tools {}",
+        frame.work_offset.name(),
+        frame.clearance_mm,
+        frame.retract_height_mm(),
+        frame.units.unit(),
+        tools.join(", ")
+    )
+}
+
 /// The program's format and the save button; true when it was clicked.
 fn export(ui: &mut egui::Ui, view: &mut PartView) -> bool {
     let s = &mut view.settings;
@@ -266,9 +292,9 @@ fn export(ui: &mut egui::Ui, view: &mut PartView) -> bool {
             .on_hover_text("Write every arc as G1 chords instead of G2/G3 (more blocks).");
     });
     if let Some(f) = &view.file {
-        ui.label(super::program_frame::summary(&f.program, view.settings.dialect)).on_hover_text(
-            "The program's set-up from the part file; each operation's tool gives its own tool number, \
-             length offset, spindle direction and coolant.",
+        ui.label(set_up(view, &f.program)).on_hover_text(
+            "The program's set-up from the part file's program table; each operation's tool gives its own \
+             tool number, length offset, spindle direction and coolant (the tool table's).",
         );
     }
     let ready = view.planned().is_some();
