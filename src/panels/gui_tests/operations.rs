@@ -220,3 +220,33 @@ fn the_threaded_view_plans_every_operation_with_a_progress_that_ends_full() {
         assert_eq!(got.planned.planned.path_length_mm(), op.planned.path_length_mm());
     }
 }
+
+#[test]
+fn the_slot_and_the_corner_operations_open_in_their_tabs_with_the_parts_plans() {
+    let dir = tempfile::tempdir().unwrap();
+    let job = example_part(dir.path());
+    let mut h = part_window(&job);
+    let (_, ops, _) = core_part(&job);
+    // the slot: the edited job of the slot's tabs, its plan the part's first operation's
+    h.get_by_label("1. slot").click();
+    h.run();
+    assert_eq!(h.state().view.tab, Tab::Plots);
+    let t0 = Instant::now();
+    while h.state().planner.pending() && t0.elapsed().as_secs() < 60 {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        h.step();
+    }
+    let s = &h.state().state.job;
+    assert_eq!((s.slot_width, s.depth, s.tool_diameter, s.program.tool_number), (16.0, 4.0, 10.0, 1));
+    assert_eq!(metrics(&h).path_length_mm, ops[0].planned.path_length_mm());
+    // the corner: the Corner tab with its angle and tool, its plan the part's third operation's
+    h.get_by_label(Tab::Operations.spec().label).click();
+    h.run();
+    h.get_by_label("3. corner").click();
+    h.run();
+    assert_eq!(h.state().view.tab, Tab::Corner);
+    let c = &h.state().state.corner;
+    assert_eq!((c.angle_deg, c.tool_diameter_mm, h.state().state.corner_nc.depth_mm), (90.0, 6.0, 2.0));
+    let r = h.state().corner.last.clone().expect("a corner");
+    assert_eq!(r.report.plan.toolpath.length_mm(), ops[2].planned.path_length_mm());
+}
