@@ -158,11 +158,7 @@ impl PartView {
     /// Collect the operations planned so far; plan the part again when it or the machine
     /// changed.
     pub fn update(&mut self) {
-        for (k, answer) in self.worker.poll() {
-            if let Some(row) = self.rows.get_mut(k) {
-                row.result = Some(answer);
-            }
-        }
+        self.take_answers();
         let Some(file) = &self.file else { return };
         if self.requested.as_ref() == Some(&self.settings.machine) {
             return;
@@ -173,6 +169,11 @@ impl PartView {
         }
         let dir = self.path.as_deref().and_then(Path::parent).map(Path::to_path_buf).unwrap_or_default();
         self.worker.request(PartRequest { file: file.clone(), dir, machine: self.settings.machine.clone() });
+        self.take_answers();
+    }
+
+    /// Put the operations planned since the last call into their rows.
+    fn take_answers(&mut self) {
         for (k, answer) in self.worker.poll() {
             if let Some(row) = self.rows.get_mut(k) {
                 row.result = Some(answer);
