@@ -90,7 +90,7 @@ fn core_part(job: &Path) -> (PartFile, Vec<PlannedOperation>, PartReport) {
 fn the_example_part_lists_its_operations_with_the_cores_numbers() {
     let dir = tempfile::tempdir().unwrap();
     let job = example_part(dir.path());
-    let h = part_window(&job);
+    let mut h = part_window(&job);
     let (_, _, want) = core_part(&job);
     let view = &h.state().operations;
     assert_eq!(view.rows.len(), 3, "slot, pocket, corner");
@@ -117,6 +117,21 @@ fn the_example_part_lists_its_operations_with_the_cores_numbers() {
     );
     assert!(shows(&h, &length_text(want.path_length_mm)) && shows(&h, &time_text(want.time_real_s)));
     assert!(shows(&h, list::WHOLE_PART));
+    // an ideal machine: planned again, no times, as `trochoplan job` without `--machine`
+    h.state_mut().operations.settings.machine = None;
+    h.run();
+    let file = part::parse(&std::fs::read_to_string(&job).unwrap()).unwrap();
+    let dir2 = dir.path().to_path_buf();
+    let outline = move |name: &str| crate::shared::outline::read_pocket(&dir2.join(name), "outline file");
+    let ideal = part::report(&part::plan_part(&file, &outline, None).unwrap(), None).unwrap();
+    for (row, w) in h.state().operations.rows.iter().zip(&ideal.operations) {
+        let got = &row.result.as_ref().expect("planned").as_ref().expect("no error").report;
+        assert_eq!(
+            (got.path_length_mm, got.peak_engagement_deg, got.time_real_s),
+            (w.path_length_mm, w.peak_engagement_deg, None)
+        );
+    }
+    assert_eq!(h.state().operations.totals().and_then(|t| t.time_real_s), None);
     // the tab's words with a part open: no code names, no document paths (the words test's rule)
     let bad: Vec<String> = super::words::texts(&h)
         .into_iter()
