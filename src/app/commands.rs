@@ -57,6 +57,12 @@ pub enum Command {
     /// Verify the Program tab's programs on worker threads.
     StartVerify,
     CancelVerify,
+    /// Ask for a part job file for the Operations tab.
+    OpenPart,
+    /// Open the part's operation (0-based) in its own tab.
+    OpenOperation(usize),
+    /// Ask for a file and write the part's program.
+    ExportPart,
 }
 
 impl App {
@@ -132,6 +138,9 @@ impl App {
                 self.program.start(&self.state.program, move || ctx.request_repaint());
             }
             Command::CancelVerify => self.program.cancel(),
+            Command::OpenPart => self.ask_part(),
+            Command::OpenOperation(k) => self.open_operation(k),
+            Command::ExportPart => self.export_part(),
         }
     }
 

@@ -139,7 +139,7 @@ impl App {
     pub(super) fn ask_path(&mut self, purpose: PathPurpose, nc_name: Option<(&str, &str)>) -> Option<PathBuf> {
         if self.no_dialog.is_none() {
             let answer = match (&purpose, nc_name) {
-                (PathPurpose::OpenJob, _) => self.dialogs.open_job(),
+                (PathPurpose::OpenJob | PathPurpose::OpenPart, _) => self.dialogs.open_job(),
                 (PathPurpose::SaveJob, _) => self.dialogs.save_job(self.view.file.as_deref()),
                 (PathPurpose::SaveNc { .. }, Some((stem, ext))) => self.dialogs.save_nc(stem, ext),
                 (PathPurpose::SaveNc { .. }, None) => self.dialogs.save_nc("program", "nc"),
@@ -204,6 +204,7 @@ impl App {
         self.status = None;
         match purpose {
             PathPurpose::OpenJob => self.open(path),
+            PathPurpose::OpenPart => self.open_part(path),
             PathPurpose::SaveJob => self.save_to(path),
             PathPurpose::SaveNc { text } => self.write_nc_to(path, text),
             PathPurpose::OpenOutline => self.open_outline(path),

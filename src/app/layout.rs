@@ -19,6 +19,7 @@ impl App {
             // with Shift before without: a shortcut without Shift matches with it too
             (KeyboardShortcut::new(Modifiers::COMMAND | Modifiers::SHIFT, Key::O), Command::OpenOutline),
             (KeyboardShortcut::new(Modifiers::COMMAND, Key::O), Command::Open),
+            (KeyboardShortcut::new(Modifiers::COMMAND | Modifiers::SHIFT, Key::P), Command::OpenPart),
             (KeyboardShortcut::new(Modifiers::COMMAND | Modifiers::SHIFT, Key::S), Command::SaveAs),
             (KeyboardShortcut::new(Modifiers::COMMAND, Key::S), Command::Save),
             (KeyboardShortcut::new(Modifiers::COMMAND, Key::E), self.export_command()),
@@ -64,6 +65,9 @@ impl App {
             cmds.push(Command::SaveAs);
         }
         self.recent_menu(ui);
+        if ui.button("Open part…  (Ctrl+Shift+P)").on_hover_text(Tab::Operations.spec().tooltip).clicked() {
+            cmds.push(Command::OpenPart);
+        }
         ui.separator();
         let export = Tab::Export.spec();
         if ui.button(format!("{}…", export.label)).on_hover_text(export.tooltip).clicked() {

@@ -69,6 +69,8 @@ pub fn run(job: Job) -> eframe::Result<()> {
             app.corner = panels::corner::CornerView::threaded(move || ctx.request_repaint());
             let ctx = cc.egui_ctx.clone();
             app.pocket = panels::pocket::PocketView::threaded(move || ctx.request_repaint());
+            let ctx = cc.egui_ctx.clone();
+            app.operations = panels::operations::PartView::threaded(move || ctx.request_repaint());
             app.preload_program(&cc.egui_ctx);
             Ok(Box::new(app))
         }),
@@ -134,6 +136,8 @@ pub struct App {
     pub chip: Chip,
     /// The Program tab's programs and their verifications.
     pub program: panels::program::ProgramTab,
+    /// The Operations tab's part and its plans.
+    pub operations: panels::operations::PartView,
     dialogs: Box<dyn FileDialogs>,
     /// Why no file dialog can be shown, once one failed: file commands then ask in the path
     /// field.
@@ -173,6 +177,7 @@ impl App {
             pocket_nc: panels::corner_nc::CornerNcCache::default(),
             chip: Chip::default(),
             program: panels::program::ProgramTab::default(),
+            operations: panels::operations::PartView::default(),
             dialogs,
             no_dialog: None,
             prompt: None,

@@ -32,6 +32,8 @@ pub enum Tab {
     Optimise,
     /// Verify an NC program.
     Program,
+    /// The operations of a part job file.
+    Operations,
 }
 
 /// A pinned variant as persisted.

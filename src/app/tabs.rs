@@ -21,7 +21,7 @@ pub struct TabSpec {
 }
 
 /// Every tab, in the order of the menu and the tab bar.
-pub const TABS: [TabSpec; 9] = [
+pub const TABS: [TabSpec; 10] = [
     TabSpec {
         tab: Tab::Plots,
         label: "Plots",
@@ -84,6 +84,13 @@ pub const TABS: [TabSpec; 9] = [
         tooltip: "Check any NC program: engagement, chip, force and problems along its path, two programs compared",
         slot_panels: false,
         show: program_tab,
+    },
+    TabSpec {
+        tab: Tab::Operations,
+        label: "Operations",
+        tooltip: "A whole part: its operations from a part job file, each planned, opened in its own tab, and one program",
+        slot_panels: false,
+        show: operations_tab,
     },
 ];
 
@@ -170,6 +177,13 @@ fn optimise_tab(app: &mut App, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
 
 fn program_tab(app: &mut App, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
     cmds.extend(panels::program_view::show(ui, &mut app.state.program, &mut app.program));
+}
+
+fn operations_tab(app: &mut App, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
+    app.operations.update();
+    cmds.extend(panels::operations_list::show(ui, &mut app.operations));
+    // the machine chosen this frame: plan again now
+    app.operations.update();
 }
 
 fn corner_tab(app: &mut App, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {

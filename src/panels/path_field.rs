@@ -13,6 +13,8 @@ use std::path::{Path, PathBuf};
 #[derive(Clone, Debug, PartialEq)]
 pub enum PathPurpose {
     OpenJob,
+    /// Open a part job file into the Operations tab.
+    OpenPart,
     SaveJob,
     /// Save an NC program: its text, written when the path is confirmed.
     SaveNc {
@@ -30,6 +32,7 @@ impl PathPurpose {
     pub fn title(&self) -> &'static str {
         match self {
             PathPurpose::OpenJob => "Open job",
+            PathPurpose::OpenPart => "Open part",
             PathPurpose::SaveJob => "Save job as",
             PathPurpose::SaveNc { .. } => "Save NC program as",
             PathPurpose::OpenOutline => "Open pocket outline",
@@ -43,6 +46,7 @@ impl PathPurpose {
     fn confirm(&self) -> &'static str {
         match self {
             PathPurpose::OpenJob
+            | PathPurpose::OpenPart
             | PathPurpose::OpenOutline
             | PathPurpose::OpenProgram(_)
             | PathPurpose::OpenProgramOutline(_) => label::PATH_OPEN,

@@ -1,7 +1,8 @@
 //! Headless GUI tests (egui_kittest, no display): drive the real window contents through the
 //! accessibility tree and check the plan and the shown values. This file holds the harness;
 //! the tests are grouped by what they drive: `slot` (the slot job's tabs), `window` (tabs,
-//! persisted state), `corner` (the Corner tab), `pocket` (the Pocket tab), `program` (the
+//! persisted state), `corner` (the Corner tab), `pocket` (the Pocket tab), `operations` (the
+//! Operations tab: a part's operations), `program` (the
 //! Program tab), `program_frame` (the program's frame), `files` (files without a system
 //! dialog), `machine` (forces, machine and optimiser), `levels` (a slot in levels and a closed
 //! slot), `limits` (the shop's words and the limits a job exceeds), `words` (no code names in
@@ -12,6 +13,7 @@ mod files;
 mod levels;
 mod limits;
 mod machine;
+mod operations;
 mod pocket;
 mod program;
 mod program_frame;

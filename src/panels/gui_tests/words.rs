@@ -22,7 +22,7 @@ const PAPER_SYMBOLS: [&str; 9] = ["h_max", "r_e", "f_z", "a_p", "a_e", "f_r", "t
 const NEVER: [&str; 6] = ["::", "§", "domain-spec", concat!("..", "/", "shared"), "docs/", ".rs"];
 
 /// The code names and outside documents in `text`; `allowed(word)`: words the context allows.
-fn code_names(text: &str, allowed: &dyn Fn(&str) -> bool) -> Vec<String> {
+pub(super) fn code_names(text: &str, allowed: &dyn Fn(&str) -> bool) -> Vec<String> {
     let mut found: Vec<String> = NEVER.iter().filter(|n| text.contains(**n)).map(|n| (*n).to_owned()).collect();
     for word in text.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_' || c == '-')) {
         if allowed(word) {
@@ -53,7 +53,7 @@ fn the_rule_finds_code_names_and_allows_the_papers_symbols() {
 
 /// Every text of the window's accessibility tree: labels, values and descriptions (the
 /// tooltips), with the node's role.
-fn texts(h: &Harness<'_, App>) -> Vec<String> {
+pub(super) fn texts(h: &Harness<'_, App>) -> Vec<String> {
     h.query_all(By::new().predicate(|_| true))
         .flat_map(|n| {
             let a = n.accesskit_node();
