@@ -146,26 +146,94 @@ pub fn hover_name(layers: &[(&str, Color32)], s: &Series) -> String {
 /// Width and height of a swatch (px).
 const SWATCH: egui::Vec2 = egui::vec2(26.0, 10.0);
 
-/// The legend as a wrapped row of swatches and names, above a plot.
-pub fn show(ui: &mut egui::Ui, entries: &[Entry]) {
+/// Gap between a swatch and its name, and after an entry (px).
+const GAP: f32 = 4.0;
+
+/// The legend as a wrapped row of swatches and names above a plot, in at most `max_rows` rows:
+/// the entries that do not fit are listed when the pointer is over "+N more". Returns the
+/// rectangle it takes.
+pub fn show(ui: &mut egui::Ui, entries: &[Entry], max_rows: usize) -> egui::Rect {
     if entries.is_empty() {
-        return;
+        return egui::Rect::NOTHING;
     }
+    let gap = 3.0 * GAP;
+    let widths: Vec<f32> = entries.iter().map(|e| entry_size(ui, e).x).collect();
+    let more = more_label(entries.len());
+    let more_width = entry_galley(ui, &more).size().x;
+    let shown = fitting(&widths, ui.available_width(), gap, max_rows, more_width);
     ui.horizontal_wrapped(|ui| {
-        ui.spacing_mut().item_spacing.x = 4.0;
-        for e in entries {
-            ui.horizontal(|ui| {
-                swatch(ui, e.look);
-                ui.label(RichText::new(&e.name).small());
-            });
-            ui.add_space(6.0);
+        ui.spacing_mut().item_spacing.x = gap;
+        for e in &entries[..shown] {
+            entry(ui, e);
         }
-    });
+        if let Some(rest) = entries.get(shown..).filter(|r| !r.is_empty()) {
+            ui.label(RichText::new(more_label(rest.len())).small()).on_hover_ui(|ui| {
+                for e in rest {
+                    entry(ui, e);
+                }
+            });
+        }
+    })
+    .response
+    .rect
 }
 
-/// A short line in `look`.
-fn swatch(ui: &mut egui::Ui, look: Look) {
-    let (rect, _) = ui.allocate_exact_size(SWATCH, egui::Sense::hover());
+/// The label standing for `n` entries that do not fit.
+fn more_label(n: usize) -> String {
+    format!("+{n} more")
+}
+
+/// How many of the entries of `widths` (px) fit in `rows` rows `width` px wide, `gap` px apart:
+/// all, or as many as leave room for the "+N more" label (`more` px) in the last row.
+fn fitting(widths: &[f32], width: f32, gap: f32, rows: usize, more: f32) -> usize {
+    let fits = |n: usize, extra: Option<f32>| {
+        let (mut row, mut x) = (1, 0.0_f32);
+        for w in widths[..n].iter().copied().chain(extra) {
+            if x > 0.0 && x + gap + w > width {
+                (row, x) = (row + 1, w);
+            } else {
+                x = if x > 0.0 { x + gap + w } else { w };
+            }
+        }
+        row <= rows
+    };
+    if fits(widths.len(), None) {
+        return widths.len();
+    }
+    (0..widths.len()).rev().find(|&n| fits(n, Some(more))).unwrap_or(0)
+}
+
+/// The name of an entry laid out on one line.
+fn entry_galley(ui: &egui::Ui, name: &str) -> std::sync::Arc<egui::Galley> {
+    let text = egui::WidgetText::from(RichText::new(name).small());
+    text.into_galley(ui, Some(egui::TextWrapMode::Extend), f32::INFINITY, egui::TextStyle::Small)
+}
+
+/// The size of entry `e`: its swatch and its name.
+fn entry_size(ui: &egui::Ui, e: &Entry) -> egui::Vec2 {
+    let g = entry_galley(ui, &e.name).size();
+    egui::vec2(SWATCH.x + GAP + g.x, SWATCH.y.max(g.y))
+}
+
+/// One entry: a short line in the entry's look and its name, one widget (so that the row wraps
+/// between entries, never inside one).
+fn entry(ui: &mut egui::Ui, e: &Entry) -> egui::Response {
+    let galley = entry_galley(ui, &e.name);
+    let size = egui::vec2(SWATCH.x + GAP + galley.size().x, SWATCH.y.max(galley.size().y));
+    let (rect, response) = ui.allocate_exact_size(size, egui::Sense::hover());
+    response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Label, true, &e.name));
+    if ui.is_rect_visible(rect) {
+        let swatch_rect =
+            egui::Rect::from_center_size(egui::pos2(rect.left() + SWATCH.x / 2.0, rect.center().y), SWATCH);
+        swatch(ui, swatch_rect, e.look);
+        let text_pos = egui::pos2(rect.left() + SWATCH.x + GAP, rect.center().y - galley.size().y / 2.0);
+        ui.painter().galley(text_pos, galley, ui.visuals().text_color());
+    }
+    response
+}
+
+/// A short line in `look` across `rect` (a filled box for an area).
+fn swatch(ui: &egui::Ui, rect: egui::Rect, look: Look) {
     let (a, b) = (rect.left_center(), rect.right_center());
     let width = look.width.clamp(1.0, 3.0);
     let painter = ui.painter();
@@ -189,6 +257,23 @@ fn swatch(ui: &mut egui::Ui, look: Look) {
     }
 }
 
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_legend_keeps_to_its_rows_and_says_how_many_more() {
+        // entries 50 px wide, 10 px apart, rows of 120 px: two a row (50 + 10 + 50 = 110; a third
+        // would need 170)
+        let widths = [50.0; 6];
+        assert_eq!(fitting(&widths, 120.0, 10.0, 3, 40.0), 6, "three rows of two");
+        // two rows: three entries and "+3 more" (40 px: 50 + 10 + 40 = 100 in the second row)
+        assert_eq!(fitting(&widths, 120.0, 10.0, 2, 40.0), 3);
+        // one row too narrow for anything but the label
+        assert_eq!(fitting(&widths, 45.0, 10.0, 1, 40.0), 0);
+    }
+}
+
 /// The curves last drawn in each plot, kept for the tests (which check that no two curves of
 /// one plot look alike).
 #[cfg(test)]
@@ -203,19 +288,35 @@ pub mod record {
         pub look: Look,
     }
 
+    /// One plot as last drawn: its curves, the rectangle of its legend and of its data.
+    #[derive(Clone, Debug)]
+    pub struct Plot {
+        pub drawn: Vec<Drawn>,
+        pub legend: egui::Rect,
+        pub data: egui::Rect,
+    }
+
     fn id(plot: &str) -> egui::Id {
-        egui::Id::new("drawn series").with(plot)
+        egui::Id::NULL.with("drawn series").with(plot)
     }
 
-    /// Keep `series` as the curves of plot `plot`.
-    pub fn keep(ctx: &egui::Context, plot: &str, series: &[Series]) {
-        let drawn: Vec<Drawn> =
-            series.iter().map(|s| Drawn { layer: s.layer, what: s.what.clone(), look: s.look }).collect();
-        ctx.data_mut(|d| d.insert_temp(id(plot), drawn));
+    /// The curves of `series` as drawn.
+    pub fn drawn(series: &[Series]) -> Vec<Drawn> {
+        series.iter().map(|s| Drawn { layer: s.layer, what: s.what.clone(), look: s.look }).collect()
     }
 
-    /// The curves last drawn in plot `plot`.
-    pub fn get(ctx: &egui::Context, plot: &str) -> Option<Vec<Drawn>> {
-        ctx.data(|d| d.get_temp(id(plot)))
+    /// Keep `plot` as the plot of id `plot_id`.
+    pub fn keep(ctx: &egui::Context, plot_id: &str, plot: Plot) {
+        ctx.data_mut(|d| d.insert_temp(id(plot_id), plot));
+    }
+
+    /// Forget the plot of id `plot_id` (to see whether it is drawn again).
+    pub fn forget(ctx: &egui::Context, plot_id: &str) {
+        ctx.data_mut(|d| d.remove::<Plot>(id(plot_id)));
+    }
+
+    /// The plot of id `plot_id` as last drawn.
+    pub fn get(ctx: &egui::Context, plot_id: &str) -> Option<Plot> {
+        ctx.data(|d| d.get_temp(id(plot_id)))
     }
 }

@@ -35,6 +35,20 @@ pub struct Cursor {
 /// Colours of the variants: the edited plan first, pinned ones after (defined in the palette).
 pub use super::palette::VARIANTS as PALETTE;
 
+/// The plots' titles.
+pub mod titles {
+    pub const PATH: &str = "Path view";
+    pub const H: &str = "Chip thickness h over one steady-state cycle (Fig. 7)";
+    pub const ENGAGEMENT: &str = "Engagement angle over one cycle";
+    pub const WALLS: &str = "Wall profiles: left solid, right dashed (Figs. 8–9)";
+    pub const FORCES: &str = "Cutting forces over one steady-state cycle (Figs. 14–15)";
+    pub const IMPRINTS: &str = "Edge imprints on the slot bottom (Figs. 21–22)";
+    pub const CHIP: &str = "Chip of the current tooth (zoomed)";
+    pub const CHIP_CLOSE_UP: &str = "Chip of the current tooth (close-up)";
+    /// Every title.
+    pub const ALL: [&str; 8] = [PATH, H, ENGAGEMENT, WALLS, FORCES, IMPRINTS, CHIP, CHIP_CLOSE_UP];
+}
+
 /// Explanations (teaching mode and hover): formula and source of each plot.
 pub mod explain {
     pub const PATH: &str = "Tool-centre path C₁, Wagih et al. (2023) eq. (1): x = −a·cos θ, \
@@ -78,10 +92,10 @@ pub mod explain {
 
 fn title(ui: &mut egui::Ui, text: &str, explanation: &str, teach: bool) {
     ui.horizontal(|ui| {
-        // a narrow cell truncates the title (full text on hover) instead of growing
+        // a narrow cell wraps the title onto a second line instead of growing or cutting it
         ui.scope(|ui| {
             ui.set_max_width((ui.available_width() - 28.0).max(40.0));
-            ui.add(egui::Label::new(RichText::new(text).strong()).truncate()).on_hover_text(explanation);
+            ui.add(egui::Label::new(RichText::new(text).strong()).wrap()).on_hover_text(explanation);
         });
         ui.label(RichText::new("(?)").weak()).on_hover_text(explanation);
     });
@@ -134,23 +148,28 @@ fn show_series<'a>(
     marks: impl FnOnce(&mut PlotUi<'a>) + 'a,
 ) {
     let keys = keys(layers);
-    legend::show(ui, &legend::entries(&keys, &series));
+    // the legend takes at most a fifth of the cell's height; the plot keeps the rest
+    let row = ui.text_style_height(&egui::TextStyle::Small).max(10.0) + ui.spacing().item_spacing.y;
+    let max_rows = ((0.2 * ui.available_height()) / row).floor().max(1.0) as usize;
+    let _legend = legend::show(ui, &legend::entries(&keys, &series), max_rows);
     #[cfg(test)]
-    legend::record::keep(ui.ctx(), id, &series);
+    let drawn = legend::record::drawn(&series);
     let names: Vec<String> = series.iter().map(|s| legend::hover_name(&keys, s)).collect();
-    plot(base_plot(ui, id)).show(ui, move |p| {
+    let _shown = plot(base_plot(ui, id)).show(ui, move |p| {
         for (s, name) in series.into_iter().zip(names) {
             s.draw(p, name);
         }
         marks(p);
     });
+    #[cfg(test)]
+    legend::record::keep(ui.ctx(), id, legend::record::Plot { drawn, legend: _legend, data: _shown.response.rect });
 }
 
 /// Path view: tool-centre path over a few cycles, slot walls, previous cycle's edge and the tool
 /// at the cursor with the chip it cuts (`chip`: closed outline, absolute mm; empty when the tooth
 /// cuts nothing). Equal axis scale.
 pub fn path_view(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, chip: &Chip, teach: bool) {
-    title(ui, "Path view (tool centre, slot walls, previous cycle's edge)", explain::PATH, teach);
+    title(ui, titles::PATH, explain::PATH, teach);
     let mut series = layers.first().map(|l| slot_walls(l.g)).unwrap_or_default();
     for (k, l) in layers.iter().enumerate() {
         series.extend(layer_path(k, l));
@@ -271,7 +290,7 @@ pub fn chip_view(
     close_up: bool,
     teach: bool,
 ) {
-    let what = if close_up { "Chip of the current tooth (close-up)" } else { "Chip of the current tooth (zoomed)" };
+    let what = if close_up { titles::CHIP_CLOSE_UP } else { titles::CHIP };
     title(ui, what, explain::CHIP, teach);
     let Some(l) = layers.iter().find(|l| l.primary) else { return };
     let g = l.g;
@@ -428,7 +447,7 @@ fn h_series<'a>(layers: &[Layer<'a>], cursor: Option<Cursor>) -> Vec<Series<'a>>
 
 /// h over one steady-state cycle with h_max, t_hmax and the cooling intervals.
 pub fn h_plot(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, teach: bool) {
-    title(ui, "Chip thickness h over one steady-state cycle (Fig. 7)", explain::H, teach);
+    title(ui, titles::H, explain::H, teach);
     let series = h_series(layers, cursor);
     let marks: Vec<(f64, f64, Color32, bool)> =
         layers.iter().map(|l| (l.g.h_max_at.0, l.g.h_max_at.1, l.color, l.primary)).collect();
@@ -475,7 +494,7 @@ fn engagement_series<'a>(layers: &[Layer<'a>], cursor: Option<Cursor>) -> Vec<Se
 
 /// Engagement angle over one steady-state cycle, with the 46° recommendation.
 pub fn engagement_plot(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, teach: bool) {
-    title(ui, "Engagement angle over one cycle", explain::ENGAGEMENT, teach);
+    title(ui, titles::ENGAGEMENT, explain::ENGAGEMENT, teach);
     let series = engagement_series(layers, cursor);
     show_series(
         ui,
@@ -513,7 +532,7 @@ fn wall_series<'a>(layers: &[Layer<'a>]) -> Vec<Series<'a>> {
 
 /// Left and right wall deviation along y with W_l and W_r marked.
 pub fn wall_plot(ui: &mut egui::Ui, layers: &[Layer], teach: bool) {
-    title(ui, "Wall profiles: left solid, right dashed (Figs. 8–9)", explain::WALLS, teach);
+    title(ui, titles::WALLS, explain::WALLS, teach);
     show_series(
         ui,
         layers,
@@ -550,7 +569,7 @@ fn force_series<'a>(layers: &[Layer<'a>], cursor: Option<Cursor>) -> Vec<Series<
 /// Cutting forces Fx, Fy, Fz and F_R over one steady-state cycle, the mean F_R dashed (Figs.
 /// 14–15); pinned variants add their F_R.
 pub fn force_plot(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, teach: bool) {
-    title(ui, "Cutting forces over one steady-state cycle (Figs. 14–15)", explain::FORCES, teach);
+    title(ui, titles::FORCES, explain::FORCES, teach);
     if teach {
         ui.add(egui::Label::new(RichText::new(explain::WHY_EARLY).weak()).wrap());
     }
@@ -576,7 +595,7 @@ pub fn force_plot(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, t
 
 /// Imprint density across the slot bottom, left wall to right wall (Figs. 21–22).
 pub fn imprint_plot(ui: &mut egui::Ui, layers: &[Layer], teach: bool) {
-    title(ui, "Edge imprints on the slot bottom (Figs. 21–22)", explain::IMPRINTS, teach);
+    title(ui, titles::IMPRINTS, explain::IMPRINTS, teach);
     let series = layers
         .iter()
         .enumerate()
