@@ -148,6 +148,8 @@ const SWATCH: egui::Vec2 = egui::vec2(26.0, 10.0);
 
 /// Gap between a swatch and its name, and after an entry (px).
 const GAP: f32 = 4.0;
+/// Gap between the rows of a legend (px).
+pub const ROW_GAP: f32 = 2.0;
 
 /// The legend as a wrapped row of swatches and names above a plot, in at most `max_rows` rows:
 /// the entries that do not fit are listed when the pointer is over "+N more". Returns the
@@ -161,21 +163,27 @@ pub fn show(ui: &mut egui::Ui, entries: &[Entry], max_rows: usize) -> egui::Rect
     let more = more_label(entries.len());
     let more_width = entry_galley(ui, &more).size().x;
     let shown = fitting(&widths, ui.available_width(), gap, max_rows, more_width);
-    ui.horizontal_wrapped(|ui| {
-        ui.spacing_mut().item_spacing.x = gap;
-        for e in &entries[..shown] {
-            entry(ui, e);
-        }
-        if let Some(rest) = entries.get(shown..).filter(|r| !r.is_empty()) {
-            ui.label(RichText::new(more_label(rest.len())).small()).on_hover_ui(|ui| {
-                for e in rest {
-                    entry(ui, e);
-                }
-            });
-        }
+    ui.scope(|ui| {
+        // rows as high as the small text, not as a button (set before the row is made)
+        let row = ui.text_style_height(&egui::TextStyle::Small).max(SWATCH.y);
+        ui.spacing_mut().interact_size.y = row;
+        ui.spacing_mut().item_spacing = egui::vec2(gap, ROW_GAP);
+        ui.horizontal_wrapped(|ui| {
+            for e in &entries[..shown] {
+                entry(ui, e);
+            }
+            if let Some(rest) = entries.get(shown..).filter(|r| !r.is_empty()) {
+                ui.label(RichText::new(more_label(rest.len())).small()).on_hover_ui(|ui| {
+                    for e in rest {
+                        entry(ui, e);
+                    }
+                });
+            }
+        })
+        .response
+        .rect
     })
-    .response
-    .rect
+    .inner
 }
 
 /// The label standing for `n` entries that do not fit.

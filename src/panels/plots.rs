@@ -46,6 +46,7 @@ pub mod titles {
     pub const CHIP: &str = "Chip of the current tooth (zoomed)";
     pub const CHIP_CLOSE_UP: &str = "Chip of the current tooth (close-up)";
     /// Every title.
+    #[cfg(test)]
     pub const ALL: [&str; 8] = [PATH, H, ENGAGEMENT, WALLS, FORCES, IMPRINTS, CHIP, CHIP_CLOSE_UP];
 }
 
@@ -149,7 +150,7 @@ fn show_series<'a>(
 ) {
     let keys = keys(layers);
     // the legend takes at most a fifth of the cell's height; the plot keeps the rest
-    let row = ui.text_style_height(&egui::TextStyle::Small).max(10.0) + ui.spacing().item_spacing.y;
+    let row = ui.text_style_height(&egui::TextStyle::Small).max(10.0) + legend::ROW_GAP;
     let max_rows = ((0.2 * ui.available_height()) / row).floor().max(1.0) as usize;
     let _legend = legend::show(ui, &legend::entries(&keys, &series), max_rows);
     #[cfg(test)]
