@@ -1,5 +1,6 @@
-//! The four plots of a plan (and of pinned variants, overlaid). Each function only converts
-//! cached [`Graphics`] into egui_plot items; no geometry is computed here.
+//! The plots of a plan (and of pinned variants, overlaid). Each function only converts cached
+//! [`Graphics`] into a list of curves ([`Series`], coloured from the [`palette`]) and hands them
+//! to egui_plot below their legend; no geometry is computed here.
 
 use super::graphics::{Chip, Graphics};
 use super::legend::{self, Look, Series, Shape};
