@@ -128,6 +128,8 @@ impl App {
 
     /// The slot's parameters with the Undo, Redo and Reset buttons.
     pub(super) fn parameters_panel(&mut self, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
+        #[cfg(test)]
+        keep_panel_rect(ui, "parameters");
         egui::ScrollArea::vertical().show(ui, |ui| {
             panels::params::show(ui, &mut self.state.job, self.planner.error.as_ref());
             ui.add_space(8.0);
@@ -146,6 +148,8 @@ impl App {
 
     /// The derived values of the edited job.
     pub(super) fn derived_panel(&self, ui: &mut egui::Ui) {
+        #[cfg(test)]
+        keep_panel_rect(ui, "derived");
         egui::ScrollArea::vertical().show(ui, |ui| {
             panels::metrics::show(ui, self.planner.last.as_ref().map(|p| &p.plan), self.planner.error.is_some());
             if let Some((p, levels)) = self.planner.last.as_ref().and_then(|p| Some((&p.plan, p.levels.as_ref()?))) {
@@ -181,4 +185,18 @@ impl App {
             }
         });
     }
+}
+
+/// Keep the rectangle a side panel draws in (`ui`'s clip rectangle), for the tests that check
+/// that nothing is cut off at a panel's edge.
+#[cfg(test)]
+fn keep_panel_rect(ui: &egui::Ui, panel: &str) {
+    let rect = ui.clip_rect();
+    ui.ctx().data_mut(|d| d.insert_temp(panel_rect_id(panel), rect));
+}
+
+/// Where [`keep_panel_rect`] keeps the rectangle of `panel`.
+#[cfg(test)]
+pub(super) fn panel_rect_id(panel: &str) -> egui::Id {
+    egui::Id::NULL.with("panel rect").with(panel)
 }

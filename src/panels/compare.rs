@@ -67,28 +67,62 @@ pub fn show(ui: &mut egui::Ui, variants: &[VariantView], can_pin: bool) -> Optio
         return cmd;
     }
     ui.add_space(4.0);
-    egui::ScrollArea::horizontal().show(ui, |ui| {
-        egui::Grid::new("compare_table").striped(true).spacing([14.0, 4.0]).show(ui, |ui| {
-            cmd = header_row(ui, variants).or(cmd);
-            for q in quantities() {
-                quantity_row(ui, q, variants);
-            }
+    // scroll bars that stay visible (not egui's floating ones) where the table is still too big
+    ui.scope(|ui| {
+        ui.spacing_mut().scroll = egui::style::ScrollStyle::solid();
+        let bar = ui.spacing().scroll.allocated_width();
+        let widths = column_widths(ui.available_width() - bar, variants.len(), COLUMN_GAP);
+        // at most 40 % of the height: the plots below keep the rest
+        let area = egui::ScrollArea::both().max_height((ui.available_height() * 0.4).max(120.0));
+        area.show(ui, |ui| {
+            egui::Grid::new("compare_table").striped(true).spacing([COLUMN_GAP, 4.0]).show(ui, |ui| {
+                cmd = header_row(ui, variants, widths).or(cmd);
+                for q in quantities() {
+                    quantity_row(ui, q, variants, widths);
+                }
+            });
+            let table_width = widths.0 + variants.len() as f32 * (widths.1 + COLUMN_GAP);
+            cell(ui, table_width, |ui| {
+                ui.add(
+                    egui::Label::new(
+                        RichText::new(
+                            "% change against variant #1. Green: better, red: worse, by at least 0.05 % (MRR and \
+                         cooling time up, h_max, engagement and waviness down). The paper ranks paths by \
+                         PI = MRR/(F_R,max·Ra,max·W_max), eq. (7): the forces are modelled, the roughness Ra,max \
+                         is not; PI has a value once Ra,max is entered in the Material and process fields \
+                         (— (no value) until then).",
+                        )
+                        .weak(),
+                    )
+                    .wrap(),
+                )
+            });
         });
     });
-    ui.add(
-        egui::Label::new(
-            RichText::new(
-                "% change against variant #1. Green: better, red: worse, by at least 0.05 % (MRR and \
-             cooling time up, h_max, engagement and waviness down). The paper ranks paths by \
-             PI = MRR/(F_R,max·Ra,max·W_max), eq. (7): the forces are modelled, the roughness Ra,max \
-             is not; PI has a value once Ra,max is entered in the Material and process fields \
-             (— (no value) until then).",
-            )
-            .weak(),
-        )
-        .wrap(),
-    );
     cmd
+}
+
+/// Horizontal gap between the table's columns (px).
+const COLUMN_GAP: f32 = 10.0;
+/// Narrowest column of a variant (px): a value over its change, "(+1278.4 %)", on two lines.
+const MIN_COLUMN: f32 = 88.0;
+
+/// Widths of the table's first column (the quantities) and of each of `n` variant columns,
+/// sharing `avail` px with `gap` between columns; the variant columns never narrower than
+/// [`MIN_COLUMN`] (the table scrolls then).
+fn column_widths(avail: f32, n: usize, gap: f32) -> (f32, f32) {
+    let first = (avail * 0.28).clamp(100.0, 240.0);
+    let n = n.max(1) as f32;
+    (first, ((avail - first - gap * n) / n).max(MIN_COLUMN))
+}
+
+/// A table cell `width` px wide whose labels wrap within it.
+fn cell<R>(ui: &mut egui::Ui, width: f32, add: impl FnOnce(&mut egui::Ui) -> R) -> R {
+    ui.vertical(|ui| {
+        ui.set_width(width);
+        add(ui)
+    })
+    .inner
 }
 
 /// Pin the current job, pin the paper's set, clear the pins.
@@ -117,18 +151,21 @@ fn pin_buttons(ui: &mut egui::Ui, variants: &[VariantView], can_pin: bool) -> Op
 }
 
 /// The table's first row: each variant's name with its load and unpin buttons.
-fn header_row(ui: &mut egui::Ui, variants: &[VariantView]) -> Option<Command> {
+fn header_row(ui: &mut egui::Ui, variants: &[VariantView], (first, width): (f32, f32)) -> Option<Command> {
     let mut cmd = None;
-    ui.label(RichText::new("variant").strong());
+    cell(ui, first, |ui| ui.label(RichText::new("variant").strong()));
     for (i, v) in variants.iter().enumerate() {
-        ui.horizontal(|ui| {
-            ui.label(RichText::new(format!("#{} {}", i + 1, v.label)).color(v.color).strong());
-            if ui.small_button("load").on_hover_text("Make this the job being edited (undoable).").clicked() {
-                cmd = Some(Command::LoadPinned(i));
-            }
-            if ui.small_button("unpin").on_hover_text("Unpin").clicked() {
-                cmd = Some(Command::Unpin(i));
-            }
+        cell(ui, width, |ui| {
+            let name = RichText::new(format!("#{} {}", i + 1, v.label)).color(v.color).strong();
+            ui.add(egui::Label::new(name).wrap());
+            ui.horizontal_wrapped(|ui| {
+                if ui.small_button("load").on_hover_text("Make this the job being edited (undoable).").clicked() {
+                    cmd = Some(Command::LoadPinned(i));
+                }
+                if ui.small_button("unpin").on_hover_text("Unpin").clicked() {
+                    cmd = Some(Command::Unpin(i));
+                }
+            });
         });
     }
     ui.end_row();
@@ -140,8 +177,8 @@ const NO_VALUE: &str = "— (no value)";
 
 /// One quantity of every variant, with the % change against the first coloured by whether it
 /// is better.
-fn quantity_row(ui: &mut egui::Ui, q: &Metric, variants: &[VariantView]) {
-    ui.label(q.heading()).on_hover_text(q.about);
+fn quantity_row(ui: &mut egui::Ui, q: &Metric, variants: &[VariantView], (first, width): (f32, f32)) {
+    cell(ui, first, |ui| ui.add(egui::Label::new(q.heading()).wrap()).on_hover_text(q.about));
     let base = q.of(variants[0].metrics);
     for (i, v) in variants.iter().enumerate() {
         let x = q.of(v.metrics);
@@ -152,10 +189,12 @@ fn quantity_row(ui: &mut egui::Ui, q: &Metric, variants: &[VariantView]) {
             None => format!("{x:.*}", q.decimals),
         };
         let text = RichText::new(text).monospace();
-        ui.label(match change.and_then(|p| change_color(q, p)) {
+        let text = match change.and_then(|p| change_color(q, p)) {
             Some(c) => text.color(c),
             None => text,
-        });
+        };
+        // the change wraps under the value in a narrow column
+        cell(ui, width, |ui| ui.add(egui::Label::new(text).wrap()));
     }
     ui.end_row();
 }
@@ -177,6 +216,15 @@ mod tests {
         assert!((percent_change(90.0, 100.0).unwrap_or(0.0) + 10.0).abs() < 1e-12);
         assert_eq!(percent_change(1.0, 0.0), None);
         assert_eq!(percent_change(f64::NAN, 1.0), None, "no value: no change");
+    }
+
+    #[test]
+    fn four_variants_share_the_width_of_a_small_screens_table() {
+        // 1366 px wide window: the tab between the parameters and the derived values is ~600 px
+        let (first, w) = column_widths(600.0, 4, COLUMN_GAP);
+        assert!(w > MIN_COLUMN, "{w}");
+        assert!((first + 4.0 * (w + COLUMN_GAP) - 600.0).abs() < 1e-3, "{first} + 4 × {w}");
+        assert_eq!(column_widths(300.0, 4, COLUMN_GAP).1, MIN_COLUMN, "narrower: the table scrolls");
     }
 
     #[test]

@@ -116,10 +116,15 @@ fn line_of<'a>(text: &'a str, starts: &[usize], i: usize) -> &'a str {
 /// program costs nothing per frame.
 pub(super) fn program_text(ui: &mut egui::Ui, id: &str, text: &str, starts: &[usize]) {
     let row_h = ui.text_style_height(&egui::TextStyle::Monospace);
-    egui::ScrollArea::both().id_salt(id).auto_shrink([false, false]).show_rows(ui, row_h, starts.len(), |ui, rows| {
-        for i in rows {
-            ui.add(egui::Label::new(RichText::new(line_of(text, starts, i)).monospace()).extend());
-        }
+    ui.scope(|ui| {
+        // scroll bars that stay visible (not egui's floating ones): a long line shows it goes on
+        ui.spacing_mut().scroll = egui::style::ScrollStyle::solid();
+        let area = egui::ScrollArea::both().id_salt(id).auto_shrink([false, false]);
+        area.show_rows(ui, row_h, starts.len(), |ui, rows| {
+            for i in rows {
+                ui.add(egui::Label::new(RichText::new(line_of(text, starts, i)).monospace()).extend());
+            }
+        });
     });
 }
 

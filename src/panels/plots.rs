@@ -1,12 +1,12 @@
-//! The four plots of a plan (and of pinned variants, overlaid). Each function only converts
-//! cached [`Graphics`] into egui_plot items; no geometry is computed here.
+//! The plots of a plan (and of pinned variants, overlaid). Each function only converts cached
+//! [`Graphics`] into a list of curves ([`Series`], coloured from the [`palette`]) and hands them
+//! to egui_plot below their legend; no geometry is computed here.
 
 use super::graphics::{Chip, Graphics};
-use eframe::egui::{self, Color32, RichText, Stroke};
-use egui_plot::{
-    AxisHints, ColorConflictHandling, Corner, HLine, Legend, Line, LineStyle, Plot, PlotPoint, PlotPoints, Points,
-    Polygon, Span, Text, VLine,
-};
+use super::legend::{self, Look, Series, Shape};
+use super::palette;
+use eframe::egui::{self, Color32, RichText};
+use egui_plot::{AxisHints, LineStyle, Plot, PlotPoint, PlotPoints, PlotUi, Points, Text};
 use trochoplan_core::plan::ENGAGEMENT_LIMIT_DEG;
 
 /// One plan as drawn: its data, a name for the legend and a colour.
@@ -33,17 +33,23 @@ pub struct Cursor {
     pub cutting: bool,
 }
 
-/// Colours of the variants: the edited plan first, pinned ones after.
-pub const PALETTE: [Color32; 5] = [
-    Color32::from_rgb(30, 110, 220),
-    Color32::from_rgb(220, 90, 30),
-    Color32::from_rgb(40, 160, 70),
-    Color32::from_rgb(170, 60, 190),
-    Color32::from_rgb(200, 160, 0),
-];
+/// Colours of the variants: the edited plan first, pinned ones after (defined in the palette).
+pub use super::palette::VARIANTS as PALETTE;
 
-const COOLING_FILL: Color32 = Color32::from_rgba_unmultiplied_const(40, 120, 200, 45);
-const CHIP_COLOR: Color32 = Color32::from_rgb(220, 30, 30);
+/// The plots' titles.
+pub mod titles {
+    pub const PATH: &str = "Path view";
+    pub const H: &str = "Chip thickness h over one steady-state cycle (Fig. 7)";
+    pub const ENGAGEMENT: &str = "Engagement angle over one cycle";
+    pub const WALLS: &str = "Wall profiles: left solid, right dashed (Figs. 8–9)";
+    pub const FORCES: &str = "Cutting forces over one steady-state cycle (Figs. 14–15)";
+    pub const IMPRINTS: &str = "Edge imprints on the slot bottom (Figs. 21–22)";
+    pub const CHIP: &str = "Chip of the current tooth (zoomed)";
+    pub const CHIP_CLOSE_UP: &str = "Chip of the current tooth (close-up)";
+    /// Every title.
+    #[cfg(test)]
+    pub const ALL: [&str; 8] = [PATH, H, ENGAGEMENT, WALLS, FORCES, IMPRINTS, CHIP, CHIP_CLOSE_UP];
+}
 
 /// Explanations (teaching mode and hover): formula and source of each plot.
 pub mod explain {
@@ -88,10 +94,10 @@ pub mod explain {
 
 fn title(ui: &mut egui::Ui, text: &str, explanation: &str, teach: bool) {
     ui.horizontal(|ui| {
-        // a narrow cell truncates the title (full text on hover) instead of growing
+        // a narrow cell wraps the title onto a second line instead of growing or cutting it
         ui.scope(|ui| {
             ui.set_max_width((ui.available_width() - 28.0).max(40.0));
-            ui.add(egui::Label::new(RichText::new(text).strong()).truncate()).on_hover_text(explanation);
+            ui.add(egui::Label::new(RichText::new(text).strong()).wrap()).on_hover_text(explanation);
         });
         ui.label(RichText::new("(?)").weak()).on_hover_text(explanation);
     });
@@ -106,25 +112,11 @@ fn x_axis(label: &str) -> Vec<AxisHints<'static>> {
     vec![AxisHints::new_x().label(label.to_owned()).label_spacing(28.0..=44.0)]
 }
 
-/// A plot filling the rest of the cell the caller allocated.
+/// A plot filling the rest of the cell the caller allocated, without egui_plot's legend (which
+/// would cover the curves: [`show_series`] draws the legend above the plot).
 fn base_plot(ui: &egui::Ui, id: &str) -> Plot<'static> {
-    base_plot_at(ui, id, Corner::RightTop)
-}
-
-/// [`base_plot`] with the legend in `corner`.
-fn base_plot_at(ui: &egui::Ui, id: &str, corner: Corner) -> Plot<'static> {
     let size = ui.available_size();
-    Plot::new(id)
-        .width(size.x.max(120.0))
-        .height(size.y.max(80.0))
-        .legend(
-            Legend::default()
-                .position(corner)
-                .background_alpha(0.75)
-                .text_style(egui::TextStyle::Small)
-                .color_conflict_handling(ColorConflictHandling::PickFirst),
-        )
-        .allow_scroll(false)
+    Plot::new(id).width(size.x.max(120.0)).height(size.y.max(80.0)).allow_scroll(false)
 }
 
 /// Points of a circle drawn at the path view's scale.
@@ -142,97 +134,139 @@ fn circle(c: [f64; 2], r: f64, n: usize) -> Vec<[f64; 2]> {
         .collect()
 }
 
-/// Legend name of an item of layer `l`: with several layers, all items of a layer share its name
-/// (one legend entry per variant, toggling all of its items).
-fn named(layers: &[Layer], l: &Layer, what: &str) -> String {
-    if layers.len() > 1 { l.name.to_owned() } else { what.to_owned() }
+/// The legend's names and colours of `layers`.
+fn keys<'l>(layers: &'l [Layer]) -> Vec<(&'l str, Color32)> {
+    layers.iter().map(|l| (l.name, l.color)).collect()
+}
+
+/// `series` drawn into `plot` (id `id`) below their legend, then `marks` (markers and text,
+/// which are not curves).
+fn show_series<'a>(
+    ui: &mut egui::Ui,
+    layers: &[Layer],
+    id: &str,
+    series: Vec<Series<'a>>,
+    plot: impl FnOnce(Plot<'a>) -> Plot<'a>,
+    marks: impl FnOnce(&mut PlotUi<'a>) + 'a,
+) {
+    let keys = keys(layers);
+    // the legend takes at most a fifth of the cell's height; the plot keeps the rest
+    let row = ui.text_style_height(&egui::TextStyle::Small).max(10.0) + legend::ROW_GAP;
+    let max_rows = ((0.2 * ui.available_height()) / row).floor().max(1.0) as usize;
+    let _legend = legend::show(ui, &legend::entries(&keys, &series), max_rows);
+    #[cfg(test)]
+    let drawn = legend::record::drawn(&series);
+    let names: Vec<String> = series.iter().map(|s| legend::hover_name(&keys, s)).collect();
+    let _shown = plot(base_plot(ui, id)).show(ui, move |p| {
+        for (s, name) in series.into_iter().zip(names) {
+            s.draw(p, name);
+        }
+        marks(p);
+    });
+    #[cfg(test)]
+    legend::record::keep(ui.ctx(), id, legend::record::Plot { drawn, legend: _legend, data: _shown.response.rect });
 }
 
 /// Path view: tool-centre path over a few cycles, slot walls, previous cycle's edge and the tool
 /// at the cursor with the chip it cuts (`chip`: closed outline, absolute mm; empty when the tooth
 /// cuts nothing). Equal axis scale.
 pub fn path_view(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, chip: &Chip, teach: bool) {
-    title(ui, "Path view (tool centre, slot walls, previous cycle's edge)", explain::PATH, teach);
-    base_plot_at(ui, "path_view", Corner::LeftBottom)
-        .data_aspect(1.0)
-        .custom_x_axes(x_axis("x [mm]"))
-        .y_axis_label("y [mm]")
-        .show(ui, |p| {
-            if let Some(first) = layers.first() {
-                slot_walls(p, first.g);
+    title(ui, titles::PATH, explain::PATH, teach);
+    let mut series = layers.first().map(|l| slot_walls(l.g)).unwrap_or_default();
+    for (k, l) in layers.iter().enumerate() {
+        series.extend(layer_path(k, l));
+    }
+    let at_cursor = layers.iter().find(|l| l.primary).zip(cursor).map(|(l, c)| (l.g, c));
+    if let Some((g, c)) = at_cursor {
+        series.extend(tool_at_cursor(g, c, chip));
+    }
+    show_series(
+        ui,
+        layers,
+        "path_view",
+        series,
+        |p| p.data_aspect(1.0).custom_x_axes(x_axis("x [mm]")).y_axis_label("y [mm]"),
+        move |p| {
+            if let Some((g, c)) = at_cursor {
+                cursor_readout(p, g, c);
             }
-            for l in layers {
-                layer_path(p, layers, l);
-                if l.primary
-                    && let Some(c) = cursor
-                {
-                    tool_at_cursor(p, l.g, c, chip);
-                }
-            }
-        });
+        },
+    );
 }
 
 /// The slot walls over the drawn range (within the slot), and the stock face y = 0 where the
 /// range reaches it.
-fn slot_walls(p: &mut egui_plot::PlotUi<'_>, g: &Graphics) {
+fn slot_walls(g: &Graphics) -> Vec<Series<'static>> {
     let (y0, y1) = (g.y_range.0.max(0.0), g.y_range.1.min(g.slot_length));
     let (y0, y1) = if y0 < y1 { (y0, y1) } else { g.y_range };
-    let wall = Stroke::new(2.0, Color32::GRAY);
-    for x in [-g.half_width, g.half_width] {
-        p.line(Line::new("slot walls", vec![[x, y0], [x, y1]]).stroke(wall));
-    }
+    let mut out: Vec<Series> = [-g.half_width, g.half_width]
+        .into_iter()
+        .map(|x| {
+            let wall = vec![[x, y0], [x, y1]];
+            Series::new(None, "slot walls", Look::solid(palette::WALL, 2.0), Shape::Line(wall.into()))
+        })
+        .collect();
     if g.y_range.0 < 0.0 && g.y_range.1 > 0.0 {
-        p.line(
-            Line::new("stock face y = 0", vec![[-g.half_width, 0.0], [g.half_width, 0.0]])
-                .stroke(Stroke::new(1.0, Color32::GRAY))
-                .style(LineStyle::dashed_dense()),
-        );
+        let face = vec![[-g.half_width, 0.0], [g.half_width, 0.0]];
+        let look = Look::solid(palette::WALL, 1.0).styled(LineStyle::dashed_dense());
+        out.push(Series::new(None, "stock face y = 0", look, Shape::Line(face.into())));
     }
+    out
 }
 
-/// One layer's tool-centre path (the current cycle bold, the others faint) and the previous
+/// Layer `k`'s tool-centre path (the current cycle bold, the others faint) and the previous
 /// cycle's edge; for the edited plan also the region that cycle swept.
-fn layer_path<'a>(p: &mut egui_plot::PlotUi<'a>, layers: &[Layer], l: &Layer<'a>) {
+fn layer_path<'a>(k: usize, l: &Layer<'a>) -> Vec<Series<'a>> {
     let g = l.g;
-    let faint = l.color.gamma_multiply(0.45);
-    let label = |what: &str| named(layers, l, what);
-    p.line(Line::new(label("current cycle"), PlotPoints::Borrowed(&g.path_current)).color(l.color).width(2.0));
-    p.line(Line::new(label("other cycles"), PlotPoints::Borrowed(&g.path_before)).color(faint).width(1.0));
-    p.line(Line::new(label("other cycles"), PlotPoints::Borrowed(&g.path_after)).color(faint).width(1.0));
+    let line = |what: &str, look: Look, pts: &'a [PlotPoint]| {
+        Series::new(Some(k), what, look, Shape::Line(PlotPoints::Borrowed(pts)))
+    };
+    let faint = Look::solid(l.color.gamma_multiply(0.45), 1.0);
+    let mut out = vec![
+        line("current cycle", Look::solid(l.color, 2.0), &g.path_current),
+        line("other cycles", faint, &g.path_before),
+        line("other cycles", faint, &g.path_after),
+    ];
     if l.primary {
         // The previous cycle's sweep is convex (core: analysis::edge), so its edge
         // closed by the step chord fills correctly as a convex polygon.
-        p.polygon(
-            Polygon::new("swept by the previous cycle", PlotPoints::Borrowed(&g.previous_edge))
-                .fill_color(l.color.gamma_multiply(0.07))
-                .stroke(Stroke::new(0.0, l.color)),
-        );
+        let look = Look::area(l.color.gamma_multiply(0.07), l.color, 0.0);
+        let shape = Shape::Polygon(PlotPoints::Borrowed(&g.previous_edge));
+        out.push(Series::new(Some(k), "swept by the previous cycle", look, shape));
     }
-    p.line(
-        Line::new(label("previous cycle's edge C₂"), PlotPoints::Borrowed(&g.previous_edge))
-            .color(l.color)
-            .style(LineStyle::dashed_loose())
-            .width(1.2),
-    );
+    let edge = Look::solid(l.color, 1.2).styled(LineStyle::dashed_loose());
+    out.push(line("previous cycle's edge C₂", edge, &g.previous_edge));
+    out
 }
 
-/// The tool at the cursor (red while it cuts), the path it took this cycle, its chip and a
-/// readout of h and the engagement above it.
-fn tool_at_cursor<'a>(p: &mut egui_plot::PlotUi<'a>, g: &Graphics, c: Cursor, chip: &'a Chip) {
+/// The tool at the cursor (red while it cuts), the path it took this cycle and its chip.
+fn tool_at_cursor<'a>(g: &Graphics, c: Cursor, chip: &'a Chip) -> Vec<Series<'a>> {
     let centre = [g.origin[0] + c.centre[0], g.origin[1] + c.centre[1]];
     let mut trail: Vec<[f64; 2]> = g.teeth.iter().take_while(|(t, _)| *t <= c.t_s).map(|(_, p)| [p.x, p.y]).collect();
     trail.push(centre);
-    p.line(Line::new("path so far this cycle", trail).color(CHIP_COLOR).width(3.0));
-    let (stroke, fill) = if c.cutting {
-        (Stroke::new(2.5, CHIP_COLOR), CHIP_COLOR.gamma_multiply(0.18))
+    let tool = if c.cutting {
+        Look::area(palette::CURSOR.gamma_multiply(0.18), palette::CURSOR, 2.5)
     } else {
-        (Stroke::new(2.0, Color32::DARK_GRAY), Color32::from_gray(128).gamma_multiply(0.12))
+        Look::area(palette::TOOL.gamma_multiply(0.12), palette::TOOL, 2.0)
     };
-    p.polygon(
-        Polygon::new("tool at current tooth", circle(centre, g.tool_r, CIRCLE_POINTS)).stroke(stroke).fill_color(fill),
-    );
-    p.points(Points::new("", vec![centre]).radius(4.0).color(stroke.color));
-    draw_chip(p, chip, "chip of the current tooth", 0.9, 1.5);
+    let mut out = vec![
+        Series::new(None, "path so far this cycle", Look::solid(palette::CURSOR, 3.0), Shape::Line(trail.into())),
+        Series::new(
+            None,
+            "tool at current tooth",
+            tool,
+            Shape::Polygon(circle(centre, g.tool_r, CIRCLE_POINTS).into()),
+        ),
+    ];
+    out.extend(chip_series(chip, "chip of the current tooth", 0.9, 1.5));
+    out
+}
+
+/// The tool centre at the cursor and the readout of h and the engagement above the tool.
+fn cursor_readout(p: &mut PlotUi<'_>, g: &Graphics, c: Cursor) {
+    let centre = [g.origin[0] + c.centre[0], g.origin[1] + c.centre[1]];
+    let color = if c.cutting { palette::CURSOR } else { palette::TOOL };
+    p.points(Points::new("", vec![centre]).radius(4.0).color(color));
     p.text(
         Text::new(
             "",
@@ -240,7 +274,7 @@ fn tool_at_cursor<'a>(p: &mut egui_plot::PlotUi<'a>, g: &Graphics, c: Cursor, ch
             format!("h = {:.4} mm, {:.1}°", c.h_mm, c.engagement_deg),
         )
         .anchor(egui::Align2::CENTER_BOTTOM)
-        .color(stroke.color),
+        .color(color),
     );
 }
 
@@ -258,7 +292,7 @@ pub fn chip_view(
     close_up: bool,
     teach: bool,
 ) {
-    let what = if close_up { "Chip of the current tooth (close-up)" } else { "Chip of the current tooth (zoomed)" };
+    let what = if close_up { titles::CHIP_CLOSE_UP } else { titles::CHIP };
     title(ui, what, explain::CHIP, teach);
     let Some(l) = layers.iter().find(|l| l.primary) else { return };
     let g = l.g;
@@ -326,29 +360,23 @@ fn chip_items<'a>(
     cursor: Option<Cursor>,
     chip: &'a Chip,
 ) {
-    p.line(
-        Line::new("previous cycle's edge C₂", PlotPoints::Borrowed(&l.g.previous_edge))
-            .color(l.color)
-            .style(LineStyle::dashed_loose())
-            .width(1.2),
-    );
+    let edge = Look::solid(l.color, 1.2).styled(LineStyle::dashed_loose());
+    let edge_points = PlotPoints::Borrowed(&l.g.previous_edge);
+    Series::new(None, "", edge, Shape::Line(edge_points)).draw(p, "previous cycle's edge C₂".to_owned());
     if let Some(c) = centre {
-        p.line(
-            Line::new("tool edge at current tooth", circle(c, l.g.tool_r, FINE_CIRCLE_POINTS))
-                .color(Color32::DARK_GRAY)
-                .width(1.5),
-        );
+        let tool = Shape::Line(circle(c, l.g.tool_r, FINE_CIRCLE_POINTS).into());
+        Series::new(None, "", Look::solid(palette::TOOL, 1.5), tool).draw(p, "tool edge at current tooth".to_owned());
     }
-    if chip.outline.is_empty() {
+    let Some(chip_area) = chip_series(chip, "chip", 0.6, 2.0) else {
         if let Some(c) = centre {
             p.text(
                 Text::new("", PlotPoint::new(c[0], c[1]), "no chip: this tooth cuts nothing (cooling)")
-                    .color(Color32::DARK_GRAY),
+                    .color(palette::TOOL),
             );
         }
         return;
-    }
-    draw_chip(p, chip, "chip", 0.6, 2.0);
+    };
+    chip_area.draw(p, "chip".to_owned());
     if let Some(c) = cursor {
         let outline = &chip.outline;
         let top = outline.iter().map(|p| p.y).fold(f64::NEG_INFINITY, f64::max);
@@ -356,7 +384,7 @@ fn chip_items<'a>(
         p.text(
             Text::new("", PlotPoint::new(xs, top), format!("h = {:.4} mm", c.h_mm))
                 .anchor(egui::Align2::CENTER_BOTTOM)
-                .color(CHIP_COLOR),
+                .color(palette::CURSOR),
         );
     }
 }
@@ -374,169 +402,212 @@ fn chip_readout(c: Cursor, chip: &Chip) -> String {
     }
 }
 
-/// The chip filled (convex quads) and outlined.
-fn draw_chip<'a>(p: &mut egui_plot::PlotUi<'a>, chip: &'a Chip, name: &str, fill_alpha: f32, width: f32) {
+/// The chip as an area (convex quads) and its outline; nothing while the tooth cuts nothing.
+fn chip_series<'a>(chip: &'a Chip, what: &str, fill_alpha: f32, width: f32) -> Option<Series<'a>> {
     if chip.outline.is_empty() {
-        return;
+        return None;
     }
-    for (k, q) in chip.fill.iter().enumerate() {
-        let pts: Vec<[f64; 2]> = q.iter().map(|p| [p.x, p.y]).collect();
-        p.polygon(
-            Polygon::new(if k == 0 { name } else { "" }, pts)
-                .fill_color(CHIP_COLOR.gamma_multiply(fill_alpha))
-                .stroke(Stroke::new(0.0, CHIP_COLOR)),
-        );
+    let quads = chip.fill.iter().map(|q| q.iter().map(|p| [p.x, p.y]).collect()).collect();
+    let look = Look::area(palette::CURSOR.gamma_multiply(fill_alpha), palette::CURSOR, width);
+    Some(Series::new(None, what, look, Shape::Pieces(PlotPoints::Borrowed(&chip.outline), quads)))
+}
+
+/// A line of layer `k` (None: a colour of its own) through `pts`.
+fn line<'a>(k: Option<usize>, what: impl Into<String>, look: Look, pts: &'a [PlotPoint]) -> Series<'a> {
+    Series::new(k, what, look, Shape::Line(PlotPoints::Borrowed(pts)))
+}
+
+/// The current tooth as a vertical line at its time.
+fn cursor_line(c: Cursor) -> Series<'static> {
+    Series::new(None, "current tooth", Look::solid(palette::CURSOR, 1.5), Shape::VLine(c.t_s))
+}
+
+/// The curves of the h plot: h of every layer; for the edited plan the cooling intervals, h_max
+/// and t_hmax; the current tooth.
+fn h_series<'a>(layers: &[Layer<'a>], cursor: Option<Cursor>) -> Vec<Series<'a>> {
+    let mut out = Vec::new();
+    for (k, l) in layers.iter().enumerate() {
+        let g = l.g;
+        if l.primary {
+            let cooling = Look::area(palette::COOLING_FILL, palette::COOLING_FILL, 0.0);
+            out.extend(g.cooling.iter().map(|&(a, b)| Series::new(None, "cooling", cooling, Shape::Span(a, b))));
+        }
+        out.push(line(Some(k), "h", Look::solid(l.color, 1.5), &g.h));
+        if l.primary {
+            let h = g.h_max_at.1;
+            let look = Look::solid(l.color.gamma_multiply(0.6), 1.0).styled(LineStyle::dashed_dense());
+            out.push(Series::new(Some(k), "h_max", look, Shape::HLine(h)));
+            for &(a, b) in &g.t_hmax_spans {
+                let bar = vec![[a, h * 1.06], [b, h * 1.06]];
+                out.push(Series::new(None, "t_hmax", Look::solid(palette::TIME_TO_PEAK, 3.0), Shape::Line(bar.into())));
+            }
+        }
     }
-    p.line(Line::new(name, PlotPoints::Borrowed(&chip.outline)).color(CHIP_COLOR).width(width));
+    out.extend(cursor.map(cursor_line));
+    out
 }
 
 /// h over one steady-state cycle with h_max, t_hmax and the cooling intervals.
 pub fn h_plot(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, teach: bool) {
-    title(ui, "Chip thickness h over one steady-state cycle (Fig. 7)", explain::H, teach);
-    base_plot(ui, "h_plot").custom_x_axes(x_axis("t [s]")).y_axis_label("h [mm]").include_y(0.0).show(ui, |p| {
-        for l in layers {
-            let g = l.g;
-            if l.primary {
-                for (k, &(a, b)) in g.cooling.iter().enumerate() {
-                    let name = if k == 0 { "cooling" } else { "" };
-                    p.add(Span::new(name, a..=b).fill(COOLING_FILL).border_width(0.0));
+    title(ui, titles::H, explain::H, teach);
+    let series = h_series(layers, cursor);
+    let marks: Vec<(f64, f64, Color32, bool)> =
+        layers.iter().map(|l| (l.g.h_max_at.0, l.g.h_max_at.1, l.color, l.primary)).collect();
+    show_series(
+        ui,
+        layers,
+        "h_plot",
+        series,
+        |p| p.custom_x_axes(x_axis("t [s]")).y_axis_label("h [mm]").include_y(0.0),
+        move |p| {
+            for (t, h, color, primary) in marks {
+                p.points(Points::new("", vec![[t, h]]).radius(5.0).color(color));
+                if primary {
+                    p.text(
+                        Text::new("", PlotPoint::new(t, h * 1.12), format!("h_max = {h:.4} mm"))
+                            .anchor(egui::Align2::CENTER_BOTTOM)
+                            .color(color),
+                    );
                 }
             }
-            p.line(Line::new(named(layers, l, "h"), PlotPoints::Borrowed(&g.h)).color(l.color).width(1.5));
-            let (t, h) = g.h_max_at;
-            p.points(Points::new("", vec![[t, h]]).radius(5.0).color(l.color));
-            if l.primary {
-                p.hline(HLine::new("h_max", h).color(l.color.gamma_multiply(0.6)).style(LineStyle::dashed_dense()));
-                for &(a, b) in &g.t_hmax_spans {
-                    p.line(Line::new("", vec![[a, h * 1.06], [b, h * 1.06]]).color(Color32::DARK_GREEN).width(3.0));
-                }
-                p.text(
-                    Text::new("", PlotPoint::new(t, h * 1.12), format!("h_max = {h:.4} mm"))
-                        .anchor(egui::Align2::CENTER_BOTTOM)
-                        .color(l.color),
-                );
-                if let Some(c) = cursor {
-                    p.vline(VLine::new("current tooth", c.t_s).color(CHIP_COLOR).width(1.5));
-                    p.points(Points::new("", vec![[c.t_s, c.h_mm]]).radius(5.0).color(CHIP_COLOR));
-                }
+            if let Some(c) = cursor {
+                p.points(Points::new("", vec![[c.t_s, c.h_mm]]).radius(5.0).color(palette::CURSOR));
             }
-        }
-    });
+        },
+    );
+}
+
+/// The curves of the engagement plot: the recommended limit, every layer's engagement, the
+/// current tooth.
+fn engagement_series<'a>(layers: &[Layer<'a>], cursor: Option<Cursor>) -> Vec<Series<'a>> {
+    let limit = Look::solid(palette::LIMIT, 1.0).styled(LineStyle::dashed_dense());
+    let mut out = vec![Series::new(
+        None,
+        "46° recommended (Grechishnikov et al. 2017)",
+        limit,
+        Shape::HLine(ENGAGEMENT_LIMIT_DEG),
+    )];
+    for (k, l) in layers.iter().enumerate() {
+        out.push(line(Some(k), "engagement", Look::solid(l.color, 1.5), &l.g.engagement));
+    }
+    out.extend(cursor.map(cursor_line));
+    out
 }
 
 /// Engagement angle over one steady-state cycle, with the 46° recommendation.
 pub fn engagement_plot(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, teach: bool) {
-    title(ui, "Engagement angle over one cycle", explain::ENGAGEMENT, teach);
-    base_plot(ui, "engagement_plot").custom_x_axes(x_axis("t [s]")).y_axis_label("engagement [°]").include_y(0.0).show(
+    title(ui, titles::ENGAGEMENT, explain::ENGAGEMENT, teach);
+    let series = engagement_series(layers, cursor);
+    show_series(
         ui,
-        |p| {
-            p.hline(
-                HLine::new("46° recommended (Grechishnikov et al. 2017)", ENGAGEMENT_LIMIT_DEG)
-                    .color(Color32::from_rgb(200, 60, 60))
-                    .style(LineStyle::dashed_dense()),
-            );
-            for l in layers {
-                p.line(
-                    Line::new(named(layers, l, "engagement"), PlotPoints::Borrowed(&l.g.engagement))
-                        .color(l.color)
-                        .width(1.5),
-                );
-                if l.primary
-                    && let Some(c) = cursor
-                {
-                    p.vline(VLine::new("current tooth", c.t_s).color(CHIP_COLOR).width(1.5));
-                    p.points(Points::new("", vec![[c.t_s, c.engagement_deg]]).radius(5.0).color(CHIP_COLOR));
-                }
+        layers,
+        "engagement_plot",
+        series,
+        |p| p.custom_x_axes(x_axis("t [s]")).y_axis_label("engagement [°]").include_y(0.0),
+        move |p| {
+            if let Some(c) = cursor {
+                p.points(Points::new("", vec![[c.t_s, c.engagement_deg]]).radius(5.0).color(palette::CURSOR));
             }
         },
     );
 }
 
+/// The curves of the wall plot: every layer's left wall (solid) and right wall (dashed); for the
+/// edited plan its waviness W_l (dotted) and W_r (loosely dotted).
+fn wall_series<'a>(layers: &[Layer<'a>]) -> Vec<Series<'a>> {
+    let mut out = Vec::new();
+    for (k, l) in layers.iter().enumerate() {
+        let (w_l, w_r) = l.w;
+        out.push(line(Some(k), "left wall", Look::solid(l.color, 1.8), &l.g.wall_left));
+        let right = Look::solid(l.color, 1.8).styled(LineStyle::dashed_dense());
+        out.push(line(Some(k), "right wall (dashed)", right, &l.g.wall_right));
+        if l.primary {
+            let look = Look::solid(l.color, 1.0);
+            let w = format!("W_l = {w_l:.4} mm");
+            out.push(Series::new(Some(k), w, look.styled(LineStyle::dotted_dense()), Shape::HLine(w_l)));
+            let w = format!("W_r = {w_r:.4} mm");
+            out.push(Series::new(Some(k), w, look.styled(LineStyle::dotted_loose()), Shape::HLine(w_r)));
+        }
+    }
+    out
+}
+
 /// Left and right wall deviation along y with W_l and W_r marked.
 pub fn wall_plot(ui: &mut egui::Ui, layers: &[Layer], teach: bool) {
-    title(ui, "Wall profiles: left solid, right dashed (Figs. 8–9)", explain::WALLS, teach);
-    base_plot(ui, "wall_plot").custom_x_axes(x_axis("y [mm]")).y_axis_label("deviation [mm]").include_y(0.0).show(
+    title(ui, titles::WALLS, explain::WALLS, teach);
+    show_series(
         ui,
-        |p| {
-            for l in layers {
-                let (w_l, w_r) = l.w;
-                let right = l.color.gamma_multiply(0.55);
-                p.line(
-                    Line::new(named(layers, l, "left wall"), PlotPoints::Borrowed(&l.g.wall_left))
-                        .color(l.color)
-                        .width(1.8),
-                );
-                p.line(
-                    Line::new(named(layers, l, "right wall (dashed)"), PlotPoints::Borrowed(&l.g.wall_right))
-                        .color(right)
-                        .style(LineStyle::dashed_dense())
-                        .width(1.8),
-                );
-                if l.primary {
-                    p.hline(
-                        HLine::new(format!("W_l = {w_l:.4} mm"), w_l).color(l.color).style(LineStyle::dotted_dense()),
-                    );
-                    p.hline(
-                        HLine::new(format!("W_r = {w_r:.4} mm"), w_r).color(right).style(LineStyle::dotted_loose()),
-                    );
-                }
-            }
-        },
+        layers,
+        "wall_plot",
+        wall_series(layers),
+        |p| p.custom_x_axes(x_axis("y [mm]")).y_axis_label("deviation [mm]").include_y(0.0),
+        |_| {},
     );
+}
+
+/// The names of the force components, in the order of `Graphics::forces`.
+const FORCE_COMPONENTS: [&str; 3] = ["Fx", "Fy", "Fz"];
+
+/// The curves of the force plot: the edited plan's components Fx, Fy, Fz (colours of their own)
+/// and its mean F_R (dashed), every layer's F_R, the current tooth.
+fn force_series<'a>(layers: &[Layer<'a>], cursor: Option<Cursor>) -> Vec<Series<'a>> {
+    let mut out = Vec::new();
+    for (k, l) in layers.iter().enumerate() {
+        let g = l.g;
+        if l.primary {
+            for ((curve, name), colour) in g.forces.iter().zip(FORCE_COMPONENTS).zip(palette::QUANTITIES) {
+                out.push(line(None, name, Look::solid(colour, 1.0), curve));
+            }
+            let look = Look::solid(l.color, 1.0).styled(LineStyle::dashed_loose());
+            let mean = format!("mean F_R = {:.0} N", g.force_mean);
+            out.push(Series::new(Some(k), mean, look, Shape::HLine(g.force_mean)));
+        }
+        out.push(line(Some(k), "F_R", Look::solid(l.color, 1.5), &g.forces[3]));
+    }
+    out.extend(cursor.map(cursor_line));
+    out
 }
 
 /// Cutting forces Fx, Fy, Fz and F_R over one steady-state cycle, the mean F_R dashed (Figs.
 /// 14–15); pinned variants add their F_R.
 pub fn force_plot(ui: &mut egui::Ui, layers: &[Layer], cursor: Option<Cursor>, teach: bool) {
-    title(ui, "Cutting forces over one steady-state cycle (Figs. 14–15)", explain::FORCES, teach);
+    title(ui, titles::FORCES, explain::FORCES, teach);
     if teach {
         ui.add(egui::Label::new(RichText::new(explain::WHY_EARLY).weak()).wrap());
     }
-    base_plot(ui, "force_plot").custom_x_axes(x_axis("t [s]")).y_axis_label("force [N]").show(ui, |p| {
-        for l in layers {
-            let g = l.g;
-            if l.primary {
-                let names = ["Fx", "Fy", "Fz"];
-                let colours =
-                    [Color32::from_rgb(40, 160, 70), Color32::from_rgb(220, 90, 30), Color32::from_rgb(170, 60, 190)];
-                for ((curve, name), colour) in g.forces.iter().zip(names).zip(colours) {
-                    p.line(Line::new(name, PlotPoints::Borrowed(curve)).color(colour.gamma_multiply(0.8)).width(1.0));
-                }
-                p.hline(
-                    HLine::new(format!("mean F_R = {:.0} N", g.force_mean), g.force_mean)
-                        .color(l.color)
-                        .style(LineStyle::dashed_loose()),
-                );
-                let (t, f) = g.force_max_at;
-                p.points(Points::new("", vec![[t, f]]).radius(5.0).color(l.color));
+    let peak = layers.iter().find(|l| l.primary).map(|l| (l.g.force_max_at, l.color));
+    show_series(
+        ui,
+        layers,
+        "force_plot",
+        force_series(layers, cursor),
+        |p| p.custom_x_axes(x_axis("t [s]")).y_axis_label("force [N]"),
+        move |p| {
+            if let Some(((t, f), color)) = peak {
+                p.points(Points::new("", vec![[t, f]]).radius(5.0).color(color));
                 p.text(
                     Text::new("", PlotPoint::new(t, f * 1.04), format!("F_R,max = {f:.0} N"))
                         .anchor(egui::Align2::CENTER_BOTTOM)
-                        .color(l.color),
+                        .color(color),
                 );
-                if let Some(c) = cursor {
-                    p.vline(VLine::new("current tooth", c.t_s).color(CHIP_COLOR).width(1.5));
-                }
             }
-            p.line(Line::new(named(layers, l, "F_R"), PlotPoints::Borrowed(&g.forces[3])).color(l.color).width(1.5));
-        }
-    });
+        },
+    );
 }
 
 /// Imprint density across the slot bottom, left wall to right wall (Figs. 21–22).
 pub fn imprint_plot(ui: &mut egui::Ui, layers: &[Layer], teach: bool) {
-    title(ui, "Edge imprints on the slot bottom (Figs. 21–22)", explain::IMPRINTS, teach);
-    base_plot(ui, "imprint_plot")
-        .custom_x_axes(x_axis("X [mm] (left wall to right wall)"))
-        .y_axis_label("imprints [1/mm]")
-        .include_y(0.0)
-        .show(ui, |p| {
-            for l in layers {
-                p.line(
-                    Line::new(named(layers, l, "imprint density"), PlotPoints::Borrowed(&l.g.imprints))
-                        .color(l.color)
-                        .width(1.5),
-                );
-            }
-        });
+    title(ui, titles::IMPRINTS, explain::IMPRINTS, teach);
+    let series = layers
+        .iter()
+        .enumerate()
+        .map(|(k, l)| line(Some(k), "imprint density", Look::solid(l.color, 1.5), &l.g.imprints));
+    show_series(
+        ui,
+        layers,
+        "imprint_plot",
+        series.collect(),
+        |p| p.custom_x_axes(x_axis("X [mm] (left wall to right wall)")).y_axis_label("imprints [1/mm]").include_y(0.0),
+        |_| {},
+    );
 }

@@ -405,6 +405,8 @@ fn program_text(ui: &mut egui::Ui, p: &super::program::LoadedProgram, line: Opti
     let font = egui::TextStyle::Monospace;
     let row_h = ui.text_style_height(&font);
     let n = p.line_starts.len();
+    // scroll bars that stay visible (not egui's floating ones): a long line shows it goes on
+    ui.spacing_mut().scroll = egui::style::ScrollStyle::solid();
     let mut area = egui::ScrollArea::both().id_salt(("program_text", slot)).auto_shrink([false, false]);
     if scroll && let Some(l) = line {
         let spacing = ui.spacing().item_spacing.y;

@@ -62,7 +62,8 @@ impl Animation {
 /// Play/pause, scrub and speed controls.
 pub fn controls(ui: &mut egui::Ui, anim: &mut Animation, plan: &Plan) {
     let t_cycle = plan.metrics.t_cycle_s;
-    ui.horizontal(|ui| {
+    // wrapped: the readout goes to a second row in a narrow tab instead of past its edge
+    ui.horizontal_wrapped(|ui| {
         let label = if anim.playing { "Pause" } else { "Play" };
         if ui.button(label).on_hover_text("Move the tool along one steady-state cycle.").clicked() {
             anim.playing = !anim.playing;

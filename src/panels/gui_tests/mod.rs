@@ -6,10 +6,11 @@
 //! Program tab), `program_frame` (the program's frame), `files` (files without a system
 //! dialog), `machine` (forces, machine and optimiser), `levels` (a slot in levels and a closed
 //! slot), `limits` (the shop's words and the limits a job exceeds), `words` (no code names in
-//! the window or the help).
+//! the window or the help), `fit` (the window at common screen sizes, plot legends and colours).
 
 mod corner;
 mod files;
+mod fit;
 mod levels;
 mod limits;
 mod machine;
