@@ -158,3 +158,42 @@ fn bad_stock_and_floor_pass_are_refused_by_name() {
         assert!(!nc.exists(), "{flags:?}: a program was written");
     }
 }
+
+/// A job's pocket operation takes `stock-to-leave`: the 60 × 40 rectangle with a D 6 tool
+/// (tool 2), 3 mm deep, 0.5 mm to leave; its program passes `rs274` and every point of its cut
+/// at Z −3 lies r + 0.5 − 0.005 mm or more from the walls (3.5 mm, within 0.01 mm of it along
+/// the finishing loop). `floor-pass = true` is refused naming it and the floor stock the job's
+/// pocket operation does not have.
+#[test]
+fn a_job_pocket_leaves_its_stock_and_refuses_a_floor_pass() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let rect = vec![islands_common::rect(0.0, 0.0, 60.0, 40.0)];
+    std::fs::write(d.join("rect.txt"), islands_common::loops_text(&rect)).expect("write");
+    let job = |extra: &str| {
+        format!(
+            "[[tool]]\nnumber = 2\ndiameter = 6.0\nteeth = 3\nrpm = 4000.0\nfeed = 500.0\n\n\
+             [[operation]]\nkind = \"pocket\"\ntool = 2\noutline = \"rect.txt\"\ndepth = 3.0\n\
+             step-over = 1.5\nspacing = 1.0\nconstant-feed = true\n{extra}\n"
+        )
+    };
+    let run_job = |name: &str, extra: &str| {
+        let file = d.join(format!("{name}.toml"));
+        std::fs::write(&file, job(extra)).expect("write");
+        let nc = d.join(format!("{name}.ngc"));
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_trochoplan"))
+            .args(["job", file.to_str().expect("utf-8"), "--export", nc.to_str().expect("utf-8")])
+            .output()
+            .expect("run trochoplan");
+        (out.status.success(), String::from_utf8_lossy(&out.stderr).into_owned(), nc)
+    };
+    let (ok, stderr, nc) = run_job("stock", "stock-to-leave = 0.5");
+    assert!(ok, "{stderr}");
+    let canon = nc_common::rs274_with_tools(&nc, "T2 P2 D6.0 Z0 ;tool 2\n");
+    let c = cut(&motions(&canon), 3.0, Z_TOL);
+    let least = least_clearance(&sample(&c, 0.02), &rect[0], &[]).unwrap_or_else(|e| panic!("{e}"));
+    assert!(least >= 3.5 - 0.005 && least <= 3.5 + 0.01, "{least}");
+    let (ok, stderr, nc) = run_job("pass", "floor-pass = true");
+    assert!(!ok && stderr.contains("floor-pass") && stderr.contains("--floor-stock"), "{stderr}");
+    assert!(!nc.exists());
+}

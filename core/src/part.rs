@@ -88,6 +88,12 @@ struct PocketKeys {
     constant_feed: bool,
     #[serde(default)]
     no_rapids: bool,
+    /// Radial stock left on the walls and islands (`pocket --stock-to-leave`).
+    stock_to_leave: Option<f64>,
+    /// `pocket --floor-pass`: the operation cuts one level with no floor stock, so `true` is
+    /// refused by name ([`pocket::levels::check_floor_pass`]).
+    #[serde(default)]
+    floor_pass: bool,
 }
 
 /// A corner operation's own keys (the `corner` command's flags; the tool gives D and feed).
@@ -303,7 +309,8 @@ fn plan_pocket(
         islands,
         rest_from_mm: None,
     };
-    let plan = pocket::plan(&req)?;
+    pocket::levels::check_floor_pass(p.floor_pass, None, None)?;
+    let plan = pocket::plan_leaving(&req, p.stock_to_leave.unwrap_or(0.0))?;
     Ok(Planned::Pocket { plan: Box::new(plan), depth_mm: p.depth })
 }
 
