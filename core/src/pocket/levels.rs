@@ -245,6 +245,56 @@ mod tests {
         assert_eq!(plan_levels(p.path(), 12.0, None).expect("levels").levels.count(), 1);
     }
 
+    /// The 60 × 40 rectangle, 12 mm with 0.5 mm floor stock in levels of at most 4 mm, and the
+    /// floor pass: 3 levels of 11.5/3 mm, then the pass from −11.5 to −12 (axial 0.5 mm),
+    /// measured as every level (the same moves over the same stock: the same reading). Each
+    /// level's entry descends from 0.5 mm above its top: the pass's helix drops 1 mm, the
+    /// others' 11.5/3 + 0.5 (the toolpath's own descent lengths at those drops); the whole
+    /// program's totals are the sums.
+    #[test]
+    fn the_floor_pass_cuts_the_floor_stock_as_a_last_level() {
+        let p = plan(&PocketRequest::default()).expect("plan");
+        let lv = plan_levels(p.path(), 11.5, Some(4.0)).expect("levels");
+        let lv = with_floor_pass(lv, p.path(), 12.0).expect("floor pass");
+        assert_eq!(lv.per_level.len(), 4);
+        let pass = &lv.per_level[3];
+        assert!(pass.floor_pass && !lv.per_level[2].floor_pass);
+        assert_eq!((pass.top_mm, pass.z_mm), (-11.5, -12.0));
+        assert!((pass.axial_depth_mm - 0.5).abs() < 1e-12);
+        assert_eq!(pass.measurement.max_engagement_rad, lv.per_level[0].measurement.max_engagement_rad);
+        let path = p.path();
+        let (first, last) = (lv.per_level[0].totals(path), pass.totals(path));
+        assert!((last.entry_length_mm - path.toolpath.entry_length_mm(0.5)).abs() < 1e-12);
+        assert!((first.entry_length_mm - path.toolpath.entry_length_mm(11.5 / 3.0)).abs() < 1e-9);
+        assert!(last.entry_length_mm < first.entry_length_mm);
+        let feed = path.settings.feed_mm_per_min;
+        let dt = (first.entry_length_mm - last.entry_length_mm) / feed * 60.0;
+        assert!((first.time_s - last.time_s - dt).abs() < 1e-9);
+        let all = lv.totals(path);
+        let sum: f64 = lv.per_level.iter().map(|l| l.totals(path).time_s).sum();
+        assert!(
+            (all.time_s - sum).abs() < 1e-9 && (all.length_at_depth_mm - 4.0 * first.length_at_depth_mm).abs() < 1e-6
+        );
+        // below the lowest floor only
+        let lv = plan_levels(p.path(), 11.5, Some(4.0)).expect("levels");
+        assert_eq!(with_floor_pass(lv, p.path(), 11.5).expect_err("no depth").parameter(), Some(Param::FloorPass));
+    }
+
+    #[test]
+    fn a_floor_pass_needs_a_floor_stock_within_the_step_down() {
+        check_floor_pass(false, None, None).expect("no pass");
+        check_floor_pass(true, Some(0.5), Some(4.0)).expect("pass");
+        for (stock, step, words) in [
+            (None, None, "without --floor-stock"),
+            (Some(0.0), None, "--floor-stock F > 0"),
+            (Some(5.0), Some(4.0), "--max-step-down 4 mm"),
+        ] {
+            let e = check_floor_pass(true, stock, step).expect_err("refused");
+            assert_eq!(e.parameter(), Some(Param::FloorPass), "{e}");
+            assert!(e.to_string().contains("floor-pass") && e.to_string().contains(words), "{e}");
+        }
+    }
+
     #[test]
     fn a_bad_step_down_names_the_flag_and_its_range() {
         for m in [0.0, -1.0, f64::NAN, f64::INFINITY, 12.5, 0.1] {

@@ -257,11 +257,13 @@ mod tests {
         assert_eq!(e.parameter(), Some(Param::StockToLeave), "{e}");
         let text = e.to_string();
         assert!(text.contains("less than 15") && text.contains("must not be empty"), "{text}");
-        // an island 10 mm from the wall: a stock of 5 mm or more meets the wall's
+        // an island 10 mm from the wall: a stock of 5 mm or more meets the wall's (for a tool of
+        // r 0.5 the corners still leave room: there the pocket's corner offset by r + s and the
+        // island's rounded corner are √2·(10 − (r + s)) apart, room while r + s < 5.86)
         let island =
             Polygon::new(vec![p2(10.0, 10.0), p2(50.0, 10.0), p2(50.0, 30.0), p2(10.0, 30.0)]).expect("island");
         let with = PocketRequest { islands: vec![island], tool_diameter_mm: 4.0, step_over_mm: 1.0, ..req.clone() };
-        let e = leave(&with, 5.0, 2.0).expect_err("joined");
+        let e = leave(&with, 5.0, 0.5).expect_err("joined");
         assert!(e.to_string().contains("island 1 and the wall") && e.to_string().contains("(5 mm)"), "{e}");
         let open = PocketRequest { open_edges: vec![0], ..req };
         let e = plan_leaving(&open, 0.5).expect_err("open edges");
