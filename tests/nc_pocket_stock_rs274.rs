@@ -85,6 +85,8 @@ fn stock_to_leave_and_a_floor_pass_on_the_island_part_pass_rs274() {
     for (key, sum) in [("length_at_depth_mm", length), ("time_s", time), ("link_length_mm", links)] {
         assert!((num(&json, key) - sum).abs() <= 1e-9 * sum, "{key}: {} vs {sum}", json[key]);
     }
+    let text = std::fs::read_to_string(&nc).expect("program");
+    assert!(text.contains("3 levels of 3.833 mm and a floor pass of 0.500 mm"), "the header names the floor pass");
     let canon = interpret(&nc).unwrap_or_else(|e| panic!("rs274: {e}"));
     let all = motions(&canon);
     for m in &all {
@@ -100,7 +102,7 @@ fn stock_to_leave_and_a_floor_pass_on_the_island_part_pass_rs274() {
         check_path_cut(&format!("Z{f}"), &c, &planned, 0.005, 1e-4).unwrap_or_else(|e| panic!("{e}"));
         let least = least_clearance(&sample(&c, 0.02), boundary, islands).unwrap_or_else(|e| panic!("Z{f}: {e}"));
         assert!(
-            least >= R + STOCK - 0.005 && least <= R + STOCK + 0.01,
+            (R + STOCK - 0.005..=R + STOCK + 0.01).contains(&least),
             "Z{f}: the tool centre comes {least:.6} mm from a wall or island (r + stock = {})",
             R + STOCK
         );
@@ -192,7 +194,7 @@ fn a_job_pocket_leaves_its_stock_and_refuses_a_floor_pass() {
     let canon = nc_common::rs274_with_tools(&nc, "T2 P2 D6.0 Z0 ;tool 2\n");
     let c = cut(&motions(&canon), 3.0, Z_TOL);
     let least = least_clearance(&sample(&c, 0.02), &rect[0], &[]).unwrap_or_else(|e| panic!("{e}"));
-    assert!(least >= 3.5 - 0.005 && least <= 3.5 + 0.01, "{least}");
+    assert!((3.5 - 0.005..=3.5 + 0.01).contains(&least), "{least}");
     let (ok, stderr, nc) = run_job("pass", "floor-pass = true");
     assert!(!ok && stderr.contains("floor-pass") && stderr.contains("--floor-stock"), "{stderr}");
     assert!(!nc.exists());

@@ -286,6 +286,6 @@ mod tests {
                 least = least.min(q.x.min(60.0 - q.x).min(q.y).min(40.0 - q.y));
             }
         }
-        assert!(least >= 5.5 - 1e-6 && least <= 5.51, "{least}");
+        assert!((5.5 - 1e-6..=5.51).contains(&least), "{least}");
     }
 }
