@@ -503,6 +503,36 @@ mod tests {
         assert!(err.contains(&format!("{path} line 2")), "{err}");
     }
 
+    /// One level at the default 6 mm (`--max-step-down 6`) is the one-level program: the same
+    /// lengths, time at the feed and real time on the machine. Two levels of 3 mm (the same
+    /// path twice, each helix down 3.5 mm from 0.5 mm above its top) double the lengths at
+    /// depth; the time is twice the moves at depth plus the two shorter descents.
+    #[test]
+    fn levels_report_the_whole_program() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let f = dir.path().join("rect.txt");
+        std::fs::write(&f, "0,0\n60,0\n60,40\n0,40\n").expect("write");
+        let p = f.display().to_string();
+        let json = |extra: &[&str]| {
+            let mut v = vec!["t", "--polygon", p.as_str(), "--spacing", "1", "--machine", "vmc"];
+            v.extend_from_slice(extra);
+            let out = pocket(&PT::try_parse_from(v).expect("parse").p).expect("plan");
+            serde_json::from_str::<serde_json::Value>(&out).expect("json")
+        };
+        let (one, lv1, lv2) = (json(&[]), json(&["--max-step-down", "6"]), json(&["--max-step-down", "3"]));
+        let f = |v: &serde_json::Value, k: &str| v[k].as_f64().unwrap_or_else(|| panic!("{k}"));
+        for k in ["length_at_depth_mm", "link_length_mm", "helix_length_mm", "time_s", "time_real_s"] {
+            assert!((f(&one, k) - f(&lv1, k)).abs() <= 1e-9 * f(&one, k).max(1.0), "{k}: {} vs {}", one[k], lv1[k]);
+        }
+        assert!((f(&lv2, "length_at_depth_mm") - 2.0 * f(&one, "length_at_depth_mm")).abs() < 1e-6);
+        let levels = lv2["levels"].as_array().expect("levels");
+        let entry = f(&levels[0], "entry_length_mm");
+        assert!(entry < f(&one, "helix_length_mm") && (f(&lv2, "helix_length_mm") - 2.0 * entry).abs() < 1e-9);
+        let at_depth = f(&one, "time_s") - f(&one, "helix_length_mm") / 600.0 * 60.0;
+        assert!((f(&lv2, "time_s") - 2.0 * (at_depth + entry / 600.0 * 60.0)).abs() < 1e-6, "{}", lv2["time_s"]);
+        assert!(f(&lv2, "time_real_s") > f(&one, "time_real_s"));
+    }
+
     #[derive(Parser)]
     struct PT {
         #[command(flatten)]
