@@ -385,7 +385,8 @@ fn a_pocket_in_levels_is_its_own_levels_program_placed() {
     let o = &v["operations"][0];
     assert_eq!(o["levels"].as_u64(), Some(2));
     assert_eq!(json["levels"].as_array().map(Vec::len), Some(2));
-    let (length, own) = (f64_of(&o["path_length_mm"]), 2.0 * f64_of(&json["length_at_depth_mm"]));
+    // `pocket`'s length at depth in levels is the whole program's, every level's
+    let (length, own) = (f64_of(&o["path_length_mm"]), f64_of(&json["length_at_depth_mm"]));
     assert!((length - own).abs() <= 1e-9 * own, "{length} vs {own}");
     assert_eq!(o["peak_engagement_deg"].as_f64(), json["levels_max_engagement_deg"].as_f64());
     let place = Place { origin: p2(-5.0, 7.5), rotation_rad: 30f64.to_radians() };
@@ -438,6 +439,7 @@ fn a_rest_pass_in_levels_is_measured_over_the_stock_the_larger_tool_left() {
     let o = &v["operations"][1];
     assert_eq!((o["levels"].as_u64(), o["rest_from_operation"].as_u64()), (Some(2), Some(1)));
     assert_eq!(o["peak_engagement_deg"].as_f64(), json["max_engagement_deg"].as_f64());
+    // the own pocket is one level: the job's two levels repeat its path
     let (length, own) = (f64_of(&o["path_length_mm"]), 2.0 * f64_of(&json["length_at_depth_mm"]));
     assert!((length - own).abs() <= 1e-9 * own, "{length} vs {own}");
     let ours = per_operation(&rs274_with_tools(&nc), 2);

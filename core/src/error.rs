@@ -139,11 +139,15 @@ pub enum Param {
     /// The islands of a pocket (`pocket --polygon`: the loops inside the boundary; JSON
     /// `islands`).
     Islands,
+    /// `pocket --stock-to-leave`: radial stock left on every wall and island side.
+    StockToLeave,
+    /// `pocket --floor-pass`: a last level at the full depth through the floor stock.
+    FloorPass,
 }
 
 impl Param {
     /// Every parameter.
-    pub const ALL: [Param; 93] = [
+    pub const ALL: [Param; 95] = [
         Param::Job,
         Param::Path,
         Param::SlotWidth,
@@ -237,6 +241,8 @@ impl Param {
         Param::SpindleDirection,
         Param::Coolant,
         Param::Islands,
+        Param::StockToLeave,
+        Param::FloorPass,
     ];
 
     /// The command-line flag without `--` (also the job-file key). The NC tolerance and the
@@ -336,6 +342,8 @@ impl Param {
             Param::SpindleDirection => "spindle-direction",
             Param::Coolant => "coolant",
             Param::Islands => "islands",
+            Param::StockToLeave => "stock-to-leave",
+            Param::FloorPass => "floor-pass",
         }
     }
 
@@ -435,6 +443,8 @@ impl Param {
             Param::SpindleDirection => "Spindle direction",
             Param::Coolant => "Coolant",
             Param::Islands => "Islands",
+            Param::StockToLeave => "Stock to leave",
+            Param::FloorPass => "Floor pass",
         }
     }
 }

@@ -12,6 +12,7 @@ use trochoplan_core::machine::Machine;
 use trochoplan_core::nc::{pocket_levels_program, pocket_program};
 use trochoplan_core::pocket::{
     self, AdaptiveOptions, PaceOptions, PocketLevels, PocketPlan, PocketRequest, PocketStrategy, plan_levels,
+    with_floor_pass,
 };
 use trochoplan_core::report;
 use trochoplan_core::verify::plan_chip::chip_peaks;
@@ -128,6 +129,19 @@ pub struct PocketArgs {
     /// `floor_stock_mm` and `levels` to the JSON.
     #[arg(long, value_name = "MM", allow_hyphen_values = true)]
     floor_stock: Option<f64>,
+    /// A last level at the full --depth through the floor stock alone (axial depth
+    /// --floor-stock, at most --max-step-down): the same path, entered 0.5 mm above the floor
+    /// of the level above, measured over its own stock. Needs --floor-stock > 0. The level
+    /// joins `levels` in the JSON (`floor_pass`: true).
+    #[arg(long)]
+    floor_pass: bool,
+    /// Radial stock left on every wall and island side for a later finishing operation (mm,
+    /// every method without --open-edges): the clearing and its finishing loop keep the tool
+    /// centre r + this from the walls and islands (the boundary offset inward by r + this, the
+    /// islands outward). From 0 (the default: cut to the walls) to less than the stock that
+    /// leaves the tool no room. JSON `stock_to_leave_mm`.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, default_value_t = 0.0)]
+    stock_to_leave: f64,
     #[command(flatten)]
     pace: PaceArgs,
     #[command(flatten)]
@@ -206,6 +220,8 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
     if let Some(m) = args.max_step_down {
         pocket::levels::check_step_down(cut_depth, m).map_err(err)?;
     }
+    pocket::levels::check_floor_pass(args.floor_pass, args.floor_stock, args.max_step_down).map_err(err)?;
+    pocket::stock_leave::check_stock_to_leave(args.stock_to_leave).map_err(err)?;
     let req = PocketRequest {
         polygon,
         tool_diameter_mm: args.tool_diameter,
@@ -229,23 +245,29 @@ pub fn pocket(args: &PocketArgs) -> Result<String, String> {
         islands,
         rest_from_mm: args.rest_from,
     };
-    let plan = pocket::plan(&req).map_err(err)?;
+    let plan = pocket::plan_leaving(&req, args.stock_to_leave).map_err(err)?;
     let levels = match (args.max_step_down, args.floor_stock) {
         (None, None) => None,
         (m, _) => Some(plan_levels(plan.path(), cut_depth, m).map_err(err)?),
+    };
+    let levels = match levels {
+        Some(l) if args.floor_pass => Some(with_floor_pass(l, plan.path(), args.nc.depth).map_err(err)?),
+        other => other,
     };
     let nc_export = match &args.nc.export {
         Some(file) => Some(export_pocket(&args.nc, file, &plan, levels.as_ref())?),
         None => None,
     };
     let text = report_json(&report::pocket(&req, &plan).map_err(err)?, nc_export)?;
+    let text = with_stock_to_leave(&text, args.stock_to_leave)?;
     let text = match &levels {
-        Some(l) => with_levels(&text, l, args.max_step_down, args.floor_stock)?,
+        Some(l) => with_levels(&text, plan.path(), l, args.max_step_down, args.floor_stock)?,
         None => text,
     };
-    let text = match &args.machine {
-        Some(name) => with_real_time(&text, plan.toolpath(), &args.nc, args.feed, name)?,
-        None => text,
+    let text = match (&args.machine, &levels) {
+        (Some(name), None) => with_real_time(&text, plan.toolpath(), &args.nc, args.feed, name)?,
+        (Some(name), Some(l)) => with_levels_real_time(&text, plan.toolpath(), l, &args.nc, args.feed, name)?,
+        (None, _) => text,
     };
     with_chip_peaks(&text, &plan, args)
 }
@@ -294,10 +316,23 @@ fn cut_depth(args: &PocketArgs) -> Result<f64, String> {
     Ok(depth - s)
 }
 
+/// The JSON `text` with `stock_to_leave_mm`.
+fn with_stock_to_leave(text: &str, stock_mm: f64) -> Result<String, String> {
+    let mut v: serde_json::Value = serde_json::from_str(text).map_err(|e| e.to_string())?;
+    if let Some(obj) = v.as_object_mut() {
+        obj.insert("stock_to_leave_mm".into(), stock_mm.into());
+    }
+    super::common::json_text(&v)
+}
+
 /// The JSON `text` with the pocket's `levels`: the step-down, the floor stock, the peak over
-/// every level and each level's top, floor, axial depth, peak and p95 engagement.
+/// every level and each level's top, floor, axial depth, peak and p95 engagement, lengths and
+/// time (whether it is the floor pass); the top-level lengths and time made the whole
+/// program's, every level's summed ([`PocketLevels::totals`]); the lengths by kind of move
+/// made every level's.
 fn with_levels(
     text: &str,
+    path: &trochoplan_core::pocket::PocketPath,
     levels: &PocketLevels,
     max_step_down: Option<f64>,
     floor_stock: Option<f64>,
@@ -307,20 +342,98 @@ fn with_levels(
         .per_level
         .iter()
         .map(|l| {
+            let t = l.totals(path);
             serde_json::json!({
                 "top_mm": l.top_mm,
                 "z_mm": l.z_mm,
                 "axial_depth_mm": l.axial_depth_mm,
+                "floor_pass": l.floor_pass,
                 "max_engagement_deg": l.measurement.max_engagement_rad.to_degrees(),
                 "p95_engagement_deg": l.measurement.p95_engagement_rad.to_degrees(),
+                "length_at_depth_mm": t.length_at_depth_mm,
+                "link_length_mm": t.link_length_mm,
+                "air_length_mm": t.air_length_mm,
+                "entry_length_mm": t.entry_length_mm,
+                "rapid_length_mm": t.rapid_length_mm,
+                "time_s": t.time_s,
             })
         })
         .collect();
+    let all = levels.totals(path);
+    let n = levels.per_level.len() as f64;
     if let Some(obj) = v.as_object_mut() {
         obj.insert("max_step_down_mm".into(), max_step_down.into());
         obj.insert("floor_stock_mm".into(), floor_stock.unwrap_or(0.0).into());
         obj.insert("levels_max_engagement_deg".into(), levels.peak_rad().to_degrees().into());
+        // the whole program's, where the one-level report has them
+        for (key, total) in [
+            ("length_at_depth_mm", all.length_at_depth_mm),
+            ("path_length_mm", all.length_at_depth_mm),
+            ("link_length_mm", all.link_length_mm),
+            ("air_length_mm", all.air_length_mm),
+            ("helix_length_mm", all.entry_length_mm),
+            ("entry_length_mm", all.entry_length_mm),
+            ("time_s", all.time_s),
+        ] {
+            if obj.contains_key(key) {
+                obj.insert(key.into(), total.into());
+            }
+        }
+        if let Some(p) = obj.get_mut("pace").and_then(|p| p.as_object_mut()) {
+            for key in ["rapid_length_mm", "feed_link_length_mm"] {
+                if let Some(x) = p.get(key).and_then(serde_json::Value::as_f64) {
+                    p.insert(key.into(), (x * n).into());
+                }
+            }
+        }
+        if let Some(kinds) = obj.get_mut("by_kind").and_then(|k| k.as_array_mut()) {
+            for k in kinds.iter_mut().filter_map(|k| k.as_object_mut()) {
+                if let Some(x) = k.get("length_mm").and_then(serde_json::Value::as_f64) {
+                    k.insert("length_mm".into(), (x * n).into());
+                }
+            }
+        }
         obj.insert("levels".into(), rows.into());
+    }
+    super::common::json_text(&v)
+}
+
+/// [`with_real_time`] for a pocket in levels: each level's program timed as the one-level
+/// program with the level's top as Z0 (its entries down its axial depth, its retracts to the
+/// safe height above the stock top, that is, the safe height − the level's top above it),
+/// summed; the feed held share weighted by each level's feed time.
+fn with_levels_real_time(
+    text: &str,
+    path: &trochoplan_core::toolpath::Toolpath,
+    levels: &PocketLevels,
+    nc: &CornerExportArgs,
+    feed_mm_per_min: f64,
+    name: &str,
+) -> Result<String, String> {
+    use trochoplan_core::machine::{CutHeights, ProgramTime, toolpath_time};
+    let m = Machine::preset(name).map_err(err)?;
+    let safe_z_mm = nc.options()?.frame.retract_height_mm();
+    let mut t = ProgramTime::default();
+    let mut held = 0.0;
+    for l in &levels.per_level {
+        let heights = CutHeights { depth_mm: l.axial_depth_mm, safe_z_mm: safe_z_mm - l.top_mm };
+        let k = toolpath_time(path, heights, feed_mm_per_min, &m).map_err(err)?;
+        t.total_s += k.total_s;
+        t.feed_s += k.feed_s;
+        t.rapid_s += k.rapid_s;
+        t.vertical_s += k.vertical_s;
+        t.feed_length_mm += k.feed_length_mm;
+        t.rapid_length_mm += k.rapid_length_mm;
+        t.vertical_length_mm += k.vertical_length_mm;
+        held += k.feed_held_share * k.feed_s;
+    }
+    t.feed_held_share = if t.feed_s > 0.0 { held / t.feed_s } else { 1.0 };
+    let mut v: serde_json::Value = serde_json::from_str(text).map_err(|e| e.to_string())?;
+    if let Some(obj) = v.as_object_mut() {
+        obj.insert("machine".into(), name.into());
+        obj.insert("time_real_s".into(), t.total_s.into());
+        obj.insert("feed_held_share".into(), t.feed_held_share.into());
+        obj.insert("real_time".into(), serde_json::to_value(t).map_err(|e| e.to_string())?);
     }
     super::common::json_text(&v)
 }
@@ -388,6 +501,36 @@ mod tests {
         let args = E::try_parse_from(["t", "--path-csv", &path, "--stock-polygon", &stock]).expect("parse").e;
         let err = engagement(&args).expect_err("three fields");
         assert!(err.contains(&format!("{path} line 2")), "{err}");
+    }
+
+    /// One level at the default 6 mm (`--max-step-down 6`) is the one-level program: the same
+    /// lengths, time at the feed and real time on the machine. Two levels of 3 mm (the same
+    /// path twice, each helix down 3.5 mm from 0.5 mm above its top) double the lengths at
+    /// depth; the time is twice the moves at depth plus the two shorter descents.
+    #[test]
+    fn levels_report_the_whole_program() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let f = dir.path().join("rect.txt");
+        std::fs::write(&f, "0,0\n60,0\n60,40\n0,40\n").expect("write");
+        let p = f.display().to_string();
+        let json = |extra: &[&str]| {
+            let mut v = vec!["t", "--polygon", p.as_str(), "--spacing", "1", "--machine", "vmc"];
+            v.extend_from_slice(extra);
+            let out = pocket(&PT::try_parse_from(v).expect("parse").p).expect("plan");
+            serde_json::from_str::<serde_json::Value>(&out).expect("json")
+        };
+        let (one, lv1, lv2) = (json(&[]), json(&["--max-step-down", "6"]), json(&["--max-step-down", "3"]));
+        let f = |v: &serde_json::Value, k: &str| v[k].as_f64().unwrap_or_else(|| panic!("{k}"));
+        for k in ["length_at_depth_mm", "link_length_mm", "helix_length_mm", "time_s", "time_real_s"] {
+            assert!((f(&one, k) - f(&lv1, k)).abs() <= 1e-9 * f(&one, k).max(1.0), "{k}: {} vs {}", one[k], lv1[k]);
+        }
+        assert!((f(&lv2, "length_at_depth_mm") - 2.0 * f(&one, "length_at_depth_mm")).abs() < 1e-6);
+        let levels = lv2["levels"].as_array().expect("levels");
+        let entry = f(&levels[0], "entry_length_mm");
+        assert!(entry < f(&one, "helix_length_mm") && (f(&lv2, "helix_length_mm") - 2.0 * entry).abs() < 1e-9);
+        let at_depth = f(&one, "time_s") - f(&one, "helix_length_mm") / 600.0 * 60.0;
+        assert!((f(&lv2, "time_s") - 2.0 * (at_depth + entry / 600.0 * 60.0)).abs() < 1e-6, "{}", lv2["time_s"]);
+        assert!(f(&lv2, "time_real_s") > f(&one, "time_real_s"));
     }
 
     #[derive(Parser)]

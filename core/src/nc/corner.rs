@@ -225,13 +225,16 @@ pub(super) fn pocket_path_program(
         return program_for_path(&job, opts);
     }
     let axial = levels.iter().map(|l| l.top_mm + l.depth_mm).fold(0.0, f64::max);
+    // a floor pass: a last level thinner than the others
+    let last = levels.last().map_or(axial, |l| l.top_mm + l.depth_mm);
+    let levels_text = if levels.len() > 1 && last < axial - 1e-9 {
+        format!("{} levels of {axial:.3} mm and a floor pass of {last:.3} mm", levels.len() - 1)
+    } else {
+        format!("{} levels of {axial:.3} mm", levels.len())
+    };
     let mut job = job;
-    job.description.push(format!(
-        "{} levels of {:.3} mm, each entered {:.1} mm above the floor above",
-        levels.len(),
-        axial,
-        crate::toolpath::HELIX_START_Z_MM
-    ));
+    job.description
+        .push(format!("{levels_text}, each entered {:.1} mm above the floor above", crate::toolpath::HELIX_START_Z_MM));
     program_for_path_levels(&job, levels, opts)
 }
 

@@ -13,7 +13,9 @@ use crate::machine::Machine;
 use crate::nc::{PathLevel, Placement};
 use crate::path::levels::Levels;
 use crate::pocket::{
-    self, AdaptiveOptions, PaceOptions, PocketPlan, PocketRequest, PocketStrategy, levels::check_step_down, plan_levels,
+    self, AdaptiveOptions, PaceOptions, PocketPlan, PocketRequest, PocketStrategy,
+    levels::{check_floor_pass, check_step_down, with_floor_pass},
+    plan_levels,
 };
 use serde::Deserialize;
 
@@ -46,6 +48,11 @@ struct PocketKeys {
     rest_from_operation: Option<i64>,
     max_step_down: Option<f64>,
     floor_stock: Option<f64>,
+    /// Radial stock left on the walls and islands (`pocket --stock-to-leave`).
+    stock_to_leave: Option<f64>,
+    /// `pocket --floor-pass`: a last level through the floor stock.
+    #[serde(default)]
+    floor_pass: bool,
 }
 
 /// A pocket cut in levels.
@@ -152,10 +159,12 @@ pub(super) fn plan_pocket(t: toml::Table, tool: &super::Tool, cx: &PocketContext
         islands,
         rest_from_mm: rest.map(|r| r.diameter_mm),
     };
-    let plan = pocket::plan(&req)?;
+    check_floor_pass(p.floor_pass, p.floor_stock, p.max_step_down)?;
+    let plan = pocket::plan_leaving(&req, p.stock_to_leave.unwrap_or(0.0))?;
+    let floor_pass = p.floor_pass.then_some(p.depth);
     let levels = match (p.max_step_down, p.floor_stock) {
         (None, None) => None,
-        (m, s) => Some(Box::new(in_levels(&plan, rest.is_some(), cut_depth, m, s.unwrap_or(0.0))?)),
+        (m, s) => Some(Box::new(in_levels(&plan, rest.is_some(), cut_depth, m, s.unwrap_or(0.0), floor_pass)?)),
     };
     Ok(Planned::Pocket { plan: Box::new(plan), depth_mm: p.depth, levels, rest, outline: p.outline })
 }
@@ -180,27 +189,36 @@ fn cut_depth(depth: f64, floor_stock: Option<f64>) -> Result<f64, Error> {
 /// without). Each level is measured over its own stock ([`plan_levels`]); a rest plan's
 /// stock is what the larger tool left on every level, on which its own plan was measured:
 /// equal levels of the same path over the same stock measure the same, so its peak is the
-/// plan's.
+/// plan's. `floor_pass`: the full depth of a last level through the floor stock
+/// ([`with_floor_pass`]).
 fn in_levels(
     plan: &PocketPlan,
     rest: bool,
     cut_depth: f64,
     max_step_down: Option<f64>,
     floor_stock_mm: f64,
+    floor_pass: Option<f64>,
 ) -> Result<PocketInLevels, Error> {
-    let (levels, peak_rad) = if rest {
+    let (mut levels, peak_rad): (Vec<PathLevel>, f64) = if rest {
         match max_step_down {
             Some(m) => check_step_down(cut_depth, m)?,
             None => check_step_down(cut_depth, cut_depth)?,
         }
-        (Levels::equal(cut_depth, max_step_down), plan.max_engagement_rad())
+        let l = Levels::equal(cut_depth, max_step_down);
+        let levels = (0..l.count()).map(|k| PathLevel { top_mm: l.top_mm(k), depth_mm: -l.z_mm[k] }).collect();
+        (levels, plan.max_engagement_rad())
     } else {
-        let l = plan_levels(plan.path(), cut_depth, max_step_down)?;
+        let mut l = plan_levels(plan.path(), cut_depth, max_step_down)?;
+        if let Some(depth) = floor_pass {
+            l = with_floor_pass(l, plan.path(), depth)?;
+        }
         let peak = l.peak_rad();
-        (l.levels, peak)
+        (l.per_level.iter().map(|v| PathLevel { top_mm: v.top_mm, depth_mm: -v.z_mm }).collect(), peak)
     };
-    let levels =
-        (0..levels.count()).map(|k| PathLevel { top_mm: levels.top_mm(k), depth_mm: -levels.z_mm[k] }).collect();
+    if let (true, Some(depth)) = (rest, floor_pass) {
+        let top_mm = levels.last().map_or(0.0, |l| -l.depth_mm);
+        levels.push(PathLevel { top_mm, depth_mm: depth });
+    }
     Ok(PocketInLevels { max_step_down_mm: max_step_down, floor_stock_mm, levels, peak_rad })
 }
 

@@ -17,7 +17,7 @@ pub const MAX_ISLANDS: usize = 100;
 pub const MIN_GAP_MM: f64 = 1e-6;
 
 /// The least distance between the edges of two polygons (mm).
-fn edge_gap(a: &Polygon, b: &Polygon) -> (f64, P2) {
+pub(crate) fn edge_gap(a: &Polygon, b: &Polygon) -> (f64, P2) {
     let (va, vb) = (a.vertices(), b.vertices());
     let mut best = (f64::INFINITY, va[0]);
     for i in 0..va.len() {

@@ -31,12 +31,14 @@ pub mod route;
 mod run_order;
 mod runs;
 pub mod slot;
+pub mod stock_leave;
+mod stored_edges;
 
 pub use adaptive::{
     AdaptiveOptions, AdaptivePart, AdaptivePlan, CornerPasses, plan_adaptive, plan_adaptive_islands, plan_adaptive_open,
 };
 pub use corner_point::CornerPoint;
-pub use levels::{PocketLevel, PocketLevels, plan_levels};
+pub use levels::{LevelTotals, PocketLevel, PocketLevels, plan_levels, with_floor_pass};
 pub use pace::{Pace, PaceOptions};
 pub use path::PocketPath;
 pub use perforative::{AxisCircle, PerforativePlan, plan_perforative};
@@ -45,6 +47,8 @@ pub use rings::{
     plan_rings,
 };
 pub use slot::{SlotPlan, plan_slot};
+pub use stock_leave::plan_leaving;
+pub use stored_edges::stored_open_edges;
 
 use crate::corner::CornerMethod;
 use crate::corner::limits::MEDIAL_AXIS_MIN_STEP_OVER_RATIO;
@@ -378,34 +382,6 @@ impl PocketPlan {
     pub fn tool_path(&self) -> (Vec<Segment>, Vec<usize>) {
         self.path().tool_path()
     }
-}
-
-/// The open edges of the stored polygon (counter-clockwise, a repeated closing vertex dropped)
-/// given as edges of the vertex list `points` it was made from (edge i from point i to point
-/// i + 1, as a user numbers them in the file): matched by their ends. Error naming
-/// `--open-edges` for an edge the polygon does not have.
-pub fn stored_open_edges(polygon: &Polygon, points: &[P2], open: &[usize]) -> Result<Vec<usize>, Error> {
-    let v = polygon.vertices();
-    let n = v.len();
-    let same = |a: P2, b: P2| (a - b).norm() <= 1e-9;
-    open.iter()
-        .map(|&i| {
-            let ends = (i < n).then(|| (points[i], points[(i + 1) % points.len()]));
-            ends.and_then(|(a, b)| {
-                (0..n).find(|&k| {
-                    let (p, q) = (v[k], v[(k + 1) % n]);
-                    (same(p, a) && same(q, b)) || (same(p, b) && same(q, a))
-                })
-            })
-            .ok_or_else(|| {
-                Error::param(
-                    Param::OpenEdges,
-                    i,
-                    format!("an edge of the polygon, 0 to {} (edge i runs from vertex i to vertex i + 1)", n - 1),
-                )
-            })
-        })
-        .collect()
 }
 
 /// Most tool positions a pocket plan may measure, as estimated before planning by
