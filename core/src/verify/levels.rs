@@ -158,9 +158,9 @@ impl<'a> Bands<'a> {
             }
             let profile = refined_profile_with_islands(stock, islands, &[], &segs, opts)?;
             bands.record(b, &idx, &starts, &segs, &profile);
-            bands.evals.push(Some(
-                Evaluation::new(stock, &[], &segs, opts, MAX_REFINED_POSITIONS)?.with_islands(islands),
-            ));
+            bands
+                .evals
+                .push(Some(Evaluation::new(stock, &[], &segs, opts, MAX_REFINED_POSITIONS)?.with_islands(islands)));
             bands.band_moves.push(idx);
             bands.band_starts.push(starts);
         }
