@@ -161,8 +161,10 @@ fn stock_and_part_islands() {
         .collect::<Vec<_>>();
     assert!(!at_30.is_empty() && at_30.iter().all(|a| (a - beside).abs() < 0.5), "{at_30:?} vs {beside}");
     assert!(with.moves[1].engagement_deg > 179.0, "full slot before and after the island");
-    // the part's island: a gouge of 2 mm (the tool reaches y = 17, the island starts at 15)
-    req.part = Some(&stock);
+    // the part's island (its outline wider than the path's reach): a gouge of 2 mm (the tool
+    // reaches y = 17, the island starts at 15)
+    let part = square(-20.0, -30.0, 80.0, 50.0);
+    req.part = Some(&part);
     req.part_islands = &islands;
     let r = run(text, &req);
     let g: Vec<&Problem> = r.problems.iter().filter(|p| p.kind == ProblemKind::Gouge).collect();
