@@ -75,9 +75,10 @@ pub const DEFAULT_GOUGE_TOLERANCE_MM: f64 = 0.01;
 pub const DEFAULT_FULL_WIDTH_DEPTH_RATIO: f64 = 0.5;
 
 impl<'a> VerifyRequest<'a> {
-    /// `stock` (top at 0) and `tool` with every other field at its default: no islands, no part, the ideal
-    /// machine, no spindle limits, the program's `S`, [`DEFAULT_SPACING_MM`], full-width cuts
-    /// up to [`DEFAULT_FULL_WIDTH_DEPTH_RATIO`] × D, [`DEFAULT_GOUGE_TOLERANCE_MM`].
+    /// `stock` (top at 0) and `tool` with every other field at its default: no islands, no
+    /// part, the ideal machine, no spindle limits, the program's `S`, [`DEFAULT_SPACING_MM`],
+    /// full-width cuts up to [`DEFAULT_FULL_WIDTH_DEPTH_RATIO`] × D,
+    /// [`DEFAULT_GOUGE_TOLERANCE_MM`].
     pub fn new(stock: &'a Polygon, tool: Tool) -> VerifyRequest<'a> {
         VerifyRequest {
             stock,
