@@ -9,10 +9,11 @@
 //! Both programs are measured by the same tools: LinuxCNC's `rs274` reads each back (no error;
 //! every move in the plane below the stock top at one of the floors −4, −8, −12; the closest
 //! approach of the tool centre to the wall and to each island, computed here from the outline
-//! file), and `trochoplan verify PROGRAM --stock BOUNDARY --part BOUNDARY --machine vmc --moves
-//! CSV` measures every move (engagement, h_max, real time). `verify` takes one loop for the
-//! stock, so the islands stand in it as material: a move that cuts into an island reads that as
-//! engagement, a move that passes it at r reads nothing.
+//! file), and `trochoplan verify PROGRAM --stock islands.txt --part islands.txt
+//! --gouge-tolerance 0.005 --machine vmc --moves CSV` measures every move (engagement, h_max,
+//! real time) over the stock less its islands, and reports every move whose tool reaches past
+//! the wall or into an island by more than 0.005 mm as a `gouge` (the tolerance is the
+//! acceptance's: no move closer than r − 0.005 mm to the wall or either island).
 //!
 //! The entries: verify measures a descending move at its lowest point and the band above it as
 //! still full where the helix's last turn did not pass, so the closing circle of each helix
@@ -22,7 +23,10 @@
 //!
 //! Asserted: both programs pass `rs274` with their floors at −4, −8, −12; verify's peak is the
 //! largest engagement of its per-move CSV; ours keeps at least r − 0.005 mm from the wall and
-//! both islands, and comes no closer than FreeCAD's program; away from the entries our peak is
+//! both islands, and comes no closer than FreeCAD's program; verify reports a gouge of a loop
+//! (wall, boss, island) exactly where the tool centre comes closer than r − 0.005 mm to it over
+//! `rs274`'s output, its deepest gouge of that loop r less that closest approach (to 0.001 mm):
+//! FreeCAD's program gouges the boss and the island, ours has no problem at all; away from the entries our peak is
 //! within the target + 1° and below FreeCAD's; our 95th percentile is within the target and
 //! below FreeCAD's. The real times are printed beside each other, not compared by an assertion.
 //!
@@ -51,6 +55,9 @@ const FLOORS: [f64; 3] = [-4.0, -8.0, -12.0];
 const TARGET_DEG: f64 = 60.0;
 /// Heights closer than this are one (mm).
 const Z_TOL: f64 = 1e-4;
+/// verify's gouge tolerance (mm): the acceptance's "no move closer than r − 0.005 mm to the
+/// wall or either island".
+const GOUGE_TOL: f64 = 0.005;
 
 fn data() -> PathBuf {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/freecad")).to_path_buf()
@@ -80,6 +87,11 @@ struct Measured {
     closest: [f64; 3],
     /// verify's problems, by kind.
     problems: Vec<String>,
+    /// verify's deepest gouge (mm) of the wall, the boss, the rectangular island (0: none),
+    /// each gouge given to the loop nearest the tool centre at its place.
+    gouge: [f64; 3],
+    /// How many moves verify finds gouging.
+    gouge_moves: u64,
 }
 
 /// `trochoplan ARGS`: stdout, failing the test on an error.
@@ -117,7 +129,7 @@ fn rows(csv: &str) -> Vec<Row> {
         .collect()
 }
 
-fn measure(label: &str, program: &Path, boundary: &Path, dir: &Path) -> Measured {
+fn measure(label: &str, program: &Path, outline: &Path, dir: &Path) -> Measured {
     let loops = acceptance_loops();
     // rs274: every move in the plane below the top at a floor; lengths per floor; clearance
     let canon = interpret(program).unwrap_or_else(|e| panic!("{label}: {e}"));
@@ -166,9 +178,11 @@ fn measure(label: &str, program: &Path, boundary: &Path, dir: &Path) -> Measured
         "verify",
         program.to_str().expect("utf-8"),
         "--stock",
-        boundary.to_str().expect("utf-8"),
+        outline.to_str().expect("utf-8"),
         "--part",
-        boundary.to_str().expect("utf-8"),
+        outline.to_str().expect("utf-8"),
+        "--gouge-tolerance",
+        &GOUGE_TOL.to_string(),
         "--machine",
         "vmc",
         "--moves",
@@ -195,12 +209,22 @@ fn measure(label: &str, program: &Path, boundary: &Path, dir: &Path) -> Measured
         .filter(|r| !(on_turning(r.from) && on_turning(r.to)))
         .map(|r| r.engagement)
         .fold(0.0, f64::max);
-    let problems = json["problems"]
-        .as_array()
-        .expect("problems")
+    let list = json["problems"].as_array().expect("problems");
+    let problems = json["problem_moves"]
+        .as_object()
+        .expect("problem_moves")
         .iter()
-        .map(|p| format!("{} ×{}", p["kind"].as_str().unwrap_or("?"), p["move_count"]))
+        .map(|(kind, n)| format!("{kind} ×{n}"))
         .collect();
+    let mut gouge = [0.0f64; 3];
+    for p in list.iter().filter(|p| p["kind"] == "gouge") {
+        let at = p2(p["x"].as_f64().expect("x"), p["y"].as_f64().expect("y"));
+        let k = (0..loops.len())
+            .min_by(|&a, &b| loop_distance(at, &loops[a]).total_cmp(&loop_distance(at, &loops[b])))
+            .expect("loops");
+        gouge[k] = gouge[k].max(p["value"].as_f64().expect("value"));
+    }
+    let gouge_moves = json["problem_moves"]["gouge"].as_u64().unwrap_or(0);
     Measured {
         peak: num("max_engagement_deg"),
         peak_away,
@@ -211,6 +235,8 @@ fn measure(label: &str, program: &Path, boundary: &Path, dir: &Path) -> Measured
         retracts,
         closest,
         problems,
+        gouge,
+        gouge_moves,
     }
 }
 
@@ -221,8 +247,6 @@ fn freecad_adaptive_and_ours_on_the_pocket_with_islands() {
     let loops = acceptance_loops();
     assert_eq!(std::fs::read_to_string(&outline).expect("outline"), loops_text(&loops));
     let dir = tempfile::tempdir().expect("tempdir");
-    let boundary = dir.path().join("boundary.txt");
-    std::fs::write(&boundary, loops_text(&loops[..1])).expect("boundary");
     // FreeCAD's program, copied (rs274 writes beside it)
     let freecad = dir.path().join("freecad.ngc");
     std::fs::copy(data().join("islands.ngc"), &freecad).expect("copy");
@@ -242,17 +266,19 @@ fn freecad_adaptive_and_ours_on_the_pocket_with_islands() {
     ]);
     let json: serde_json::Value = serde_json::from_str(&text).expect("json");
     assert!(json["target_deg"].as_f64().is_some_and(|t| (t - TARGET_DEG).abs() < 1e-9), "{}", json["target_deg"]);
-    let f = measure("freecad", &freecad, &boundary, dir.path());
-    let o = measure("ours", &ours, &boundary, dir.path());
+    let f = measure("freecad", &freecad, &outline, dir.path());
+    let o = measure("ours", &ours, &outline, dir.path());
 
     println!(
         "| program | peak (every move) | peak away from the entries | p95 | h_max | real time (vmc) | \
-         at each floor: feed length | rapids at each floor | retracts | closest: wall | boss | island |"
+         at each floor: feed length | rapids at each floor | retracts | closest: wall | boss | island | \
+         verify's deepest gouge: wall | boss | island | gouging moves |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for (name, m) in [("FreeCAD", &f), ("ours", &o)] {
         println!(
-            "| {name} | {:.2}° | {:.2}° | {:.2}° | {:.4} mm | {:.1} s | {} | {} | {} | {:.4} | {:.4} | {:.4} |",
+            "| {name} | {:.2}° | {:.2}° | {:.2}° | {:.4} mm | {:.1} s | {} | {} | {} | {:.4} | {:.4} | {:.4} | \
+             {:.4} | {:.4} | {:.4} | {} |",
             m.peak,
             m.peak_away,
             m.p95,
@@ -264,11 +290,30 @@ fn freecad_adaptive_and_ours_on_the_pocket_with_islands() {
             m.closest[0],
             m.closest[1],
             m.closest[2],
+            m.gouge[0],
+            m.gouge[1],
+            m.gouge[2],
+            m.gouge_moves,
         );
     }
     println!("time ours / FreeCAD: {:.3}", o.time / f.time);
     println!("problems: FreeCAD {:?}; ours {:?}", f.problems, o.problems);
 
+    // verify's gouges agree with rs274's closest approaches: a gouge of a loop exactly where the
+    // tool centre comes closer than r − the tolerance, as deep as r less that approach
+    for (name, m) in [("FreeCAD", &f), ("ours", &o)] {
+        for k in 0..3 {
+            let depth = R - m.closest[k];
+            if depth > GOUGE_TOL {
+                assert!((m.gouge[k] - depth).abs() <= 1e-3, "{name}, loop {k}: gouge {} vs rs274 {depth}", m.gouge[k]);
+            } else {
+                assert!(m.gouge[k] == 0.0, "{name}, loop {k}: gouge {} where rs274 reads {depth}", m.gouge[k]);
+            }
+        }
+    }
+    // FreeCAD's program cuts into the boss and the island; ours has no problem at all
+    assert!(f.gouge[1] > GOUGE_TOL && f.gouge[2] > GOUGE_TOL, "FreeCAD's gouges: {:?}", f.gouge);
+    assert!(o.problems.is_empty(), "ours: {:?}", o.problems);
     // ours keeps off the wall and both islands; FreeCAD's comes closer
     let (least_o, least_f) = (
         o.closest.iter().copied().fold(f64::INFINITY, f64::min),

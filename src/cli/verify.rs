@@ -4,7 +4,7 @@
 
 use super::common::{err, json_text};
 use crate::shared::files::{Role, read_input, write_atomic};
-use crate::shared::outline::read_single;
+use crate::shared::outline::read_pocket;
 use clap::Args;
 use std::path::{Path, PathBuf};
 use trochoplan_core::geom::{Polygon, p2};
@@ -28,8 +28,11 @@ pub struct VerifyArgs {
     /// line (nothing is skipped).
     #[arg(value_name = "PROGRAM")]
     program: PathBuf,
-    /// Stock outline (the formats of `pocket --polygon`: "x,y" lines, .dxf or .svg; one closed
-    /// loop). For a pocket, its outline: the material the program clears.
+    /// Stock outline (the formats of `pocket --polygon`: "x,y" lines, .dxf or .svg; one
+    /// boundary and its islands: loops after an empty line, nested closed loops). For a pocket,
+    /// its outline: the material the program clears; islands are material that stays, not
+    /// cut (a tool touching one engages nothing there; cutting into one is a gouge with
+    /// --part).
     #[arg(long, value_name = "FILE", required_unless_present = "stock_box", conflicts_with = "stock_box")]
     stock: Option<PathBuf>,
     /// Stock box instead of an outline: XMIN,YMIN,XMAX,YMAX (mm).
@@ -38,8 +41,9 @@ pub struct VerifyArgs {
     /// Height of the stock top (mm); the program cuts below it.
     #[arg(long, value_name = "MM", default_value_t = 0.0, allow_hyphen_values = true)]
     stock_top: f64,
-    /// The part's outline, whose walls the tool must not cut (same formats as --stock): a move
-    /// whose tool reaches past it by more than --gouge-tolerance is a `gouge`.
+    /// The part's outline, whose walls the tool must not cut (same formats as --stock, with its
+    /// islands): a move whose tool reaches past the outline or into an island by more than
+    /// --gouge-tolerance is a `gouge`.
     #[arg(long, value_name = "FILE")]
     part: Option<PathBuf>,
     /// Tool diameter D (mm).
@@ -97,9 +101,17 @@ impl VerifyArgs {
     }
 }
 
-/// An outline file as a polygon, errors naming the file.
-fn polygon(file: &Path, what: &str) -> Result<Polygon, String> {
-    Polygon::new(read_single(file, what)?).map_err(|e| format!("{}: {e}", file.display()))
+/// An outline file as a polygon and its islands (one pocket, as `pocket --polygon` reads
+/// it), errors naming the file.
+fn outline(file: &Path, what: &str) -> Result<(Polygon, Vec<Polygon>), String> {
+    let (boundary, islands) = read_pocket(file, what)?;
+    let polygon = Polygon::new(boundary).map_err(|e| format!("{}: {e}", file.display()))?;
+    let islands = islands
+        .into_iter()
+        .enumerate()
+        .map(|(k, v)| Polygon::new(v).map_err(|e| format!("{}: island {}: {e}", file.display(), k + 1)))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok((polygon, islands))
 }
 
 /// The stock box as a polygon.
@@ -130,18 +142,23 @@ pub fn run(args: &VerifyArgs) -> Result<String, String> {
     }
     let coefficients = Library::builtin().get(&args.material).map_err(err)?.coefficients;
     let machine = args.machine.as_deref().map(Machine::preset).transpose().map_err(err)?;
-    let stock = match (&args.stock, &args.stock_box) {
-        (Some(file), _) => polygon(file, "stock outline file")?,
-        (None, Some(v)) => stock_box(v)?,
+    let (stock, stock_islands) = match (&args.stock, &args.stock_box) {
+        (Some(file), _) => outline(file, "stock outline file")?,
+        (None, Some(v)) => (stock_box(v)?, Vec::new()),
         (None, None) => return Err("give the stock: --stock OUTLINE or --stock-box XMIN,YMIN,XMAX,YMAX".into()),
     };
-    let part = args.part.as_deref().map(|f| polygon(f, "part outline file")).transpose()?;
+    let (part, part_islands) = match args.part.as_deref().map(|f| outline(f, "part outline file")).transpose()? {
+        Some((p, i)) => (Some(p), i),
+        None => (None, Vec::new()),
+    };
     let text = read_input(&args.program, "NC program")?;
     let program = read_program(&text, &what).map_err(err)?;
     let req = VerifyRequest {
         stock: &stock,
         stock_top_mm: args.stock_top,
+        stock_islands: &stock_islands,
         part: part.as_ref(),
+        part_islands: &part_islands,
         tool: Tool { radius_mm: d / 2.0, teeth, helix_rad: args.helix_angle.to_radians(), coefficients },
         spindle_power_w: args.spindle_power.or(machine.as_ref().and_then(|m| m.spindle_power)),
         spindle_torque_nm: args.spindle_torque.or(machine.as_ref().and_then(|m| m.spindle_torque)),

@@ -58,19 +58,26 @@ impl Default for ProgramSettings {
     }
 }
 
-/// An outline file and its polygon.
+/// An outline file: its polygon and its islands.
 #[derive(Clone, Debug)]
 pub struct Outline {
     pub path: PathBuf,
     pub polygon: Polygon,
+    pub islands: Vec<Polygon>,
 }
 
 impl Outline {
-    /// Read an outline file (`pocket --polygon`'s formats).
+    /// Read an outline file (`pocket --polygon`'s formats: one boundary and its islands).
     pub fn read(path: &Path, what: &str) -> Result<Outline, String> {
-        let points = crate::shared::outline::read_single(path, what)?;
-        let polygon = Polygon::new(points).map_err(|e| format!("{}: {}", path.display(), e.message(Param::label)))?;
-        Ok(Outline { path: path.to_owned(), polygon })
+        let (points, island_points) = crate::shared::outline::read_pocket(path, what)?;
+        let shown = |e: Error| e.message(Param::label);
+        let polygon = Polygon::new(points).map_err(|e| format!("{}: {}", path.display(), shown(e)))?;
+        let islands = island_points
+            .into_iter()
+            .enumerate()
+            .map(|(k, v)| Polygon::new(v).map_err(|e| format!("{}: island {}: {}", path.display(), k + 1, shown(e))))
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(Outline { path: path.to_owned(), polygon, islands })
     }
 }
 
@@ -110,8 +117,11 @@ impl LoadedProgram {
 #[derive(Clone)]
 pub struct VerifyInput {
     pub program: Arc<Program>,
+    /// The stock and part outlines, each with its islands.
     pub stock: Polygon,
+    pub stock_islands: Vec<Polygon>,
     pub part: Option<Polygon>,
+    pub part_islands: Vec<Polygon>,
     pub stock_top_mm: f64,
     pub tool: Tool,
     pub machine: Option<Machine>,
@@ -123,7 +133,9 @@ impl VerifyInput {
     pub fn request(&self) -> VerifyRequest<'_> {
         let mut req = VerifyRequest::new(&self.stock, self.tool.clone());
         req.stock_top_mm = self.stock_top_mm;
+        req.stock_islands = &self.stock_islands;
         req.part = self.part.as_ref();
+        req.part_islands = &self.part_islands;
         req.spindle_power_w = self.machine.as_ref().and_then(|m| m.spindle_power);
         req.spindle_torque_nm = self.machine.as_ref().and_then(|m| m.spindle_torque);
         req.machine = self.machine.clone();
@@ -134,18 +146,19 @@ impl VerifyInput {
 }
 
 impl ProgramSettings {
-    /// The stock polygon: the outline file or the box.
-    fn stock(&self, file: Option<&Outline>) -> Result<Polygon, String> {
+    /// The stock polygon and its islands: the outline file or the box (no islands).
+    fn stock(&self, file: Option<&Outline>) -> Result<(Polygon, Vec<Polygon>), String> {
         if self.stock_from_file {
             return file
-                .map(|o| o.polygon.clone())
+                .map(|o| (o.polygon.clone(), o.islands.clone()))
                 .ok_or_else(|| "open a stock outline, or choose the stock box".into());
         }
         let [x0, y0, x1, y1] = self.stock_box;
         if !(self.stock_box.iter().all(|v| v.is_finite()) && x0 < x1 && y0 < y1) {
             return Err("stock box: x min must be below x max and y min below y max".into());
         }
-        Polygon::new(vec![p2(x0, y0), p2(x1, y0), p2(x1, y1), p2(x0, y1)]).map_err(|e| e.message(Param::label))
+        let polygon = Polygon::new(vec![p2(x0, y0), p2(x1, y0), p2(x1, y1), p2(x0, y1)]);
+        Ok((polygon.map_err(|e| e.message(Param::label))?, Vec::new()))
     }
 
     /// The verification input of `program` with these settings.
@@ -161,10 +174,13 @@ impl ProgramSettings {
         }
         let coefficients = Library::builtin().get(&self.material).map_err(|e| e.message(Param::label))?.coefficients;
         let machine = self.machine.as_deref().map(Machine::preset).transpose().map_err(|e| e.message(Param::label))?;
+        let (stock, stock_islands) = self.stock(stock)?;
         Ok(VerifyInput {
             program,
-            stock: self.stock(stock)?,
+            stock,
+            stock_islands,
             part: part.map(|o| o.polygon.clone()),
+            part_islands: part.map(|o| o.islands.clone()).unwrap_or_default(),
             stock_top_mm: self.stock_top_mm,
             tool: Tool { radius_mm: d / 2.0, teeth: self.teeth, helix_rad: self.helix_deg.to_radians(), coefficients },
             machine,
@@ -177,8 +193,11 @@ impl ProgramSettings {
 pub struct Verified {
     pub report: VerifyReport,
     pub program: Arc<Program>,
+    /// The stock and part outlines, each with its islands.
     pub stock: Polygon,
+    pub stock_islands: Vec<Polygon>,
     pub part: Option<Polygon>,
+    pub part_islands: Vec<Polygon>,
     /// Each move's polyline in the plane (arcs as chords).
     pub polylines: Vec<Vec<[f64; 2]>>,
     /// Each move's start time on the machine (s), and the end of the last one.
@@ -217,7 +236,9 @@ impl Verified {
             report,
             program: input.program.clone(),
             stock: input.stock.clone(),
+            stock_islands: input.stock_islands.clone(),
             part: input.part.clone(),
+            part_islands: input.part_islands.clone(),
             polylines,
             starts_s,
             total_s: t,

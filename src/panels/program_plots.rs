@@ -127,8 +127,14 @@ fn path_only(
         .legend(egui_plot::Legend::default())
         .show(ui, |plot| {
             plot.line(outline("stock", &v.stock, STOCK));
+            for i in &v.stock_islands {
+                plot.line(outline("stock", i, STOCK));
+            }
             if let Some(p) = &v.part {
                 plot.line(outline("part", p, PART));
+                for i in &v.part_islands {
+                    plot.line(outline("part", i, PART));
+                }
             }
             if let Some(c) = cursor {
                 plot.points(Points::new("tool position", vec![c]).color(CURSOR).radius(5.0));

@@ -18,7 +18,7 @@
 //! move and conservative before it (the evaluator reads the plane, not the sloped bottom).
 
 use crate::engagement::evaluator::{EngagementProfile, Evaluation, EvaluatorOptions};
-use crate::engagement::refine::{MAX_REFINED_POSITIONS, refined_profile};
+use crate::engagement::refine::{MAX_REFINED_POSITIONS, refined_profile_with_islands};
 use crate::engagement::{AIR_ENGAGEMENT_RAD, sample_owners, sample_weights};
 use crate::error::Error;
 use crate::geom::{Polygon, Segment};
@@ -61,6 +61,8 @@ pub struct Bands<'a> {
     /// [`Bands::evaluate`]); `usize::MAX`: none.
     alias_from: Vec<usize>,
     stock: &'a Polygon,
+    /// Islands of the stock: inside its outline, not material (never cut).
+    islands: &'a [Polygon],
     opts: EvaluatorOptions,
     /// Per move and band (by band index): its samples.
     pub samples: Vec<Vec<(usize, Vec<MoveSample>)>>,
@@ -98,10 +100,18 @@ pub fn levels(moves: &[Move], top: f64) -> Vec<f64> {
 }
 
 impl<'a> Bands<'a> {
-    /// Evaluate every band: `moves` over `stock` (top at `top`), the evaluator's options
-    /// `opts`. Error when a band's path has more positions than the evaluator takes, or when
-    /// there are more than [`MAX_BANDS`] heights of moves in the plane.
-    pub fn evaluate(moves: &[Move], stock: &'a Polygon, top: f64, opts: &EvaluatorOptions) -> Result<Bands<'a>, Error> {
+    /// Evaluate every band: `moves` over `stock` less its `islands` (polygons inside it, apart
+    /// from its edges and from each other: material that stays, as the pocket planner's
+    /// evaluator takes them), top at `top`, the evaluator's options `opts`. Error when a band's
+    /// path has more positions than the evaluator takes, or when there are more than
+    /// [`MAX_BANDS`] heights of moves in the plane.
+    pub fn evaluate(
+        moves: &[Move],
+        stock: &'a Polygon,
+        islands: &'a [Polygon],
+        top: f64,
+        opts: &EvaluatorOptions,
+    ) -> Result<Bands<'a>, Error> {
         let levels = levels(moves, top);
         if levels.len() > MAX_BANDS + 1 {
             return Err(Error::geometry(
@@ -118,6 +128,7 @@ impl<'a> Bands<'a> {
             evals: Vec::with_capacity(nb),
             alias_from: Vec::with_capacity(nb),
             stock,
+            islands,
             opts: *opts,
             samples: vec![Vec::new(); moves.len()],
         };
@@ -145,9 +156,11 @@ impl<'a> Bands<'a> {
                 bands.evals.push(None);
                 continue;
             }
-            let profile = refined_profile(stock, &[], &segs, opts)?;
+            let profile = refined_profile_with_islands(stock, islands, &[], &segs, opts)?;
             bands.record(b, &idx, &starts, &segs, &profile);
-            bands.evals.push(Some(Evaluation::new(stock, &[], &segs, opts, MAX_REFINED_POSITIONS)?));
+            bands
+                .evals
+                .push(Some(Evaluation::new(stock, &[], &segs, opts, MAX_REFINED_POSITIONS)?.with_islands(islands)));
             bands.band_moves.push(idx);
             bands.band_starts.push(starts);
         }
@@ -276,8 +289,9 @@ impl<'a> Bands<'a> {
         let before: Vec<Segment> = list.iter().take_while(|&&j| j < k).map(|&j| moves[j].segment).collect();
         let at = moves[k].segment.end();
         let point = [Segment::Line { start: at, end: at }];
-        let profile = crate::engagement::engagement_profile(self.stock, &before, &point, &self.opts)?;
-        Ok(profile.max_angle())
+        // the one position of a path of length 0, as the evaluator's profile takes it
+        let eval = Evaluation::new(self.stock, &before, &point, &self.opts, 1.0)?.with_islands(self.islands);
+        Ok(eval.sample(0.0).angle_rad)
     }
 
     /// Whether any sample of move `k` in band `b` engages material (more than 1°).

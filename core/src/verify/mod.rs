@@ -41,8 +41,15 @@ pub struct VerifyRequest<'a> {
     /// The stock outline in the plane and the height of its top (mm).
     pub stock: &'a Polygon,
     pub stock_top_mm: f64,
+    /// Islands of the stock: polygons inside its outline, apart from its edges and from each
+    /// other, that are not material to cut (bosses that stay), as the pocket planner's
+    /// evaluator takes them.
+    pub stock_islands: &'a [Polygon],
     /// The finished outline the tool must stay inside (its walls); `None`: not checked.
     pub part: Option<&'a Polygon>,
+    /// Islands of the part (inside its outline, apart from its edges and from each other):
+    /// material that stays, whose walls the tool must not cut either.
+    pub part_islands: &'a [Polygon],
     /// The tool and its force coefficients.
     pub tool: Tool,
     /// Machine for the time and the reached feed (`None`: the programmed feed everywhere),
@@ -68,14 +75,17 @@ pub const DEFAULT_GOUGE_TOLERANCE_MM: f64 = 0.01;
 pub const DEFAULT_FULL_WIDTH_DEPTH_RATIO: f64 = 0.5;
 
 impl<'a> VerifyRequest<'a> {
-    /// `stock` (top at 0) and `tool` with every other field at its default: no part, the ideal
-    /// machine, no spindle limits, the program's `S`, [`DEFAULT_SPACING_MM`], full-width cuts
-    /// up to [`DEFAULT_FULL_WIDTH_DEPTH_RATIO`] × D, [`DEFAULT_GOUGE_TOLERANCE_MM`].
+    /// `stock` (top at 0) and `tool` with every other field at its default: no islands, no
+    /// part, the ideal machine, no spindle limits, the program's `S`, [`DEFAULT_SPACING_MM`],
+    /// full-width cuts up to [`DEFAULT_FULL_WIDTH_DEPTH_RATIO`] × D,
+    /// [`DEFAULT_GOUGE_TOLERANCE_MM`].
     pub fn new(stock: &'a Polygon, tool: Tool) -> VerifyRequest<'a> {
         VerifyRequest {
             stock,
             stock_top_mm: 0.0,
+            stock_islands: &[],
             part: None,
+            part_islands: &[],
             full_width_depth_mm: DEFAULT_FULL_WIDTH_DEPTH_RATIO * 2.0 * tool.radius_mm,
             tool,
             machine: None,
@@ -212,7 +222,24 @@ fn check(req: &VerifyRequest<'_>) -> Result<(), Error> {
             return Err(Error::geometry(what, v, "a finite number ≥ 0"));
         }
     }
+    islands("stock", req.stock, req.stock_islands)?;
+    match req.part {
+        Some(part) => islands("part", part, req.part_islands)?,
+        None if !req.part_islands.is_empty() => {
+            return Err(Error::geometry("part", "islands without a part outline", "islands inside a part outline"));
+        }
+        None => {}
+    }
     Ok(())
+}
+
+/// The islands of the outline `what` (`stock` or `part`) checked as a pocket's
+/// ([`crate::pocket::islands::validate_islands`]); the error names the outline.
+fn islands(what: &'static str, outline: &Polygon, islands: &[Polygon]) -> Result<(), Error> {
+    crate::pocket::islands::validate_islands(outline, islands).map_err(|e| match e {
+        Error::Param { value, allowed, .. } => Error::Geometry { what, value, allowed },
+        e => e,
+    })
 }
 
 /// Measured per move before the summary.
@@ -259,7 +286,7 @@ pub fn verify_with_progress(
     go_on(0)?;
     let timing = timing::time_moves(&moves, req.machine.as_ref())?;
     let opts = EvaluatorOptions::new(req.tool.radius_mm, req.spacing_mm);
-    let bands = Bands::evaluate(&moves, req.stock, req.stock_top_mm, &opts)?;
+    let bands = Bands::evaluate(&moves, req.stock, req.stock_islands, req.stock_top_mm, &opts)?;
     go_on(band_steps)?;
     let loads = load::Loads::default();
     let measured_count = std::sync::atomic::AtomicUsize::new(0);

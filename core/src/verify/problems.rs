@@ -6,7 +6,8 @@
 //! - `rapid-through-stock`: a rapid (`G0`) below the stock top that engages material (more than
 //!   1°) anywhere along it, or descends into it. Value: its largest engagement (degrees).
 //! - `gouge`: with a part outline, a move below the stock top whose tool reaches past the
-//!   part's walls by more than the gouge tolerance. Value: how far (mm).
+//!   part's walls — its outline's or an island's — by more than the gouge tolerance. Value: how
+//!   far (mm).
 //! - `deep-full-width-cut`: a feed move that engages 179° or more over a height deeper than
 //!   the limit. Value: that height (mm), with the limit.
 //! - `power`, `torque`: a feed move whose peak spindle power (W) or torque (N·m) exceeds the
@@ -93,7 +94,7 @@ pub fn find(
 ) -> (Vec<Problem>, Vec<(ProblemKind, usize)>) {
     let top = req.stock_top_mm;
     let air = AIR_ENGAGEMENT_RAD.to_degrees();
-    let grid = req.part.map(|p| part_grid(p, req.tool.radius_mm));
+    let part = req.part.map(|outline| Part::new(outline, req.part_islands, req.tool.radius_mm));
     let mut out: Vec<Problem> = Vec::new();
     for (k, (mv, f)) in moves.iter().zip(facts).enumerate() {
         if bottom(mv) >= top {
@@ -163,9 +164,9 @@ pub fn find(
                 push(ProblemKind::Torque, f.h_at, f.torque_nm, "N·m", Some(limit));
             }
         }
-        if let (Some(part), Some(grid)) = (req.part, grid.as_ref())
+        if let Some(part) = part.as_ref()
             && len_xy > MIN_PLANE_MM
-            && let Some((depth, at)) = gouge(&mv.segment, part, grid, req.tool.radius_mm)
+            && let Some((depth, at)) = gouge(&mv.segment, part, req.tool.radius_mm)
             && depth > req.gouge_tolerance_mm
         {
             push(ProblemKind::Gouge, At { line, x: at.x, y: at.y, z: bottom(mv) }, depth, "mm", None);
@@ -211,27 +212,52 @@ pub fn counts(list: &[Problem]) -> Vec<(ProblemKind, usize)> {
     out
 }
 
-/// The part's edges binned on cells of the tool diameter.
-fn part_grid(part: &Polygon, r: f64) -> EdgeGrid {
-    let v = part.vertices();
-    let edges: Vec<(P2, P2)> = (0..v.len()).map(|i| (v[i], v[(i + 1) % v.len()])).collect();
-    let (lo, hi) = EdgeGrid::bounds(v);
-    EdgeGrid::new(edges, lo, hi, (2.0 * r).max((hi.x - lo.x).max(hi.y - lo.y) / 512.0))
+/// The part: its outline and islands (the loops of its walls), their edges binned on cells of
+/// the tool diameter.
+struct Part<'a> {
+    loops: Vec<&'a Polygon>,
+    grid: EdgeGrid,
+}
+
+impl<'a> Part<'a> {
+    fn new(outline: &'a Polygon, islands: &'a [Polygon], r: f64) -> Part<'a> {
+        let loops: Vec<&Polygon> = std::iter::once(outline).chain(islands).collect();
+        let mut edges: Vec<(P2, P2)> = Vec::new();
+        for l in &loops {
+            let v = l.vertices();
+            edges.extend((0..v.len()).map(|i| (v[i], v[(i + 1) % v.len()])));
+        }
+        let (lo, hi) = EdgeGrid::bounds(outline.vertices());
+        let grid = EdgeGrid::new(edges, lo, hi, (2.0 * r).max((hi.x - lo.x).max(hi.y - lo.y) / 512.0));
+        Part { loops, grid }
+    }
+
+    /// Whether `p` is inside the outline and outside every island.
+    fn contains(&self, p: P2) -> bool {
+        self.loops[0].contains(p) && !self.loops[1..].iter().any(|i| i.contains(p))
+    }
+
+    /// Distance from `p` to the nearest wall (of the outline or an island).
+    fn wall_distance(&self, p: P2) -> f64 {
+        self.loops.iter().map(|l| l.boundary_distance(p)).fold(f64::INFINITY, f64::min)
+    }
 }
 
 /// How far the tool (radius `r`) moving along `seg` reaches past the walls of `part`, and
 /// where (None where it stays inside by more than its radius). A move whose centre leaves the
-/// part reaches past it by r plus how far outside the centre goes (at 33 points along it).
-fn gouge(seg: &Segment, part: &Polygon, grid: &EdgeGrid, r: f64) -> Option<(f64, P2)> {
+/// part (out of its outline or into an island) reaches past it by r plus how far outside the
+/// centre goes (at 33 points along it).
+fn gouge(seg: &Segment, part: &Part<'_>, r: f64) -> Option<(f64, P2)> {
     let points: Vec<P2> = (0..=32).map(|i| seg.point(f64::from(i) / 32.0)).collect();
     if let Some((p, d)) = points
         .iter()
         .filter(|p| !part.contains(**p))
-        .map(|p| (*p, part.boundary_distance(*p)))
+        .map(|p| (*p, part.wall_distance(*p)))
         .max_by(|a, b| a.1.total_cmp(&b.1))
     {
         return Some((r + d, p));
     }
+    let grid = &part.grid;
     let (lo, hi) = match *seg {
         Segment::Arc { center, radius, .. } => (center - p2(radius, radius), center + p2(radius, radius)),
         _ => EdgeGrid::bounds(&points),
@@ -249,6 +275,6 @@ fn gouge(seg: &Segment, part: &Polygon, grid: &EdgeGrid, r: f64) -> Option<(f64,
     if d >= r {
         return None;
     }
-    let at = points.iter().copied().min_by(|a, b| part.boundary_distance(*a).total_cmp(&part.boundary_distance(*b)));
+    let at = points.iter().copied().min_by(|a, b| part.wall_distance(*a).total_cmp(&part.wall_distance(*b)));
     at.map(|p| (r - d, p))
 }

@@ -131,3 +131,55 @@ fn progress_reports_growing_steps_and_a_stop_cancels() {
     }
     assert_eq!(*calls.lock().unwrap(), 2, "no report after the stop");
 }
+
+/// A slot along y = 12 (r 5) past a square island y 15..25 of the stock: where the island is
+/// beside the tool, the front half of the periphery above y = 15 (sin θ > 0.6: θ from
+/// asin 0.6 to 90°) is not material, so the engagement there is 180° − (90° − asin 0.6) =
+/// 126.87°; without the island it is a full slot. With the island in the part too, the tool
+/// reaches 2 mm into it: a gouge of 2 mm on that line, none below the tolerance.
+#[test]
+fn stock_and_part_islands() {
+    let stock = square(0.0, -20.0, 60.0, 40.0);
+    let islands = [square(25.0, 15.0, 35.0, 25.0)];
+    let text = "G21\nS2000 M3\nG0 X-10 Y12 Z5\nG0 Z-2\nG1 X70 F800\nG0 Z5\nM30\n";
+    let mut req = request(&stock);
+    let full = run(text, &req);
+    assert!(full.moves[1].engagement_deg > 179.0, "{:?}", full.moves[1]);
+    req.stock_islands = &islands;
+    let with = run(text, &req);
+    let beside = 180.0 - (90.0 - 0.6f64.asin().to_degrees());
+    // the slot's samples with the island beside the tool (centre within 0.5 mm of x = 30) read
+    // `beside`
+    let (program, opts) = (read_program(text, "t.ngc").unwrap(), EvaluatorOptions::new(5.0, DEFAULT_SPACING_MM));
+    let moves: Vec<Move> = program.moves.iter().map(|m| m.mv).collect();
+    let bands = Bands::evaluate(&moves, &stock, &islands, 0.0, &opts).unwrap();
+    let at_30 = bands.samples[1]
+        .iter()
+        .flat_map(|(_, l)| l.iter())
+        .filter(|s| (s.x_mm - 30.0).abs() <= 0.5)
+        .map(|s| s.angle_rad.to_degrees())
+        .collect::<Vec<_>>();
+    assert!(!at_30.is_empty() && at_30.iter().all(|a| (a - beside).abs() < 0.5), "{at_30:?} vs {beside}");
+    assert!(with.moves[1].engagement_deg > 179.0, "full slot before and after the island");
+    // the part's island (its outline wider than the path's reach): a gouge of 2 mm (the tool
+    // reaches y = 17, the island starts at 15)
+    let part = square(-20.0, -30.0, 80.0, 50.0);
+    req.part = Some(&part);
+    req.part_islands = &islands;
+    let r = run(text, &req);
+    let g: Vec<&Problem> = r.problems.iter().filter(|p| p.kind == ProblemKind::Gouge).collect();
+    assert_eq!(g.len(), 1, "{:?}", r.problems);
+    assert!((g[0].value - 2.0).abs() < 1e-9 && g[0].line == 5, "{:?}", g[0]);
+    req.gouge_tolerance_mm = 2.5;
+    assert!(run(text, &req).problems.iter().all(|p| p.kind != ProblemKind::Gouge));
+    // islands crossing the outline, and part islands without a part: errors naming them
+    let crossing = [square(55.0, 0.0, 65.0, 10.0)];
+    let mut bad = request(&stock);
+    bad.stock_islands = &crossing;
+    let e = verify(&program, &bad).unwrap_err().to_string();
+    assert!(e.contains("stock") && e.contains("island 1"), "{e}");
+    let mut bad = request(&stock);
+    bad.part_islands = &islands;
+    let e = verify(&program, &bad).unwrap_err().to_string();
+    assert!(e.contains("part"), "{e}");
+}

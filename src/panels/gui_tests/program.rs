@@ -73,13 +73,15 @@ fn verify_and_wait(h: &mut Harness<'_, App>) {
     h.run();
 }
 
-/// The core's report for `program` over `outline` as stock and part, with the CLI's defaults
-/// (D 10 mm, 4 teeth, 35° helix, the default material, the ideal machine), computed here.
+/// The core's report for `program` over `outline` (with its islands) as stock and part, with
+/// the CLI's defaults (D 10 mm, 4 teeth, 35° helix, the default material, the ideal machine),
+/// computed here.
 fn core_report(program: &Path, outline: &Path) -> VerifyReport {
     let text = std::fs::read_to_string(program).unwrap();
     let prog = read_program(&text, "program").unwrap();
-    let points = crate::shared::outline::read_single(outline, "outline").unwrap();
+    let (points, islands) = crate::shared::outline::read_pocket(outline, "outline").unwrap();
     let polygon = Polygon::new(points).unwrap();
+    let islands: Vec<Polygon> = islands.into_iter().map(|v| Polygon::new(v).unwrap()).collect();
     let tool = Tool {
         radius_mm: 5.0,
         teeth: 4,
@@ -87,8 +89,33 @@ fn core_report(program: &Path, outline: &Path) -> VerifyReport {
         coefficients: Library::builtin().get(DEFAULT_MATERIAL).unwrap().coefficients,
     };
     let mut req = VerifyRequest::new(&polygon, tool);
+    req.stock_islands = &islands;
     req.part = Some(&polygon);
+    req.part_islands = &islands;
     verify(&prog, &req).unwrap()
+}
+
+#[test]
+fn program_tab_opens_outlines_with_islands_and_reports_a_gouge_of_an_island() {
+    // the pocket with the Ø20 boss about (25, 30) (a 128-gon with a vertex at (15, 30)); a
+    // pass along x = 10.05 brings the tool (r 5) 4.95 mm from that vertex: 0.05 mm into the
+    // boss
+    let dir = tempfile::tempdir().unwrap();
+    let program = dir.path().join("boss.ngc");
+    let text = "G21 G90 G17\nS10000 M3\nG0 X10.05 Y5 Z5\nG1 Z-2 F300\nG1 Y55 F600\nG0 Z5\nM5\nM30\n";
+    std::fs::write(&program, text).unwrap();
+    let outline = freecad("islands.txt");
+    let mut h = program_harness(program.clone(), Some(outline.clone()), true);
+    assert_eq!(h.state().program.stock.as_ref().map(|o| o.islands.len()), Some(2), "{:?}", h.state().status);
+    assert_eq!(h.state().program.part.as_ref().map(|o| o.islands.len()), Some(2));
+    verify_and_wait(&mut h);
+    let want = core_report(&program, &outline);
+    let got = h.state().program.slots[0].verified().expect("a verified program").report.clone();
+    assert_eq!(got, want, "the tab verifies what the core verifies for the same input");
+    let gouge = got.problems.iter().find(|p| p.kind == trochoplan_core::verify::ProblemKind::Gouge);
+    let gouge = gouge.expect("a gouge of the boss");
+    assert!((gouge.value - 0.05).abs() < 1e-6 && gouge.line == 5, "{gouge:?}");
+    assert!(shows(&h, &format!("Problems: {}", got.problems.len())));
 }
 
 #[test]
