@@ -154,3 +154,21 @@ fn rest_from_is_refused_by_name() {
         assert!(!dir.path().join(format!("{label}.ngc")).exists(), "{label}: a program was written");
     }
 }
+
+/// In levels, a rest pass is measured on every level over the stock the larger tool left
+/// there, not over the uncut pocket: the same path over the same stock, so each level's peak
+/// is the plan's own `max_engagement_deg`.
+#[test]
+fn rest_machining_in_levels_is_measured_over_the_stock_the_larger_tool_left() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let args =
+        ["--tool-diameter", "6", "--step-over", STEP_OVER, "--rest-from", "16", "--depth", "6", "--max-step-down", "3"];
+    let rest = export(dir.path(), "rest-levels.ngc", RECT, &args);
+    let peak = rest.json["max_engagement_deg"].as_f64().expect("peak");
+    let levels = rest.json["levels"].as_array().expect("levels");
+    assert_eq!(levels.len(), 2, "6 mm in levels of at most 3 mm");
+    for l in levels {
+        assert_eq!(l["max_engagement_deg"].as_f64(), Some(peak), "{l}");
+    }
+    assert_eq!(rest.json["levels_max_engagement_deg"].as_f64(), Some(peak));
+}

@@ -96,8 +96,8 @@ pub(super) fn pocket_summary(plan: &PocketPlan) -> [String; 2] {
             };
             [
                 format!(
-                    "pocket of {} vertices, slot {}, ramp {:.2} deg, passes {:.2} mm",
-                    p.path.polygon.vertices().len(),
+                    "{}, slot {}, ramp {:.2} deg, passes {:.2} mm",
+                    outline_words(&p.path),
                     p.options.direction.name(),
                     ramp_deg,
                     p.ramp_pass_depth_mm
@@ -116,6 +116,17 @@ pub(super) fn pocket_summary(plan: &PocketPlan) -> [String; 2] {
 
 /// The summary of an adaptively cleared pocket (its program: per part a helical entry from
 /// above the stock top, no plunge, then its moves at depth; a retract and rapid between parts).
+/// The outline in a program's header: "pocket of 4 vertices", and its islands if it has any
+/// ("pocket of 4 vertices and 2 islands").
+fn outline_words(path: &PocketPath) -> String {
+    let vertices = path.polygon.vertices().len();
+    match path.islands.len() {
+        0 => format!("pocket of {vertices} vertices"),
+        1 => format!("pocket of {vertices} vertices and 1 island"),
+        n => format!("pocket of {vertices} vertices and {n} islands"),
+    }
+}
+
 fn adaptive_summary(plan: &AdaptivePlan) -> [String; 2] {
     let way_in = match plan.parts[0].entry {
         Entry::Helix(h) => format!("helix R {:.3} mm {:.1} deg", h.radius, plan.options.ramp_deg),
@@ -125,8 +136,8 @@ fn adaptive_summary(plan: &AdaptivePlan) -> [String; 2] {
     };
     [
         format!(
-            "pocket of {} vertices, adaptive {}, {} part(s), {}",
-            plan.path.polygon.vertices().len(),
+            "{}, adaptive {}, {} part(s), {}",
+            outline_words(&plan.path),
             plan.options.direction.name(),
             plan.parts.len(),
             way_in
@@ -147,8 +158,8 @@ fn ring_summary(plan: &RingPlan) -> [String; 2] {
     let feed_links = plan.links.iter().filter(|l| l.kind == LinkKind::Feed).count();
     [
         format!(
-            "pocket of {} vertices, method {}, {} rings, {} corner trochoids",
-            plan.path.polygon.vertices().len(),
+            "{}, method {}, {} rings, {} corner trochoids",
+            outline_words(&plan.path),
             plan.method.name(),
             plan.rings.len(),
             plan.trochoid_corners
@@ -173,8 +184,8 @@ pub fn perforative_program(plan: &PerforativePlan, cut: CutSetup, opts: &NcOptio
 fn perforative_summary(plan: &PerforativePlan) -> [String; 2] {
     [
         format!(
-            "pocket of {} vertices, method medial-axis, {} circles, {} part(s)",
-            plan.path.polygon.vertices().len(),
+            "{}, method medial-axis, {} circles, {} part(s)",
+            outline_words(&plan.path),
             plan.circles.len(),
             plan.parts
         ),

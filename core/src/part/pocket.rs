@@ -11,7 +11,6 @@ use crate::geom::Polygon;
 use crate::job::Direction;
 use crate::machine::Machine;
 use crate::nc::{PathLevel, Placement};
-use crate::path::levels::Levels;
 use crate::pocket::{
     self, AdaptiveOptions, PaceOptions, PocketPlan, PocketRequest, PocketStrategy,
     levels::{check_floor_pass, check_step_down, with_floor_pass},
@@ -164,7 +163,7 @@ pub(super) fn plan_pocket(t: toml::Table, tool: &super::Tool, cx: &PocketContext
     let floor_pass = p.floor_pass.then_some(p.depth);
     let levels = match (p.max_step_down, p.floor_stock) {
         (None, None) => None,
-        (m, s) => Some(Box::new(in_levels(&plan, rest.is_some(), cut_depth, m, s.unwrap_or(0.0), floor_pass)?)),
+        (m, s) => Some(Box::new(in_levels(&plan, cut_depth, m, s.unwrap_or(0.0), floor_pass)?)),
     };
     Ok(Planned::Pocket { plan: Box::new(plan), depth_mm: p.depth, levels, rest, outline: p.outline })
 }
@@ -186,40 +185,22 @@ fn cut_depth(depth: f64, floor_stock: Option<f64>) -> Result<f64, Error> {
 }
 
 /// The pocket `plan` cut `cut_depth` deep in levels of at most `max_step_down` (one level
-/// without). Each level is measured over its own stock ([`plan_levels`]); a rest plan's
-/// stock is what the larger tool left on every level, on which its own plan was measured:
-/// equal levels of the same path over the same stock measure the same, so its peak is the
-/// plan's. `floor_pass`: the full depth of a last level through the floor stock
-/// ([`with_floor_pass`]).
+/// without), each level measured over its own stock ([`plan_levels`]; a rest plan's stock is
+/// what the larger tool left). `floor_pass`: the full depth of a last level through the floor
+/// stock ([`with_floor_pass`]).
 fn in_levels(
     plan: &PocketPlan,
-    rest: bool,
     cut_depth: f64,
     max_step_down: Option<f64>,
     floor_stock_mm: f64,
     floor_pass: Option<f64>,
 ) -> Result<PocketInLevels, Error> {
-    let (mut levels, peak_rad): (Vec<PathLevel>, f64) = if rest {
-        match max_step_down {
-            Some(m) => check_step_down(cut_depth, m)?,
-            None => check_step_down(cut_depth, cut_depth)?,
-        }
-        let l = Levels::equal(cut_depth, max_step_down);
-        let levels = (0..l.count()).map(|k| PathLevel { top_mm: l.top_mm(k), depth_mm: -l.z_mm[k] }).collect();
-        (levels, plan.max_engagement_rad())
-    } else {
-        let mut l = plan_levels(plan.path(), cut_depth, max_step_down)?;
-        if let Some(depth) = floor_pass {
-            l = with_floor_pass(l, plan.path(), depth)?;
-        }
-        let peak = l.peak_rad();
-        (l.per_level.iter().map(|v| PathLevel { top_mm: v.top_mm, depth_mm: -v.z_mm }).collect(), peak)
-    };
-    if let (true, Some(depth)) = (rest, floor_pass) {
-        let top_mm = levels.last().map_or(0.0, |l| -l.depth_mm);
-        levels.push(PathLevel { top_mm, depth_mm: depth });
+    let mut l = plan_levels(plan.path(), cut_depth, max_step_down)?;
+    if let Some(depth) = floor_pass {
+        l = with_floor_pass(l, plan.path(), depth)?;
     }
-    Ok(PocketInLevels { max_step_down_mm: max_step_down, floor_stock_mm, levels, peak_rad })
+    let levels = l.per_level.iter().map(|v| PathLevel { top_mm: v.top_mm, depth_mm: -v.z_mm }).collect();
+    Ok(PocketInLevels { max_step_down_mm: max_step_down, floor_stock_mm, levels, peak_rad: l.peak_rad() })
 }
 
 /// `rest-from-operation = k` of this operation (tool diameter `d`, outline `polygon` with

@@ -154,7 +154,7 @@ pub fn plan_levels(path: &PocketPath, depth_mm: f64, max_step_down_mm: Option<f6
         .into_par_iter()
         .map(|k| {
             let (top_mm, z_mm) = (levels.top_mm(k), levels.z_mm[k]);
-            let stock = Stock { polygon: &path.polygon, precut: &[], islands: &path.islands };
+            let stock = Stock { polygon: &path.polygon, precut: &path.precut, islands: &path.islands };
             let measurement = measure(&path.toolpath, stock, &opts)?;
             Ok(PocketLevel { top_mm, z_mm, axial_depth_mm: top_mm - z_mm, measurement, floor_pass: false })
         })
@@ -206,7 +206,7 @@ pub fn with_floor_pass(mut lv: PocketLevels, path: &PocketPath, depth_mm: f64) -
         ));
     }
     let opts = EvaluatorOptions::new(path.settings.tool_radius, path.settings.spacing);
-    let stock = Stock { polygon: &path.polygon, precut: &[], islands: &path.islands };
+    let stock = Stock { polygon: &path.polygon, precut: &path.precut, islands: &path.islands };
     let measurement = measure(&path.toolpath, stock, &opts)?;
     lv.per_level.push(PocketLevel { top_mm, z_mm, axial_depth_mm: top_mm - z_mm, measurement, floor_pass: true });
     Ok(lv)

@@ -34,6 +34,10 @@ pub struct PocketPath {
     /// before pacing (every move at the programmed feed).
     #[serde(default)]
     pub pace: Option<super::pace::Pace>,
+    /// Cuts made before this path (a larger tool's sweep before rest machining): stock already
+    /// cleared, for every measure of the path (its levels too). Empty: the whole pocket is stock.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub precut: Vec<Segment>,
 }
 
 impl PocketPath {
@@ -68,7 +72,7 @@ impl PocketPath {
         toolpath: Toolpath,
         depth_mm: f64,
     ) -> Result<PocketPath, Error> {
-        let (polygon, islands) = (stock.polygon, stock.islands);
+        let (polygon, islands, precut) = (stock.polygon, stock.islands, stock.precut.to_vec());
         let opts = EvaluatorOptions::new(settings.tool_radius, settings.spacing);
         let measurement = measure(&toolpath, stock, &opts)?;
         let link_length_mm = toolpath.length_of(&[MoveKind::Link]);
@@ -84,6 +88,7 @@ impl PocketPath {
             entry_length_mm,
             time_s,
             pace: None,
+            precut,
         })
     }
 
@@ -108,7 +113,7 @@ impl PocketPath {
     }
 
     /// The same path mirrored in x for the pocket `polygon` (the original of a mirrored plan):
-    /// moves, entries, the profile's positions and the maxima's places.
+    /// moves, entries, earlier cuts, the profile's positions and the maxima's places.
     pub fn mirrored(mut self, polygon: &Polygon) -> PocketPath {
         self.polygon = polygon.clone();
         self.islands = self.islands.iter().filter_map(|i| crate::geom::mirror::mirrored_polygon(i).ok()).collect();
@@ -117,6 +122,9 @@ impl PocketPath {
         }
         for e in &mut self.toolpath.entries {
             *e = e.mirrored();
+        }
+        for s in &mut self.precut {
+            *s = s.mirrored_x();
         }
         for smp in &mut self.measurement.profile.samples {
             smp.x_mm = -smp.x_mm;
