@@ -167,8 +167,8 @@ positions() {
 	TOOL_DIAMETER="418 210"                   # parameters: tool diameter number box
 	MACHINE_PICKER="97 694" HOBBY_ROUTER="61 744" # parameters: the machine preset
 	PIN_PAPER_SET="594 43"                    # Compare tab
-	RUN_SWEEP="1084 43"                       # Sweep tab
-	OPTIMISE="517 369"                        # Machine & optimise tab
+	RUN_SWEEP="570 66"                        # Sweep tab
+	OPTIMISE="517 360"                        # Machine & optimise tab
 	ACCEPTANCE_TABLE="154 43"                 # Corner tab
 	POCKET_MEDIAL_AXIS="633 65" POCKET_STEP_OVER="129 89" # Pocket tab
 	POCKET_MACHINE="927 112" POCKET_VMC="890 186"
