@@ -166,7 +166,7 @@ shot() { # name [seconds to wait first]
 positions() {
 	TOOL_DIAMETER="418 210"                   # parameters: tool diameter number box
 	MACHINE_PICKER="97 694" HOBBY_ROUTER="61 744" # parameters: the machine preset
-	PIN_PAPER_SET="594 43"                    # Compare tab
+	PIN_PAPER_SET="650 43"                    # Compare tab
 	RUN_SWEEP="570 66"                        # Sweep tab
 	OPTIMISE="517 360"                        # Machine & optimise tab
 	ACCEPTANCE_TABLE="154 43"                 # Corner tab
@@ -174,8 +174,11 @@ positions() {
 	POCKET_MACHINE="927 112" POCKET_VMC="890 186"
 	FIRST_PROBLEM="870 447" SIDE_BY_SIDE="232 89" # Program tab
 	case ${W}x$H in
-	1366x768) ;;
-	1920x1080) ;;
+	1366x768)
+		RUN_SWEEP="615 63"    # the sweep's row wraps before "values"
+		HOBBY_ROUTER="61 621" ;; # the machine list opens upwards
+	1920x1080)
+		RUN_SWEEP="1201 43" ;; # the sweep's settings fit in one row
 	esac
 }
 FREECAD=$ROOT/tests/data/freecad
@@ -234,12 +237,16 @@ take() { # name: the window is open on its defaults
 		shot corner-table 40 ;;
 	pocket)
 		tab Pocket
-		click $POCKET_MEDIAL_AXIS
+		sleep 4 # the first plan shown: no "still being made" line moves the rows
 		type_into $POCKET_STEP_OVER 1.527
+		sleep 4
+		click $POCKET_MEDIAL_AXIS
 		shot pocket 15 ;;
 	pocket-adaptive)
 		tab Pocket # adaptive clearing is chosen by default
+		sleep 4
 		type_into $POCKET_STEP_OVER 1.527
+		sleep 4
 		click $POCKET_MACHINE
 		click $POCKET_VMC # the real time of the program on the vmc preset
 		shot pocket-adaptive 10 ;;
