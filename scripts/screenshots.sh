@@ -178,7 +178,9 @@ positions() {
 		RUN_SWEEP="615 63"    # the sweep's row wraps before "values"
 		HOBBY_ROUTER="61 621" ;; # the machine list opens upwards
 	1920x1080)
-		RUN_SWEEP="1201 43" ;; # the sweep's settings fit in one row
+		RUN_SWEEP="1201 43"  # the sweep's settings fit in one row
+		OPTIMISE="1379 294"      # so do the optimiser's limits
+		FIRST_PROBLEM="1240 447" ;;
 	esac
 }
 FREECAD=$ROOT/tests/data/freecad
