@@ -11,12 +11,12 @@
 # they are killed on exit.
 #
 # The app runs with TROCHOPLAN_FRAME_LOG=1 (one line per frame on stderr: the window's time,
-# frame and UI times, whether a value is dragged, whether the Pocket and Corner tabs wait for
-# a plan, the optimiser's progress) and an empty HOME, so no stored window state is restored.
-# Printed: the frames while dragging (or while the optimiser runs), their median, p90 and max
-# frame time and UI-code time; for pocket and corner the replan latency, from the last frame
-# of the drag to the first frame that shows the new plan; for optimise the time to the
-# result and how long the bar stood at 99 % or more before it.
+# frame and UI times, whether a value is dragged, whether the slot, Pocket and Corner tabs
+# wait for a plan, the optimiser's progress) and an empty HOME, so no stored window state is
+# restored. Printed: the frames while dragging (or while the optimiser runs), their median,
+# p90 and max frame time and UI-code time; the replan latency, from the last frame of the drag
+# to the first frame that shows the new plan; for optimise the time to the result and how
+# long the bar stood at 99 % or more before it.
 # Needs Xvfb and xdotool (apt-get install -y xvfb xdotool). Tabs are reached by their
 # shortcuts (Ctrl+1 … in the tab bar's order, read from src/app/tabs.rs); the positions inside
 # the tabs belong to the layout at 1400×900 (as in scripts/screenshots.sh).
@@ -76,17 +76,16 @@ done
 sleep 4
 xdotool windowfocus "$WID"
 
-drag() { # x y: drag sideways from (x, y), twice across 140 px and back
+drag() { # x y: drag sideways from (x, y), twice across 140 px and back, then 70 px (the last
+    # value differs from the first: it needs a new plan)
     local x0=$1 y=$2 x
     xdotool mousemove "$x0" "$y"
     sleep .3
     xdotool mousedown 1
     sleep .3
-    for _ in 1 2; do
-        for x in $(seq 0 3 140) $(seq 140 -3 0); do
-            xdotool mousemove $((x0 + x)) "$y"
-            sleep 0.03
-        done
+    for x in $(seq 0 3 140) $(seq 140 -3 0) $(seq 0 3 140) $(seq 140 -3 0) $(seq 0 3 70); do
+        xdotool mousemove $((x0 + x)) "$y"
+        sleep 0.03
     done
     sleep .3
     xdotool mouseup 1
@@ -146,7 +145,7 @@ n=$(wc -l <"$WORK/drag")
 ((n > 0)) || { echo "frame-time: no frame logged while dragging" >&2; exit 1; }
 extra=
 case $MODE in
-slot) extra="; $(grep 'dragging=true' "$WORK/frames.log" | grep -c 'replanned=true' || true) slot replans" ;;
+slot) extra="; $(grep 'dragging=true' "$WORK/frames.log" | grep -c 'replanned=true' || true) slot replans; new slot shown $(latency slot_pending) s after the last edit" ;;
 pocket) extra="; new pocket shown $(latency pocket_pending) s after the last edit" ;;
 corner) extra="; new corner shown $(latency corner_pending) s after the last edit" ;;
 esac

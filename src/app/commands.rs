@@ -171,8 +171,8 @@ impl App {
         }
     }
 
-    /// What runs in the background, for the frame log: whether the Pocket and Corner tabs wait
-    /// for a plan, and the optimiser's progress (0–1, `done` once its result is shown, `-`
+    /// What runs in the background, for the frame log: whether the slot, the Pocket and the
+    /// Corner tab wait for a plan, and the optimiser's progress (0–1, `done` once its result is shown, `-`
     /// when it was not started or was cancelled).
     pub(super) fn background_log(&self) -> String {
         let optimise = match &self.optimise {
@@ -180,7 +180,12 @@ impl App {
             Some(r) if r.result.is_some() => "done".to_owned(),
             _ => "-".to_owned(),
         };
-        format!("pocket_pending={} corner_pending={} optimise={optimise}", self.pocket.pending(), self.corner.pending())
+        format!(
+            "slot_pending={} pocket_pending={} corner_pending={} optimise={optimise}",
+            self.planner.pending(),
+            self.pocket.pending(),
+            self.corner.pending()
+        )
     }
 
     /// The tab shortcuts ([`tab_shortcut`]) and [`TEACH_SHORTCUT`]: they work while a text field
