@@ -205,7 +205,7 @@ fn force_limit_binds_and_matches_a_grid() {
 
 /// The progress bar moves until the outcome is ready: the shares arrive in order, 1 comes once
 /// and last, and the run does not linger near the end. Measured before the budget covered the
-/// refinement and the front (Table 1 job, ideal machine): 0.9 was reached at 47 % of the run
+/// refinement and the front (Table 1 job, ideal machine): 0.9 was reached 53 % into the run
 /// and 1 at 73 %; now both come with the last few evaluations. The bounds leave room for a
 /// loaded machine: the front's points are some 40 % of the evaluations, so the last tenth of
 /// the count cannot take 30 % of the time unless the budget misses work again.
