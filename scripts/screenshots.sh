@@ -229,7 +229,7 @@ take() { # name: the window is open on its defaults
 		click $HOBBY_ROUTER
 		tab "Machine & optimise"
 		click $OPTIMISE
-		shot machine 40 ;;
+		shot machine 25 ;;
 	corner)
 		tab Corner # opens on one 90° corner with variable circles
 		shot corner 3 ;;
