@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Retake the pictures in screenshots/ from the real window. Every picture, every size (a few
-# minutes, unattended, from a clean checkout after `cargo build --release`):
+# Retake the pictures in screenshots/ from the real window. Every picture, every size (about
+# 8 minutes on a loaded 2-core machine, unattended, from a clean checkout after
+# `cargo build --release`):
 #
 #   bash scripts/screenshots.sh --all-sizes target/release/trochoplan
 #
@@ -29,7 +30,7 @@
 # before committing it. SCREENSHOT_LOG=FILE keeps the window's own output (default: discarded).
 set -euo pipefail
 
-usage() { sed -n 7p "$0" | sed 's/^# */usage: /' >&2; exit 2; }
+usage() { sed -n 7p "$0" | sed 's/^# Usage: */usage: /' >&2; exit 2; }
 SIZES=()
 while [ $# -gt 0 ]; do
 	case $1 in
