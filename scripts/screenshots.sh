@@ -30,7 +30,7 @@
 # before committing it. SCREENSHOT_LOG=FILE keeps the window's own output (default: discarded).
 set -euo pipefail
 
-usage() { sed -n 7p "$0" | sed 's/^# Usage: */usage: /' >&2; exit 2; }
+usage() { grep -m1 '^# Usage: ' "$0" | sed 's/^# Usage: */usage: /' >&2; exit 2; }
 SIZES=()
 while [ $# -gt 0 ]; do
 	case $1 in
