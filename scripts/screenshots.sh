@@ -1,34 +1,84 @@
 #!/usr/bin/env bash
-# Retake the pictures in screenshots/ from the real window.
+# Retake the pictures in screenshots/ from the real window. Every picture, every size (about
+# 8 minutes on a loaded 2-core machine, unattended, from a clean checkout after
+# `cargo build --release`):
 #
-#   bash scripts/screenshots.sh BINARY [NAME...]
+#   bash scripts/screenshots.sh --all-sizes target/release/trochoplan
 #
-# BINARY is a built `trochoplan` (e.g. target/release/trochoplan); NAMEs pick pictures
-# (main invalid-value compare sweep forces teaching export machine corner corner-table
-# pocket pocket-adaptive program program-compare; default: all fourteen). Each picture starts
-# the window afresh with an
-# empty HOME / XDG_DATA_HOME / XDG_CONFIG_HOME, so no saved job or layout is restored, drives it
-# with xdotool and writes screenshots/NAME.png at 1400×900. The Program tab's pictures open
-# their programs at start through the TROCHOPLAN_PROGRAM_* variables (docs/verify.md).
+# Usage: scripts/screenshots.sh [--size WxH]... [--all-sizes] BINARY [NAME...]
+#
+# BINARY is a built `trochoplan`. --size picks the window size (repeatable; default 1400x900,
+# the window's own size); --all-sizes is --size 1400x900 --size 1366x768 --size 1920x1080.
+# Pictures at 1400x900 go to screenshots/NAME.png, at any other size to
+# screenshots/WxH/NAME.png. NAMEs pick pictures: the tab pictures, one per tab of the tab bar
+# (main = Plots, compare, sweep, forces, export, corner, pocket, machine = Machine & optimise,
+# program; a tab added later is pictured as the first word of its label in lower case), and
+# the extra ones (invalid-value teaching corner-table pocket-adaptive program-compare).
+# Default: at 1400x900 all of them, at other sizes the tab pictures.
+#
+# Each picture starts the window afresh with an empty HOME / XDG_DATA_HOME / XDG_CONFIG_HOME,
+# so no saved job or layout is restored, resizes it to the size asked for, reaches its tab by
+# the tab's keyboard shortcut (Ctrl+1 … in the tab bar's order, read from src/app/tabs.rs)
+# and drives the rest with xdotool. The Program tab's pictures open their programs at start
+# through the TROCHOPLAN_PROGRAM_* variables (docs/verify.md).
 #
 # Needs Xvfb, xdotool, ImageMagick (`import`) and x11-utils installed
-# (apt-get install -y xvfb xdotool imagemagick x11-utils). The click positions below belong to
-# the window's layout at 1400×900: after a layout change, take one picture, check where the
-# controls are and adjust them. Look at every picture before committing it.
-# SCREENSHOT_LOG=FILE keeps the window's own output (default: discarded).
+# (apt-get install -y xvfb xdotool imagemagick x11-utils). The click positions below (the
+# controls inside a tab) belong to the layout: the side panels keep their width and the tab's
+# contents start at its top left, so most of them hold at every size; after a layout change,
+# take one picture, check where the controls are and adjust them. Look at every picture
+# before committing it. SCREENSHOT_LOG=FILE keeps the window's own output (default: discarded).
 set -euo pipefail
 
-BIN=$(realpath "${1:?usage: scripts/screenshots.sh BINARY [NAME...]}")
+usage() { grep -m1 '^# Usage: ' "$0" | sed 's/^# Usage: */usage: /' >&2; exit 2; }
+SIZES=()
+while [ $# -gt 0 ]; do
+	case $1 in
+	--size)
+		[[ ${2:-} =~ ^[0-9]+x[0-9]+$ ]] || usage
+		SIZES+=("$2")
+		shift 2 ;;
+	--all-sizes)
+		SIZES+=(1400x900 1366x768 1920x1080)
+		shift ;;
+	-*) usage ;;
+	*) break ;;
+	esac
+done
+[ $# -ge 1 ] || usage
+BIN=$(realpath "$1")
 shift
-OUT=$(cd "$(dirname "$0")/.." && pwd)/screenshots
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
 NAMES=("$@")
-[ ${#NAMES[@]} -gt 0 ] || NAMES=(main invalid-value compare sweep forces teaching export
-	machine corner corner-table pocket pocket-adaptive program program-compare)
+[ ${#SIZES[@]} -gt 0 ] || SIZES=(1400x900)
 
-# A display of our own: the first free number from 57 on (SCREENSHOT_DISPLAY picks another start).
+# The tab bar's labels in order, as src/app/tabs.rs lists them; a tab's shortcut is Ctrl with
+# its place (1 … 9, then 0).
+mapfile -t TAB_LABELS < <(grep -o 'label: "[^"]*"' "$ROOT/src/app/tabs.rs" | sed 's/label: "\(.*\)"/\1/')
+[ ${#TAB_LABELS[@]} -gt 0 ] || { echo "no tab labels found in src/app/tabs.rs" >&2; exit 1; }
+tab_picture() { # label → the name of its picture
+	case $1 in
+	Plots) echo main ;;
+	"Export NC") echo export ;;
+	"Machine & optimise") echo machine ;;
+	*) echo "$1" | awk '{print tolower($1)}' ;;
+	esac
+}
+TAB_PICTURES=()
+for label in "${TAB_LABELS[@]}"; do TAB_PICTURES+=("$(tab_picture "$label")"); done
+EXTRA_PICTURES=(invalid-value teaching corner-table pocket-adaptive program-compare)
+
+# A display of our own, as large as the largest size: the first free number from 57 on
+# (SCREENSHOT_DISPLAY picks another start).
+SCREEN_W=0 SCREEN_H=0
+for s in "${SIZES[@]}"; do
+	w=${s%x*} h=${s#*x}
+	((w > SCREEN_W)) && SCREEN_W=$w
+	((h > SCREEN_H)) && SCREEN_H=$h
+done
 N=${SCREENSHOT_DISPLAY:-57}
 while [ -e "/tmp/.X11-unix/X$N" ] || [ -e "/tmp/.X$N-lock" ]; do N=$((N + 1)); done
-Xvfb ":$N" -screen 0 1400x900x24 -nolisten tcp >/dev/null 2>&1 &
+Xvfb ":$N" -screen 0 "${SCREEN_W}x${SCREEN_H}x24" -nolisten tcp >/dev/null 2>&1 &
 XVFB=$!
 export DISPLAY=:$N
 unset WAYLAND_DISPLAY
@@ -49,6 +99,7 @@ for _ in $(seq 50); do
 done
 sleep .5
 
+W= H= OUT=
 start_app() { # [VAR=value...]: the window's extra environment
 	APP_HOME=$(mktemp -d)
 	HOME=$APP_HOME XDG_DATA_HOME=$APP_HOME/data XDG_CONFIG_HOME=$APP_HOME/config \
@@ -61,7 +112,13 @@ start_app() { # [VAR=value...]: the window's extra environment
 		sleep .2
 	done
 	[ -n "$WID" ] || { echo "no TrochoPlan window" >&2; exit 1; }
-	xdotool windowfocus "$WID" # no window manager: give it the keyboard
+	for _ in $(seq 100); do # mapped: it can take the keyboard
+		xwininfo -id "$WID" 2>/dev/null | grep -q IsViewable && break
+		sleep .1
+	done
+	xdotool windowmove "$WID" 0 0
+	xdotool windowsize "$WID" "$W" "$H" # no window manager: the window takes the size asked
+	xdotool windowfocus "$WID"          # and the keyboard
 	sleep 3
 }
 stop_app() {
@@ -85,26 +142,49 @@ type_into() { # x y text: click a number box, replace its text, Enter
 	xdotool key Return
 	sleep .8
 }
+tab() { # label: show that tab by its shortcut
+	local i
+	for i in "${!TAB_LABELS[@]}"; do
+		if [ "${TAB_LABELS[$i]}" = "$1" ]; then
+			((i < 10)) || { echo "tab $1 has no shortcut" >&2; exit 1; }
+			xdotool key "ctrl+$(((i + 1) % 10))"
+			sleep 1
+			return
+		fi
+	done
+	echo "no tab labelled $1 in src/app/tabs.rs" >&2
+	exit 1
+}
 shot() { # name [seconds to wait first]
-	xdotool mousemove 1390 890 # park the pointer: no hover crosshair in the plots
+	xdotool mousemove $((W - 8)) $((H - 8)) # park the pointer: no hover crosshair in the plots
 	sleep "${2:-1.5}"
 	import -window "$WID" "$OUT/$1.png"
-	echo "screenshots/$1.png"
+	echo "${OUT#"$ROOT"/}/$1.png"
 }
 
-# Positions in the 1400×900 window.
-TAB_COMPARE="205 12" TAB_SWEEP="256 12" TAB_FORCES="307 12" TAB_EXPORT="370 12"
-TAB_CORNER="429 12" TAB_POCKET="480 12" TAB_MACHINE="569 12" TEACH="669 12"
-TOOL_DIAMETER="337 161"                  # slot tab: tool diameter number box
-MACHINE_PICKER="97 598" HOBBY_ROUTER="61 648"
-PIN_PAPER_SET="594 43"                   # Compare tab
-RUN_SWEEP="1084 43"                      # Sweep tab
-OPTIMISE="458 354"                       # Machine & optimise tab
-ACCEPTANCE_TABLE="154 43"                # Corner tab
-POCKET_MEDIAL_AXIS="633 65" POCKET_STEP_OVER="129 89" # Pocket tab
-POCKET_MACHINE="927 112" POCKET_VMC="890 186"
-FIRST_PROBLEM="870 447" SIDE_BY_SIDE="232 89" # Program tab
-FREECAD=$(cd "$(dirname "$0")/.." && pwd)/tests/data/freecad
+# Positions of controls inside the tabs (x y in the window; the same at every size unless
+# set per size in `positions`).
+positions() {
+	TOOL_DIAMETER="418 210"                   # parameters: tool diameter number box
+	MACHINE_PICKER="97 694" HOBBY_ROUTER="61 744" # parameters: the machine preset
+	PIN_PAPER_SET="650 43"                    # Compare tab
+	RUN_SWEEP="570 66"                        # Sweep tab
+	OPTIMISE="517 360"                        # Machine & optimise tab
+	ACCEPTANCE_TABLE="154 43"                 # Corner tab
+	POCKET_MEDIAL_AXIS="633 65" POCKET_STEP_OVER="129 89" # Pocket tab
+	POCKET_MACHINE="927 112" POCKET_VMC="890 186"
+	FIRST_PROBLEM="870 447" SIDE_BY_SIDE="232 89" # Program tab
+	case ${W}x$H in
+	1366x768)
+		RUN_SWEEP="615 63"    # the sweep's row wraps before "values"
+		HOBBY_ROUTER="61 621" ;; # the machine list opens upwards
+	1920x1080)
+		RUN_SWEEP="1201 43"  # the sweep's settings fit in one row
+		OPTIMISE="1379 294"      # so do the optimiser's limits
+		FIRST_PROBLEM="1240 447" ;;
+	esac
+}
+FREECAD=$ROOT/tests/data/freecad
 
 # The Program tab's window: FreeCAD's program for the L pocket (A; with `ours`, our own
 # adaptive clearing of the same outline as A and FreeCAD's as B), the outline as stock and part,
@@ -122,74 +202,98 @@ start_program() { # [ours]
 		TROCHOPLAN_PROGRAM_MACHINE=vmc
 }
 
-take() {
+take() { # name: the window is open on its defaults
 	case $1 in
 	main) shot main ;;
 	invalid-value)
 		type_into $TOOL_DIAMETER 25 # wider than half the 20 mm slot: invalid
 		shot invalid-value ;;
 	compare)
-		click $TAB_COMPARE
+		tab Compare
 		click $PIN_PAPER_SET
 		shot compare 3 ;;
 	sweep)
-		click $TAB_SWEEP
+		tab Sweep
 		click $RUN_SWEEP
 		shot sweep 8 ;;
 	forces)
-		click $TAB_FORCES
+		tab Forces
 		shot forces ;;
 	teaching)
-		click $TEACH
+		xdotool key ctrl+t
 		shot teaching ;;
 	export)
-		click $TAB_EXPORT
+		tab "Export NC"
 		shot export 3 ;;
 	machine)
 		click $MACHINE_PICKER
 		click $HOBBY_ROUTER
-		click $TAB_MACHINE
+		tab "Machine & optimise"
 		click $OPTIMISE
-		shot machine 40 ;;
+		shot machine 25 ;;
 	corner)
-		click $TAB_CORNER # opens on one 90° corner with variable circles
+		tab Corner # opens on one 90° corner with variable circles
 		shot corner 3 ;;
 	corner-table)
-		click $TAB_CORNER
+		tab Corner
 		click $ACCEPTANCE_TABLE
 		shot corner-table 40 ;;
 	pocket)
-		click $TAB_POCKET
-		click $POCKET_MEDIAL_AXIS
+		tab Pocket
+		sleep 4 # the first plan shown: no "still being made" line moves the rows
 		type_into $POCKET_STEP_OVER 1.527
+		sleep 4
+		click $POCKET_MEDIAL_AXIS
 		shot pocket 15 ;;
 	pocket-adaptive)
-		click $TAB_POCKET # adaptive clearing is chosen by default
+		tab Pocket # adaptive clearing is chosen by default
+		sleep 4
 		type_into $POCKET_STEP_OVER 1.527
+		sleep 4
 		click $POCKET_MACHINE
 		click $POCKET_VMC # the real time of the program on the vmc preset
 		shot pocket-adaptive 10 ;;
 	*)
+		local i
+		for i in "${!TAB_PICTURES[@]}"; do
+			if [ "${TAB_PICTURES[$i]}" = "$1" ]; then # a tab pictured as it opens
+				tab "${TAB_LABELS[$i]}"
+				shot "$1" 3
+				return
+			fi
+		done
 		echo "unknown picture $1" >&2
 		exit 2 ;;
 	esac
 }
 
-for name in "${NAMES[@]}"; do
-	case $name in
-	program)
-		start_program
-		sleep 12 # verified in the background
-		click $FIRST_PROBLEM
-		shot program ;;
-	program-compare)
-		start_program ours
-		sleep 25
-		click $SIDE_BY_SIDE
-		shot program-compare ;;
-	*)
-		start_app
-		take "$name" ;;
-	esac
-	stop_app
+for size in "${SIZES[@]}"; do
+	W=${size%x*} H=${size#*x}
+	OUT=$ROOT/screenshots
+	[ "$size" = 1400x900 ] || OUT=$ROOT/screenshots/$size
+	mkdir -p "$OUT"
+	positions
+	names=("${NAMES[@]}")
+	if [ ${#names[@]} -eq 0 ]; then
+		names=("${TAB_PICTURES[@]}")
+		[ "$size" != 1400x900 ] || names+=("${EXTRA_PICTURES[@]}")
+	fi
+	for name in "${names[@]}"; do
+		case $name in
+		program)
+			start_program
+			sleep 12 # verified in the background
+			click $FIRST_PROBLEM
+			shot program ;;
+		program-compare)
+			start_program ours
+			sleep 25
+			click $SIDE_BY_SIDE
+			shot program-compare ;;
+		*)
+			start_app
+			take "$name" ;;
+		esac
+		stop_app
+	done
 done

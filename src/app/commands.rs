@@ -6,6 +6,7 @@ use super::panels::corner_nc::NcPreview;
 use super::panels::optimise::OptimiseRun;
 use super::panels::path_field::PathPurpose;
 use super::panels::sweep::SweepRun;
+use super::tabs::{TABS, TabSpec};
 use super::{App, PinnedJob, Variant};
 use crate::shared::files::write_atomic;
 use eframe::egui;
@@ -63,6 +64,35 @@ pub enum Command {
     OpenOperation(usize),
     /// Ask for a file and write the part's program.
     ExportPart,
+    /// Show the tab at this index of the tab bar ([`TABS`]).
+    ShowTab(usize),
+    /// Switch the teaching explanations under the plots on or off.
+    ToggleTeach,
+}
+
+/// The digit keys of the tab shortcuts, Ctrl+1 … Ctrl+9 then Ctrl+0, in the tab bar's order.
+const TAB_KEYS: [egui::Key; 10] = {
+    use egui::Key::{Num0, Num1, Num2, Num3, Num4, Num5, Num6, Num7, Num8, Num9};
+    [Num1, Num2, Num3, Num4, Num5, Num6, Num7, Num8, Num9, Num0]
+};
+
+/// The shortcut that switches the teaching explanations on or off.
+pub const TEACH_SHORTCUT: egui::KeyboardShortcut = egui::KeyboardShortcut::new(egui::Modifiers::COMMAND, egui::Key::T);
+
+/// The shortcut that shows the tab at `index` of the tab bar, if it has one.
+pub fn tab_shortcut(index: usize) -> Option<egui::KeyboardShortcut> {
+    TAB_KEYS.get(index).map(|&key| egui::KeyboardShortcut::new(egui::Modifiers::COMMAND, key))
+}
+
+impl TabSpec {
+    /// The tab's tooltip with its keyboard shortcut (tab bar and View menu).
+    pub fn hover_text(&self, ctx: &egui::Context) -> String {
+        let index = TABS.iter().position(|t| t.tab == self.tab);
+        match index.and_then(tab_shortcut) {
+            Some(s) => format!("{} ({})", self.tooltip, ctx.format_shortcut(&s)),
+            None => self.tooltip.to_owned(),
+        }
+    }
 }
 
 impl App {
@@ -141,6 +171,44 @@ impl App {
             Command::OpenPart => self.ask_part(),
             Command::OpenOperation(k) => self.open_operation(k),
             Command::ExportPart => self.export_part(),
+            Command::ToggleTeach => self.state.teach = !self.state.teach,
+            Command::ShowTab(i) => {
+                if let Some(t) = TABS.get(i) {
+                    self.view.tab = t.tab;
+                }
+            }
+        }
+    }
+
+    /// What runs in the background, for the frame log: whether the slot, the Pocket and the
+    /// Corner tab wait for a plan, and the optimiser's progress (0–1, `done` once its result is shown, `-`
+    /// when it was not started or was cancelled).
+    pub(super) fn background_log(&self) -> String {
+        let optimise = match &self.optimise {
+            Some(r) if r.running() => format!("{:.3}", r.fraction()),
+            Some(r) if r.result.is_some() => "done".to_owned(),
+            _ => "-".to_owned(),
+        };
+        format!(
+            "slot_pending={} pocket_pending={} corner_pending={} optimise={optimise}",
+            self.planner.pending(),
+            self.pocket.pending(),
+            self.corner.pending()
+        )
+    }
+
+    /// The tab shortcuts ([`tab_shortcut`]) and [`TEACH_SHORTCUT`]: they work while a text field
+    /// has the keyboard too, as no text field takes Ctrl with a digit or T.
+    pub(super) fn tab_shortcuts(&self, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
+        if ui.input_mut(|input| input.consume_shortcut(&TEACH_SHORTCUT)) {
+            cmds.push(Command::ToggleTeach);
+        }
+        for i in 0..TABS.len() {
+            if let Some(s) = tab_shortcut(i)
+                && ui.input_mut(|input| input.consume_shortcut(&s))
+            {
+                cmds.push(Command::ShowTab(i));
+            }
         }
     }
 

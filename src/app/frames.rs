@@ -11,7 +11,8 @@ pub(super) struct FrameStats {
     pub(super) cpu_s: Option<f32>,
     /// Time spent in [`super::App::show`] this frame (ms).
     pub(super) ui_ms: f32,
-    log: bool,
+    /// Every frame is printed to stderr.
+    pub(super) log: bool,
 }
 
 impl FrameStats {
@@ -20,15 +21,17 @@ impl FrameStats {
         FrameStats { log, ..FrameStats::default() }
     }
 
-    /// Record the previous frame's time; log it if asked.
-    pub(super) fn record(&mut self, now: f64, dragging: bool, replanned: bool, plan_ms: f64) {
+    /// Record the previous frame's time; log it if asked, with the window's time `now` (s) and
+    /// `background`, what runs in the background.
+    pub(super) fn record(&mut self, now: f64, dragging: bool, replanned: bool, plan_ms: f64, background: &str) {
         if let Some(s) = self.cpu_s {
             let ms = s * 1e3;
             self.recent.push_back((now, ms));
             if self.log {
                 eprintln!(
-                    "frame_ms={ms:.3} ui_ms={:.3} plan_ms={plan_ms:.3} dragging={dragging} replanned={replanned}",
-                    self.ui_ms
+                    "t={now:.3} frame_ms={ms:.3} ui_ms={:.3} plan_ms={plan_ms:.3} dragging={dragging} \
+                     replanned={replanned} {}",
+                    self.ui_ms, background
                 );
             }
         }

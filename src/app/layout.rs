@@ -38,7 +38,7 @@ impl App {
             ui.menu_button("Edit", |ui| self.undo_buttons(ui, cmds, ["Undo  (Ctrl+Z)", "Redo  (Ctrl+Shift+Z)"]));
             ui.menu_button("View", |ui| {
                 for t in &TABS {
-                    ui.radio_value(&mut self.view.tab, t.tab, t.label).on_hover_text(t.tooltip);
+                    ui.radio_value(&mut self.view.tab, t.tab, t.label).on_hover_text(t.hover_text(ui.ctx()));
                 }
                 ui.separator();
                 ui.checkbox(&mut self.state.teach, "Teaching: explanations under the plots");
@@ -46,11 +46,12 @@ impl App {
             });
             ui.separator();
             for t in &TABS {
-                ui.selectable_value(&mut self.view.tab, t.tab, t.label).on_hover_text(t.tooltip);
+                ui.selectable_value(&mut self.view.tab, t.tab, t.label).on_hover_text(t.hover_text(ui.ctx()));
             }
             ui.separator();
+            let teach = ui.ctx().format_shortcut(&super::commands::TEACH_SHORTCUT);
             ui.toggle_value(&mut self.state.teach, "Teach")
-                .on_hover_text("Explanations with formula and source equation under each plot");
+                .on_hover_text(format!("Explanations with formula and source equation under each plot ({teach})"));
         });
     }
 

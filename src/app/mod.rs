@@ -218,6 +218,7 @@ impl App {
         let t0 = Instant::now();
         let mut cmds: Vec<Command> = Vec::new();
         self.shortcuts(ui, &mut cmds);
+        self.tab_shortcuts(ui, &mut cmds);
         if let Some(run) = &mut self.sweep {
             run.poll();
         }
@@ -256,7 +257,8 @@ impl App {
         self.update_title(ui.ctx());
         self.frames.ui_ms = t0.elapsed().as_secs_f32() * 1e3;
         let dragging = ui.ctx().dragged_id().is_some();
-        self.frames.record(ui.input(|i| i.time), dragging, replanned, self.planner.plan_ms);
+        let background = if self.frames.log { self.background_log() } else { String::new() };
+        self.frames.record(ui.input(|i| i.time), dragging, replanned, self.planner.plan_ms, &background);
     }
 
     /// Open the programs, outlines and machine named by [`PROGRAM_ENV`], if program A is named:

@@ -116,6 +116,11 @@ impl OptimiseRun {
         self.result.is_none() && !self.cancelled && self.worker.running()
     }
 
+    /// The share of the search done (0–1), as the progress bar shows it.
+    pub fn fraction(&self) -> f32 {
+        self.worker.progress().map_or(0.0, |p| p.fraction)
+    }
+
     pub fn cancel(&mut self) {
         self.worker.cancel();
         self.cancelled = true;
@@ -218,7 +223,7 @@ pub fn show(
             if ui.button("Cancel").clicked() {
                 cmd = Some(Command::CancelOptimise);
             }
-            let f = run.map_or(0.0, |r| r.worker.progress().map_or(0.0, |p| p.fraction));
+            let f = run.map_or(0.0, OptimiseRun::fraction);
             ui.add(egui::ProgressBar::new(f).desired_width(160.0).show_percentage());
         } else if ui
             .button("Optimise")

@@ -31,6 +31,11 @@
 //! by a coarse grid and alternating golden-section refinement. Every score is an exact plan
 //! of the job, so the result is feasible by construction; the grid-search test checks it
 //! against an independent grid over the same space.
+//!
+//! Progress ([`Control::progress`], `progress`) counts the scores and the front's points against
+//! a budget fixed at the start and reaches 1 only when the outcome is ready.
+
+mod progress;
 
 use crate::analysis::{self, PreviousEdge, Wall, wall_profile};
 use crate::error::{Error, Param, num};
@@ -38,6 +43,7 @@ use crate::geom::golden_min;
 use crate::job::{Job, PathKind, ValidJob, limits::MIN_FZ};
 use crate::path::{Cycle, SlotPath};
 use crate::plan::{Metrics, force_series, plan_valid, slot_real_time};
+use progress::{Progress, golden_evaluations};
 use rayon::prelude::*;
 
 /// Range of r_e searched: the paper's studied range (Table 2, 0.5–1.2).
@@ -251,7 +257,7 @@ pub struct Outcome {
 
 /// Progress reports and cancelling for long runs (the GUI's worker).
 pub struct Control<'a> {
-    /// Called with the fraction done (0–1).
+    /// Called with the fraction done (0–1), in order; 1 only once the outcome is ready.
     pub progress: &'a (dyn Fn(f64) + Sync),
     /// Polled between shapes: true stops the run.
     pub cancelled: &'a (dyn Fn() -> bool + Sync),
@@ -615,12 +621,20 @@ pub fn optimize(base: &Job, limits: &Limits, control: &Control) -> Result<Option
             grid(D_OVER_S_RANGE, Q_POINTS).into_iter().map(move |q| Shape { path: PathKind::LinearElliptical, r_e, q })
         }))
         .collect();
-    let total = shapes.len() + 3;
-    let done = std::sync::atomic::AtomicUsize::new(0);
-    let tick = || {
-        let d = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-        (control.progress)((d as f64 / total as f64).min(1.0));
+    // The progress budget: each coarse shape; per refined path its golden sections (the
+    // widest bracket), the linear-elliptical path's end q and the final score; two points of
+    // the front per shape.
+    let dr = (ASPECT_RATIO_RANGE.1 - ASPECT_RATIO_RANGE.0) / (R_E_POINTS - 1) as f64;
+    let dq = (D_OVER_S_RANGE.1 - D_OVER_S_RANGE.0) / (Q_POINTS - 1) as f64;
+    let refine_budget = |path: PathKind| match path {
+        PathKind::LinearElliptical => golden_evaluations(2.0 * dr, 1e-2) + golden_evaluations(2.0 * dq, 1e-2) + 2,
+        _ => golden_evaluations(2.0 * dr, 1e-2) + 1,
     };
+    let front_budget = FRONT_STEPS.len() * (shapes.len() + 2);
+    let total =
+        shapes.len() + refine_budget(PathKind::Elliptical) + refine_budget(PathKind::LinearElliptical) + front_budget;
+    let progress = Progress::new(control.progress, total);
+    let tick = || progress.add(1);
     // Coarse stage: every shape, in parallel.
     let coarse: Vec<(Shape, Scored)> = shapes
         .par_iter()
@@ -639,28 +653,14 @@ pub fn optimize(base: &Job, limits: &Limits, control: &Control) -> Result<Option
     // Refinement per path type with free shape variables, from its best coarse shape; the
     // two path types side by side.
     let refine = |path: PathKind| -> Result<Option<(Shape, Scored)>, Error> {
-        let Some((start, _)) = coarse
-            .iter()
-            .filter(|(s, sc)| s.path == path && mrr_of(sc).is_finite())
-            .max_by(|a, b| mrr_of(&a.1).total_cmp(&mrr_of(&b.1)))
-        else {
-            return Ok(None);
-        };
-        let mut shape = *start;
-        let neg = |sh: Shape| -> f64 { search.score(sh, STEP_TOL).map_or(f64::INFINITY, |s| -mrr_of(&s)) };
-        let dr = (ASPECT_RATIO_RANGE.1 - ASPECT_RATIO_RANGE.0) / (R_E_POINTS - 1) as f64;
-        let (lo, hi) = ((shape.r_e - dr).max(ASPECT_RATIO_RANGE.0), (shape.r_e + dr).min(ASPECT_RATIO_RANGE.1));
-        shape.r_e = golden_min(lo, hi, 1e-2, |r_e| neg(Shape { r_e, ..shape })).0;
-        tick();
-        if path == PathKind::LinearElliptical && !(control.cancelled)() {
-            let dq = (D_OVER_S_RANGE.1 - D_OVER_S_RANGE.0) / (Q_POINTS - 1) as f64;
-            let (lo, hi) = ((shape.q - dq).max(D_OVER_S_RANGE.0), (shape.q + dq).min(D_OVER_S_RANGE.1));
-            // The end q = lo is often the best: compare it with the interior optimum.
-            let (q, f) = golden_min(lo, hi, 1e-2, |q| neg(Shape { q, ..shape }));
-            shape.q = if neg(Shape { q: lo, ..shape }) <= f { lo } else { q };
+        let used = std::sync::atomic::AtomicUsize::new(0);
+        let refined = refine_path(path, &coarse, &search, control, &|| {
+            used.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
             tick();
-        }
-        Ok(Some((shape, search.score(shape, STEP_TOL)?)))
+        });
+        // the budget this path did not need
+        progress.add(refine_budget(path).saturating_sub(used.into_inner()));
+        refined
     };
     let (e, l) = rayon::join(|| refine(PathKind::Elliptical), || refine(PathKind::LinearElliptical));
     if (control.cancelled)() {
@@ -685,17 +685,20 @@ pub fn optimize(base: &Job, limits: &Limits, control: &Control) -> Result<Option
             Scored::Infeasible { .. } => None,
         })
         .flat_map_iter(|(shape, s_max, feed)| {
-            let search = &search;
-            FRONT_STEPS.iter().filter_map(move |&k| match search.at_best_feed(shape, k * s_max, Some(feed)) {
-                Ok(Scored::Feasible(c)) => Some(*c),
-                _ => None,
+            let (search, tick) = (&search, &tick);
+            FRONT_STEPS.iter().filter_map(move |&k| {
+                let scored = search.at_best_feed(shape, k * s_max, Some(feed));
+                tick();
+                match scored {
+                    Ok(Scored::Feasible(c)) => Some(*c),
+                    _ => None,
+                }
             })
         })
         .collect();
     if (control.cancelled)() {
         return Ok(None);
     }
-    (control.progress)(1.0);
     let scored = all.iter().filter_map(|(_, s)| match s {
         Scored::Feasible(c) => Some((**c).clone()),
         Scored::Infeasible { .. } => None,
@@ -703,7 +706,45 @@ pub fn optimize(base: &Job, limits: &Limits, control: &Control) -> Result<Option
     let candidates: Vec<Candidate> = traced.into_iter().chain(scored).collect();
     let front = pareto(&candidates, Candidate::waviness);
     let front_force = pareto(&candidates, |c| c.metrics.force_resultant_max_n);
+    progress.finish();
     Ok(Some(Outcome { best: (**best).clone(), front, front_force, evaluations: search.plans.into_inner() }))
+}
+
+/// Refine the best coarse shape of `path` (`None` if none is feasible): r_e by golden
+/// section, then for the linear-elliptical path q; `tick` after each score.
+fn refine_path(
+    path: PathKind,
+    coarse: &[(Shape, Scored)],
+    search: &Search,
+    control: &Control,
+    tick: &(dyn Fn() + Sync),
+) -> Result<Option<(Shape, Scored)>, Error> {
+    let Some((start, _)) = coarse
+        .iter()
+        .filter(|(s, sc)| s.path == path && mrr_of(sc).is_finite())
+        .max_by(|a, b| mrr_of(&a.1).total_cmp(&mrr_of(&b.1)))
+    else {
+        return Ok(None);
+    };
+    let mut shape = *start;
+    let neg = |sh: Shape| -> f64 {
+        let f = search.score(sh, STEP_TOL).map_or(f64::INFINITY, |s| -mrr_of(&s));
+        tick();
+        f
+    };
+    let dr = (ASPECT_RATIO_RANGE.1 - ASPECT_RATIO_RANGE.0) / (R_E_POINTS - 1) as f64;
+    let (lo, hi) = ((shape.r_e - dr).max(ASPECT_RATIO_RANGE.0), (shape.r_e + dr).min(ASPECT_RATIO_RANGE.1));
+    shape.r_e = golden_min(lo, hi, 1e-2, |r_e| neg(Shape { r_e, ..shape })).0;
+    if path == PathKind::LinearElliptical && !(control.cancelled)() {
+        let dq = (D_OVER_S_RANGE.1 - D_OVER_S_RANGE.0) / (Q_POINTS - 1) as f64;
+        let (lo, hi) = ((shape.q - dq).max(D_OVER_S_RANGE.0), (shape.q + dq).min(D_OVER_S_RANGE.1));
+        // The end q = lo is often the best: compare it with the interior optimum.
+        let (q, f) = golden_min(lo, hi, 1e-2, |q| neg(Shape { q, ..shape }));
+        shape.q = if neg(Shape { q: lo, ..shape }) <= f { lo } else { q };
+    }
+    let scored = search.score(shape, STEP_TOL)?;
+    tick();
+    Ok(Some((shape, scored)))
 }
 
 /// The candidates no other beats on both real MRR (higher) and `cost` (lower), by `cost`.

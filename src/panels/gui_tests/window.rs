@@ -129,3 +129,32 @@ fn a_state_stored_with_the_corner_tabs_pocket_mode_opens_on_the_pocket_tab() {
     State::save(&edited.inputs, &edited.view, &mut again);
     assert_eq!(State::load(&again).expect("stored"), edited);
 }
+
+#[test]
+fn ctrl_and_a_digit_show_the_tab_of_that_place_in_the_tab_bar() {
+    let mut h = harness();
+    // from the last tab backwards, so every press changes the tab shown
+    for (i, t) in tabs::TABS.iter().enumerate().rev() {
+        let key = commands::tab_shortcut(i).expect("a shortcut for every tab").logical_key;
+        h.key_press_modifiers(egui::Modifiers::COMMAND, key);
+        h.run();
+        assert_eq!(h.state().view.tab, t.tab, "shortcut {i}: {}", t.label);
+        let digit = (i + 1) % 10;
+        assert!(t.hover_text(&h.ctx).ends_with(&format!("+{digit})")), "tooltip of {}", t.label);
+    }
+    // a text field with the keyboard does not stop them
+    h.get_by_role_and_label(Role::SpinButton, Param::Step.label()).focus();
+    h.run();
+    assert!(h.ctx.memory(|m| m.focused().is_some()), "a field has the keyboard");
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Num2);
+    h.run();
+    assert_eq!(h.state().view.tab, tabs::TABS[1].tab);
+    // Ctrl+T: the teaching explanations on and off
+    let teach = h.state().state.teach;
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::T);
+    h.run();
+    assert_eq!(h.state().state.teach, !teach);
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::T);
+    h.run();
+    assert_eq!(h.state().state.teach, teach);
+}
