@@ -12,7 +12,8 @@
 # Pictures at 1400x900 go to screenshots/NAME.png, at any other size to
 # screenshots/WxH/NAME.png. NAMEs pick pictures: the tab pictures, one per tab of the tab bar
 # (main = Plots, compare, sweep, forces, export, corner, pocket, machine = Machine & optimise,
-# program; a tab added later is pictured as the first word of its label in lower case), and
+# program, operations = the example part examples/part.toml opened; a tab added later is
+# pictured as the first word of its label in lower case), and
 # the extra ones (invalid-value teaching corner-table pocket-adaptive program-compare).
 # Default: at 1400x900 all of them, at other sizes the tab pictures.
 #
@@ -253,6 +254,14 @@ take() { # name: the window is open on its defaults
 		click $POCKET_MACHINE
 		click $POCKET_VMC # the real time of the program on the vmc preset
 		shot pocket-adaptive 10 ;;
+	operations)
+		xdotool key ctrl+shift+p # Open part…: no portal here, so the window's own path field
+		sleep 1.5
+		xdotool key ctrl+a # the field starts with the working folder
+		xdotool type --delay 20 "$ROOT/examples/part.toml"
+		xdotool key Return
+		tab Operations
+		shot operations 25 ;; # every operation planned on the vmc preset
 	*)
 		local i
 		for i in "${!TAB_PICTURES[@]}"; do

@@ -210,7 +210,8 @@ fn the_example_part_makes_one_program_whose_back_plot_is_each_operation_placed()
     let mut pocket_args = vec!["pocket", "--polygon", outline_s, "--depth", &pocket_depth];
     pocket_args.extend(tool1);
     let (pocket_json, pocket_own) = own("pocket", &pocket_args);
-    let mut rest_args = vec!["pocket", "--polygon", outline_s, "--depth", &pocket_depth, "--rest-from", "10"];
+    let mut rest_args =
+        vec!["pocket", "--polygon", outline_s, "--depth", &pocket_depth, "--rest-from", "10", "--step-over", "1.5"];
     rest_args.extend(tool2);
     let (rest_json, rest_own) = own("rest", &rest_args);
     for (k, own_motions) in [&slot_own, &pocket_own, &rest_own].into_iter().enumerate() {
