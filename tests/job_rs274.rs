@@ -9,12 +9,13 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
+mod job_common;
 #[path = "../core/tests/nc_common/mod.rs"]
 mod nc_common;
 
-use nc_common::{Motion, check_cut, check_path_cut, cut, interpret, motions, same_motion};
+use job_common::{ok, per_operation, rs274_with_tools, trochoplan, xy_body};
+use nc_common::{check_cut, check_path_cut, cut, interpret, motions, same_motion};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 use trochoplan_core::geom::Segment;
 use trochoplan_core::{Job, plan};
 
@@ -24,16 +25,6 @@ const POCKET_DEPTH: f64 = 3.0;
 const CORNER_DEPTH: f64 = 2.0;
 /// LinuxCNC programs are written with 4 decimals: the coordinate quantum (mm).
 const Q: f64 = 1e-4;
-
-fn trochoplan(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_trochoplan")).args(args).output().expect("run trochoplan")
-}
-
-fn ok(args: &[&str]) -> serde_json::Value {
-    let out = trochoplan(args);
-    assert!(out.status.success(), "trochoplan {args:?}: {}", String::from_utf8_lossy(&out.stderr));
-    serde_json::from_slice(&out.stdout).expect("json")
-}
 
 const TOOLS: &str = "[[tool]]\nnumber = 1\ndiameter = 10.0\nteeth = 4\nrpm = 2000.0\nfeed = 600.0\n\n\
                      [[tool]]\nnumber = 2\ndiameter = 6.0\nteeth = 3\nrpm = 4000.0\nfeed = 500.0\n\
@@ -63,36 +54,6 @@ fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
     let f = dir.join(name);
     std::fs::write(&f, text).expect("write");
     f
-}
-
-/// rs274 on `file` with a tool table of tools 1 (D 10) and 2 (D 6); its canonical output.
-fn rs274_with_tools(file: &Path) -> String {
-    nc_common::rs274_with_tools(file, "T1 P1 D10.0 Z0 ;tool 1\nT2 P2 D6.0 Z0 ;tool 2\n")
-}
-
-/// The motions of each operation: from its comment `(operation k: …)` to the next one (the
-/// last to the program end), split by the number of motions before each comment.
-fn per_operation(canon: &str, count: usize) -> Vec<Vec<Motion>> {
-    let all = motions(canon);
-    let mut bounds: Vec<usize> = (1..=count)
-        .map(|k| {
-            let at = canon.find(&format!("COMMENT(\"operation {k}: ")).unwrap_or_else(|| panic!("operation {k}"));
-            motions(&canon[..at]).len()
-        })
-        .collect();
-    bounds.push(all.len());
-    bounds.windows(2).map(|w| all[w[0]..w[1]].to_vec()).collect()
-}
-
-/// `m` from its first to its last move in XY (vertical moves before and after left out).
-fn xy_body(m: &[Motion]) -> &[Motion] {
-    let moves_xy = |m: &Motion| {
-        let (a, b) = (m.start(), m.end());
-        a[0] != b[0] || a[1] != b[1] || matches!(m, Motion::Arc { .. })
-    };
-    let first = m.iter().position(moves_xy).unwrap_or(m.len());
-    let last = m.iter().rposition(moves_xy).map_or(first, |i| i + 1);
-    &m[first..last]
 }
 
 /// The planned moves of a tool path at depth, as exact segments (the entries are not among

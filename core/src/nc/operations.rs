@@ -11,12 +11,12 @@
 //! given ([`Writer::set_placement`]), so the program is in the part's coordinates and arcs
 //! stay arcs.
 
-use super::pocket_levels::write_path_level;
+use super::pocket_levels::{check_levels, write_path_level};
 use super::{
     Header, NcOptions, NcProgram, PathJob, PathLevel, Writer, epilogue, levels::levels_body, path_body, preamble,
     slot_body, tool_start,
 };
-use crate::error::{Error, Param, num};
+use crate::error::{Error, Param};
 use crate::frame::{Coolant, SpindleDirection};
 use crate::geom::{P2, p2};
 use crate::plan::Plan;
@@ -165,30 +165,6 @@ pub fn operations_program(ops: &[OperationNc<'_>], opts: &NcOptions) -> Result<N
     epilogue(&mut w, last);
     let (text, blocks) = w.finish().map_err(|e| (ops.len(), e))?;
     Ok(NcProgram { text, blocks })
-}
-
-/// The levels of a pocket in levels, as [`super::program_for_path_levels`] checks them: at
-/// least one, each floor finite, > 0 and ≤ 1000 mm, each top from the floor to the stock top;
-/// no loop form, no return feed.
-fn check_levels(levels: &[PathLevel], opts: &NcOptions) -> Result<(), Error> {
-    if opts.compact {
-        return Err(Error::param(Param::Compact, "true", "false for a path without repeating cycles"));
-    }
-    if let Some(f) = opts.return_feed_mm_per_min {
-        return Err(Error::param(Param::ReturnFeed, f, "unset for a path without a tooth series"));
-    }
-    if levels.is_empty() {
-        return Err(Error::nc("levels", "none", "at least one level"));
-    }
-    for l in levels {
-        if !(l.depth_mm.is_finite() && l.depth_mm > 0.0 && l.depth_mm <= 1000.0) {
-            return Err(Error::param(Param::Depth, l.depth_mm, "a finite number > 0 and ≤ 1000 mm"));
-        }
-        if !(l.top_mm.is_finite() && l.top_mm <= 0.0 && l.top_mm > -l.depth_mm) {
-            return Err(Error::nc("level top", num(l.top_mm), format!("from {} to 0 mm", num(-l.depth_mm))));
-        }
-    }
-    Ok(())
 }
 
 /// A placement the writer can write: finite; under a placement the loop form is refused (its

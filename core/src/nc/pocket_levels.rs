@@ -52,23 +52,7 @@ pub struct PathLevel {
 pub fn program_for_path_levels(job: &PathJob<'_>, levels: &[PathLevel], opts: &NcOptions) -> Result<NcProgram, Error> {
     opts.validate()?;
     job.validate()?;
-    if opts.compact {
-        return Err(Error::param(Param::Compact, "true", "false for a path without repeating cycles"));
-    }
-    if let Some(f) = opts.return_feed_mm_per_min {
-        return Err(Error::param(Param::ReturnFeed, f, "unset for a path without a tooth series"));
-    }
-    if levels.is_empty() {
-        return Err(Error::nc("levels", "none", "at least one level"));
-    }
-    for l in levels {
-        if !(l.depth_mm.is_finite() && l.depth_mm > 0.0 && l.depth_mm <= 1000.0) {
-            return Err(Error::param(Param::Depth, l.depth_mm, "a finite number > 0 and ≤ 1000 mm"));
-        }
-        if !(l.top_mm.is_finite() && l.top_mm <= 0.0 && l.top_mm > -l.depth_mm) {
-            return Err(Error::nc("level top", num(l.top_mm), format!("from {} to 0 mm", num(-l.depth_mm))));
-        }
-    }
+    check_levels(levels, opts)?;
     let mut w = Writer::with_units(opts.dialect.spec(), opts.frame.units);
     let header = Header {
         default_title: job.default_title,
@@ -125,6 +109,29 @@ pub(super) fn write_path_level(
             w.segment(&piece.seg, feed);
         }
     }
+}
+
+/// The levels of a path in levels: at least one, each floor finite, > 0 and ≤ 1000 mm, each
+/// top from the floor to the stock top; no loop form, no return feed.
+pub(super) fn check_levels(levels: &[PathLevel], opts: &NcOptions) -> Result<(), Error> {
+    if opts.compact {
+        return Err(Error::param(Param::Compact, "true", "false for a path without repeating cycles"));
+    }
+    if let Some(f) = opts.return_feed_mm_per_min {
+        return Err(Error::param(Param::ReturnFeed, f, "unset for a path without a tooth series"));
+    }
+    if levels.is_empty() {
+        return Err(Error::nc("levels", "none", "at least one level"));
+    }
+    for l in levels {
+        if !(l.depth_mm.is_finite() && l.depth_mm > 0.0 && l.depth_mm <= 1000.0) {
+            return Err(Error::param(Param::Depth, l.depth_mm, "a finite number > 0 and ≤ 1000 mm"));
+        }
+        if !(l.top_mm.is_finite() && l.top_mm <= 0.0 && l.top_mm > -l.depth_mm) {
+            return Err(Error::nc("level top", num(l.top_mm), format!("from {} to 0 mm", num(-l.depth_mm))));
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]
