@@ -6,7 +6,6 @@ use super::Command;
 use super::operations::{OperationRow, PartView, Totals};
 use super::params::ERROR_COLOR;
 use eframe::egui::{self, RichText};
-use trochoplan_core::machine;
 use trochoplan_core::nc::Dialect;
 
 /// Label of the button that opens a part job file.
@@ -225,23 +224,14 @@ fn totals(ui: &mut egui::Ui, t: Option<Totals>, n: usize) {
 
 /// The machine: an ideal one (no times) or a preset.
 fn machine_choice(ui: &mut egui::Ui, choice: &mut Option<String>) {
-    let l = ui.label(PART_MACHINE);
-    let shown = choice.clone().unwrap_or_else(|| IDEAL_MACHINE.to_owned());
-    egui::ComboBox::from_id_salt("part_machine")
-        .selected_text(shown)
-        .show_ui(ui, |ui| {
-            ui.selectable_value(choice, None, IDEAL_MACHINE);
-            for name in machine::preset_names() {
-                ui.selectable_value(choice, Some(name.to_owned()), name);
-            }
-        })
-        .response
-        .labelled_by(l.id)
-        .on_hover_text(
-            "The machine the part runs on: its acceleration, jerk and rapid rate give each operation's \
-             time, and the pockets' feeds are paced to its largest feed. Ideal: no times, every \
-             programmed feed held.",
-        );
+    super::pocket_inputs::machine_picker(
+        ui,
+        [PART_MACHINE, IDEAL_MACHINE, "part_machine"],
+        choice,
+        "The machine the part runs on: its acceleration, jerk and rapid rate give each operation's \
+         time, and the pockets' feeds are paced to its largest feed. Ideal: no times, every \
+         programmed feed held.",
+    );
 }
 
 /// One line saying what the part's program writes: the set-up of the part file and the tool

@@ -300,21 +300,35 @@ fn direction_help(d: Direction) -> &'static str {
 
 /// The machine: none (every feed held) or a preset.
 fn machine_choice(ui: &mut egui::Ui, choice: &mut Option<String>) {
-    let l = ui.label(MACHINE);
-    let shown = choice.clone().unwrap_or_else(|| IDEAL_MACHINE.to_owned());
-    egui::ComboBox::from_id_salt("pocket_machine")
+    machine_picker(
+        ui,
+        [MACHINE, IDEAL_MACHINE, "pocket_machine"],
+        choice,
+        "The machine the program runs on: its acceleration, jerk, rapid rate and block time give \
+         the real time and the feed it reaches; the largest feed a move is paced to is its \
+         largest feed. Ideal: every programmed feed held, moves up to 3 × the feed.",
+    );
+}
+
+/// A choice of the machine under `label`: `None` the ideal one (shown as `ideal`) or a preset
+/// by name; `salt` keeps its list apart from other pickers in the window.
+pub(super) fn machine_picker(
+    ui: &mut egui::Ui,
+    [label, ideal, salt]: [&str; 3],
+    choice: &mut Option<String>,
+    tooltip: &str,
+) {
+    let l = ui.label(label);
+    let shown = choice.clone().unwrap_or_else(|| ideal.to_owned());
+    egui::ComboBox::from_id_salt(salt)
         .selected_text(shown)
         .show_ui(ui, |ui| {
-            ui.selectable_value(choice, None, IDEAL_MACHINE);
+            ui.selectable_value(choice, None, ideal);
             for name in machine::preset_names() {
                 ui.selectable_value(choice, Some(name.to_owned()), name);
             }
         })
         .response
         .labelled_by(l.id)
-        .on_hover_text(
-            "The machine the program runs on: its acceleration, jerk, rapid rate and block time give \
-             the real time and the feed it reaches; the largest feed a move is paced to is its \
-             largest feed. Ideal: every programmed feed held, moves up to 3 × the feed.",
-        );
+        .on_hover_text(tooltip);
 }
