@@ -157,3 +157,52 @@ pub(super) fn within_limit(
             .collect(),
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::p2;
+    use crate::toolpath::{Entry, Helix};
+
+    fn line(a: (f64, f64), b: (f64, f64)) -> Segment {
+        Segment::Line { start: p2(a.0, a.1), end: p2(b.0, b.1) }
+    }
+
+    /// A ring move, a link walking round three sides of a 10 mm square (two moves, then the
+    /// slant onto the next run, kept), the run, and a retract before the last move. The two
+    /// walking moves (20 mm) become the one straight move of the router's points (14.14 mm):
+    /// the moves after them move up by one (the retract before old move 5 is before new move
+    /// 4; the part's end, old 6, is new 5), and the new link is move 1 alone.
+    #[test]
+    fn a_replaced_link_keeps_its_slant_and_the_indices_after_it() {
+        let mut b = Builder::default();
+        b.push(line((0.0, 0.0), (10.0, 0.0)), MoveKind::Ring);
+        b.push(line((10.0, 0.0), (10.0, 10.0)), MoveKind::Link);
+        b.push(line((10.0, 10.0), (0.0, 10.0)), MoveKind::Link);
+        b.push(line((0.0, 10.0), (0.0, 12.0)), MoveKind::Link);
+        b.push(line((0.0, 12.0), (5.0, 12.0)), MoveKind::Ring);
+        b.push(line((20.0, 20.0), (25.0, 20.0)), MoveKind::Ring);
+        b.retracts = vec![5];
+        let helix = Helix { center: p2(0.0, 0.0), radius: 1.0, start_angle: 0.0, sense: 1.0, ramp_rad: 0.1 };
+        let part = AdaptivePart {
+            entry: Entry::Helix(helix),
+            first_segment: 0,
+            end_segment: 6,
+            core_radius_mm: 1.0,
+            rings: 2,
+            corners: Vec::new(),
+            corner_points: Vec::new(),
+        };
+        let chosen = [Candidate { start: 1, end: 3, points: vec![p2(10.0, 0.0), p2(0.0, 10.0)] }];
+        let (nb, parts, ranges) = replaced(&b, &[part], &chosen);
+        assert_eq!(nb.segments.len(), 5);
+        assert_eq!(ranges, vec![(1, 2)]);
+        assert_eq!(nb.kinds, vec![MoveKind::Ring, MoveKind::Link, MoveKind::Link, MoveKind::Ring, MoveKind::Ring]);
+        assert!((nb.segments[1].length() - 200f64.sqrt()).abs() < 1e-12);
+        assert_eq!(nb.segments[2], b.segments[3]);
+        assert_eq!(nb.retracts, vec![4]);
+        assert_eq!((parts[0].first_segment, parts[0].end_segment), (0, 5));
+        // the path stays continuous up to the retract
+        assert!(nb.segments[..4].windows(2).all(|w| (w[0].end() - w[1].start()).norm() < 1e-12));
+    }
+}
