@@ -121,6 +121,7 @@ mod part;
 mod plan;
 pub(crate) use plan::corner_maxima;
 mod spiral;
+mod straight_links;
 #[cfg(test)]
 pub(crate) mod tests;
 mod walk;
@@ -230,6 +231,23 @@ pub fn plan_adaptive_islands(
         let Some((nb, np)) = hot_links::without_hot_links(&plan.path, &b, &parts, limit) else { break };
         plan = measure(polygon.clone(), islands, settings, options, phi, np.clone(), copy(&nb), left)?;
         (b, parts) = (nb, np);
+    }
+    // links walking back along the rings become the shortest path where that reads within the
+    // limit ([`straight_links`])
+    let mut router = crate::pocket::route::Router::with_islands(polygon, islands, r);
+    let mut chosen = straight_links::candidates(&plan.path, &b, &mut router);
+    for _ in 0..straight_links::MAX_ROUNDS {
+        if chosen.is_empty() {
+            break;
+        }
+        let (nb, np, ranges) = straight_links::replaced(&b, &parts, &chosen);
+        let trial = measure(polygon.clone(), islands, settings, options, phi, np, copy(&nb), left)?;
+        let Some(kept) = straight_links::within_limit(&trial.path, &nb, &chosen, &ranges, limit) else { break };
+        if kept.len() == chosen.len() {
+            plan = trial;
+            break;
+        }
+        chosen = kept;
     }
     Ok(plan)
 }
