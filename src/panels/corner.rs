@@ -14,11 +14,12 @@ use super::Command;
 use super::corner_nc::{self, CornerNcCache, CornerNcSettings, NcExport};
 use super::corner_table::{self, TableView};
 use super::label;
+use super::legend::{self, Entry, Look};
 use super::params::ERROR_COLOR;
 use super::plane::{self, MAX_PATH_POINTS, PLAIN_COLOR, STRATEGY_COLOR, line, plane_plot, segment_points};
 use crate::worker::{Keep, Latest, Task, Worker};
 use eframe::egui::{self, Color32, DragValue, RichText, Slider, SliderClamping};
-use egui_plot::{HLine, Legend, Plot};
+use egui_plot::{HLine, LineStyle, Plot};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 use trochoplan_core::corner::{self, CornerMethod, CornerReport, CornerRequest};
@@ -403,6 +404,17 @@ fn numbers(ui: &mut egui::Ui, r: &CornerResult) {
 }
 
 fn corner_plot(ui: &mut egui::Ui, r: &CornerResult, height: f32) {
+    let walls = Look::solid(Color32::GRAY, 2.5);
+    let previous = Look::solid(Color32::from_gray(150), 1.5).styled(LineStyle::dashed_dense());
+    let circles = Look::solid(Color32::from_rgb(60, 160, 90), 0.8);
+    let path = Look::solid(STRATEGY_COLOR, 1.2);
+    let entries = [
+        Entry::new("walls", walls),
+        Entry::new("previous ring", previous),
+        Entry::new("corner circles", circles),
+        Entry::new("tool path", path),
+    ];
+    let height = height - legend::show_above(ui, &entries, 2);
     // start on the corner region (the circles and a margin); the whole walls after a zoom-out.
     // A new corner or method gets a new plot memory, so the view follows the plan.
     let reach = r.circle_points.iter().flatten().map(|p| p[0]).fold(0.0f64, f64::max);
@@ -411,31 +423,39 @@ fn corner_plot(ui: &mut egui::Ui, r: &CornerResult, height: f32) {
         .default_x_bounds(-5.0, x_max)
         .default_y_bounds(-0.5 * (x_max + 5.0), 0.5 * (x_max + 5.0))
         .show(ui, |p| {
-            p.line(line("walls", &r.walls).color(Color32::GRAY).width(2.5));
-            p.line(
-                line("previous ring", &r.previous_ring)
-                    .color(Color32::from_gray(150))
-                    .style(egui_plot::LineStyle::dashed_dense()),
-            );
+            p.line(walls.line(line("walls", &r.walls)));
+            p.line(previous.line(line("previous ring", &r.previous_ring)));
             for c in &r.circle_points {
-                p.line(line("corner circles", c).color(Color32::from_rgb(60, 160, 90)).width(0.8));
+                p.line(circles.line(line("corner circles", c)));
             }
-            p.line(line("tool path", &r.path).color(STRATEGY_COLOR).width(1.2));
+            p.line(path.line(line("tool path", &r.path)));
         });
 }
 
 fn engagement_plot(ui: &mut egui::Ui, r: &CornerResult, height: f32) {
+    let target = Look::solid(Color32::from_rgb(200, 40, 40), 1.0);
+    let straight = Look::solid(Color32::GRAY, 1.0);
+    let entries = [
+        Entry::new("plain ring", Look::solid(PLAIN_COLOR, 1.5)),
+        Entry::new(r.summary.method, Look::solid(STRATEGY_COLOR, 1.5)),
+        Entry::new("target", target),
+        Entry::new("straight walls", straight),
+    ];
+    let height = height - legend::show_above(ui, &entries, 2);
     Plot::new("corner_engagement")
         .height(height)
-        .legend(Legend::default())
         .x_axis_label("position along the path s (mm)")
         .y_axis_label("engagement (°)")
         .include_y(0.0)
         .show(ui, |p| {
-            p.line(line("plain ring", &r.plain_profile).color(PLAIN_COLOR));
-            p.line(line(r.summary.method, &r.profile).color(STRATEGY_COLOR));
-            p.hline(HLine::new("target", r.summary.target_deg).color(Color32::from_rgb(200, 40, 40)));
-            p.hline(HLine::new("straight walls", r.summary.straight_engagement_deg).color(Color32::GRAY));
+            p.line(line("plain ring", &r.plain_profile).color(PLAIN_COLOR).width(1.5));
+            p.line(line(r.summary.method, &r.profile).color(STRATEGY_COLOR).width(1.5));
+            p.hline(HLine::new("target", r.summary.target_deg).color(target.color).width(target.width));
+            p.hline(
+                HLine::new("straight walls", r.summary.straight_engagement_deg)
+                    .color(straight.color)
+                    .width(straight.width),
+            );
         });
 }
 

@@ -10,11 +10,12 @@
 
 use super::Command;
 use super::label;
+use super::legend::{self, Entry, Look};
 use super::params::ERROR_COLOR;
 use super::plane::PLAIN_COLOR;
 use crate::worker::{Keep, Task, Worker};
 use eframe::egui::{self, Color32, RichText};
-use egui_plot::{HLine, Legend, Line, LineStyle, Plot, PlotPoints, Points};
+use egui_plot::{HLine, Line, LineStyle, Plot, PlotPoints, Points};
 use trochoplan_core::corner::acceptance::{ANGLES_DEG, AcceptanceRow, MARGIN_DEG, STRATEGIES, acceptance_rows_at};
 use trochoplan_core::corner::{CornerRequest, CornerSettings};
 
@@ -323,10 +324,20 @@ fn plot(ui: &mut egui::Ui, view: &TableView, target_deg: f64, width: f32, height
         ok.iter().filter_map(|rows| Some([rows.first()?.corner_angle_deg, f(rows)?])).collect()
     };
     let plain = series(&|rows| rows.first().map(|r| r.plain_max_deg));
+    // each strategy by its colour, its two curves by their line style (in grey)
+    let target = Look::solid(Color32::from_rgb(200, 40, 40), 1.0);
+    let mut entries = vec![Entry::new("plain ring", Look::solid(PLAIN_COLOR, 2.0))];
+    for (i, color) in STRATEGY_COLORS.iter().enumerate() {
+        entries.push(Entry::new(strategy_label(i), Look::solid(*color, 2.0)));
+    }
+    entries.push(Entry::new("body", Look::solid(Color32::GRAY, 2.0)));
+    entries
+        .push(Entry::new("tip", Look::solid(Color32::GRAY.gamma_multiply(0.7), 1.5).styled(LineStyle::dashed_loose())));
+    entries.push(Entry::new("target + 1°", target));
+    let height = height - legend::show_above(ui, &entries, 2);
     Plot::new("corner_table_plot")
         .width(width)
         .height(height)
-        .legend(Legend::default())
         .x_axis_label("corner angle (°)")
         .y_axis_label("peak engagement (°)")
         .include_x(ANGLES_DEG[0] - 5.0)
@@ -349,7 +360,7 @@ fn plot(ui: &mut egui::Ui, view: &TableView, target_deg: f64, width: f32, height
                         .style(LineStyle::dashed_loose()),
                 );
             }
-            p.hline(HLine::new("target + 1°", target_deg + MARGIN_DEG).color(Color32::from_rgb(200, 40, 40)));
+            p.hline(HLine::new("target + 1°", target_deg + MARGIN_DEG).color(target.color).width(target.width));
         });
 }
 

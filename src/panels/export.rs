@@ -11,10 +11,11 @@
 use super::Command;
 use super::corner_nc::tolerance_slider;
 use super::label;
+use super::legend::{self, Entry, Look};
 use super::params::ERROR_COLOR;
 use crate::shared::nc::NcChoices;
 use eframe::egui::{self, Color32, RichText};
-use egui_plot::{Corner, Legend, Line, Plot, PlotPoint, PlotPoints};
+use egui_plot::{Line, Plot, PlotPoint, PlotPoints};
 use serde::{Deserialize, Serialize};
 use trochoplan_core::Plan;
 use trochoplan_core::frame::ProgramFrame;
@@ -355,6 +356,9 @@ fn program_and_backplot(ui: &mut egui::Ui, view: &ExportView) {
 }
 
 fn backplot_plot(ui: &mut egui::Ui, view: &ExportView) {
+    let planned = Look::solid(Color32::from_rgb(120, 170, 240).gamma_multiply(0.6), 5.0);
+    let backplot = Look::solid(Color32::from_rgb(200, 40, 40), 1.0);
+    legend::show(ui, &[Entry::new("planned path", planned), Entry::new("program back-plot", backplot)], 2);
     let size = ui.available_size();
     Plot::new("nc_backplot")
         .width(size.x.max(120.0))
@@ -362,19 +366,10 @@ fn backplot_plot(ui: &mut egui::Ui, view: &ExportView) {
         .data_aspect(1.0)
         .x_axis_label("X [mm]")
         .y_axis_label("Y [mm]")
-        .legend(Legend::default().position(Corner::LeftTop).background_alpha(0.75))
         .allow_scroll(false)
         .show(ui, |p| {
-            p.line(
-                Line::new("planned path", PlotPoints::Borrowed(&view.planned))
-                    .color(Color32::from_rgb(120, 170, 240).gamma_multiply(0.6))
-                    .width(5.0),
-            );
-            p.line(
-                Line::new("program back-plot", PlotPoints::Borrowed(&view.backplot))
-                    .color(Color32::from_rgb(200, 40, 40))
-                    .width(1.0),
-            );
+            p.line(planned.line(Line::new("planned path", PlotPoints::Borrowed(&view.planned))));
+            p.line(backplot.line(Line::new("program back-plot", PlotPoints::Borrowed(&view.backplot))));
         });
 }
 

@@ -34,6 +34,16 @@ impl Look {
     pub fn styled(self, style: LineStyle) -> Look {
         Look { style, ..self }
     }
+
+    /// `line` drawn in this look's colour, line style and width.
+    pub fn line<'a>(self, line: Line<'a>) -> Line<'a> {
+        line.color(self.color).style(self.style).width(self.width)
+    }
+
+    /// Points of `radius` px, shown in the legend as a row of dots.
+    pub fn points(color: Color32, radius: f32) -> Look {
+        Look::solid(color, radius).styled(LineStyle::Dotted { spacing: 7.0 })
+    }
 }
 
 /// The geometry of a curve.
@@ -98,6 +108,13 @@ pub struct Entry {
     pub look: Look,
 }
 
+impl Entry {
+    /// The entry `name` drawn in `look`.
+    pub fn new(name: impl Into<String>, look: Look) -> Entry {
+        Entry { name: name.into(), look }
+    }
+}
+
 /// The legend of `series` drawn for variants named `layers` (name, colour). One variant: every
 /// named curve with its look. Several: each variant by its colour, then the quantities of the
 /// variants' curves by their line style in grey (when there are several), then the curves of
@@ -150,6 +167,13 @@ const SWATCH: egui::Vec2 = egui::vec2(26.0, 10.0);
 const GAP: f32 = 4.0;
 /// Gap between the rows of a legend (px).
 pub const ROW_GAP: f32 = 2.0;
+
+/// [`show`] above a plot of fixed height: returns the height the legend takes from it (px), its
+/// rows and the gap below them (0 without entries).
+pub fn show_above(ui: &mut egui::Ui, entries: &[Entry], max_rows: usize) -> f32 {
+    let rect = show(ui, entries, max_rows);
+    if rect.is_positive() { rect.height() + ui.spacing().item_spacing.y } else { 0.0 }
+}
 
 /// The legend as a wrapped row of swatches and names above a plot, in at most `max_rows` rows:
 /// the entries that do not fit are listed when the pointer is over "+N more". Returns the

@@ -4,9 +4,10 @@
 //! loads its job.
 
 use super::Command;
+use super::legend::{self, Entry, Look};
 use crate::worker::{Keep, Task, Worker};
 use eframe::egui::{self, Color32, RichText};
-use egui_plot::{Legend, Line, Plot, PlotPoints, Points};
+use egui_plot::{Line, Plot, PlotPoints, Points};
 use serde::{Deserialize, Serialize};
 use trochoplan_core::optimize::{Candidate, Control, Limits, Outcome, optimize};
 use trochoplan_core::{Job, Plan};
@@ -292,9 +293,15 @@ fn feed_plot(ui: &mut egui::Ui, p: &Plan) {
     let real: Vec<[f64; 2]> = pts.iter().map(|q| [q.t_s, q.feed_mm_per_min]).collect();
     let programmed: Vec<[f64; 2]> = pts.iter().map(|q| [q.t_s, q.programmed_mm_per_min]).collect();
     let not_held: Vec<[f64; 2]> = pts.iter().filter(|q| !q.held()).map(|q| [q.t_s, q.feed_mm_per_min]).collect();
+    let entries = [
+        Entry::new("programmed", Look::solid(Color32::GRAY, 1.5)),
+        Entry::new("real", Look::solid(Color32::from_rgb(40, 110, 200), 1.5)),
+        Entry::new("not held", Look::points(NOT_HELD, 1.5)),
+    ];
+    // the legend and the plot share the plot's 200 px
+    let height = 200.0 - legend::show_above(ui, &entries, 1);
     Plot::new("feed_plot")
-        .height(200.0)
-        .legend(Legend::default())
+        .height(height)
         .x_axis_label("t [s]")
         .y_axis_label("feed [mm/min]")
         .include_y(0.0)
@@ -311,18 +318,24 @@ fn front_plot(ui: &mut egui::Ui, out: &Outcome, by_force: bool) -> Option<usize>
     let x = |c: &Candidate| if by_force { c.metrics.force_resultant_max_n } else { c.waviness() * 1000.0 };
     let pts: Vec<[f64; 2]> = front(out, by_force).iter().map(|c| [x(c), c.mrr()]).collect();
     let best = [x(&out.best), out.best.mrr()];
+    let jobs = Color32::from_rgb(40, 110, 200);
+    let best_color = Color32::from_rgb(20, 150, 60);
+    let entries = [
+        Entry::new("Pareto front", Look::solid(Color32::GRAY, 1.5)),
+        Entry::new("jobs (click to load)", Look::points(jobs, 4.0)),
+        Entry::new("best", Look::points(best_color, 6.0)),
+    ];
+    // the legend and the plot share the plot's 220 px
+    let height = 220.0 - legend::show_above(ui, &entries, 1);
     let resp = Plot::new("pareto_plot")
-        .height(220.0)
-        .legend(Legend::default())
+        .height(height)
         .x_axis_label(if by_force { "F_R,max [N]" } else { "W_max [µm]" })
         .y_axis_label("real MRR [mm³/min]")
         .allow_scroll(false)
         .show(ui, |plot| {
             plot.line(Line::new("Pareto front", PlotPoints::new(pts.clone())).color(Color32::GRAY));
-            plot.points(
-                Points::new("jobs (click to load)", pts.clone()).radius(4.0).color(Color32::from_rgb(40, 110, 200)),
-            );
-            plot.points(Points::new("best", vec![best]).radius(6.0).color(Color32::from_rgb(20, 150, 60)));
+            plot.points(Points::new("jobs (click to load)", pts.clone()).radius(4.0).color(jobs));
+            plot.points(Points::new("best", vec![best]).radius(6.0).color(best_color));
             plot.pointer_coordinate()
         });
     let at = resp.inner?;

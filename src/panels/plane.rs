@@ -3,7 +3,7 @@
 
 use super::params::ERROR_COLOR;
 use eframe::egui::{self, Color32, RichText};
-use egui_plot::{Legend, Line, Plot, PlotPoints};
+use egui_plot::{Line, Plot, PlotPoints};
 use trochoplan_core::corner::CornerMethod;
 use trochoplan_core::geom::Segment;
 
@@ -36,14 +36,10 @@ pub fn line(name: &str, pts: &[[f64; 2]]) -> Line<'static> {
     Line::new(name.to_owned(), PlotPoints::from(pts.to_vec()))
 }
 
-/// A plot of the plane, `height` high, with equal axis scale and a legend.
+/// A plot of the plane, `height` high, with equal axis scale (its legend is drawn above it with
+/// [`super::legend::show_above`]).
 pub fn plane_plot(id: impl egui::AsIdSalt, height: f32) -> Plot<'static> {
-    Plot::new(id)
-        .data_aspect(1.0)
-        .height(height)
-        .legend(Legend::default())
-        .x_axis_label("x (mm)")
-        .y_axis_label("y (mm)")
+    Plot::new(id).data_aspect(1.0).height(height).x_axis_label("x (mm)").y_axis_label("y (mm)")
 }
 
 /// The corner method buttons; labels and tooltips are the core's.

@@ -4,6 +4,7 @@
 //! read-back is made once per program text and kept in the window's memory.
 
 use super::corner_nc::{self, NcExport};
+use super::legend::{self, Entry, Look};
 use super::plane::{STRATEGY_COLOR, line, plane_plot};
 use super::pocket::PocketResult;
 use eframe::egui::{self, Color32};
@@ -71,19 +72,35 @@ pub fn view(ui: &mut egui::Ui, r: &PocketResult, show_program: bool, nc: &NcExpo
         if let Some(Err(e)) = program.as_deref() {
             ui.colored_label(super::params::ERROR_COLOR, format!("The program cannot be read back: {e}"));
         }
+        let walls = Look::solid(Color32::GRAY, 2.5);
+        let path = Look::solid(STRATEGY_COLOR, 2.5);
+        let read_back = Look::solid(PROGRAM_COLOR, 1.0).styled(egui_plot::LineStyle::dashed_dense());
+        let points = match program.as_deref() {
+            Some(Ok(points)) => Some(points),
+            _ => None,
+        };
+        let mut entries = vec![Entry::new("pocket", walls)];
+        if !r.islands.is_empty() {
+            entries.push(Entry::new("islands", walls));
+        }
+        entries.push(Entry::new("planned tool path", path));
+        if points.is_some() {
+            entries.push(Entry::new(PROGRAM_LINE, read_back));
+        }
+        let h = h - ui
+            .scope(|ui| {
+                ui.set_max_width(plot_w);
+                legend::show_above(ui, &entries, 1)
+            })
+            .inner;
         plane_plot("pocket_rings_plot", h).width(plot_w).show(ui, |p| {
-            p.line(line("pocket", &r.boundary).color(Color32::GRAY).width(2.5));
+            p.line(walls.line(line("pocket", &r.boundary)));
             for island in &r.islands {
-                p.line(line("islands", island).color(Color32::GRAY).width(2.5));
+                p.line(walls.line(line("islands", island)));
             }
-            p.line(line("planned tool path", &r.path).color(STRATEGY_COLOR).width(2.5));
-            if let Some(Ok(points)) = program.as_deref() {
-                p.line(
-                    line(PROGRAM_LINE, points)
-                        .color(PROGRAM_COLOR)
-                        .width(1.0)
-                        .style(egui_plot::LineStyle::dashed_dense()),
-                );
+            p.line(path.line(line("planned tool path", &r.path)));
+            if let Some(points) = points {
+                p.line(read_back.line(line(PROGRAM_LINE, points)));
             }
         });
     });

@@ -2,6 +2,7 @@
 //! colour bar, the stock and part outlines, the tool's position and the selected problem), and
 //! the quantity over the program's time with the position marked.
 
+use super::legend::{self, Entry, Look};
 use super::program::{Quantity, Verified};
 use eframe::egui::{self, Color32, Pos2, Stroke};
 use egui_plot::{Line, Plot, PlotPoint, PlotPoints, Points, VLine};
@@ -115,6 +116,17 @@ fn path_only(
             hi[i] = hi[i].max(p[i]);
         }
     }
+    let mut entries = vec![Entry::new("stock", Look::solid(STOCK, 1.5))];
+    if v.part.is_some() {
+        entries.push(Entry::new("part", Look::solid(PART, 1.5)));
+    }
+    if cursor.is_some() {
+        entries.push(Entry::new("tool position", Look::points(CURSOR, 5.0)));
+    }
+    if mark.is_some() {
+        entries.push(Entry::new("selected problem", Look::points(PROBLEM, 7.0)));
+    }
+    legend::show(ui, &entries, 1);
     let resp = Plot::new(id)
         .data_aspect(1.0)
         .x_axis_label("X (mm)")
@@ -124,7 +136,6 @@ fn path_only(
         .include_y(lo[1])
         .include_y(hi[1])
         .allow_scroll(false)
-        .legend(egui_plot::Legend::default())
         .show(ui, |plot| {
             plot.line(outline("stock", &v.stock, STOCK));
             for i in &v.stock_islands {

@@ -3,9 +3,10 @@
 //! cancel; the window never waits for it.
 
 use super::Command;
+use super::legend::{self, Entry, Look};
 use crate::worker::{Keep, Task, Worker};
 use eframe::egui::{self, Color32, RichText};
-use egui_plot::{AxisHints, Corner, Legend, Line, Plot, Points, VLine};
+use egui_plot::{AxisHints, Line, Plot, Points, VLine};
 use serde::{Deserialize, Serialize};
 use trochoplan_core::quantity::{self, Metric};
 use trochoplan_core::sweep::{self, SweepParam};
@@ -255,6 +256,9 @@ fn sweep_plots() -> [(&'static str, &'static str, Series); 6] {
     ]
 }
 
+/// Colour of the current job's marker.
+const MARKER: Color32 = Color32::from_rgb(220, 30, 30);
+
 /// The six plots in a 2 × 3 grid (h_max, MRR, waviness, times, forces (Fig. 16), PI without
 /// Ra (Figs. 23, 28)), with the current job's value marked when the sweep's path is its path.
 fn plots(ui: &mut egui::Ui, run: &SweepRun, current: &Job) {
@@ -267,11 +271,17 @@ fn plots(ui: &mut egui::Ui, run: &SweepRun, current: &Job) {
     egui::Grid::new("sweep_grid").num_columns(2).spacing([8.0, 8.0]).show(ui, |ui| {
         for (k, (id, ylabel, series)) in sweep_plots().iter().enumerate() {
             ui.allocate_ui(cell, |ui| {
+                let mut entries: Vec<Entry> =
+                    series.iter().map(|&(q, color)| Entry::new(q.symbol, Look::solid(color, 1.5))).collect();
+                if marker.is_some() {
+                    entries.push(Entry::new("current job", Look::solid(MARKER, 1.0)));
+                }
+                // the legend and the plot share the cell
+                let height = cell.y - legend::show_above(ui, &entries, 1);
                 let axis = AxisHints::new_x().label(param.label()).label_spacing(28.0..=44.0);
                 Plot::new(format!("sweep_{id}"))
                     .width(cell.x)
-                    .height(cell.y)
-                    .legend(Legend::default().position(Corner::RightTop))
+                    .height(height)
                     .custom_x_axes(vec![axis])
                     .y_axis_label(*ylabel)
                     .allow_scroll(false)
@@ -292,7 +302,7 @@ fn draw_series(p: &mut egui_plot::PlotUi<'_>, series: &Series, ok: &[(f64, &Metr
         p.points(Points::new(q.symbol, pts).color(color).radius(2.5));
     }
     if let Some(x) = marker {
-        p.vline(VLine::new("current job", x).color(Color32::from_rgb(220, 30, 30)));
+        p.vline(VLine::new("current job", x).color(MARKER));
     }
 }
 

@@ -221,3 +221,43 @@ fn plots_at(size: (f32, f32)) {
     assert_eq!(seen.len(), PLOTS.len(), "every plot drawn: {seen:?}");
     assert!(bad.is_empty(), "{}", bad.join("\n"));
 }
+
+/// The lines (1-based) of `source` that hand a plot's legend to egui_plot (`.legend(…)` on a
+/// plot), which draws it inside the plot, over the curves.
+fn inside_legends(source: &str) -> Vec<usize> {
+    source.lines().enumerate().filter(|(_, l)| l.contains(".legend(")).map(|(n, _)| n + 1).collect()
+}
+
+#[test]
+fn the_inside_legend_check_finds_egui_plots_legend_and_not_the_row_above() {
+    let plot = "Plot::new(\"p\")\n    .height(200.0)\n    .legend(Legend::default())\n    .show(ui, |p| {});";
+    assert_eq!(inside_legends(plot), [3]);
+    assert!(inside_legends("let h = legend::show_above(ui, &entries, 1);\nlegend::show(ui, &e, 2);").is_empty());
+}
+
+/// Every plot of the window draws its legend in a row above the data ([`legend::show`]): no
+/// panel's source gives a plot egui_plot's legend, which lies inside the plot over the curves.
+///
+/// [`legend::show`]: crate::app::panels::legend::show
+#[test]
+fn no_plot_draws_its_legend_inside_the_data() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src/panels");
+    let mut read = Vec::new();
+    let mut found = Vec::new();
+    for entry in std::fs::read_dir(&dir).expect("the panels' sources") {
+        let path = entry.expect("a directory entry").path();
+        // the tests (this file names what it looks for) are a folder of their own
+        if path.extension().is_none_or(|e| e != "rs") {
+            continue;
+        }
+        let source = std::fs::read_to_string(&path).expect("a panel's source");
+        let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+        found.extend(inside_legends(&source).into_iter().map(|n| format!("{name}:{n}")));
+        read.push(name);
+    }
+    // the check reads the panels that draw plots
+    for plotting in ["plots.rs", "corner.rs", "optimise.rs", "sweep.rs", "program_plots.rs", "export.rs"] {
+        assert!(read.iter().any(|n| n == plotting), "{plotting} read from {}", dir.display());
+    }
+    assert!(found.is_empty(), "egui_plot's legend inside the plot at {}", found.join(", "));
+}
