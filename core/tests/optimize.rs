@@ -203,27 +203,24 @@ fn force_limit_binds_and_matches_a_grid() {
     );
 }
 
-/// The progress bar moves until the outcome is ready: the shares arrive in order, 1 comes once
-/// and last, and the run does not linger near the end. Measured before the budget covered the
-/// refinement and the front (Table 1 job, ideal machine): 0.9 was reached 53 % into the run
-/// and 1 at 73 %; now both come with the last few evaluations. The bounds leave room for a
-/// loaded machine: the front's points are some 40 % of the evaluations, so the last tenth of
-/// the count cannot take 30 % of the time unless the budget misses work again.
+/// The progress bar moves until the outcome is ready: a report per evaluation, the shares in
+/// order, 1 once and last, and the shares following the work done, counted in evaluations (not
+/// in wall time, which a loaded machine stretches): 0.9 comes no sooner than 85 % of the way
+/// through the reports. A budget that missed work (the refinement, the front's points: some
+/// 40 % of the evaluations) would reach 0.9 well before that.
 #[test]
 fn progress_moves_until_the_outcome_is_ready() {
-    let t0 = std::time::Instant::now();
     let reports = std::sync::Mutex::new(Vec::new());
-    let progress = |f: f64| reports.lock().unwrap().push((t0.elapsed().as_secs_f64(), f));
+    let progress = |f: f64| reports.lock().unwrap().push(f);
     let control = Control { progress: &progress, cancelled: &|| false };
     let limits = Limits::new(0.075, 57.5, None, None).expect("limits");
     optimize(&Job::default(), &limits, &control).expect("feasible").expect("not cancelled");
-    let end = t0.elapsed().as_secs_f64();
     let reports = reports.into_inner().unwrap();
-    assert!(reports.len() > 40, "a report per evaluation: {}", reports.len());
-    assert!(reports.windows(2).all(|w| w[0].1 <= w[1].1), "in order");
-    let ones: Vec<usize> = (0..reports.len()).filter(|&i| reports[i].1 >= 1.0).collect();
-    assert_eq!(ones, vec![reports.len() - 1], "1 once, last");
-    let first_at = |f: f64| reports.iter().find(|r| r.1 >= f).map(|r| r.0).unwrap();
-    assert!(end - first_at(1.0) <= 0.05 * end, "at 1 from {:.2} s of {end:.2} s", first_at(1.0));
-    assert!(end - first_at(0.9) <= 0.3 * end, "at 0.9 from {:.2} s of {end:.2} s", first_at(0.9));
+    let n = reports.len();
+    assert!(n > 40, "a report per evaluation: {n}");
+    assert!(reports.windows(2).all(|w| w[0] <= w[1]), "in order");
+    let ones: Vec<usize> = (0..n).filter(|&i| reports[i] >= 1.0).collect();
+    assert_eq!(ones, vec![n - 1], "1 once, last");
+    let first = reports.iter().position(|&f| f >= 0.9).unwrap();
+    assert!(first as f64 >= 0.85 * (n - 1) as f64, "0.9 at report {first} of {n}");
 }
