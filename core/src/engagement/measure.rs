@@ -59,6 +59,16 @@ pub fn sample_owners(profile: &EngagementProfile, segments: &[Segment]) -> Vec<u
     profile.samples.iter().map(|smp| ends.partition_point(|&e| e < smp.s_mm - 1e-9).min(last)).collect()
 }
 
+/// The largest engagement (rad) each of `segments` reads in `profile` (0 where no sample falls
+/// on it), by [`sample_owners`].
+pub fn move_peaks(profile: &EngagementProfile, segments: &[Segment]) -> Vec<f64> {
+    let mut peak = vec![0.0f64; segments.len()];
+    for (smp, &i) in profile.samples.iter().zip(&sample_owners(profile, segments)) {
+        peak[i] = peak[i].max(smp.angle_rad);
+    }
+    peak
+}
+
 /// Per kind of move present, in order of first appearance: the largest sample of `profile`
 /// over the moves of that kind, where it is, and their length.
 pub fn maxima(profile: &EngagementProfile, segments: &[Segment], kinds: &[MoveKind]) -> Vec<KindMax> {

@@ -22,7 +22,7 @@ pub use evaluator::{
     polyline,
 };
 pub use measure::{
-    AIR_ENGAGEMENT_RAD, KindMax, Measurement, Stock, maxima, measure, measured, peak_and_p95, sample_owners,
+    AIR_ENGAGEMENT_RAD, KindMax, Measurement, Stock, maxima, measure, measured, move_peaks, peak_and_p95, sample_owners,
 };
 pub use model::{MaxEngagement, Turn, TwoCircle, radial_depth_for_engagement, straight_engagement};
 pub use refine::{REFINE_TOLERANCE_RAD, refined_profile, sample_weights};

@@ -11,7 +11,7 @@ use super::adaptive::{AdaptivePart, AdaptivePlan};
 use super::path::PocketPath;
 use super::{PocketPlan, PocketRequest, PocketSettings, PocketStrategy, guard, pace, plan_with};
 use crate::corner::limits::MAX_TOOL_DIAMETER_MM;
-use crate::engagement::{AIR_ENGAGEMENT_RAD, EvaluatorOptions, Stock, measure, sample_owners};
+use crate::engagement::{AIR_ENGAGEMENT_RAD, EvaluatorOptions, Stock, measure, move_peaks};
 use crate::error::{Error, Param, num};
 use crate::geom::{P2, Segment};
 use crate::toolpath::{Entry, Toolpath};
@@ -148,10 +148,7 @@ pub(super) fn plan_rest(req: &PocketRequest, settings: PocketSettings, big: f64)
     let stock = Stock { polygon: &req.polygon, precut: &before, islands: &req.islands };
     let over_rest = measure(&bare, stock, &opts)?;
     let segments = bare.segments();
-    let mut peak = vec![0.0_f64; segments.len()];
-    for (smp, &i) in over_rest.profile.samples.iter().zip(&sample_owners(&over_rest.profile, &segments)) {
-        peak[i] = peak[i].max(smp.angle_rad);
-    }
+    let peak = move_peaks(&over_rest.profile, &segments);
     let mut keep: Vec<usize> = (0..segments.len()).filter(|&i| peak[i] > AIR_ENGAGEMENT_RAD).collect();
     // a short stretch of dropped moves between two kept ones, with no retract in it, stays as
     // a link at depth: it cuts nothing (it read no material) and kept the walls (the full plan

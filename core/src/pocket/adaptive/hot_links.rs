@@ -9,7 +9,7 @@
 
 use super::loops::Builder;
 use super::plan::AdaptivePart;
-use crate::engagement::sample_owners;
+use crate::engagement::move_peaks;
 use crate::pocket::path::PocketPath;
 use crate::toolpath::MoveKind;
 
@@ -28,11 +28,7 @@ pub(super) fn without_hot_links(
     if segments.len() != b.segments.len() {
         return None;
     }
-    let profile = &path.measurement.profile;
-    let mut peak = vec![0.0f64; segments.len()];
-    for (smp, &i) in profile.samples.iter().zip(&sample_owners(profile, &segments)) {
-        peak[i] = peak[i].max(smp.angle_rad);
-    }
+    let peak = move_peaks(&path.measurement.profile, &segments);
     // the link groups (maximal runs of link moves) and which moves to drop
     let mut drop = vec![false; segments.len()];
     let mut retract_at = Vec::new();

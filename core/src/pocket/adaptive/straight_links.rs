@@ -18,7 +18,7 @@
 
 use super::loops::Builder;
 use super::plan::AdaptivePart;
-use crate::engagement::sample_owners;
+use crate::engagement::move_peaks;
 use crate::geom::{P2, Segment};
 use crate::pocket::path::PocketPath;
 use crate::pocket::route::Router;
@@ -51,12 +51,7 @@ fn peaks(path: &PocketPath, b: &Builder) -> Option<Vec<f64>> {
     if segments.len() != b.segments.len() {
         return None;
     }
-    let profile = &path.measurement.profile;
-    let mut peak = vec![0.0f64; segments.len()];
-    for (smp, &i) in profile.samples.iter().zip(&sample_owners(profile, &segments)) {
-        peak[i] = peak[i].max(smp.angle_rad);
-    }
-    Some(peak)
+    Some(move_peaks(&path.measurement.profile, &segments))
 }
 
 /// The link groups of `b` (measured by `path`) that cut nothing before their last move and have
