@@ -18,8 +18,8 @@ mod islands_common;
 mod nc_common;
 mod pocket_common;
 
-use islands_common::{acceptance_loops, least_clearance, run};
-use nc_common::{Motion, check_path_cut, cut, interpret, motions, sample};
+use islands_common::{acceptance_loops, floor_clearances, run};
+use nc_common::{Motion, interpret, motions, sample};
 use trochoplan_core::geom::{P2, Segment, p2};
 
 /// Tool radius (D 10), safe height of the program (mm), the floors (12 mm in levels of at most
@@ -64,20 +64,10 @@ fn a_pocket_with_islands_in_three_levels_passes_rs274_level_by_level() {
     }
     let canon = interpret(&nc).unwrap_or_else(|e| panic!("rs274: {e}"));
     let all = motions(&canon);
-    // every move in the plane below the stock top lies at one of the floors
-    for m in &all {
-        let (s, e) = (m.start(), m.end());
-        if (s[2] - e[2]).abs() <= Z_TOL && s[2] < -Z_TOL {
-            assert!(FLOORS.iter().any(|f| (s[2] - f).abs() <= Z_TOL), "a move at Z{}: {m:?}", s[2]);
-        }
-    }
-    // each floor retraces the planned moves, and keeps off the walls and islands
+    // every move in the plane below the stock top lies at one of the floors; each floor
+    // retraces the planned moves, and keeps off the walls and islands
     let planned: Vec<Segment> = serde_json::from_value(json["segments"].clone()).expect("segments");
-    let (boundary, islands) = (&loops[0], &loops[1..]);
-    for f in FLOORS {
-        let c = cut(&all, -f, Z_TOL);
-        check_path_cut(&format!("Z{f}"), &c, &planned, 0.005, 1e-4).unwrap_or_else(|e| panic!("{e}"));
-        let least = least_clearance(&sample(&c, 0.02), boundary, islands).unwrap_or_else(|e| panic!("Z{f}: {e}"));
+    for (f, least) in FLOORS.iter().zip(floor_clearances(&all, &FLOORS, Z_TOL, &planned, &loops)) {
         assert!(least >= R - 0.005, "Z{f}: the tool centre comes {least:.6} mm from a wall or island (r = {R})");
     }
     check_no_plunge(&all);

@@ -20,8 +20,8 @@ mod islands_common;
 mod nc_common;
 mod pocket_common;
 
-use islands_common::{acceptance_loops, least_clearance, run};
-use nc_common::{Motion, check_path_cut, cut, interpret, motions, sample};
+use islands_common::{acceptance_loops, floor_clearances, least_clearance, run};
+use nc_common::{Motion, cut, interpret, motions, sample};
 use trochoplan_core::geom::{P2, Segment, p2};
 
 /// Tool radius (D 10), the stock to leave and the floor stock (mm); the floors: 11.5 mm in
@@ -89,18 +89,8 @@ fn stock_to_leave_and_a_floor_pass_on_the_island_part_pass_rs274() {
     assert!(text.contains("3 levels of 3.833 mm and a floor pass of 0.500 mm"), "the header names the floor pass");
     let canon = interpret(&nc).unwrap_or_else(|e| panic!("rs274: {e}"));
     let all = motions(&canon);
-    for m in &all {
-        let (s, e) = (m.start(), m.end());
-        if (s[2] - e[2]).abs() <= Z_TOL && s[2] < -Z_TOL {
-            assert!(FLOORS.iter().any(|f| (s[2] - f).abs() <= Z_TOL), "a move at Z{}: {m:?}", s[2]);
-        }
-    }
     let planned: Vec<Segment> = serde_json::from_value(json["segments"].clone()).expect("segments");
-    let (boundary, islands) = (&loops[0], &loops[1..]);
-    for f in FLOORS {
-        let c = cut(&all, -f, Z_TOL);
-        check_path_cut(&format!("Z{f}"), &c, &planned, 0.005, 1e-4).unwrap_or_else(|e| panic!("{e}"));
-        let least = least_clearance(&sample(&c, 0.02), boundary, islands).unwrap_or_else(|e| panic!("Z{f}: {e}"));
+    for (f, least) in FLOORS.iter().zip(floor_clearances(&all, &FLOORS, Z_TOL, &planned, &loops)) {
         assert!(
             (R + STOCK - 0.005..=R + STOCK + 0.01).contains(&least),
             "Z{f}: the tool centre comes {least:.6} mm from a wall or island (r + stock = {})",

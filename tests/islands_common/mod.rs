@@ -75,3 +75,33 @@ pub fn least_clearance(points: &[P2], boundary: &[P2], islands: &[Vec<P2>]) -> R
     }
     Ok(least)
 }
+
+/// The program's motions `all` read back at the floors `floors` (Z, within `z_tol`): every move
+/// in the plane below the stock top lies at one of them, each floor's cut retraces `planned`
+/// (within 0.005 mm, q = 1e-4 mm), and the tool centre's least distance from the walls and
+/// islands of `loops` (boundary first) at each floor, points every 0.02 mm, is returned in the
+/// order of `floors`.
+pub fn floor_clearances(
+    all: &[crate::nc_common::Motion],
+    floors: &[f64],
+    z_tol: f64,
+    planned: &[trochoplan_core::geom::Segment],
+    loops: &[Vec<P2>],
+) -> Vec<f64> {
+    use crate::nc_common::{check_path_cut, cut, sample};
+    for m in all {
+        let (s, e) = (m.start(), m.end());
+        if (s[2] - e[2]).abs() <= z_tol && s[2] < -z_tol {
+            assert!(floors.iter().any(|f| (s[2] - f).abs() <= z_tol), "a move at Z{}: {m:?}", s[2]);
+        }
+    }
+    let (boundary, islands) = (&loops[0], &loops[1..]);
+    floors
+        .iter()
+        .map(|&f| {
+            let c = cut(all, -f, z_tol);
+            check_path_cut(&format!("Z{f}"), &c, planned, 0.005, 1e-4).unwrap_or_else(|e| panic!("{e}"));
+            least_clearance(&sample(&c, 0.02), boundary, islands).unwrap_or_else(|e| panic!("Z{f}: {e}"))
+        })
+        .collect()
+}
