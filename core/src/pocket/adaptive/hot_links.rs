@@ -73,13 +73,18 @@ pub(super) fn without_hot_links(
     nb.retracts = b.retracts.iter().chain(&retract_at).map(|&k| new_index[k]).filter(|&k| k < kept).collect();
     nb.retracts.sort_unstable();
     nb.retracts.dedup();
-    let parts = parts
+    Some((nb, renumbered(parts, &new_index)))
+}
+
+/// `parts` with their first and end moves renumbered by `new_index` (old move index → new,
+/// one past the last included) after moves were dropped or replaced.
+pub(super) fn renumbered(parts: &[AdaptivePart], new_index: &[usize]) -> Vec<AdaptivePart> {
+    parts
         .iter()
         .map(|p| AdaptivePart {
             first_segment: new_index[p.first_segment],
             end_segment: new_index[p.end_segment],
             ..p.clone()
         })
-        .collect();
-    Some((nb, parts))
+        .collect()
 }

@@ -122,15 +122,7 @@ pub(super) fn replaced(
     }
     new_index[n] = nb.segments.len();
     nb.retracts = b.retracts.iter().map(|&k| new_index[k]).collect();
-    let parts = parts
-        .iter()
-        .map(|p| AdaptivePart {
-            first_segment: new_index[p.first_segment],
-            end_segment: new_index[p.end_segment],
-            ..p.clone()
-        })
-        .collect();
-    (nb, parts, ranges)
+    (nb, super::hot_links::renumbered(parts, &new_index), ranges)
 }
 
 /// The candidates of `chosen` whose new moves (`ranges`, in the plan `path` measured) all read
