@@ -35,7 +35,7 @@ pub const MAX_INPUT_BYTES: u64 = 64 * 1024 * 1024;
 const TEMP_TAG: &str = ".trochoplan-tmp-";
 
 /// The temporary files of this process that exist now (created, not yet renamed or removed).
-static TEMPORARIES: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+static TEMPORARIES: Registry = Mutex::new(Vec::new());
 
 /// Whether an output went to the standard output.
 static STDOUT_TAKEN: AtomicBool = AtomicBool::new(false);
@@ -95,7 +95,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
         }
     }
     remove_stale_temporaries(dir);
-    let tmp = Temporary::create(dir.join(temporary_name(name))).map_err(|e| fail(&e))?;
+    let tmp = Temporary::create(&TEMPORARIES, dir.join(temporary_name(name))).map_err(|e| fail(&e))?;
     let result = (|| {
         let mut f = tmp.file()?;
         f.write_all(bytes)?;
@@ -110,21 +110,25 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
     result.map_err(|e| fail(&e))
 }
 
-/// A temporary file of this process, listed in [`TEMPORARIES`] while it exists; removed when
-/// dropped unless renamed.
+/// A list of temporary files that exist now: [`TEMPORARIES`] for the writes of this process.
+type Registry = Mutex<Vec<PathBuf>>;
+
+/// A temporary file of this process, listed in its registry ([`TEMPORARIES`]) while it exists;
+/// removed when dropped unless renamed.
 struct Temporary {
     path: PathBuf,
     file: Option<File>,
+    registry: &'static Registry,
 }
 
 impl Temporary {
     /// Create the file (it must not exist) and list it, under one lock: a signal's clean-up
     /// sees every file that exists.
-    fn create(path: PathBuf) -> std::io::Result<Temporary> {
-        let mut list = TEMPORARIES.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    fn create(registry: &'static Registry, path: PathBuf) -> std::io::Result<Temporary> {
+        let mut list = registry.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
         let file = OpenOptions::new().write(true).create_new(true).open(&path)?;
         list.push(path.clone());
-        Ok(Temporary { path, file: Some(file) })
+        Ok(Temporary { path, file: Some(file), registry })
     }
 
     fn file(&self) -> std::io::Result<&File> {
@@ -133,7 +137,7 @@ impl Temporary {
 
     /// Rename it over `target` and unlist it, under one lock.
     fn rename_to(&self, target: &Path) -> std::io::Result<()> {
-        let mut list = TEMPORARIES.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        let mut list = self.registry.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
         std::fs::rename(&self.path, target)?;
         list.retain(|p| p != &self.path);
         Ok(())
@@ -143,7 +147,7 @@ impl Temporary {
 impl Drop for Temporary {
     fn drop(&mut self) {
         self.file = None;
-        let mut list = TEMPORARIES.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        let mut list = self.registry.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
         if let Some(i) = list.iter().position(|p| p == &self.path) {
             let _ = std::fs::remove_file(&self.path);
             list.remove(i);
@@ -151,14 +155,14 @@ impl Drop for Temporary {
     }
 }
 
-/// Remove every temporary file of this process that still exists. `wait`: block for a write
-/// in progress (a signal); without it (a panic, which may have struck inside a write) a held
-/// list is left to the unwinding writes' own clean-up.
-fn remove_temporaries(wait: bool) {
+/// Remove every temporary file of `registry` ([`TEMPORARIES`]: of this process) that still
+/// exists. `wait`: block for a write in progress (a signal); without it (a panic, which may have
+/// struck inside a write) a held list is left to the unwinding writes' own clean-up.
+fn remove_temporaries(registry: &Registry, wait: bool) {
     let list = if wait {
-        Some(TEMPORARIES.lock().unwrap_or_else(std::sync::PoisonError::into_inner))
+        Some(registry.lock().unwrap_or_else(std::sync::PoisonError::into_inner))
     } else {
-        match TEMPORARIES.try_lock() {
+        match registry.try_lock() {
             Ok(l) => Some(l),
             Err(std::sync::TryLockError::Poisoned(e)) => Some(e.into_inner()),
             Err(std::sync::TryLockError::WouldBlock) => None,
@@ -177,7 +181,7 @@ fn remove_temporaries(wait: bool) {
 pub fn remove_temporaries_on_exit() {
     let previous = std::panic::take_hook();
     std::panic::set_hook(Box::new(move |info| {
-        remove_temporaries(false);
+        remove_temporaries(&TEMPORARIES, false);
         previous(info);
     }));
     use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
@@ -541,11 +545,14 @@ mod tests {
 
     #[test]
     fn temporaries_listed_are_removed_on_a_signal_or_panic() {
+        // a registry of its own: clearing the process's one would remove the temporary file of
+        // a write another test is making at the same time
+        static LISTED: Registry = Mutex::new(Vec::new());
         let dir = tempfile::tempdir().expect("tempdir");
         let p = dir.path().join(temporary_name(OsStr::new("x.nc")));
-        let t = Temporary::create(p.clone()).expect("create");
+        let t = Temporary::create(&LISTED, p.clone()).expect("create");
         assert!(p.exists());
-        remove_temporaries(true);
+        remove_temporaries(&LISTED, true);
         assert!(!p.exists(), "removed");
         drop(t); // already unlisted: nothing left to do
         assert!(!p.exists());
