@@ -7,7 +7,7 @@
 //! [`QUICK_ANSWER`] counts as "no dialog", and so does a missing session bus: the window then
 //! asks for the path in its path field, for this and every later file command.
 
-use super::{App, panels};
+use super::{App, View, panels};
 use panels::path_field::{PathPrompt, PathPurpose, PromptAnswer};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -218,6 +218,25 @@ impl App {
         self.view.recent.retain(|p| p != path);
         self.view.recent.insert(0, path.to_owned());
         self.view.recent.truncate(MAX_RECENT);
+        let View { recent, recent_parts, .. } = &mut self.view;
+        recent_parts.retain(|p| p != path && recent.contains(p));
+    }
+
+    /// Put the part job file `path` first in the recent files, as a part.
+    pub(crate) fn remember_part(&mut self, path: &Path) {
+        self.remember(path);
+        self.view.recent_parts.push(path.to_owned());
+    }
+
+    /// What the recent file `path` is opened as: a part job file, a job or an outline.
+    pub(super) fn recent_purpose(&self, path: &Path) -> PathPurpose {
+        if self.view.recent_parts.iter().any(|p| p == path) {
+            PathPurpose::OpenPart
+        } else if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml")) {
+            PathPurpose::OpenJob
+        } else {
+            PathPurpose::OpenOutline
+        }
     }
 }
 

@@ -99,16 +99,20 @@ impl App {
         }
     }
 
-    /// The recent jobs (`.toml`) and outlines, newest first; a click opens one.
+    /// The recent jobs (`.toml`), part job files and outlines, newest first; a click opens one
+    /// as what it was opened as.
     fn recent_menu(&mut self, ui: &mut egui::Ui) {
         use super::panels::path_field::PathPurpose;
         ui.add_enabled_ui(!self.view.recent.is_empty(), |ui| {
             ui.menu_button("Open recent", |ui| {
                 for path in self.view.recent.clone() {
-                    let job = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml"));
-                    let kind = if job { "job" } else { "outline" };
+                    let purpose = self.recent_purpose(&path);
+                    let kind = match purpose {
+                        PathPurpose::OpenPart => "part",
+                        PathPurpose::OpenJob => "job",
+                        _ => "outline",
+                    };
                     if ui.button(format!("{} ({kind})", path.display())).clicked() {
-                        let purpose = if job { PathPurpose::OpenJob } else { PathPurpose::OpenOutline };
                         self.run_path(&purpose, &path);
                     }
                 }

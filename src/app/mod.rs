@@ -71,6 +71,7 @@ pub fn run(job: Job) -> eframe::Result<()> {
             app.pocket = panels::pocket::PocketView::threaded(move || ctx.request_repaint());
             let ctx = cc.egui_ctx.clone();
             app.operations = panels::operations::PartView::threaded(move || ctx.request_repaint());
+            app.reopen_part();
             app.preload_program(&cc.egui_ctx);
             Ok(Box::new(app))
         }),

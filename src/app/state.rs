@@ -108,8 +108,14 @@ pub struct View {
     pub tab: Tab,
     /// The job file last opened or saved.
     pub file: Option<PathBuf>,
-    /// Jobs and outlines last opened or saved, newest first (the File menu's recent files).
+    /// Jobs, outlines and part job files last opened or saved, newest first (the File menu's
+    /// recent files).
     pub recent: Vec<PathBuf>,
+    /// Those of [`View::recent`] that were opened as part job files (a part is a `.toml` file
+    /// like a job).
+    pub recent_parts: Vec<PathBuf>,
+    /// The part job file open in the Operations tab, opened again at the next start.
+    pub part: Option<PathBuf>,
 }
 
 /// eframe storage key of [`Inputs`].

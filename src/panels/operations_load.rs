@@ -88,18 +88,36 @@ impl App {
     /// Read the part job file `path` into the Operations tab and show it; its operations are
     /// planned in the background.
     pub fn open_part(&mut self, path: &Path) {
-        let read = crate::shared::files::read_input(path, "job file")
-            .and_then(|text| part::parse(&text).map_err(|e| super::operations::part_message(&e)));
-        match read {
-            Ok(file) => {
-                let n = file.operation.len();
-                self.operations.load(path, file);
+        match self.load_part(path) {
+            Ok(n) => {
                 self.view.tab = Tab::Operations;
                 let ops = if n == 1 { "1 operation".to_owned() } else { format!("{n} operations") };
                 self.status = Some((format!("opened part {} ({ops})", path.display()), false));
             }
             Err(e) => self.status = Some((format!("cannot open {}: {e}", path.display()), true)),
         }
+    }
+
+    /// Open again the part job file open when the window was last closed, without leaving the
+    /// tab shown; one that can no longer be read is forgotten, with a message.
+    pub fn reopen_part(&mut self) {
+        let Some(path) = self.view.part.clone() else { return };
+        if let Err(e) = self.load_part(&path) {
+            self.view.part = None;
+            self.status = Some((format!("the part last open, {}, cannot be opened again: {e}", path.display()), true));
+        }
+    }
+
+    /// Read the part job file `path` into the Operations tab, remember it and start planning
+    /// its operations: their number.
+    fn load_part(&mut self, path: &Path) -> Result<usize, String> {
+        let text = crate::shared::files::read_input(path, "job file")?;
+        let file = part::parse(&text).map_err(|e| super::operations::part_message(&e))?;
+        let n = file.operation.len();
+        self.operations.load(path, file);
+        self.view.part = Some(path.to_owned());
+        self.remember_part(path);
+        Ok(n)
     }
 
     /// Ask for a part job file and open it.

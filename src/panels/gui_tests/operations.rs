@@ -4,6 +4,7 @@
 
 use super::*;
 use crate::app::panels::operations_list::{self as list, length_text, peak_text, time_text};
+use crate::app::panels::path_field::PathPurpose;
 use trochoplan_core::machine::Machine;
 use trochoplan_core::nc::{DEFAULT_TOLERANCE_MM, Dialect};
 use trochoplan_core::part::{self, PartFile, PartReport, PlannedOperation};
@@ -264,4 +265,46 @@ fn the_slot_and_the_corner_operations_open_in_their_tabs_with_the_parts_plans() 
     assert_eq!((c.angle_deg, c.tool_diameter_mm, h.state().state.corner_nc.depth_mm), (90.0, 6.0, 2.0));
     let r = h.state().corner.last.clone().expect("a corner");
     assert_eq!(r.report.plan.toolpath.length_mm(), ops[2].planned.path_length_mm());
+}
+
+/// A part opened is a part in the recent files, opened again as one from File → Open recent;
+/// the next start opens it again without leaving the tab it shows, and a part file that is
+/// gone by then is forgotten with a message naming it.
+#[test]
+fn the_part_is_a_recent_file_and_is_opened_again_at_the_next_start() {
+    let dir = tempfile::tempdir().unwrap();
+    let job = example_part(dir.path());
+    let mut h = part_window(&job);
+    let view = h.state().view.clone();
+    assert_eq!((view.recent.first(), view.part.as_ref()), (Some(&job), Some(&job)));
+    assert!(matches!(h.state().recent_purpose(&job), PathPurpose::OpenPart));
+    // the menu names it a part and opens it as one
+    h.get_by_label("Plots").click();
+    h.run();
+    h.get_by_label("File").click();
+    h.run();
+    h.get_by_label("Open recent").click();
+    h.run();
+    h.get_by_label(&format!("{} (part)", job.display())).click();
+    h.run();
+    assert_eq!(h.state().view.tab, Tab::Operations, "{:?}", h.state().status);
+    // a job saved under another name is a job, and the part stays a part
+    let slot = dir.path().join("slot.toml");
+    h.state_mut().save_to(&slot);
+    assert!(matches!(h.state().recent_purpose(&slot), PathPurpose::OpenJob));
+    assert!(matches!(h.state().recent_purpose(&job), PathPurpose::OpenPart));
+    // the next start, on the Plots tab
+    let stored = |view: &View| State { view: View { tab: Tab::Plots, ..view.clone() }, ..State::default() };
+    let view = h.state().view.clone();
+    let mut app = App::new(Job::default(), Some(stored(&view)), Box::new(NoPortal));
+    app.reopen_part();
+    let n = part::parse(&std::fs::read_to_string(&job).unwrap()).unwrap().operation.len();
+    assert_eq!((app.view.tab, app.operations.rows.len()), (Tab::Plots, n), "{:?}", app.status);
+    assert_eq!(app.operations.path.as_ref(), Some(&job));
+    std::fs::remove_file(&job).unwrap();
+    let mut app = App::new(Job::default(), Some(stored(&view)), Box::new(NoPortal));
+    app.reopen_part();
+    assert_eq!((app.view.part.as_ref(), app.operations.rows.len()), (None, 0));
+    let (msg, error) = app.status.clone().expect("a message");
+    assert!(error && msg.contains(&job.display().to_string()), "{msg}");
 }
