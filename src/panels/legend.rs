@@ -179,27 +179,62 @@ pub fn show_above(ui: &mut egui::Ui, entries: &[Entry], max_rows: usize) -> f32 
 /// the entries that do not fit are listed when the pointer is over "+N more". Returns the
 /// rectangle it takes.
 pub fn show(ui: &mut egui::Ui, entries: &[Entry], max_rows: usize) -> egui::Rect {
+    show_entries(ui, entries, max_rows, None)
+}
+
+/// [`show`] for plot `plot_id` with entries that hide and show their curves on a click (a
+/// hidden one drawn faint); [`hidden`] tells which are hidden.
+pub fn show_toggling(ui: &mut egui::Ui, plot_id: &str, entries: &[Entry], max_rows: usize) -> egui::Rect {
+    show_entries(ui, entries, max_rows, Some(plot_id))
+}
+
+fn hidden_id(plot_id: &str) -> egui::Id {
+    egui::Id::NULL.with("hidden curves").with(plot_id)
+}
+
+/// The names of the legend entries of plot `plot_id` clicked to hide their curves.
+pub fn hidden(ctx: &egui::Context, plot_id: &str) -> Vec<String> {
+    ctx.data(|d| d.get_temp::<Vec<String>>(hidden_id(plot_id))).unwrap_or_default()
+}
+
+/// Whether series `s` of a plot of variants `layers` is hidden by the entries `hidden`: its
+/// own name's, or (with several variants, each an entry) its variant's.
+pub fn is_hidden(hidden: &[String], layers: &[(&str, Color32)], s: &Series) -> bool {
+    let variant = s.layer.and_then(|k| layers.get(k)).filter(|_| layers.len() > 1).map(|(name, _)| *name);
+    hidden.iter().any(|h| *h == s.what || Some(h.as_str()) == variant)
+}
+
+/// The legend of [`show`]; `toggling`: the id of the plot whose curves a click hides or shows.
+fn show_entries(ui: &mut egui::Ui, entries: &[Entry], max_rows: usize, toggling: Option<&str>) -> egui::Rect {
     if entries.is_empty() {
         return egui::Rect::NOTHING;
     }
+    let mut hidden_names = toggling.map(|id| hidden(ui.ctx(), id));
+    let mut clicked: Option<String> = None;
+    let mut draw_entry = |ui: &mut egui::Ui, e: &Entry| {
+        let hidden = hidden_names.as_ref().map(|h| h.contains(&e.name));
+        if entry(ui, e, hidden).clicked() {
+            clicked = Some(e.name.clone());
+        }
+    };
     let gap = 3.0 * GAP;
     let widths: Vec<f32> = entries.iter().map(|e| entry_size(ui, e).x).collect();
     let more = more_label(entries.len());
     let more_width = entry_galley(ui, &more).size().x;
     let shown = fitting(&widths, ui.available_width(), gap, max_rows, more_width);
-    ui.scope(|ui| {
+    let rect = ui.scope(|ui| {
         // rows as high as the small text, not as a button (set before the row is made)
         let row = ui.text_style_height(&egui::TextStyle::Small).max(SWATCH.y);
         ui.spacing_mut().interact_size.y = row;
         ui.spacing_mut().item_spacing = egui::vec2(gap, ROW_GAP);
         ui.horizontal_wrapped(|ui| {
             for e in &entries[..shown] {
-                entry(ui, e);
+                draw_entry(ui, e);
             }
             if let Some(rest) = entries.get(shown..).filter(|r| !r.is_empty()) {
                 ui.label(RichText::new(more_label(rest.len())).small()).on_hover_ui(|ui| {
                     for e in rest {
-                        entry(ui, e);
+                        draw_entry(ui, e);
                     }
                 });
             }
@@ -207,7 +242,16 @@ pub fn show(ui: &mut egui::Ui, entries: &[Entry], max_rows: usize) -> egui::Rect
         .response
         .rect
     })
-    .inner
+    .inner;
+    if let (Some(id), Some(names), Some(name)) = (toggling, &mut hidden_names, clicked) {
+        if let Some(i) = names.iter().position(|n| *n == name) {
+            names.remove(i);
+        } else {
+            names.push(name);
+        }
+        ui.ctx().data_mut(|d| d.insert_temp(hidden_id(id), names.clone()));
+    }
+    rect
 }
 
 /// The label standing for `n` entries that do not fit.
@@ -248,18 +292,31 @@ fn entry_size(ui: &egui::Ui, e: &Entry) -> egui::Vec2 {
 }
 
 /// One entry: a short line in the entry's look and its name, one widget (so that the row wraps
-/// between entries, never inside one).
-fn entry(ui: &mut egui::Ui, e: &Entry) -> egui::Response {
+/// between entries, never inside one). `hidden`: whether its curves are hidden, for an entry
+/// that a click hides or shows (None: a plain entry).
+fn entry(ui: &mut egui::Ui, e: &Entry, hidden: Option<bool>) -> egui::Response {
     let galley = entry_galley(ui, &e.name);
     let size = egui::vec2(SWATCH.x + GAP + galley.size().x, SWATCH.y.max(galley.size().y));
-    let (rect, response) = ui.allocate_exact_size(size, egui::Sense::hover());
-    response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Label, true, &e.name));
+    let sense = if hidden.is_some() { egui::Sense::click() } else { egui::Sense::hover() };
+    let (rect, mut response) = ui.allocate_exact_size(size, sense);
+    let role = if hidden.is_some() { egui::Role::Button } else { egui::Role::Label };
+    response.widget_info(|| egui::WidgetInfo::labeled(role, true, &e.name));
     if ui.is_rect_visible(rect) {
+        let faint = hidden == Some(true);
+        let look = if faint {
+            Look { color: e.look.color.gamma_multiply(0.3), fill: e.look.fill.gamma_multiply(0.3), ..e.look }
+        } else {
+            e.look
+        };
         let swatch_rect =
             egui::Rect::from_center_size(egui::pos2(rect.left() + SWATCH.x / 2.0, rect.center().y), SWATCH);
-        swatch(ui, swatch_rect, e.look);
+        swatch(ui, swatch_rect, look);
         let text_pos = egui::pos2(rect.left() + SWATCH.x + GAP, rect.center().y - galley.size().y / 2.0);
-        ui.painter().galley(text_pos, galley, ui.visuals().text_color());
+        let color = if faint { ui.visuals().weak_text_color() } else { ui.visuals().text_color() };
+        ui.painter().galley(text_pos, galley, color);
+    }
+    if let Some(h) = hidden {
+        response = response.on_hover_text(if h { "Hidden: click to show it again" } else { "Click to hide it" });
     }
     response
 }

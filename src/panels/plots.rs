@@ -140,7 +140,8 @@ fn keys<'l>(layers: &'l [Layer]) -> Vec<(&'l str, Color32)> {
 }
 
 /// `series` drawn into `plot` (id `id`) below their legend, then `marks` (markers and text,
-/// which are not curves).
+/// which are not curves). A click on a legend entry hides its curves (a variant's: all of
+/// them), another shows them again.
 fn show_series<'a>(
     ui: &mut egui::Ui,
     layers: &[Layer],
@@ -153,7 +154,10 @@ fn show_series<'a>(
     // the legend takes at most a fifth of the cell's height; the plot keeps the rest
     let row = ui.text_style_height(&egui::TextStyle::Small).max(10.0) + legend::ROW_GAP;
     let max_rows = ((0.2 * ui.available_height()) / row).floor().max(1.0) as usize;
-    let _legend = legend::show(ui, &legend::entries(&keys, &series), max_rows);
+    let _legend = legend::show_toggling(ui, id, &legend::entries(&keys, &series), max_rows);
+    // the curves whose legend entry was clicked are not drawn
+    let hidden = legend::hidden(ui.ctx(), id);
+    let series: Vec<Series<'a>> = series.into_iter().filter(|s| !legend::is_hidden(&hidden, &keys, s)).collect();
     #[cfg(test)]
     let drawn = legend::record::drawn(&series);
     let names: Vec<String> = series.iter().map(|s| legend::hover_name(&keys, s)).collect();

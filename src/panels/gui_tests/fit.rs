@@ -261,3 +261,42 @@ fn no_plot_draws_its_legend_inside_the_data() {
     }
     assert!(found.is_empty(), "egui_plot's legend inside the plot at {}", found.join(", "));
 }
+
+/// The variants of each plot of the Plots tab drawn this frame: plot id and the variants
+/// (layers) of its curves.
+fn variants_drawn(h: &mut Harness<'_, App>) -> Vec<(&'static str, std::collections::BTreeSet<usize>)> {
+    for id in PLOTS {
+        record::forget(&h.ctx, id);
+    }
+    h.run();
+    PLOTS
+        .iter()
+        .filter_map(|&id| Some((id, record::get(&h.ctx, id)?.drawn.iter().filter_map(|d| d.layer).collect())))
+        .collect()
+}
+
+/// A click on a variant's entry in a legend hides that variant's curves in that plot only (the
+/// entry stays, to be clicked again), and a second click shows them again.
+#[test]
+fn a_click_on_a_legend_entry_hides_its_curves_and_another_shows_them() {
+    let mut h = with_four_pins(SIZES[0]);
+    h.get_by_label(Tab::Plots.spec().label).click();
+    h.run();
+    wait_for_plans(&mut h);
+    let all: std::collections::BTreeSet<usize> = (0..5).collect();
+    let before = variants_drawn(&mut h);
+    assert!(before.len() >= 3 && before.iter().all(|(_, v)| *v == all), "{before:?}");
+    let entries = || By::new().role(Role::Button).label("current");
+    let n = h.query_all(entries()).count();
+    assert_eq!(n, before.len(), "one entry for the edited job in each plot's legend");
+    h.query_all(entries()).nth(1).expect("the second plot's entry").click();
+    let after = variants_drawn(&mut h);
+    let without: std::collections::BTreeSet<usize> = (1..5).collect();
+    let changed: Vec<_> = after.iter().filter(|(_, v)| *v != all).collect();
+    assert_eq!(changed.len(), 1, "one plot: {after:?}");
+    assert_eq!(changed[0].1, without, "the edited job's curves hidden, the pins' kept");
+    assert_eq!(h.query_all(entries()).count(), n, "the entry stays in the legend");
+    h.query_all(entries()).nth(1).expect("the entry again").click();
+    let again = variants_drawn(&mut h);
+    assert!(again.iter().all(|(_, v)| *v == all), "shown again: {again:?}");
+}
