@@ -222,27 +222,28 @@ fn show_entries(ui: &mut egui::Ui, entries: &[Entry], max_rows: usize, toggling:
     let more = more_label(entries.len());
     let more_width = entry_galley(ui, &more).size().x;
     let shown = fitting(&widths, ui.available_width(), gap, max_rows, more_width);
-    let rect = ui.scope(|ui| {
-        // rows as high as the small text, not as a button (set before the row is made)
-        let row = ui.text_style_height(&egui::TextStyle::Small).max(SWATCH.y);
-        ui.spacing_mut().interact_size.y = row;
-        ui.spacing_mut().item_spacing = egui::vec2(gap, ROW_GAP);
-        ui.horizontal_wrapped(|ui| {
-            for e in &entries[..shown] {
-                draw_entry(ui, e);
-            }
-            if let Some(rest) = entries.get(shown..).filter(|r| !r.is_empty()) {
-                ui.label(RichText::new(more_label(rest.len())).small()).on_hover_ui(|ui| {
-                    for e in rest {
-                        draw_entry(ui, e);
-                    }
-                });
-            }
+    let rect = ui
+        .scope(|ui| {
+            // rows as high as the small text, not as a button (set before the row is made)
+            let row = ui.text_style_height(&egui::TextStyle::Small).max(SWATCH.y);
+            ui.spacing_mut().interact_size.y = row;
+            ui.spacing_mut().item_spacing = egui::vec2(gap, ROW_GAP);
+            ui.horizontal_wrapped(|ui| {
+                for e in &entries[..shown] {
+                    draw_entry(ui, e);
+                }
+                if let Some(rest) = entries.get(shown..).filter(|r| !r.is_empty()) {
+                    ui.label(RichText::new(more_label(rest.len())).small()).on_hover_ui(|ui| {
+                        for e in rest {
+                            draw_entry(ui, e);
+                        }
+                    });
+                }
+            })
+            .response
+            .rect
         })
-        .response
-        .rect
-    })
-    .inner;
+        .inner;
     if let (Some(id), Some(names), Some(name)) = (toggling, &mut hidden_names, clicked) {
         if let Some(i) = names.iter().position(|n| *n == name) {
             names.remove(i);
