@@ -3,49 +3,6 @@
 
 use super::*;
 
-/// Dialogs of a desktop without a portal: no dialog ever shows.
-struct NoPortal {
-    calls: usize,
-}
-
-impl FileDialogs for NoPortal {
-    fn open_job(&mut self) -> Option<PathBuf> {
-        self.calls += 1;
-        None
-    }
-    fn save_job(&mut self, _current: Option<&Path>) -> Option<PathBuf> {
-        self.calls += 1;
-        None
-    }
-    fn save_nc(&mut self, _stem: &str, _extension: &str) -> Option<PathBuf> {
-        self.calls += 1;
-        None
-    }
-    fn open_outline(&mut self) -> Option<PathBuf> {
-        self.calls += 1;
-        None
-    }
-    fn open_program(&mut self) -> Option<PathBuf> {
-        self.calls += 1;
-        None
-    }
-    fn unavailable(&mut self) -> Option<String> {
-        Some("No file dialog appeared".into())
-    }
-}
-
-/// Replace the path field's text with `path` and press Enter.
-fn type_path(h: &mut Harness<'_, App>, path: &Path) {
-    assert!(shows(h, label::PATH_FIELD), "the path field is open");
-    h.get_by_label(label::PATH_FIELD).click();
-    h.run();
-    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
-    h.get_by_label(label::PATH_FIELD).type_text(&path.display().to_string());
-    h.run();
-    h.key_press(egui::Key::Enter);
-    h.run();
-}
-
 fn status(h: &Harness<'_, App>) -> (String, bool) {
     h.state().status.clone().unwrap_or_default()
 }
@@ -53,7 +10,7 @@ fn status(h: &Harness<'_, App>) -> (String, bool) {
 #[test]
 fn without_a_portal_jobs_programs_and_outlines_are_saved_and_opened_through_the_path_field() {
     let dir = tempfile::tempdir().unwrap();
-    let mut h = harness_with(App::new(Job::default(), None, Box::new(NoPortal { calls: 0 })));
+    let mut h = harness_with(App::new(Job::default(), None, Box::new(NoPortal)));
 
     // Save job as (Ctrl+Shift+S): no dialog, the path field asks instead
     h.key_press_modifiers(egui::Modifiers::COMMAND | egui::Modifiers::SHIFT, egui::Key::S);

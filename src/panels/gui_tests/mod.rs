@@ -55,6 +55,43 @@ impl FileDialogs for FakeDialogs {
     }
 }
 
+/// Dialogs of a desktop without a portal: no dialog ever shows, every file goes through the
+/// path field.
+struct NoPortal;
+
+impl FileDialogs for NoPortal {
+    fn open_job(&mut self) -> Option<PathBuf> {
+        None
+    }
+    fn save_job(&mut self, _current: Option<&Path>) -> Option<PathBuf> {
+        None
+    }
+    fn save_nc(&mut self, _stem: &str, _extension: &str) -> Option<PathBuf> {
+        None
+    }
+    fn open_outline(&mut self) -> Option<PathBuf> {
+        None
+    }
+    fn open_program(&mut self) -> Option<PathBuf> {
+        None
+    }
+    fn unavailable(&mut self) -> Option<String> {
+        Some("No file dialog appeared".into())
+    }
+}
+
+/// Replace the open path field's text with `path` and press Enter.
+fn type_path(h: &mut Harness<'_, App>, path: &Path) {
+    assert!(shows(h, label::PATH_FIELD), "the path field is open");
+    h.get_by_label(label::PATH_FIELD).click();
+    h.run();
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    h.get_by_label(label::PATH_FIELD).type_text(&path.display().to_string());
+    h.run();
+    h.key_press(egui::Key::Enter);
+    h.run();
+}
+
 fn harness_with(app: App) -> Harness<'static, App> {
     let mut h =
         Harness::builder().with_size(egui::vec2(1400.0, 900.0)).build_ui_state(|ui, app: &mut App| app.show(ui), app);

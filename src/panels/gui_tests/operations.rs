@@ -21,42 +21,6 @@ fn example_part(dir: &Path) -> PathBuf {
     job
 }
 
-/// Dialogs of a desktop without a portal: every file goes through the path field.
-struct NoPortal;
-
-impl FileDialogs for NoPortal {
-    fn open_job(&mut self) -> Option<PathBuf> {
-        None
-    }
-    fn save_job(&mut self, _current: Option<&Path>) -> Option<PathBuf> {
-        None
-    }
-    fn save_nc(&mut self, _stem: &str, _extension: &str) -> Option<PathBuf> {
-        None
-    }
-    fn open_outline(&mut self) -> Option<PathBuf> {
-        None
-    }
-    fn open_program(&mut self) -> Option<PathBuf> {
-        None
-    }
-    fn unavailable(&mut self) -> Option<String> {
-        Some("No file dialog appeared".into())
-    }
-}
-
-/// Type `path` into the open path field and press Enter.
-fn type_path(h: &mut Harness<'_, App>, path: &Path) {
-    assert!(shows(h, label::PATH_FIELD), "the path field is open");
-    h.get_by_label(label::PATH_FIELD).click();
-    h.run();
-    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
-    h.get_by_label(label::PATH_FIELD).type_text(&path.display().to_string());
-    h.run();
-    h.key_press(egui::Key::Enter);
-    h.run();
-}
-
 /// The window with the part `job` opened by Ctrl+Shift+P through the path field, its
 /// operations planned.
 fn part_window(job: &Path) -> Harness<'static, App> {
