@@ -199,7 +199,8 @@ mod tests {
         coolant: Coolant::Off,
     };
 
-    fn program(toolpath: &crate::toolpath::Toolpath, placement: Placement, dialect: Dialect) -> String {
+    /// `toolpath` as a pocket operation (3 mm deep, D 10, F600, S2000) placed by `placement`.
+    fn pocket_op(toolpath: &crate::toolpath::Toolpath, placement: Placement) -> OperationNc<'_> {
         let body = OperationBody::Path(PathJob {
             toolpath,
             depth_mm: 3.0,
@@ -209,7 +210,11 @@ mod tests {
             default_title: "test",
             description: Vec::new(),
         });
-        let op = OperationNc { label: "pocket".into(), tool: TOOL, body, placement };
+        OperationNc { label: "pocket".into(), tool: TOOL, body, placement }
+    }
+
+    fn program(toolpath: &crate::toolpath::Toolpath, placement: Placement, dialect: Dialect) -> String {
+        let op = pocket_op(toolpath, placement);
         let opts = NcOptions { dialect, ..NcOptions::default() };
         operations_program(&[op], &opts).expect("program").text
     }
@@ -264,16 +269,7 @@ mod tests {
             (Placement { origin: p2(0.0, f64::INFINITY), rotation_rad: 0.0 }, "origin"),
             (Placement { origin: p2(0.0, 0.0), rotation_rad: f64::NAN }, "rotation"),
         ] {
-            let body = OperationBody::Path(PathJob {
-                toolpath: p.toolpath(),
-                depth_mm: 3.0,
-                feed_mm_per_min: 600.0,
-                spindle_rpm: 2000.0,
-                tool_diameter_mm: 10.0,
-                default_title: "test",
-                description: Vec::new(),
-            });
-            let op = OperationNc { label: "pocket".into(), tool: TOOL, body, placement: place };
+            let op = pocket_op(p.toolpath(), place);
             let (k, e) = operations_program(&[op], &NcOptions::default()).expect_err("refused");
             assert_eq!((k, e.subject()), (1, Some(key)), "{e}");
         }
